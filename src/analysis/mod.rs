@@ -1,0 +1,7 @@
+//! Analyses on bodies and bases: natural frequencies, deformed profiles (§7.1), subspaces.
+
+mod frequencies;
+mod profiles;
+
+pub use frequencies::{RIGID_BODY_HZ, elastic_hz, free_free_modes, reduced_hz, reduced_modes};
+pub use profiles::{PROFILE_DELTA, ProfileFit, fit_given_modal_coordinates, fit_least_squares};

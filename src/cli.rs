@@ -1,0 +1,186 @@
+//! The command line of DESIGN §4 (`main.rs` only calls [`main`]).
+
+use std::{io::IsTerminal, path::PathBuf, process::ExitCode};
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::{
+    Error, Result,
+    record::Recorder,
+    reduction::Method,
+    scenes::{self, SceneOptions},
+};
+
+/// Explorer of model order reduction for restrained deformable bodies.
+#[derive(Debug, Parser)]
+#[command(name = "flexmodes", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// List the scenes, one line each.
+    List,
+    /// Record scenes to Rerun `.rrd` files.
+    Record {
+        /// Scene ids (see `flexmodes list`).
+        scenes: Vec<String>,
+        /// Record every scene.
+        #[arg(long, conflicts_with = "scenes")]
+        all: bool,
+        /// Folder to write `<scene>.rrd` into.
+        #[arg(long, default_value = "recordings", conflicts_with = "save")]
+        out: PathBuf,
+        /// Write a single scene to this file.
+        #[arg(long)]
+        save: Option<PathBuf>,
+        #[command(flatten)]
+        options: OptionArgs,
+    },
+    /// Print a scene's numeric results (a table, or JSON on stdout).
+    Report {
+        /// Scene id.
+        scene: String,
+        /// Print `{"scene", "parameters", "results"}` as JSON.
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        options: OptionArgs,
+    },
+}
+
+/// Scene options shared by `record` and `report`.
+#[derive(Debug, Args, Clone, Default)]
+struct OptionArgs {
+    /// Reduction methods, comma separated: nr, gr, mt, cb, mc, eit.
+    #[arg(long, value_delimiter = ',', value_parser = parse_method)]
+    method: Option<Vec<Method>>,
+    /// Kept normal modes.
+    #[arg(long)]
+    modes: Option<usize>,
+    /// Boundary (master, interface) nodes, 1-based, comma separated.
+    #[arg(long, value_delimiter = ',')]
+    boundary: Option<Vec<usize>>,
+    /// Axis type: nodal_fixed, mean, principal.
+    #[arg(long)]
+    axes: Option<String>,
+}
+
+fn parse_method(s: &str) -> std::result::Result<Method, String> {
+    Method::from_id(s.trim()).ok_or_else(|| {
+        format!(
+            "unknown method `{s}` (known: {})",
+            Method::ALL.map(|m| m.id()).join(", ")
+        )
+    })
+}
+
+impl From<OptionArgs> for SceneOptions {
+    fn from(a: OptionArgs) -> Self {
+        SceneOptions {
+            methods: a.method,
+            modes: a.modes,
+            boundary: a.boundary,
+            axes: a.axes,
+        }
+    }
+}
+
+/// Parses the arguments (exit 2 on a usage error), runs, and maps errors to exit code 1 with
+/// the cause chain on stderr.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let mut msg = format!("error: {e}");
+            let mut src = std::error::Error::source(&e);
+            while let Some(s) = src {
+                msg.push_str(&format!(": {s}"));
+                src = s.source();
+            }
+            eprintln!("{msg}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn progress(msg: &str) {
+    if std::io::stderr().is_terminal() {
+        eprintln!("{msg}");
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::List => {
+            for s in scenes::all() {
+                println!("{:<16} {}", s.info.id, s.info.summary);
+            }
+            Ok(())
+        }
+        Command::Report {
+            scene,
+            json,
+            options,
+        } => {
+            let s = scenes::find(&scene)?;
+            let out = (s.run)(&options.into())?;
+            if json {
+                println!("{}", out.report.to_json());
+            } else {
+                println!("# {}\n\n{}", out.report.scene, out.report.table);
+            }
+            Ok(())
+        }
+        Command::Record {
+            scenes: ids,
+            all,
+            out,
+            save,
+            options,
+        } => {
+            let ids: Vec<String> = if all {
+                scenes::all().iter().map(|s| s.info.id.to_string()).collect()
+            } else {
+                ids
+            };
+            if ids.is_empty() {
+                return Err(Error::InvalidOption {
+                    scene: "-".into(),
+                    reason: "name at least one scene or pass --all".into(),
+                });
+            }
+            if save.is_some() && ids.len() != 1 {
+                return Err(Error::InvalidOption {
+                    scene: ids.join(","),
+                    reason: "--save takes exactly one scene; use --out DIR for several".into(),
+                });
+            }
+            // Resolve every id first, so a typo fails before anything is written.
+            let found = ids
+                .iter()
+                .map(|id| scenes::find(id))
+                .collect::<Result<Vec<_>>>()?;
+            let opts: SceneOptions = options.into();
+            let recorder = Recorder;
+            for s in found {
+                progress(&format!("recording {} ...", s.info.id));
+                let output = (s.run)(&opts)?;
+                let path = save
+                    .clone()
+                    .unwrap_or_else(|| out.join(format!("{}.rrd", s.info.id)));
+                recorder.save(&output, &path)?;
+                println!(
+                    "# {} -> {}\n\n{}",
+                    s.info.id,
+                    path.display(),
+                    output.report.table
+                );
+            }
+            Ok(())
+        }
+    }
+}

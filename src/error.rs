@@ -1,0 +1,133 @@
+//! Typed errors. Every error names its cause (which node, which matrix, which value), so the
+//! CLI can print a one-line cause chain and the GUI can show it without losing state.
+
+use thiserror::Error;
+
+/// Everything that can go wrong in flexmodes, from bad user input to a failed decomposition.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// A scene id that is not in the registry.
+    #[error("unknown scene `{id}` (known scenes: {known})")]
+    UnknownScene { id: String, known: String },
+
+    /// A reduction-method id that is not known, or not available in this scene.
+    #[error("unknown or unsupported method `{id}` for scene `{scene}` (available: {available})")]
+    UnknownMethod {
+        id: String,
+        scene: String,
+        available: String,
+    },
+
+    /// An axis-type id that is not known, or not available in this scene.
+    #[error("unknown or unsupported axis type `{id}` for scene `{scene}` (available: {available})")]
+    UnknownAxes {
+        id: String,
+        scene: String,
+        available: String,
+    },
+
+    /// A 1-based node number outside `1..=count`.
+    #[error("node {node} is out of range: the {body} has nodes 1 to {count}")]
+    NodeOutOfRange {
+        node: usize,
+        count: usize,
+        body: String,
+    },
+
+    /// The same node was given twice in a boundary or master set.
+    #[error("node {node} is listed twice in the boundary set")]
+    DuplicateNode { node: usize },
+
+    /// A boundary set that is empty or leaves no interior DOF.
+    #[error("invalid boundary set {nodes:?}: {reason}")]
+    InvalidBoundary { nodes: Vec<usize>, reason: String },
+
+    /// $K_{ii}$ is singular: the boundary DOF do not restrain every rigid-body motion.
+    #[error(
+        "K_ii is singular for boundary nodes {boundary_nodes:?}: {rank_deficiency} rigid-body \
+         motion(s) of the interior stay unrestrained (smallest/largest eigenvalue {ratio:.1e}); \
+         Craig-Bampton, Guyan and mode condensation need at least {needed} properly chosen \
+         boundary DOF"
+    )]
+    SingularInterior {
+        boundary_nodes: Vec<usize>,
+        rank_deficiency: usize,
+        ratio: f64,
+        needed: usize,
+    },
+
+    /// More normal modes were requested than the interior eigenproblem has.
+    #[error("{requested} normal modes requested but only {available} exist for this interior set")]
+    TooManyModes { requested: usize, available: usize },
+
+    /// A frequency cut-off that keeps no mode where at least one is required.
+    #[error("invalid mode selection: {reason}")]
+    InvalidModeSelection { reason: String },
+
+    /// A matrix that should be symmetric positive definite is not.
+    #[error("the {matrix} matrix is not positive definite")]
+    NotPositiveDefinite { matrix: String },
+
+    /// A square matrix that must be inverted is singular.
+    #[error("the {matrix} matrix is singular (reciprocal condition estimate {rcond:.1e})")]
+    SingularMatrix { matrix: String, rcond: f64 },
+
+    /// An eigen- or singular-value decomposition did not converge.
+    #[error("the {what} decomposition did not converge")]
+    DecompositionFailed { what: String },
+
+    /// Eitelberg's method needs every pole of A in the open left half-plane.
+    #[error(
+        "Eitelberg's method needs a stable A, but its largest real eigenvalue part is \
+         {max_real_part:.3e} >= 0 (use the output-feedback trick A - B L C)"
+    )]
+    UnstableSystem { max_real_part: f64 },
+
+    /// The Lyapunov equation solve left a residual larger than its tolerance.
+    #[error("the Lyapunov equation was solved with relative residual {residual:.1e}")]
+    LyapunovInaccurate { residual: f64 },
+
+    /// A nodal-fixed anchor coordinate that is not a boundary (identity) column of Ψ.
+    #[error(
+        "nodal-fixed axes anchor node {node} {direction}, but that coordinate is not a boundary \
+         column of the {method} basis (add node {node} to the boundary set)"
+    )]
+    AnchorNotInBasis {
+        node: usize,
+        direction: &'static str,
+        method: String,
+    },
+
+    /// A nodal-fixed configuration whose three nodes are not distinct or whose axes do not fit.
+    #[error("invalid nodal-fixed axes: {reason}")]
+    InvalidAxes { reason: String },
+
+    /// Bad scene option (a combination the scene cannot honour).
+    #[error("invalid option for scene `{scene}`: {reason}")]
+    InvalidOption { scene: String, reason: String },
+
+    /// Writing a recording failed; the destination was left untouched.
+    #[error("could not write recording {path}: {reason}")]
+    RecordingWrite { path: String, reason: String },
+
+    /// Rerun reported an error while logging.
+    #[error("rerun: {0}")]
+    Rerun(String),
+
+    /// I/O error with the path involved.
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+/// Result alias used across the crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+impl From<rerun::RecordingStreamError> for Error {
+    fn from(e: rerun::RecordingStreamError) -> Self {
+        Error::Rerun(e.to_string())
+    }
+}

@@ -1,0 +1,184 @@
+//! A linear finite-element body: nodes, stiffness and lumped mass.
+
+use faer::Mat;
+
+use crate::{Error, Result};
+
+/// A translational direction of a node (the thesis' ξ, η, ζ of the body frame).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Direction {
+    /// ξ, along x.
+    X,
+    /// η, along y.
+    Y,
+    /// ζ, along z.
+    Z,
+}
+
+impl Direction {
+    /// All three directions in DOF order.
+    pub const ALL: [Direction; 3] = [Direction::X, Direction::Y, Direction::Z];
+
+    /// Offset of this direction inside a node's DOF block.
+    pub fn index(self) -> usize {
+        match self {
+            Direction::X => 0,
+            Direction::Y => 1,
+            Direction::Z => 2,
+        }
+    }
+
+    /// `x`, `y` or `z`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Direction::X => "x",
+            Direction::Y => "y",
+            Direction::Z => "z",
+        }
+    }
+
+    /// Direction from its index inside a node's DOF block.
+    pub fn from_index(i: usize) -> Direction {
+        Direction::ALL[i]
+    }
+}
+
+/// A body discretised by finite elements with translational nodal DOF only, node-major
+/// DOF order (`x, y[, z]` per node). Units: m, kg, N/m.
+#[derive(Debug, Clone)]
+pub struct FeModel {
+    /// Body name used in entity paths (`beam`, `slab`, `plank`).
+    pub name: String,
+    /// Translational DOF per node: 2 (planar) or 3.
+    pub dim: usize,
+    /// Undeformed node positions in m (z = 0 for planar bodies).
+    pub nodes: Vec<[f64; 3]>,
+    /// Wireframe edges as 0-based node index pairs.
+    pub edges: Vec<[usize; 2]>,
+    /// Stiffness matrix, N/m.
+    pub k: Mat<f64>,
+    /// Mass matrix, kg.
+    pub m: Mat<f64>,
+}
+
+impl FeModel {
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Number of DOF.
+    pub fn dof_count(&self) -> usize {
+        self.dim * self.nodes.len()
+    }
+
+    /// Checks a 1-based node number and returns its 0-based index.
+    pub fn node_index(&self, node: usize) -> Result<usize> {
+        if node == 0 || node > self.node_count() {
+            return Err(Error::NodeOutOfRange {
+                node,
+                count: self.node_count(),
+                body: self.name.clone(),
+            });
+        }
+        Ok(node - 1)
+    }
+
+    /// The DOF index of a 1-based node in a direction.
+    pub fn dof(&self, node: usize, dir: Direction) -> Result<usize> {
+        let i = self.node_index(node)?;
+        if dir.index() >= self.dim {
+            return Err(Error::InvalidAxes {
+                reason: format!("the {} is planar and has no {} DOF", self.name, dir.name()),
+            });
+        }
+        Ok(i * self.dim + dir.index())
+    }
+
+    /// All DOF of the given 1-based nodes, in the given node order; rejects duplicates.
+    pub fn dofs_of_nodes(&self, nodes: &[usize]) -> Result<Vec<usize>> {
+        let mut out = Vec::with_capacity(nodes.len() * self.dim);
+        for (n, &node) in nodes.iter().enumerate() {
+            if nodes[..n].contains(&node) {
+                return Err(Error::DuplicateNode { node });
+            }
+            let i = self.node_index(node)?;
+            out.extend((0..self.dim).map(|d| i * self.dim + d));
+        }
+        Ok(out)
+    }
+
+    /// `(1-based node, direction)` of a DOF index.
+    pub fn dof_node(&self, dof: usize) -> (usize, Direction) {
+        (dof / self.dim + 1, Direction::from_index(dof % self.dim))
+    }
+
+    /// `node 3 y` style label of a DOF.
+    pub fn dof_label(&self, dof: usize) -> String {
+        let (node, dir) = self.dof_node(dof);
+        format!("node {node} {}", dir.name())
+    }
+
+    /// Total mass (kg) as seen by a rigid translation along x.
+    pub fn total_mass(&self) -> f64 {
+        let n = self.dof_count();
+        let mut t = Mat::<f64>::zeros(n, 1);
+        for i in 0..self.node_count() {
+            t[(i * self.dim, 0)] = 1.0;
+        }
+        (t.transpose() * &self.m * &t)[(0, 0)]
+    }
+
+    /// Rigid-body motions as columns: translations, then small rotations about the origin
+    /// (one in 2-D, three in 3-D).
+    pub fn rigid_body_modes(&self) -> Mat<f64> {
+        let n = self.dof_count();
+        let count = if self.dim == 3 { 6 } else { 3 };
+        let mut r = Mat::zeros(n, count);
+        for (i, p) in self.nodes.iter().enumerate() {
+            let b = i * self.dim;
+            for d in 0..self.dim {
+                r[(b + d, d)] = 1.0;
+            }
+            if self.dim == 2 {
+                r[(b, 2)] = -p[1];
+                r[(b + 1, 2)] = p[0];
+            } else {
+                // rotation about x, y, z: omega × p
+                r[(b + 1, 3)] = -p[2];
+                r[(b + 2, 3)] = p[1];
+                r[(b, 4)] = p[2];
+                r[(b + 2, 4)] = -p[0];
+                r[(b, 5)] = -p[1];
+                r[(b + 1, 5)] = p[0];
+            }
+        }
+        r
+    }
+
+    /// Node positions displaced by a DOF vector `u` scaled by `scale`.
+    pub fn displaced(&self, u: &[f64], scale: f64) -> Vec<[f64; 3]> {
+        self.nodes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let mut q = *p;
+                for d in 0..self.dim {
+                    q[d] += scale * u[i * self.dim + d];
+                }
+                q
+            })
+            .collect()
+    }
+
+    /// Characteristic size (m): the largest extent of the undeformed body.
+    pub fn size(&self) -> f64 {
+        let mut ext = 0.0f64;
+        for d in 0..3 {
+            let lo = self.nodes.iter().map(|p| p[d]).fold(f64::INFINITY, f64::min);
+            let hi = self.nodes.iter().map(|p| p[d]).fold(f64::NEG_INFINITY, f64::max);
+            ext = ext.max(hi - lo);
+        }
+        ext
+    }
+}

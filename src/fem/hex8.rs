@@ -1,0 +1,97 @@
+//! The 8-node trilinear brick (App. B), integrated with 2×2×2 Gauss points.
+
+use faer::Mat;
+
+/// Natural coordinates of the local nodes: bottom face (ζ = −1) counter-clockwise, then top.
+pub const LOCAL_NODES: [[f64; 3]; 8] = [
+    [-1.0, -1.0, -1.0],
+    [1.0, -1.0, -1.0],
+    [1.0, 1.0, -1.0],
+    [-1.0, 1.0, -1.0],
+    [-1.0, -1.0, 1.0],
+    [1.0, -1.0, 1.0],
+    [1.0, 1.0, 1.0],
+    [-1.0, 1.0, 1.0],
+];
+
+/// Isotropic linear-elastic constitutive matrix (Voigt order xx, yy, zz, xy, yz, zx;
+/// engineering shear strains). `e` in Pa.
+fn elasticity(e: f64, nu: f64) -> [[f64; 6]; 6] {
+    let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let mut d = [[0.0; 6]; 6];
+    for i in 0..3 {
+        for j in 0..3 {
+            d[i][j] = c * if i == j { 1.0 - nu } else { nu };
+        }
+        d[i + 3][i + 3] = c * (1.0 - 2.0 * nu) / 2.0;
+    }
+    d
+}
+
+/// Element stiffness (24×24, N/m) of a brick with node positions `x` (m) in the local order of
+/// [`LOCAL_NODES`], Young's modulus `e` (Pa) and Poisson's ratio `nu`.
+/// $K_e = \sum_g B^T D B \,\det J\, w_g$ over the 2×2×2 Gauss points.
+pub fn hex8_stiffness(x: &[[f64; 3]; 8], e: f64, nu: f64) -> Mat<f64> {
+    let d = elasticity(e, nu);
+    let g = 1.0 / 3.0f64.sqrt();
+    let mut k = Mat::<f64>::zeros(24, 24);
+    for &gx in &[-g, g] {
+        for &gy in &[-g, g] {
+            for &gz in &[-g, g] {
+                // dN/dξ for each node.
+                let mut dn = [[0.0; 3]; 8];
+                for (a, n) in LOCAL_NODES.iter().enumerate() {
+                    dn[a][0] = 0.125 * n[0] * (1.0 + n[1] * gy) * (1.0 + n[2] * gz);
+                    dn[a][1] = 0.125 * n[1] * (1.0 + n[0] * gx) * (1.0 + n[2] * gz);
+                    dn[a][2] = 0.125 * n[2] * (1.0 + n[0] * gx) * (1.0 + n[1] * gy);
+                }
+                let mut j = nalgebra::Matrix3::<f64>::zeros();
+                for a in 0..8 {
+                    for r in 0..3 {
+                        for c in 0..3 {
+                            j[(r, c)] += dn[a][r] * x[a][c];
+                        }
+                    }
+                }
+                let det = j.determinant();
+                let jinv = j
+                    .try_inverse()
+                    .unwrap_or_else(nalgebra::Matrix3::<f64>::zeros);
+                // dN/dx = J^{-1} dN/dξ
+                let mut dx = [[0.0; 3]; 8];
+                for a in 0..8 {
+                    for r in 0..3 {
+                        dx[a][r] = (0..3).map(|c| jinv[(r, c)] * dn[a][c]).sum();
+                    }
+                }
+                let mut b = [[0.0; 24]; 6];
+                for a in 0..8 {
+                    let (nx, ny, nz) = (dx[a][0], dx[a][1], dx[a][2]);
+                    let c = 3 * a;
+                    b[0][c] = nx;
+                    b[1][c + 1] = ny;
+                    b[2][c + 2] = nz;
+                    b[3][c] = ny;
+                    b[3][c + 1] = nx;
+                    b[4][c + 1] = nz;
+                    b[4][c + 2] = ny;
+                    b[5][c] = nz;
+                    b[5][c + 2] = nx;
+                }
+                let mut db = [[0.0; 24]; 6];
+                for r in 0..6 {
+                    for c in 0..24 {
+                        db[r][c] = (0..6).map(|s| d[r][s] * b[s][c]).sum();
+                    }
+                }
+                for r in 0..24 {
+                    for c in 0..24 {
+                        let v: f64 = (0..6).map(|s| b[s][r] * db[s][c]).sum();
+                        k[(r, c)] += v * det;
+                    }
+                }
+            }
+        }
+    }
+    k
+}

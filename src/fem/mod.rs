@@ -1,0 +1,14 @@
+//! Finite-element bodies: the App. A beam, the App. B slab and the same mesh standing as the
+//! plank of §5.3.3.
+
+mod beam2d;
+mod brick_mesh;
+mod fe_model;
+mod hex8;
+mod triplets;
+
+pub use beam2d::{BeamParameters, beam};
+pub use brick_mesh::{SlabParameters, plank, slab};
+pub use fe_model::{Direction, FeModel};
+pub use hex8::hex8_stiffness;
+pub use triplets::Triplets;

@@ -1,0 +1,89 @@
+//! Small dense helpers: index selection, norms and comparisons.
+
+use faer::{Mat, MatRef};
+
+/// The `n`×`n` identity.
+pub fn identity(n: usize) -> Mat<f64> {
+    Mat::from_fn(n, n, |i, j| if i == j { 1.0 } else { 0.0 })
+}
+
+/// `a[rows, cols]` as a new matrix.
+pub fn select(a: MatRef<'_, f64>, rows: &[usize], cols: &[usize]) -> Mat<f64> {
+    Mat::from_fn(rows.len(), cols.len(), |i, j| a[(rows[i], cols[j])])
+}
+
+/// `a[rows, :]`.
+pub fn select_rows(a: MatRef<'_, f64>, rows: &[usize]) -> Mat<f64> {
+    Mat::from_fn(rows.len(), a.ncols(), |i, j| a[(rows[i], j)])
+}
+
+/// `a[:, cols]`.
+pub fn select_cols(a: MatRef<'_, f64>, cols: &[usize]) -> Mat<f64> {
+    Mat::from_fn(a.nrows(), cols.len(), |i, j| a[(i, cols[j])])
+}
+
+/// Largest absolute entry (0 for an empty matrix).
+pub fn max_abs(a: MatRef<'_, f64>) -> f64 {
+    let mut m = 0.0f64;
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            m = m.max(a[(i, j)].abs());
+        }
+    }
+    m
+}
+
+/// Largest absolute entry of `a - b`.
+pub fn max_abs_diff(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> f64 {
+    assert_eq!((a.nrows(), a.ncols()), (b.nrows(), b.ncols()));
+    let mut m = 0.0f64;
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            m = m.max((a[(i, j)] - b[(i, j)]).abs());
+        }
+    }
+    m
+}
+
+/// Frobenius norm.
+pub fn frobenius(a: MatRef<'_, f64>) -> f64 {
+    a.norm_l2()
+}
+
+/// $\max|A - A^T| / \max|A|$, 0 for a zero matrix.
+pub fn symmetry_defect(a: MatRef<'_, f64>) -> f64 {
+    let scale = max_abs(a);
+    if scale == 0.0 {
+        return 0.0;
+    }
+    max_abs_diff(a, a.transpose()) / scale
+}
+
+/// Principal angles (radians, ascending) between the column spaces of `a` and `b`.
+///
+/// Both bases are orthonormalised by a thin SVD (rank-revealing, so dependent columns are
+/// dropped); the cosines are the singular values of $Q_a^T Q_b$.
+pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> crate::Result<Vec<f64>> {
+    let qa = orthonormal_basis(a)?;
+    let qb = orthonormal_basis(b)?;
+    let c = qa.transpose() * &qb;
+    let s = c
+        .singular_values()
+        .map_err(|_| crate::Error::DecompositionFailed {
+            what: "principal-angle SVD".into(),
+        })?;
+    let mut angles: Vec<f64> = s.iter().map(|&c| c.clamp(-1.0, 1.0).acos()).collect();
+    angles.sort_by(f64::total_cmp);
+    Ok(angles)
+}
+
+fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::Result<Mat<f64>> {
+    let svd = a.thin_svd().map_err(|_| crate::Error::DecompositionFailed {
+        what: "orthonormalisation SVD".into(),
+    })?;
+    let s = svd.S().column_vector();
+    let smax = if s.nrows() > 0 { s[0] } else { 0.0 };
+    let tol = smax * 1e-10 * (a.nrows().max(a.ncols()) as f64);
+    let rank = (0..s.nrows()).filter(|&i| s[i] > tol).count();
+    Ok(svd.U().subcols(0, rank).to_owned())
+}

@@ -1,0 +1,66 @@
+//! A viewer layout, converted to a Rerun blueprint by the recorder.
+
+/// Containers and views of the default blueprint.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Layout {
+    /// Side by side, with relative widths.
+    Horizontal(Vec<Layout>, Vec<f32>),
+    /// Stacked, with relative heights.
+    Vertical(Vec<Layout>, Vec<f32>),
+    /// Tabs.
+    Tabs(Vec<Layout>),
+    /// A 3D view.
+    Spatial3D {
+        /// Tab title.
+        name: String,
+        /// Origin entity path.
+        origin: String,
+        /// Entity queries (`$origin/**`, `/world/**`).
+        contents: Vec<String>,
+    },
+    /// The markdown panel.
+    Text {
+        /// Tab title.
+        name: String,
+        /// Entity path of the text document.
+        origin: String,
+    },
+    /// A bar chart view.
+    BarChart {
+        /// Tab title.
+        name: String,
+        /// Entity path.
+        origin: String,
+    },
+}
+
+impl Layout {
+    /// A 3D view showing `origin` and everything below it.
+    pub fn view3d(name: &str, origin: &str) -> Self {
+        Layout::Spatial3D {
+            name: name.into(),
+            origin: origin.into(),
+            contents: vec!["$origin/**".into()],
+        }
+    }
+
+    /// The `scene` text panel.
+    pub fn scene_text() -> Self {
+        Layout::Text {
+            name: "scene".into(),
+            origin: "/scene".into(),
+        }
+    }
+
+    /// Entity origins of every view (for tests: each must be logged).
+    pub fn origins(&self) -> Vec<String> {
+        match self {
+            Layout::Horizontal(v, _) | Layout::Vertical(v, _) | Layout::Tabs(v) => {
+                v.iter().flat_map(Layout::origins).collect()
+            }
+            Layout::Spatial3D { origin, .. }
+            | Layout::Text { origin, .. }
+            | Layout::BarChart { origin, .. } => vec![origin.clone()],
+        }
+    }
+}

@@ -1,0 +1,203 @@
+//! Scene output → Rerun recording (in memory), and atomic `.rrd` writing.
+
+use std::path::Path;
+
+use rerun::{RecordingStream, RecordingStreamBuilder, blueprint as bp};
+
+use super::{Geometry, Layout, PHASE_STEPS, Visual};
+use crate::{Error, Result, scenes::SceneOutput};
+
+/// Application id of every recording.
+pub const APPLICATION_ID: &str = "flexmodes";
+
+/// Turns a [`SceneOutput`] into Rerun data. Used by the CLI and the desktop app alike.
+#[derive(Debug, Clone, Default)]
+pub struct Recorder;
+
+impl Recorder {
+    /// Encodes the scene as the bytes of an `.rrd` file (recording plus default blueprint).
+    /// Log time is disabled so two runs give the same data.
+    pub fn encode(&self, out: &SceneOutput) -> Result<Vec<u8>> {
+        let (rec, storage) = RecordingStreamBuilder::new(APPLICATION_ID)
+            .recording_id(format!("flexmodes-{}", out.report.scene))
+            .recording_name(out.report.scene.clone())
+            .send_properties(false)
+            .memory()?;
+        rec.set_log_time_enabled(false);
+        self.log(&rec, out)?;
+        rec.flush_blocking()
+            .map_err(|e| Error::Rerun(format!("flush: {e}")))?;
+        storage
+            .drain_as_bytes()
+            .map_err(|e| Error::Rerun(format!("encode: {e}")))
+    }
+
+    /// Encodes and writes to `path` atomically (temporary file, then rename).
+    pub fn save(&self, out: &SceneOutput, path: &Path) -> Result<()> {
+        let bytes = self.encode(out)?;
+        write_atomically(path, &bytes)
+    }
+
+    /// Logs everything of `out` to `rec`: the text panel, the visuals, the blueprint.
+    pub fn log(&self, rec: &RecordingStream, out: &SceneOutput) -> Result<()> {
+        rec.log_static(
+            "scene",
+            &rerun::TextDocument::from_markdown(out.markdown.clone()),
+        )?;
+        for v in &out.visuals {
+            log_visual(rec, v)?;
+        }
+        let blueprint = bp::Blueprint::new(container(&out.layout))
+            .with_auto_views(false)
+            .with_time_panel(
+                bp::TimePanel::new()
+                    .with_timeline(out.timeline.clone())
+                    .with_play_state(rerun::blueprint::components::PlayState::Playing)
+                    .with_loop_mode(rerun::blueprint::components::LoopMode::All),
+            );
+        blueprint.send(rec, bp::BlueprintActivation::default())?;
+        Ok(())
+    }
+}
+
+fn strips(g: &Geometry, nodes: &[[f64; 3]]) -> Vec<Vec<[f32; 3]>> {
+    g.strips
+        .iter()
+        .map(|s| {
+            s.iter()
+                .map(|&i| nodes[i].map(|x| x as f32))
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+fn radius(g: &Geometry) -> f32 {
+    let mut ext = 0.0f64;
+    for d in 0..3 {
+        let lo = g.nodes.iter().map(|p| p[d]).fold(f64::INFINITY, f64::min);
+        let hi = g.nodes.iter().map(|p| p[d]).fold(f64::NEG_INFINITY, f64::max);
+        ext = ext.max(hi - lo);
+    }
+    (ext * 0.004).max(1e-4) as f32
+}
+
+fn color(c: [u8; 4]) -> rerun::Color {
+    rerun::Color::from_unmultiplied_rgba(c[0], c[1], c[2], c[3])
+}
+
+fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
+    match v {
+        Visual::Wireframe {
+            path,
+            geometry,
+            color: c,
+            label,
+        } => {
+            let mut a = rerun::LineStrips3D::new(strips(geometry, &geometry.nodes))
+                .with_colors([color(*c)])
+                .with_radii([radius(geometry)]);
+            if let Some(l) = label {
+                a = a.with_labels([l.clone()]);
+            }
+            rec.log_static(path.as_str(), &a)?;
+        }
+        Visual::Mode {
+            path,
+            geometry,
+            shape,
+            label,
+            color: c,
+        } => {
+            let r = radius(geometry);
+            rec.log_static(
+                format!("{path}/undeformed"),
+                &rerun::LineStrips3D::new(strips(geometry, &geometry.nodes))
+                    .with_colors([rerun::Color::from_unmultiplied_rgba(150, 150, 150, 120)])
+                    .with_radii([r * 0.5]),
+            )?;
+            for s in 0..PHASE_STEPS {
+                let a = (2.0 * std::f64::consts::PI * s as f64 / PHASE_STEPS as f64).sin();
+                let nodes: Vec<[f64; 3]> = geometry
+                    .nodes
+                    .iter()
+                    .zip(shape)
+                    .map(|(p, u)| [p[0] + a * u[0], p[1] + a * u[1], p[2] + a * u[2]])
+                    .collect();
+                rec.set_time_sequence("phase", s as i64);
+                rec.log(
+                    path.as_str(),
+                    &rerun::LineStrips3D::new(strips(geometry, &nodes))
+                        .with_colors([color(*c)])
+                        .with_radii([r])
+                        .with_labels([label.clone()]),
+                )?;
+            }
+            rec.reset_time();
+        }
+        Visual::Offset { path, translation } => {
+            rec.log_static(
+                path.as_str(),
+                &rerun::Transform3D::from_translation(translation.map(|x| x as f32)),
+            )?;
+        }
+        Visual::Bars { path, values } => {
+            rec.log_static(path.as_str(), &rerun::BarChart::new(values.clone()))?;
+        }
+    }
+    Ok(())
+}
+
+fn container(l: &Layout) -> bp::ContainerLike {
+    match l {
+        Layout::Horizontal(items, shares) => bp::Horizontal::new(items.iter().map(container))
+            .with_column_shares(shares.clone())
+            .into(),
+        Layout::Vertical(items, shares) => bp::Vertical::new(items.iter().map(container))
+            .with_row_shares(shares.clone())
+            .into(),
+        Layout::Tabs(items) => bp::Tabs::new(items.iter().map(container)).into(),
+        Layout::Spatial3D {
+            name,
+            origin,
+            contents,
+        } => bp::Spatial3DView::new(name.as_str())
+            .with_origin(origin.as_str())
+            .with_contents(contents.iter().cloned())
+            .into(),
+        Layout::Text { name, origin } => bp::TextDocumentView::new(name.as_str())
+            .with_origin(origin.as_str())
+            .into(),
+        Layout::BarChart { name, origin } => bp::BarChartView::new(name.as_str())
+            .with_origin(origin.as_str())
+            .into(),
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
+/// failure never leaves a half-written file behind.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    let io = |source: std::io::Error| Error::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(io)?;
+    let name = path
+        .file_name()
+        .ok_or_else(|| Error::RecordingWrite {
+            path: path.display().to_string(),
+            reason: "not a file path".into(),
+        })?
+        .to_string_lossy()
+        .to_string();
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(io(e));
+    }
+    Ok(())
+}

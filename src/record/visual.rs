@@ -1,0 +1,82 @@
+//! What a scene draws, independent of Rerun (so scenes are testable without a viewer).
+
+/// Steps of the `phase` timeline per oscillation period of a mode animation (DESIGN §5).
+pub const PHASE_STEPS: usize = 32;
+
+/// RGBA colour.
+pub type Color = [u8; 4];
+
+/// A body's drawable geometry: node positions (m) and polylines through them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Geometry {
+    /// Node positions, m.
+    pub nodes: Vec<[f64; 3]>,
+    /// Polylines as 0-based node index lists.
+    pub strips: Vec<Vec<usize>>,
+}
+
+impl Geometry {
+    /// Geometry of a body: one chain for a beam, the brick edges for a solid.
+    pub fn of(model: &crate::fem::FeModel) -> Self {
+        let strips = if model.dim == 2 {
+            vec![(0..model.node_count()).collect()]
+        } else {
+            model.edges.iter().map(|e| vec![e[0], e[1]]).collect()
+        };
+        Self {
+            nodes: model.nodes.clone(),
+            strips,
+        }
+    }
+
+    /// The same strips through other node positions.
+    pub fn with_nodes(&self, nodes: Vec<[f64; 3]>) -> Self {
+        Self {
+            nodes,
+            strips: self.strips.clone(),
+        }
+    }
+}
+
+/// One thing to log.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Visual {
+    /// Static geometry (`log_static`), e.g. `world/beam/undeformed`.
+    Wireframe {
+        /// Entity path.
+        path: String,
+        /// Lines to draw.
+        geometry: Geometry,
+        /// Line colour.
+        color: Color,
+        /// Optional label.
+        label: Option<String>,
+    },
+    /// A mode shape animated over `phase`: nodes + amplitude·sin(2πs/32)·shape.
+    Mode {
+        /// Entity path (`modes/<set>/<k>`).
+        path: String,
+        /// Undeformed geometry.
+        geometry: Geometry,
+        /// Per-node displacement of the mode, already scaled for display (m).
+        shape: Vec<[f64; 3]>,
+        /// Label, carrying the frequency.
+        label: String,
+        /// Line colour.
+        color: Color,
+    },
+    /// A static translation of an entity subtree (to lay out several modes side by side).
+    Offset {
+        /// Entity path.
+        path: String,
+        /// Translation, m.
+        translation: [f64; 3],
+    },
+    /// Scalar values shown as a bar chart (`metrics/...`).
+    Bars {
+        /// Entity path.
+        path: String,
+        /// Values.
+        values: Vec<f64>,
+    },
+}

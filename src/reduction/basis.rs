@@ -1,0 +1,85 @@
+//! A transformation matrix of reduction with labelled columns.
+
+use faer::{Mat, MatRef};
+
+use super::Method;
+use crate::fem::FeModel;
+
+/// What a column of Ψ is.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ColumnKind {
+    /// A unit nodal coordinate (no reduction).
+    Nodal,
+    /// Modal truncation's boundary movement: a unit boundary DOF with the interior at rest
+    /// (Fig. 6-6).
+    BoundaryMovement,
+    /// A static constraint mode $[I; \Psi_s]$ (Guyan, Craig–Bampton; Fig. 6-5).
+    Constraint,
+    /// Mode condensation's boundary mode $[I; \Psi_m]$ (Eq. 6.29, Fig. 6-9).
+    CondensedBoundary,
+    /// Eitelberg's reconstruction of the full state from the kept boundary states.
+    EitelbergBoundary,
+    /// A fixed-interface normal mode with its frequency in Hz.
+    Normal {
+        /// Fixed-interface natural frequency, Hz.
+        hz: f64,
+    },
+}
+
+/// One column of Ψ.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Column {
+    /// The kind of mode.
+    pub kind: ColumnKind,
+    /// For columns tied to one nodal DOF (unit at that DOF, zero at the other boundary DOF).
+    pub dof: Option<usize>,
+    /// Human-readable label, e.g. `constraint node 5 x` or `normal 2 (12.33 Hz)`.
+    pub label: String,
+}
+
+/// $\delta = \Psi z$: rows are the body's DOF in node-major order, columns are labelled.
+#[derive(Debug, Clone)]
+pub struct Basis {
+    /// The method that built it.
+    pub method: Method,
+    /// The transformation matrix, `dof_count × columns.len()`.
+    pub psi: Mat<f64>,
+    /// Column descriptions.
+    pub columns: Vec<Column>,
+}
+
+impl Basis {
+    /// Number of generalised coordinates.
+    pub fn size(&self) -> usize {
+        self.columns.len()
+    }
+
+    /// $\Psi^T K \Psi$.
+    pub fn reduced_stiffness(&self, model: &FeModel) -> Mat<f64> {
+        congruence(self.psi.as_ref(), model.k.as_ref())
+    }
+
+    /// $\Psi^T M \Psi$.
+    pub fn reduced_mass(&self, model: &FeModel) -> Mat<f64> {
+        congruence(self.psi.as_ref(), model.m.as_ref())
+    }
+
+    /// Indices of the columns of a kind (by discriminant).
+    pub fn columns_of(&self, pred: impl Fn(&ColumnKind) -> bool) -> Vec<usize> {
+        (0..self.columns.len())
+            .filter(|&j| pred(&self.columns[j].kind))
+            .collect()
+    }
+
+    /// Column `j` as a DOF vector.
+    pub fn column(&self, j: usize) -> Vec<f64> {
+        (0..self.psi.nrows()).map(|i| self.psi[(i, j)]).collect()
+    }
+}
+
+/// $\Psi^T A \Psi$, symmetrised to remove round-off asymmetry.
+pub fn congruence(psi: MatRef<'_, f64>, a: MatRef<'_, f64>) -> Mat<f64> {
+    let r = psi.transpose() * a * psi;
+    let n = r.nrows();
+    Mat::from_fn(n, n, |i, j| 0.5 * (r[(i, j)] + r[(j, i)]))
+}

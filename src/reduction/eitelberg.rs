@@ -1,0 +1,187 @@
+//! Eitelberg's method (§6.6, App. C) applied to a structure in state-space form.
+
+use faer::{Mat, MatRef, Side, prelude::Solve};
+
+use super::{
+    Basis, ColumnKind, Method,
+    partition::{Partition, boundary_columns},
+};
+use crate::{
+    Error, Result,
+    fem::FeModel,
+    linalg::{hz_from_eigenvalue, identity, solve_lyapunov},
+};
+
+/// Settings of the structural application of Eitelberg's method.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EitelbergParameters {
+    /// Replace A by A − B L C with L = [I I] before reducing and restore afterwards
+    /// (§6.6.4, Cellier's trick). Without it the undamped A is singular and not stable, and
+    /// the method refuses it.
+    pub output_feedback: bool,
+}
+
+impl Default for EitelbergParameters {
+    fn default() -> Self {
+        Self {
+            output_feedback: true,
+        }
+    }
+}
+
+/// The reduced system and what the thesis extracts from it.
+#[derive(Debug, Clone)]
+pub struct EitelbergReduction {
+    /// Reduced $A_r$, restored ($A_r + B_r L C_r$) when the feedback trick was used.
+    pub a_r: Mat<f64>,
+    /// Reduced $B_r$.
+    pub b_r: Mat<f64>,
+    /// Reduced $C_r = C R^+$.
+    pub c_r: Mat<f64>,
+    /// $\underline M^{-1}\underline K$ read from the lower-left block of the restored $A_r$
+    /// (Eq. 6.49), 1/s².
+    pub minv_k: Mat<f64>,
+    /// Non-zero natural frequencies of $\underline M^{-1}\underline K$, Hz, ascending.
+    pub hz: Vec<f64>,
+    /// Zero singular values of the original A and of the restored $A_r$ (the footnote's
+    /// coherence check: they should agree).
+    pub zero_singular_values: (usize, usize),
+    /// The implied displacement basis: the δ rows of $S R^T (R S R^T)^{-1}$ over the kept
+    /// displacement states.
+    pub basis: Basis,
+}
+
+/// App. C: reduces $\dot x = Ax + Bu$, $y = Cx$ to the states $x_r = Rx$.
+///
+/// Returns $(A_r, B_r, C_r, T)$ with $T = S R^T (R S R^T)^{-1}$ the reconstruction of the full
+/// state implied by $A_r = R A T$. $S$ solves $AS + SA^T = -(A^{-1}B)(A^{-1}B)^T$; App. C first
+/// rotates by the SVD of $A^{-1}B$, which changes nothing in exact arithmetic, so it is solved
+/// directly here.
+pub fn eitelberg_state_space(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+    c: MatRef<'_, f64>,
+    r: MatRef<'_, f64>,
+) -> Result<(Mat<f64>, Mat<f64>, Mat<f64>, Mat<f64>)> {
+    let eig = a.eigenvalues().map_err(|_| Error::DecompositionFailed {
+        what: "Eitelberg A eigenvalue".into(),
+    })?;
+    let scale = eig.iter().fold(0.0f64, |m, l| m.max(l.norm()));
+    let max_real_part = eig.iter().fold(f64::NEG_INFINITY, |m, l| m.max(l.re));
+    // Purely imaginary poles come out with real parts at round-off level of either sign.
+    if max_real_part >= -1e-9 * scale {
+        return Err(Error::UnstableSystem { max_real_part });
+    }
+    let rr_t = r * r.transpose();
+    let rr_llt = rr_t.llt(Side::Lower).map_err(|_| Error::SingularMatrix {
+        matrix: "R R^T".into(),
+        rcond: 0.0,
+    })?;
+    let r_pinv = r.transpose() * rr_llt.inverse_sym();
+    let c_r = c * &r_pinv;
+    let p = a.partial_piv_lu().solve(b);
+    let q = &p * p.transpose();
+    let s = solve_lyapunov(a, q.as_ref())?;
+    let rsr = r * &s * r.transpose();
+    let rsr_llt = rsr.llt(Side::Lower).map_err(|_| Error::SingularMatrix {
+        matrix: "R S R^T".into(),
+        rcond: 0.0,
+    })?;
+    // T = S R^T (R S R^T)^{-1}; R S R^T is symmetric, so T^T = (RSR^T)^{-1} R S.
+    let t = rsr_llt.solve(r * &s).transpose().to_owned();
+    let a_r = r * a * &t;
+    let b_r = &a_r * r * &p;
+    Ok((a_r, b_r, c_r, t))
+}
+
+trait InverseSym {
+    fn inverse_sym(&self) -> Mat<f64>;
+}
+
+impl InverseSym for faer::linalg::solvers::Llt<f64> {
+    fn inverse_sym(&self) -> Mat<f64> {
+        let n = self.L().nrows();
+        self.solve(identity(n))
+    }
+}
+
+/// Eitelberg's method on a structure (§6.6.2): state $x = [\delta; \dot\delta]$,
+/// $A = [0\ I; -M^{-1}K\ 0]$, $B = [0; (M^{-1})_{,b}]$, $C = R$ selecting $\delta_b$ and
+/// $\dot\delta_b$ of the boundary nodes.
+pub fn eitelberg(
+    model: &FeModel,
+    boundary: &[usize],
+    params: &EitelbergParameters,
+) -> Result<EitelbergReduction> {
+    let part = Partition::new(model, boundary)?;
+    let n = model.dof_count();
+    let nb = part.b.len();
+    let m_llt = model.m.llt(Side::Lower).map_err(|_| Error::NotPositiveDefinite {
+        matrix: "mass".into(),
+    })?;
+    let minv_k_full = m_llt.solve(&model.k);
+    let minv = m_llt.inverse_sym();
+    let mut a = Mat::<f64>::zeros(2 * n, 2 * n);
+    for i in 0..n {
+        a[(i, n + i)] = 1.0;
+        for j in 0..n {
+            a[(n + i, j)] = -minv_k_full[(i, j)];
+        }
+    }
+    let mut b = Mat::<f64>::zeros(2 * n, nb);
+    for (c, &dof) in part.b.iter().enumerate() {
+        for i in 0..n {
+            b[(n + i, c)] = minv[(i, dof)];
+        }
+    }
+    let mut r = Mat::<f64>::zeros(2 * nb, 2 * n);
+    for (k, &dof) in part.b.iter().enumerate() {
+        r[(k, dof)] = 1.0;
+        r[(nb + k, n + dof)] = 1.0;
+    }
+    let c = r.clone();
+    let l = Mat::from_fn(nb, 2 * nb, |i, j| if j == i || j == i + nb { 1.0 } else { 0.0 });
+    let a_used = if params.output_feedback {
+        &a - &b * &l * &c
+    } else {
+        a.clone()
+    };
+    let (mut a_r, b_r, c_r, t) =
+        eitelberg_state_space(a_used.as_ref(), b.as_ref(), c.as_ref(), r.as_ref())?;
+    if params.output_feedback {
+        a_r = &a_r + &b_r * &l * &c_r;
+    }
+    let minv_k = Mat::from_fn(nb, nb, |i, j| -a_r[(nb + i, j)]);
+    let mut hz: Vec<f64> = minv_k
+        .eigenvalues()
+        .map_err(|_| Error::DecompositionFailed {
+            what: "reduced M^-1 K eigenvalue".into(),
+        })?
+        .iter()
+        .map(|l| hz_from_eigenvalue(l.re))
+        .filter(|&f| f >= crate::analysis::RIGID_BODY_HZ)
+        .collect();
+    hz.sort_by(f64::total_cmp);
+    let zero_sv = |x: &Mat<f64>| -> Result<usize> {
+        let s = x.singular_values().map_err(|_| Error::DecompositionFailed {
+            what: "singular value".into(),
+        })?;
+        let smax = s.first().copied().unwrap_or(0.0);
+        Ok(s.iter().filter(|&&v| v <= 1e-9 * smax).count())
+    };
+    let zero_singular_values = (zero_sv(&a)?, zero_sv(&a_r)?);
+    let psi = Mat::from_fn(n, nb, |i, j| t[(i, j)]);
+    Ok(EitelbergReduction {
+        a_r,
+        b_r,
+        c_r,
+        minv_k,
+        hz,
+        zero_singular_values,
+        basis: Basis {
+            method: Method::Eitelberg,
+            psi,
+            columns: boundary_columns(model, &part, ColumnKind::EitelbergBoundary, "boundary"),
+        },
+    })
+}

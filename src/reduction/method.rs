@@ -1,0 +1,119 @@
+//! Method ids, reduction parameters and the one entry point [`reduce`].
+
+use super::{
+    Basis, craig_bampton, eitelberg, guyan, modal_truncation, mode_condensation, no_reduction,
+};
+use crate::{Error, Result, fem::FeModel};
+
+/// The reduction methods (ids as in DESIGN §3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Method {
+    /// `nr`: no reduction, Ψ = I.
+    NoReduction,
+    /// `gr`: Guyan / static condensation (§6.2).
+    Guyan,
+    /// `mt`: modal truncation (§6.3, Eq. 6.17).
+    ModalTruncation,
+    /// `cb`: Craig–Bampton (§6.4, Eq. 6.19).
+    CraigBampton,
+    /// `mc`: mode condensation (§6.5, Eq. 6.30).
+    ModeCondensation,
+    /// `eit`: Eitelberg's method (§6.6, App. C).
+    Eitelberg,
+}
+
+impl Method {
+    /// Every method, in display order.
+    pub const ALL: [Method; 6] = [
+        Method::NoReduction,
+        Method::Guyan,
+        Method::ModalTruncation,
+        Method::CraigBampton,
+        Method::ModeCondensation,
+        Method::Eitelberg,
+    ];
+
+    /// The stable id used in the CLI, reports and entity paths.
+    pub fn id(self) -> &'static str {
+        match self {
+            Method::NoReduction => "nr",
+            Method::Guyan => "gr",
+            Method::ModalTruncation => "mt",
+            Method::CraigBampton => "cb",
+            Method::ModeCondensation => "mc",
+            Method::Eitelberg => "eit",
+        }
+    }
+
+    /// Full name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::NoReduction => "no reduction",
+            Method::Guyan => "Guyan reduction",
+            Method::ModalTruncation => "modal truncation",
+            Method::CraigBampton => "Craig-Bampton",
+            Method::ModeCondensation => "mode condensation",
+            Method::Eitelberg => "Eitelberg",
+        }
+    }
+
+    /// Parses an id.
+    pub fn from_id(id: &str) -> Option<Method> {
+        Method::ALL.into_iter().find(|m| m.id() == id)
+    }
+
+    /// Whether the method keeps normal modes (and so honours `--modes`).
+    pub fn keeps_normal_modes(self) -> bool {
+        matches!(
+            self,
+            Method::ModalTruncation | Method::CraigBampton | Method::ModeCondensation
+        )
+    }
+}
+
+/// Which fixed-interface normal modes to keep.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ModeSelection {
+    /// The `n` lowest.
+    Count(usize),
+    /// Every mode up to this frequency, Hz.
+    UpToHz(f64),
+}
+
+impl ModeSelection {
+    /// How many of the ascending frequencies `hz` to keep.
+    pub fn count(&self, hz: &[f64]) -> Result<usize> {
+        match *self {
+            ModeSelection::Count(n) if n > hz.len() => Err(Error::TooManyModes {
+                requested: n,
+                available: hz.len(),
+            }),
+            ModeSelection::Count(n) => Ok(n),
+            ModeSelection::UpToHz(f) if !(f >= 0.0) => Err(Error::InvalidModeSelection {
+                reason: format!("frequency cut-off {f} Hz must be a non-negative number"),
+            }),
+            ModeSelection::UpToHz(f) => Ok(hz.iter().take_while(|&&h| h <= f).count()),
+        }
+    }
+}
+
+/// Settings shared by the reduction methods.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReductionParameters {
+    /// Boundary (master, interface) nodes, 1-based as in the thesis.
+    pub boundary_nodes: Vec<usize>,
+    /// Kept fixed-interface normal modes (MT, CB, MC).
+    pub modes: ModeSelection,
+}
+
+/// Builds the basis of `method` for `model`.
+pub fn reduce(model: &FeModel, method: Method, p: &ReductionParameters) -> Result<Basis> {
+    match method {
+        Method::NoReduction => Ok(no_reduction(model)),
+        Method::Guyan => guyan(model, &p.boundary_nodes),
+        Method::ModalTruncation => modal_truncation(model, &p.boundary_nodes, p.modes),
+        Method::CraigBampton => craig_bampton(model, &p.boundary_nodes, p.modes),
+        Method::ModeCondensation => mode_condensation(model, &p.boundary_nodes, p.modes),
+        Method::Eitelberg => Ok(eitelberg(model, &p.boundary_nodes, &Default::default())?.basis),
+    }
+}

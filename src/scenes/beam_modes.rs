@@ -1,0 +1,199 @@
+//! `beam-modes`: the App. A beam's mode sets of chapter 6 (Figs. 6-1 to 6-9).
+
+use serde_json::json;
+
+use super::{
+    SceneInfo, SceneOptions, SceneOutput,
+    mode_visuals::{REFERENCE, columns, method_color, mode_set, undeformed},
+};
+use crate::{
+    Result,
+    analysis::{elastic_hz, free_free_modes, reduced_hz, reduced_modes},
+    fem::{BeamParameters, FeModel, beam},
+    linalg::principal_angles,
+    record::{Layout, Visual},
+    reduction::{
+        Basis, Method, ModeSelection, Partition, craig_bampton, fixed_interface_modes, guyan,
+        modal_truncation, mode_condensation,
+    },
+    report::{Report, fmt_hz, markdown_table, sig, sig_vec},
+};
+
+pub const INFO: SceneInfo = SceneInfo {
+    id: "beam-modes",
+    summary: "App. A beam: free-free, Guyan (a)(b)(c), boundary, fixed-interface, Craig-Bampton \
+              and mode-condensation mode shapes (Figs. 6-1 to 6-9)",
+    sections: "§6.2-6.5, App. A",
+};
+
+const MASTERS_A: [usize; 3] = [1, 3, 5];
+const MASTERS_B: [usize; 3] = [1, 2, 5];
+const DEFAULT_BOUNDARY: [usize; 2] = [1, 5];
+const DEFAULT_MODES: usize = 2;
+const AVAILABLE: [Method; 4] = [
+    Method::Guyan,
+    Method::ModalTruncation,
+    Method::CraigBampton,
+    Method::ModeCondensation,
+];
+
+/// Elastic modes of a reduced model, expanded to the full DOF: $\delta = \Psi v$.
+fn expanded_modes(model: &FeModel, basis: &Basis, prefix: &str) -> Result<Vec<(Vec<f64>, String)>> {
+    let e = reduced_modes(model, basis)?;
+    let hz = e.hz();
+    let full = &basis.psi * &e.vectors;
+    Ok(columns(&full)
+        .into_iter()
+        .zip(hz)
+        .filter(|(_, f)| *f >= crate::analysis::RIGID_BODY_HZ)
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("{prefix} {}: {f:.6} Hz", k + 1)))
+        .collect())
+}
+
+fn labelled_columns(basis: &Basis) -> Vec<(Vec<f64>, String)> {
+    columns(&basis.psi)
+        .into_iter()
+        .zip(&basis.columns)
+        .map(|(u, c)| (u, c.label.clone()))
+        .collect()
+}
+
+pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
+    opts.check_axes(INFO.id, &[])?;
+    let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
+    let boundary = opts
+        .boundary
+        .clone()
+        .unwrap_or_else(|| DEFAULT_BOUNDARY.to_vec());
+    let kept = opts.modes.unwrap_or(DEFAULT_MODES);
+    let model = beam(&BeamParameters::default());
+    // Validate the user's set before anything else, so its error names the cause.
+    let part = Partition::new(&model, &boundary)?;
+
+    let ff = free_free_modes(&model)?;
+    let free_free_hz = elastic_hz(&ff);
+    let g_a = guyan(&model, &MASTERS_A)?;
+    let g_b = guyan(&model, &MASTERS_B)?;
+    let g_c = guyan(&model, &boundary)?;
+    let fi = fixed_interface_modes(&model, &part)?;
+    let fixed_interface_hz = fi.hz();
+    let sel = ModeSelection::Count(kept);
+    let mt = modal_truncation(&model, &boundary, sel)?;
+    let cb = craig_bampton(&model, &boundary, sel)?;
+    let mc = mode_condensation(&model, &boundary, sel)?;
+    let angles = principal_angles(cb.psi.as_ref(), mc.psi.as_ref())?;
+    let max_angle = angles.iter().copied().fold(0.0f64, f64::max);
+
+    let guyan_a_hz = reduced_hz(&model, &g_a)?;
+    let guyan_b_hz = reduced_hz(&model, &g_b)?;
+    let guyan_c_hz = reduced_hz(&model, &g_c)?;
+    let cb_hz = reduced_hz(&model, &cb)?;
+    let mc_hz = reduced_hz(&model, &mc)?;
+
+    let mut report = Report::new(INFO.id);
+    report.parameters.insert("boundary".into(), json!(boundary));
+    report.parameters.insert("modes".into(), json!(kept));
+    report.parameters.insert(
+        "methods".into(),
+        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
+    );
+    let r = &mut report.results;
+    r.insert("free_free_hz".into(), json!(sig_vec(&free_free_hz)));
+    r.insert("guyan_a_hz".into(), json!(sig_vec(&guyan_a_hz)));
+    r.insert("guyan_b_hz".into(), json!(sig_vec(&guyan_b_hz)));
+    r.insert("guyan_c_hz".into(), json!(sig_vec(&guyan_c_hz)));
+    r.insert("fixed_interface_hz".into(), json!(sig_vec(&fixed_interface_hz)));
+    r.insert("cb_hz".into(), json!(sig_vec(&cb_hz)));
+    r.insert("mc_hz".into(), json!(sig_vec(&mc_hz)));
+    r.insert("principal_angle_cb_mc_max_rad".into(), json!(max_angle));
+
+    let b = format!("{boundary:?}");
+    let rows = vec![
+        vec!["free-free (Fig. 6-1)".into(), fmt_hz(&free_free_hz), "5.94776, 66.7191, 123.281 (bending 1, axial 1, 2)".into()],
+        vec!["Guyan (a), masters 1, 3, 5".into(), fmt_hz(&guyan_a_hz), "5.95823, 71.1763, 123.281".into()],
+        vec!["Guyan (b), masters 1, 2, 5".into(), fmt_hz(&guyan_b_hz), "6.33897, 69.5245, ...".into()],
+        vec![format!("Guyan (c), masters {b}"), fmt_hz(&guyan_c_hz), "-".into()],
+        vec![format!("fixed-interface, interface {b}"), fmt_hz(&fixed_interface_hz), "3.10366, 12.3283, ... (§8.5.2, nodes 1, 5)".into()],
+        vec![format!("Craig-Bampton, {kept} modes"), fmt_hz(&cb_hz), "-".into()],
+        vec![format!("mode condensation, {kept} modes"), fmt_hz(&mc_hz), "-".into()],
+    ];
+    report.table = format!(
+        "{}\nLargest principal angle between span(Ψ_CB) and span(Ψ_MC): {:.2e} rad (§6.5.4: they \
+         span one space).\n",
+        markdown_table(&["mode set", "computed, Hz", "published, Hz"], &rows),
+        sig(max_angle)
+    );
+
+    let markdown = format!(
+        "# beam-modes\n\nThe App. A beam (1 m, E = 30e5 Pa, I = 1.0417e-6 m⁴, A = 0.005 m², \
+         four Euler-Bernoulli elements, rotations Guyan-condensed, lumped masses 0.1, 0.2, 0.2, \
+         0.2, 0.1 kg) and the mode sets of chapter 6. Each view animates one set over the \
+         `phase` timeline (one period in 32 steps); labels carry frequencies.\n\n\
+         * **free_free**: the seven elastic free-free modes (Fig. 6-1).\n\
+         * **guyan_a / guyan_b**: free-free modes of the Guyan models with masters 1, 3, 5 and \
+         1, 2, 5 (Fig. 6-3): Guyan raises frequencies, and the lopsided masters of (b) break the \
+         axial symmetry.\n\
+         * **guyan_c**: constraint modes for masters {b} (Fig. 6-5).\n\
+         * **boundary / fixed_interface**: modal truncation's boundary movements (no interior \
+         motion, Fig. 6-6) and the fixed-interface normal modes (Fig. 6-7).\n\
+         * **craig_bampton / mode_condensation**: Ψ_CB and Ψ_MC with {kept} kept modes \
+         (Figs. 6-8, 6-9); different columns, one column space.\n\n{}",
+        report.table
+    );
+
+    let mut visuals = vec![undeformed(&model)];
+    let mut tabs = Vec::new();
+    let mut add = |set: &str, modes: Vec<(Vec<f64>, String)>, color, visuals: &mut Vec<Visual>| {
+        visuals.extend(mode_set(&model, set, &modes, color));
+        tabs.push(Layout::view3d(set, &format!("/modes/{set}")));
+    };
+    let ff_modes: Vec<(Vec<f64>, String)> = columns(&ff.vectors)
+        .into_iter()
+        .zip(ff.hz())
+        .filter(|(_, f)| *f >= crate::analysis::RIGID_BODY_HZ)
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("free-free {}: {f:.6} Hz", k + 1)))
+        .collect();
+    add("free_free", ff_modes, REFERENCE, &mut visuals);
+    if methods.contains(&Method::Guyan) {
+        let c = method_color(Method::Guyan);
+        add("guyan_a", expanded_modes(&model, &g_a, "Guyan (a)")?, c, &mut visuals);
+        add("guyan_b", expanded_modes(&model, &g_b, "Guyan (b)")?, c, &mut visuals);
+        add("guyan_c", labelled_columns(&g_c), c, &mut visuals);
+    }
+    if methods.contains(&Method::ModalTruncation) {
+        let c = method_color(Method::ModalTruncation);
+        let bcols: Vec<_> = labelled_columns(&mt).into_iter().take(part.b.len()).collect();
+        add("boundary", bcols, c, &mut visuals);
+        let fi_modes: Vec<_> = columns(&part.assemble(
+            faer::Mat::<f64>::zeros(part.b.len(), fi.vectors.ncols()).as_ref(),
+            fi.vectors.as_ref(),
+        ))
+        .into_iter()
+        .zip(&fixed_interface_hz)
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("fixed-interface {}: {f:.6} Hz", k + 1)))
+        .collect();
+        add("fixed_interface", fi_modes, c, &mut visuals);
+    }
+    if methods.contains(&Method::CraigBampton) {
+        add("craig_bampton", labelled_columns(&cb), method_color(Method::CraigBampton), &mut visuals);
+    }
+    if methods.contains(&Method::ModeCondensation) {
+        add(
+            "mode_condensation",
+            labelled_columns(&mc),
+            method_color(Method::ModeCondensation),
+            &mut visuals,
+        );
+    }
+    let layout = Layout::Horizontal(vec![Layout::Tabs(tabs), Layout::scene_text()], vec![3.0, 2.0]);
+    Ok(SceneOutput {
+        report,
+        markdown,
+        visuals,
+        layout,
+        timeline: "phase".into(),
+    })
+}

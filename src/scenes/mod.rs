@@ -1,0 +1,12 @@
+//! The scene registry behind `flexmodes list`, `record` and `report`.
+
+mod beam_eitelberg;
+mod beam_modes;
+mod beam_profiles;
+mod mode_visuals;
+mod options;
+mod registry;
+mod slab_modes;
+
+pub use options::{SceneOptions, SceneOutput};
+pub use registry::{Scene, SceneInfo, all, find, ids};

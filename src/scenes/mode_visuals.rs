@@ -1,0 +1,105 @@
+//! Shared drawing helpers: mode sets laid out side by side, colours per method.
+
+use crate::{
+    fem::FeModel,
+    record::{Color, Geometry, Visual},
+    reduction::Method,
+};
+
+/// Largest displayed displacement of an animated mode, as a fraction of the body's size.
+const MODE_AMPLITUDE: f64 = 0.15;
+
+/// A fixed colour per method so views compare at a glance.
+pub fn method_color(m: Method) -> Color {
+    match m {
+        Method::NoReduction => [230, 230, 230, 255],
+        Method::Guyan => [240, 160, 40, 255],
+        Method::ModalTruncation => [220, 60, 60, 255],
+        Method::CraigBampton => [60, 130, 240, 255],
+        Method::ModeCondensation => [60, 200, 110, 255],
+        Method::Eitelberg => [190, 90, 220, 255],
+    }
+}
+
+/// Colour of the undeformed bodies and references.
+pub const REFERENCE: Color = [200, 200, 200, 255];
+
+/// Per-node displacement of a DOF vector, scaled so its largest nodal displacement is
+/// [`MODE_AMPLITUDE`] of the body size (a zero vector stays zero).
+pub fn display_shape(model: &FeModel, u: &[f64]) -> Vec<[f64; 3]> {
+    let mut per_node: Vec<[f64; 3]> = (0..model.node_count())
+        .map(|i| {
+            let mut d = [0.0; 3];
+            for (k, v) in d.iter_mut().enumerate().take(model.dim) {
+                *v = u[i * model.dim + k];
+            }
+            d
+        })
+        .collect();
+    let largest = per_node
+        .iter()
+        .map(|d| (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt())
+        .fold(0.0f64, f64::max);
+    if largest > 0.0 {
+        let s = MODE_AMPLITUDE * model.size() / largest;
+        for d in &mut per_node {
+            for v in d.iter_mut() {
+                *v *= s;
+            }
+        }
+    }
+    per_node
+}
+
+/// Where mode `k` (0-based) of a set is placed, so a set reads like the thesis' figures.
+fn slot(model: &FeModel, k: usize) -> [f64; 3] {
+    if model.dim == 2 {
+        [0.0, -0.5 * model.size() * k as f64, 0.0]
+    } else {
+        let s = model.size();
+        [1.5 * s * (k % 3) as f64, -1.0 * s * (k / 3) as f64, 0.0]
+    }
+}
+
+/// `modes/<set>/<k>` for each `(dof vector, label)`, animated over `phase`.
+pub fn mode_set(
+    model: &FeModel,
+    set: &str,
+    modes: &[(Vec<f64>, String)],
+    color: Color,
+) -> Vec<Visual> {
+    let geometry = Geometry::of(model);
+    let mut out = Vec::new();
+    for (k, (u, label)) in modes.iter().enumerate() {
+        let path = format!("modes/{set}/{}", k + 1);
+        out.push(Visual::Offset {
+            path: path.clone(),
+            translation: slot(model, k),
+        });
+        out.push(Visual::Mode {
+            path,
+            geometry: geometry.clone(),
+            shape: display_shape(model, u),
+            label: label.clone(),
+            color,
+        });
+    }
+    out
+}
+
+/// `world/<body>/undeformed`.
+pub fn undeformed(model: &FeModel) -> Visual {
+    Visual::Wireframe {
+        path: format!("world/{}/undeformed", model.name),
+        geometry: Geometry::of(model),
+        color: REFERENCE,
+        label: None,
+    }
+}
+
+/// The columns of a matrix as DOF vectors.
+pub fn columns(m: &faer::Mat<f64>) -> Vec<Vec<f64>> {
+    (0..m.ncols())
+        .map(|j| (0..m.nrows()).map(|i| m[(i, j)]).collect())
+        .collect()
+}

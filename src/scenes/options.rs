@@ -1,0 +1,87 @@
+//! Options a scene is run with and what it returns.
+
+use crate::{
+    Error, Result,
+    record::{Layout, Visual},
+    reduction::Method,
+    report::Report,
+};
+
+/// Scene options from the command line (or the GUI). `None` means the scene's default.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SceneOptions {
+    /// `--method`: the methods to compute and show.
+    pub methods: Option<Vec<Method>>,
+    /// `--modes`: kept normal modes.
+    pub modes: Option<usize>,
+    /// `--boundary`: boundary/master nodes, 1-based.
+    pub boundary: Option<Vec<usize>>,
+    /// `--axes`: axis type id.
+    pub axes: Option<String>,
+}
+
+impl SceneOptions {
+    /// The methods to run: the requested ones, each checked against `available`, in the order
+    /// of `available`; or `default`.
+    pub fn methods_or(
+        &self,
+        scene: &str,
+        available: &[Method],
+        default: &[Method],
+    ) -> Result<Vec<Method>> {
+        match &self.methods {
+            None => Ok(default.to_vec()),
+            Some(req) => {
+                for m in req {
+                    if !available.contains(m) {
+                        return Err(Error::UnknownMethod {
+                            id: m.id().into(),
+                            scene: scene.into(),
+                            available: ids(available),
+                        });
+                    }
+                }
+                Ok(available
+                    .iter()
+                    .copied()
+                    .filter(|m| req.contains(m))
+                    .collect())
+            }
+        }
+    }
+
+    /// Rejects `--axes` for scenes that have no axis choice (beyond `allowed`).
+    pub fn check_axes(&self, scene: &str, allowed: &[&str]) -> Result<()> {
+        match &self.axes {
+            Some(a) if !allowed.contains(&a.as_str()) => Err(Error::UnknownAxes {
+                id: a.clone(),
+                scene: scene.into(),
+                available: if allowed.is_empty() {
+                    "none: this scene has no floating frame".into()
+                } else {
+                    allowed.join(", ")
+                },
+            }),
+            _ => Ok(()),
+        }
+    }
+}
+
+fn ids(ms: &[Method]) -> String {
+    ms.iter().map(|m| m.id()).collect::<Vec<_>>().join(", ")
+}
+
+/// Everything a scene produces: numbers, the text panel, visuals and the default layout.
+#[derive(Debug, Clone)]
+pub struct SceneOutput {
+    /// The numeric report.
+    pub report: Report,
+    /// Markdown for the `scene` panel: what it shows, parameters, result table.
+    pub markdown: String,
+    /// What to log.
+    pub visuals: Vec<Visual>,
+    /// The default blueprint.
+    pub layout: Layout,
+    /// The timeline the time panel starts on (`phase` or `sim_time`).
+    pub timeline: String,
+}

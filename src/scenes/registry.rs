@@ -1,0 +1,61 @@
+//! The list of scenes.
+
+use super::{SceneOptions, SceneOutput, beam_eitelberg, beam_modes, beam_profiles, slab_modes};
+use crate::{Error, Result};
+
+/// Static description of a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SceneInfo {
+    /// Stable id (`beam-modes`).
+    pub id: &'static str,
+    /// One line for `flexmodes list`.
+    pub summary: &'static str,
+    /// Thesis sections it reproduces.
+    pub sections: &'static str,
+}
+
+/// A scene: computes its results and visuals for given options.
+pub struct Scene {
+    /// Description.
+    pub info: SceneInfo,
+    /// Runs the scene.
+    pub run: fn(&SceneOptions) -> Result<SceneOutput>,
+}
+
+/// Every scene, in catalogue order.
+pub fn all() -> Vec<Scene> {
+    vec![
+        Scene {
+            info: beam_modes::INFO,
+            run: beam_modes::run,
+        },
+        Scene {
+            info: slab_modes::INFO,
+            run: slab_modes::run,
+        },
+        Scene {
+            info: beam_profiles::INFO,
+            run: beam_profiles::run,
+        },
+        Scene {
+            info: beam_eitelberg::INFO,
+            run: beam_eitelberg::run,
+        },
+    ]
+}
+
+/// Scene ids, comma separated.
+pub fn ids() -> String {
+    all().iter().map(|s| s.info.id).collect::<Vec<_>>().join(", ")
+}
+
+/// Finds a scene by id.
+pub fn find(id: &str) -> Result<Scene> {
+    all()
+        .into_iter()
+        .find(|s| s.info.id == id)
+        .ok_or_else(|| Error::UnknownScene {
+            id: id.into(),
+            known: ids(),
+        })
+}

@@ -1,0 +1,207 @@
+//! `slab-modes`: the App. B slab's free-free, constraint and fixed-interface modes and the
+//! frequencies of each reduced model (§7.2.1).
+
+use serde_json::{Map, Value, json};
+
+use super::{
+    SceneInfo, SceneOptions, SceneOutput,
+    mode_visuals::{REFERENCE, columns, method_color, mode_set, undeformed},
+};
+use crate::{
+    Result,
+    analysis::{RIGID_BODY_HZ, elastic_hz, free_free_modes, reduced_hz},
+    fem::{SlabParameters, slab},
+    record::{Layout, Visual},
+    reduction::{
+        Method, ModeSelection, NodalFixedAxes, Partition, ReductionParameters, constraint_modes,
+        fixed_interface_modes, reduce,
+    },
+    report::{Report, fmt_hz, markdown_table, sig_vec},
+};
+
+pub const INFO: SceneInfo = SceneInfo {
+    id: "slab-modes",
+    summary: "App. B slab: free-free, constraint and fixed-interface modes for boundary nodes \
+              16, 18, 28, 30, and the frequencies of the MT, CB, MC and GR models",
+    sections: "§7.2.1, App. B",
+};
+
+const DEFAULT_BOUNDARY: [usize; 4] = [16, 18, 28, 30];
+/// §7.2.1: Guyan adds two masters so it has as many coordinates as the others (18).
+const EXTRA_GUYAN_MASTERS: [usize; 2] = [5, 11];
+const DEFAULT_MODES: usize = 6;
+/// Free-free modes drawn (all frequencies are reported).
+const SHOWN_FREE_FREE: usize = 12;
+const AVAILABLE: [Method; 4] = [
+    Method::ModalTruncation,
+    Method::CraigBampton,
+    Method::ModeCondensation,
+    Method::Guyan,
+];
+
+pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
+    opts.check_axes(INFO.id, &["nodal_fixed"])?;
+    let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
+    let boundary = opts
+        .boundary
+        .clone()
+        .unwrap_or_else(|| DEFAULT_BOUNDARY.to_vec());
+    let kept = opts.modes.unwrap_or(DEFAULT_MODES);
+    let model = slab(&SlabParameters::default());
+    let part = Partition::new(&model, &boundary)?;
+    let psi_s = constraint_modes(&model, &part)?;
+    let fi = fixed_interface_modes(&model, &part)?;
+    let fixed_interface_hz = fi.hz();
+    let ff = free_free_modes(&model)?;
+    let free_free_hz = elastic_hz(&ff);
+    let mut gr_masters = boundary.clone();
+    gr_masters.extend(EXTRA_GUYAN_MASTERS.iter().filter(|n| !boundary.contains(n)));
+    let nodal_fixed = opts.axes.as_deref() == Some("nodal_fixed");
+    let axes = NodalFixedAxes::slab_default();
+
+    let mut reduced = Map::new();
+    let mut reduced_nf = Map::new();
+    let mut sizes = Map::new();
+    let mut rows = vec![vec![
+        "NR (full, 90 DOF)".to_string(),
+        fmt_hz(&free_free_hz[..free_free_hz.len().min(8)]),
+    ]];
+    let mut visuals = vec![undeformed(&model)];
+    let mut bars = Vec::new();
+    visuals.push(Visual::Bars {
+        path: "metrics/reduced_hz/nr".into(),
+        values: free_free_hz[..free_free_hz.len().min(12)].to_vec(),
+    });
+    bars.push(Layout::BarChart {
+        name: "nr".into(),
+        origin: "/metrics/reduced_hz/nr".into(),
+    });
+    for &m in &methods {
+        let params = ReductionParameters {
+            boundary_nodes: if m == Method::Guyan {
+                gr_masters.clone()
+            } else {
+                boundary.clone()
+            },
+            modes: ModeSelection::Count(kept),
+        };
+        let basis = reduce(&model, m, &params)?;
+        let hz = reduced_hz(&model, &basis)?;
+        reduced.insert(m.id().into(), json!(sig_vec(&hz)));
+        sizes.insert(m.id().into(), json!([basis.psi.nrows(), basis.psi.ncols()]));
+        rows.push(vec![
+            format!("{} (90 × {})", m.id().to_uppercase(), basis.size()),
+            fmt_hz(&hz[..hz.len().min(8)]),
+        ]);
+        if nodal_fixed {
+            let nf = axes.apply(&model, &basis)?;
+            let hz_nf = reduced_hz(&model, &nf)?;
+            reduced_nf.insert(m.id().into(), json!(sig_vec(&hz_nf)));
+        }
+        visuals.push(Visual::Bars {
+            path: format!("metrics/reduced_hz/{}", m.id()),
+            values: hz[..hz.len().min(12)].to_vec(),
+        });
+        bars.push(Layout::BarChart {
+            name: m.id().into(),
+            origin: format!("/metrics/reduced_hz/{}", m.id()),
+        });
+    }
+
+    let mut report = Report::new(INFO.id);
+    report.parameters.insert("boundary".into(), json!(boundary));
+    report.parameters.insert("guyan_masters".into(), json!(gr_masters));
+    report.parameters.insert("modes".into(), json!(kept));
+    report.parameters.insert(
+        "methods".into(),
+        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
+    );
+    if nodal_fixed {
+        report.parameters.insert(
+            "axes".into(),
+            json!({"type": "nodal_fixed", "origin": axes.origin, "axis_node": axes.axis_node, "plane_node": axes.plane_node}),
+        );
+    }
+    let r = &mut report.results;
+    r.insert("free_free_hz".into(), json!(sig_vec(&free_free_hz)));
+    r.insert("fixed_interface_hz".into(), json!(sig_vec(&fixed_interface_hz)));
+    r.insert("reduced_hz".into(), Value::Object(reduced));
+    r.insert("basis_size".into(), Value::Object(sizes));
+    r.insert("total_mass_kg".into(), json!(model.total_mass()));
+    if nodal_fixed {
+        r.insert("nodal_fixed_hz".into(), Value::Object(reduced_nf));
+    }
+    report.table = format!(
+        "Lowest elastic free-free frequencies, Hz (boundary {boundary:?}, {kept} kept modes, GR \
+         masters {gr_masters:?}):\n\n{}\nFixed-interface: {}\n",
+        markdown_table(&["model", "Hz"], &rows),
+        fmt_hz(&fixed_interface_hz[..fixed_interface_hz.len().min(8)]),
+    );
+    let markdown = format!(
+        "# slab-modes\n\nThe App. B slab (4 × 2 × 1 m, 8 trilinear bricks, 30 nodes, E = 0.2e6 Pa, \
+         ν = 0.33, 62.4 kg lumped as Table B-1). Views: free-free elastic modes, the constraint \
+         modes of boundary nodes {boundary:?} (unit boundary displacements, interior static), \
+         the {kept} kept fixed-interface modes, and bar charts of each reduced model's \
+         free-free frequencies: every reduced model is stiffer than the full one, Guyan most.\n\n{}",
+        report.table
+    );
+
+    let ff_modes: Vec<(Vec<f64>, String)> = columns(&ff.vectors)
+        .into_iter()
+        .zip(ff.hz())
+        .filter(|(_, f)| *f >= RIGID_BODY_HZ)
+        .take(SHOWN_FREE_FREE)
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("free-free {}: {f:.4} Hz", k + 1)))
+        .collect();
+    visuals.extend(mode_set(&model, "free_free", &ff_modes, REFERENCE));
+    let nb = part.b.len();
+    let constraint = part.assemble(crate::linalg::identity(nb).as_ref(), psi_s.as_ref());
+    let c_modes: Vec<(Vec<f64>, String)> = columns(&constraint)
+        .into_iter()
+        .zip(&part.b)
+        .map(|(u, &dof)| (u, format!("constraint {}", model.dof_label(dof))))
+        .collect();
+    visuals.extend(mode_set(&model, "guyan_c", &c_modes, method_color(Method::Guyan)));
+    let shown = kept.min(fi.vectors.ncols());
+    let fi_full = part.assemble(
+        faer::Mat::<f64>::zeros(nb, shown).as_ref(),
+        fi.vectors.subcols(0, shown),
+    );
+    let fi_modes: Vec<(Vec<f64>, String)> = columns(&fi_full)
+        .into_iter()
+        .zip(&fixed_interface_hz)
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("fixed-interface {}: {f:.4} Hz", k + 1)))
+        .collect();
+    visuals.extend(mode_set(
+        &model,
+        "fixed_interface",
+        &fi_modes,
+        method_color(Method::CraigBampton),
+    ));
+    let layout = Layout::Horizontal(
+        vec![
+            Layout::Vertical(
+                vec![
+                    Layout::Tabs(vec![
+                        Layout::view3d("free_free", "/modes/free_free"),
+                        Layout::view3d("guyan_c", "/modes/guyan_c"),
+                        Layout::view3d("fixed_interface", "/modes/fixed_interface"),
+                    ]),
+                    Layout::Horizontal(bars, vec![]),
+                ],
+                vec![3.0, 1.0],
+            ),
+            Layout::scene_text(),
+        ],
+        vec![3.0, 2.0],
+    );
+    Ok(SceneOutput {
+        report,
+        markdown,
+        visuals,
+        layout,
+        timeline: "phase".into(),
+    })
+}
