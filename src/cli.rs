@@ -143,7 +143,10 @@ fn run(cli: Cli) -> Result<()> {
             options,
         } => {
             let ids: Vec<String> = if all {
-                scenes::all().iter().map(|s| s.info.id.to_string()).collect()
+                scenes::all()
+                    .iter()
+                    .map(|s| s.info.id.to_string())
+                    .collect()
             } else {
                 ids
             };

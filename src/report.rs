@@ -72,7 +72,11 @@ pub fn sig_vec(v: &[f64]) -> Vec<f64> {
 
 /// A markdown table with a header row.
 pub fn markdown_table(header: &[&str], rows: &[Vec<String>]) -> String {
-    let mut s = format!("| {} |\n|{}\n", header.join(" | "), "---|".repeat(header.len()));
+    let mut s = format!(
+        "| {} |\n|{}\n",
+        header.join(" | "),
+        "---|".repeat(header.len())
+    );
     for r in rows {
         s.push_str(&format!("| {} |\n", r.join(" | ")));
     }
@@ -81,10 +85,7 @@ pub fn markdown_table(header: &[&str], rows: &[Vec<String>]) -> String {
 
 /// Formats a list of frequencies with `digits` significant digits.
 pub fn fmt_hz(v: &[f64]) -> String {
-    v.iter()
-        .map(|f| format!("{}", sig6(*f)))
-        .collect::<Vec<_>>()
-        .join(", ")
+    v.iter().map(|f| sig6(*f)).collect::<Vec<_>>().join(", ")
 }
 
 /// Six significant digits, as the thesis prints.
@@ -95,4 +96,14 @@ pub fn sig6(x: f64) -> String {
     let mag = x.abs().log10().floor() as i32;
     let decimals = (5 - mag).max(0) as usize;
     format!("{x:.decimals$}")
+}
+
+/// Five significant digits in MATLAB's `short g` manner (`2.5e+05`, `416.07`).
+pub fn sig5(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let digits = 5 - x.abs().log10().ceil() as i32;
+    let f = 10f64.powi(digits.clamp(-300, 300));
+    (x * f).round() / f
 }

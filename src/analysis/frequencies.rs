@@ -25,7 +25,11 @@ pub fn elastic_hz(e: &GeneralizedEigen) -> Vec<f64> {
 pub fn reduced_modes(model: &FeModel, basis: &Basis) -> Result<GeneralizedEigen> {
     let k = basis.reduced_stiffness(model);
     let m = basis.reduced_mass(model);
-    generalized_eigen(k.as_ref(), m.as_ref(), &format!("{} reduced", basis.method.id()))
+    generalized_eigen(
+        k.as_ref(),
+        m.as_ref(),
+        &format!("{} reduced", basis.method.id()),
+    )
 }
 
 /// Elastic free-free frequencies of a reduced model, Hz, ascending.

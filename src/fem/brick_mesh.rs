@@ -93,15 +93,27 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
                 ];
                 let x = conn.map(|c| nodes[c]);
                 let ke = hex8_stiffness(&x, p.youngs_modulus, p.poisson_ratio);
-                let dofs: Vec<usize> = conn.iter().flat_map(|&c| [3 * c, 3 * c + 1, 3 * c + 2]).collect();
+                let dofs: Vec<usize> = conn
+                    .iter()
+                    .flat_map(|&c| [3 * c, 3 * c + 1, 3 * c + 2])
+                    .collect();
                 kt.add_element(&dofs, &ke);
                 for &c in &conn {
                     mass[c] += brick_mass / 8.0;
                 }
                 for (a, b) in [
-                    (0, 1), (1, 2), (2, 3), (3, 0),
-                    (4, 5), (5, 6), (6, 7), (7, 4),
-                    (0, 4), (1, 5), (2, 6), (3, 7),
+                    (0, 1),
+                    (1, 2),
+                    (2, 3),
+                    (3, 0),
+                    (4, 5),
+                    (5, 6),
+                    (6, 7),
+                    (7, 4),
+                    (0, 4),
+                    (1, 5),
+                    (2, 6),
+                    (3, 7),
                 ] {
                     let (u, v) = (conn[a].min(conn[b]), conn[a].max(conn[b]));
                     edges.insert([u, v]);

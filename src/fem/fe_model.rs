@@ -175,8 +175,16 @@ impl FeModel {
     pub fn size(&self) -> f64 {
         let mut ext = 0.0f64;
         for d in 0..3 {
-            let lo = self.nodes.iter().map(|p| p[d]).fold(f64::INFINITY, f64::min);
-            let hi = self.nodes.iter().map(|p| p[d]).fold(f64::NEG_INFINITY, f64::max);
+            let lo = self
+                .nodes
+                .iter()
+                .map(|p| p[d])
+                .fold(f64::INFINITY, f64::min);
+            let hi = self
+                .nodes
+                .iter()
+                .map(|p| p[d])
+                .fold(f64::NEG_INFINITY, f64::max);
             ext = ext.max(hi - lo);
         }
         ext

@@ -20,8 +20,8 @@ fn elasticity(e: f64, nu: f64) -> [[f64; 6]; 6] {
     let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
     let mut d = [[0.0; 6]; 6];
     for i in 0..3 {
-        for j in 0..3 {
-            d[i][j] = c * if i == j { 1.0 - nu } else { nu };
+        for (j, dij) in d[i].iter_mut().take(3).enumerate() {
+            *dij = c * if i == j { 1.0 - nu } else { nu };
         }
         d[i + 3][i + 3] = c * (1.0 - 2.0 * nu) / 2.0;
     }
@@ -59,14 +59,13 @@ pub fn hex8_stiffness(x: &[[f64; 3]; 8], e: f64, nu: f64) -> Mat<f64> {
                     .unwrap_or_else(nalgebra::Matrix3::<f64>::zeros);
                 // dN/dx = J^{-1} dN/dξ
                 let mut dx = [[0.0; 3]; 8];
-                for a in 0..8 {
-                    for r in 0..3 {
-                        dx[a][r] = (0..3).map(|c| jinv[(r, c)] * dn[a][c]).sum();
+                for (dxa, dna) in dx.iter_mut().zip(&dn) {
+                    for (r, v) in dxa.iter_mut().enumerate() {
+                        *v = (0..3).map(|c| jinv[(r, c)] * dna[c]).sum();
                     }
                 }
                 let mut b = [[0.0; 24]; 6];
-                for a in 0..8 {
-                    let (nx, ny, nz) = (dx[a][0], dx[a][1], dx[a][2]);
+                for (a, &[nx, ny, nz]) in dx.iter().enumerate() {
                     let c = 3 * a;
                     b[0][c] = nx;
                     b[1][c + 1] = ny;

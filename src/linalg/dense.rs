@@ -78,9 +78,11 @@ pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> crate::Result
 }
 
 fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::Result<Mat<f64>> {
-    let svd = a.thin_svd().map_err(|_| crate::Error::DecompositionFailed {
-        what: "orthonormalisation SVD".into(),
-    })?;
+    let svd = a
+        .thin_svd()
+        .map_err(|_| crate::Error::DecompositionFailed {
+            what: "orthonormalisation SVD".into(),
+        })?;
     let s = svd.S().column_vector();
     let smax = if s.nrows() > 0 { s[0] } else { 0.0 };
     let tol = smax * 1e-10 * (a.nrows().max(a.ncols()) as f64);

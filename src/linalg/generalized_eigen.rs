@@ -61,7 +61,8 @@ pub fn generalized_eigen(
         })?;
     let values: Vec<f64> = (0..n).map(|i| evd.S()[i]).collect();
     let mut vectors = evd.U().to_owned();
-    l.transpose().solve_upper_triangular_in_place(vectors.as_mut());
+    l.transpose()
+        .solve_upper_triangular_in_place(vectors.as_mut());
     for j in 0..n {
         fix_sign(vectors.as_mut().col_mut(j));
     }

@@ -21,12 +21,28 @@ pub fn solve_lyapunov(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>
     let v = evd.U().to_owned();
     let lambda: Vec<c64> = (0..n).map(|i| evd.S()[i]).collect();
     let v_inv = v.partial_piv_lu().inverse();
-    let qc = Mat::from_fn(n, n, |i, j| c64::new(q[(i, j)], 0.0));
-    let qt = &v_inv * &qc * v_inv.adjoint();
-    let x = Mat::from_fn(n, n, |i, j| -qt[(i, j)] / (lambda[i] + lambda[j].conj()));
-    let s = &v * &x * v.adjoint();
-    let s = Mat::from_fn(n, n, |i, j| 0.5 * (s[(i, j)].re + s[(j, i)].re));
-    let residual = &a * &s + &s * a.transpose() + q;
+    let solve = |rhs: &Mat<f64>| -> Mat<f64> {
+        let rc = Mat::from_fn(n, n, |i, j| c64::new(rhs[(i, j)], 0.0));
+        let rt = &v_inv * &rc * v_inv.adjoint();
+        let x = Mat::from_fn(n, n, |i, j| -rt[(i, j)] / (lambda[i] + lambda[j].conj()));
+        let s = &v * &x * v.adjoint();
+        Mat::from_fn(n, n, |i, j| 0.5 * (s[(i, j)].re + s[(j, i)].re))
+    };
+    let q = q.to_owned();
+    let mut s = solve(&q);
+    // Iterative refinement: an ill-conditioned eigenvector matrix costs digits, and the
+    // residual equation A dS + dS A^T = -R recovers them with the same factorisation.
+    let mut residual = a * &s + &s * a.transpose() + &q;
+    for _ in 0..3 {
+        let ds = solve(&residual);
+        let s_new = &s + &ds;
+        let r_new = a * &s_new + &s_new * a.transpose() + &q;
+        if r_new.norm_l2() >= residual.norm_l2() {
+            break;
+        }
+        s = s_new;
+        residual = r_new;
+    }
     let scale = q.norm_l2().max(f64::MIN_POSITIVE);
     let rel = residual.norm_l2() / scale;
     if !rel.is_finite() || rel > RESIDUAL_TOLERANCE {

@@ -19,11 +19,11 @@ impl InteriorStiffness {
     /// interior free — is [`Error::SingularInterior`], naming the boundary nodes.
     pub fn factor(k_ii: MatRef<'_, f64>, boundary_nodes: &[usize], dim: usize) -> Result<Self> {
         let needed = if dim == 3 { 6 } else { 3 };
-        let eig = k_ii
-            .self_adjoint_eigenvalues(Side::Lower)
-            .map_err(|_| Error::DecompositionFailed {
-                what: "K_ii eigenvalue".into(),
-            })?;
+        let eig =
+            k_ii.self_adjoint_eigenvalues(Side::Lower)
+                .map_err(|_| Error::DecompositionFailed {
+                    what: "K_ii eigenvalue".into(),
+                })?;
         let largest = eig.iter().fold(0.0f64, |a, &l| a.max(l.abs()));
         let smallest = eig.iter().copied().fold(f64::INFINITY, f64::min);
         let deficiency = eig
@@ -34,18 +34,20 @@ impl InteriorStiffness {
             return Err(Error::SingularInterior {
                 boundary_nodes: boundary_nodes.to_vec(),
                 rank_deficiency: deficiency.max(1),
-                ratio: if largest > 0.0 { smallest / largest } else { 0.0 },
+                ratio: if largest > 0.0 {
+                    smallest / largest
+                } else {
+                    0.0
+                },
                 needed,
             });
         }
-        let llt = k_ii
-            .llt(Side::Lower)
-            .map_err(|_| Error::SingularInterior {
-                boundary_nodes: boundary_nodes.to_vec(),
-                rank_deficiency: 1,
-                ratio: smallest / largest,
-                needed,
-            })?;
+        let llt = k_ii.llt(Side::Lower).map_err(|_| Error::SingularInterior {
+            boundary_nodes: boundary_nodes.to_vec(),
+            rank_deficiency: 1,
+            ratio: smallest / largest,
+            needed,
+        })?;
         Ok(Self { llt })
     }
 

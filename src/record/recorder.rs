@@ -75,7 +75,11 @@ fn radius(g: &Geometry) -> f32 {
     let mut ext = 0.0f64;
     for d in 0..3 {
         let lo = g.nodes.iter().map(|p| p[d]).fold(f64::INFINITY, f64::min);
-        let hi = g.nodes.iter().map(|p| p[d]).fold(f64::NEG_INFINITY, f64::max);
+        let hi = g
+            .nodes
+            .iter()
+            .map(|p| p[d])
+            .fold(f64::NEG_INFINITY, f64::max);
         ext = ext.max(hi - lo);
     }
     (ext * 0.004).max(1e-4) as f32

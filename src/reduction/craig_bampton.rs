@@ -4,7 +4,9 @@ use faer::Mat;
 
 use super::{
     Basis, ColumnKind, Method, ModeSelection,
-    partition::{Partition, boundary_columns, constraint_modes, fixed_interface_modes, normal_columns},
+    partition::{
+        Partition, boundary_columns, constraint_modes, fixed_interface_modes, normal_columns,
+    },
 };
 use crate::{Result, fem::FeModel};
 
@@ -20,7 +22,11 @@ pub fn craig_bampton(model: &FeModel, boundary: &[usize], modes: ModeSelection) 
     let nb = p.b.len();
     let top = Mat::from_fn(nb, nb + kept, |r, c| if r == c { 1.0 } else { 0.0 });
     let bottom = Mat::from_fn(p.i.len(), nb + kept, |r, c| {
-        if c < nb { psi_s[(r, c)] } else { fi.vectors[(r, c - nb)] }
+        if c < nb {
+            psi_s[(r, c)]
+        } else {
+            fi.vectors[(r, c - nb)]
+        }
     });
     let mut columns = boundary_columns(model, &p, ColumnKind::Constraint, "constraint");
     columns.extend(normal_columns(&hz[..kept]));

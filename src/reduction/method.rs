@@ -89,7 +89,7 @@ impl ModeSelection {
                 available: hz.len(),
             }),
             ModeSelection::Count(n) => Ok(n),
-            ModeSelection::UpToHz(f) if !(f >= 0.0) => Err(Error::InvalidModeSelection {
+            ModeSelection::UpToHz(f) if f.is_nan() || f < 0.0 => Err(Error::InvalidModeSelection {
                 reason: format!("frequency cut-off {f} Hz must be a non-negative number"),
             }),
             ModeSelection::UpToHz(f) => Ok(hz.iter().take_while(|&&h| h <= f).count()),

@@ -13,7 +13,9 @@ mod partition;
 
 pub use basis::{Basis, Column, ColumnKind};
 pub use craig_bampton::craig_bampton;
-pub use eitelberg::{EitelbergParameters, EitelbergReduction, eitelberg, eitelberg_state_space};
+pub use eitelberg::{
+    EitelbergParameters, EitelbergReduction, StateSpaceReduction, eitelberg, eitelberg_state_space,
+};
 pub use full::no_reduction;
 pub use guyan::guyan;
 pub use method::{Method, ModeSelection, ReductionParameters, reduce};

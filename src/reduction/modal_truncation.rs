@@ -11,7 +11,11 @@ use crate::{Result, fem::FeModel};
 /// $\Psi_{MT} = [I\ 0;\ 0\ \Psi_n^k]$ (Eq. 6.17): boundary DOF kept as they are, interior in
 /// kept fixed-interface modes. The boundary columns move no interior node, which is why the
 /// method cannot carry boundary motion into the body (§7.1).
-pub fn modal_truncation(model: &FeModel, boundary: &[usize], modes: ModeSelection) -> Result<Basis> {
+pub fn modal_truncation(
+    model: &FeModel,
+    boundary: &[usize],
+    modes: ModeSelection,
+) -> Result<Basis> {
     let p = Partition::new(model, boundary)?;
     let fi = fixed_interface_modes(model, &p)?;
     let hz = fi.hz();

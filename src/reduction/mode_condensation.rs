@@ -27,16 +27,19 @@ pub fn mode_condensation(
     // Θ = -K̄_n^{d -1} Ψ_n^{dT} K_ib, row by row (K̄_n^d is diagonal).
     let psi_d = fi.vectors.subcols(kept, ni - kept);
     let mut theta = psi_d.transpose() * &k_ib;
+    // A zero fixed-interface eigenvalue means K_ii is singular: the boundary leaves a rigid
+    // motion free. Refused even when that mode would be kept, as Craig-Bampton refuses it.
     let largest = fi.values.iter().fold(0.0f64, |a, &l| a.max(l.abs()));
+    let deficiency = fi.values.iter().filter(|&&l| l <= 1e-10 * largest).count();
+    if deficiency > 0 {
+        return Err(Error::SingularInterior {
+            boundary_nodes: boundary.to_vec(),
+            rank_deficiency: deficiency,
+            ratio: fi.values[0] / largest,
+            needed: if model.dim == 3 { 6 } else { 3 },
+        });
+    }
     for (r, &lambda) in fi.values[kept..].iter().enumerate() {
-        if lambda <= 1e-10 * largest {
-            return Err(Error::SingularInterior {
-                boundary_nodes: boundary.to_vec(),
-                rank_deficiency: fi.values.iter().filter(|&&l| l <= 1e-10 * largest).count(),
-                ratio: lambda / largest,
-                needed: if model.dim == 3 { 6 } else { 3 },
-            });
-        }
         for c in 0..nb {
             theta[(r, c)] *= -1.0 / lambda;
         }
@@ -44,7 +47,11 @@ pub fn mode_condensation(
     let psi_m = psi_d * &theta;
     let top = Mat::from_fn(nb, nb + kept, |r, c| if r == c { 1.0 } else { 0.0 });
     let bottom = Mat::from_fn(ni, nb + kept, |r, c| {
-        if c < nb { psi_m[(r, c)] } else { fi.vectors[(r, c - nb)] }
+        if c < nb {
+            psi_m[(r, c)]
+        } else {
+            fi.vectors[(r, c - nb)]
+        }
     });
     let mut columns = boundary_columns(model, &p, ColumnKind::CondensedBoundary, "boundary");
     columns.extend(normal_columns(&hz[..kept]));

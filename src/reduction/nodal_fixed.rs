@@ -105,9 +105,10 @@ impl NodalFixedAxes {
         let anchored = self.anchored_dofs(model)?;
         let mut remove = Vec::new();
         for &(node, dir, dof) in &anchored {
-            let col = basis.columns.iter().position(|c| {
-                c.dof == Some(dof) && !matches!(c.kind, ColumnKind::Normal { .. })
-            });
+            let col = basis
+                .columns
+                .iter()
+                .position(|c| c.dof == Some(dof) && !matches!(c.kind, ColumnKind::Normal { .. }));
             match col {
                 Some(j) => remove.push(j),
                 None => {

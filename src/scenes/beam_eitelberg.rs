@@ -12,7 +12,7 @@ use crate::{
     fem::{BeamParameters, beam},
     linalg::principal_angles,
     record::Layout,
-    reduction::{EitelbergParameters, Method, eitelberg, guyan},
+    reduction::{EitelbergParameters, EitelbergReduction, Method, eitelberg, guyan},
     report::{Report, fmt_hz, sig, sig_vec},
 };
 
@@ -46,17 +46,27 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let max_angle = angles.iter().copied().fold(0.0f64, f64::max);
 
     let rows: Vec<Vec<f64>> = (0..eit.minv_k.nrows())
-        .map(|i| (0..eit.minv_k.ncols()).map(|j| sig(eit.minv_k[(i, j)])).collect())
+        .map(|i| {
+            (0..eit.minv_k.ncols())
+                .map(|j| sig(eit.minv_k[(i, j)]))
+                .collect()
+        })
         .collect();
     let mut report = Report::new(INFO.id);
     report.parameters.insert("boundary".into(), json!(masters));
-    report.parameters.insert("output_feedback".into(), json!("L = [I I]"));
+    report
+        .parameters
+        .insert("output_feedback".into(), json!("L = [I I]"));
     let r = &mut report.results;
     r.insert("minv_k".into(), json!(rows));
     r.insert("hz".into(), json!(sig_vec(&eit.hz)));
     r.insert("guyan_hz".into(), json!(sig_vec(&guyan_hz)));
     r.insert("minv_k_rel_diff_vs_guyan".into(), json!(diff));
     r.insert("principal_angle_vs_guyan_max_rad".into(), json!(max_angle));
+    r.insert(
+        "gramian_condition".into(),
+        json!(sig(eit.gramian_condition)),
+    );
     r.insert(
         "zero_singular_values".into(),
         json!({"a": eit.zero_singular_values.0, "a_r_restored": eit.zero_singular_values.1}),
@@ -65,7 +75,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     for row in &rows {
         matrix.push_str(
             &row.iter()
-                .map(|v| format!("{:>12}", format!("{:.5e}", v)))
+                .map(|&v| format!("{:>12}", tidy(v, scale)))
                 .collect::<Vec<_>>()
                 .join(" "),
         );
@@ -75,12 +85,14 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report.table = format!(
         "Restored M⁻¹K (1/s², rows/columns: boundary DOF of nodes {masters:?}):\n\n{matrix}\n\
          | | Hz |\n|---|---|\n| Eitelberg | {} |\n| Guyan | {} |\n| published (§6.6.4) | 5.95823, 71.1763, 123.281 |\n\n\
-         Largest relative difference to Guyan's M⁻¹K: {:.1e}; largest principal angle between \
+         Largest relative difference to Guyan's M⁻¹K: {:.1e} (R S Rᵀ has condition number \
+         {:.1e}, so about five digits are lost to round-off); largest principal angle between \
          the implied basis and Ψ_Guyan: {:.1e} rad; zero singular values of A / restored A_r: \
          {} / {}.\n",
         fmt_hz(&eit.hz),
         fmt_hz(&guyan_hz),
         diff,
+        eit.gramian_condition,
         max_angle,
         eit.zero_singular_values.0,
         eit.zero_singular_values.1,
@@ -95,28 +107,29 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          basis S Rᵀ(R S Rᵀ)⁻¹ beside Guyan (a)'s.\n\n{}",
         report.table
     );
-    let label = |prefix: &str, b: &crate::reduction::Basis| -> Result<Vec<(Vec<f64>, String)>> {
-        let e = reduced_modes(&model, b)?;
-        let full = &b.psi * &e.vectors;
-        Ok(columns(&full)
+    let guyan_modes = {
+        let e = reduced_modes(&model, &g)?;
+        let full = &g.psi * &e.vectors;
+        columns(&full)
             .into_iter()
             .zip(e.hz())
             .filter(|(_, f)| *f >= crate::analysis::RIGID_BODY_HZ)
             .enumerate()
-            .map(|(k, (u, f))| (u, format!("{prefix} {}: {f:.6} Hz", k + 1)))
-            .collect())
+            .map(|(k, (u, f))| (u, format!("Guyan {}: {f:.6} Hz", k + 1)))
+            .collect::<Vec<_>>()
     };
+    let eit_modes = eitelberg_modes(&eit)?;
     let mut visuals = vec![undeformed(&model)];
     visuals.extend(mode_set(
         &model,
         "eitelberg",
-        &label("Eitelberg", &eit.basis)?,
+        &eit_modes,
         method_color(Method::Eitelberg),
     ));
     visuals.extend(mode_set(
         &model,
         "guyan_a",
-        &label("Guyan", &g)?,
+        &guyan_modes,
         method_color(Method::Guyan),
     ));
     let layout = Layout::Horizontal(
@@ -139,4 +152,41 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         layout,
         timeline: "phase".into(),
     })
+}
+
+/// A matrix entry as the thesis prints it (5 significant digits), with round-off below
+/// 1e-9 of the matrix's largest entry shown as 0.
+fn tidy(v: f64, scale: f64) -> String {
+    if v.abs() <= 1e-9 * scale {
+        "0".into()
+    } else {
+        format!("{}", crate::report::sig5(v))
+    }
+}
+
+/// Elastic modes of the restored $\underline M^{-1}\underline K$ (real parts of its
+/// eigenvectors; its eigenvalues are real), expanded to the full DOF by the implied basis.
+fn eitelberg_modes(eit: &EitelbergReduction) -> Result<Vec<(Vec<f64>, String)>> {
+    let evd = eit
+        .minv_k
+        .eigen()
+        .map_err(|_| crate::Error::DecompositionFailed {
+            what: "restored M^-1 K eigen".into(),
+        })?;
+    let nb = eit.minv_k.nrows();
+    let mut modes: Vec<(f64, Vec<f64>)> = (0..nb)
+        .map(|j| {
+            let hz = crate::linalg::hz_from_eigenvalue(evd.S()[j].re);
+            let v = faer::Mat::from_fn(nb, 1, |i, _| evd.U()[(i, j)].re);
+            let u = &eit.basis.psi * &v;
+            (hz, (0..u.nrows()).map(|i| u[(i, 0)]).collect())
+        })
+        .filter(|(hz, _)| *hz >= crate::analysis::RIGID_BODY_HZ)
+        .collect();
+    modes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Ok(modes
+        .into_iter()
+        .enumerate()
+        .map(|(k, (hz, u))| (u, format!("Eitelberg {}: {hz:.6} Hz", k + 1)))
+        .collect())
 }

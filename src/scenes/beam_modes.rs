@@ -103,20 +103,51 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     r.insert("guyan_a_hz".into(), json!(sig_vec(&guyan_a_hz)));
     r.insert("guyan_b_hz".into(), json!(sig_vec(&guyan_b_hz)));
     r.insert("guyan_c_hz".into(), json!(sig_vec(&guyan_c_hz)));
-    r.insert("fixed_interface_hz".into(), json!(sig_vec(&fixed_interface_hz)));
+    r.insert(
+        "fixed_interface_hz".into(),
+        json!(sig_vec(&fixed_interface_hz)),
+    );
     r.insert("cb_hz".into(), json!(sig_vec(&cb_hz)));
     r.insert("mc_hz".into(), json!(sig_vec(&mc_hz)));
     r.insert("principal_angle_cb_mc_max_rad".into(), json!(max_angle));
 
     let b = format!("{boundary:?}");
     let rows = vec![
-        vec!["free-free (Fig. 6-1)".into(), fmt_hz(&free_free_hz), "5.94776, 66.7191, 123.281 (bending 1, axial 1, 2)".into()],
-        vec!["Guyan (a), masters 1, 3, 5".into(), fmt_hz(&guyan_a_hz), "5.95823, 71.1763, 123.281".into()],
-        vec!["Guyan (b), masters 1, 2, 5".into(), fmt_hz(&guyan_b_hz), "6.33897, 69.5245, ...".into()],
-        vec![format!("Guyan (c), masters {b}"), fmt_hz(&guyan_c_hz), "-".into()],
-        vec![format!("fixed-interface, interface {b}"), fmt_hz(&fixed_interface_hz), "3.10366, 12.3283, ... (§8.5.2, nodes 1, 5)".into()],
-        vec![format!("Craig-Bampton, {kept} modes"), fmt_hz(&cb_hz), "-".into()],
-        vec![format!("mode condensation, {kept} modes"), fmt_hz(&mc_hz), "-".into()],
+        vec![
+            "free-free (Fig. 6-1)".into(),
+            fmt_hz(&free_free_hz),
+            "5.94776, 66.7191, 123.281 (bending 1, axial 1, 2)".into(),
+        ],
+        vec![
+            "Guyan (a), masters 1, 3, 5".into(),
+            fmt_hz(&guyan_a_hz),
+            "5.95823, 71.1763, 123.281".into(),
+        ],
+        vec![
+            "Guyan (b), masters 1, 2, 5".into(),
+            fmt_hz(&guyan_b_hz),
+            "6.33897, 69.5245, ...".into(),
+        ],
+        vec![
+            format!("Guyan (c), masters {b}"),
+            fmt_hz(&guyan_c_hz),
+            "-".into(),
+        ],
+        vec![
+            format!("fixed-interface, interface {b}"),
+            fmt_hz(&fixed_interface_hz),
+            "3.10366, 12.3283, ... (§8.5.2, nodes 1, 5)".into(),
+        ],
+        vec![
+            format!("Craig-Bampton, {kept} modes"),
+            fmt_hz(&cb_hz),
+            "-".into(),
+        ],
+        vec![
+            format!("mode condensation, {kept} modes"),
+            fmt_hz(&mc_hz),
+            "-".into(),
+        ],
     ];
     report.table = format!(
         "{}\nLargest principal angle between span(Ψ_CB) and span(Ψ_MC): {:.2e} rad (§6.5.4: they \
@@ -158,13 +189,26 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     add("free_free", ff_modes, REFERENCE, &mut visuals);
     if methods.contains(&Method::Guyan) {
         let c = method_color(Method::Guyan);
-        add("guyan_a", expanded_modes(&model, &g_a, "Guyan (a)")?, c, &mut visuals);
-        add("guyan_b", expanded_modes(&model, &g_b, "Guyan (b)")?, c, &mut visuals);
+        add(
+            "guyan_a",
+            expanded_modes(&model, &g_a, "Guyan (a)")?,
+            c,
+            &mut visuals,
+        );
+        add(
+            "guyan_b",
+            expanded_modes(&model, &g_b, "Guyan (b)")?,
+            c,
+            &mut visuals,
+        );
         add("guyan_c", labelled_columns(&g_c), c, &mut visuals);
     }
     if methods.contains(&Method::ModalTruncation) {
         let c = method_color(Method::ModalTruncation);
-        let bcols: Vec<_> = labelled_columns(&mt).into_iter().take(part.b.len()).collect();
+        let bcols: Vec<_> = labelled_columns(&mt)
+            .into_iter()
+            .take(part.b.len())
+            .collect();
         add("boundary", bcols, c, &mut visuals);
         let fi_modes: Vec<_> = columns(&part.assemble(
             faer::Mat::<f64>::zeros(part.b.len(), fi.vectors.ncols()).as_ref(),
@@ -178,7 +222,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         add("fixed_interface", fi_modes, c, &mut visuals);
     }
     if methods.contains(&Method::CraigBampton) {
-        add("craig_bampton", labelled_columns(&cb), method_color(Method::CraigBampton), &mut visuals);
+        add(
+            "craig_bampton",
+            labelled_columns(&cb),
+            method_color(Method::CraigBampton),
+            &mut visuals,
+        );
     }
     if methods.contains(&Method::ModeCondensation) {
         add(
@@ -188,7 +237,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             &mut visuals,
         );
     }
-    let layout = Layout::Horizontal(vec![Layout::Tabs(tabs), Layout::scene_text()], vec![3.0, 2.0]);
+    let layout = Layout::Horizontal(
+        vec![Layout::Tabs(tabs), Layout::scene_text()],
+        vec![3.0, 2.0],
+    );
     Ok(SceneOutput {
         report,
         markdown,

@@ -79,18 +79,33 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 path: format!("profiles/{profile}/{}", m.id()),
                 geometry: geometry.with_nodes(model.displaced(&fit.delta, 1.0)),
                 color: method_color(m),
-                label: Some(format!("{} ‖δ*−δ‖ = {:.4}", m.id().to_uppercase(), fit.error)),
+                label: Some(format!(
+                    "{} ‖δ*−δ‖ = {:.4}",
+                    m.id().to_uppercase(),
+                    fit.error
+                )),
             });
         }
     }
-    report.results.insert("profile1_error".into(), Value::Object(e1));
-    report.results.insert("profile2_error".into(), Value::Object(e2));
-    report.results.insert("profile1_delta".into(), Value::Object(d1));
-    report.results.insert("profile2_delta".into(), Value::Object(d2));
+    report
+        .results
+        .insert("profile1_error".into(), Value::Object(e1));
+    report
+        .results
+        .insert("profile2_error".into(), Value::Object(e2));
+    report
+        .results
+        .insert("profile1_delta".into(), Value::Object(d1));
+    report
+        .results
+        .insert("profile2_delta".into(), Value::Object(d2));
     report.table = format!(
         "{}\nPublished (§7.1): profile 1 MT 0.1569, CB 0.0826, MC 0.0826; profile 2 MT 0.1569, \
          CB 0.0612, MC 0.0612.\n",
-        markdown_table(&["method", "profile 1 ‖δ*−δ‖, m", "profile 2 ‖δ*−δ‖, m"], &rows)
+        markdown_table(
+            &["method", "profile 1 ‖δ*−δ‖, m", "profile 2 ‖δ*−δ‖, m"],
+            &rows
+        )
     );
     let markdown = format!(
         "# beam-profiles\n\n§7.1 on the App. A beam with boundary nodes {boundary:?} and {kept} \
@@ -102,7 +117,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         report.table
     );
     let layout = Layout::Horizontal(
-        vec![Layout::view3d("profiles", "/profiles"), Layout::scene_text()],
+        vec![
+            Layout::view3d("profiles", "/profiles"),
+            Layout::scene_text(),
+        ],
         vec![3.0, 2.0],
     );
     Ok(SceneOutput {

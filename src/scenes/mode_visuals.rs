@@ -57,7 +57,7 @@ fn slot(model: &FeModel, k: usize) -> [f64; 3] {
         [0.0, -0.5 * model.size() * k as f64, 0.0]
     } else {
         let s = model.size();
-        [1.5 * s * (k % 3) as f64, -1.0 * s * (k / 3) as f64, 0.0]
+        [1.5 * s * (k % 3) as f64, -s * (k / 3) as f64, 0.0]
     }
 }
 

@@ -46,7 +46,11 @@ pub fn all() -> Vec<Scene> {
 
 /// Scene ids, comma separated.
 pub fn ids() -> String {
-    all().iter().map(|s| s.info.id).collect::<Vec<_>>().join(", ")
+    all()
+        .iter()
+        .map(|s| s.info.id)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Finds a scene by id.

@@ -9,7 +9,7 @@ use super::{
 };
 use crate::{
     Result,
-    analysis::{RIGID_BODY_HZ, elastic_hz, free_free_modes, reduced_hz},
+    analysis::{RIGID_BODY_HZ, elastic_hz, free_free_modes, reduced_hz, reduced_modes},
     fem::{SlabParameters, slab},
     record::{Layout, Visual},
     reduction::{
@@ -62,8 +62,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut reduced = Map::new();
     let mut reduced_nf = Map::new();
     let mut sizes = Map::new();
+    let mut rigid_counts = Map::new();
     let mut rows = vec![vec![
-        "NR (full, 90 DOF)".to_string(),
+        "NR (90 × 90, 6 rigid)".to_string(),
         fmt_hz(&free_free_hz[..free_free_hz.len().min(8)]),
     ]];
     let mut visuals = vec![undeformed(&model)];
@@ -86,11 +87,18 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             modes: ModeSelection::Count(kept),
         };
         let basis = reduce(&model, m, &params)?;
-        let hz = reduced_hz(&model, &basis)?;
+        let all_hz = reduced_modes(&model, &basis)?.hz();
+        let rigid = all_hz.iter().filter(|&&f| f < RIGID_BODY_HZ).count();
+        rigid_counts.insert(m.id().into(), json!(rigid));
+        let hz: Vec<f64> = all_hz.into_iter().filter(|&f| f >= RIGID_BODY_HZ).collect();
         reduced.insert(m.id().into(), json!(sig_vec(&hz)));
         sizes.insert(m.id().into(), json!([basis.psi.nrows(), basis.psi.ncols()]));
         rows.push(vec![
-            format!("{} (90 × {})", m.id().to_uppercase(), basis.size()),
+            format!(
+                "{} (90 × {}, {rigid} rigid)",
+                m.id().to_uppercase(),
+                basis.size()
+            ),
             fmt_hz(&hz[..hz.len().min(8)]),
         ]);
         if nodal_fixed {
@@ -110,7 +118,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
 
     let mut report = Report::new(INFO.id);
     report.parameters.insert("boundary".into(), json!(boundary));
-    report.parameters.insert("guyan_masters".into(), json!(gr_masters));
+    report
+        .parameters
+        .insert("guyan_masters".into(), json!(gr_masters));
     report.parameters.insert("modes".into(), json!(kept));
     report.parameters.insert(
         "methods".into(),
@@ -124,9 +134,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }
     let r = &mut report.results;
     r.insert("free_free_hz".into(), json!(sig_vec(&free_free_hz)));
-    r.insert("fixed_interface_hz".into(), json!(sig_vec(&fixed_interface_hz)));
+    r.insert(
+        "fixed_interface_hz".into(),
+        json!(sig_vec(&fixed_interface_hz)),
+    );
     r.insert("reduced_hz".into(), Value::Object(reduced));
     r.insert("basis_size".into(), Value::Object(sizes));
+    r.insert("rigid_body_modes".into(), Value::Object(rigid_counts));
     r.insert("total_mass_kg".into(), json!(model.total_mass()));
     if nodal_fixed {
         r.insert("nodal_fixed_hz".into(), Value::Object(reduced_nf));
@@ -142,7 +156,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          ν = 0.33, 62.4 kg lumped as Table B-1). Views: free-free elastic modes, the constraint \
          modes of boundary nodes {boundary:?} (unit boundary displacements, interior static), \
          the {kept} kept fixed-interface modes, and bar charts of each reduced model's \
-         free-free frequencies: every reduced model is stiffer than the full one, Guyan most.\n\n{}",
+         free-free frequencies. CB, MC and GR contain the six rigid-body motions and, being Ritz \
+         approximations, are stiffer than the full model (Guyan most). MT does not: its \
+         boundary columns move the boundary nodes alone, so it has no rigid-body mode and its \
+         lowest frequencies are spoiled rigid-body motions, the failure §7.1 shows on the beam.\n\n{}",
         report.table
     );
 
@@ -162,7 +179,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .zip(&part.b)
         .map(|(u, &dof)| (u, format!("constraint {}", model.dof_label(dof))))
         .collect();
-    visuals.extend(mode_set(&model, "guyan_c", &c_modes, method_color(Method::Guyan)));
+    visuals.extend(mode_set(
+        &model,
+        "guyan_c",
+        &c_modes,
+        method_color(Method::Guyan),
+    ));
     let shown = kept.min(fi.vectors.ncols());
     let fi_full = part.assemble(
         faer::Mat::<f64>::zeros(nb, shown).as_ref(),

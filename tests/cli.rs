@@ -1,0 +1,184 @@
+//! The command line as users and CI run it (DESIGN §4): exit codes, JSON keys, atomic writes.
+
+use std::process::{Command, Output};
+
+fn flexmodes(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_flexmodes"))
+        .args(args)
+        .output()
+        .expect("run flexmodes")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = flexmodes(args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("one JSON object on stdout")
+}
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("flexmodes-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn list_names_every_scene() {
+    let out = flexmodes(&["list"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    for id in [
+        "beam-modes",
+        "slab-modes",
+        "beam-profiles",
+        "beam-eitelberg",
+    ] {
+        assert!(
+            text.lines().any(|l| l.starts_with(id)),
+            "{id} missing:\n{text}"
+        );
+    }
+}
+
+#[test]
+fn report_beam_modes_with_boundary_1_4_5() {
+    let v = json(&["report", "beam-modes", "--boundary", "1,4,5", "--json"]);
+    assert_eq!(v["scene"], "beam-modes");
+    assert_eq!(v["parameters"]["boundary"], serde_json::json!([1, 4, 5]));
+    let g = v["results"]["guyan_c_hz"].as_array().unwrap();
+    let fi = v["results"]["fixed_interface_hz"].as_array().unwrap();
+    // Three nodes, six DOF: three rigid and three elastic Guyan modes; four interior DOF.
+    assert_eq!(g.len(), 3);
+    assert_eq!(fi.len(), 4);
+}
+
+#[test]
+fn report_slab_modes_with_boundary_and_modes() {
+    let v = json(&[
+        "report",
+        "slab-modes",
+        "--boundary",
+        "1,13,16,28",
+        "--modes",
+        "4",
+        "--json",
+    ]);
+    let r = &v["results"];
+    for key in ["free_free_hz", "fixed_interface_hz"] {
+        assert!(r[key].as_array().is_some_and(|a| !a.is_empty()), "{key}");
+    }
+    for m in ["mt", "cb", "mc", "gr"] {
+        assert!(
+            r["reduced_hz"][m].as_array().is_some_and(|a| !a.is_empty()),
+            "{m}"
+        );
+    }
+    assert_eq!(r["basis_size"]["cb"], serde_json::json!([90, 16]));
+    assert_eq!(v["parameters"]["modes"], 4);
+}
+
+#[test]
+fn errors_exit_1_with_the_cause_and_usage_errors_exit_2() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["report", "no-such-scene"],
+            "unknown scene `no-such-scene`",
+        ),
+        (
+            &["report", "beam-modes", "--boundary", "1,9"],
+            "node 9 is out of range",
+        ),
+        (
+            &["report", "slab-modes", "--boundary", "16"],
+            "K_ii is singular",
+        ),
+        (
+            &["report", "beam-modes", "--modes", "9"],
+            "9 normal modes requested",
+        ),
+        (
+            &["report", "beam-modes", "--axes", "mean"],
+            "unknown or unsupported axis type",
+        ),
+    ];
+    for (args, msg) in cases {
+        let out = flexmodes(args);
+        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(
+            err.starts_with("error: ") && err.contains(msg),
+            "{args:?}: {err}"
+        );
+        assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    }
+    for args in [
+        &["report"][..],
+        &["report", "beam-modes", "--method", "xx"],
+        &["report", "beam-modes", "--boundary", "a"],
+        &["frobnicate"],
+    ] {
+        assert_eq!(flexmodes(args).status.code(), Some(2), "{args:?}");
+    }
+}
+
+#[test]
+fn record_writes_every_scene_and_failures_write_nothing() {
+    let dir = temp_dir("record");
+    let out = flexmodes(&["record", "--all", "--out", dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    for id in [
+        "beam-modes",
+        "slab-modes",
+        "beam-profiles",
+        "beam-eitelberg",
+    ] {
+        let f = dir.join(format!("{id}.rrd"));
+        let bytes = std::fs::read(&f).unwrap();
+        assert!(bytes.starts_with(b"RRF"), "{id}: not an rrd stream");
+        assert!(
+            stdout.contains(&format!("# {id}")),
+            "result table of {id} printed"
+        );
+    }
+    // A failing run leaves an existing file untouched and no temporary file behind.
+    let target = dir.join("keep.rrd");
+    std::fs::write(&target, b"previous").unwrap();
+    let out = flexmodes(&[
+        "record",
+        "slab-modes",
+        "--boundary",
+        "16",
+        "--save",
+        target.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(std::fs::read(&target).unwrap(), b"previous");
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty());
+    // A typo among several scenes fails before anything is written.
+    let dir2 = temp_dir("typo");
+    let out = flexmodes(&[
+        "record",
+        "beam-modes",
+        "nope",
+        "--out",
+        dir2.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(std::fs::read_dir(&dir2).unwrap().count(), 0);
+    let _ = std::fs::remove_dir_all(dir);
+    let _ = std::fs::remove_dir_all(dir2);
+}

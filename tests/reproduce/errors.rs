@@ -1,0 +1,172 @@
+//! Bad input gives a named error with its cause, never a panic.
+
+use flexmodes::{
+    Error,
+    fem::{BeamParameters, SlabParameters, beam, slab},
+    reduction::{
+        EitelbergParameters, Method, ModeSelection, NodalFixedAxes, ReductionParameters,
+        craig_bampton, eitelberg, guyan, mode_condensation, reduce,
+    },
+    scenes::{self, SceneOptions},
+};
+
+#[test]
+fn unknown_scene() {
+    let e = scenes::find("beam-mode").err().unwrap();
+    assert!(matches!(e, Error::UnknownScene { ref id, .. } if id == "beam-mode"));
+    assert!(
+        e.to_string().contains("beam-modes"),
+        "lists the known scenes: {e}"
+    );
+}
+
+#[test]
+fn node_out_of_range_and_duplicates() {
+    let model = beam(&BeamParameters::default());
+    let e = guyan(&model, &[1, 6]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::NodeOutOfRange {
+                node: 6,
+                count: 5,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let e = guyan(&model, &[0]).unwrap_err();
+    assert!(matches!(e, Error::NodeOutOfRange { node: 0, .. }), "{e}");
+    let e = guyan(&model, &[1, 1]).unwrap_err();
+    assert!(matches!(e, Error::DuplicateNode { node: 1 }), "{e}");
+    let all: Vec<usize> = (1..=5).collect();
+    assert!(matches!(
+        guyan(&model, &all).unwrap_err(),
+        Error::InvalidBoundary { .. }
+    ));
+    assert!(matches!(
+        guyan(&model, &[]).unwrap_err(),
+        Error::InvalidBoundary { .. }
+    ));
+}
+
+#[test]
+fn singular_interior_for_too_few_boundary_dofs() {
+    let model = slab(&SlabParameters::default());
+    for method in [
+        Method::Guyan,
+        Method::CraigBampton,
+        Method::ModeCondensation,
+    ] {
+        let p = ReductionParameters {
+            boundary_nodes: vec![16],
+            modes: ModeSelection::Count(4),
+        };
+        match reduce(&model, method, &p).unwrap_err() {
+            Error::SingularInterior {
+                boundary_nodes,
+                rank_deficiency,
+                ..
+            } => {
+                assert_eq!(boundary_nodes, vec![16]);
+                assert_eq!(
+                    rank_deficiency, 3,
+                    "{method:?}: three rotations about node 16"
+                );
+            }
+            e => panic!("{method:?}: {e}"),
+        }
+    }
+    // Two nodes leave the rotation about the line through them free.
+    let e = craig_bampton(&model, &[16, 30], ModeSelection::Count(2)).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::SingularInterior {
+                rank_deficiency: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    // Modal truncation does not need K_ii invertible.
+    assert!(
+        reduce(
+            &model,
+            Method::ModalTruncation,
+            &ReductionParameters {
+                boundary_nodes: vec![16],
+                modes: ModeSelection::Count(4),
+            }
+        )
+        .is_ok()
+    );
+}
+
+#[test]
+fn too_many_modes() {
+    let model = beam(&BeamParameters::default());
+    let e = mode_condensation(&model, &[1, 5], ModeSelection::Count(7)).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::TooManyModes {
+                requested: 7,
+                available: 6
+            }
+        ),
+        "{e}"
+    );
+    let e = craig_bampton(&model, &[1, 5], ModeSelection::UpToHz(f64::NAN)).unwrap_err();
+    assert!(matches!(e, Error::InvalidModeSelection { .. }), "{e}");
+}
+
+#[test]
+fn eitelberg_refuses_an_unstable_a() {
+    let model = beam(&BeamParameters::default());
+    let e = eitelberg(
+        &model,
+        &[1, 3, 5],
+        &EitelbergParameters {
+            output_feedback: false,
+        },
+    )
+    .unwrap_err();
+    match e {
+        Error::UnstableSystem { max_real_part } => assert!(max_real_part.abs() < 1e-6),
+        e => panic!("{e}"),
+    }
+}
+
+#[test]
+fn nodal_fixed_anchor_must_be_a_boundary_column() {
+    let model = slab(&SlabParameters::default());
+    // Node 28 anchors the ξ axis but is not a boundary node here.
+    let cb = craig_bampton(&model, &[16, 18, 30], ModeSelection::Count(2)).unwrap();
+    let e = NodalFixedAxes::slab_default()
+        .apply(&model, &cb)
+        .unwrap_err();
+    assert!(matches!(e, Error::AnchorNotInBasis { node: 28, .. }), "{e}");
+}
+
+#[test]
+fn scene_options_are_checked() {
+    let bad_axes = SceneOptions {
+        axes: Some("mean".into()),
+        ..Default::default()
+    };
+    let e = (scenes::find("beam-modes").unwrap().run)(&bad_axes).unwrap_err();
+    assert!(matches!(e, Error::UnknownAxes { .. }), "{e}");
+    let bad_method = SceneOptions {
+        methods: Some(vec![Method::Eitelberg]),
+        ..Default::default()
+    };
+    let e = (scenes::find("beam-profiles").unwrap().run)(&bad_method).unwrap_err();
+    assert!(matches!(e, Error::UnknownMethod { .. }), "{e}");
+    let singular = SceneOptions {
+        boundary: Some(vec![16]),
+        ..Default::default()
+    };
+    let e = (scenes::find("slab-modes").unwrap().run)(&singular).unwrap_err();
+    assert!(matches!(e, Error::SingularInterior { .. }), "{e}");
+}

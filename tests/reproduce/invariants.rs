@@ -1,0 +1,389 @@
+//! Physical and algebraic invariants of the bodies and every reduction method.
+
+use faer::{Mat, Side};
+use flexmodes::{
+    analysis::{PROFILE_DELTA, elastic_hz, fit_least_squares, free_free_modes, reduced_hz},
+    fem::{BeamParameters, FeModel, SlabParameters, beam, hex8_stiffness, plank, slab},
+    linalg::{max_abs, principal_angles, symmetry_defect},
+    reduction::{
+        Basis, EitelbergParameters, Method, ModeSelection, NodalFixedAxes, Partition,
+        ReductionParameters, TableConfiguration, craig_bampton, eitelberg, fixed_interface_modes,
+        guyan, mode_condensation, reduce,
+    },
+};
+
+use crate::common::Rng;
+
+fn bodies() -> Vec<FeModel> {
+    vec![
+        beam(&BeamParameters::default()),
+        slab(&SlabParameters::default()),
+        plank(&SlabParameters::default()),
+    ]
+}
+
+#[test]
+fn rigid_body_modes_are_in_the_null_space_of_k() {
+    for model in bodies() {
+        let r = model.rigid_body_modes();
+        let kr = &model.k * &r;
+        let rel = max_abs(kr.as_ref()) / (max_abs(model.k.as_ref()) * max_abs(r.as_ref()));
+        assert!(rel < 1e-12, "{}: |K R| relative {rel:e}", model.name);
+    }
+}
+
+#[test]
+fn stiffness_is_symmetric_positive_semidefinite_with_rigid_rank_deficiency() {
+    for model in bodies() {
+        assert!(symmetry_defect(model.k.as_ref()) < 1e-14, "{}", model.name);
+        let eig = model.k.self_adjoint_eigenvalues(Side::Lower).unwrap();
+        let largest = eig.last().copied().unwrap();
+        let zero = eig.iter().filter(|&&l| l.abs() < 1e-10 * largest).count();
+        assert!(
+            eig[0] > -1e-10 * largest,
+            "{}: negative eigenvalue {}",
+            model.name,
+            eig[0]
+        );
+        let expected = if model.dim == 3 { 6 } else { 3 };
+        assert_eq!(zero, expected, "{}: zero eigenvalues", model.name);
+        let hz = elastic_hz(&free_free_modes(&model).unwrap());
+        assert_eq!(hz.len(), model.dof_count() - expected, "{}", model.name);
+    }
+}
+
+#[test]
+fn slab_and_plank_are_one_body_rotated() {
+    let (s, p) = (slab(&Default::default()), plank(&Default::default()));
+    let a = elastic_hz(&free_free_modes(&s).unwrap());
+    let b = elastic_hz(&free_free_modes(&p).unwrap());
+    for (x, y) in a.iter().zip(&b) {
+        assert!((x - y).abs() < 1e-9 * x, "{x} vs {y}");
+    }
+    // §5.3.3 geometry: node 22 behind node 7, nodes 3 and 15 the top corners of the front.
+    let n = |j: usize| p.nodes[j - 1];
+    assert_eq!([n(22)[0], n(22)[2]], [n(7)[0], n(7)[2]]);
+    assert!(n(22)[1] > n(7)[1]);
+    let top = p.nodes.iter().map(|q| q[2]).fold(f64::MIN, f64::max);
+    assert_eq!(n(3)[2], top);
+    assert_eq!(n(15)[2], top);
+    assert_eq!(n(3)[1], 0.0);
+    assert_eq!(n(15)[1], 0.0);
+}
+
+#[test]
+fn distorted_brick_keeps_rigid_modes_and_scales_with_size() {
+    let mut rng = Rng::new(7);
+    for trial in 0..20 {
+        let mut x = flexmodes::fem::HEX8_LOCAL_NODES.map(|p| p.map(|c| 0.5 * (c + 1.0)));
+        for p in &mut x {
+            for c in p.iter_mut() {
+                *c += 0.15 * rng.unit();
+            }
+        }
+        let e = 1e6 * (1.0 + rng.unit().abs());
+        let k = hex8_stiffness(&x, e, 0.3);
+        assert!(symmetry_defect(k.as_ref()) < 1e-12, "trial {trial}");
+        let model = FeModel {
+            name: "brick".into(),
+            dim: 3,
+            nodes: x.to_vec(),
+            edges: vec![],
+            k: k.clone(),
+            m: Mat::zeros(24, 24),
+        };
+        let r = model.rigid_body_modes();
+        let rel = max_abs((&k * &r).as_ref()) / max_abs(k.as_ref());
+        assert!(
+            rel < 1e-10,
+            "trial {trial}: rigid modes strain the brick ({rel:e})"
+        );
+        // K scales linearly with size (K ~ E L).
+        let s = 1.0 + 2.0 * rng.unit().abs();
+        let xs = x.map(|p| p.map(|c| c * s));
+        let ks = hex8_stiffness(&xs, e, 0.3);
+        let diff = max_abs((&ks - &k * faer::Scale(s)).as_ref()) / max_abs(ks.as_ref());
+        assert!(diff < 1e-12, "trial {trial}: scaling {diff:e}");
+    }
+}
+
+fn all_bases(model: &FeModel, boundary: &[usize], modes: usize) -> Vec<Basis> {
+    let p = ReductionParameters {
+        boundary_nodes: boundary.to_vec(),
+        modes: ModeSelection::Count(modes),
+    };
+    [
+        Method::NoReduction,
+        Method::Guyan,
+        Method::ModalTruncation,
+        Method::CraigBampton,
+        Method::ModeCondensation,
+    ]
+    .iter()
+    .map(|&m| reduce(model, m, &p).unwrap())
+    .collect()
+}
+
+/// Seeded random boundary sets that restrain the slab (at least three non-collinear nodes).
+fn random_slab_boundaries(rng: &mut Rng, count: usize) -> Vec<Vec<usize>> {
+    let mut out = vec![vec![16, 18, 28, 30], vec![1, 13, 16, 28]];
+    while out.len() < count {
+        let n = 3 + rng.below(4);
+        let mut set = Vec::new();
+        while set.len() < n {
+            let node = 1 + rng.below(30);
+            if !set.contains(&node) {
+                set.push(node);
+            }
+        }
+        let model = slab(&Default::default());
+        if Partition::new(&model, &set)
+            .and_then(|p| flexmodes::reduction::constraint_modes(&model, &p))
+            .is_ok()
+        {
+            out.push(set);
+        }
+    }
+    out
+}
+
+#[test]
+fn reduced_matrices_are_symmetric_and_definite_where_they_should_be() {
+    let mut rng = Rng::new(42);
+    let beam = beam(&BeamParameters::default());
+    let slab = slab(&SlabParameters::default());
+    let mut cases: Vec<(&FeModel, Vec<usize>, usize)> = vec![
+        (&beam, vec![1, 5], 2),
+        (&beam, vec![1, 3, 5], 1),
+        (&beam, vec![2, 4], 3),
+    ];
+    for b in random_slab_boundaries(&mut rng, 6) {
+        cases.push((&slab, b, 1 + rng.below(8)));
+    }
+    for (model, boundary, modes) in cases {
+        for basis in all_bases(model, &boundary, modes) {
+            let what = format!("{} {} {boundary:?}", model.name, basis.method.id());
+            // Unsymmetrised products: symmetry must come from the method, not from cleanup.
+            let k = basis.psi.transpose() * &model.k * &basis.psi;
+            let m = basis.psi.transpose() * &model.m * &basis.psi;
+            let n = k.nrows() as f64;
+            assert!(
+                symmetry_defect(k.as_ref()) < 1e-12 * n,
+                "{what}: K_r asymmetric"
+            );
+            assert!(
+                symmetry_defect(m.as_ref()) < 1e-12 * n,
+                "{what}: M_r asymmetric"
+            );
+            assert!(
+                m.llt(Side::Lower).is_ok(),
+                "{what}: M_r not positive definite"
+            );
+            let ek = k.self_adjoint_eigenvalues(Side::Lower).unwrap();
+            let top = ek.last().copied().unwrap();
+            assert!(ek[0] > -1e-9 * top, "{what}: K_r indefinite ({})", ek[0]);
+        }
+    }
+}
+
+#[test]
+fn craig_bampton_and_mode_condensation_span_one_space() {
+    let mut rng = Rng::new(3);
+    let beam = beam(&BeamParameters::default());
+    let slab = slab(&SlabParameters::default());
+    let mut cases: Vec<(&FeModel, Vec<usize>)> = vec![(&beam, vec![1, 5]), (&beam, vec![1, 3, 5])];
+    for b in random_slab_boundaries(&mut rng, 5) {
+        cases.push((&slab, b));
+    }
+    for (model, boundary) in cases {
+        let part = Partition::new(model, &boundary).unwrap();
+        for modes in [0, 1, 2, 4, part.i.len()] {
+            let sel = ModeSelection::Count(modes);
+            let cb = craig_bampton(model, &boundary, sel).unwrap();
+            let mc = mode_condensation(model, &boundary, sel).unwrap();
+            let angles = principal_angles(cb.psi.as_ref(), mc.psi.as_ref()).unwrap();
+            assert_eq!(angles.len(), cb.size());
+            let largest = angles.iter().copied().fold(0.0, f64::max);
+            assert!(
+                largest < 1e-6,
+                "{} {boundary:?} {modes}: angle {largest:e}",
+                model.name
+            );
+            // Same column space => the same reduced frequencies and the same least-squares δ.
+            let (a, b) = (
+                reduced_hz(model, &cb).unwrap(),
+                reduced_hz(model, &mc).unwrap(),
+            );
+            for (x, y) in a.iter().zip(&b) {
+                assert!((x - y).abs() <= 1e-7 * x.max(1.0), "{x} vs {y}");
+            }
+            if model.dim == 2 {
+                let (fa, fb) = (
+                    fit_least_squares(&cb, &PROFILE_DELTA).unwrap(),
+                    fit_least_squares(&mc, &PROFILE_DELTA).unwrap(),
+                );
+                for (x, y) in fa.delta.iter().zip(&fb.delta) {
+                    assert!((x - y).abs() < 1e-10);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn limits_of_craig_bampton_and_mode_condensation() {
+    let model = slab(&SlabParameters::default());
+    let b = [16, 18, 28, 30];
+    let g = guyan(&model, &b).unwrap();
+    // No kept mode: CB is Guyan, and MC's Ψ_m turns into Ψ_s (footnote to §6.5.4).
+    let cb0 = craig_bampton(&model, &b, ModeSelection::Count(0)).unwrap();
+    let mc0 = mode_condensation(&model, &b, ModeSelection::Count(0)).unwrap();
+    assert!(max_abs((&cb0.psi - &g.psi).as_ref()) < 1e-12);
+    assert!(max_abs((&mc0.psi - &g.psi).as_ref()) < 1e-9);
+    // Every mode kept: Ψ_m = 0 (nothing deleted), the basis is square and exact.
+    let all = Partition::new(&model, &b).unwrap().i.len();
+    let mc = mode_condensation(&model, &b, ModeSelection::Count(all)).unwrap();
+    let mt = reduce(
+        &model,
+        Method::ModalTruncation,
+        &ReductionParameters {
+            boundary_nodes: b.to_vec(),
+            modes: ModeSelection::Count(all),
+        },
+    )
+    .unwrap();
+    assert!(max_abs((&mc.psi - &mt.psi).as_ref()) < 1e-12);
+    let full = elastic_hz(&free_free_modes(&model).unwrap());
+    let red = reduced_hz(&model, &mc).unwrap();
+    for (x, y) in full.iter().zip(&red) {
+        assert!((x - y).abs() < 1e-8 * x);
+    }
+}
+
+#[test]
+fn guyan_constraint_modes_are_static_and_cb_stiffness_is_block_diagonal() {
+    let model = slab(&SlabParameters::default());
+    let b = [16, 18, 28, 30];
+    let part = Partition::new(&model, &b).unwrap();
+    let g = guyan(&model, &b).unwrap();
+    // K Ψ_G: no interior force (Eq. 6.2, second row).
+    let f = &model.k * &g.psi;
+    let scale = max_abs(f.as_ref());
+    for &i in &part.i {
+        for j in 0..g.size() {
+            assert!(f[(i, j)].abs() < 1e-10 * scale);
+        }
+    }
+    // Eq. (6.20): Ψ_CB^T K Ψ_CB = diag(K_G, K̄_n^k) with K̄_n^k = Λ_n^k.
+    let cb = craig_bampton(&model, &b, ModeSelection::Count(6)).unwrap();
+    let k = cb.reduced_stiffness(&model);
+    let nb = part.b.len();
+    let lam = fixed_interface_modes(&model, &part).unwrap().values;
+    let top = max_abs(k.as_ref());
+    for i in 0..k.nrows() {
+        for j in 0..k.ncols() {
+            let expected = if i >= nb && j >= nb {
+                if i == j { lam[i - nb] } else { 0.0 }
+            } else if (i < nb) != (j < nb) {
+                0.0
+            } else {
+                k[(i, j)]
+            };
+            assert!((k[(i, j)] - expected).abs() < 1e-10 * top, "K_CB[{i},{j}]");
+        }
+    }
+    // Normal modes are mass-normalised with the deterministic sign.
+    let m = cb.reduced_mass(&model);
+    for i in nb..m.nrows() {
+        assert!((m[(i, i)] - 1.0).abs() < 1e-12);
+        let col = cb.column(i);
+        let largest = col.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let first = col.iter().find(|v| v.abs() > 1e-8 * largest).unwrap();
+        assert!(*first > 0.0);
+    }
+}
+
+#[test]
+fn mode_selection_by_frequency_cut_off() {
+    let model = beam(&BeamParameters::default());
+    let cb = craig_bampton(&model, &[1, 5], ModeSelection::UpToHz(13.0)).unwrap();
+    // 3.10366 and 12.3283 Hz are below 13 Hz, 26.18 Hz is not.
+    assert_eq!(cb.size(), 4 + 2);
+    let none = craig_bampton(&model, &[1, 5], ModeSelection::UpToHz(1.0)).unwrap();
+    assert_eq!(none.size(), 4);
+}
+
+#[test]
+fn eitelberg_is_guyan_for_structures() {
+    let model = beam(&BeamParameters::default());
+    for masters in [vec![1, 3, 5], vec![1, 2, 5], vec![1, 5]] {
+        let eit = eitelberg(&model, &masters, &EitelbergParameters::default()).unwrap();
+        let g = reduced_hz(&model, &guyan(&model, &masters).unwrap()).unwrap();
+        assert_eq!(eit.hz.len(), g.len(), "{masters:?}");
+        // R S R^T has a condition number near 1e11 (reported by the reduction), so the
+        // restored matrix, and with it the frequencies, carry ~1e-5 relative round-off
+        // whatever the Lyapunov solver (a Kronecker-product solve gave 3.5e-6 too).
+        assert!(eit.gramian_condition > 1e9 && eit.gramian_condition < 1e13);
+        for (x, y) in eit.hz.iter().zip(&g) {
+            assert!((x - y).abs() < 1e-5 * y, "{masters:?}: {x} vs {y}");
+        }
+        // The footnote's coherence check: as many zero singular values before and after.
+        assert_eq!(eit.zero_singular_values.0, eit.zero_singular_values.1);
+    }
+}
+
+#[test]
+fn nodal_fixed_column_removal_for_every_table_4_1_configuration() {
+    let model = slab(&SlabParameters::default());
+    // Node j on the axis and node k on the plane, chosen to fit each configuration's geometry
+    // with the origin at node 16: ξ through 28, η through 18, ζ through 1.
+    let on = |d: flexmodes::fem::Direction| match d {
+        flexmodes::fem::Direction::X => 28,
+        flexmodes::fem::Direction::Y => 18,
+        flexmodes::fem::Direction::Z => 1,
+    };
+    let nr = reduce(
+        &model,
+        Method::NoReduction,
+        &ReductionParameters {
+            boundary_nodes: vec![16],
+            modes: ModeSelection::Count(0),
+        },
+    )
+    .unwrap();
+    let gr = guyan(&model, &[16, 18, 28, 1]).unwrap();
+    for cfg in TableConfiguration::ALL {
+        let axes = NodalFixedAxes {
+            origin: 16,
+            axis_node: on(cfg.axis),
+            plane_node: on(cfg.plane_with),
+            configuration: cfg,
+        };
+        for basis in [&nr, &gr] {
+            let nf = axes.apply(&model, basis).unwrap();
+            assert_eq!(nf.size(), basis.size() - 6, "{cfg:?}");
+            for (_, _, dof) in axes.anchored_dofs(&model).unwrap() {
+                assert!((0..nf.size()).all(|j| nf.psi[(dof, j)] == 0.0));
+            }
+            // Six determinate anchors remove every rigid-body motion: K_r is definite.
+            let k = nf.reduced_stiffness(&model);
+            assert!(k.llt(Side::Lower).is_ok(), "{cfg:?} {}", basis.method.id());
+        }
+    }
+    // §7.2: 90 × 84 for NR, 90 × 12 for CB with boundary 16, 18, 28, 30.
+    let cb = craig_bampton(&model, &[16, 18, 28, 30], ModeSelection::Count(6)).unwrap();
+    assert_eq!(
+        NodalFixedAxes::slab_default()
+            .apply(&model, &cb)
+            .unwrap()
+            .size(),
+        12
+    );
+    assert_eq!(
+        NodalFixedAxes::slab_default()
+            .apply(&model, &nr)
+            .unwrap()
+            .size(),
+        84
+    );
+}

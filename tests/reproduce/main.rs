@@ -1,0 +1,9 @@
+//! Library-level tests in one binary (one link step): the published numbers of DESIGN §7 and
+//! the physical and algebraic invariants of the bodies and reduction methods.
+
+mod common;
+mod errors;
+mod invariants;
+mod linalg;
+mod published;
+mod scenes;

@@ -1,0 +1,167 @@
+//! Scenes: report keys of DESIGN §6, the entity paths of §5, options honoured.
+
+use flexmodes::{
+    analysis::reduced_hz,
+    fem::{BeamParameters, beam},
+    record::{Recorder, Visual},
+    reduction::{ModeSelection, Partition, fixed_interface_modes, guyan},
+    scenes::{self, SceneOptions},
+};
+
+fn run(id: &str, opts: SceneOptions) -> flexmodes::scenes::SceneOutput {
+    (scenes::find(id).unwrap().run)(&opts).unwrap()
+}
+
+fn paths(out: &flexmodes::scenes::SceneOutput) -> Vec<String> {
+    out.visuals
+        .iter()
+        .map(|v| match v {
+            Visual::Wireframe { path, .. }
+            | Visual::Mode { path, .. }
+            | Visual::Offset { path, .. }
+            | Visual::Bars { path, .. } => path.clone(),
+        })
+        .collect()
+}
+
+#[test]
+fn every_scene_reports_its_stable_keys_and_logs_its_views() {
+    let keys: &[(&str, &[&str])] = &[
+        (
+            "beam-modes",
+            &[
+                "free_free_hz",
+                "guyan_a_hz",
+                "guyan_b_hz",
+                "guyan_c_hz",
+                "fixed_interface_hz",
+            ],
+        ),
+        (
+            "slab-modes",
+            &[
+                "free_free_hz",
+                "fixed_interface_hz",
+                "reduced_hz.mt",
+                "reduced_hz.cb",
+                "reduced_hz.mc",
+                "reduced_hz.gr",
+            ],
+        ),
+        (
+            "beam-profiles",
+            &[
+                "profile1_error.mt",
+                "profile1_error.cb",
+                "profile1_error.mc",
+                "profile2_error.mt",
+                "profile2_error.cb",
+                "profile2_error.mc",
+            ],
+        ),
+        ("beam-eitelberg", &["minv_k", "hz"]),
+    ];
+    for (id, ks) in keys {
+        let out = run(id, SceneOptions::default());
+        for k in *ks {
+            assert!(out.report.result(k).is_some(), "{id}: missing {k}");
+        }
+        let logged = paths(&out);
+        for origin in out.layout.origins() {
+            let o = origin.trim_start_matches('/');
+            assert!(
+                o == "scene" || logged.iter().any(|p| p.starts_with(o)),
+                "{id}: view origin {origin} has nothing logged"
+            );
+        }
+        assert!(out.markdown.contains(&out.report.table));
+        let bytes = Recorder.encode(&out).unwrap();
+        assert!(bytes.len() > 1000, "{id}: {} bytes", bytes.len());
+    }
+}
+
+#[test]
+fn beam_modes_honours_boundary() {
+    let out = run(
+        "beam-modes",
+        SceneOptions {
+            boundary: Some(vec![1, 4, 5]),
+            ..Default::default()
+        },
+    );
+    let model = beam(&BeamParameters::default());
+    let g = reduced_hz(&model, &guyan(&model, &[1, 4, 5]).unwrap()).unwrap();
+    let fi = fixed_interface_modes(&model, &Partition::new(&model, &[1, 4, 5]).unwrap())
+        .unwrap()
+        .hz();
+    let got_g = out.report.result_vec("guyan_c_hz").unwrap();
+    let got_fi = out.report.result_vec("fixed_interface_hz").unwrap();
+    assert_eq!(got_g.len(), g.len());
+    assert_eq!(got_fi.len(), fi.len());
+    for (a, b) in got_g.iter().zip(&g).chain(got_fi.iter().zip(&fi)) {
+        assert!((a - b).abs() < 1e-8 * b);
+    }
+    // The default set (1, 5) has one elastic Guyan (c) frequency; (1, 4, 5) has three.
+    assert_eq!(got_g.len(), 3);
+}
+
+#[test]
+fn slab_modes_honours_boundary_and_modes() {
+    let out = run(
+        "slab-modes",
+        SceneOptions {
+            boundary: Some(vec![1, 13, 16, 28]),
+            modes: Some(4),
+            ..Default::default()
+        },
+    );
+    let size = out.report.result("basis_size.cb").unwrap();
+    assert_eq!(size, &serde_json::json!([90, 16]));
+    assert_eq!(
+        out.report.result("basis_size.gr").unwrap(),
+        &serde_json::json!([90, 18])
+    );
+    let fi = out.report.result_vec("fixed_interface_hz").unwrap();
+    assert_eq!(fi.len(), 90 - 12);
+    // CB and MC agree, GR is stiffer than CB in its lowest elastic frequency, MT has no
+    // rigid-body mode at all.
+    let cb = out.report.result_vec("reduced_hz.cb").unwrap();
+    let mc = out.report.result_vec("reduced_hz.mc").unwrap();
+    for (a, b) in cb.iter().zip(&mc) {
+        assert!((a - b).abs() < 1e-6 * a);
+    }
+    assert_eq!(out.report.result("rigid_body_modes.mt").unwrap(), 0);
+    assert_eq!(out.report.result("rigid_body_modes.cb").unwrap(), 6);
+    let _ = ModeSelection::Count(4);
+}
+
+#[test]
+fn slab_modes_shows_rayleigh_ritz_ordering() {
+    let out = run("slab-modes", SceneOptions::default());
+    let full = out.report.result_vec("free_free_hz").unwrap();
+    for m in ["cb", "mc", "gr"] {
+        let r = out.report.result_vec(&format!("reduced_hz.{m}")).unwrap();
+        for (k, (a, b)) in r.iter().zip(&full).enumerate() {
+            assert!(a >= &(b * (1.0 - 1e-9)), "{m} mode {k}: {a} below full {b}");
+        }
+    }
+    // Guyan is the stiffest of the 18-coordinate models in its first elastic mode.
+    let g = out.report.result_vec("reduced_hz.gr").unwrap()[0];
+    let c = out.report.result_vec("reduced_hz.cb").unwrap()[0];
+    assert!(g > c);
+}
+
+#[test]
+fn method_filter_restricts_what_is_logged() {
+    let out = run(
+        "beam-modes",
+        SceneOptions {
+            methods: Some(vec![flexmodes::reduction::Method::CraigBampton]),
+            ..Default::default()
+        },
+    );
+    let p = paths(&out);
+    assert!(p.iter().any(|p| p.starts_with("modes/craig_bampton/")));
+    assert!(!p.iter().any(|p| p.starts_with("modes/mode_condensation/")));
+    assert!(p.iter().any(|p| p.starts_with("modes/free_free/")));
+}
