@@ -52,6 +52,17 @@ impl Layout {
         }
     }
 
+    /// Origins of the 3D views.
+    pub fn spatial_origins(&self) -> Vec<String> {
+        match self {
+            Layout::Horizontal(v, _) | Layout::Vertical(v, _) | Layout::Tabs(v) => {
+                v.iter().flat_map(Layout::spatial_origins).collect()
+            }
+            Layout::Spatial3D { origin, .. } => vec![origin.clone()],
+            Layout::Text { .. } | Layout::BarChart { .. } => vec![],
+        }
+    }
+
     /// Entity origins of every view (for tests: each must be logged).
     pub fn origins(&self) -> Vec<String> {
         match self {

@@ -2,7 +2,9 @@
 
 use std::path::Path;
 
-use rerun::{RecordingStream, RecordingStreamBuilder, blueprint as bp};
+use rerun::{
+    RecordingStream, RecordingStreamBuilder, blueprint as bp, blueprint::components::PanelState,
+};
 
 use super::{Geometry, Layout, PHASE_STEPS, Visual};
 use crate::{Error, Result, scenes::SceneOutput};
@@ -21,9 +23,9 @@ impl Recorder {
         let (rec, storage) = RecordingStreamBuilder::new(APPLICATION_ID)
             .recording_id(format!("flexmodes-{}", out.report.scene))
             .recording_name(out.report.scene.clone())
-            .send_properties(false)
             .memory()?;
         rec.set_log_time_enabled(false);
+        rec.send_recording_name(out.report.scene.clone())?;
         self.log(&rec, out)?;
         rec.flush_blocking()
             .map_err(|e| Error::Rerun(format!("flush: {e}")))?;
@@ -44,17 +46,29 @@ impl Recorder {
             "scene",
             &rerun::TextDocument::from_markdown(out.markdown.clone()),
         )?;
+        let up = if out.y_up {
+            rerun::ViewCoordinates::RIGHT_HAND_Y_UP()
+        } else {
+            rerun::ViewCoordinates::RIGHT_HAND_Z_UP()
+        };
+        for origin in out.layout.spatial_origins() {
+            rec.log_static(origin.as_str(), &up)?;
+        }
         for v in &out.visuals {
             log_visual(rec, v)?;
         }
+        let time_panel = match &out.timeline {
+            Some(t) => bp::TimePanel::new()
+                .with_timeline(t.clone())
+                .with_play_state(rerun::blueprint::components::PlayState::Playing)
+                .with_loop_mode(rerun::blueprint::components::LoopMode::All),
+            None => bp::TimePanel::new().with_state(PanelState::Collapsed),
+        };
         let blueprint = bp::Blueprint::new(container(&out.layout))
             .with_auto_views(false)
-            .with_time_panel(
-                bp::TimePanel::new()
-                    .with_timeline(out.timeline.clone())
-                    .with_play_state(rerun::blueprint::components::PlayState::Playing)
-                    .with_loop_mode(rerun::blueprint::components::LoopMode::All),
-            );
+            .with_blueprint_panel(bp::BlueprintPanel::new().with_state(PanelState::Collapsed))
+            .with_selection_panel(bp::SelectionPanel::new().with_state(PanelState::Collapsed))
+            .with_time_panel(time_panel);
         blueprint.send(rec, bp::BlueprintActivation::default())?;
         Ok(())
     }

@@ -246,6 +246,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         markdown,
         visuals,
         layout,
-        timeline: "phase".into(),
+        timeline: Some("phase".into()),
+        y_up: true,
     })
 }

@@ -58,7 +58,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             path: format!("profiles/{profile}/reference"),
             geometry: geometry.with_nodes(model.displaced(&delta, 1.0)),
             color: REFERENCE,
-            label: Some(format!("{profile}: reference δ (Eq. 7.1)")),
+            label: None,
         });
     }
     for &m in &methods {
@@ -79,11 +79,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 path: format!("profiles/{profile}/{}", m.id()),
                 geometry: geometry.with_nodes(model.displaced(&fit.delta, 1.0)),
                 color: method_color(m),
-                label: Some(format!(
-                    "{} ‖δ*−δ‖ = {:.4}",
-                    m.id().to_uppercase(),
-                    fit.error
-                )),
+                label: None,
             });
         }
     }
@@ -110,7 +106,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let markdown = format!(
         "# beam-profiles\n\n§7.1 on the App. A beam with boundary nodes {boundary:?} and {kept} \
          kept normal modes. The reference δ (Eq. 7.1, grey) is pinned at node 1 and on a roller \
-         at node 5. **Profile 1** (top) gives every method the same z* = {{δ_b; z_n^k}}; \
+         at node 5. Colours: reference grey, MT red, CB blue, MC green (drawn over CB, \
+         which it equals). **Profile 1** (top) gives every method the same z* = {{δ_b; z_n^k}}; \
          **profile 2** (below) fits δ by least squares. Modal truncation's boundary columns \
          cannot move interior nodes, so its interior stays at ξ = 0; Craig-Bampton and mode \
          condensation coincide (one column space).\n\n{}",
@@ -128,6 +125,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         markdown,
         visuals,
         layout,
-        timeline: "phase".into(),
+        timeline: None,
+        y_up: true,
     })
 }

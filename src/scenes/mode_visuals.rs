@@ -56,8 +56,26 @@ fn slot(model: &FeModel, k: usize) -> [f64; 3] {
     if model.dim == 2 {
         [0.0, -0.5 * model.size() * k as f64, 0.0]
     } else {
-        let s = model.size();
-        [1.5 * s * (k % 3) as f64, -s * (k / 3) as f64, 0.0]
+        // Three columns; a gap of half the body's size between neighbours.
+        let ext = |d: usize| {
+            let lo = model
+                .nodes
+                .iter()
+                .map(|p| p[d])
+                .fold(f64::INFINITY, f64::min);
+            let hi = model
+                .nodes
+                .iter()
+                .map(|p| p[d])
+                .fold(f64::NEG_INFINITY, f64::max);
+            hi - lo
+        };
+        let gap = 0.5 * model.size();
+        [
+            (ext(0) + gap) * (k % 3) as f64,
+            -(ext(1) + gap) * (k / 3) as f64,
+            0.0,
+        ]
     }
 }
 

@@ -82,6 +82,10 @@ pub struct SceneOutput {
     pub visuals: Vec<Visual>,
     /// The default blueprint.
     pub layout: Layout,
-    /// The timeline the time panel starts on (`phase` or `sim_time`).
-    pub timeline: String,
+    /// The timeline the time panel starts on (`phase` or `sim_time`); `None` for static scenes,
+    /// whose time panel is collapsed.
+    pub timeline: Option<String>,
+    /// Planar scenes (the beam in the x-y plane) declare y up, so the 3D views face the plane;
+    /// solids declare z up.
+    pub y_up: bool,
 }

@@ -169,7 +169,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .filter(|(_, f)| *f >= RIGID_BODY_HZ)
         .take(SHOWN_FREE_FREE)
         .enumerate()
-        .map(|(k, (u, f))| (u, format!("free-free {}: {f:.4} Hz", k + 1)))
+        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
         .collect();
     visuals.extend(mode_set(&model, "free_free", &ff_modes, REFERENCE));
     let nb = part.b.len();
@@ -177,7 +177,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let c_modes: Vec<(Vec<f64>, String)> = columns(&constraint)
         .into_iter()
         .zip(&part.b)
-        .map(|(u, &dof)| (u, format!("constraint {}", model.dof_label(dof))))
+        .map(|(u, &dof)| (u, model.dof_label(dof)))
         .collect();
     visuals.extend(mode_set(
         &model,
@@ -194,7 +194,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .into_iter()
         .zip(&fixed_interface_hz)
         .enumerate()
-        .map(|(k, (u, f))| (u, format!("fixed-interface {}: {f:.4} Hz", k + 1)))
+        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
         .collect();
     visuals.extend(mode_set(
         &model,
@@ -224,6 +224,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         markdown,
         visuals,
         layout,
-        timeline: "phase".into(),
+        timeline: Some("phase".into()),
+        y_up: false,
     })
 }
