@@ -102,6 +102,10 @@ pub enum Error {
     #[error("invalid nodal-fixed axes: {reason}")]
     InvalidAxes { reason: String },
 
+    /// A time integration that could not continue.
+    #[error("the integration diverged at t = {time:.4} s: {reason}")]
+    Diverged { time: f64, reason: String },
+
     /// Bad scene option (a combination the scene cannot honour).
     #[error("invalid option for scene `{scene}`: {reason}")]
     InvalidOption { scene: String, reason: String },
@@ -128,6 +132,12 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 impl From<rerun::RecordingStreamError> for Error {
     fn from(e: rerun::RecordingStreamError) -> Self {
+        Error::Rerun(e.to_string())
+    }
+}
+
+impl From<rerun::SerializationError> for Error {
+    fn from(e: rerun::SerializationError) -> Self {
         Error::Rerun(e.to_string())
     }
 }

@@ -12,6 +12,7 @@
 
 pub mod analysis;
 pub mod cli;
+pub mod dynamics;
 mod error;
 pub mod fem;
 pub mod linalg;

@@ -25,6 +25,13 @@ pub enum Layout {
         /// Entity path of the text document.
         origin: String,
     },
+    /// A time-series view of everything under `origin`.
+    TimeSeries {
+        /// Tab title.
+        name: String,
+        /// Entity path.
+        origin: String,
+    },
     /// A bar chart view.
     BarChart {
         /// Tab title.
@@ -59,7 +66,7 @@ impl Layout {
                 v.iter().flat_map(Layout::spatial_origins).collect()
             }
             Layout::Spatial3D { origin, .. } => vec![origin.clone()],
-            Layout::Text { .. } | Layout::BarChart { .. } => vec![],
+            Layout::Text { .. } | Layout::BarChart { .. } | Layout::TimeSeries { .. } => vec![],
         }
     }
 
@@ -71,6 +78,7 @@ impl Layout {
             }
             Layout::Spatial3D { origin, .. }
             | Layout::Text { origin, .. }
+            | Layout::TimeSeries { origin, .. }
             | Layout::BarChart { origin, .. } => vec![origin.clone()],
         }
     }

@@ -158,6 +158,72 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
                 &rerun::Transform3D::from_translation(translation.map(|x| x as f32)),
             )?;
         }
+        Visual::Trajectory {
+            path,
+            geometry,
+            times,
+            positions,
+            color: c,
+        } => {
+            let r = radius(geometry);
+            for (t, nodes) in times.iter().zip(positions) {
+                rec.set_duration_secs("sim_time", *t);
+                rec.log(
+                    path.as_str(),
+                    &rerun::LineStrips3D::new(strips(geometry, nodes))
+                        .with_colors([color(*c)])
+                        .with_radii([r]),
+                )?;
+            }
+            rec.reset_time();
+        }
+        Visual::Series {
+            path,
+            times,
+            values,
+            color: c,
+        } => {
+            rec.log_static(
+                path.as_str(),
+                &rerun::SeriesLines::new()
+                    .with_colors([color(*c)])
+                    .with_names([path.rsplit('/').next().unwrap_or(path).to_string()]),
+            )?;
+            rec.send_columns(
+                path.as_str(),
+                [rerun::TimeColumn::new_duration_secs(
+                    "sim_time",
+                    times.iter().copied(),
+                )],
+                rerun::Scalars::new(values.iter().copied()).columns_of_unit_batches()?,
+            )?;
+        }
+        Visual::FrameAxes {
+            path,
+            times,
+            origins,
+            axes,
+            length,
+        } => {
+            let colors = [
+                rerun::Color::from_rgb(230, 60, 60),
+                rerun::Color::from_rgb(60, 200, 60),
+                rerun::Color::from_rgb(60, 110, 240),
+            ];
+            for ((t, o), a) in times.iter().zip(origins).zip(axes) {
+                rec.set_duration_secs("sim_time", *t);
+                let o32 = o.map(|x| x as f32);
+                rec.log(
+                    path.as_str(),
+                    &rerun::Arrows3D::from_vectors(
+                        a.map(|v| v.map(|x| (x * length) as f32)),
+                    )
+                    .with_origins([o32, o32, o32])
+                    .with_colors(colors),
+                )?;
+            }
+            rec.reset_time();
+        }
         Visual::Bars { path, values } => {
             rec.log_static(path.as_str(), &rerun::BarChart::new(values.clone()))?;
         }
@@ -183,6 +249,9 @@ fn container(l: &Layout) -> bp::ContainerLike {
             .with_contents(contents.iter().cloned())
             .into(),
         Layout::Text { name, origin } => bp::TextDocumentView::new(name.as_str())
+            .with_origin(origin.as_str())
+            .into(),
+        Layout::TimeSeries { name, origin } => bp::TimeSeriesView::new(name.as_str())
             .with_origin(origin.as_str())
             .into(),
         Layout::BarChart { name, origin } => bp::BarChartView::new(name.as_str())

@@ -72,6 +72,43 @@ pub enum Visual {
         /// Translation, m.
         translation: [f64; 3],
     },
+    /// A body moving over `sim_time`: one set of node positions per time.
+    Trajectory {
+        /// Entity path (`world/<body>/<method>/<axes>`).
+        path: String,
+        /// The strips to draw.
+        geometry: Geometry,
+        /// Times, s.
+        times: Vec<f64>,
+        /// Node positions per time, m.
+        positions: Vec<Vec<[f64; 3]>>,
+        /// Line colour.
+        color: Color,
+    },
+    /// A scalar time history over `sim_time` (`plots/...`), sent as columns.
+    Series {
+        /// Entity path.
+        path: String,
+        /// Times, s.
+        times: Vec<f64>,
+        /// Values.
+        values: Vec<f64>,
+        /// Line colour.
+        color: Color,
+    },
+    /// A floating frame over `sim_time`: origin and axes (columns of A).
+    FrameAxes {
+        /// Entity path (`world/<body>/frame/<axes>`).
+        path: String,
+        /// Times, s.
+        times: Vec<f64>,
+        /// Origin per time, m.
+        origins: Vec<[f64; 3]>,
+        /// Axis directions per time (ξ, η, ζ as unit vectors).
+        axes: Vec<[[f64; 3]; 3]>,
+        /// Arrow length, m.
+        length: f64,
+    },
     /// Scalar values shown as a bar chart (`metrics/...`).
     Bars {
         /// Entity path.

@@ -7,6 +7,7 @@ mod mode_visuals;
 mod options;
 mod registry;
 mod slab_modes;
+mod slab_sims;
 
 pub use options::{SceneOptions, SceneOutput};
 pub use registry::{Scene, SceneInfo, all, find, ids};

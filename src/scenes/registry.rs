@@ -1,6 +1,8 @@
 //! The list of scenes.
 
-use super::{SceneOptions, SceneOutput, beam_eitelberg, beam_modes, beam_profiles, slab_modes};
+use super::{
+    SceneOptions, SceneOutput, beam_eitelberg, beam_modes, beam_profiles, slab_modes, slab_sims,
+};
 use crate::{Error, Result};
 
 /// Static description of a scene.
@@ -40,6 +42,14 @@ pub fn all() -> Vec<Scene> {
         Scene {
             info: beam_eitelberg::INFO,
             run: beam_eitelberg::run,
+        },
+        Scene {
+            info: slab_sims::INFO_1,
+            run: slab_sims::run_sim1,
+        },
+        Scene {
+            info: slab_sims::INFO_2,
+            run: slab_sims::run_sim2,
         },
     ]
 }

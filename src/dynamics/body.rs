@@ -1,0 +1,189 @@
+//! Rigid and deformable bodies with their mass matrices and generalised forces.
+
+use faer::Mat;
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
+
+use super::{AxisType, rotation::skew};
+use crate::{Error, Result, fem::FeModel, reduction::Basis};
+
+/// A rigid body whose frame sits at its mass centre.
+#[derive(Debug, Clone)]
+pub struct RigidBody {
+    /// Name used in entity paths.
+    pub name: String,
+    /// Mass, kg.
+    pub mass: f64,
+    /// Inertia about the mass centre in body axes, kg m².
+    pub inertia: Matrix3<f64>,
+    /// Points drawn as a polyline (body frame, m), e.g. a link's two ends.
+    pub outline: Vec<Vector3<f64>>,
+}
+
+impl RigidBody {
+    /// A slender rod of `length` (m) and `mass` (kg) along the body x axis, with a thin
+    /// radius so the axial inertia is not exactly zero.
+    pub fn rod(name: &str, length: f64, mass: f64) -> Self {
+        let radius = 0.01 * length;
+        let it = mass * (3.0 * radius * radius + length * length) / 12.0;
+        let ia = mass * radius * radius / 2.0;
+        Self {
+            name: name.into(),
+            mass,
+            inertia: Matrix3::from_diagonal(&Vector3::new(ia, it, it)),
+            outline: vec![
+                Vector3::new(-length / 2.0, 0.0, 0.0),
+                Vector3::new(length / 2.0, 0.0, 0.0),
+            ],
+        }
+    }
+}
+
+/// A deformable body on a floating frame, $d_j = r + A(\bar s_j + \Psi_j z)$ (Eq. 3.14 with
+/// Eq. 5.12), with a lumped mass matrix.
+#[derive(Debug, Clone)]
+pub struct FlexibleBody {
+    /// The finite-element model (its node positions in model coordinates).
+    pub model: FeModel,
+    /// The reduction basis (labels, method) the body is simulated with.
+    pub basis: Basis,
+    /// Axis conditions.
+    pub axes: AxisType,
+    /// Frame origin in model coordinates, m.
+    pub origin: Vector3<f64>,
+    /// Undeformed node positions in the body frame, $\bar s_j$, m.
+    pub s_bar: Vec<Vector3<f64>>,
+    /// Lumped node masses, kg.
+    pub masses: Vec<f64>,
+    /// Per-node rows of Ψ, $\Psi_j$ (3 × k).
+    pub psi_nodes: Vec<Matrix3xX<f64>>,
+    /// $\Psi^T M \Psi$.
+    pub m_zz: DMatrix<f64>,
+    /// $\Psi^T K \Psi$.
+    pub k_zz: DMatrix<f64>,
+    /// $\sum_j m_j \Psi_j$ (3 × k): the translational mean-axis rows.
+    pub p_sum: Matrix3xX<f64>,
+}
+
+impl FlexibleBody {
+    /// Builds the body from a model, a basis (already with nodal-fixed columns removed when
+    /// `axes` is nodal-fixed) and the frame origin in model coordinates.
+    pub fn new(model: FeModel, basis: Basis, axes: AxisType, origin: Vector3<f64>) -> Result<Self> {
+        if model.dim != 3 {
+            return Err(Error::InvalidOption {
+                scene: model.name.clone(),
+                reason: "dynamics needs a 3-D body".into(),
+            });
+        }
+        let n = model.node_count();
+        let k = basis.size();
+        let mut masses = Vec::with_capacity(n);
+        for j in 0..n {
+            let m = model.m[(3 * j, 3 * j)];
+            for a in 0..3 {
+                for b in 0..3 * n {
+                    let v = model.m[(3 * j + a, b)];
+                    let expected = if b == 3 * j + a { m } else { 0.0 };
+                    if (v - expected).abs() > 1e-12 * m.abs().max(1.0) {
+                        return Err(Error::InvalidOption {
+                            scene: model.name.clone(),
+                            reason: "the floating-frame body needs a lumped (diagonal, \
+                                     isotropic per node) mass matrix"
+                                .into(),
+                        });
+                    }
+                }
+            }
+            masses.push(m);
+        }
+        let s_bar = model
+            .nodes
+            .iter()
+            .map(|p| Vector3::new(p[0], p[1], p[2]) - origin)
+            .collect();
+        let psi = &basis.psi;
+        let psi_nodes: Vec<Matrix3xX<f64>> = (0..n)
+            .map(|j| Matrix3xX::from_fn(k, |a, c| psi[(3 * j + a, c)]))
+            .collect();
+        let to_na = |m: &Mat<f64>| DMatrix::from_fn(m.nrows(), m.ncols(), |i, j| m[(i, j)]);
+        let m_zz = to_na(&basis.reduced_mass(&model));
+        let k_zz = to_na(&basis.reduced_stiffness(&model));
+        let mut p_sum = Matrix3xX::zeros(k);
+        for j in 0..n {
+            p_sum += &psi_nodes[j] * masses[j];
+        }
+        Ok(Self {
+            model,
+            basis,
+            axes,
+            origin,
+            s_bar,
+            masses,
+            psi_nodes,
+            m_zz,
+            k_zz,
+            p_sum,
+        })
+    }
+
+    /// Number of modal coordinates.
+    pub fn modes(&self) -> usize {
+        self.m_zz.nrows()
+    }
+
+    /// Total mass, kg.
+    pub fn mass(&self) -> f64 {
+        self.masses.iter().sum()
+    }
+
+    /// Local deflection of node `j`, $\Psi_j z$.
+    pub fn deflection(&self, j: usize, z: &DVector<f64>) -> Vector3<f64> {
+        &self.psi_nodes[j] * z
+    }
+
+    /// $\bar b_j = \bar s_j + \Psi_j z$.
+    pub fn b(&self, j: usize, z: &DVector<f64>) -> Vector3<f64> {
+        self.s_bar[j] + self.deflection(j, z)
+    }
+
+    /// Body inertia about the frame origin in body axes, $\sum m_j \tilde b_j^T \tilde b_j$.
+    pub fn inertia(&self, z: &DVector<f64>) -> Matrix3<f64> {
+        let mut j_bar = Matrix3::zeros();
+        for j in 0..self.masses.len() {
+            let bt = skew(&self.b(j, z));
+            j_bar += bt.transpose() * bt * self.masses[j];
+        }
+        j_bar
+    }
+}
+
+/// A body of the system.
+#[derive(Debug, Clone)]
+pub enum Body {
+    /// Rigid, 6 DOF.
+    Rigid(RigidBody),
+    /// Deformable, 6 + k DOF.
+    Flexible(Box<FlexibleBody>),
+}
+
+impl Body {
+    /// Position coordinates: r (3), Euler parameters (4), modal coordinates.
+    pub fn position_count(&self) -> usize {
+        match self {
+            Body::Rigid(_) => 7,
+            Body::Flexible(f) => 7 + f.modes(),
+        }
+    }
+
+    /// Velocity coordinates: $\dot r$ (3), body-axis angular velocity $\bar\omega$ (3), $\dot z$.
+    pub fn velocity_count(&self) -> usize {
+        self.position_count() - 1
+    }
+
+    /// Name used in entity paths.
+    pub fn name(&self) -> &str {
+        match self {
+            Body::Rigid(r) => &r.name,
+            Body::Flexible(f) => &f.model.name,
+        }
+    }
+}

@@ -1,0 +1,73 @@
+//! Constraints: spherical joints (Eq. 2.22–2.24, 5.1–5.7), prescribed nodal motion
+//! (Eq. 7.7–7.9) and the axis conditions of mean and principal axes (Table 4-2, §4.3).
+
+use nalgebra::Vector3;
+
+use super::Motion;
+
+/// A point a joint holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Attachment {
+    /// A fixed point in space, m.
+    Ground(Vector3<f64>),
+    /// A point of a rigid body, in its body frame (m).
+    Point {
+        /// Body index.
+        body: usize,
+        /// Position in the body frame, m.
+        local: Vector3<f64>,
+    },
+    /// A node of a deformable body (0-based index).
+    Node {
+        /// Body index.
+        body: usize,
+        /// Node index, 0-based.
+        node: usize,
+    },
+}
+
+/// One constraint of the system.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Constraint {
+    /// Two points coincide (3 rows).
+    Spherical(Attachment, Attachment),
+    /// One global coordinate of a node follows a motion from its initial position `x0` and
+    /// velocity `v0` (1 row).
+    PrescribedNode {
+        /// Deformable body index.
+        body: usize,
+        /// Node index, 0-based.
+        node: usize,
+        /// Global axis 0, 1, 2 (x, y, z).
+        axis: usize,
+        /// The time function of the absolute coordinate.
+        motion: Motion,
+        /// Initial coordinate, m.
+        x0: f64,
+        /// Initial velocity, m/s.
+        v0: f64,
+    },
+    /// Mean axes of a deformable body: $\hat I^T M \Psi z = 0$ (holonomic, 3 rows) and
+    /// $\tilde b^T M \Psi \dot z = 0$ (non-holonomic, 3 rows).
+    MeanAxes {
+        /// Deformable body index.
+        body: usize,
+    },
+    /// Principal axes: $\hat I^T M \Psi z = 0$ and the products of inertia of the deformed
+    /// body held at their undeformed values (zero when the frame starts principal).
+    PrincipalAxes {
+        /// Deformable body index.
+        body: usize,
+    },
+}
+
+impl Constraint {
+    /// Number of scalar rows.
+    pub fn rows(&self) -> usize {
+        match self {
+            Constraint::Spherical(..) => 3,
+            Constraint::PrescribedNode { .. } => 1,
+            Constraint::MeanAxes { .. } | Constraint::PrincipalAxes { .. } => 6,
+        }
+    }
+}

@@ -1,0 +1,218 @@
+//! One integrator for every method: Dormand–Prince 5(4) with adaptive steps, followed after
+//! every accepted step by Euler-parameter normalisation and coordinate projection onto the
+//! position and velocity constraints.
+
+use std::time::Instant;
+
+use nalgebra::DVector;
+
+use super::{State, System};
+use crate::{Error, Result};
+
+/// Settings of [`simulate`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntegratorParameters {
+    /// End time, s.
+    pub end_time: f64,
+    /// Output interval, s (also the largest step).
+    pub output_interval: f64,
+    /// Relative error tolerance per step.
+    pub rtol: f64,
+    /// Absolute error tolerance per step.
+    pub atol: f64,
+    /// Smallest step before the integration counts as diverged, s.
+    pub min_step: f64,
+    /// Largest number of steps.
+    pub max_steps: usize,
+}
+
+impl Default for IntegratorParameters {
+    fn default() -> Self {
+        Self {
+            end_time: 1.0,
+            output_interval: 5e-3,
+            rtol: 1e-6,
+            atol: 1e-9,
+            min_step: 1e-9,
+            max_steps: 2_000_000,
+        }
+    }
+}
+
+/// One output sample.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sample {
+    /// Time, s.
+    pub t: f64,
+    /// The state.
+    pub state: State,
+    /// Total energy, J.
+    pub energy: f64,
+    /// Largest position-level constraint violation.
+    pub position_violation: f64,
+    /// Largest velocity-level constraint violation.
+    pub velocity_violation: f64,
+}
+
+/// The result of a time integration.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    /// Samples at every output time, starting at t = 0.
+    pub samples: Vec<Sample>,
+    /// Accepted steps.
+    pub steps: usize,
+    /// Rejected steps.
+    pub rejected: usize,
+    /// Wall-clock time of the integration, s.
+    pub wall_time_s: f64,
+}
+
+// Dormand–Prince 5(4) tableau.
+const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+const A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0, 0.0],
+    [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0.0],
+    [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+];
+const B5: [f64; 7] = [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0, 0.0];
+const B4: [f64; 7] = [
+    5179.0 / 57600.0,
+    0.0,
+    7571.0 / 16695.0,
+    393.0 / 640.0,
+    -92097.0 / 339200.0,
+    187.0 / 2100.0,
+    1.0 / 40.0,
+];
+
+fn derivative(sys: &System, t: f64, y: &DVector<f64>) -> Result<DVector<f64>> {
+    let nq = sys.nq();
+    let s = State {
+        q: y.rows(0, nq).into_owned(),
+        v: y.rows(nq, y.len() - nq).into_owned(),
+    };
+    let qd = sys.qdot(&s);
+    let vd = sys.accelerations(t, &s)?;
+    let mut out = DVector::zeros(y.len());
+    out.rows_mut(0, nq).copy_from(&qd);
+    out.rows_mut(nq, vd.len()).copy_from(&vd);
+    Ok(out)
+}
+
+fn sample(sys: &System, t: f64, state: &State) -> Sample {
+    let (p, v) = sys.violation(t, state);
+    Sample {
+        t,
+        state: state.clone(),
+        energy: sys.energy(state),
+        position_violation: p,
+        velocity_violation: v,
+    }
+}
+
+/// Integrates `sys` from `initial` over `[0, end_time]`.
+///
+/// The initial state is first projected onto the constraints. A non-finite state, a step
+/// below `min_step` or more than `max_steps` steps is [`Error::Diverged`] with the time it
+/// happened, never NaN output. `progress` is called with the time after each output.
+pub fn simulate(
+    sys: &System,
+    initial: &State,
+    p: &IntegratorParameters,
+    mut progress: impl FnMut(f64),
+) -> Result<Simulation> {
+    sys.validate()?;
+    let start = Instant::now();
+    let nq = sys.nq();
+    let mut state = initial.clone();
+    sys.project(0.0, &mut state);
+    let mut samples = vec![sample(sys, 0.0, &state)];
+    let mut y = DVector::zeros(nq + sys.nv());
+    y.rows_mut(0, nq).copy_from(&state.q);
+    y.rows_mut(nq, sys.nv()).copy_from(&state.v);
+    let (mut t, mut h) = (0.0f64, p.output_interval.min(1e-3));
+    let (mut steps, mut rejected) = (0usize, 0usize);
+    let mut next_output = p.output_interval;
+    let mut k1 = derivative(sys, t, &y)?;
+    while t < p.end_time - 1e-12 {
+        if steps + rejected > p.max_steps {
+            return Err(Error::Diverged {
+                time: t,
+                reason: format!("more than {} steps", p.max_steps),
+            });
+        }
+        let target = next_output.min(p.end_time);
+        h = h.min(target - t);
+        let mut k = vec![k1.clone()];
+        for stage in 1..7 {
+            let mut ys = y.clone();
+            for (j, kj) in k.iter().enumerate() {
+                if A[stage][j] != 0.0 {
+                    ys += kj * (h * A[stage][j]);
+                }
+            }
+            k.push(derivative(sys, t + C[stage] * h, &ys)?);
+        }
+        let mut y5 = y.clone();
+        let mut err = DVector::zeros(y.len());
+        for (j, kj) in k.iter().enumerate() {
+            y5 += kj * (h * B5[j]);
+            err += kj * (h * (B5[j] - B4[j]));
+        }
+        let mut norm = 0.0;
+        for i in 0..y.len() {
+            let sc = p.atol + p.rtol * y[i].abs().max(y5[i].abs());
+            norm += (err[i] / sc).powi(2);
+        }
+        let norm = (norm / y.len() as f64).sqrt();
+        if !norm.is_finite() || !y5.iter().all(|v| v.is_finite()) {
+            h *= 0.2;
+            rejected += 1;
+            if h < p.min_step {
+                return Err(Error::Diverged {
+                    time: t,
+                    reason: "the state became non-finite".into(),
+                });
+            }
+            continue;
+        }
+        if norm <= 1.0 {
+            t += h;
+            steps += 1;
+            let mut s = State {
+                q: y5.rows(0, nq).into_owned(),
+                v: y5.rows(nq, sys.nv()).into_owned(),
+            };
+            sys.project(t, &mut s);
+            y.rows_mut(0, nq).copy_from(&s.q);
+            y.rows_mut(nq, sys.nv()).copy_from(&s.v);
+            k1 = derivative(sys, t, &y)?;
+            if (t - target).abs() < 1e-12 {
+                samples.push(sample(sys, target, &s));
+                progress(t);
+                next_output += p.output_interval;
+            }
+        } else {
+            rejected += 1;
+        }
+        let factor = if norm == 0.0 { 5.0 } else { 0.9 * norm.powf(-0.2) };
+        h *= factor.clamp(0.2, 5.0);
+        h = h.min(p.output_interval);
+        if h < p.min_step {
+            return Err(Error::Diverged {
+                time: t,
+                reason: format!("step size fell below {:e} s", p.min_step),
+            });
+        }
+    }
+    Ok(Simulation {
+        samples,
+        steps,
+        rejected,
+        wall_time_s: start.elapsed().as_secs_f64(),
+    })
+}

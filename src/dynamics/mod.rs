@@ -1,0 +1,19 @@
+//! Multibody dynamics with floating frames (chapters 2–5, 7.2, 8): rigid bodies with Euler
+//! parameters, deformable bodies in modal coordinates $\delta = \Psi z$ on a floating frame,
+//! spherical joints, prescribed nodal motion, axis conditions, and one integrator for all.
+
+mod axes;
+mod body;
+mod constraint;
+mod integrator;
+mod prescribed;
+mod rotation;
+mod system;
+
+pub use axes::AxisType;
+pub use body::{Body, FlexibleBody, RigidBody};
+pub use constraint::{Attachment, Constraint};
+pub use integrator::{IntegratorParameters, Sample, Simulation, simulate};
+pub use prescribed::Motion;
+pub use rotation::{euler_parameters_from_matrix, rotation_matrix, skew};
+pub use system::{State, System};

@@ -1,0 +1,560 @@
+//! The assembled multibody system: $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
+
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, SymmetricEigen, Vector3, Vector4};
+
+use super::{
+    Attachment, Body, Constraint,
+    rotation::{l_matrix, rotate_body, rotation_matrix, skew},
+};
+use crate::{Error, Result};
+
+/// Positions $q$ (per body r, p, z) and velocities $v$ (per body $\dot r$, $\bar\omega$, $\dot z$).
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Position coordinates.
+    pub q: DVector<f64>,
+    /// Velocity coordinates.
+    pub v: DVector<f64>,
+}
+
+/// Bodies, constraints and loads.
+#[derive(Debug, Clone)]
+pub struct System {
+    /// The bodies.
+    pub bodies: Vec<Body>,
+    /// The constraints.
+    pub constraints: Vec<Constraint>,
+    /// Gravity, m/s² (DESIGN §6: 9.80665 in −z).
+    pub gravity: Vector3<f64>,
+    /// Constant global forces on nodes: (body, node, force in N).
+    pub nodal_forces: Vec<(usize, usize, Vector3<f64>)>,
+    q_off: Vec<usize>,
+    v_off: Vec<usize>,
+}
+
+/// Kinematics of one point: position, partial velocities (3 × nv) and the velocity-dependent
+/// part of its acceleration.
+struct PointKin {
+    d: Vector3<f64>,
+    l: DMatrix<f64>,
+    aq: Vector3<f64>,
+}
+
+/// Constraint rows at one instant.
+pub(crate) struct Rows {
+    /// Jacobian, rows × nv.
+    pub c: DMatrix<f64>,
+    /// Acceleration right-hand side.
+    pub gamma: DVector<f64>,
+    /// Velocity right-hand side.
+    pub target: DVector<f64>,
+    /// Position residual (0 for non-holonomic rows).
+    pub phi: DVector<f64>,
+    /// Whether each row is holonomic.
+    pub holonomic: Vec<bool>,
+}
+
+struct Frame {
+    r: Vector3<f64>,
+    p: Vector4<f64>,
+    a: Matrix3<f64>,
+    z: DVector<f64>,
+    rd: Vector3<f64>,
+    w: Vector3<f64>,
+    zd: DVector<f64>,
+}
+
+impl System {
+    /// A system with gravity 9.80665 m/s² in −z.
+    pub fn new(bodies: Vec<Body>, constraints: Vec<Constraint>) -> Self {
+        let mut q_off = Vec::new();
+        let mut v_off = Vec::new();
+        let (mut nq, mut nv) = (0, 0);
+        for b in &bodies {
+            q_off.push(nq);
+            v_off.push(nv);
+            nq += b.position_count();
+            nv += b.velocity_count();
+        }
+        q_off.push(nq);
+        v_off.push(nv);
+        Self {
+            bodies,
+            constraints,
+            gravity: Vector3::new(0.0, 0.0, -9.80665),
+            nodal_forces: Vec::new(),
+            q_off,
+            v_off,
+        }
+    }
+
+    /// Number of position coordinates.
+    pub fn nq(&self) -> usize {
+        *self.q_off.last().unwrap()
+    }
+
+    /// Number of velocity coordinates.
+    pub fn nv(&self) -> usize {
+        *self.v_off.last().unwrap()
+    }
+
+    /// Number of constraint rows.
+    pub fn constraint_rows(&self) -> usize {
+        self.constraints.iter().map(Constraint::rows).sum()
+    }
+
+    /// A state with every body at `r`, `A` given per body, at rest, undeformed.
+    pub fn state_at(&self, placements: &[(Vector3<f64>, Matrix3<f64>)]) -> State {
+        let mut q = DVector::zeros(self.nq());
+        for (b, (r, a)) in placements.iter().enumerate() {
+            let o = self.q_off[b];
+            q.rows_mut(o, 3).copy_from(r);
+            q.rows_mut(o + 3, 4)
+                .copy_from(&super::euler_parameters_from_matrix(a));
+        }
+        State {
+            q,
+            v: DVector::zeros(self.nv()),
+        }
+    }
+
+    /// Offsets of body `b` in q and v.
+    pub fn offsets(&self, b: usize) -> (usize, usize) {
+        (self.q_off[b], self.v_off[b])
+    }
+
+    fn frame(&self, b: usize, s: &State) -> Frame {
+        let (qo, vo) = (self.q_off[b], self.v_off[b]);
+        let k = self.bodies[b].position_count() - 7;
+        let p = Vector4::new(s.q[qo + 3], s.q[qo + 4], s.q[qo + 5], s.q[qo + 6]);
+        Frame {
+            r: Vector3::new(s.q[qo], s.q[qo + 1], s.q[qo + 2]),
+            a: rotation_matrix(&p),
+            p,
+            z: s.q.rows(qo + 7, k).into_owned(),
+            rd: Vector3::new(s.v[vo], s.v[vo + 1], s.v[vo + 2]),
+            w: Vector3::new(s.v[vo + 3], s.v[vo + 4], s.v[vo + 5]),
+            zd: s.v.rows(vo + 6, k).into_owned(),
+        }
+    }
+
+    /// Global position of a node of a deformable body.
+    pub fn node_position(&self, b: usize, node: usize, s: &State) -> Vector3<f64> {
+        let f = self.frame(b, s);
+        match &self.bodies[b] {
+            Body::Flexible(fb) => f.r + f.a * fb.b(node, &f.z),
+            Body::Rigid(_) => f.r,
+        }
+    }
+
+    /// Frame position and orientation of body `b`.
+    pub fn placement(&self, b: usize, s: &State) -> (Vector3<f64>, Matrix3<f64>) {
+        let f = self.frame(b, s);
+        (f.r, f.a)
+    }
+
+    /// Modal coordinates of body `b`.
+    pub fn modal(&self, b: usize, s: &State) -> DVector<f64> {
+        self.frame(b, s).z
+    }
+
+    fn point(&self, att: &Attachment, s: &State) -> PointKin {
+        let nv = self.nv();
+        let mut l = DMatrix::zeros(3, nv);
+        match *att {
+            Attachment::Ground(x) => PointKin {
+                d: x,
+                l,
+                aq: Vector3::zeros(),
+            },
+            Attachment::Point { body, local } => {
+                let f = self.frame(body, s);
+                let vo = self.v_off[body];
+                let arm = -f.a * skew(&local);
+                for i in 0..3 {
+                    l[(i, vo + i)] = 1.0;
+                    for c in 0..3 {
+                        l[(i, vo + 3 + c)] = arm[(i, c)];
+                    }
+                }
+                PointKin {
+                    d: f.r + f.a * local,
+                    l,
+                    aq: f.a * (f.w.cross(&f.w.cross(&local))),
+                }
+            }
+            Attachment::Node { body, node } => {
+                let f = self.frame(body, s);
+                let vo = self.v_off[body];
+                let Body::Flexible(fb) = &self.bodies[body] else {
+                    unreachable!("node attachments are checked to name deformable bodies")
+                };
+                let bj = fb.b(node, &f.z);
+                let arm = -f.a * skew(&bj);
+                let ap = f.a * &fb.psi_nodes[node];
+                for i in 0..3 {
+                    l[(i, vo + i)] = 1.0;
+                    for c in 0..3 {
+                        l[(i, vo + 3 + c)] = arm[(i, c)];
+                    }
+                    for c in 0..fb.modes() {
+                        l[(i, vo + 6 + c)] = ap[(i, c)];
+                    }
+                }
+                let u = &fb.psi_nodes[node] * &f.zd;
+                PointKin {
+                    d: f.r + f.a * bj,
+                    l,
+                    aq: f.a * (f.w.cross(&f.w.cross(&bj)) + 2.0 * f.w.cross(&u)),
+                }
+            }
+        }
+    }
+
+    /// Checks indices of constraints and loads.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |reason: String| {
+            Err(Error::InvalidOption {
+                scene: "system".into(),
+                reason,
+            })
+        };
+        let flexible = |b: usize| matches!(self.bodies.get(b), Some(Body::Flexible(_)));
+        let node_ok = |b: usize, n: usize| match self.bodies.get(b) {
+            Some(Body::Flexible(f)) => n < f.s_bar.len(),
+            _ => false,
+        };
+        for c in &self.constraints {
+            match c {
+                Constraint::Spherical(a, b) => {
+                    for att in [a, b] {
+                        match *att {
+                            Attachment::Node { body, node } if !node_ok(body, node) => {
+                                return bad(format!("joint on missing node {node} of body {body}"));
+                            }
+                            Attachment::Point { body, .. }
+                                if !matches!(self.bodies.get(body), Some(Body::Rigid(_))) =>
+                            {
+                                return bad(format!("joint point on body {body}, not rigid"));
+                            }
+                            _ => {}
+                        }
+                    }
+                }
+                Constraint::PrescribedNode { body, node, axis, .. } => {
+                    if !node_ok(*body, *node) || *axis > 2 {
+                        return bad(format!("prescribed motion of missing node {node}"));
+                    }
+                }
+                Constraint::MeanAxes { body } | Constraint::PrincipalAxes { body } => {
+                    if !flexible(*body) {
+                        return bad(format!("axis conditions on body {body}, not deformable"));
+                    }
+                }
+            }
+        }
+        for &(b, n, _) in &self.nodal_forces {
+            if !node_ok(b, n) {
+                return bad(format!("force on missing node {n} of body {b}"));
+            }
+        }
+        Ok(())
+    }
+
+    /// $M(q)$ and $Q(q, v)$ (Kane's form with body-axis angular velocities).
+    pub(crate) fn mass_and_forces(&self, s: &State) -> (DMatrix<f64>, DVector<f64>) {
+        let nv = self.nv();
+        let mut m = DMatrix::zeros(nv, nv);
+        let mut q = DVector::zeros(nv);
+        for (b, body) in self.bodies.iter().enumerate() {
+            let o = self.v_off[b];
+            let f = self.frame(b, s);
+            match body {
+                Body::Rigid(rb) => {
+                    for i in 0..3 {
+                        m[(o + i, o + i)] = rb.mass;
+                    }
+                    m.view_mut((o + 3, o + 3), (3, 3)).copy_from(&rb.inertia);
+                    let fr = self.gravity * rb.mass;
+                    q.rows_mut(o, 3).copy_from(&fr);
+                    let gyro = -f.w.cross(&(rb.inertia * f.w));
+                    q.rows_mut(o + 3, 3).copy_from(&gyro);
+                }
+                Body::Flexible(fb) => {
+                    let k = fb.modes();
+                    let mut ext = vec![Vector3::zeros(); fb.masses.len()];
+                    for &(bb, n, force) in &self.nodal_forces {
+                        if bb == b {
+                            ext[n] += force;
+                        }
+                    }
+                    let mass = fb.mass();
+                    let mut first = Vector3::zeros();
+                    let mut j_bar = Matrix3::zeros();
+                    let mut wz = Matrix3xX::zeros(k);
+                    let mut q_r = Vector3::zeros();
+                    let mut q_w = Vector3::zeros();
+                    let mut q_z = DVector::zeros(k);
+                    let at = f.a.transpose();
+                    for (j, &mj) in fb.masses.iter().enumerate() {
+                        let bj = fb.b(j, &f.z);
+                        let bt = skew(&bj);
+                        first += bj * mj;
+                        j_bar += bt.transpose() * bt * mj;
+                        wz += bt * &fb.psi_nodes[j] * mj;
+                        let u = &fb.psi_nodes[j] * &f.zd;
+                        let alpha = f.w.cross(&f.w.cross(&bj)) + 2.0 * f.w.cross(&u);
+                        let force = self.gravity * mj + ext[j];
+                        let local = at * force - alpha * mj;
+                        q_r += f.a * local;
+                        q_w += bt * local;
+                        q_z += fb.psi_nodes[j].transpose() * local;
+                    }
+                    q_z -= &fb.k_zz * &f.z;
+                    let rw = -f.a * skew(&first);
+                    let rz = f.a * &fb.p_sum;
+                    for i in 0..3 {
+                        m[(o + i, o + i)] = mass;
+                    }
+                    m.view_mut((o, o + 3), (3, 3)).copy_from(&rw);
+                    m.view_mut((o + 3, o), (3, 3)).copy_from(&rw.transpose());
+                    m.view_mut((o, o + 6), (3, k)).copy_from(&rz);
+                    m.view_mut((o + 6, o), (k, 3)).copy_from(&rz.transpose());
+                    m.view_mut((o + 3, o + 3), (3, 3)).copy_from(&j_bar);
+                    m.view_mut((o + 3, o + 6), (3, k)).copy_from(&wz);
+                    m.view_mut((o + 6, o + 3), (k, 3)).copy_from(&wz.transpose());
+                    m.view_mut((o + 6, o + 6), (k, k)).copy_from(&fb.m_zz);
+                    q.rows_mut(o, 3).copy_from(&q_r);
+                    q.rows_mut(o + 3, 3).copy_from(&q_w);
+                    q.rows_mut(o + 6, k).copy_from(&q_z);
+                }
+            }
+        }
+        (m, q)
+    }
+
+    /// Constraint rows at time `t`.
+    pub(crate) fn rows(&self, t: f64, s: &State) -> Rows {
+        let nv = self.nv();
+        let nr = self.constraint_rows();
+        let mut out = Rows {
+            c: DMatrix::zeros(nr, nv),
+            gamma: DVector::zeros(nr),
+            target: DVector::zeros(nr),
+            phi: DVector::zeros(nr),
+            holonomic: vec![true; nr],
+        };
+        let mut r = 0;
+        for c in &self.constraints {
+            match c {
+                Constraint::Spherical(a, b) => {
+                    let (pa, pb) = (self.point(a, s), self.point(b, s));
+                    out.c.rows_mut(r, 3).copy_from(&(&pa.l - &pb.l));
+                    out.gamma.rows_mut(r, 3).copy_from(&(pb.aq - pa.aq));
+                    out.phi.rows_mut(r, 3).copy_from(&(pa.d - pb.d));
+                }
+                Constraint::PrescribedNode {
+                    body,
+                    node,
+                    axis,
+                    motion,
+                    x0,
+                    v0,
+                } => {
+                    let p = self.point(&Attachment::Node { body: *body, node: *node }, s);
+                    let (x, v, acc) = motion.at(t, *x0, *v0);
+                    out.c.row_mut(r).copy_from(&p.l.row(*axis));
+                    out.gamma[r] = acc - p.aq[*axis];
+                    out.target[r] = v;
+                    out.phi[r] = p.d[*axis] - x;
+                }
+                Constraint::MeanAxes { body } | Constraint::PrincipalAxes { body } => {
+                    let Body::Flexible(fb) = &self.bodies[*body] else {
+                        unreachable!("checked by validate")
+                    };
+                    let f = self.frame(*body, s);
+                    let o = self.v_off[*body] + 6;
+                    let k = fb.modes();
+                    // Translational: sum m_j Psi_j z = 0 (Eq. 4.20), holonomic.
+                    out.c.view_mut((r, o), (3, k)).copy_from(&fb.p_sum);
+                    out.phi.rows_mut(r, 3).copy_from(&(&fb.p_sum * &f.z));
+                    if matches!(c, Constraint::MeanAxes { .. }) {
+                        // Rotational: sum m_j b_j x (Psi_j zdot) = 0 (Eq. 4.15); its
+                        // acceleration form has no quadratic term for a lumped M (Eq. 4.17).
+                        let mut rot = Matrix3xX::zeros(k);
+                        for (j, &mj) in fb.masses.iter().enumerate() {
+                            rot += skew(&fb.b(j, &f.z)) * &fb.psi_nodes[j] * mj;
+                        }
+                        out.c.view_mut((r + 3, o), (3, k)).copy_from(&rot);
+                        for i in 3..6 {
+                            out.holonomic[r + i] = false;
+                        }
+                    } else {
+                        // Products of inertia J_xy, J_yz, J_zx = -sum m b_a b_b, held at 0.
+                        let pairs = [(0, 1), (1, 2), (2, 0)];
+                        let j0 = fb.inertia(&DVector::zeros(k));
+                        let jz = fb.inertia(&f.z);
+                        for (i, &(a, b)) in pairs.iter().enumerate() {
+                            let mut grad = DVector::zeros(k);
+                            let mut quad = 0.0;
+                            for (j, &mj) in fb.masses.iter().enumerate() {
+                                let bj = fb.b(j, &f.z);
+                                let pa = fb.psi_nodes[j].row(a).transpose();
+                                let pb = fb.psi_nodes[j].row(b).transpose();
+                                grad -= (pa.clone() * bj[b] + pb.clone() * bj[a]) * mj;
+                                quad -= 2.0 * mj * pa.dot(&f.zd) * pb.dot(&f.zd);
+                            }
+                            out.c
+                                .view_mut((r + 3 + i, o), (1, k))
+                                .copy_from(&grad.transpose());
+                            out.gamma[r + 3 + i] = -quad;
+                            out.phi[r + 3 + i] = jz[(a, b)] - j0[(a, b)];
+                        }
+                    }
+                }
+            }
+            r += c.rows();
+        }
+        out
+    }
+
+    /// Accelerations $\dot v$ from $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
+    ///
+    /// $M$ alone is singular for a floating frame with rigid-body modes in Ψ (Eq. 3.38), so
+    /// the system is regularised with the constraints themselves:
+    /// $(M + \rho C^TC)\dot v + C^T\mu = Q + \rho C^T\gamma$, exact because $C\dot v = \gamma$.
+    /// Redundant constraints are handled by a pseudo-inverse of $C\tilde M^{-1}C^T$.
+    pub fn accelerations(&self, t: f64, s: &State) -> Result<DVector<f64>> {
+        let (m, q) = self.mass_and_forces(s);
+        let rows = self.rows(t, s);
+        let scale = m.diagonal().amax().max(1e-12);
+        let cn = rows.c.amax().max(1e-12);
+        let rho = scale / (cn * cn);
+        let mt = &m + rows.c.transpose() * &rows.c * rho;
+        let rhs = &q + rows.c.transpose() * &rows.gamma * rho;
+        let chol = mt.clone().cholesky().ok_or_else(|| Error::SingularMatrix {
+            matrix: "regularised system mass".into(),
+            rcond: 0.0,
+        })?;
+        let v0 = chol.solve(&rhs);
+        if rows.c.nrows() == 0 {
+            return Ok(v0);
+        }
+        let minv_ct = chol.solve(&rows.c.transpose());
+        let schur = &rows.c * &minv_ct;
+        let resid = &rows.c * &v0 - &rows.gamma;
+        let mu = pinv_solve(&schur, &resid);
+        Ok(v0 - minv_ct * mu)
+    }
+
+    /// $\dot q$ from $v$: $\dot r$, $\dot p = \tfrac12 L^T\bar\omega$, $\dot z$.
+    pub(crate) fn qdot(&self, s: &State) -> DVector<f64> {
+        let mut qd = DVector::zeros(self.nq());
+        for b in 0..self.bodies.len() {
+            let (qo, vo) = (self.q_off[b], self.v_off[b]);
+            let f = self.frame(b, s);
+            qd.rows_mut(qo, 3).copy_from(&f.rd);
+            let pd = l_matrix(&f.p).transpose() * f.w * 0.5;
+            qd.rows_mut(qo + 3, 4).copy_from(&pd);
+            let k = f.z.len();
+            qd.rows_mut(qo + 7, k).copy_from(&f.zd);
+            let _ = vo;
+        }
+        qd
+    }
+
+    /// Total energy (J): kinetic + strain − work potential of gravity and the constant forces.
+    pub fn energy(&self, s: &State) -> f64 {
+        let (m, _) = self.mass_and_forces(s);
+        let mut e = 0.5 * s.v.dot(&(&m * &s.v));
+        for (b, body) in self.bodies.iter().enumerate() {
+            let f = self.frame(b, s);
+            match body {
+                Body::Rigid(rb) => e -= rb.mass * self.gravity.dot(&f.r),
+                Body::Flexible(fb) => {
+                    e += 0.5 * f.z.dot(&(&fb.k_zz * &f.z));
+                    for (j, &mj) in fb.masses.iter().enumerate() {
+                        e -= mj * self.gravity.dot(&(f.r + f.a * fb.b(j, &f.z)));
+                    }
+                }
+            }
+        }
+        for &(b, n, force) in &self.nodal_forces {
+            e -= force.dot(&self.node_position(b, n, s));
+        }
+        e
+    }
+
+    /// Largest position-level and velocity-level constraint violations.
+    pub fn violation(&self, t: f64, s: &State) -> (f64, f64) {
+        let rows = self.rows(t, s);
+        let pos = rows.phi.amax();
+        let vel = (&rows.c * &s.v - &rows.target).amax();
+        (pos, vel)
+    }
+
+    /// Normalises Euler parameters and projects positions, then velocities, onto the
+    /// constraint manifold (minimum-norm Gauss–Newton corrections).
+    pub(crate) fn project(&self, t: f64, s: &mut State) {
+        for b in 0..self.bodies.len() {
+            let qo = self.q_off[b];
+            let n = s.q.rows(qo + 3, 4).norm();
+            s.q.rows_mut(qo + 3, 4).scale_mut(1.0 / n);
+        }
+        for _ in 0..3 {
+            let rows = self.rows(t, s);
+            let idx: Vec<usize> = (0..rows.phi.len()).filter(|&i| rows.holonomic[i]).collect();
+            if idx.is_empty() || rows.phi.amax() < 1e-13 {
+                break;
+            }
+            let c = rows.c.select_rows(idx.iter());
+            let phi = rows.phi.select_rows(idx.iter());
+            let cc_t = &c * c.transpose();
+            let dq = -c.transpose() * pinv_solve(&cc_t, &phi);
+            self.apply_increment(s, &dq);
+        }
+        let rows = self.rows(t, s);
+        if rows.c.nrows() > 0 {
+            let cc_t = &rows.c * rows.c.transpose();
+            let r = &rows.c * &s.v - &rows.target;
+            let dv = rows.c.transpose() * pinv_solve(&cc_t, &r);
+            s.v -= dv;
+        }
+    }
+
+    fn apply_increment(&self, s: &mut State, dx: &DVector<f64>) {
+        for b in 0..self.bodies.len() {
+            let (qo, vo) = (self.q_off[b], self.v_off[b]);
+            for i in 0..3 {
+                s.q[qo + i] += dx[vo + i];
+            }
+            let p = Vector4::new(s.q[qo + 3], s.q[qo + 4], s.q[qo + 5], s.q[qo + 6]);
+            let th = Vector3::new(dx[vo + 3], dx[vo + 4], dx[vo + 5]);
+            s.q.rows_mut(qo + 3, 4).copy_from(&rotate_body(&p, &th));
+            let k = self.bodies[b].position_count() - 7;
+            for i in 0..k {
+                s.q[qo + 7 + i] += dx[vo + 6 + i];
+            }
+        }
+    }
+}
+
+/// $x = A^+ b$ for a small symmetric positive semi-definite $A$ (eigenvalues below
+/// $10^{-10}$ of the largest are dropped: redundant constraints).
+fn pinv_solve(a: &DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
+    let n = a.nrows();
+    if n == 0 {
+        return DVector::zeros(0);
+    }
+    let eig = SymmetricEigen::new(a.clone());
+    let top = eig.eigenvalues.amax();
+    let mut x = DVector::zeros(n);
+    let ub = eig.eigenvectors.transpose() * b;
+    for i in 0..n {
+        let l = eig.eigenvalues[i];
+        if l > 1e-10 * top {
+            x += eig.eigenvectors.column(i) * (ub[i] / l);
+        }
+    }
+    x
+}
