@@ -80,7 +80,11 @@ impl Motion {
                 let h = t - i as f64 * dt;
                 let (xk, vk) = knots[i];
                 let a0 = values[i];
-                let slope = if i < last { (values[i + 1] - a0) / dt } else { 0.0 };
+                let slope = if i < last {
+                    (values[i + 1] - a0) / dt
+                } else {
+                    0.0
+                };
                 let h = if i < last { h.min(*dt) } else { h };
                 let acc = a0 + slope * h;
                 let x = x0 + v0 * t + xk + vk * h + a0 * h * h / 2.0 + slope * h * h * h / 6.0;

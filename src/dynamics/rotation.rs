@@ -19,7 +19,12 @@ pub fn l_matrix(p: &Vector4<f64>) -> Matrix3x4<f64> {
     let e0 = p[0];
     let e = Vector3::new(p[1], p[2], p[3]);
     let b = -skew(&e) + Matrix3::identity() * e0;
-    Matrix3x4::from_columns(&[-e, b.column(0).into(), b.column(1).into(), b.column(2).into()])
+    Matrix3x4::from_columns(&[
+        -e,
+        b.column(0).into(),
+        b.column(1).into(),
+        b.column(2).into(),
+    ])
 }
 
 /// Euler parameters of a rotation matrix (Shepperd's method), $e_0 \ge 0$.

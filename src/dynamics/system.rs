@@ -241,7 +241,9 @@ impl System {
                         }
                     }
                 }
-                Constraint::PrescribedNode { body, node, axis, .. } => {
+                Constraint::PrescribedNode {
+                    body, node, axis, ..
+                } => {
                     if !node_ok(*body, *node) || *axis > 2 {
                         return bad(format!("prescribed motion of missing node {node}"));
                     }
@@ -322,7 +324,8 @@ impl System {
                     m.view_mut((o + 6, o), (k, 3)).copy_from(&rz.transpose());
                     m.view_mut((o + 3, o + 3), (3, 3)).copy_from(&j_bar);
                     m.view_mut((o + 3, o + 6), (3, k)).copy_from(&wz);
-                    m.view_mut((o + 6, o + 3), (k, 3)).copy_from(&wz.transpose());
+                    m.view_mut((o + 6, o + 3), (k, 3))
+                        .copy_from(&wz.transpose());
                     m.view_mut((o + 6, o + 6), (k, k)).copy_from(&fb.m_zz);
                     q.rows_mut(o, 3).copy_from(&q_r);
                     q.rows_mut(o + 3, 3).copy_from(&q_w);
@@ -361,7 +364,13 @@ impl System {
                     x0,
                     v0,
                 } => {
-                    let p = self.point(&Attachment::Node { body: *body, node: *node }, s);
+                    let p = self.point(
+                        &Attachment::Node {
+                            body: *body,
+                            node: *node,
+                        },
+                        s,
+                    );
                     let (x, v, acc) = motion.at(t, *x0, *v0);
                     out.c.row_mut(r).copy_from(&p.l.row(*axis));
                     out.gamma[r] = acc - p.aq[*axis];

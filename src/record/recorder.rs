@@ -215,11 +215,9 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
                 let o32 = o.map(|x| x as f32);
                 rec.log(
                     path.as_str(),
-                    &rerun::Arrows3D::from_vectors(
-                        a.map(|v| v.map(|x| (x * length) as f32)),
-                    )
-                    .with_origins([o32, o32, o32])
-                    .with_colors(colors),
+                    &rerun::Arrows3D::from_vectors(a.map(|v| v.map(|x| (x * length) as f32)))
+                        .with_origins([o32, o32, o32])
+                        .with_colors(colors),
                 )?;
             }
             rec.reset_time();

@@ -5,6 +5,7 @@ mod beam_modes;
 mod beam_profiles;
 mod mode_visuals;
 mod options;
+mod plank_symmetry;
 mod registry;
 mod slab_modes;
 mod slab_sims;

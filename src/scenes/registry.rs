@@ -1,7 +1,8 @@
 //! The list of scenes.
 
 use super::{
-    SceneOptions, SceneOutput, beam_eitelberg, beam_modes, beam_profiles, slab_modes, slab_sims,
+    SceneOptions, SceneOutput, beam_eitelberg, beam_modes, beam_profiles, plank_symmetry,
+    slab_modes, slab_sims,
 };
 use crate::{Error, Result};
 
@@ -50,6 +51,10 @@ pub fn all() -> Vec<Scene> {
         Scene {
             info: slab_sims::INFO_2,
             run: slab_sims::run_sim2,
+        },
+        Scene {
+            info: plank_symmetry::INFO,
+            run: plank_symmetry::run,
         },
     ]
 }

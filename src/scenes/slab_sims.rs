@@ -10,8 +10,8 @@ use super::{
 use crate::{
     Error, Result,
     dynamics::{
-        AxisType, Body, Constraint, FlexibleBody, IntegratorParameters, Motion, Simulation,
-        System, simulate,
+        AxisType, Body, Constraint, FlexibleBody, IntegratorParameters, Motion, Simulation, System,
+        simulate,
     },
     fem::{FeModel, SlabParameters, slab},
     record::{Geometry, Layout, Visual},
@@ -226,13 +226,25 @@ pub fn probe_history(system: &System, sim: &Simulation, node: usize) -> [Vec<f64
 
 /// $\sqrt{\sum (x - r)^2 / \sum r^2}$.
 pub fn relative_rms(x: &[f64], reference: &[f64]) -> f64 {
-    let num: f64 = x.iter().zip(reference).map(|(a, b)| (a - b) * (a - b)).sum();
+    let num: f64 = x
+        .iter()
+        .zip(reference)
+        .map(|(a, b)| (a - b) * (a - b))
+        .sum();
     let den: f64 = reference.iter().map(|b| b * b).sum();
-    if den == 0.0 { num.sqrt() } else { (num / den).sqrt() }
+    if den == 0.0 {
+        num.sqrt()
+    } else {
+        (num / den).sqrt()
+    }
 }
 
 /// Runs every requested method of a scenario.
-pub fn run_scenario(info: &SceneInfo, scenario: Scenario, opts: &SceneOptions) -> Result<SceneOutput> {
+pub fn run_scenario(
+    info: &SceneInfo,
+    scenario: Scenario,
+    opts: &SceneOptions,
+) -> Result<SceneOutput> {
     let methods = opts.methods_or(info.id, &METHODS, &METHODS)?;
     let axes = axis_type(opts.axes.as_deref(), info.id)?;
     let boundary = opts.boundary.clone().unwrap_or_else(|| BOUNDARY.to_vec());
@@ -254,12 +266,17 @@ pub fn run_scenario(info: &SceneInfo, scenario: Scenario, opts: &SceneOptions) -
     report.parameters.insert("boundary".into(), json!(boundary));
     report.parameters.insert("modes".into(), json!(modes));
     report.parameters.insert("axes".into(), json!(axes.id()));
-    report.parameters.insert("end_time_s".into(), json!(params.end_time));
+    report
+        .parameters
+        .insert("end_time_s".into(), json!(params.end_time));
     report.parameters.insert(
         "methods".into(),
         json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
     );
-    let reference = runs.iter().find(|r| r.0 == Method::NoReduction).map(|r| r.3.clone());
+    let reference = runs
+        .iter()
+        .find(|r| r.0 == Method::NoReduction)
+        .map(|r| r.3.clone());
     let mut errors = Map::new();
     let mut walls = Map::new();
     let mut rows = Vec::new();
@@ -278,15 +295,23 @@ pub fn run_scenario(info: &SceneInfo, scenario: Scenario, opts: &SceneOptions) -
         } else {
             cells.extend(["-".into(), "-".into(), "-".into()]);
         }
-        let max_pos = sim.samples.iter().map(|s| s.position_violation).fold(0.0, f64::max);
+        let max_pos = sim
+            .samples
+            .iter()
+            .map(|s| s.position_violation)
+            .fold(0.0, f64::max);
         cells.push(format!("{}", system.nv()));
         cells.push(format!("{:.3}", sim.wall_time_s));
         cells.push(format!("{} / {}", sim.steps, sim.rejected));
         cells.push(format!("{:.1e}", max_pos));
         rows.push(cells);
     }
-    report.results.insert("rel_rms_error".into(), Value::Object(errors));
-    report.results.insert("wall_time_s".into(), Value::Object(walls));
+    report
+        .results
+        .insert("rel_rms_error".into(), Value::Object(errors));
+    report
+        .results
+        .insert("wall_time_s".into(), Value::Object(walls));
     report.table = markdown_table(
         &[
             "method",
@@ -377,7 +402,10 @@ pub fn run_scenario(info: &SceneInfo, scenario: Scenario, opts: &SceneOptions) -
     let layout = Layout::Horizontal(
         vec![
             Layout::Vertical(
-                vec![Layout::view3d("slab", "/world/slab"), Layout::Horizontal(plot_views, vec![])],
+                vec![
+                    Layout::view3d("slab", "/world/slab"),
+                    Layout::Horizontal(plot_views, vec![]),
+                ],
                 vec![1.0, 1.0],
             ),
             Layout::scene_text(),
