@@ -2,6 +2,16 @@
 
 use std::process::{Command, Output};
 
+const SCENES: [&str; 7] = [
+    "beam-modes",
+    "slab-modes",
+    "beam-profiles",
+    "beam-eitelberg",
+    "slab-sim1",
+    "slab-sim2",
+    "plank-symmetry",
+];
+
 fn flexmodes(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_flexmodes"))
         .args(args)
@@ -31,12 +41,7 @@ fn list_names_every_scene() {
     let out = flexmodes(&["list"]);
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    for id in [
-        "beam-modes",
-        "slab-modes",
-        "beam-profiles",
-        "beam-eitelberg",
-    ] {
+    for id in SCENES {
         assert!(
             text.lines().any(|l| l.starts_with(id)),
             "{id} missing:\n{text}"
@@ -135,12 +140,7 @@ fn record_writes_every_scene_and_failures_write_nothing() {
         String::from_utf8_lossy(&out.stderr)
     );
     let stdout = String::from_utf8(out.stdout).unwrap();
-    for id in [
-        "beam-modes",
-        "slab-modes",
-        "beam-profiles",
-        "beam-eitelberg",
-    ] {
+    for id in SCENES {
         let f = dir.join(format!("{id}.rrd"));
         let bytes = std::fs::read(&f).unwrap();
         assert!(bytes.starts_with(b"RRF"), "{id}: not an rrd stream");

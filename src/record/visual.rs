@@ -117,3 +117,18 @@ pub enum Visual {
         values: Vec<f64>,
     },
 }
+
+impl Visual {
+    /// The entity path it is logged at.
+    pub fn path(&self) -> &str {
+        match self {
+            Visual::Wireframe { path, .. }
+            | Visual::Mode { path, .. }
+            | Visual::Offset { path, .. }
+            | Visual::Trajectory { path, .. }
+            | Visual::Series { path, .. }
+            | Visual::FrameAxes { path, .. }
+            | Visual::Bars { path, .. } => path,
+        }
+    }
+}

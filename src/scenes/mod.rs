@@ -5,10 +5,10 @@ mod beam_modes;
 mod beam_profiles;
 mod mode_visuals;
 mod options;
-mod plank_symmetry;
+pub mod plank_symmetry;
 mod registry;
 mod slab_modes;
-mod slab_sims;
+pub mod slab_sims;
 
 pub use options::{SceneOptions, SceneOutput};
 pub use registry::{Scene, SceneInfo, all, find, ids};

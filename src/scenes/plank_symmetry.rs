@@ -118,7 +118,6 @@ pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
             LINK_MASS,
         )));
         placements.push(((p0 + p1) / 2.0, *rot.matrix()));
-        let _ = i;
     }
     let link = |k: usize, end: f64| Attachment::Point {
         body: k,

@@ -5,7 +5,7 @@ use serde_json::{Map, Value, json};
 
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE, method_color},
+    mode_visuals::method_color,
 };
 use crate::{
     Error, Result,
@@ -340,14 +340,13 @@ pub fn run_scenario(
         color: [150, 150, 150, 90],
         label: None,
     }];
-    let mut plot_views = Vec::new();
-    for (a, dir) in dirs.iter().enumerate() {
-        plot_views.push(Layout::TimeSeries {
+    let plot_views = dirs
+        .iter()
+        .map(|dir| Layout::TimeSeries {
             name: format!("node 8 δ_{dir}"),
             origin: format!("/plots/node8/delta_{dir}"),
-        });
-        let _ = a;
-    }
+        })
+        .collect();
     for (m, system, sim, hist) in &runs {
         let times: Vec<f64> = sim.samples.iter().map(|s| s.t).collect();
         let positions = sim
@@ -398,7 +397,6 @@ pub fn run_scenario(
             });
         }
     }
-    let _ = REFERENCE;
     let layout = Layout::Horizontal(
         vec![
             Layout::Vertical(

@@ -2,6 +2,7 @@
 //! the physical and algebraic invariants of the bodies and reduction methods.
 
 mod common;
+mod dynamics;
 mod errors;
 mod invariants;
 mod linalg;

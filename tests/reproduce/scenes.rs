@@ -3,7 +3,7 @@
 use flexmodes::{
     analysis::reduced_hz,
     fem::{BeamParameters, beam},
-    record::{Recorder, Visual},
+    record::Recorder,
     reduction::{ModeSelection, Partition, fixed_interface_modes, guyan},
     scenes::{self, SceneOptions},
 };
@@ -13,15 +13,7 @@ fn run(id: &str, opts: SceneOptions) -> flexmodes::scenes::SceneOutput {
 }
 
 fn paths(out: &flexmodes::scenes::SceneOutput) -> Vec<String> {
-    out.visuals
-        .iter()
-        .map(|v| match v {
-            Visual::Wireframe { path, .. }
-            | Visual::Mode { path, .. }
-            | Visual::Offset { path, .. }
-            | Visual::Bars { path, .. } => path.clone(),
-        })
-        .collect()
+    out.visuals.iter().map(|v| v.path().to_string()).collect()
 }
 
 #[test]

@@ -1,0 +1,297 @@
+//! Floating-frame dynamics (§7.2, §5.3.3): accuracy ordering of the methods, invariants of the
+//! integration, the symmetry study and errors.
+
+use flexmodes::{
+    Error,
+    dynamics::{AxisType, Body, IntegratorParameters, Motion, Simulation, System, simulate},
+    fem::{SlabParameters, plank, slab},
+    reduction::{Method, NodalFixedAxes},
+    scenes::{
+        plank_symmetry::{Variant, plank_body, plank_nodal_fixed, plank_system, symmetry_history},
+        slab_sims::{PROBE_NODE, Scenario, probe_history, relative_rms, slab_body, slab_system},
+    },
+};
+
+const BOUNDARY: [usize; 4] = [16, 18, 28, 30];
+
+fn run_slab(
+    scenario: Scenario,
+    method: Method,
+    axes: AxisType,
+    p: &IntegratorParameters,
+) -> (System, Simulation) {
+    let model = slab(&SlabParameters::default());
+    let body = slab_body(&model, method, axes, &BOUNDARY, 6).unwrap();
+    let (system, state) = slab_system(scenario, body).unwrap();
+    let sim = simulate(&system, &state, p, |_| {}).unwrap();
+    (system, sim)
+}
+
+fn nodal() -> AxisType {
+    AxisType::NodalFixed(NodalFixedAxes::slab_default())
+}
+
+fn params(end: f64) -> IntegratorParameters {
+    IntegratorParameters {
+        end_time: end,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn craig_bampton_and_mode_condensation_give_one_history() {
+    // With a tight tolerance the two integrations differ only by round-off and step control.
+    let p = IntegratorParameters {
+        end_time: 0.3,
+        rtol: 1e-10,
+        atol: 1e-13,
+        ..Default::default()
+    };
+    let (sc, cb) = run_slab(Scenario::HeldAtSix, Method::CraigBampton, nodal(), &p);
+    let (sm, mc) = run_slab(Scenario::HeldAtSix, Method::ModeCondensation, nodal(), &p);
+    let a = probe_history(&sc, &cb, PROBE_NODE);
+    let b = probe_history(&sm, &mc, PROBE_NODE);
+    for d in 0..3 {
+        let scale = a[d].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let diff = a[d]
+            .iter()
+            .zip(&b[d])
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        assert!(diff <= 1e-7 * scale, "direction {d}: {diff:e} of {scale:e}");
+    }
+}
+
+fn first_peak_time(sim: &Simulation, v: &[f64]) -> f64 {
+    let sign = v
+        .iter()
+        .fold(0.0f64, |a, &x| if x.abs() > a.abs() { x } else { a })
+        .signum();
+    for i in 1..v.len() - 1 {
+        if sign * v[i] > sign * v[i - 1] && sign * v[i] >= sign * v[i + 1] && sign * v[i] > 0.0 {
+            return sim.samples[i].t;
+        }
+    }
+    f64::INFINITY
+}
+
+#[test]
+fn simulation_1_ranks_the_methods_as_the_thesis() {
+    let p = params(1.0);
+    let mut hist = Vec::new();
+    for m in [
+        Method::NoReduction,
+        Method::ModalTruncation,
+        Method::CraigBampton,
+        Method::Guyan,
+    ] {
+        let (s, sim) = run_slab(Scenario::HeldAtSix, m, nodal(), &p);
+        hist.push((m, probe_history(&s, &sim, PROBE_NODE), sim));
+    }
+    let nr = &hist[0].1;
+    let err = |i: usize, d: usize| relative_rms(&hist[i].1[d], &nr[d]);
+    for d in 0..3 {
+        // CB within a few percent of NR, MT the poorest, GR in between.
+        assert!(err(2, d) < 0.05, "CB direction {d}: {}", err(2, d));
+        assert!(
+            err(1, d) > err(3, d),
+            "MT must be poorer than GR in direction {d}"
+        );
+        assert!(
+            err(3, d) > err(2, d),
+            "GR must be poorer than CB in direction {d}"
+        );
+    }
+    // Guyan leads: its raised frequencies bring the first peak of the sag (ζ) earlier.
+    let t_nr = first_peak_time(&hist[0].2, &nr[2]);
+    let t_gr = first_peak_time(&hist[3].2, &hist[3].1[2]);
+    assert!(t_gr < t_nr, "GR first peak {t_gr} s, NR {t_nr} s");
+    assert!(t_nr < 1.0);
+}
+
+#[test]
+fn constraints_hold_and_euler_parameters_stay_unit() {
+    let (system, sim) = run_slab(Scenario::Orbit, Method::CraigBampton, nodal(), &params(0.5));
+    for s in &sim.samples {
+        assert!(
+            s.position_violation < 1e-9,
+            "t = {}: {:e}",
+            s.t,
+            s.position_violation
+        );
+        assert!(
+            s.velocity_violation < 1e-9,
+            "t = {}: {:e}",
+            s.t,
+            s.velocity_violation
+        );
+        let (qo, _) = system.offsets(0);
+        let n = s.state.q.rows(qo + 3, 4).norm();
+        assert!((n - 1.0).abs() < 1e-12);
+    }
+    // Node 30 follows Eq. (7.10): back near its start after one period T = 1 s would need
+    // 1 s; at 0.5 s it is on the far side of the orbit, x = R cos(π) + R/16 cos(2π) - R/16.
+    let last = sim.samples.last().unwrap();
+    let x30 = system.node_position(0, 29, &last.state).x;
+    assert!((x30 - (-4.0)).abs() < 1e-8, "x30 = {x30}");
+}
+
+#[test]
+fn energy_is_conserved_without_damping_or_driving() {
+    // The plank under its links is conservative (fixed anchors, gravity, a constant force).
+    let model = plank(&SlabParameters::default());
+    let body = plank_body(
+        &model,
+        Variant {
+            method: Method::CraigBampton,
+            axes: AxisType::Mean,
+        },
+        4,
+    )
+    .unwrap();
+    let (system, state) = plank_system(body).unwrap();
+    let sim = simulate(&system, &state, &params(0.4), |_| {}).unwrap();
+    let e0 = sim.samples[0].energy;
+    // Scale: the potential energy released by the fall, m g h ~ 60 kg · 9.8 · 1 m.
+    let scale = 600.0;
+    for s in &sim.samples {
+        assert!(
+            (s.energy - e0).abs() < 1e-6 * scale,
+            "t = {}: ΔE = {:e}",
+            s.t,
+            s.energy - e0
+        );
+    }
+    // The plank did fall: energy moved from potential to kinetic.
+    let z0 = system.node_position(0, 7, &sim.samples[0].state).z;
+    let z1 = system
+        .node_position(0, 7, &sim.samples.last().unwrap().state)
+        .z;
+    assert!(z0 - z1 > 0.5, "fell {} m", z0 - z1);
+}
+
+#[test]
+fn mean_axes_keep_the_plank_symmetric_and_nodal_fixed_axes_do_not() {
+    let model = plank(&SlabParameters::default());
+    let p = params(0.8);
+    let mut defects = Vec::new();
+    for axes in [AxisType::NodalFixed(plank_nodal_fixed()), AxisType::Mean] {
+        let body = plank_body(
+            &model,
+            Variant {
+                method: Method::NoReduction,
+                axes,
+            },
+            0,
+        )
+        .unwrap();
+        let (system, state) = plank_system(body).unwrap();
+        let sim = simulate(&system, &state, &p, |_| {}).unwrap();
+        let h = symmetry_history(&system, &sim);
+        let before = sim
+            .samples
+            .iter()
+            .zip(&h[2])
+            .filter(|(s, _)| s.t <= 0.45)
+            .fold(0.0f64, |m, (_, d)| m.max(*d));
+        let after = h[2].iter().copied().fold(0.0f64, f64::max);
+        defects.push((before, after));
+    }
+    let (nf, mean) = (defects[0], defects[1]);
+    assert!(mean.1 < 1e-7, "mean axes defect {:e}", mean.1);
+    assert!(nf.1 > 1e-3, "nodal-fixed defect after the snap {:e}", nf.1);
+    assert!(nf.1 > 1e4 * mean.1);
+    // Before the chains snap taut the nodal-fixed frame is nearly symmetric too.
+    assert!(nf.0 < 1e-2 * nf.1, "before {:e}, after {:e}", nf.0, nf.1);
+}
+
+#[test]
+fn a_frame_change_leaves_absolute_positions_unchanged_to_second_order() {
+    let p = params(0.3);
+    let model = slab(&SlabParameters::default());
+    let mut runs = Vec::new();
+    for axes in [nodal(), AxisType::Mean, AxisType::Principal] {
+        let (s, sim) = run_slab(Scenario::HeldAtSix, Method::NoReduction, axes, &p);
+        runs.push((s, sim));
+    }
+    let (s0, sim0) = &runs[0];
+    let mut deform = 0.0f64;
+    for smp in &sim0.samples {
+        let z = s0.modal(0, &smp.state);
+        let Body::Flexible(fb) = &s0.bodies[0] else {
+            unreachable!()
+        };
+        for j in 0..model.node_count() {
+            deform = deform.max(fb.deflection(j, &z).norm());
+        }
+    }
+    assert!(deform > 1e-3, "the slab deforms ({deform} m)");
+    for (s, sim) in &runs[1..] {
+        let mut diff = 0.0f64;
+        for (a, b) in sim0.samples.iter().zip(&sim.samples) {
+            for j in 0..model.node_count() {
+                let d = (s0.node_position(0, j, &a.state) - s.node_position(0, j, &b.state)).norm();
+                diff = diff.max(d);
+            }
+        }
+        // Second order in the deformation relative to the body size (4 m), with margin 10.
+        let bound = 10.0 * deform * deform / 4.0;
+        assert!(
+            diff < bound,
+            "frame change moved nodes by {diff:e} (bound {bound:e})"
+        );
+    }
+}
+
+#[test]
+fn a_diverging_integration_is_a_named_error() {
+    let model = slab(&SlabParameters::default());
+    let body = slab_body(&model, Method::CraigBampton, nodal(), &BOUNDARY, 6).unwrap();
+    let (system, state) = slab_system(Scenario::HeldAtSix, body).unwrap();
+    let p = IntegratorParameters {
+        end_time: 0.5,
+        min_step: 1e-2,
+        ..Default::default()
+    };
+    match simulate(&system, &state, &p, |_| {}) {
+        Err(Error::Diverged { time, .. }) => assert!(time < 0.5),
+        other => panic!(
+            "expected Diverged, got {other:?}",
+            other = other.map(|s| s.steps)
+        ),
+    }
+}
+
+#[test]
+fn prescribed_tables_integrate_exactly() {
+    // Linear acceleration a(t) = 1 + 2t sampled every 0.1 s: x = x0 + v0 t + t²/2 + t³/3.
+    let values: Vec<f64> = (0..=20).map(|i| 1.0 + 2.0 * 0.1 * i as f64).collect();
+    let m = Motion::table(0.1, values);
+    for &t in &[0.0, 0.05, 0.7, 1.234, 1.99] {
+        let (x, v, a) = m.at(t, 0.5, -1.0);
+        assert!((a - (1.0 + 2.0 * t)).abs() < 1e-12);
+        assert!((v - (-1.0 + t + t * t)).abs() < 1e-12, "v({t})");
+        assert!(
+            (x - (0.5 - t + t * t / 2.0 + t * t * t / 3.0)).abs() < 1e-12,
+            "x({t})"
+        );
+    }
+    // Eq. (7.10) components: derivatives consistent by central differences.
+    for sine in [false, true] {
+        let m = Motion::Harmonic {
+            a: 4.0 * std::f64::consts::TAU.powi(2),
+            omega: std::f64::consts::TAU,
+            c2: 0.25,
+            sine,
+        };
+        let h = 1e-5;
+        for &t in &[0.1, 0.37, 0.8] {
+            let (xp, vp, _) = m.at(t + h, 4.0, 1.0);
+            let (xm, vm, _) = m.at(t - h, 4.0, 1.0);
+            let (_, v, a) = m.at(t, 4.0, 1.0);
+            assert!(((xp - xm) / (2.0 * h) - v).abs() < 1e-5 * v.abs().max(1.0));
+            assert!(((vp - vm) / (2.0 * h) - a).abs() < 1e-5 * a.abs().max(1.0));
+        }
+        assert_eq!(m.at(0.0, 4.0, 1.0).0, 4.0);
+        assert_eq!(m.at(0.0, 4.0, 1.0).1, 1.0);
+    }
+}
