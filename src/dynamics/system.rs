@@ -138,6 +138,19 @@ impl System {
         }
     }
 
+    /// Absolute acceleration of a node, $\ddot d_j = L_j\dot v + a_q$ (Eq. 3.17), from the
+    /// accelerations `vdot` of [`System::accelerations`].
+    pub fn node_acceleration(
+        &self,
+        b: usize,
+        node: usize,
+        s: &State,
+        vdot: &DVector<f64>,
+    ) -> Vector3<f64> {
+        let p = self.point(&Attachment::Node { body: b, node }, s);
+        p.l * vdot + p.aq
+    }
+
     /// Global position of a node of a deformable body.
     pub fn node_position(&self, b: usize, node: usize, s: &State) -> Vector3<f64> {
         let f = self.frame(b, s);

@@ -165,7 +165,10 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
             positions,
             color: c,
         } => {
-            let r = radius(geometry);
+            let r = positions
+                .first()
+                .map(|p| radius(&geometry.with_nodes(p.clone())))
+                .unwrap_or(1e-3);
             for (t, nodes) in times.iter().zip(positions) {
                 rec.set_duration_secs("sim_time", *t);
                 rec.log(
@@ -181,13 +184,14 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
             path,
             times,
             values,
+            name,
             color: c,
         } => {
             rec.log_static(
                 path.as_str(),
                 &rerun::SeriesLines::new()
                     .with_colors([color(*c)])
-                    .with_names([path.rsplit('/').next().unwrap_or(path).to_string()]),
+                    .with_names([name.clone()]),
             )?;
             rec.send_columns(
                 path.as_str(),

@@ -93,6 +93,8 @@ pub enum Visual {
         times: Vec<f64>,
         /// Values.
         values: Vec<f64>,
+        /// Legend name.
+        name: String,
         /// Line colour.
         color: Color,
     },

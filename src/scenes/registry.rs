@@ -53,6 +53,10 @@ pub fn all() -> Vec<Scene> {
             run: slab_sims::run_sim2,
         },
         Scene {
+            info: slab_sims::INFO_3,
+            run: slab_sims::run_sim3,
+        },
+        Scene {
             info: plank_symmetry::INFO,
             run: plank_symmetry::run,
         },

@@ -15,7 +15,7 @@ use flexmodes::{
 const BOUNDARY: [usize; 4] = [16, 18, 28, 30];
 
 fn run_slab(
-    scenario: Scenario,
+    scenario: &Scenario,
     method: Method,
     axes: AxisType,
     p: &IntegratorParameters,
@@ -47,8 +47,8 @@ fn craig_bampton_and_mode_condensation_give_one_history() {
         atol: 1e-13,
         ..Default::default()
     };
-    let (sc, cb) = run_slab(Scenario::HeldAtSix, Method::CraigBampton, nodal(), &p);
-    let (sm, mc) = run_slab(Scenario::HeldAtSix, Method::ModeCondensation, nodal(), &p);
+    let (sc, cb) = run_slab(&Scenario::HeldAtSix, Method::CraigBampton, nodal(), &p);
+    let (sm, mc) = run_slab(&Scenario::HeldAtSix, Method::ModeCondensation, nodal(), &p);
     let a = probe_history(&sc, &cb, PROBE_NODE);
     let b = probe_history(&sm, &mc, PROBE_NODE);
     for d in 0..3 {
@@ -84,7 +84,7 @@ fn simulation_1_ranks_the_methods_as_the_thesis() {
         Method::CraigBampton,
         Method::Guyan,
     ] {
-        let (s, sim) = run_slab(Scenario::HeldAtSix, m, nodal(), &p);
+        let (s, sim) = run_slab(&Scenario::HeldAtSix, m, nodal(), &p);
         hist.push((m, probe_history(&s, &sim, PROBE_NODE), sim));
     }
     let nr = &hist[0].1;
@@ -110,7 +110,12 @@ fn simulation_1_ranks_the_methods_as_the_thesis() {
 
 #[test]
 fn constraints_hold_and_euler_parameters_stay_unit() {
-    let (system, sim) = run_slab(Scenario::Orbit, Method::CraigBampton, nodal(), &params(0.5));
+    let (system, sim) = run_slab(
+        &Scenario::Orbit,
+        Method::CraigBampton,
+        nodal(),
+        &params(0.5),
+    );
     for s in &sim.samples {
         assert!(
             s.position_violation < 1e-9,
@@ -210,7 +215,7 @@ fn a_frame_change_leaves_absolute_positions_unchanged_to_second_order() {
     let model = slab(&SlabParameters::default());
     let mut runs = Vec::new();
     for axes in [nodal(), AxisType::Mean, AxisType::Principal] {
-        let (s, sim) = run_slab(Scenario::HeldAtSix, Method::NoReduction, axes, &p);
+        let (s, sim) = run_slab(&Scenario::HeldAtSix, Method::NoReduction, axes, &p);
         runs.push((s, sim));
     }
     let (s0, sim0) = &runs[0];
@@ -246,7 +251,7 @@ fn a_frame_change_leaves_absolute_positions_unchanged_to_second_order() {
 fn a_diverging_integration_is_a_named_error() {
     let model = slab(&SlabParameters::default());
     let body = slab_body(&model, Method::CraigBampton, nodal(), &BOUNDARY, 6).unwrap();
-    let (system, state) = slab_system(Scenario::HeldAtSix, body).unwrap();
+    let (system, state) = slab_system(&Scenario::HeldAtSix, body).unwrap();
     let p = IntegratorParameters {
         end_time: 0.5,
         min_step: 1e-2,
