@@ -2,14 +2,16 @@
 
 use std::process::{Command, Output};
 
-const SCENES: [&str; 7] = [
+const SCENES: [&str; 9] = [
     "beam-modes",
     "slab-modes",
     "beam-profiles",
     "beam-eitelberg",
     "slab-sim1",
     "slab-sim2",
+    "slab-sim3",
     "plank-symmetry",
+    "beam-mean-axes",
 ];
 
 fn flexmodes(args: &[&str]) -> Output {
@@ -181,4 +183,26 @@ fn record_writes_every_scene_and_failures_write_nothing() {
     assert_eq!(std::fs::read_dir(&dir2).unwrap().count(), 0);
     let _ = std::fs::remove_dir_all(dir);
     let _ = std::fs::remove_dir_all(dir2);
+}
+
+#[test]
+fn report_dynamic_scenes_json() {
+    let v = json(&["report", "slab-sim1", "--method", "nr,cb", "--json"]);
+    for d in ["xi", "eta", "zeta"] {
+        let e = v["results"]["rel_rms_error"]["cb"][d].as_f64().unwrap();
+        assert!(e > 0.0 && e < 0.05, "{d}: {e}");
+        assert_eq!(v["results"]["rel_rms_error"]["nr"][d].as_f64(), Some(0.0));
+    }
+    assert!(v["results"]["wall_time_s"]["cb"].as_f64().unwrap() > 0.0);
+    let v = json(&["report", "plank-symmetry", "--method", "cb", "--json"]);
+    let d = v["results"]["max_symmetry_defect_m"]["cb_mean"]
+        .as_f64()
+        .unwrap();
+    assert!(d < 1e-6, "{d}");
+    let v = json(&["report", "beam-mean-axes", "--json"]);
+    assert_eq!(
+        v["results"]["constraint_modes"].as_array().unwrap().len(),
+        10
+    );
+    assert_eq!(v["results"]["normal_hz"].as_array().unwrap().len(), 2);
 }

@@ -1,6 +1,7 @@
 //! The scene registry behind `flexmodes list`, `record` and `report`.
 
 mod beam_eitelberg;
+mod beam_mean_axes;
 mod beam_modes;
 mod beam_profiles;
 mod mode_visuals;

@@ -1,8 +1,8 @@
 //! The list of scenes.
 
 use super::{
-    SceneOptions, SceneOutput, beam_eitelberg, beam_modes, beam_profiles, plank_symmetry,
-    slab_modes, slab_sims,
+    SceneOptions, SceneOutput, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
+    plank_symmetry, slab_modes, slab_sims,
 };
 use crate::{Error, Result};
 
@@ -59,6 +59,10 @@ pub fn all() -> Vec<Scene> {
         Scene {
             info: plank_symmetry::INFO,
             run: plank_symmetry::run,
+        },
+        Scene {
+            info: beam_mean_axes::INFO,
+            run: beam_mean_axes::run,
         },
     ]
 }

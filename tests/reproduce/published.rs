@@ -193,3 +193,42 @@ fn slab_matches_table_b1() {
     }
     assert!((model.total_mass() - 62.4).abs() < 1e-12);
 }
+
+#[test]
+fn mode_condensation_with_mean_axes_matches_section_8_5() {
+    let model = beam(&BeamParameters::default());
+    let part = Partition::new(&model, &[1, 5]).unwrap();
+    let mc = reduce(
+        &model,
+        Method::ModeCondensation,
+        &ReductionParameters {
+            boundary_nodes: vec![1, 5],
+            modes: ModeSelection::Count(2),
+        },
+    )
+    .unwrap();
+    let ev = flexmodes::analysis::evaluate_with_mean_axes(&model, &mc, &part).unwrap();
+    // The printed matrices are exact fractions; 1e-12 allows for round-off only.
+    let printed = data_rows("mean_axes_constraint_modes_8_5_1.txt");
+    for (i, row) in printed.iter().enumerate() {
+        for (j, &p) in row.iter().enumerate() {
+            let v = ev.constraint_modes[(i, j)];
+            assert!((v - p).abs() < 1e-12, "[Δd]^c[{i},{j}] = {v}, printed {p}");
+        }
+    }
+    let printed = data_rows("mean_axes_constraint_solution_8_5_1.txt");
+    for (i, row) in printed.iter().enumerate() {
+        for (j, &p) in row.iter().enumerate() {
+            let v = ev.constraint_solution[(i, j)];
+            assert!(
+                (v - p).abs() < 1e-12,
+                "[Δr;Δθ;Δz]^c[{i},{j}] = {v}, printed {p}"
+            );
+        }
+    }
+    assert_printed(
+        "normal Hz",
+        &ev.normal_hz,
+        &published("mean_axes_normal_hz_mc"),
+    );
+}
