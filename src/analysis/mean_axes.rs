@@ -93,7 +93,8 @@ pub fn evaluate_with_mean_axes(
     let lu = a.full_piv_lu();
     let x = lu.solve(&rhs);
     let residual = &a * &x - &rhs;
-    if !(max_abs(residual.as_ref()) < 1e-8 * max_abs(a.as_ref()).max(1.0)) {
+    let res = max_abs(residual.as_ref());
+    if res.is_nan() || res >= 1e-8 * max_abs(a.as_ref()).max(1.0) {
         return Err(Error::SingularMatrix {
             matrix: "mean-axis static problem (Eq. 8.44)".into(),
             rcond: 0.0,
