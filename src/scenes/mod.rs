@@ -8,6 +8,7 @@ mod mode_visuals;
 mod options;
 pub mod plank_symmetry;
 mod registry;
+mod sim_visuals;
 mod slab_modes;
 pub mod slab_sims;
 

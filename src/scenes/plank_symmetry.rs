@@ -4,7 +4,10 @@ use nalgebra::{Matrix3, Rotation3, Vector3};
 use serde_json::{Map, json};
 
 use super::{
-    SceneInfo, SceneOptions, SceneOutput, mode_visuals::method_color, slab_sims::mass_centre,
+    SceneInfo, SceneOptions, SceneOutput,
+    mode_visuals::method_color,
+    sim_visuals::{body_trajectory, frame_axes, simulation_layout, times},
+    slab_sims::mass_centre,
 };
 use crate::{
     Result,
@@ -262,7 +265,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             format!("{viol:.1e}"),
             format!("{:.2}", sim.wall_time_s),
         ]);
-        let times: Vec<f64> = sim.samples.iter().map(|s| s.t).collect();
+        let times = times(&sim);
         let color = if v.method == Method::NoReduction {
             match v.axes {
                 AxisType::Mean => [60, 200, 110, 255],
@@ -281,25 +284,14 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 color,
             });
         }
-        let positions = sim
-            .samples
-            .iter()
-            .map(|s| {
-                (0..model.node_count())
-                    .map(|j| {
-                        let p = system.node_position(0, j, &s.state);
-                        [p.x, p.y, p.z]
-                    })
-                    .collect()
-            })
-            .collect();
-        visuals.push(Visual::Trajectory {
-            path: format!("world/plank/{suffix}"),
-            geometry: geometry.clone(),
-            times: times.clone(),
-            positions,
+        visuals.push(body_trajectory(
+            &system,
+            &sim,
+            0,
+            format!("world/plank/{suffix}"),
+            &geometry,
             color,
-        });
+        ));
         let link_geometry = Geometry {
             nodes: vec![[0.0; 3]; 8],
             strips: vec![vec![0, 1], vec![2, 3], vec![4, 5], vec![6, 7]],
@@ -326,24 +318,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             positions: link_positions,
             color: [200, 200, 200, 255],
         });
-        let (origins, frames) = sim
-            .samples
-            .iter()
-            .map(|s| {
-                let (r, a) = system.placement(0, &s.state);
-                (
-                    [r.x, r.y, r.z],
-                    [0, 1, 2].map(|c| [a[(0, c)], a[(1, c)], a[(2, c)]]),
-                )
-            })
-            .unzip();
-        visuals.push(Visual::FrameAxes {
-            path: format!("world/plank/frame/{suffix}"),
-            times,
-            origins,
-            axes: frames,
-            length: 0.8,
-        });
+        visuals.push(frame_axes(
+            &system,
+            &sim,
+            0,
+            format!("world/plank/frame/{suffix}"),
+            0.8,
+        ));
     }
     for name in ["x_node3", "x_node15", "symmetry_defect"] {
         plots.push(Layout::TimeSeries {
@@ -391,22 +372,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         height = 2.0 * LINK_LENGTH - DROP,
         out = (LINK_LENGTH.powi(2) - (LINK_LENGTH - DROP / 2.0).powi(2)).sqrt(),
     );
-    let layout = Layout::Horizontal(
-        vec![
-            Layout::Vertical(
-                vec![
-                    Layout::Spatial3D {
-                        name: "plank".into(),
-                        origin: "/world".into(),
-                        contents: vec!["$origin/**".into()],
-                    },
-                    Layout::Horizontal(plots, vec![]),
-                ],
-                vec![1.0, 1.0],
-            ),
-            Layout::scene_text(),
-        ],
-        vec![3.0, 1.0],
+    let layout = simulation_layout(
+        Layout::Spatial3D {
+            name: "plank".into(),
+            origin: "/world".into(),
+            contents: vec!["$origin/**".into()],
+        },
+        plots,
     );
     Ok(SceneOutput {
         report,

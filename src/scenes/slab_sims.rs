@@ -3,7 +3,11 @@
 use nalgebra::{Matrix3, Vector3};
 use serde_json::{Map, Value, json};
 
-use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::method_color};
+use super::{
+    SceneInfo, SceneOptions, SceneOutput,
+    mode_visuals::method_color,
+    sim_visuals::{body_trajectory, frame_axes, simulation_layout, times},
+};
 use crate::{
     Error, Result,
     dynamics::{
@@ -490,26 +494,15 @@ pub fn run_scenario(
         })
         .collect();
     for (m, system, sim, hist) in &runs {
-        let times: Vec<f64> = sim.samples.iter().map(|s| s.t).collect();
-        let positions = sim
-            .samples
-            .iter()
-            .map(|s| {
-                (0..model.node_count())
-                    .map(|j| {
-                        let p = system.node_position(0, j, &s.state);
-                        [p.x, p.y, p.z]
-                    })
-                    .collect()
-            })
-            .collect();
-        visuals.push(Visual::Trajectory {
-            path: format!("world/slab/{}/{}", m.id(), axes.id()),
-            geometry: geometry.clone(),
-            times: times.clone(),
-            positions,
-            color: method_color(*m),
-        });
+        let times = times(sim);
+        visuals.push(body_trajectory(
+            system,
+            sim,
+            0,
+            format!("world/slab/{}/{}", m.id(), axes.id()),
+            &geometry,
+            method_color(*m),
+        ));
         for (a, dir) in dirs.iter().enumerate() {
             visuals.push(Visual::Series {
                 path: format!("plots/node8/delta_{dir}/{}", m.id()),
@@ -520,39 +513,16 @@ pub fn run_scenario(
             });
         }
         if *m == methods[0] {
-            let (origins, frames) = sim
-                .samples
-                .iter()
-                .map(|s| {
-                    let (r, a) = system.placement(0, &s.state);
-                    (
-                        [r.x, r.y, r.z],
-                        [0, 1, 2].map(|c| [a[(0, c)], a[(1, c)], a[(2, c)]]),
-                    )
-                })
-                .unzip();
-            visuals.push(Visual::FrameAxes {
-                path: format!("world/slab/frame/{}", axes.id()),
-                times,
-                origins,
-                axes: frames,
-                length: 1.0,
-            });
+            visuals.push(frame_axes(
+                system,
+                sim,
+                0,
+                format!("world/slab/frame/{}", axes.id()),
+                1.0,
+            ));
         }
     }
-    let layout = Layout::Horizontal(
-        vec![
-            Layout::Vertical(
-                vec![
-                    Layout::view3d("slab", "/world/slab"),
-                    Layout::Horizontal(plot_views, vec![]),
-                ],
-                vec![1.0, 1.0],
-            ),
-            Layout::scene_text(),
-        ],
-        vec![3.0, 1.0],
-    );
+    let layout = simulation_layout(Layout::view3d("slab", "/world/slab"), plot_views);
     Ok(SceneOutput {
         report,
         markdown,
