@@ -39,6 +39,14 @@ enum Command {
         #[command(flatten)]
         options: OptionArgs,
     },
+    /// Speed against accuracy of every method and kept-mode count (slab simulations).
+    Bench {
+        /// Scenes (default: slab-sim1).
+        scenes: Vec<String>,
+        /// Print one JSON object per scene.
+        #[arg(long)]
+        json: bool,
+    },
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {
         /// Scene id.
@@ -118,6 +126,26 @@ fn run(cli: Cli) -> Result<()> {
         Command::List => {
             for s in scenes::all() {
                 println!("{:<16} {}", s.info.id, s.info.summary);
+            }
+            Ok(())
+        }
+        Command::Bench { scenes: ids, json } => {
+            let ids = if ids.is_empty() {
+                vec!["slab-sim1".to_string()]
+            } else {
+                ids
+            };
+            for id in &ids {
+                scenes::find(id)?;
+            }
+            for id in ids {
+                progress(&format!("benchmarking {id} ..."));
+                let (value, table) = crate::bench::bench(&id)?;
+                if json {
+                    println!("{value}");
+                } else {
+                    println!("# bench {id}\n\n{table}");
+                }
             }
             Ok(())
         }

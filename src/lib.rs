@@ -11,6 +11,7 @@
 //! - [`record`]: the one Rerun recorder used by the CLI (and later the GUI).
 
 pub mod analysis;
+pub mod bench;
 pub mod cli;
 pub mod dynamics;
 mod error;

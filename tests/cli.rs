@@ -206,3 +206,40 @@ fn report_dynamic_scenes_json() {
     );
     assert_eq!(v["results"]["normal_hz"].as_array().unwrap().len(), 2);
 }
+
+#[test]
+fn bench_reports_speed_and_accuracy_points() {
+    let v = json(&["bench", "--json"]);
+    assert_eq!(v["scene"], "slab-sim1");
+    let points = v["points"].as_array().unwrap();
+    assert!(points.len() >= 10);
+    for p in points {
+        for key in [
+            "offline_s",
+            "online_s_per_sim_s",
+            "rel_rms_error",
+            "dofs",
+            "modes",
+        ] {
+            assert!(p[key].is_number(), "{key} in {p}");
+        }
+    }
+    // Accuracy (not speed) may be asserted: Craig-Bampton converges as modes are added.
+    let cb: Vec<f64> = points
+        .iter()
+        .filter(|p| p["method"] == "cb")
+        .map(|p| p["rel_rms_error"].as_f64().unwrap())
+        .collect();
+    assert!(cb.windows(2).all(|w| w[1] < w[0]), "{cb:?}");
+    for m in ["nr", "gr", "cb_6"] {
+        assert!(
+            v["stability"][m]["critical_dt_s"].as_f64().unwrap() > 0.0,
+            "{m}"
+        );
+        assert!(
+            v["stability"][m]["highest_hz"].as_f64().unwrap() > 0.0,
+            "{m}"
+        );
+    }
+    assert_eq!(flexmodes(&["bench", "beam-modes"]).status.code(), Some(1));
+}

@@ -118,6 +118,23 @@ const B4: [f64; 7] = [
     1.0 / 40.0,
 ];
 
+/// Coefficients $c_k$ of the stability polynomial $R(z) = \sum_k c_k z^k$ of the 5th-order
+/// solution: $c_0 = 1$, $c_k = b^T A^{k-1} \mathbb 1$ (the tableau is explicit, so the series
+/// $1 + z b^T (I - zA)^{-1} \mathbb 1$ ends at $z^7$).
+pub fn stability_polynomial() -> Vec<f64> {
+    let mut out = vec![1.0];
+    let mut v = [1.0; 7]; // A^{k-1} 1
+    for _ in 1..=7 {
+        out.push((0..7).map(|i| B5[i] * v[i]).sum());
+        let mut next = [0.0; 7];
+        for (i, n) in next.iter_mut().enumerate() {
+            *n = (0..6).map(|j| A[i][j] * v[j]).sum();
+        }
+        v = next;
+    }
+    out
+}
+
 fn derivative(sys: &System, t: f64, y: &DVector<f64>) -> Result<DVector<f64>> {
     let nq = sys.nq();
     let s = State {

@@ -13,7 +13,7 @@ mod system;
 pub use axes::AxisType;
 pub use body::{Body, FlexibleBody, RigidBody};
 pub use constraint::{Attachment, Constraint};
-pub use integrator::{IntegratorParameters, Sample, Simulation, simulate};
+pub use integrator::{IntegratorParameters, Sample, Simulation, simulate, stability_polynomial};
 pub use prescribed::Motion;
 pub use rotation::{euler_parameters_from_matrix, rotation_matrix, skew};
 pub use system::{State, System};

@@ -174,14 +174,16 @@ const METHODS: [Method; 5] = [
     Method::ModeCondensation,
     Method::Guyan,
 ];
-const BOUNDARY: [usize; 4] = [16, 18, 28, 30];
+/// Boundary nodes of §7.2.
+pub const BOUNDARY: [usize; 4] = [16, 18, 28, 30];
 const EXTRA_GUYAN_MASTERS: [usize; 2] = [5, 11];
 /// Node whose local deflections are compared (§7.2).
 pub const PROBE_NODE: usize = 8;
 const ORBIT_R: f64 = 4.0;
 const ORBIT_T: f64 = 1.0;
 
-fn end_time(s: &Scenario) -> f64 {
+/// Simulated interval of a scenario, s.
+pub fn end_time(s: &Scenario) -> f64 {
     match s {
         Scenario::HeldAtSix => 2.0,
         Scenario::Orbit => 2.0,

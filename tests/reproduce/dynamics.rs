@@ -300,3 +300,25 @@ fn prescribed_tables_integrate_exactly() {
         assert_eq!(m.at(0.0, 4.0, 1.0).1, 1.0);
     }
 }
+
+#[test]
+fn dormand_prince_stability_polynomial() {
+    // Hairer & Wanner: R(z) = 1 + z + z²/2 + z³/6 + z⁴/24 + z⁵/120 + z⁶/600 for DOPRI5.
+    let c = flexmodes::dynamics::stability_polynomial();
+    let expected = [
+        1.0,
+        1.0,
+        0.5,
+        1.0 / 6.0,
+        1.0 / 24.0,
+        1.0 / 120.0,
+        1.0 / 600.0,
+        0.0,
+    ];
+    assert_eq!(c.len(), expected.len());
+    for (k, (a, b)) in c.iter().zip(expected).enumerate() {
+        assert!((a - b).abs() < 1e-15, "c_{k} = {a}, expected {b}");
+    }
+    let y = flexmodes::bench::dormand_prince_imaginary_limit();
+    assert!(y > 0.9 && y < 1.05, "{y}");
+}
