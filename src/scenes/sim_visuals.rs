@@ -81,3 +81,24 @@ pub fn simulation_layout(view: Layout, plots: Vec<Layout>) -> Layout {
         vec![3.0, 1.0],
     )
 }
+
+/// The largest position-constraint violation and the total energy over time, at
+/// `plots/constraint_violation/<suffix>` and `plots/energy/<suffix>`.
+pub fn health_series(sim: &Simulation, suffix: &str, color: Color) -> [Visual; 2] {
+    [
+        Visual::Series {
+            path: format!("plots/constraint_violation/{suffix}"),
+            times: times(sim),
+            values: sim.samples.iter().map(|s| s.position_violation).collect(),
+            name: suffix.into(),
+            color,
+        },
+        Visual::Series {
+            path: format!("plots/energy/{suffix}"),
+            times: times(sim),
+            values: sim.samples.iter().map(|s| s.energy).collect(),
+            name: suffix.into(),
+            color,
+        },
+    ]
+}

@@ -6,7 +6,7 @@ use serde_json::{Map, Value, json};
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
     mode_visuals::method_color,
-    sim_visuals::{body_trajectory, frame_axes, simulation_layout, times},
+    sim_visuals::{body_trajectory, frame_axes, health_series, simulation_layout, times},
 };
 use crate::{
     Error, Result,
@@ -488,15 +488,26 @@ pub fn run_scenario(
         color: [150, 150, 150, 90],
         label: None,
     }];
-    let plot_views = dirs
+    let mut plot_views: Vec<Layout> = dirs
         .iter()
         .map(|dir| Layout::TimeSeries {
             name: format!("node 8 δ_{dir}"),
             origin: format!("/plots/node8/delta_{dir}"),
         })
         .collect();
+    plot_views.push(Layout::Tabs(vec![
+        Layout::TimeSeries {
+            name: "constraint violation".into(),
+            origin: "/plots/constraint_violation".into(),
+        },
+        Layout::TimeSeries {
+            name: "energy".into(),
+            origin: "/plots/energy".into(),
+        },
+    ]));
     for (m, system, sim, hist) in &runs {
         let times = times(sim);
+        visuals.extend(health_series(sim, m.id(), method_color(*m)));
         visuals.push(body_trajectory(
             system,
             sim,
