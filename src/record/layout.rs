@@ -32,6 +32,13 @@ pub enum Layout {
         /// Entity path.
         origin: String,
     },
+    /// A 2D view (charts drawn as points).
+    Spatial2D {
+        /// Tab title.
+        name: String,
+        /// Entity path.
+        origin: String,
+    },
     /// A bar chart view.
     BarChart {
         /// Tab title.
@@ -66,7 +73,10 @@ impl Layout {
                 v.iter().flat_map(Layout::spatial_origins).collect()
             }
             Layout::Spatial3D { origin, .. } => vec![origin.clone()],
-            Layout::Text { .. } | Layout::BarChart { .. } | Layout::TimeSeries { .. } => vec![],
+            Layout::Text { .. }
+            | Layout::BarChart { .. }
+            | Layout::TimeSeries { .. }
+            | Layout::Spatial2D { .. } => vec![],
         }
     }
 
@@ -79,6 +89,7 @@ impl Layout {
             Layout::Spatial3D { origin, .. }
             | Layout::Text { origin, .. }
             | Layout::TimeSeries { origin, .. }
+            | Layout::Spatial2D { origin, .. }
             | Layout::BarChart { origin, .. } => vec![origin.clone()],
         }
     }

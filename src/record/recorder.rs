@@ -226,6 +226,20 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
             }
             rec.reset_time();
         }
+        Visual::Scatter {
+            path,
+            points,
+            labels,
+            colors,
+        } => {
+            rec.log_static(
+                path.as_str(),
+                &rerun::Points2D::new(points.iter().map(|p| [p[0] as f32, p[1] as f32]))
+                    .with_labels(labels.clone())
+                    .with_colors(colors.iter().map(|c| color(*c)))
+                    .with_radii([rerun::Radius::new_ui_points(6.0)]),
+            )?;
+        }
         Visual::Bars { path, values } => {
             rec.log_static(path.as_str(), &rerun::BarChart::new(values.clone()))?;
         }
@@ -251,6 +265,9 @@ fn container(l: &Layout) -> bp::ContainerLike {
             .with_contents(contents.iter().cloned())
             .into(),
         Layout::Text { name, origin } => bp::TextDocumentView::new(name.as_str())
+            .with_origin(origin.as_str())
+            .into(),
+        Layout::Spatial2D { name, origin } => bp::Spatial2DView::new(name.as_str())
             .with_origin(origin.as_str())
             .into(),
         Layout::TimeSeries { name, origin } => bp::TimeSeriesView::new(name.as_str())

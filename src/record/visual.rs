@@ -111,6 +111,17 @@ pub enum Visual {
         /// Arrow length, m.
         length: f64,
     },
+    /// Labelled points in a plane (`metrics/speed_accuracy`: wall time against error).
+    Scatter {
+        /// Entity path.
+        path: String,
+        /// Point positions (x, y).
+        points: Vec<[f64; 2]>,
+        /// One label per point.
+        labels: Vec<String>,
+        /// One colour per point.
+        colors: Vec<Color>,
+    },
     /// Scalar values shown as a bar chart (`metrics/...`).
     Bars {
         /// Entity path.
@@ -130,6 +141,7 @@ impl Visual {
             | Visual::Trajectory { path, .. }
             | Visual::Series { path, .. }
             | Visual::FrameAxes { path, .. }
+            | Visual::Scatter { path, .. }
             | Visual::Bars { path, .. } => path,
         }
     }

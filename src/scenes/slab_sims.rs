@@ -490,6 +490,25 @@ pub fn run_scenario(
         color: [150, 150, 150, 90],
         label: None,
     }];
+    // Speed against accuracy: x = wall time relative to NR, y = mean relative RMS error of
+    // node 8 (a 2D view grows y downward: the fast, accurate corner is top left).
+    if let (Some(r), Some(nr)) = (&reference, runs.iter().find(|r| r.0 == Method::NoReduction)) {
+        let nr_wall = nr.2.wall_time_s.max(1e-9);
+        let (mut points, mut labels, mut colors) = (Vec::new(), Vec::new(), Vec::new());
+        for (m, _, sim, hist) in &runs {
+            let err = (0..3).map(|a| relative_rms(&hist[a], &r[a])).sum::<f64>() / 3.0;
+            let speed = sim.wall_time_s / nr_wall;
+            points.push([speed, err]);
+            labels.push(format!("{}: {speed:.2}× NR time, error {err:.3}", m.id()));
+            colors.push(method_color(*m));
+        }
+        visuals.push(Visual::Scatter {
+            path: "metrics/speed_accuracy".into(),
+            points,
+            labels,
+            colors,
+        });
+    }
     let mut plot_views: Vec<Layout> = dirs
         .iter()
         .map(|dir| Layout::TimeSeries {
@@ -497,7 +516,14 @@ pub fn run_scenario(
             origin: format!("/plots/node8/delta_{dir}"),
         })
         .collect();
-    plot_views.push(Layout::Tabs(vec![
+    let mut tabs = Vec::new();
+    if visuals.iter().any(|v| v.path() == "metrics/speed_accuracy") {
+        tabs.push(Layout::Spatial2D {
+            name: "speed vs accuracy".into(),
+            origin: "/metrics/speed_accuracy".into(),
+        });
+    }
+    tabs.extend([
         Layout::TimeSeries {
             name: "constraint violation".into(),
             origin: "/plots/constraint_violation".into(),
@@ -506,7 +532,8 @@ pub fn run_scenario(
             name: "energy".into(),
             origin: "/plots/energy".into(),
         },
-    ]));
+    ]);
+    plot_views.push(Layout::Tabs(tabs));
     for (m, system, sim, hist) in &runs {
         let times = times(sim);
         visuals.extend(health_series(sim, m.id(), method_color(*m)));
