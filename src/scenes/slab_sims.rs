@@ -502,6 +502,12 @@ pub fn run_scenario(
             labels.push(format!("{}: {speed:.2}× NR time, error {err:.3}", m.id()));
             colors.push(method_color(*m));
         }
+        // Both axes on [0, 1] (time relative to NR, error relative to the worst method), so
+        // the chart is square whatever the magnitudes; the labels carry the values.
+        let worst = points.iter().map(|p| p[1]).fold(1e-12, f64::max);
+        for p in &mut points {
+            p[1] /= worst;
+        }
         visuals.push(Visual::Scatter {
             path: "metrics/speed_accuracy".into(),
             points,
