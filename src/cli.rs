@@ -47,6 +47,22 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// The desktop explorer: the Rerun viewer beside live controls.
+    #[cfg(feature = "gui")]
+    Gui {
+        /// Scene to open (default: the last session's, else beam-modes).
+        scene: Option<String>,
+        #[command(flatten)]
+        window: WindowArgs,
+    },
+    /// Open a saved recording in the embedded viewer.
+    #[cfg(feature = "gui")]
+    View {
+        /// The `.rrd` file.
+        file: PathBuf,
+        #[command(flatten)]
+        window: WindowArgs,
+    },
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {
         /// Scene id.
@@ -57,6 +73,42 @@ enum Command {
         #[command(flatten)]
         options: OptionArgs,
     },
+}
+
+/// Window options of `gui` and `view`.
+#[cfg(feature = "gui")]
+#[derive(Debug, Args, Clone, Default)]
+struct WindowArgs {
+    /// Save a screenshot to this PNG once the first recording shows, then quit.
+    #[arg(long)]
+    screenshot: Option<PathBuf>,
+    /// Window size in points, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size)]
+    window_size: Option<[f32; 2]>,
+    /// With --screenshot: toggle this method once the first recording shows, and capture
+    /// the recomputed one.
+    #[arg(long, requires = "screenshot")]
+    toggle: Option<String>,
+}
+
+#[cfg(feature = "gui")]
+fn parse_size(s: &str) -> std::result::Result<[f32; 2], String> {
+    let (w, h) = s.split_once('x').ok_or("expected WIDTHxHEIGHT")?;
+    Ok([
+        w.parse().map_err(|_| "bad width")?,
+        h.parse().map_err(|_| "bad height")?,
+    ])
+}
+
+#[cfg(feature = "gui")]
+impl From<WindowArgs> for crate::gui::ViewerOptions {
+    fn from(w: WindowArgs) -> Self {
+        Self {
+            screenshot: w.screenshot,
+            window_size: w.window_size,
+            toggle: w.toggle,
+        }
+    }
 }
 
 /// Scene options shared by `record` and `report`.
@@ -129,6 +181,15 @@ fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
+        #[cfg(feature = "gui")]
+        Command::Gui { scene, window } => {
+            if let Some(s) = &scene {
+                scenes::find(s)?;
+            }
+            crate::gui::run(scene.as_deref(), None, window.into())
+        }
+        #[cfg(feature = "gui")]
+        Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),
         Command::Bench { scenes: ids, json } => {
             let ids = if ids.is_empty() {
                 vec!["slab-sim1".to_string()]
@@ -196,7 +257,7 @@ fn run(cli: Cli) -> Result<()> {
                 .map(|id| scenes::find(id))
                 .collect::<Result<Vec<_>>>()?;
             let opts: SceneOptions = options.into();
-            let recorder = Recorder;
+            let recorder = Recorder::default();
             for s in found {
                 progress(&format!("recording {} ...", s.info.id));
                 let output = (s.run)(&opts)?;

@@ -16,6 +16,8 @@ pub mod cli;
 pub mod dynamics;
 mod error;
 pub mod fem;
+#[cfg(feature = "gui")]
+pub mod gui;
 pub mod linalg;
 pub mod record;
 pub mod reduction;

@@ -9,19 +9,33 @@ use rerun::{
 use super::{Geometry, Layout, PHASE_STEPS, Visual};
 use crate::{Error, Result, scenes::SceneOutput};
 
-/// Application id of every recording.
+/// Prefix of every recording's application id (`flexmodes-<scene>`: one default layout per
+/// scene in the viewer).
 pub const APPLICATION_ID: &str = "flexmodes";
 
 /// Turns a [`SceneOutput`] into Rerun data. Used by the CLI and the desktop app alike.
 #[derive(Debug, Clone, Default)]
-pub struct Recorder;
+pub struct Recorder {
+    /// Appended to the recording id, so successive recordings of one scene in the desktop
+    /// app are distinct stores.
+    pub recording_suffix: Option<String>,
+    /// Send the blueprint as the default only, so a layout the user changed survives a new
+    /// recording (desktop app). Files get it as the active blueprint.
+    pub keep_user_layout: bool,
+}
 
 impl Recorder {
     /// Encodes the scene as the bytes of an `.rrd` file (recording plus default blueprint).
     /// Log time is disabled so two runs give the same data.
     pub fn encode(&self, out: &SceneOutput) -> Result<Vec<u8>> {
-        let (rec, storage) = RecordingStreamBuilder::new(APPLICATION_ID)
-            .recording_id(format!("flexmodes-{}", out.report.scene))
+        let id = match &self.recording_suffix {
+            Some(s) => format!("flexmodes-{}-{s}", out.report.scene),
+            None => format!("flexmodes-{}", out.report.scene),
+        };
+        let app_id =
+            rerun::ApplicationId::new_or_unknown(format!("{APPLICATION_ID}-{}", out.report.scene));
+        let (rec, storage) = RecordingStreamBuilder::new(app_id)
+            .recording_id(id)
             .recording_name(out.report.scene.clone())
             .memory()?;
         rec.set_log_time_enabled(false);
@@ -69,7 +83,11 @@ impl Recorder {
             .with_blueprint_panel(bp::BlueprintPanel::new().with_state(PanelState::Collapsed))
             .with_selection_panel(bp::SelectionPanel::new().with_state(PanelState::Collapsed))
             .with_time_panel(time_panel);
-        blueprint.send(rec, bp::BlueprintActivation::default())?;
+        let activation = bp::BlueprintActivation {
+            make_active: !self.keep_user_layout,
+            make_default: true,
+        };
+        blueprint.send(rec, activation)?;
         Ok(())
     }
 }

@@ -24,6 +24,17 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "§8.4-8.5 mode condensation with mean axes: constraint and normal modes of the \
               reduced beam against the full model",
     sections: "§8.4, §8.5",
+    controls: super::registry::SceneControls {
+        methods: &[
+            Method::ModeCondensation,
+            Method::CraigBampton,
+            Method::ModalTruncation,
+            Method::Guyan,
+        ],
+        boundary: &[1, 5],
+        modes: Some(2),
+        axes: &["mean"],
+    },
 };
 
 const AVAILABLE: [Method; 4] = [

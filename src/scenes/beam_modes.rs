@@ -24,6 +24,17 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "App. A beam: free-free, Guyan (a)(b)(c), boundary, fixed-interface, Craig-Bampton \
               and mode-condensation mode shapes (Figs. 6-1 to 6-9)",
     sections: "§6.2-6.5, App. A",
+    controls: super::registry::SceneControls {
+        methods: &[
+            Method::Guyan,
+            Method::ModalTruncation,
+            Method::CraigBampton,
+            Method::ModeCondensation,
+        ],
+        boundary: &[1, 5],
+        modes: Some(2),
+        axes: &[],
+    },
 };
 
 const MASTERS_A: [usize; 3] = [1, 3, 5];

@@ -20,6 +20,16 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "§7.1 deformed profiles of the beam: the same z* (profile 1) and a least-squares \
               fit (profile 2) by MT, CB and MC against the reference deflection",
     sections: "§7.1",
+    controls: super::registry::SceneControls {
+        methods: &[
+            Method::ModalTruncation,
+            Method::CraigBampton,
+            Method::ModeCondensation,
+        ],
+        boundary: &[1, 5],
+        modes: Some(2),
+        axes: &[],
+    },
 };
 
 const AVAILABLE: [Method; 3] = [

@@ -29,6 +29,12 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "§5.3.3 plank hung under four rigid links: nodal-fixed axes lose the mirror \
               symmetry after the chains snap taut, mean axes keep it",
     sections: "§5.3.3, ch. 8",
+    controls: super::registry::SceneControls {
+        methods: &[Method::NoReduction, Method::CraigBampton],
+        boundary: &[],
+        modes: Some(6),
+        axes: &["nodal_fixed", "mean"],
+    },
 };
 
 /// Link length, m, and mass, kg (§5.3.3).

@@ -4,7 +4,7 @@ use super::{
     SceneOptions, SceneOutput, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
     plank_symmetry, slab_modes, slab_sims,
 };
-use crate::{Error, Result};
+use crate::{Error, Result, reduction::Method};
 
 /// Static description of a scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -15,6 +15,21 @@ pub struct SceneInfo {
     pub summary: &'static str,
     /// Thesis sections it reproduces.
     pub sections: &'static str,
+    /// What the scene's options can be set to (for the desktop panel).
+    pub controls: SceneControls,
+}
+
+/// The options a scene offers and their defaults.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SceneControls {
+    /// Methods that can be shown.
+    pub methods: &'static [Method],
+    /// Default boundary/master nodes (empty: the scene has no boundary choice).
+    pub boundary: &'static [usize],
+    /// Default kept normal modes (`None`: the scene keeps none).
+    pub modes: Option<usize>,
+    /// Axis types offered (empty: no floating frame).
+    pub axes: &'static [&'static str],
 }
 
 /// A scene: computes its results and visuals for given options.

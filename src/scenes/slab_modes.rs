@@ -24,6 +24,17 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "App. B slab: free-free, constraint and fixed-interface modes for boundary nodes \
               16, 18, 28, 30, and the frequencies of the MT, CB, MC and GR models",
     sections: "§7.2.1, App. B",
+    controls: super::registry::SceneControls {
+        methods: &[
+            Method::ModalTruncation,
+            Method::CraigBampton,
+            Method::ModeCondensation,
+            Method::Guyan,
+        ],
+        boundary: &[16, 18, 28, 30],
+        modes: Some(6),
+        axes: &["nodal_fixed"],
+    },
 };
 
 const DEFAULT_BOUNDARY: [usize; 4] = [16, 18, 28, 30];

@@ -25,6 +25,18 @@ pub const INFO_1: SceneInfo = SceneInfo {
     summary: "§7.2.2 slab held at six coordinates under gravity: node 8's deflections by NR, \
               MT, CB, MC and GR over time",
     sections: "§7.2.2",
+    controls: super::registry::SceneControls {
+        methods: &[
+            Method::NoReduction,
+            Method::ModalTruncation,
+            Method::CraigBampton,
+            Method::ModeCondensation,
+            Method::Guyan,
+        ],
+        boundary: &[16, 18, 28, 30],
+        modes: Some(6),
+        axes: &["nodal_fixed", "mean", "principal"],
+    },
 };
 
 pub const INFO_2: SceneInfo = SceneInfo {
@@ -32,6 +44,18 @@ pub const INFO_2: SceneInfo = SceneInfo {
     summary: "§7.2.3 slab pinned at nodes 16, 18 with node 30 driven on the orbit of Eq. 7.10: \
               node 8's deflections by every method",
     sections: "§7.2.3",
+    controls: super::registry::SceneControls {
+        methods: &[
+            Method::NoReduction,
+            Method::ModalTruncation,
+            Method::CraigBampton,
+            Method::ModeCondensation,
+            Method::Guyan,
+        ],
+        boundary: &[16, 18, 28, 30],
+        modes: Some(6),
+        axes: &["nodal_fixed", "mean", "principal"],
+    },
 };
 
 /// The slab scenarios of §7.2.
@@ -62,6 +86,18 @@ pub const INFO_3: SceneInfo = SceneInfo {
     summary: "§7.2.4 slab driven at nodes 16, 18, 28, 30 by accelerations recorded from the \
               two-link simulation of Fig. 7-12(b)",
     sections: "§7.2.4",
+    controls: super::registry::SceneControls {
+        methods: &[
+            Method::NoReduction,
+            Method::ModalTruncation,
+            Method::CraigBampton,
+            Method::ModeCondensation,
+            Method::Guyan,
+        ],
+        boundary: &[16, 18, 28, 30],
+        modes: Some(6),
+        axes: &["nodal_fixed", "mean", "principal"],
+    },
 };
 
 /// Nodes driven in Simulation 3.

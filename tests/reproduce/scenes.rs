@@ -67,7 +67,7 @@ fn every_scene_reports_its_stable_keys_and_logs_its_views() {
             );
         }
         assert!(out.markdown.contains(&out.report.table));
-        let bytes = Recorder.encode(&out).unwrap();
+        let bytes = Recorder::default().encode(&out).unwrap();
         assert!(bytes.len() > 1000, "{id}: {} bytes", bytes.len());
     }
 }

@@ -1,0 +1,333 @@
+//! The explorer's state and side panel, without the viewer (so tests can drive it).
+
+use std::time::{Duration, Instant};
+
+use rerun::external::egui;
+
+use crate::scenes;
+
+use super::{Command, Computed, Controls, Worker};
+
+/// Controls, the worker, the last good recording and what went wrong.
+pub struct Explorer {
+    /// What the user chose (persisted).
+    pub controls: Controls,
+    worker: Worker,
+    generation: u64,
+    /// When the running request started, if one runs.
+    pub computing_since: Option<Instant>,
+    /// The last good result, kept on screen when a later request fails.
+    pub current: Option<Computed>,
+    /// The cause of the last failure, if the last request failed.
+    pub error: Option<String>,
+    /// Durations of the finished requests (switch latency), newest last.
+    pub latencies: Vec<Duration>,
+    /// A one-line status (saved file, ...).
+    pub status: String,
+    /// Where "save" writes.
+    pub save_path: String,
+    fresh: bool,
+    shown_scenes: std::collections::HashSet<String>,
+}
+
+impl Explorer {
+    /// Starts with `controls` and requests the first computation.
+    pub fn new(controls: Controls) -> Self {
+        let save_path = format!("{}.rrd", controls.scene);
+        let mut e = Self {
+            controls,
+            worker: Worker::new(),
+            generation: 0,
+            computing_since: None,
+            current: None,
+            error: None,
+            latencies: Vec::new(),
+            status: String::new(),
+            save_path,
+            fresh: false,
+            shown_scenes: Default::default(),
+        };
+        e.request();
+        e
+    }
+
+    /// Recomputes with the current controls (superseding a running request).
+    pub fn request(&mut self) {
+        match self.controls.options() {
+            Ok(options) => {
+                self.generation += 1;
+                let seen = self.shown_scenes.contains(&self.controls.scene);
+                self.worker
+                    .submit(self.generation, &self.controls.scene, options, seen);
+                self.computing_since = Some(Instant::now());
+            }
+            Err(e) => self.error = Some(e.to_string()),
+        }
+    }
+
+    /// Whether a request is running.
+    pub fn is_computing(&self) -> bool {
+        self.computing_since.is_some()
+    }
+
+    /// Takes finished results; returns true when something changed.
+    pub fn poll(&mut self) -> bool {
+        let mut changed = false;
+        while let Some(f) = self.worker.poll() {
+            if f.generation != self.generation {
+                continue; // superseded
+            }
+            self.computing_since = None;
+            self.latencies.push(f.elapsed);
+            match f.result {
+                Ok(c) => {
+                    self.shown_scenes.insert(c.scene.clone());
+                    self.current = Some(c);
+                    self.error = None;
+                    self.fresh = true;
+                }
+                Err(e) => self.error = Some(e),
+            }
+            changed = true;
+        }
+        changed
+    }
+
+    /// The new recording to show, once per successful computation.
+    pub fn take_fresh(&mut self) -> Option<&Computed> {
+        if std::mem::take(&mut self.fresh) {
+            self.current.as_ref()
+        } else {
+            None
+        }
+    }
+
+    /// Applies the panel's commands.
+    pub fn apply(&mut self, commands: Vec<Command>) {
+        for c in commands {
+            match c {
+                Command::SelectScene(id) => {
+                    if let Ok(controls) = Controls::for_scene(&id) {
+                        self.controls = controls;
+                        self.save_path = format!("{id}.rrd");
+                        self.request();
+                    }
+                }
+                Command::Recompute => self.request(),
+                Command::ResetBoundary => {
+                    self.controls.boundary = self.controls.default_boundary();
+                    self.request();
+                }
+                Command::Save(path) => match &self.current {
+                    Some(c) => match crate::record::write_atomically(&path, &c.rrd) {
+                        Ok(()) => self.status = format!("saved {}", path.display()),
+                        Err(e) => self.error = Some(e.to_string()),
+                    },
+                    None => self.status = "nothing to save yet".into(),
+                },
+            }
+        }
+    }
+
+    /// The side panel; returns what the user asked for.
+    pub fn panel_ui(&mut self, ui: &mut egui::Ui) -> Vec<Command> {
+        let mut out = Vec::new();
+        ui.heading("flexmodes");
+        let all = scenes::all();
+        let mut scene = self.controls.scene.clone();
+        egui::ComboBox::from_label("scene")
+            .selected_text(&scene)
+            .show_ui(ui, |ui| {
+                for s in &all {
+                    ui.selectable_value(&mut scene, s.info.id.to_string(), s.info.id)
+                        .on_hover_text(s.info.summary);
+                }
+            });
+        if scene != self.controls.scene {
+            out.push(Command::SelectScene(scene));
+            return out;
+        }
+        let Some(info) = all
+            .iter()
+            .find(|s| s.info.id == self.controls.scene)
+            .map(|s| s.info)
+        else {
+            return out;
+        };
+        ui.label(egui::RichText::new(info.summary).small());
+        ui.separator();
+
+        ui.label("methods");
+        ui.horizontal_wrapped(|ui| {
+            for m in info.controls.methods {
+                let mut on = self.controls.methods.iter().any(|id| id == m.id());
+                if ui
+                    .checkbox(&mut on, m.id().to_uppercase())
+                    .on_hover_text(m.name())
+                    .changed()
+                {
+                    if on {
+                        self.controls.methods.push(m.id().into());
+                    } else {
+                        self.controls.methods.retain(|id| id != m.id());
+                    }
+                    out.push(Command::Recompute);
+                }
+            }
+        });
+        if info.controls.modes.is_some() {
+            ui.horizontal(|ui| {
+                ui.label(format!("kept modes: {}", self.controls.modes));
+                if ui.button("fewer modes").clicked() && self.controls.modes > 0 {
+                    self.controls.modes -= 1;
+                    out.push(Command::Recompute);
+                }
+                if ui.button("more modes").clicked() {
+                    self.controls.modes += 1;
+                    out.push(Command::Recompute);
+                }
+            });
+        }
+        if !info.controls.boundary.is_empty() {
+            ui.horizontal(|ui| {
+                ui.label("boundary nodes");
+                let r = ui.add(
+                    egui::TextEdit::singleline(&mut self.controls.boundary).desired_width(110.0),
+                );
+                if r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
+                    out.push(Command::Recompute);
+                }
+            });
+            ui.horizontal(|ui| {
+                if ui.button("apply boundary").clicked() {
+                    out.push(Command::Recompute);
+                }
+                if ui.button("reset boundary").clicked() {
+                    out.push(Command::ResetBoundary);
+                }
+            });
+        }
+        if info.controls.axes.len() > 1 {
+            ui.horizontal(|ui| {
+                ui.label("axes");
+                for a in info.controls.axes {
+                    if ui.selectable_label(self.controls.axes == *a, *a).clicked()
+                        && self.controls.axes != *a
+                    {
+                        self.controls.axes = a.to_string();
+                        out.push(Command::Recompute);
+                    }
+                }
+            });
+        }
+        ui.separator();
+        if let Some(since) = self.computing_since {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label(format!("computing… {:.1} s", since.elapsed().as_secs_f64()));
+            });
+        }
+        if let Some(e) = &self.error {
+            ui.colored_label(egui::Color32::from_rgb(230, 90, 80), format!("error: {e}"));
+            if self.current.is_some() {
+                ui.label("the last good recording stays on screen");
+            }
+        }
+        if let Some(l) = self.latencies.last() {
+            ui.label(
+                egui::RichText::new(format!("last update took {:.2} s", l.as_secs_f64())).small(),
+            );
+        }
+        if let Some(c) = &self.current {
+            ui.separator();
+            ui.strong(format!("results: {}", c.scene));
+            egui::ScrollArea::both().max_height(320.0).show(ui, |ui| {
+                table_ui(ui, &c.report.table);
+            });
+        }
+        ui.separator();
+        ui.horizontal(|ui| {
+            ui.add(egui::TextEdit::singleline(&mut self.save_path).desired_width(140.0));
+            if ui.button("save .rrd").clicked() {
+                out.push(Command::Save(self.save_path.clone().into()));
+            }
+        });
+        if !self.status.is_empty() {
+            ui.label(egui::RichText::new(&self.status).small());
+        }
+        out
+    }
+}
+
+/// Draws the markdown tables of a report as grids; the best and worst value of every error
+/// column are highlighted (green, red). Other lines are shown as text.
+fn table_ui(ui: &mut egui::Ui, markdown: &str) {
+    let mut block: Vec<Vec<String>> = Vec::new();
+    let flush = |ui: &mut egui::Ui, block: &mut Vec<Vec<String>>, id: usize| {
+        if block.is_empty() {
+            return;
+        }
+        let header = block[0].clone();
+        let rows: Vec<Vec<String>> = block[1..]
+            .iter()
+            .filter(|r| !r.iter().all(|c| c.chars().all(|ch| ch == '-')))
+            .cloned()
+            .collect();
+        let mut marks = vec![vec![None; header.len()]; rows.len()];
+        for (c, h) in header.iter().enumerate() {
+            let h = h.to_lowercase();
+            if !(h.contains("error") || h.contains("rms") || h.contains("defect")) {
+                continue;
+            }
+            let vals: Vec<(usize, f64)> = rows
+                .iter()
+                .enumerate()
+                .filter_map(|(r, row)| row.get(c)?.parse::<f64>().ok().map(|v| (r, v)))
+                .filter(|(_, v)| *v > 0.0)
+                .collect();
+            if vals.len() >= 2 {
+                let best = vals.iter().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
+                let worst = vals.iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
+                marks[best][c] = Some(egui::Color32::from_rgb(90, 200, 110));
+                marks[worst][c] = Some(egui::Color32::from_rgb(230, 90, 80));
+            }
+        }
+        egui::Grid::new(("report", id))
+            .striped(true)
+            .show(ui, |ui| {
+                for h in &header {
+                    ui.strong(h);
+                }
+                ui.end_row();
+                for (r, row) in rows.iter().enumerate() {
+                    for (c, cell) in row.iter().enumerate() {
+                        match marks[r].get(c).copied().flatten() {
+                            Some(color) => ui.colored_label(color, cell),
+                            None => ui.label(cell),
+                        };
+                    }
+                    ui.end_row();
+                }
+            });
+        block.clear();
+    };
+    let mut id = 0;
+    for line in markdown.lines() {
+        let t = line.trim();
+        if t.starts_with('|') && t.ends_with('|') && t.len() > 1 {
+            block.push(
+                t[1..t.len() - 1]
+                    .split('|')
+                    .map(|c| c.trim().to_string())
+                    .collect(),
+            );
+        } else {
+            flush(ui, &mut block, id);
+            id += 1;
+            if !t.is_empty() {
+                ui.label(egui::RichText::new(t).small());
+            }
+        }
+    }
+    flush(ui, &mut block, id);
+}

@@ -1,0 +1,15 @@
+//! The desktop explorer (feature `gui`): the Rerun viewer embedded beside an egui panel whose
+//! controls recompute the scene on a worker thread.
+//!
+//! [`Explorer`] holds everything but the viewer, so headless tests drive it with egui_kittest;
+//! [`run`] wraps it with the viewer in a native window.
+
+mod app;
+mod controls;
+mod explorer;
+mod worker;
+
+pub use app::{ViewerOptions, run};
+pub use controls::{Command, Controls};
+pub use explorer::Explorer;
+pub use worker::{Computed, Finished, Worker};

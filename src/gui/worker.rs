@@ -1,0 +1,146 @@
+//! Scene computation off the UI thread; a newer request supersedes older ones.
+
+use std::{
+    sync::{
+        Arc,
+        atomic::{AtomicU64, Ordering},
+        mpsc::{Receiver, Sender, channel},
+    },
+    time::{Duration, Instant},
+};
+
+use crate::{
+    record::Recorder,
+    report::Report,
+    scenes::{self, SceneOptions},
+};
+
+/// A finished computation: the numbers, the panel text and the recording.
+#[derive(Debug, Clone)]
+pub struct Computed {
+    /// Scene id.
+    pub scene: String,
+    /// The numeric report.
+    pub report: Report,
+    /// Entity paths logged.
+    pub entity_paths: Vec<String>,
+    /// The recording as `.rrd` bytes (for saving and for the viewer).
+    pub rrd: Vec<u8>,
+}
+
+/// The outcome of one request.
+#[derive(Debug)]
+pub struct Finished {
+    /// The request's generation.
+    pub generation: u64,
+    /// The result, or the error's cause chain.
+    pub result: Result<Computed, String>,
+    /// How long the computation took.
+    pub elapsed: Duration,
+}
+
+struct Job {
+    generation: u64,
+    scene: String,
+    options: SceneOptions,
+    keep_user_layout: bool,
+}
+
+/// A background thread that runs scenes.
+pub struct Worker {
+    jobs: Sender<Job>,
+    done: Receiver<Finished>,
+    latest: Arc<AtomicU64>,
+}
+
+impl Default for Worker {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Worker {
+    /// Starts the thread.
+    pub fn new() -> Self {
+        let (jobs, job_rx) = channel::<Job>();
+        let (done_tx, done) = channel();
+        let latest = Arc::new(AtomicU64::new(0));
+        let latest_w = latest.clone();
+        std::thread::Builder::new()
+            .name("flexmodes-worker".into())
+            .spawn(move || {
+                while let Ok(mut job) = job_rx.recv() {
+                    // Skip to the newest queued request.
+                    while let Ok(newer) = job_rx.try_recv() {
+                        job = newer;
+                    }
+                    let start = Instant::now();
+                    let result = compute(&job, job.keep_user_layout);
+                    // A request made meanwhile supersedes this one: drop it.
+                    if job.generation < latest_w.load(Ordering::SeqCst) {
+                        continue;
+                    }
+                    let finished = Finished {
+                        generation: job.generation,
+                        result,
+                        elapsed: start.elapsed(),
+                    };
+                    if done_tx.send(finished).is_err() {
+                        break;
+                    }
+                }
+            })
+            .expect("spawning a thread");
+        Self { jobs, done, latest }
+    }
+
+    /// Requests a computation; returns its generation.
+    /// `keep_user_layout`: send the scene's blueprint as the default only (the scene was
+    /// shown before and the user may have arranged its views).
+    pub fn submit(
+        &self,
+        generation: u64,
+        scene: &str,
+        options: SceneOptions,
+        keep_user_layout: bool,
+    ) {
+        self.latest.store(generation, Ordering::SeqCst);
+        let _ = self.jobs.send(Job {
+            generation,
+            scene: scene.into(),
+            options,
+            keep_user_layout,
+        });
+    }
+
+    /// A finished computation, if one is ready.
+    pub fn poll(&self) -> Option<Finished> {
+        self.done.try_recv().ok()
+    }
+}
+
+fn compute(job: &Job, keep_user_layout: bool) -> Result<Computed, String> {
+    let (scene, options, generation) = (&job.scene, &job.options, job.generation);
+    let chain = |e: crate::Error| {
+        let mut msg = e.to_string();
+        let mut src = std::error::Error::source(&e);
+        while let Some(s) = src {
+            msg.push_str(&format!(": {s}"));
+            src = s.source();
+        }
+        msg
+    };
+    let s = scenes::find(scene).map_err(chain)?;
+    let out = (s.run)(options).map_err(chain)?;
+    let recorder = Recorder {
+        recording_suffix: Some(generation.to_string()),
+        keep_user_layout,
+    };
+    let rrd = recorder.encode(&out).map_err(chain)?;
+    Ok(Computed {
+        scene: scene.clone(),
+        entity_paths: out.visuals.iter().map(|v| v.path().to_string()).collect(),
+        report: out.report,
+        rrd,
+    })
+}
