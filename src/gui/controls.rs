@@ -33,7 +33,8 @@ impl Controls {
             methods: c.methods.iter().map(|m| m.id().to_string()).collect(),
             modes: c.modes.unwrap_or(0),
             boundary: join(c.boundary),
-            axes: c.axes.first().map(|a| a.to_string()).unwrap_or_default(),
+            // Empty: the scene's own choice (plank-symmetry compares both frames).
+            axes: String::new(),
         })
     }
 

@@ -207,12 +207,14 @@ impl Explorer {
                 }
             });
         }
-        if info.controls.axes.len() > 1 {
-            ui.horizontal(|ui| {
+        if !info.controls.axes.is_empty() {
+            ui.horizontal_wrapped(|ui| {
                 ui.label("axes");
-                for a in info.controls.axes {
-                    if ui.selectable_label(self.controls.axes == *a, *a).clicked()
-                        && self.controls.axes != *a
+                for a in std::iter::once(&"default").chain(info.controls.axes) {
+                    let text: &str = a;
+                    let a = if text == "default" { "" } else { text };
+                    if ui.selectable_label(self.controls.axes == a, text).clicked()
+                        && self.controls.axes != a
                     {
                         self.controls.axes = a.to_string();
                         out.push(Command::Recompute);
