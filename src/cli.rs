@@ -126,6 +126,9 @@ struct OptionArgs {
     /// Axis type: nodal_fixed, mean, principal.
     #[arg(long)]
     axes: Option<String>,
+    /// Simulated interval of the dynamic scenes, s.
+    #[arg(long)]
+    end_time: Option<f64>,
 }
 
 fn parse_method(s: &str) -> std::result::Result<Method, String> {
@@ -144,6 +147,7 @@ impl From<OptionArgs> for SceneOptions {
             modes: a.modes,
             boundary: a.boundary,
             axes: a.axes,
+            end_time: a.end_time,
         }
     }
 }

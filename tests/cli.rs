@@ -111,6 +111,14 @@ fn errors_exit_1_with_the_cause_and_usage_errors_exit_2() {
             &["report", "beam-modes", "--axes", "mean"],
             "unknown or unsupported axis type",
         ),
+        (
+            &["report", "slab-sim1", "--axes", "tilted"],
+            "unknown or unsupported axis type",
+        ),
+        (
+            &["report", "slab-sim1", "--end-time=0"],
+            "end time 0 s must lie in (0, 60] s",
+        ),
     ];
     for (args, msg) in cases {
         let out = flexmodes(args);

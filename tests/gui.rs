@@ -119,3 +119,15 @@ fn save_writes_a_recording() {
     assert!(bytes.starts_with(b"RRF"));
     let _ = std::fs::remove_file(path);
 }
+
+#[test]
+fn the_end_time_of_a_simulation_can_be_changed() {
+    let mut h = harness("slab-sim1");
+    h.state_mut().controls.methods = vec!["cb".into()];
+    h.state_mut().controls.end_time = 0.5;
+    h.get_by_label("shorter").click();
+    settle(&mut h);
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(report.parameters["end_time_s"], 0.25);
+    assert!(paths(&h).iter().any(|p| p == "plots/node8/delta_zeta/cb"));
+}

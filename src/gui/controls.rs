@@ -21,6 +21,9 @@ pub struct Controls {
     pub boundary: String,
     /// Axis type id (empty: the scene's default).
     pub axes: String,
+    /// Simulated interval, s (simulations only).
+    #[serde(default)]
+    pub end_time: f64,
 }
 
 impl Controls {
@@ -35,6 +38,7 @@ impl Controls {
             boundary: join(c.boundary),
             // Empty: the scene's own choice (plank-symmetry compares both frames).
             axes: String::new(),
+            end_time: c.end_time.unwrap_or(0.0),
         })
     }
 
@@ -85,6 +89,7 @@ impl Controls {
             } else {
                 Some(self.axes.clone())
             },
+            end_time: c.end_time.map(|_| self.end_time),
         })
     }
 }

@@ -222,6 +222,19 @@ impl Explorer {
                 }
             });
         }
+        if info.controls.end_time.is_some() {
+            ui.horizontal(|ui| {
+                ui.label(format!("end time: {:.2} s", self.controls.end_time));
+                if ui.button("shorter").clicked() && self.controls.end_time > 0.25 {
+                    self.controls.end_time = (self.controls.end_time - 0.25).max(0.25);
+                    out.push(Command::Recompute);
+                }
+                if ui.button("longer").clicked() && self.controls.end_time < 60.0 {
+                    self.controls.end_time += 0.25;
+                    out.push(Command::Recompute);
+                }
+            });
+        }
         ui.separator();
         if let Some(since) = self.computing_since {
             ui.horizontal(|ui| {

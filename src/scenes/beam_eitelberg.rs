@@ -26,6 +26,7 @@ pub const INFO: SceneInfo = SceneInfo {
         boundary: &[1, 3, 5],
         modes: None,
         axes: &[],
+        end_time: None,
     },
 };
 

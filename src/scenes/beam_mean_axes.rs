@@ -34,6 +34,7 @@ pub const INFO: SceneInfo = SceneInfo {
         boundary: &[1, 5],
         modes: Some(2),
         axes: &["mean"],
+        end_time: None,
     },
 };
 

@@ -29,6 +29,7 @@ pub const INFO: SceneInfo = SceneInfo {
         boundary: &[1, 5],
         modes: Some(2),
         axes: &[],
+        end_time: None,
     },
 };
 

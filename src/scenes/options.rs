@@ -18,6 +18,8 @@ pub struct SceneOptions {
     pub boundary: Option<Vec<usize>>,
     /// `--axes`: axis type id.
     pub axes: Option<String>,
+    /// `--end-time`: simulated interval of the dynamic scenes, s.
+    pub end_time: Option<f64>,
 }
 
 impl SceneOptions {
@@ -47,6 +49,18 @@ impl SceneOptions {
                     .filter(|m| req.contains(m))
                     .collect())
             }
+        }
+    }
+
+    /// The simulated interval: `--end-time` checked (0 < t ≤ 60 s), or `default`.
+    pub fn end_time_or(&self, scene: &str, default: f64) -> Result<f64> {
+        match self.end_time {
+            None => Ok(default),
+            Some(t) if t > 0.0 && t <= 60.0 => Ok(t),
+            Some(t) => Err(Error::InvalidOption {
+                scene: scene.into(),
+                reason: format!("end time {t} s must lie in (0, 60] s"),
+            }),
         }
     }
 

@@ -34,6 +34,7 @@ pub const INFO: SceneInfo = SceneInfo {
         boundary: &[],
         modes: Some(6),
         axes: &["nodal_fixed", "mean"],
+        end_time: Some(END_TIME),
     },
 };
 
@@ -203,13 +204,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let modes = opts.modes.unwrap_or(6);
     let model = plank(&SlabParameters::default());
     let params = IntegratorParameters {
-        end_time: END_TIME,
+        end_time: opts.end_time_or(INFO.id, END_TIME)?,
         ..Default::default()
     };
     let mut report = Report::new(INFO.id);
     report
         .parameters
-        .insert("end_time_s".into(), json!(END_TIME));
+        .insert("end_time_s".into(), json!(params.end_time));
     report.parameters.insert("drop_m".into(), json!(DROP));
     report
         .parameters

@@ -7,7 +7,7 @@ use super::{
 use crate::{Error, Result, reduction::Method};
 
 /// Static description of a scene.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneInfo {
     /// Stable id (`beam-modes`).
     pub id: &'static str,
@@ -20,7 +20,7 @@ pub struct SceneInfo {
 }
 
 /// The options a scene offers and their defaults.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneControls {
     /// Methods that can be shown.
     pub methods: &'static [Method],
@@ -30,6 +30,8 @@ pub struct SceneControls {
     pub modes: Option<usize>,
     /// Axis types offered (empty: no floating frame).
     pub axes: &'static [&'static str],
+    /// Default simulated interval, s (`None`: not a simulation).
+    pub end_time: Option<f64>,
 }
 
 /// A scene: computes its results and visuals for given options.

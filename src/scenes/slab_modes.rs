@@ -34,6 +34,7 @@ pub const INFO: SceneInfo = SceneInfo {
         boundary: &[16, 18, 28, 30],
         modes: Some(6),
         axes: &["nodal_fixed"],
+        end_time: None,
     },
 };
 
