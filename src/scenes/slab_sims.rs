@@ -20,24 +20,23 @@ use crate::{
     report::{Report, markdown_table, sig},
 };
 
+/// The options of the three slab simulations; `end` is the default interval, s.
+const fn sim_controls(end: f64) -> super::registry::SceneControls {
+    super::registry::SceneControls {
+        methods: &METHODS,
+        boundary: &BOUNDARY,
+        modes: Some(6),
+        axes: &["nodal_fixed", "mean", "principal"],
+        end_time: Some(end),
+    }
+}
+
 pub const INFO_1: SceneInfo = SceneInfo {
     id: "slab-sim1",
     summary: "§7.2.2 slab held at six coordinates under gravity: node 8's deflections by NR, \
               MT, CB, MC and GR over time",
     sections: "§7.2.2",
-    controls: super::registry::SceneControls {
-        methods: &[
-            Method::NoReduction,
-            Method::ModalTruncation,
-            Method::CraigBampton,
-            Method::ModeCondensation,
-            Method::Guyan,
-        ],
-        boundary: &[16, 18, 28, 30],
-        modes: Some(6),
-        axes: &["nodal_fixed", "mean", "principal"],
-        end_time: Some(2.0),
-    },
+    controls: sim_controls(2.0),
 };
 
 pub const INFO_2: SceneInfo = SceneInfo {
@@ -45,19 +44,7 @@ pub const INFO_2: SceneInfo = SceneInfo {
     summary: "§7.2.3 slab pinned at nodes 16, 18 with node 30 driven on the orbit of Eq. 7.10: \
               node 8's deflections by every method",
     sections: "§7.2.3",
-    controls: super::registry::SceneControls {
-        methods: &[
-            Method::NoReduction,
-            Method::ModalTruncation,
-            Method::CraigBampton,
-            Method::ModeCondensation,
-            Method::Guyan,
-        ],
-        boundary: &[16, 18, 28, 30],
-        modes: Some(6),
-        axes: &["nodal_fixed", "mean", "principal"],
-        end_time: Some(2.0),
-    },
+    controls: sim_controls(2.0),
 };
 
 /// The slab scenarios of §7.2.
@@ -88,19 +75,7 @@ pub const INFO_3: SceneInfo = SceneInfo {
     summary: "§7.2.4 slab driven at nodes 16, 18, 28, 30 by accelerations recorded from the \
               two-link simulation of Fig. 7-12(b)",
     sections: "§7.2.4",
-    controls: super::registry::SceneControls {
-        methods: &[
-            Method::NoReduction,
-            Method::ModalTruncation,
-            Method::CraigBampton,
-            Method::ModeCondensation,
-            Method::Guyan,
-        ],
-        boundary: &[16, 18, 28, 30],
-        modes: Some(6),
-        axes: &["nodal_fixed", "mean", "principal"],
-        end_time: Some(SIM3_END),
-    },
+    controls: sim_controls(SIM3_END),
 };
 
 /// Nodes driven in Simulation 3.
