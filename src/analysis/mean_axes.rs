@@ -28,21 +28,12 @@ pub struct MeanAxesEvaluation {
 /// The rigid-body columns $[\hat I\ \check s]$ about the mass centre (2-D: 2 + 1 columns,
 /// 3-D: 3 + 3).
 pub fn rigid_modes_about_mass_centre(model: &FeModel) -> Mat<f64> {
-    let dim = model.dim;
-    let mut c = [0.0; 3];
-    let mut m = 0.0;
-    for (j, p) in model.nodes.iter().enumerate() {
-        let mj = model.m[(dim * j, dim * j)];
-        for a in 0..3 {
-            c[a] += mj * p[a];
-        }
-        m += mj;
-    }
+    let c = model.mass_centre();
     let shifted = FeModel {
         nodes: model
             .nodes
             .iter()
-            .map(|p| [p[0] - c[0] / m, p[1] - c[1] / m, p[2] - c[2] / m])
+            .map(|p| [p[0] - c[0], p[1] - c[1], p[2] - c[2]])
             .collect(),
         ..model.clone()
     };

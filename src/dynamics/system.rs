@@ -454,7 +454,7 @@ impl System {
         let rho = scale / (cn * cn);
         let mt = &m + rows.c.transpose() * &rows.c * rho;
         let rhs = &q + rows.c.transpose() * &rows.gamma * rho;
-        let chol = mt.clone().cholesky().ok_or_else(|| Error::SingularMatrix {
+        let chol = mt.cholesky().ok_or_else(|| Error::SingularMatrix {
             matrix: "regularised system mass".into(),
             rcond: 0.0,
         })?;
@@ -473,14 +473,13 @@ impl System {
     pub(crate) fn qdot(&self, s: &State) -> DVector<f64> {
         let mut qd = DVector::zeros(self.nq());
         for b in 0..self.bodies.len() {
-            let (qo, vo) = (self.q_off[b], self.v_off[b]);
+            let qo = self.q_off[b];
             let f = self.frame(b, s);
             qd.rows_mut(qo, 3).copy_from(&f.rd);
             let pd = l_matrix(&f.p).transpose() * f.w * 0.5;
             qd.rows_mut(qo + 3, 4).copy_from(&pd);
             let k = f.z.len();
             qd.rows_mut(qo + 7, k).copy_from(&f.zd);
-            let _ = vo;
         }
         qd
     }

@@ -129,6 +129,20 @@ impl FeModel {
         (t.transpose() * &self.m * &t)[(0, 0)]
     }
 
+    /// Mass centre (m) of the lumped masses (the diagonal of M on each node's first DOF).
+    pub fn mass_centre(&self) -> [f64; 3] {
+        let mut c = [0.0; 3];
+        let mut m = 0.0;
+        for (j, p) in self.nodes.iter().enumerate() {
+            let mj = self.m[(self.dim * j, self.dim * j)];
+            for (ca, pa) in c.iter_mut().zip(p) {
+                *ca += mj * pa;
+            }
+            m += mj;
+        }
+        c.map(|x| x / m)
+    }
+
     /// Rigid-body motions as columns: translations, then small rotations about the origin
     /// (one in 2-D, three in 3-D).
     pub fn rigid_body_modes(&self) -> Mat<f64> {

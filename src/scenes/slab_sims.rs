@@ -252,14 +252,7 @@ pub fn slab_body(
 
 /// Mass centre of a lumped-mass body, m.
 pub fn mass_centre(model: &FeModel) -> Vector3<f64> {
-    let mut c = Vector3::zeros();
-    let mut m = 0.0;
-    for (j, p) in model.nodes.iter().enumerate() {
-        let mj = model.m[(model.dim * j, model.dim * j)];
-        c += Vector3::new(p[0], p[1], p[2]) * mj;
-        m += mj;
-    }
-    c / m
+    Vector3::from(model.mass_centre())
 }
 
 fn axis_constraint(axes: AxisType, body: usize) -> Option<Constraint> {
