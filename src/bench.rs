@@ -10,6 +10,7 @@ use serde_json::{Map, Value, json};
 
 use crate::{
     Error, Result,
+    Progress,
     analysis::reduced_modes,
     dynamics::{AxisType, IntegratorParameters, simulate, stability_polynomial},
     fem::{SlabParameters, slab},
@@ -111,7 +112,7 @@ pub fn bench(scene: &str) -> Result<(Value, String)> {
         let highest_hz = hz.last().copied().unwrap_or(0.0);
         let dofs = body.modes();
         let (system, state) = slab_system(&scenario, body)?;
-        let sim = simulate(&system, &state, &params, |_| {})?;
+        let sim = simulate(&system, &state, &params, &Progress::default())?;
         let hist = probe_history(&system, &sim, PROBE_NODE);
         if m == Method::NoReduction {
             reference = Some(hist.clone());

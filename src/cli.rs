@@ -89,6 +89,10 @@ struct WindowArgs {
     /// the recomputed one.
     #[arg(long, requires = "screenshot")]
     toggle: Option<String>,
+    /// With --toggle: toggle that many times (one recomputation each) and print the median
+    /// switch latency.
+    #[arg(long, requires = "toggle", default_value_t = 1)]
+    repeat: u32,
 }
 
 #[cfg(feature = "gui")]
@@ -107,6 +111,7 @@ impl From<WindowArgs> for crate::gui::ViewerOptions {
             screenshot: w.screenshot,
             window_size: w.window_size,
             toggle: w.toggle,
+            repeat: w.repeat,
         }
     }
 }
@@ -148,6 +153,7 @@ impl From<OptionArgs> for SceneOptions {
             boundary: a.boundary,
             axes: a.axes,
             end_time: a.end_time,
+            ..Default::default()
         }
     }
 }

@@ -106,6 +106,10 @@ pub enum Error {
     #[error("the integration diverged at t = {time:.4} s: {reason}")]
     Diverged { time: f64, reason: String },
 
+    /// The computation was asked to stop (a newer request superseded it).
+    #[error("cancelled: a newer request superseded this computation")]
+    Cancelled,
+
     /// Bad scene option (a combination the scene cannot honour).
     #[error("invalid option for scene `{scene}`: {reason}")]
     InvalidOption { scene: String, reason: String },

@@ -19,9 +19,11 @@ pub mod fem;
 #[cfg(feature = "gui")]
 pub mod gui;
 pub mod linalg;
+mod progress;
 pub mod record;
 pub mod reduction;
 pub mod report;
 pub mod scenes;
 
 pub use error::{Error, Result};
+pub use progress::{Progress, ProgressReading};

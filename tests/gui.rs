@@ -131,3 +131,34 @@ fn the_end_time_of_a_simulation_can_be_changed() {
     assert_eq!(report.parameters["end_time_s"], 0.25);
     assert!(paths(&h).iter().any(|p| p == "plots/node8/delta_zeta/cb"));
 }
+
+#[test]
+fn a_newer_request_cancels_a_running_simulation() {
+    use flexmodes::{gui::Worker, reduction::Method, scenes::SceneOptions};
+    let mut w = Worker::new();
+    let slow = SceneOptions {
+        methods: Some(vec![Method::NoReduction]),
+        end_time: Some(1.0),
+        ..Default::default()
+    };
+    let first = w.submit(1, "slab-sim1", slow, false);
+    let start = Instant::now();
+    while first.reading().is_none_or(|r| r.time <= 0.0) {
+        assert!(start.elapsed() < Duration::from_secs(120), "no progress");
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    let second = w.submit(2, "beam-modes", SceneOptions::default(), false);
+    assert!(first.is_cancelled() && !second.is_cancelled());
+    let finished = loop {
+        if let Some(f) = w.poll() {
+            break f;
+        }
+        assert!(start.elapsed() < Duration::from_secs(120), "no result");
+        std::thread::sleep(Duration::from_millis(1));
+    };
+    // The cancelled request reports nothing; the full-order run stopped short of its end.
+    assert_eq!(finished.generation, 2);
+    assert!(finished.result.is_ok());
+    let r = first.reading().unwrap();
+    assert!(r.time < 1.0, "{r:?}");
+}

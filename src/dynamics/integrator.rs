@@ -7,7 +7,7 @@ use std::time::Instant;
 use nalgebra::DVector;
 
 use super::{State, System};
-use crate::{Error, Result};
+use crate::{Error, Progress, Result};
 
 /// Settings of [`simulate`].
 #[derive(Debug, Clone, PartialEq)]
@@ -164,14 +164,16 @@ fn sample(sys: &System, t: f64, state: &State) -> Sample {
 ///
 /// The initial state is first projected onto the constraints. A non-finite state, a step
 /// below `min_step` or more than `max_steps` steps is [`Error::Diverged`] with the time it
-/// happened, never NaN output. `progress` is called with the time after each output.
+/// happened, never NaN output. `progress` receives the time after each output and stops the
+/// integration with [`Error::Cancelled`] once cancelled.
 pub fn simulate(
     sys: &System,
     initial: &State,
     p: &IntegratorParameters,
-    mut progress: impl FnMut(f64),
+    progress: &Progress,
 ) -> Result<Simulation> {
     sys.validate()?;
+    progress.start_simulation(p.end_time)?;
     let start = Instant::now();
     let nq = sys.nq();
     let mut state = initial.clone();
@@ -239,7 +241,7 @@ pub fn simulate(
             k1 = derivative(sys, t, &y)?;
             if (t - target).abs() < 1e-12 {
                 samples.push(sample(sys, target, &s));
-                progress(t);
+                progress.advance(t)?;
                 next_output += p.output_interval;
             }
         } else {

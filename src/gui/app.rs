@@ -24,6 +24,9 @@ pub struct ViewerOptions {
     pub window_size: Option<[f32; 2]>,
     /// Once the first recording shows, toggle this method (as a user would) and recompute.
     pub toggle: Option<String>,
+    /// How many times to toggle `toggle` (on, off, on, …), one recomputation each; the
+    /// screenshot shows the last. 0 counts as 1.
+    pub repeat: u32,
 }
 
 /// Frames to let the viewer ingest and lay out a recording before a screenshot.
@@ -34,6 +37,9 @@ const SETTLE_FRAMES: u32 = 30;
 struct Capture {
     path: PathBuf,
     toggle: Option<String>,
+    /// Toggles still to make; `wanted` recordings in all before the screenshot.
+    toggles_left: u32,
+    wanted: u32,
     shown: u32,
     settle: u32,
     requested: bool,
@@ -97,9 +103,10 @@ impl eframe::App for FlexmodesApp {
                 if let Some(c) = &mut self.capture {
                     c.shown += 1;
                     c.settle = 0;
-                    if c.shown == 1
-                        && let Some(m) = c.toggle.take()
+                    if c.toggles_left > 0
+                        && let Some(m) = c.toggle.clone()
                     {
+                        c.toggles_left -= 1;
                         if explorer.controls.methods.contains(&m) {
                             explorer.controls.methods.retain(|id| *id != m);
                         } else {
@@ -170,13 +177,25 @@ impl FlexmodesApp {
                     .map(|d| format!("{:.2}", d.as_secs_f64()))
                     .collect();
                 eprintln!("computation times, s: {}", l.join(", "));
+                // The first is the scene's opening; the rest are switches.
+                let mut switches: Vec<f64> =
+                    e.latencies.iter().skip(1).map(|d| d.as_secs_f64()).collect();
+                if !switches.is_empty() {
+                    switches.sort_by(f64::total_cmp);
+                    let n = switches.len();
+                    let median = if n % 2 == 1 {
+                        switches[n / 2]
+                    } else {
+                        0.5 * (switches[n / 2 - 1] + switches[n / 2])
+                    };
+                    eprintln!("switch latency, s: median {median:.3} over {n}");
+                }
             }
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             return;
         }
-        let wanted = if c.toggle.is_some() { 1 } else { 0 } + 1;
         let idle = self.explorer.as_ref().is_none_or(|e| !e.is_computing());
-        let ready = (self.explorer.is_none() || c.shown >= wanted) && idle;
+        let ready = (self.explorer.is_none() || c.shown >= c.wanted) && idle;
         if ready && !c.requested {
             c.settle += 1;
             if c.settle >= SETTLE_FRAMES {
@@ -209,9 +228,16 @@ pub fn run(scene: Option<&str>, file: Option<&Path>, opts: ViewerOptions) -> Res
         (Some(_), _) => None,
         (None, s) => Some(Controls::for_scene(s.unwrap_or("beam-modes"))?),
     };
+    let toggles = if opts.toggle.is_some() {
+        opts.repeat.max(1)
+    } else {
+        0
+    };
     let capture = opts.screenshot.clone().map(|path| Capture {
         path,
         toggle: opts.toggle.clone(),
+        toggles_left: toggles,
+        wanted: toggles + 1,
         shown: 0,
         settle: 0,
         requested: false,

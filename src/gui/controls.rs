@@ -90,6 +90,7 @@ impl Controls {
                 Some(self.axes.clone())
             },
             end_time: c.end_time.map(|_| self.end_time),
+            ..Default::default()
         })
     }
 }

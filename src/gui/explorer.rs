@@ -241,6 +241,13 @@ impl Explorer {
                 ui.spinner();
                 ui.label(format!("computing… {:.1} s", since.elapsed().as_secs_f64()));
             });
+            if let Some(r) = self.worker.progress() {
+                let fraction = (r.time / r.end_time).clamp(0.0, 1.0) as f32;
+                ui.add(egui::ProgressBar::new(fraction).text(format!(
+                    "simulation {}: t = {:.2} of {:.2} s",
+                    r.simulations, r.time, r.end_time
+                )));
+            }
         }
         if let Some(e) = &self.error {
             ui.colored_label(egui::Color32::from_rgb(230, 90, 80), format!("error: {e}"));

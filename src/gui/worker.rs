@@ -1,4 +1,5 @@
-//! Scene computation off the UI thread; a newer request supersedes older ones.
+//! Scene computation off the UI thread; a newer request supersedes older ones and stops a
+//! running time integration at its next output step.
 
 use std::{
     sync::{
@@ -10,6 +11,7 @@ use std::{
 };
 
 use crate::{
+    Progress, ProgressReading,
     record::Recorder,
     report::Report,
     scenes::{self, SceneOptions},
@@ -51,6 +53,8 @@ pub struct Worker {
     jobs: Sender<Job>,
     done: Receiver<Finished>,
     latest: Arc<AtomicU64>,
+    /// The newest request's progress (cancelled when a newer one comes).
+    running: Option<Progress>,
 }
 
 impl Default for Worker {
@@ -91,26 +95,45 @@ impl Worker {
                 }
             })
             .expect("spawning a thread");
-        Self { jobs, done, latest }
+        Self {
+            jobs,
+            done,
+            latest,
+            running: None,
+        }
     }
 
-    /// Requests a computation; returns its generation.
+    /// Requests a computation of generation `generation` (larger than any before) and cancels
+    /// the previous one; returns the new request's progress handle.
     /// `keep_user_layout`: send the scene's blueprint as the default only (the scene was
     /// shown before and the user may have arranged its views).
     pub fn submit(
-        &self,
+        &mut self,
         generation: u64,
         scene: &str,
-        options: SceneOptions,
+        mut options: SceneOptions,
         keep_user_layout: bool,
-    ) {
+    ) -> Progress {
+        // Newest generation first, so the cancelled job's error is dropped as superseded.
         self.latest.store(generation, Ordering::SeqCst);
+        if let Some(old) = self.running.take() {
+            old.cancel();
+        }
+        let progress = Progress::new();
+        options.progress = progress.clone();
+        self.running = Some(progress.clone());
         let _ = self.jobs.send(Job {
             generation,
             scene: scene.into(),
             options,
             keep_user_layout,
         });
+        progress
+    }
+
+    /// How far the newest request's time integrations got.
+    pub fn progress(&self) -> Option<ProgressReading> {
+        self.running.as_ref().and_then(Progress::reading)
     }
 
     /// A finished computation, if one is ready.

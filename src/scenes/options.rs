@@ -1,7 +1,7 @@
 //! Options a scene is run with and what it returns.
 
 use crate::{
-    Error, Result,
+    Error, Progress, Result,
     record::{Layout, Visual},
     reduction::Method,
     report::Report,
@@ -20,6 +20,8 @@ pub struct SceneOptions {
     pub axes: Option<String>,
     /// `--end-time`: simulated interval of the dynamic scenes, s.
     pub end_time: Option<f64>,
+    /// Where the time integrations report how far they got; cancelling it stops the scene.
+    pub progress: Progress,
 }
 
 impl SceneOptions {

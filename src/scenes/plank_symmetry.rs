@@ -226,7 +226,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     for v in &variants {
         let body = plank_body(&model, *v, modes)?;
         let (system, state) = plank_system(body)?;
-        let sim = simulate(&system, &state, &params, |_| {})?;
+        let sim = simulate(&system, &state, &params, &opts.progress)?;
         let hist = symmetry_history(&system, &sim);
         let max_defect = hist[2].iter().copied().fold(0.0, f64::max);
         // Before the chains snap taut (free fall lasts about 0.49 s).

@@ -9,7 +9,7 @@ use super::{
     sim_visuals::{body_trajectory, frame_axes, health_series, simulation_layout, times},
 };
 use crate::{
-    Error, Result,
+    Error, Progress, Result,
     dynamics::{
         AxisType, Body, Constraint, FlexibleBody, IntegratorParameters, Motion, Simulation, System,
         simulate,
@@ -93,7 +93,11 @@ pub fn sim3_rotation() -> Matrix3<f64> {
 /// Fig. 7-12(b): the full slab hung from a 2 m link at node 18 and a 3 m link at node 30
 /// (parallel to x, far ends fixed), inclined 45°, released from rest with constant forces at
 /// nodes 16 and 28; returns the accelerations of nodes 16, 18, 28, 30 every 5 ms.
-pub fn record_driving_tables(axes: AxisType, end: f64) -> Result<DrivenTables> {
+pub fn record_driving_tables(
+    axes: AxisType,
+    end: f64,
+    progress: &Progress,
+) -> Result<DrivenTables> {
     use crate::dynamics::{Attachment, RigidBody};
     let model = slab(&SlabParameters::default());
     let body = slab_body(&model, Method::NoReduction, axes, &BOUNDARY, 0)?;
@@ -163,7 +167,7 @@ pub fn record_driving_tables(axes: AxisType, end: f64) -> Result<DrivenTables> {
         output_interval: TABLE_DT,
         ..Default::default()
     };
-    let sim = simulate(&system, &state, &params, |_| {})?;
+    let sim = simulate(&system, &state, &params, progress)?;
     let mut values: Vec<[Vec<f64>; 3]> = vec![[vec![], vec![], vec![]]; 4];
     for s in &sim.samples {
         let vdot = system.accelerations(s.t, &s.state)?;
@@ -413,7 +417,7 @@ pub fn run_scenario(
     for &m in &methods {
         let body = slab_body(&model, m, axes, &boundary, modes)?;
         let (system, state) = slab_system(&scenario, body)?;
-        let sim = simulate(&system, &state, &params, |_| {})?;
+        let sim = simulate(&system, &state, &params, &opts.progress)?;
         let hist = probe_history(&system, &sim, PROBE_NODE);
         runs.push((m, system, sim, hist));
     }
@@ -599,6 +603,6 @@ pub fn run_sim2(opts: &SceneOptions) -> Result<SceneOutput> {
 pub fn run_sim3(opts: &SceneOptions) -> Result<SceneOutput> {
     let axes = axis_type(opts.axes.as_deref(), INFO_3.id)?;
     let end = opts.end_time_or(INFO_3.id, SIM3_END)?;
-    let tables = record_driving_tables(axes, end)?;
+    let tables = record_driving_tables(axes, end, &opts.progress)?;
     run_scenario(&INFO_3, Scenario::Driven(tables), opts)
 }

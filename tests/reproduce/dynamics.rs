@@ -2,7 +2,7 @@
 //! integration, the symmetry study and errors.
 
 use flexmodes::{
-    Error,
+    Error, Progress,
     dynamics::{AxisType, Body, IntegratorParameters, Motion, Simulation, System, simulate},
     fem::{SlabParameters, plank, slab},
     reduction::{Method, NodalFixedAxes},
@@ -23,7 +23,7 @@ fn run_slab(
     let model = slab(&SlabParameters::default());
     let body = slab_body(&model, method, axes, &BOUNDARY, 6).unwrap();
     let (system, state) = slab_system(scenario, body).unwrap();
-    let sim = simulate(&system, &state, p, |_| {}).unwrap();
+    let sim = simulate(&system, &state, p, &Progress::default()).unwrap();
     (system, sim)
 }
 
@@ -154,7 +154,7 @@ fn energy_is_conserved_without_damping_or_driving() {
     )
     .unwrap();
     let (system, state) = plank_system(body).unwrap();
-    let sim = simulate(&system, &state, &params(0.4), |_| {}).unwrap();
+    let sim = simulate(&system, &state, &params(0.4), &Progress::default()).unwrap();
     let e0 = sim.samples[0].energy;
     // Scale: the potential energy released by the fall, m g h ~ 60 kg · 9.8 · 1 m.
     let scale = 600.0;
@@ -190,7 +190,7 @@ fn mean_axes_keep_the_plank_symmetric_and_nodal_fixed_axes_do_not() {
         )
         .unwrap();
         let (system, state) = plank_system(body).unwrap();
-        let sim = simulate(&system, &state, &p, |_| {}).unwrap();
+        let sim = simulate(&system, &state, &p, &Progress::default()).unwrap();
         let h = symmetry_history(&system, &sim);
         let before = sim
             .samples
@@ -257,7 +257,7 @@ fn a_diverging_integration_is_a_named_error() {
         min_step: 1e-2,
         ..Default::default()
     };
-    match simulate(&system, &state, &p, |_| {}) {
+    match simulate(&system, &state, &p, &Progress::default()) {
         Err(Error::Diverged { time, .. }) => assert!(time < 0.5),
         other => panic!(
             "expected Diverged, got {other:?}",
@@ -321,4 +321,57 @@ fn dormand_prince_stability_polynomial() {
     }
     let y = flexmodes::bench::dormand_prince_imaginary_limit();
     assert!(y > 0.9 && y < 1.05, "{y}");
+}
+
+/// A superseded request stops its time integration with a named error; a run nobody cancels
+/// reports reaching its end time.
+#[test]
+fn cancelled_integration_stops_with_named_error() {
+    let run = flexmodes::scenes::find("slab-sim1").unwrap().run;
+    let options = |progress: &Progress| flexmodes::scenes::SceneOptions {
+        methods: Some(vec![Method::CraigBampton]),
+        end_time: Some(0.5),
+        progress: progress.clone(),
+        ..Default::default()
+    };
+
+    let done = Progress::new();
+    run(&options(&done)).unwrap();
+    let r = done.reading().unwrap();
+    assert_eq!(r.simulations, 1);
+    assert!((r.time - 0.5).abs() < 1e-12 && r.end_time == 0.5, "{r:?}");
+
+    // Cancelled before it starts: not one step.
+    let early = Progress::new();
+    early.cancel();
+    assert!(matches!(run(&options(&early)), Err(Error::Cancelled)));
+    assert_eq!(early.reading().unwrap().time, 0.0);
+
+    // Cancelled from another thread once past 0.05 s: stops before the end.
+    let mid = Progress::new();
+    let watcher = mid.clone();
+    let cancel_thread = std::thread::spawn(move || {
+        let start = std::time::Instant::now();
+        while watcher.reading().is_none_or(|r| r.time < 0.05)
+            && start.elapsed() < std::time::Duration::from_secs(120)
+        {
+            std::thread::sleep(std::time::Duration::from_micros(200));
+        }
+        watcher.cancel();
+    });
+    let result = run(&options(&mid));
+    cancel_thread.join().unwrap();
+    assert!(
+        matches!(result, Err(Error::Cancelled)),
+        "{:?}",
+        result.as_ref().err()
+    );
+    let r = mid.reading().unwrap();
+    assert!(r.time >= 0.05 && r.time < 0.5, "{r:?}");
+
+    // Handles compare equal only when they share their state.
+    assert_eq!(Progress::default(), Progress::default());
+    assert_eq!(mid, mid.clone());
+    assert_ne!(mid, Progress::new());
+    assert!(Progress::default().reading().is_none());
 }

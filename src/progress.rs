@@ -1,0 +1,104 @@
+//! How far a running computation got, and the request that it stop.
+
+use std::sync::{
+    Arc,
+    atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering},
+};
+
+use crate::{Error, Result};
+
+#[derive(Debug, Default)]
+struct Shared {
+    cancelled: AtomicBool,
+    simulations: AtomicUsize,
+    time_bits: AtomicU64,
+    end_bits: AtomicU64,
+}
+
+/// A handle shared by a running computation and whoever waits for it: time integrations report
+/// the simulated time, and the waiter may ask them to stop (a newer request superseded it).
+///
+/// The default handle is detached: it records nothing and never asks to stop. Clones share
+/// their state; two handles compare equal when they share it (or are both detached).
+#[derive(Debug, Clone, Default)]
+pub struct Progress(Option<Arc<Shared>>);
+
+/// A reading of a [`Progress`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProgressReading {
+    /// Time integrations started so far.
+    pub simulations: usize,
+    /// Simulated time reached by the current one, s.
+    pub time: f64,
+    /// Its end time, s.
+    pub end_time: f64,
+}
+
+impl Progress {
+    /// An attached handle (its clones see what it records).
+    pub fn new() -> Self {
+        Self(Some(Arc::default()))
+    }
+
+    /// Asks the computation to stop at its next check.
+    pub fn cancel(&self) {
+        if let Some(s) = &self.0 {
+            s.cancelled.store(true, Ordering::SeqCst);
+        }
+    }
+
+    /// Whether [`cancel`](Self::cancel) was called.
+    pub fn is_cancelled(&self) -> bool {
+        self.0
+            .as_ref()
+            .is_some_and(|s| s.cancelled.load(Ordering::SeqCst))
+    }
+
+    /// `Err(Error::Cancelled)` once cancelled.
+    pub fn check(&self) -> Result<()> {
+        if self.is_cancelled() {
+            Err(Error::Cancelled)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// A time integration to `end_time` (s) starts.
+    pub fn start_simulation(&self, end_time: f64) -> Result<()> {
+        if let Some(s) = &self.0 {
+            s.simulations.fetch_add(1, Ordering::SeqCst);
+            s.time_bits.store(0f64.to_bits(), Ordering::SeqCst);
+            s.end_bits.store(end_time.to_bits(), Ordering::SeqCst);
+        }
+        self.check()
+    }
+
+    /// The current time integration reached `time` (s); `Err(Error::Cancelled)` once cancelled.
+    pub fn advance(&self, time: f64) -> Result<()> {
+        if let Some(s) = &self.0 {
+            s.time_bits.store(time.to_bits(), Ordering::SeqCst);
+        }
+        self.check()
+    }
+
+    /// What was recorded so far; `None` when detached or before any time integration.
+    pub fn reading(&self) -> Option<ProgressReading> {
+        let s = self.0.as_ref()?;
+        let simulations = s.simulations.load(Ordering::SeqCst);
+        (simulations > 0).then(|| ProgressReading {
+            simulations,
+            time: f64::from_bits(s.time_bits.load(Ordering::SeqCst)),
+            end_time: f64::from_bits(s.end_bits.load(Ordering::SeqCst)),
+        })
+    }
+}
+
+impl PartialEq for Progress {
+    fn eq(&self, other: &Self) -> bool {
+        match (&self.0, &other.0) {
+            (None, None) => true,
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
+}
