@@ -9,8 +9,7 @@ use std::time::Instant;
 use serde_json::{Map, Value, json};
 
 use crate::{
-    Error, Result,
-    Progress,
+    Error, Progress, Result,
     analysis::reduced_modes,
     dynamics::{AxisType, IntegratorParameters, simulate, stability_polynomial},
     fem::{SlabParameters, slab},

@@ -162,3 +162,26 @@ fn a_newer_request_cancels_a_running_simulation() {
     let r = first.reading().unwrap();
     assert!(r.time < 1.0, "{r:?}");
 }
+
+#[test]
+fn a_running_simulation_shows_its_simulated_time() {
+    let mut h = harness("slab-sim1");
+    h.state_mut().controls.methods = vec!["nr".into()];
+    h.state_mut().controls.end_time = 2.0;
+    h.get_by_label("more modes").click();
+    let start = Instant::now();
+    loop {
+        h.step();
+        if h.query_by_label_contains("simulation 1: t = ").is_some() {
+            break;
+        }
+        assert!(
+            h.state().is_computing(),
+            "finished before any progress showed"
+        );
+        assert!(start.elapsed() < Duration::from_secs(120), "no progress");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    settle(&mut h);
+    assert!(h.query_by_label_contains("simulation 1: t = ").is_none());
+}

@@ -53,6 +53,8 @@ struct FlexmodesApp {
     tx: LogSender,
     shown: Option<StoreId>,
     capture: Option<Capture>,
+    /// Time spent handing each new recording to the viewer (decoding included), newest last.
+    handoffs: Vec<std::time::Duration>,
 }
 
 impl FlexmodesApp {
@@ -99,7 +101,9 @@ impl eframe::App for FlexmodesApp {
         if let Some(mut explorer) = self.explorer.take() {
             explorer.poll();
             if let Some(rrd) = explorer.take_fresh().map(|c| c.rrd.clone()) {
+                let start = std::time::Instant::now();
                 self.show_recording(&rrd);
+                self.handoffs.push(start.elapsed());
                 if let Some(c) = &mut self.capture {
                     c.shown += 1;
                     c.settle = 0;
@@ -171,15 +175,23 @@ impl FlexmodesApp {
                 None => eprintln!("error: screenshot buffer has the wrong size"),
             }
             if let Some(e) = &self.explorer {
-                let l: Vec<String> = e
+                // Click to result on the UI thread, plus handing it to the viewer.
+                let total: Vec<f64> = e
                     .latencies
                     .iter()
-                    .map(|d| format!("{:.2}", d.as_secs_f64()))
+                    .zip(&self.handoffs)
+                    .map(|(a, b)| (*a + *b).as_secs_f64())
                     .collect();
-                eprintln!("computation times, s: {}", l.join(", "));
+                let l: Vec<String> = total.iter().map(|d| format!("{d:.3}")).collect();
+                eprintln!("update times (request to viewer), s: {}", l.join(", "));
+                let h: Vec<String> = self
+                    .handoffs
+                    .iter()
+                    .map(|d| format!("{:.3}", d.as_secs_f64()))
+                    .collect();
+                eprintln!("  of which handing to the viewer, s: {}", h.join(", "));
                 // The first is the scene's opening; the rest are switches.
-                let mut switches: Vec<f64> =
-                    e.latencies.iter().skip(1).map(|d| d.as_secs_f64()).collect();
+                let mut switches: Vec<f64> = total.iter().skip(1).copied().collect();
                 if !switches.is_empty() {
                     switches.sort_by(f64::total_cmp);
                     let n = switches.len();
@@ -282,6 +294,7 @@ pub fn run(scene: Option<&str>, file: Option<&Path>, opts: ViewerOptions) -> Res
                 tx,
                 shown: None,
                 capture,
+                handoffs: Vec::new(),
             };
             if let Some(bytes) = &file_bytes {
                 app.show_recording(bytes);

@@ -20,7 +20,8 @@ pub struct Explorer {
     pub current: Option<Computed>,
     /// The cause of the last failure, if the last request failed.
     pub error: Option<String>,
-    /// Durations of the finished requests (switch latency), newest last.
+    /// From request to result on the UI thread, per finished request (switch latency), newest
+    /// last.
     pub latencies: Vec<Duration>,
     /// A one-line status (saved file, ...).
     pub status: String,
@@ -77,8 +78,11 @@ impl Explorer {
             if f.generation != self.generation {
                 continue; // superseded
             }
-            self.computing_since = None;
-            self.latencies.push(f.elapsed);
+            // From the click to the result on the UI thread (queueing and the worker's
+            // computation and encoding included).
+            let since = self.computing_since.take();
+            self.latencies
+                .push(since.map_or(f.elapsed, |s| s.elapsed().max(f.elapsed)));
             match f.result {
                 Ok(c) => {
                     self.shown_scenes.insert(c.scene.clone());

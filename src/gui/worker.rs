@@ -14,7 +14,7 @@ use crate::{
     Progress, ProgressReading,
     record::Recorder,
     report::Report,
-    scenes::{self, SceneOptions},
+    scenes::{self, RunCache, SceneOptions},
 };
 
 /// A finished computation: the numbers, the panel text and the recording.
@@ -55,6 +55,8 @@ pub struct Worker {
     latest: Arc<AtomicU64>,
     /// The newest request's progress (cancelled when a newer one comes).
     running: Option<Progress>,
+    /// Time integrations kept across requests: ticking a method integrates that method only.
+    cache: RunCache,
 }
 
 impl Default for Worker {
@@ -100,6 +102,7 @@ impl Worker {
             done,
             latest,
             running: None,
+            cache: RunCache::new(),
         }
     }
 
@@ -121,6 +124,7 @@ impl Worker {
         }
         let progress = Progress::new();
         options.progress = progress.clone();
+        options.cache = self.cache.clone();
         self.running = Some(progress.clone());
         let _ = self.jobs.send(Job {
             generation,

@@ -8,9 +8,11 @@ mod mode_visuals;
 mod options;
 pub mod plank_symmetry;
 mod registry;
+mod run_cache;
 mod sim_visuals;
 mod slab_modes;
 pub mod slab_sims;
 
 pub use options::{SceneOptions, SceneOutput};
 pub use registry::{Scene, SceneInfo, all, find, ids};
+pub use run_cache::RunCache;

@@ -7,6 +7,8 @@ use crate::{
     report::Report,
 };
 
+use super::RunCache;
+
 /// Scene options from the command line (or the GUI). `None` means the scene's default.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SceneOptions {
@@ -22,6 +24,8 @@ pub struct SceneOptions {
     pub end_time: Option<f64>,
     /// Where the time integrations report how far they got; cancelling it stops the scene.
     pub progress: Progress,
+    /// Time integrations kept from earlier requests (the desktop explorer's).
+    pub cache: RunCache,
 }
 
 impl SceneOptions {

@@ -7,7 +7,7 @@ use super::{
     SceneInfo, SceneOptions, SceneOutput,
     mode_visuals::method_color,
     sim_visuals::{body_trajectory, frame_axes, health_series, simulation_layout, times},
-    slab_sims::mass_centre,
+    slab_sims::{mass_centre, run_key},
 };
 use crate::{
     Result,
@@ -224,9 +224,21 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut visuals = Vec::new();
     let mut plots = Vec::new();
     for v in &variants {
-        let body = plank_body(&model, *v, modes)?;
-        let (system, state) = plank_system(body)?;
-        let sim = simulate(&system, &state, &params, &opts.progress)?;
+        let key = run_key(
+            INFO.id,
+            v.method,
+            v.axes,
+            &PLANK_BOUNDARY,
+            modes,
+            params.end_time,
+        );
+        let run = opts.cache.get_or_run(key, || {
+            let body = plank_body(&model, *v, modes)?;
+            let (system, state) = plank_system(body)?;
+            let sim = simulate(&system, &state, &params, &opts.progress)?;
+            Ok((system, sim))
+        })?;
+        let (system, sim) = (*run).clone();
         let hist = symmetry_history(&system, &sim);
         let max_defect = hist[2].iter().copied().fold(0.0, f64::max);
         // Before the chains snap taut (free fall lasts about 0.49 s).

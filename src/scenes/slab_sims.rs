@@ -398,6 +398,32 @@ pub fn relative_rms(x: &[f64], reference: &[f64]) -> f64 {
     }
 }
 
+/// What determines one method's time integration in a scene (the [`RunCache`](super::RunCache) key): boundary
+/// nodes matter to every method but NR, kept modes to MT, CB and MC only.
+pub fn run_key(
+    scene: &str,
+    method: Method,
+    axes: AxisType,
+    boundary: &[usize],
+    modes: usize,
+    end_time: f64,
+) -> String {
+    let boundary = if method == Method::NoReduction {
+        &[][..]
+    } else {
+        boundary
+    };
+    let modes = match method {
+        Method::NoReduction | Method::Guyan => 0,
+        _ => modes,
+    };
+    format!(
+        "{scene}/{}/{axes:?}/{boundary:?}/{modes}/{:x}",
+        method.id(),
+        end_time.to_bits()
+    )
+}
+
 /// Runs every requested method of a scenario.
 pub fn run_scenario(
     info: &SceneInfo,
@@ -415,9 +441,14 @@ pub fn run_scenario(
     };
     let mut runs = Vec::new();
     for &m in &methods {
-        let body = slab_body(&model, m, axes, &boundary, modes)?;
-        let (system, state) = slab_system(&scenario, body)?;
-        let sim = simulate(&system, &state, &params, &opts.progress)?;
+        let key = run_key(info.id, m, axes, &boundary, modes, params.end_time);
+        let run = opts.cache.get_or_run(key, || {
+            let body = slab_body(&model, m, axes, &boundary, modes)?;
+            let (system, state) = slab_system(&scenario, body)?;
+            let sim = simulate(&system, &state, &params, &opts.progress)?;
+            Ok((system, sim))
+        })?;
+        let (system, sim) = (*run).clone();
         let hist = probe_history(&system, &sim, PROBE_NODE);
         runs.push((m, system, sim, hist));
     }
@@ -603,6 +634,9 @@ pub fn run_sim2(opts: &SceneOptions) -> Result<SceneOutput> {
 pub fn run_sim3(opts: &SceneOptions) -> Result<SceneOutput> {
     let axes = axis_type(opts.axes.as_deref(), INFO_3.id)?;
     let end = opts.end_time_or(INFO_3.id, SIM3_END)?;
-    let tables = record_driving_tables(axes, end, &opts.progress)?;
-    run_scenario(&INFO_3, Scenario::Driven(tables), opts)
+    let tables = opts.cache.get_or_run(
+        format!("{}/tables/{axes:?}/{:x}", INFO_3.id, end.to_bits()),
+        || record_driving_tables(axes, end, &opts.progress),
+    )?;
+    run_scenario(&INFO_3, Scenario::Driven((*tables).clone()), opts)
 }

@@ -179,6 +179,7 @@ fn mean_axes_keep_the_plank_symmetric_and_nodal_fixed_axes_do_not() {
     let model = plank(&SlabParameters::default());
     let p = params(0.8);
     let mut defects = Vec::new();
+    let mut early_positions = Vec::new();
     for axes in [AxisType::NodalFixed(plank_nodal_fixed()), AxisType::Mean] {
         let body = plank_body(
             &model,
@@ -200,7 +201,27 @@ fn mean_axes_keep_the_plank_symmetric_and_nodal_fixed_axes_do_not() {
             .fold(0.0f64, |m, (_, d)| m.max(*d));
         let after = h[2].iter().copied().fold(0.0f64, f64::max);
         defects.push((before, after));
+        let system = &system;
+        let positions: Vec<_> = sim
+            .samples
+            .iter()
+            .filter(|s| s.t <= 0.45)
+            .flat_map(|s| {
+                (0..model.node_count()).map(move |j| system.node_position(0, j, &s.state))
+            })
+            .collect();
+        early_positions.push(positions);
     }
+    // Before the snap both frames describe one motion: every node at one place (all three
+    // coordinates, not only the x the defect measures).
+    let early_gap = early_positions[0]
+        .iter()
+        .zip(&early_positions[1])
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).norm()));
+    assert!(
+        early_gap < 1e-3,
+        "nodal-fixed and mean planks {early_gap} m apart"
+    );
     let (nf, mean) = (defects[0], defects[1]);
     assert!(mean.1 < 1e-7, "mean axes defect {:e}", mean.1);
     assert!(nf.1 > 1e-3, "nodal-fixed defect after the snap {:e}", nf.1);
@@ -374,4 +395,44 @@ fn cancelled_integration_stops_with_named_error() {
     assert_eq!(mid, mid.clone());
     assert_ne!(mid, Progress::new());
     assert!(Progress::default().reading().is_none());
+}
+
+/// The explorer's cache integrates only what a request changed, and gives the numbers a fresh
+/// run gives.
+#[test]
+fn a_kept_simulation_is_not_integrated_again() {
+    use flexmodes::scenes::{RunCache, SceneOptions, find};
+    let run = find("slab-sim1").unwrap().run;
+    let cache = RunCache::new();
+    let options = |methods: &[Method], modes: usize, cache: &RunCache| SceneOptions {
+        methods: Some(methods.to_vec()),
+        modes: Some(modes),
+        end_time: Some(0.25),
+        progress: Progress::new(),
+        cache: cache.clone(),
+        ..Default::default()
+    };
+    let integrations = |o: &SceneOptions| o.progress.reading().map_or(0, |r| r.simulations);
+    let (nr, cb, gr) = (Method::NoReduction, Method::CraigBampton, Method::Guyan);
+
+    let first = options(&[nr, cb], 6, &cache);
+    run(&first).unwrap();
+    assert_eq!(integrations(&first), 2);
+
+    let second = options(&[nr, cb, gr], 6, &cache);
+    let cached = run(&second).unwrap();
+    assert_eq!(integrations(&second), 1, "only GR is new");
+    assert_eq!(cache.len(), 3);
+
+    let fresh = run(&options(&[nr, cb, gr], 6, &RunCache::default())).unwrap();
+    assert_eq!(
+        cached.report.results["rel_rms_error"],
+        fresh.report.results["rel_rms_error"]
+    );
+
+    // Kept modes change CB's integration, not NR's or GR's.
+    let third = options(&[nr, cb, gr], 4, &cache);
+    run(&third).unwrap();
+    assert_eq!(integrations(&third), 1);
+    assert_eq!(cache.len(), 4);
 }
