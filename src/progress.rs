@@ -95,10 +95,16 @@ impl Progress {
 
 impl PartialEq for Progress {
     fn eq(&self, other: &Self) -> bool {
-        match (&self.0, &other.0) {
-            (None, None) => true,
-            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
-            _ => false,
-        }
+        same_shared(&self.0, &other.0)
+    }
+}
+
+/// Whether two optional shared handles are the same one (or both absent): the equality of
+/// handles that share state, where comparing contents would be meaningless.
+pub(crate) fn same_shared<T: ?Sized>(a: &Option<Arc<T>>, b: &Option<Arc<T>>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+        _ => false,
     }
 }

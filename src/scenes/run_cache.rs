@@ -80,10 +80,6 @@ impl std::fmt::Debug for RunCache {
 
 impl PartialEq for RunCache {
     fn eq(&self, other: &Self) -> bool {
-        match (&self.0, &other.0) {
-            (None, None) => true,
-            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
-            _ => false,
-        }
+        crate::progress::same_shared(&self.0, &other.0)
     }
 }
