@@ -45,15 +45,56 @@ pub enum Error {
     /// $K_{ii}$ is singular: the boundary DOF do not restrain every rigid-body motion.
     #[error(
         "K_ii is singular for boundary nodes {boundary_nodes:?}: {rank_deficiency} rigid-body \
-         motion(s) of the interior stay unrestrained (smallest/largest eigenvalue {ratio:.1e}); \
-         Craig-Bampton, Guyan and mode condensation need at least {needed} properly chosen \
-         boundary DOF"
+         motion(s) of the interior stay unrestrained ({free_motions}); Craig-Bampton, Guyan and \
+         mode condensation need at least {needed} properly chosen boundary DOF"
     )]
     SingularInterior {
         boundary_nodes: Vec<usize>,
         rank_deficiency: usize,
-        ratio: f64,
+        /// The unrestrained motions in words, e.g. `rotation about (1, 0, 0) through (0, 0, 0) m`.
+        free_motions: String,
         needed: usize,
+    },
+
+    /// A Cholesky factorisation met a pivot that is not positive.
+    #[error(
+        "the {matrix} matrix is not positive definite: the pivot of its row {index} (0-based) \
+         is not positive"
+    )]
+    NonPositivePivot { matrix: String, index: usize },
+
+    /// An allocation the computation needs could not be made.
+    #[error("out of memory: {what}")]
+    OutOfMemory { what: String },
+
+    /// A model larger than a method (or the machine) can take.
+    #[error("{method} is limited to {limit} DOF, but this model has {dofs}")]
+    TooLarge {
+        method: String,
+        dofs: usize,
+        limit: usize,
+    },
+
+    /// A mesh whose estimated memory exceeds what the machine has.
+    #[error(
+        "a {dofs}-DOF mesh needs about {estimated_gb:.1} GB, more than the {available_gb:.1} GB \
+         this machine has free"
+    )]
+    MeshTooLarge {
+        dofs: usize,
+        estimated_gb: f64,
+        available_gb: f64,
+    },
+
+    /// The partial eigensolver stopped before every wanted pair was accurate.
+    #[error(
+        "the partial eigensolver did not converge: {converged} of {wanted} pairs converged, \
+         worst relative residual {residual:.1e}"
+    )]
+    EigenNotConverged {
+        converged: usize,
+        wanted: usize,
+        residual: f64,
     },
 
     /// More normal modes were requested than the interior eigenproblem has.

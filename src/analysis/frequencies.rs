@@ -1,19 +1,65 @@
 //! Natural frequencies of full and reduced models.
 
 use crate::{
-    Result,
+    Error, Result,
     fem::FeModel,
-    linalg::{GeneralizedEigen, generalized_eigen},
-    reduction::Basis,
+    linalg::{
+        GeneralizedEigen, PartialEigenParameters, SymbolicFactor, SymmetricFactor,
+        generalized_eigen, lowest_modes, negative_shift,
+    },
+    reduction::{Basis, COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT},
 };
 
 /// Frequencies below this (Hz) count as rigid-body modes and are left out of every `*_hz`
 /// result (DESIGN §6). Rigid-body eigenvalues come out at round-off level, ≲ 1e-5 Hz here.
 pub const RIGID_BODY_HZ: f64 = 1e-3;
 
-/// Free-free modes of the full body, $[V, \Lambda] = \mathrm{eig}(K, M)$ (§6.2.1).
+/// Free-free modes of the full body, $[V, \Lambda] = \mathrm{eig}(K, M)$ (§6.2.1): every mode,
+/// by a complete dense eigenproblem (bodies up to [`COMPLETE_EIGEN_LIMIT`] DOF; above it
+/// [`Error::TooLarge`], use [`lowest_free_free_modes`]).
 pub fn free_free_modes(model: &FeModel) -> Result<GeneralizedEigen> {
-    generalized_eigen(model.k.as_ref(), model.m.as_ref(), "free-free")
+    let n = model.dof_count();
+    if n > COMPLETE_EIGEN_LIMIT {
+        return Err(Error::TooLarge {
+            method: "the complete free-free eigenproblem".into(),
+            dofs: n,
+            limit: COMPLETE_EIGEN_LIMIT,
+        });
+    }
+    generalized_eigen(
+        model.k_dense().as_ref(),
+        model.m_dense().as_ref(),
+        "free-free",
+    )
+}
+
+/// The rigid-body modes and the `elastic` lowest elastic free-free modes: the complete dense
+/// eigenproblem for small bodies, shift-invert Lanczos on $K - \sigma M$ with a small negative
+/// shift (K itself is singular) above [`DENSE_INTERIOR_LIMIT`] DOF.
+pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<GeneralizedEigen> {
+    let n = model.dof_count();
+    let rigid = if model.dim == 3 { 6 } else { 3 };
+    let wanted = (rigid + elastic).min(n);
+    if n <= DENSE_INTERIOR_LIMIT {
+        let all = free_free_modes(model)?;
+        return Ok(GeneralizedEigen {
+            values: all.values[..wanted].to_vec(),
+            vectors: all.vectors.subcols(0, wanted).to_owned(),
+        });
+    }
+    let sigma = negative_shift(&model.k, &model.m);
+    let shifted = model.k.shifted(&model.m, sigma);
+    let symbolic = SymbolicFactor::analyse(shifted.as_faer())?;
+    let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
+    let (eig, _) = lowest_modes(
+        &model.k,
+        &model.m,
+        &factor,
+        sigma,
+        wanted,
+        &PartialEigenParameters::default(),
+    )?;
+    Ok(eig)
 }
 
 /// Elastic (non-rigid) frequencies of an eigen-solution, Hz, ascending.

@@ -57,7 +57,7 @@ pub fn evaluate_with_mean_axes(
     });
     let q_b = select_rows(q.as_ref(), &partition.b);
     // Mean-axis rows (Eqs. 8.42, 8.43): P^T M psi dz = 0.
-    let g = p.transpose() * &model.m * psi;
+    let g = p.transpose() * model.m.mul(psi.as_ref());
     let k_r = basis.reduced_stiffness(model);
     // Static problem (8.44): unknowns x = (dr, dtheta, dz), mu (nr), lambda3 (nb).
     let n = nr + k + nr + nb;
@@ -124,7 +124,7 @@ pub fn evaluate_with_mean_axes(
             kx[(nr + i, nr + j)] = k_r[(i, j)];
         }
     }
-    let mx = q.transpose() * &model.m * &q;
+    let mx = q.transpose() * model.m.mul(q.as_ref());
     let kn = null.transpose() * &kx * &null;
     let mn = null.transpose() * &mx * &null;
     if mn.nrows() == 0 {

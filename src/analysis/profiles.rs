@@ -57,7 +57,7 @@ pub fn fit_given_modal_coordinates(
                 let mut s = 0.0;
                 for &r in &partition.i {
                     for &q in &partition.i {
-                        s += basis.psi[(r, j)] * model.m[(r, q)] * delta[q];
+                        s += basis.psi[(r, j)] * model.m.get(r, q) * delta[q];
                     }
                 }
                 s

@@ -4,7 +4,7 @@ use faer::Mat;
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 
 use super::{AxisType, rotation::skew};
-use crate::{Error, Result, fem::FeModel, reduction::Basis};
+use crate::{Error, Result, fem::FeModel, linalg::MassMatrix, reduction::Basis};
 
 /// A rigid body whose frame sits at its mass centre.
 #[derive(Debug, Clone)]
@@ -76,22 +76,20 @@ impl FlexibleBody {
         }
         let n = model.node_count();
         let k = basis.size();
+        let not_lumped = || Error::InvalidOption {
+            scene: model.name.clone(),
+            reason: "the floating-frame body needs a lumped (diagonal, isotropic per node) mass \
+                     matrix"
+                .into(),
+        };
+        let MassMatrix::Lumped(diagonal) = &model.m else {
+            return Err(not_lumped());
+        };
         let mut masses = Vec::with_capacity(n);
         for j in 0..n {
-            let m = model.m[(3 * j, 3 * j)];
-            for a in 0..3 {
-                for b in 0..3 * n {
-                    let v = model.m[(3 * j + a, b)];
-                    let expected = if b == 3 * j + a { m } else { 0.0 };
-                    if (v - expected).abs() > 1e-12 * m.abs().max(1.0) {
-                        return Err(Error::InvalidOption {
-                            scene: model.name.clone(),
-                            reason: "the floating-frame body needs a lumped (diagonal, \
-                                     isotropic per node) mass matrix"
-                                .into(),
-                        });
-                    }
-                }
+            let m = diagonal[3 * j];
+            if (1..3).any(|a| (diagonal[3 * j + a] - m).abs() > 1e-12 * m.abs().max(1.0)) {
+                return Err(not_lumped());
             }
             masses.push(m);
         }

@@ -3,7 +3,7 @@
 use faer::{Mat, Side, prelude::Solve};
 
 use super::{FeModel, Triplets};
-use crate::linalg::select;
+use crate::linalg::{MassMatrix, SparseSymmetric, select};
 
 /// Parameters of the App. A beam. Defaults are the thesis values.
 #[derive(Debug, Clone, PartialEq)]
@@ -84,11 +84,11 @@ pub fn beam(p: &BeamParameters) -> FeModel {
     let k = Mat::from_fn(2 * nn, 2 * nn, |i, j| 0.5 * (k[(i, j)] + k[(j, i)]));
 
     let me = p.total_mass / ne as f64;
-    let mut m = Mat::zeros(2 * nn, 2 * nn);
+    let mut m = vec![0.0; 2 * nn];
     for e in 0..ne {
         for node in [e, e + 1] {
             for d in 0..2 {
-                m[(2 * node + d, 2 * node + d)] += 0.5 * me;
+                m[2 * node + d] += 0.5 * me;
             }
         }
     }
@@ -97,7 +97,8 @@ pub fn beam(p: &BeamParameters) -> FeModel {
         dim: 2,
         nodes: (0..nn).map(|i| [i as f64 * le, 0.0, 0.0]).collect(),
         edges: (0..ne).map(|e| [e, e + 1]).collect(),
-        k,
-        m,
+        // The condensed stiffness couples every translation (a dense 2nn × 2nn block).
+        k: SparseSymmetric::from_dense(k.as_ref()),
+        m: MassMatrix::Lumped(m),
     }
 }

@@ -4,7 +4,8 @@ use std::collections::BTreeSet;
 
 use faer::Mat;
 
-use super::{FeModel, Triplets, hex8_stiffness};
+use super::{FeModel, hex8_stiffness};
+use crate::linalg::{MassMatrix, SparseAssembly, SparsityPattern};
 
 /// Parameters of the App. B slab. Defaults are the thesis values.
 #[derive(Debug, Clone, PartialEq)]
@@ -71,17 +72,14 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
             }
         }
     }
-    let n_dof = 3 * nodes.len();
-    let mut kt = Triplets::new(n_dof);
-    let mut mass = vec![0.0; nodes.len()];
-    let brick_mass = p.total_mass / (nx * ny * nz) as f64;
-    let mut edges = BTreeSet::new();
+    // Connectivity first (the sparsity pattern), values second.
+    let mut elements = Vec::with_capacity(nx * ny * nz);
     for ix in 0..nx {
         for iy in 0..ny {
             for izb in 0..nz {
                 // Local order of hex8::LOCAL_NODES: bottom face (lower ζ) then top.
                 let (bot, top) = (izb + 1, izb);
-                let conn = [
+                elements.push([
                     index(ix, iy, bot),
                     index(ix + 1, iy, bot),
                     index(ix + 1, iy + 1, bot),
@@ -90,40 +88,62 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
                     index(ix + 1, iy, top),
                     index(ix + 1, iy + 1, top),
                     index(ix, iy + 1, top),
-                ];
-                let x = conn.map(|c| nodes[c]);
-                let ke = hex8_stiffness(&x, p.youngs_modulus, p.poisson_ratio);
-                let dofs: Vec<usize> = conn
-                    .iter()
-                    .flat_map(|&c| [3 * c, 3 * c + 1, 3 * c + 2])
-                    .collect();
-                kt.add_element(&dofs, &ke);
-                for &c in &conn {
-                    mass[c] += brick_mass / 8.0;
-                }
-                for (a, b) in [
-                    (0, 1),
-                    (1, 2),
-                    (2, 3),
-                    (3, 0),
-                    (4, 5),
-                    (5, 6),
-                    (6, 7),
-                    (7, 4),
-                    (0, 4),
-                    (1, 5),
-                    (2, 6),
-                    (3, 7),
-                ] {
-                    let (u, v) = (conn[a].min(conn[b]), conn[a].max(conn[b]));
-                    edges.insert([u, v]);
-                }
+                ]);
             }
         }
     }
-    let k = kt.to_dense();
-    let k = Mat::from_fn(n_dof, n_dof, |i, j| 0.5 * (k[(i, j)] + k[(j, i)]));
-    let m = Mat::from_fn(n_dof, n_dof, |i, j| if i == j { mass[i / 3] } else { 0.0 });
+    let pattern =
+        SparsityPattern::from_elements(nodes.len(), 3, elements.iter().map(|c| c.as_slice()));
+    let mut assembly = SparseAssembly::new(pattern);
+    let mut mass = vec![0.0; 3 * nodes.len()];
+    let brick_mass = p.total_mass / (nx * ny * nz) as f64;
+    let mut edges = BTreeSet::new();
+    // Bricks of one mesh are congruent translates: the element matrix is computed once per
+    // shape (node offsets from the first local node), not once per brick.
+    let mut cached: Option<([[f64; 3]; 8], Mat<f64>)> = None;
+    for conn in &elements {
+        let x = conn.map(|c| nodes[c]);
+        let shape = x.map(|q| [q[0] - x[0][0], q[1] - x[0][1], q[2] - x[0][2]]);
+        let same = cached.as_ref().is_some_and(|(s, _)| {
+            s.iter()
+                .flatten()
+                .zip(shape.iter().flatten())
+                .all(|(a, b)| (a - b).abs() <= 1e-12 * (1.0 + a.abs()))
+        });
+        if !same {
+            cached = Some((shape, hex8_stiffness(&x, p.youngs_modulus, p.poisson_ratio)));
+        }
+        let ke = &cached.as_ref().expect("element matrix computed above").1;
+        let dofs: Vec<usize> = conn
+            .iter()
+            .flat_map(|&c| [3 * c, 3 * c + 1, 3 * c + 2])
+            .collect();
+        assembly.add_element(&dofs, ke.as_ref());
+        for &c in conn {
+            for d in 0..3 {
+                mass[3 * c + d] += brick_mass / 8.0;
+            }
+        }
+        for (a, b) in [
+            (0, 1),
+            (1, 2),
+            (2, 3),
+            (3, 0),
+            (4, 5),
+            (5, 6),
+            (6, 7),
+            (7, 4),
+            (0, 4),
+            (1, 5),
+            (2, 6),
+            (3, 7),
+        ] {
+            let (u, v) = (conn[a].min(conn[b]), conn[a].max(conn[b]));
+            edges.insert([u, v]);
+        }
+    }
+    let k = assembly.finish();
+    let m = MassMatrix::Lumped(mass);
     FeModel {
         name: name.into(),
         dim: 3,

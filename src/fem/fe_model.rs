@@ -2,7 +2,10 @@
 
 use faer::Mat;
 
-use crate::{Error, Result};
+use crate::{
+    Error, Result,
+    linalg::{MassMatrix, SparseSymmetric},
+};
 
 /// A translational direction of a node (the thesis' ξ, η, ζ of the body frame).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -55,10 +58,10 @@ pub struct FeModel {
     pub nodes: Vec<[f64; 3]>,
     /// Wireframe edges as 0-based node index pairs.
     pub edges: Vec<[usize; 2]>,
-    /// Stiffness matrix, N/m.
-    pub k: Mat<f64>,
-    /// Mass matrix, kg.
-    pub m: Mat<f64>,
+    /// Stiffness matrix, N/m, sparse symmetric.
+    pub k: SparseSymmetric,
+    /// Mass matrix, kg: a diagonal when lumped.
+    pub m: MassMatrix,
 }
 
 impl FeModel {
@@ -119,6 +122,21 @@ impl FeModel {
         format!("node {node} {}", dir.name())
     }
 
+    /// The stiffness as a dense matrix (for the small bodies' dense path).
+    pub fn k_dense(&self) -> Mat<f64> {
+        self.k.to_dense()
+    }
+
+    /// The mass as a dense matrix (for the small bodies' dense path).
+    pub fn m_dense(&self) -> Mat<f64> {
+        self.m.to_dense()
+    }
+
+    /// Number of stored stiffness entries (both triangles).
+    pub fn stiffness_nnz(&self) -> usize {
+        self.k.nnz()
+    }
+
     /// Total mass (kg) as seen by a rigid translation along x.
     pub fn total_mass(&self) -> f64 {
         let n = self.dof_count();
@@ -126,7 +144,8 @@ impl FeModel {
         for i in 0..self.node_count() {
             t[(i * self.dim, 0)] = 1.0;
         }
-        (t.transpose() * &self.m * &t)[(0, 0)]
+        let mt = self.m.mul(t.as_ref());
+        (t.transpose() * &mt)[(0, 0)]
     }
 
     /// Mass centre (m) of the lumped masses (the diagonal of M on each node's first DOF).
@@ -134,7 +153,7 @@ impl FeModel {
         let mut c = [0.0; 3];
         let mut m = 0.0;
         for (j, p) in self.nodes.iter().enumerate() {
-            let mj = self.m[(self.dim * j, self.dim * j)];
+            let mj = self.m.get(self.dim * j, self.dim * j);
             for (ca, pa) in c.iter_mut().zip(p) {
                 *ca += mj * pa;
             }

@@ -1,10 +1,14 @@
-//! Thin wrappers over faer for the dense problems of these models (at most a few hundred DOF):
-//! generalised symmetric eigenproblems, checked solves, the Lyapunov equation.
+//! Linear algebra for small and large bodies behind one interface: dense kernels over faer for
+//! the thesis' models (at most a few hundred DOF), sparse symmetric matrices, sparse Cholesky
+//! and a partial generalised eigensolver for refined meshes of up to ~150 000 DOF.
 
 mod dense;
 mod generalized_eigen;
 mod lyapunov;
-mod stiffness_solve;
+mod mass_matrix;
+mod partial_eigen;
+mod sparse_symmetric;
+mod symmetric_factor;
 
 pub use dense::{
     frobenius, identity, max_abs, max_abs_diff, principal_angles, select, select_cols, select_rows,
@@ -12,4 +16,9 @@ pub use dense::{
 };
 pub use generalized_eigen::{GeneralizedEigen, fix_sign, generalized_eigen, hz_from_eigenvalue};
 pub use lyapunov::solve_lyapunov;
-pub use stiffness_solve::InteriorStiffness;
+pub use mass_matrix::MassMatrix;
+pub use partial_eigen::{
+    PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,
+};
+pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
+pub use symmetric_factor::{SymbolicFactor, SymmetricFactor};

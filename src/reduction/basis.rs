@@ -2,7 +2,7 @@
 
 use faer::{Mat, MatRef};
 
-use super::Method;
+use super::{Method, ReductionStatistics};
 use crate::fem::FeModel;
 
 /// What a column of Ψ is.
@@ -46,6 +46,8 @@ pub struct Basis {
     pub psi: Mat<f64>,
     /// Column descriptions.
     pub columns: Vec<Column>,
+    /// Wall time and sizes of the phases that built it.
+    pub statistics: ReductionStatistics,
 }
 
 impl Basis {
@@ -54,14 +56,14 @@ impl Basis {
         self.columns.len()
     }
 
-    /// $\Psi^T K \Psi$.
+    /// $\Psi^T K \Psi$ (one sparse product $K\Psi$, then a small dense one).
     pub fn reduced_stiffness(&self, model: &FeModel) -> Mat<f64> {
-        congruence(self.psi.as_ref(), model.k.as_ref())
+        symmetric_product(self.psi.as_ref(), model.k.mul(self.psi.as_ref()).as_ref())
     }
 
     /// $\Psi^T M \Psi$.
     pub fn reduced_mass(&self, model: &FeModel) -> Mat<f64> {
-        congruence(self.psi.as_ref(), model.m.as_ref())
+        symmetric_product(self.psi.as_ref(), model.m.mul(self.psi.as_ref()).as_ref())
     }
 
     /// Indices of the columns of a kind (by discriminant).
@@ -77,9 +79,9 @@ impl Basis {
     }
 }
 
-/// $\Psi^T A \Psi$, symmetrised to remove round-off asymmetry.
-pub fn congruence(psi: MatRef<'_, f64>, a: MatRef<'_, f64>) -> Mat<f64> {
-    let r = psi.transpose() * a * psi;
+/// $\Psi^T (A\Psi)$ from a precomputed $A\Psi$, symmetrised.
+fn symmetric_product(psi: MatRef<'_, f64>, a_psi: MatRef<'_, f64>) -> Mat<f64> {
+    let r = psi.transpose() * a_psi;
     let n = r.nrows();
     Mat::from_fn(n, n, |i, j| 0.5 * (r[(i, j)] + r[(j, i)]))
 }

@@ -3,24 +3,35 @@
 use faer::Mat;
 
 use super::{
-    Basis, ColumnKind, Method, ModeSelection,
-    partition::{
-        Partition, boundary_columns, constraint_modes, fixed_interface_modes, normal_columns,
-    },
+    Basis, ColumnKind, Method, ModeSelection, SolverPath,
+    partition::{InteriorProblem, boundary_columns, normal_columns},
 };
 use crate::{Result, fem::FeModel};
 
 /// $\Psi_{CB} = [I\ 0;\ \Psi_s\ \Psi_n^k]$ (Eq. 6.19): every constraint mode plus the kept
 /// fixed-interface normal modes. Needs $K_{ii}$ invertible (at least six properly chosen
 /// boundary DOF in 3-D, three in 2-D).
+///
+/// On the sparse path nothing is dense in n: one sparse factorisation of $K_{ii}$ gives the
+/// constraint modes (the boundary DOF as right-hand sides) and, through shift-invert Lanczos,
+/// only the kept fixed-interface modes.
 pub fn craig_bampton(model: &FeModel, boundary: &[usize], modes: ModeSelection) -> Result<Basis> {
-    let p = Partition::new(model, boundary)?;
-    let psi_s = constraint_modes(model, &p)?;
-    let fi = fixed_interface_modes(model, &p)?;
-    let hz = fi.hz();
-    let kept = modes.count(&hz)?;
+    craig_bampton_on(model, boundary, modes, SolverPath::Auto)
+}
+
+/// [`craig_bampton`] on a chosen linear-algebra path.
+pub fn craig_bampton_on(
+    model: &FeModel,
+    boundary: &[usize],
+    modes: ModeSelection,
+    path: SolverPath,
+) -> Result<Basis> {
+    let mut problem = InteriorProblem::new(model, boundary, path)?;
+    let psi_s = problem.constraint_modes()?;
+    let fi = problem.kept_modes(modes)?;
+    let kept = fi.values.len();
+    let p = &problem.partition;
     let nb = p.b.len();
-    let top = Mat::from_fn(nb, nb + kept, |r, c| if r == c { 1.0 } else { 0.0 });
     let bottom = Mat::from_fn(p.i.len(), nb + kept, |r, c| {
         if c < nb {
             psi_s[(r, c)]
@@ -28,11 +39,12 @@ pub fn craig_bampton(model: &FeModel, boundary: &[usize], modes: ModeSelection) 
             fi.vectors[(r, c - nb)]
         }
     });
-    let mut columns = boundary_columns(model, &p, ColumnKind::Constraint, "constraint");
-    columns.extend(normal_columns(&hz[..kept]));
+    let mut columns = boundary_columns(model, p, ColumnKind::Constraint, "constraint");
+    columns.extend(normal_columns(&fi.hz()));
     Ok(Basis {
         method: Method::CraigBampton,
-        psi: p.assemble(top.as_ref(), bottom.as_ref()),
+        psi: p.assemble(p.unit_top(kept).as_ref(), bottom.as_ref()),
         columns,
+        statistics: problem.statistics,
     })
 }

@@ -135,24 +135,39 @@ impl InverseSym for faer::linalg::solvers::Llt<f64> {
     }
 }
 
+/// Largest body (DOF) Eitelberg's method takes: a 2n state matrix, complete
+/// eigendecompositions of it and a Lyapunov solve, ~(2n)³ flops and 16·(2n)² bytes each.
+pub const EITELBERG_DOF_LIMIT: usize = 1500;
+
 /// Eitelberg's method on a structure (§6.6.2): state $x = [\delta; \dot\delta]$,
 /// $A = [0\ I; -M^{-1}K\ 0]$, $B = [0; (M^{-1})_{,b}]$, $C = R$ selecting $\delta_b$ and
 /// $\dot\delta_b$ of the boundary nodes.
+///
+/// Dense only: the state matrix is 2n × 2n and its Lyapunov equation is solved through a
+/// complete eigendecomposition, so bodies above [`EITELBERG_DOF_LIMIT`] DOF are
+/// [`Error::TooLarge`].
 pub fn eitelberg(
     model: &FeModel,
     boundary: &[usize],
     params: &EitelbergParameters,
 ) -> Result<EitelbergReduction> {
-    let part = Partition::new(model, boundary)?;
     let n = model.dof_count();
+    if n > EITELBERG_DOF_LIMIT {
+        return Err(Error::TooLarge {
+            method: "Eitelberg's method (dense 2n state matrix)".into(),
+            dofs: n,
+            limit: EITELBERG_DOF_LIMIT,
+        });
+    }
+    let part = Partition::new(model, boundary)?;
     let nb = part.b.len();
     let m_llt = model
-        .m
+        .m_dense()
         .llt(Side::Lower)
         .map_err(|_| Error::NotPositiveDefinite {
             matrix: "mass".into(),
         })?;
-    let minv_k_full = m_llt.solve(&model.k);
+    let minv_k_full = m_llt.solve(model.k_dense());
     let minv = m_llt.inverse_sym();
     let mut a = Mat::<f64>::zeros(2 * n, 2 * n);
     for i in 0..n {
@@ -227,6 +242,7 @@ pub fn eitelberg(
             method: Method::Eitelberg,
             psi,
             columns: boundary_columns(model, &part, ColumnKind::EitelbergBoundary, "boundary"),
+            statistics: Default::default(),
         },
     })
 }

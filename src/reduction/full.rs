@@ -16,5 +16,6 @@ pub fn no_reduction(model: &FeModel) -> Basis {
                 label: model.dof_label(d),
             })
             .collect(),
+        statistics: Default::default(),
     }
 }

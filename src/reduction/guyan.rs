@@ -1,20 +1,27 @@
 //! Guyan reduction / static condensation (§6.2).
 
 use super::{
-    Basis, ColumnKind, Method,
-    partition::{Partition, boundary_columns, constraint_modes},
+    Basis, ColumnKind, Method, SolverPath,
+    partition::{InteriorProblem, boundary_columns},
 };
-use crate::{Result, fem::FeModel, linalg::identity};
+use crate::{Result, fem::FeModel};
 
 /// $\Psi = [I;\ \Psi_s]$ with $\Psi_s = -K_{ii}^{-1}K_{ib}$ (Eq. 6.5): the masters' constraint
 /// modes. Needs $K_{ii}$ invertible.
 pub fn guyan(model: &FeModel, masters: &[usize]) -> Result<Basis> {
-    let p = Partition::new(model, masters)?;
-    let psi_s = constraint_modes(model, &p)?;
-    let psi = p.assemble(identity(p.b.len()).as_ref(), psi_s.as_ref());
+    guyan_on(model, masters, SolverPath::Auto)
+}
+
+/// [`guyan`] on a chosen linear-algebra path.
+pub fn guyan_on(model: &FeModel, masters: &[usize], path: SolverPath) -> Result<Basis> {
+    let mut problem = InteriorProblem::new(model, masters, path)?;
+    let psi_s = problem.constraint_modes()?;
+    let p = &problem.partition;
+    let psi = p.assemble(p.unit_top(0).as_ref(), psi_s.as_ref());
     Ok(Basis {
         method: Method::Guyan,
         psi,
-        columns: boundary_columns(model, &p, ColumnKind::Constraint, "constraint"),
+        columns: boundary_columns(model, p, ColumnKind::Constraint, "constraint"),
+        statistics: problem.statistics,
     })
 }

@@ -1,7 +1,8 @@
 //! Method ids, reduction parameters and the one entry point [`reduce`].
 
 use super::{
-    Basis, craig_bampton, eitelberg, guyan, modal_truncation, mode_condensation, no_reduction,
+    Basis, craig_bampton, eitelberg::eitelberg, guyan, modal_truncation, mode_condensation,
+    no_reduction,
 };
 use crate::{Error, Result, fem::FeModel};
 
@@ -97,6 +98,19 @@ impl ModeSelection {
     }
 }
 
+/// Which linear algebra a reduction runs on.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub enum SolverPath {
+    /// Dense for small interiors, sparse above
+    /// [`DENSE_INTERIOR_LIMIT`](super::DENSE_INTERIOR_LIMIT) interior DOF.
+    #[default]
+    Auto,
+    /// Dense factorisations and complete eigenproblems.
+    Dense,
+    /// Sparse Cholesky and the partial eigensolver.
+    Sparse,
+}
+
 /// Settings shared by the reduction methods.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReductionParameters {
@@ -104,16 +118,34 @@ pub struct ReductionParameters {
     pub boundary_nodes: Vec<usize>,
     /// Kept fixed-interface normal modes (MT, CB, MC).
     pub modes: ModeSelection,
+    /// Dense or sparse linear algebra.
+    pub solver: SolverPath,
+}
+
+impl Default for ReductionParameters {
+    fn default() -> Self {
+        Self {
+            boundary_nodes: Vec::new(),
+            modes: ModeSelection::Count(6),
+            solver: SolverPath::Auto,
+        }
+    }
 }
 
 /// Builds the basis of `method` for `model`.
 pub fn reduce(model: &FeModel, method: Method, p: &ReductionParameters) -> Result<Basis> {
     match method {
         Method::NoReduction => Ok(no_reduction(model)),
-        Method::Guyan => guyan(model, &p.boundary_nodes),
-        Method::ModalTruncation => modal_truncation(model, &p.boundary_nodes, p.modes),
-        Method::CraigBampton => craig_bampton(model, &p.boundary_nodes, p.modes),
-        Method::ModeCondensation => mode_condensation(model, &p.boundary_nodes, p.modes),
+        Method::Guyan => guyan::guyan_on(model, &p.boundary_nodes, p.solver),
+        Method::ModalTruncation => {
+            modal_truncation::modal_truncation_on(model, &p.boundary_nodes, p.modes, p.solver)
+        }
+        Method::CraigBampton => {
+            craig_bampton::craig_bampton_on(model, &p.boundary_nodes, p.modes, p.solver)
+        }
+        Method::ModeCondensation => {
+            mode_condensation::mode_condensation_on(model, &p.boundary_nodes, p.modes, p.solver)
+        }
         Method::Eitelberg => Ok(eitelberg(model, &p.boundary_nodes, &Default::default())?.basis),
     }
 }

@@ -1,4 +1,5 @@
-//! Reduction methods: each builds a transformation $\delta = \Psi z$ with labelled columns.
+//! Reduction methods: each builds a transformation $\delta = \Psi z$ with labelled columns, on
+//! dense linear algebra for small bodies and sparse for refined meshes.
 
 mod basis;
 mod craig_bampton;
@@ -12,14 +13,21 @@ mod nodal_fixed;
 mod partition;
 
 pub use basis::{Basis, Column, ColumnKind};
-pub use craig_bampton::craig_bampton;
+pub use craig_bampton::{craig_bampton, craig_bampton_on};
 pub use eitelberg::{
-    EitelbergParameters, EitelbergReduction, StateSpaceReduction, eitelberg, eitelberg_state_space,
+    EITELBERG_DOF_LIMIT, EitelbergParameters, EitelbergReduction, StateSpaceReduction, eitelberg,
+    eitelberg_state_space,
 };
 pub use full::no_reduction;
-pub use guyan::guyan;
-pub use method::{Method, ModeSelection, ReductionParameters, reduce};
-pub use modal_truncation::modal_truncation;
-pub use mode_condensation::mode_condensation;
+pub use guyan::{guyan, guyan_on};
+pub use method::{Method, ModeSelection, ReductionParameters, SolverPath, reduce};
+pub use modal_truncation::{modal_truncation, modal_truncation_on};
+pub use mode_condensation::{
+    MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, mode_condensation, mode_condensation_on,
+    mode_condensation_route,
+};
 pub use nodal_fixed::{NodalFixedAxes, TableConfiguration};
-pub use partition::{Partition, constraint_modes, fixed_interface_modes};
+pub use partition::{
+    COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, InteriorProblem, Partition, ReductionStatistics,
+    constraint_modes, fixed_interface_modes,
+};

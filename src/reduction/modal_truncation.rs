@@ -3,8 +3,8 @@
 use faer::Mat;
 
 use super::{
-    Basis, ColumnKind, Method, ModeSelection,
-    partition::{Partition, boundary_columns, fixed_interface_modes, normal_columns},
+    Basis, ColumnKind, Method, ModeSelection, SolverPath,
+    partition::{InteriorProblem, boundary_columns, normal_columns},
 };
 use crate::{Result, fem::FeModel};
 
@@ -16,20 +16,30 @@ pub fn modal_truncation(
     boundary: &[usize],
     modes: ModeSelection,
 ) -> Result<Basis> {
-    let p = Partition::new(model, boundary)?;
-    let fi = fixed_interface_modes(model, &p)?;
-    let hz = fi.hz();
-    let kept = modes.count(&hz)?;
+    modal_truncation_on(model, boundary, modes, SolverPath::Auto)
+}
+
+/// [`modal_truncation`] on a chosen linear-algebra path.
+pub fn modal_truncation_on(
+    model: &FeModel,
+    boundary: &[usize],
+    modes: ModeSelection,
+    path: SolverPath,
+) -> Result<Basis> {
+    let mut problem = InteriorProblem::new(model, boundary, path)?;
+    let fi = problem.kept_modes(modes)?;
+    let kept = fi.values.len();
+    let p = &problem.partition;
     let nb = p.b.len();
-    let top = Mat::from_fn(nb, nb + kept, |r, c| if r == c { 1.0 } else { 0.0 });
     let bottom = Mat::from_fn(p.i.len(), nb + kept, |r, c| {
         if c < nb { 0.0 } else { fi.vectors[(r, c - nb)] }
     });
-    let mut columns = boundary_columns(model, &p, ColumnKind::BoundaryMovement, "boundary");
-    columns.extend(normal_columns(&hz[..kept]));
+    let mut columns = boundary_columns(model, p, ColumnKind::BoundaryMovement, "boundary");
+    columns.extend(normal_columns(&fi.hz()));
     Ok(Basis {
         method: Method::ModalTruncation,
-        psi: p.assemble(top.as_ref(), bottom.as_ref()),
+        psi: p.assemble(p.unit_top(kept).as_ref(), bottom.as_ref()),
         columns,
+        statistics: problem.statistics,
     })
 }

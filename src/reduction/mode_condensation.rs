@@ -3,61 +3,133 @@
 use faer::Mat;
 
 use super::{
-    Basis, ColumnKind, Method, ModeSelection,
-    partition::{Partition, Set, boundary_columns, fixed_interface_modes, normal_columns},
+    Basis, ColumnKind, Method, ModeSelection, SolverPath,
+    partition::{COMPLETE_EIGEN_LIMIT, InteriorProblem, boundary_columns, normal_columns},
 };
-use crate::{Error, Result, fem::FeModel};
+use crate::{Result, fem::FeModel};
+
+/// Interior DOF up to which mode condensation takes the thesis' route through the complete
+/// interior eigenproblem, so its n³ cost stays visible where it is affordable.
+pub const MC_COMPLETE_ROUTE_LIMIT: usize = COMPLETE_EIGEN_LIMIT;
+
+/// How the deleted modes' condensation $\Psi_m$ is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModeCondensationRoute {
+    /// §6.5 as printed: every interior mode, $\Psi_m = -\Psi_n^d \bar K_n^{d\,-1}
+    /// \Psi_n^{dT} K_{ib}$ (Eq. 6.29). Cost ~ n³.
+    Complete,
+    /// From the kept modes alone: with $K_{ii}^{-1} = \Phi_k\Lambda_k^{-1}\Phi_k^T +
+    /// \Phi_d\Lambda_d^{-1}\Phi_d^T$, $\Psi_m = \Psi_s + \Phi_k\Lambda_k^{-1}\Phi_k^T K_{ib}$
+    /// (the same matrix, computed from one factorisation and the partial eigensolver).
+    KeptModes,
+}
+
+impl ModeCondensationRoute {
+    /// The route for an interior of `interior_dofs` DOF.
+    pub fn for_interior(interior_dofs: usize) -> Self {
+        if interior_dofs <= MC_COMPLETE_ROUTE_LIMIT {
+            Self::Complete
+        } else {
+            Self::KeptModes
+        }
+    }
+}
 
 /// $\Psi_{MC} = [I\ 0;\ \Psi_m\ \Psi_n^k]$ (Eq. 6.30) with
 /// $\Psi_m = -\Psi_n^d \bar K_n^{d\,-1} \Psi_n^{dT} K_{ib}$ (Eq. 6.29): the deleted modes are
-/// condensed onto the boundary. Needs the complete interior eigenproblem (cost ~ n³), and every
-/// deleted mode must be elastic ($\bar K_n^d$ invertible).
+/// condensed onto the boundary. Every deleted mode must be elastic ($\bar K_n^d$ invertible,
+/// i.e. $K_{ii}$ invertible).
 pub fn mode_condensation(
     model: &FeModel,
     boundary: &[usize],
     modes: ModeSelection,
 ) -> Result<Basis> {
-    let p = Partition::new(model, boundary)?;
-    let fi = fixed_interface_modes(model, &p)?;
-    let hz = fi.hz();
-    let kept = modes.count(&hz)?;
-    let ni = p.i.len();
-    let nb = p.b.len();
-    let k_ib = p.block(model.k.as_ref(), Set::I, Set::B);
-    // Θ = -K̄_n^{d -1} Ψ_n^{dT} K_ib, row by row (K̄_n^d is diagonal).
-    let psi_d = fi.vectors.subcols(kept, ni - kept);
-    let mut theta = psi_d.transpose() * &k_ib;
-    // A zero fixed-interface eigenvalue means K_ii is singular: the boundary leaves a rigid
-    // motion free. Refused even when that mode would be kept, as Craig-Bampton refuses it.
-    let largest = fi.values.iter().fold(0.0f64, |a, &l| a.max(l.abs()));
-    let deficiency = fi.values.iter().filter(|&&l| l <= 1e-10 * largest).count();
-    if deficiency > 0 {
-        return Err(Error::SingularInterior {
-            boundary_nodes: boundary.to_vec(),
-            rank_deficiency: deficiency,
-            ratio: fi.values[0] / largest,
-            needed: if model.dim == 3 { 6 } else { 3 },
-        });
-    }
-    for (r, &lambda) in fi.values[kept..].iter().enumerate() {
-        for c in 0..nb {
-            theta[(r, c)] *= -1.0 / lambda;
+    mode_condensation_on(model, boundary, modes, SolverPath::Auto)
+}
+
+/// [`mode_condensation`] on a chosen linear-algebra path, the route chosen by size.
+pub fn mode_condensation_on(
+    model: &FeModel,
+    boundary: &[usize],
+    modes: ModeSelection,
+    path: SolverPath,
+) -> Result<Basis> {
+    let interior = model.dof_count() - model.dofs_of_nodes(boundary)?.len();
+    mode_condensation_route(
+        model,
+        boundary,
+        modes,
+        path,
+        ModeCondensationRoute::for_interior(interior),
+    )
+}
+
+/// [`mode_condensation`] by a chosen route.
+pub fn mode_condensation_route(
+    model: &FeModel,
+    boundary: &[usize],
+    modes: ModeSelection,
+    path: SolverPath,
+    route: ModeCondensationRoute,
+) -> Result<Basis> {
+    let mut problem = InteriorProblem::new(model, boundary, path)?;
+    // A zero fixed-interface eigenvalue would make K̄_n^d singular: refused even when that
+    // mode would be kept, as Craig-Bampton refuses it.
+    problem.check_restraint()?;
+    let nb = problem.partition.b.len();
+    let (psi_m, kept_vectors, kept_values) = match route {
+        ModeCondensationRoute::Complete => {
+            let fi = problem.complete_modes("mode condensation")?;
+            let kept = modes.count(&fi.hz())?;
+            let ni = problem.interior_dofs();
+            // Θ = -K̄_n^{d -1} Ψ_n^{dT} K_ib, row by row (K̄_n^d is diagonal).
+            let psi_d = fi.vectors.subcols(kept, ni - kept);
+            let mut theta = psi_d.transpose() * problem.k_ib();
+            for (r, &lambda) in fi.values[kept..].iter().enumerate() {
+                for c in 0..nb {
+                    theta[(r, c)] *= -1.0 / lambda;
+                }
+            }
+            let psi_m = psi_d * &theta;
+            (
+                psi_m,
+                fi.vectors.subcols(0, kept).to_owned(),
+                fi.values[..kept].to_vec(),
+            )
         }
-    }
-    let psi_m = psi_d * &theta;
-    let top = Mat::from_fn(nb, nb + kept, |r, c| if r == c { 1.0 } else { 0.0 });
-    let bottom = Mat::from_fn(ni, nb + kept, |r, c| {
+        ModeCondensationRoute::KeptModes => {
+            let psi_s = problem.constraint_modes()?;
+            let fi = problem.kept_modes(modes)?;
+            // Ψ_m = Ψ_s + Φ_k Λ_k⁻¹ Φ_kᵀ K_ib
+            let mut coeffs = fi.vectors.transpose() * problem.k_ib();
+            for (r, &lambda) in fi.values.iter().enumerate() {
+                for c in 0..nb {
+                    coeffs[(r, c)] /= lambda;
+                }
+            }
+            let psi_m = &psi_s + &fi.vectors * &coeffs;
+            (psi_m, fi.vectors, fi.values)
+        }
+    };
+    let kept = kept_values.len();
+    let p = &problem.partition;
+    let bottom = Mat::from_fn(p.i.len(), nb + kept, |r, c| {
         if c < nb {
             psi_m[(r, c)]
         } else {
-            fi.vectors[(r, c - nb)]
+            kept_vectors[(r, c - nb)]
         }
     });
-    let mut columns = boundary_columns(model, &p, ColumnKind::CondensedBoundary, "boundary");
-    columns.extend(normal_columns(&hz[..kept]));
+    let hz: Vec<f64> = kept_values
+        .iter()
+        .map(|&l| crate::linalg::hz_from_eigenvalue(l))
+        .collect();
+    let mut columns = boundary_columns(model, p, ColumnKind::CondensedBoundary, "boundary");
+    columns.extend(normal_columns(&hz));
     Ok(Basis {
         method: Method::ModeCondensation,
-        psi: p.assemble(top.as_ref(), bottom.as_ref()),
+        psi: p.assemble(p.unit_top(kept).as_ref(), bottom.as_ref()),
         columns,
+        statistics: problem.statistics,
     })
 }

@@ -138,6 +138,7 @@ impl NodalFixedAxes {
             method: basis.method,
             psi,
             columns: keep.iter().map(|&j| basis.columns[j].clone()).collect(),
+            statistics: basis.statistics,
         })
     }
 }

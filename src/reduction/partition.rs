@@ -1,11 +1,18 @@
-//! The boundary/interior split of Eq. (6.1) and the modes every CMS method builds on.
+//! The boundary/interior split of Eq. (6.1) and the modes every CMS method builds on, on the
+//! dense path (small bodies) or the sparse one (refined meshes).
+
+use std::time::Instant;
 
 use faer::{Mat, MatRef};
 
+use super::{ModeSelection, SolverPath};
 use crate::{
     Error, Result,
     fem::FeModel,
-    linalg::{GeneralizedEigen, InteriorStiffness, generalized_eigen, select},
+    linalg::{
+        GeneralizedEigen, MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor,
+        SymmetricFactor, generalized_eigen, lowest_modes, negative_shift,
+    },
 };
 
 /// DOF sets b (boundary) and i (interior) of Eq. (6.1).
@@ -31,7 +38,13 @@ impl Partition {
             });
         }
         let b = model.dofs_of_nodes(boundary_nodes)?;
-        let i: Vec<usize> = (0..model.dof_count()).filter(|d| !b.contains(d)).collect();
+        let mut is_boundary = vec![false; model.dof_count()];
+        for &d in &b {
+            is_boundary[d] = true;
+        }
+        let i: Vec<usize> = (0..model.dof_count())
+            .filter(|&d| !is_boundary[d])
+            .collect();
         if i.is_empty() {
             return Err(Error::InvalidBoundary {
                 nodes: boundary_nodes.to_vec(),
@@ -46,22 +59,11 @@ impl Partition {
         })
     }
 
-    /// `a[rows, cols]` for two of the sets.
-    pub fn block(&self, a: MatRef<'_, f64>, rows: Set, cols: Set) -> Mat<f64> {
-        select(a, self.set(rows), self.set(cols))
-    }
-
-    fn set(&self, s: Set) -> &[usize] {
-        match s {
-            Set::B => &self.b,
-            Set::I => &self.i,
-        }
-    }
-
     /// Places a boundary block (rows of b) and an interior block (rows of i) into a Ψ with
     /// the body's DOF order.
     pub fn assemble(&self, top: MatRef<'_, f64>, bottom: MatRef<'_, f64>) -> Mat<f64> {
         assert_eq!(top.ncols(), bottom.ncols());
+        assert_eq!((top.nrows(), bottom.nrows()), (self.b.len(), self.i.len()));
         let n = self.b.len() + self.i.len();
         let mut psi = Mat::zeros(n, top.ncols());
         for c in 0..top.ncols() {
@@ -74,31 +76,349 @@ impl Partition {
         }
         psi
     }
+
+    /// The unit boundary block $[I]$ of Ψ followed by `extra` zero columns.
+    pub fn unit_top(&self, extra: usize) -> Mat<f64> {
+        let nb = self.b.len();
+        Mat::from_fn(nb, nb + extra, |r, c| if r == c { 1.0 } else { 0.0 })
+    }
 }
 
-/// A DOF set of the partition.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Set {
-    /// Boundary.
-    B,
-    /// Interior.
-    I,
+/// Wall time (s) and sizes of the phases of one reduction.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ReductionStatistics {
+    /// Whether the sparse path ran.
+    pub sparse: bool,
+    /// Symbolic analysis and numeric factorisation of $K_{ii}$ (or $K_{ii} - \sigma M_{ii}$), s.
+    pub factorization_s: f64,
+    /// Constraint modes $-K_{ii}^{-1}K_{ib}$ (Eq. 6.3), s.
+    pub constraint_modes_s: f64,
+    /// Fixed-interface eigenproblem (partial or complete), s.
+    pub eigen_s: f64,
+    /// Entries of the Cholesky factor (0 when none was formed).
+    pub factor_nnz: usize,
+    /// Block solves of the partial eigensolver.
+    pub eigen_block_solves: usize,
+    /// Largest residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ of the partial
+    /// eigensolver's pairs (0 on the dense path).
+    pub eigen_max_residual: f64,
 }
 
-/// Fixed-interface (fixed-constraint) normal modes, $[\Psi_n, \Lambda_n] =
-/// \mathrm{eig}(K_{ii}, M_{ii})$ (Eq. 6.11), mass-normalised, ascending.
-pub fn fixed_interface_modes(model: &FeModel, p: &Partition) -> Result<GeneralizedEigen> {
-    let k_ii = p.block(model.k.as_ref(), Set::I, Set::I);
-    let m_ii = p.block(model.m.as_ref(), Set::I, Set::I);
-    generalized_eigen(k_ii.as_ref(), m_ii.as_ref(), "fixed-interface")
+/// Interior DOF up to which [`SolverPath::Auto`] stays dense: there a complete dense
+/// eigenproblem costs milliseconds and is the fastest route.
+pub const DENSE_INTERIOR_LIMIT: usize = 600;
+
+/// Interior DOF up to which a complete dense eigenproblem is attempted at all (mode
+/// condensation's thesis route, modal truncation with a frequency cut-off): ~n³/3 flops and
+/// 8n² bytes, about a minute and 130 MB at this size.
+pub const COMPLETE_EIGEN_LIMIT: usize = 4000;
+
+/// The interior problem of one boundary set: $K_{ii}$, $M_{ii}$, $K_{ib}$ and, once needed,
+/// the factor of $K_{ii}$ shared by the constraint modes and the eigensolver.
+pub struct InteriorProblem<'a> {
+    model: &'a FeModel,
+    /// The split.
+    pub partition: Partition,
+    sparse: bool,
+    k_ii: SparseSymmetric,
+    m_ii: MassMatrix,
+    k_ib: Mat<f64>,
+    factor: Option<(SymmetricFactor, f64)>,
+    free_motions: Option<Vec<String>>,
+    /// Phase timings and sizes so far.
+    pub statistics: ReductionStatistics,
 }
 
-/// Static constraint modes' interior part $\Psi_s = -K_{ii}^{-1}K_{ib}$ (Eq. 6.3).
-pub fn constraint_modes(model: &FeModel, p: &Partition) -> Result<Mat<f64>> {
-    let k_ii = p.block(model.k.as_ref(), Set::I, Set::I);
-    let k_ib = p.block(model.k.as_ref(), Set::I, Set::B);
-    let f = InteriorStiffness::factor(k_ii.as_ref(), &p.boundary_nodes, p.dim)?;
-    Ok(-f.solve(k_ib.as_ref()))
+impl<'a> InteriorProblem<'a> {
+    /// Splits `model` by `boundary_nodes` and extracts the blocks; `path` chooses dense or
+    /// sparse linear algebra.
+    pub fn new(model: &'a FeModel, boundary_nodes: &[usize], path: SolverPath) -> Result<Self> {
+        let partition = Partition::new(model, boundary_nodes)?;
+        let sparse = match path {
+            SolverPath::Dense => false,
+            SolverPath::Sparse => true,
+            SolverPath::Auto => partition.i.len() > DENSE_INTERIOR_LIMIT,
+        };
+        let k_ii = model.k.principal_block(&partition.i);
+        let m_ii = model.m.principal_block(&partition.i);
+        let k_ib = model.k.block(&partition.i, &partition.b).to_dense();
+        Ok(Self {
+            model,
+            partition,
+            sparse,
+            k_ii,
+            m_ii,
+            k_ib,
+            factor: None,
+            free_motions: None,
+            statistics: ReductionStatistics {
+                sparse,
+                ..Default::default()
+            },
+        })
+    }
+
+    /// Whether the sparse path runs.
+    pub fn is_sparse(&self) -> bool {
+        self.sparse
+    }
+
+    /// Interior DOF.
+    pub fn interior_dofs(&self) -> usize {
+        self.partition.i.len()
+    }
+
+    /// $K_{ib}$, dense (interior × boundary).
+    pub fn k_ib(&self) -> MatRef<'_, f64> {
+        self.k_ib.as_ref()
+    }
+
+    /// Whether the boundary restrains every rigid-body motion, i.e. $K_{ii}$ is invertible;
+    /// otherwise [`Error::SingularInterior`] naming the free motions. Decided from the rigid
+    /// motions restricted to the boundary DOF (rank of a b × 6 matrix), no eigenproblem.
+    pub fn check_restraint(&mut self) -> Result<()> {
+        if self.free_motions.is_none() {
+            self.free_motions = Some(free_rigid_motions(self.model, &self.partition)?);
+        }
+        let free = self.free_motions.as_ref().expect("set above");
+        if free.is_empty() {
+            return Ok(());
+        }
+        Err(Error::SingularInterior {
+            boundary_nodes: self.partition.boundary_nodes.clone(),
+            rank_deficiency: free.len(),
+            free_motions: free.join("; "),
+            needed: if self.model.dim == 3 { 6 } else { 3 },
+        })
+    }
+
+    /// The factor of $K_{ii} - \sigma M_{ii}$: $\sigma = 0$ when the boundary restrains the
+    /// body, a small negative shift otherwise (modal truncation does not need $K_{ii}$
+    /// invertible, only its eigenvectors).
+    fn factor(&mut self) -> Result<&(SymmetricFactor, f64)> {
+        if self.factor.is_none() {
+            let started = Instant::now();
+            let sigma = if self.check_restraint().is_ok() {
+                0.0
+            } else {
+                negative_shift(&self.k_ii, &self.m_ii)
+            };
+            let shifted = if sigma == 0.0 {
+                None
+            } else {
+                Some(self.k_ii.shifted(&self.m_ii, sigma))
+            };
+            let a = shifted.as_ref().unwrap_or(&self.k_ii);
+            let f = if self.sparse {
+                let symbolic = SymbolicFactor::analyse(a.as_faer())?;
+                SymmetricFactor::sparse(a.as_faer(), &symbolic, "interior stiffness K_ii")?
+            } else {
+                SymmetricFactor::dense(a.to_dense().as_ref(), "interior stiffness K_ii")?
+            };
+            self.statistics.factor_nnz = f.factor_nnz();
+            self.statistics.factorization_s += started.elapsed().as_secs_f64();
+            self.factor = Some((f, sigma));
+        }
+        Ok(self.factor.as_ref().expect("set above"))
+    }
+
+    /// Static constraint modes' interior part $\Psi_s = -K_{ii}^{-1}K_{ib}$ (Eq. 6.3): one
+    /// factorisation, the boundary DOF as right-hand sides.
+    pub fn constraint_modes(&mut self) -> Result<Mat<f64>> {
+        self.check_restraint()?;
+        self.factor()?;
+        let started = Instant::now();
+        let (f, _) = self.factor.as_ref().expect("factored above");
+        let psi_s = -f.solve(self.k_ib.as_ref());
+        self.statistics.constraint_modes_s += started.elapsed().as_secs_f64();
+        Ok(psi_s)
+    }
+
+    /// Every fixed-interface normal mode, $[\Psi_n, \Lambda_n] = \mathrm{eig}(K_{ii}, M_{ii})$
+    /// (Eq. 6.11), by a complete dense eigenproblem whatever the path (mode condensation's
+    /// route of §6.5, whose n³ cost this makes visible). Beyond [`COMPLETE_EIGEN_LIMIT`]
+    /// interior DOF it is [`Error::TooLarge`].
+    pub fn complete_modes(&mut self, method: &str) -> Result<GeneralizedEigen> {
+        let n = self.interior_dofs();
+        if n > COMPLETE_EIGEN_LIMIT {
+            return Err(Error::TooLarge {
+                method: format!("{method} (complete interior eigenproblem)"),
+                dofs: n,
+                limit: COMPLETE_EIGEN_LIMIT,
+            });
+        }
+        let started = Instant::now();
+        let eig = generalized_eigen(
+            self.k_ii.to_dense().as_ref(),
+            self.m_ii.to_dense().as_ref(),
+            "fixed-interface",
+        );
+        self.statistics.eigen_s += started.elapsed().as_secs_f64();
+        eig
+    }
+
+    /// The kept fixed-interface modes (Eq. 6.11), ascending and mass-normalised: the complete
+    /// dense eigenproblem on the dense path, the partial shift-invert solver on the sparse one.
+    pub fn kept_modes(&mut self, selection: ModeSelection) -> Result<GeneralizedEigen> {
+        if !self.sparse {
+            let all = self.complete_modes("fixed-interface modes")?;
+            let kept = selection.count(&all.hz())?;
+            return Ok(first_modes(&all, kept));
+        }
+        let n = self.interior_dofs();
+        match selection {
+            ModeSelection::Count(k) => {
+                if k > n {
+                    return Err(Error::TooManyModes {
+                        requested: k,
+                        available: n,
+                    });
+                }
+                self.partial(k)
+            }
+            ModeSelection::UpToHz(_) => {
+                // Validates the cut-off before any work.
+                selection.count(&[])?;
+                let mut wanted = 8.min(n);
+                loop {
+                    let eig = self.partial(wanted)?;
+                    let hz = eig.hz();
+                    let kept = selection.count(&hz)?;
+                    if kept < wanted || wanted == n {
+                        return Ok(first_modes(&eig, kept));
+                    }
+                    if 2 * wanted > n / 4 {
+                        return Err(Error::TooManyModes {
+                            requested: 2 * wanted,
+                            available: n / 4,
+                        });
+                    }
+                    wanted *= 2;
+                }
+            }
+        }
+    }
+
+    fn partial(&mut self, wanted: usize) -> Result<GeneralizedEigen> {
+        self.factor()?;
+        let started = Instant::now();
+        let (f, sigma) = self.factor.as_ref().expect("factored above");
+        let (eig, stats) = lowest_modes(
+            &self.k_ii,
+            &self.m_ii,
+            f,
+            *sigma,
+            wanted,
+            &PartialEigenParameters::default(),
+        )?;
+        self.statistics.eigen_s += started.elapsed().as_secs_f64();
+        self.statistics.eigen_block_solves += stats.block_solves;
+        self.statistics.eigen_max_residual =
+            self.statistics.eigen_max_residual.max(stats.max_residual);
+        Ok(eig)
+    }
+}
+
+fn first_modes(all: &GeneralizedEigen, kept: usize) -> GeneralizedEigen {
+    GeneralizedEigen {
+        values: all.values[..kept].to_vec(),
+        vectors: all.vectors.subcols(0, kept).to_owned(),
+    }
+}
+
+/// The rigid-body motions the boundary DOF leave free (none when the rigid motions restricted
+/// to the boundary DOF have full rank), each described as a rotation about an axis or a
+/// translation.
+fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
+    let rigid = if model.dim == 3 { 6 } else { 3 };
+    // Rigid motions about the body's centroid, rotations scaled by its size so the columns
+    // are commensurate: u = t + (w / L) × (x − c).
+    let count = model.node_count() as f64;
+    let mut c = [0.0; 3];
+    for x in &model.nodes {
+        for d in 0..3 {
+            c[d] += x[d] / count;
+        }
+    }
+    let size = model.size().max(f64::MIN_POSITIVE);
+    let r_b = Mat::from_fn(p.b.len(), rigid, |row, col| {
+        let (node, dir) = model.dof_node(p.b[row]);
+        let x = model.nodes[node - 1];
+        let r = [
+            (x[0] - c[0]) / size,
+            (x[1] - c[1]) / size,
+            (x[2] - c[2]) / size,
+        ];
+        let d = dir.index();
+        if model.dim == 2 {
+            return match col {
+                0 | 1 => f64::from(u8::from(d == col)),
+                _ => [-r[1], r[0]][d],
+            };
+        }
+        match col {
+            0..=2 => f64::from(u8::from(d == col)),
+            // ω = e_k: (e_k × r)_d
+            _ => {
+                let k = col - 3;
+                let e = |a: usize| f64::from(u8::from(a == k));
+                let cross = [
+                    e(1) * r[2] - e(2) * r[1],
+                    e(2) * r[0] - e(0) * r[2],
+                    e(0) * r[1] - e(1) * r[0],
+                ];
+                cross[d]
+            }
+        }
+    });
+    // Null space of R_b from the eigenvectors of R_bᵀR_b (6 × 6).
+    let gram = r_b.transpose() * &r_b;
+    let evd =
+        gram.self_adjoint_eigen(faer::Side::Lower)
+            .map_err(|_| Error::DecompositionFailed {
+                what: "boundary rigid-motion rank".into(),
+            })?;
+    let largest = evd.S()[rigid - 1].max(f64::MIN_POSITIVE);
+    let free: Vec<usize> = (0..rigid)
+        .filter(|&k| evd.S()[k] <= 1e-12 * largest)
+        .collect();
+    let describe = |k: usize| -> String {
+        let v = evd.U().col(k);
+        if model.dim == 2 {
+            let w = v[2] / size;
+            let t = [v[0] - (-w * c[1]), v[1] - (w * c[0])];
+            if w.abs() * size < 1e-9 {
+                return format!("translation along ({:.3}, {:.3})", v[0], v[1]);
+            }
+            // Rotation about the point a with t = ω ẑ × (−a).
+            let a = [-t[1] / w, t[0] / w];
+            return format!("rotation in the plane about ({:.3}, {:.3}) m", a[0], a[1]);
+        }
+        let w = [v[3] / size, v[4] / size, v[5] / size];
+        let wn = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+        if wn * size < 1e-9 {
+            return format!("translation along ({:.3}, {:.3}, {:.3})", v[0], v[1], v[2]);
+        }
+        // Motion t + ω × (x − c): the axis passes through a = c + (ω × t)/|ω|².
+        let t = [v[0], v[1], v[2]];
+        let wxt = [
+            w[1] * t[2] - w[2] * t[1],
+            w[2] * t[0] - w[0] * t[2],
+            w[0] * t[1] - w[1] * t[0],
+        ];
+        let a: Vec<f64> = (0..3).map(|d| c[d] + wxt[d] / (wn * wn)).collect();
+        let clean = |x: f64| if x.abs() < 1e-9 { 0.0 } else { x };
+        format!(
+            "rotation about ({:.3}, {:.3}, {:.3}) through ({:.3}, {:.3}, {:.3}) m",
+            clean(w[0] / wn),
+            clean(w[1] / wn),
+            clean(w[2] / wn),
+            clean(a[0]),
+            clean(a[1]),
+            clean(a[2])
+        )
+    };
+    Ok(free.iter().map(|&k| describe(k)).collect())
 }
 
 /// Column descriptions of the boundary columns (one per boundary DOF).
@@ -127,4 +447,16 @@ pub(crate) fn normal_columns(hz: &[f64]) -> Vec<super::Column> {
             label: format!("normal {} ({hz:.4} Hz)", k + 1),
         })
         .collect()
+}
+
+/// Fixed-interface (fixed-constraint) normal modes, $[\Psi_n, \Lambda_n] =
+/// \mathrm{eig}(K_{ii}, M_{ii})$ (Eq. 6.11), mass-normalised, ascending: every mode (dense).
+pub fn fixed_interface_modes(model: &FeModel, p: &Partition) -> Result<GeneralizedEigen> {
+    let mut problem = InteriorProblem::new(model, &p.boundary_nodes, SolverPath::Dense)?;
+    problem.complete_modes("fixed-interface modes")
+}
+
+/// Static constraint modes' interior part $\Psi_s = -K_{ii}^{-1}K_{ib}$ (Eq. 6.3).
+pub fn constraint_modes(model: &FeModel, p: &Partition) -> Result<Mat<f64>> {
+    InteriorProblem::new(model, &p.boundary_nodes, SolverPath::Auto)?.constraint_modes()
 }

@@ -76,6 +76,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             &ReductionParameters {
                 boundary_nodes: boundary.clone(),
                 modes: ModeSelection::Count(kept),
+                ..Default::default()
             },
         )?;
         let ev = evaluate_with_mean_axes(&model, &basis, &part)?;

@@ -49,6 +49,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let params = ReductionParameters {
         boundary_nodes: boundary.clone(),
         modes: ModeSelection::Count(kept),
+        ..Default::default()
     };
     let delta = PROFILE_DELTA;
 

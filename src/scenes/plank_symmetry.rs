@@ -82,6 +82,7 @@ pub fn plank_body(model: &FeModel, v: Variant, modes: usize) -> Result<FlexibleB
         &ReductionParameters {
             boundary_nodes: PLANK_BOUNDARY.to_vec(),
             modes: ModeSelection::Count(modes),
+            ..Default::default()
         },
     )?;
     let (basis, origin) = match v.axes {

@@ -97,6 +97,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 boundary.clone()
             },
             modes: ModeSelection::Count(kept),
+            ..Default::default()
         };
         let basis = reduce(&model, m, &params)?;
         let all_hz = reduced_modes(&model, &basis)?.hz();

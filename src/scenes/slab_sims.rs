@@ -242,6 +242,7 @@ pub fn slab_body(
         &ReductionParameters {
             boundary_nodes: nodes,
             modes: ModeSelection::Count(modes),
+            ..Default::default()
         },
     )?;
     let (basis, origin) = match axes {

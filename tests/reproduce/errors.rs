@@ -61,6 +61,7 @@ fn singular_interior_for_too_few_boundary_dofs() {
         let p = ReductionParameters {
             boundary_nodes: vec![16],
             modes: ModeSelection::Count(4),
+            ..Default::default()
         };
         match reduce(&model, method, &p).unwrap_err() {
             Error::SingularInterior {
@@ -97,6 +98,7 @@ fn singular_interior_for_too_few_boundary_dofs() {
             &ReductionParameters {
                 boundary_nodes: vec![16],
                 modes: ModeSelection::Count(4),
+                ..Default::default()
             }
         )
         .is_ok()

@@ -1,0 +1,286 @@
+//! The lowest eigenpairs of $K\Phi = M\Phi\Lambda$ for large sparse $K$ and $M$: block
+//! shift-invert Lanczos with full re-orthogonalisation in the $M$ inner product and thick
+//! restart, on one factorisation of $K - \sigma M$.
+//!
+//! The operator $A = (K - \sigma M)^{-1} M$ is self-adjoint in the $M$ inner product; its
+//! largest eigenvalues $\theta = 1/(\lambda - \sigma)$ belong to the eigenvalues $\lambda$
+//! nearest above $\sigma$. The basis $V$ ($V^T M V = I$) grows by blocks $A V_j$, each made
+//! $M$-orthogonal to all of $V$ twice (classical Gram–Schmidt, repeated); $A V$ is kept, so the
+//! Rayleigh quotient $T = V^T M A V$ is formed exactly instead of trusting the three-term
+//! recurrence. When the basis is full, it restarts from the best Ritz vectors plus the last
+//! block, whose span holds every Ritz residual (thick restart). Every returned pair is checked
+//! by its residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
+
+use faer::{Mat, MatRef, Side};
+
+use super::{GeneralizedEigen, MassMatrix, SparseSymmetric, SymmetricFactor, fix_sign};
+use crate::{Error, Result};
+
+/// Settings of [`lowest_modes`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartialEigenParameters {
+    /// Vectors per Lanczos block (right-hand sides per solve).
+    pub block_size: usize,
+    /// Largest basis, as a multiple of the wanted count (at least `wanted + 4·block_size`).
+    pub basis_factor: usize,
+    /// Restarts before giving up.
+    pub max_restarts: usize,
+    /// Ritz pairs count as converged when $\|A u - \theta u\|_M \le$ this $\cdot\,\theta$.
+    pub ritz_tolerance: f64,
+    /// Largest accepted $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ of a returned pair.
+    pub residual_tolerance: f64,
+    /// Seed of the deterministic start block.
+    pub seed: u64,
+}
+
+impl Default for PartialEigenParameters {
+    fn default() -> Self {
+        Self {
+            block_size: 4,
+            basis_factor: 3,
+            max_restarts: 200,
+            ritz_tolerance: 1e-12,
+            residual_tolerance: 1e-8,
+            seed: 0x5eed_f1e7,
+        }
+    }
+}
+
+/// What the solver did (operation counts, for tests and the bench).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PartialEigenStatistics {
+    /// Restarts of the basis.
+    pub restarts: usize,
+    /// Block solves with the factor.
+    pub block_solves: usize,
+    /// Largest basis size used.
+    pub basis_size: usize,
+    /// Largest residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ of the returned pairs.
+    pub max_residual: f64,
+}
+
+/// The `wanted` lowest eigenpairs of $K\Phi = M\Phi\Lambda$ above the shift `sigma`
+/// ($\sigma = 0$ for a positive definite $K$), given `factor` $= \mathrm{chol}(K - \sigma M)$.
+///
+/// Eigenvalues are ascending in (rad/s)², vectors mass-normalised with the sign rule of
+/// [`fix_sign`]. Fails with [`Error::EigenNotConverged`] (how many pairs converged, at what
+/// residual) when the restarts run out or a returned pair's residual is too large.
+pub fn lowest_modes(
+    k: &SparseSymmetric,
+    m: &MassMatrix,
+    factor: &SymmetricFactor,
+    sigma: f64,
+    wanted: usize,
+    params: &PartialEigenParameters,
+) -> Result<(GeneralizedEigen, PartialEigenStatistics)> {
+    let n = k.dim();
+    assert_eq!((m.dim(), factor.dim()), (n, n));
+    let b = params.block_size.max(1);
+    let max_basis = (params.basis_factor * wanted)
+        .max(wanted + 4 * b)
+        .div_ceil(b)
+        * b;
+    if wanted == 0 {
+        return Ok((
+            GeneralizedEigen {
+                values: vec![],
+                vectors: Mat::zeros(n, 0),
+            },
+            PartialEigenStatistics::default(),
+        ));
+    }
+    if max_basis + b > n {
+        return Err(Error::InvalidModeSelection {
+            reason: format!(
+                "{wanted} modes of a {n}-DOF problem: too many for the partial eigensolver, \
+                 use the dense path"
+            ),
+        });
+    }
+    let mut stats = PartialEigenStatistics {
+        basis_size: max_basis,
+        ..Default::default()
+    };
+    let apply = |x: MatRef<'_, f64>| factor.solve(m.mul(x).as_ref());
+
+    // V (M-orthonormal), MV = M V and AV = A V for the first `with_a` columns.
+    let mut v = Mat::<f64>::zeros(n, max_basis + b);
+    let mut mv = Mat::<f64>::zeros(n, max_basis + b);
+    let mut av = Mat::<f64>::zeros(n, max_basis);
+    let mut rng = params.seed;
+    let start = Mat::from_fn(n, b, |_, _| next_uniform(&mut rng));
+    let mut cols = 0;
+    cols += append_orthonormal(&mut v, &mut mv, cols, start, m, &mut rng);
+    let mut with_a = 0;
+    let mut theta: Vec<f64>;
+    let mut ritz: Mat<f64>;
+    loop {
+        // Expand: A applied to the newest block, orthogonalised against everything.
+        while with_a < max_basis {
+            let block = v.subcols(with_a, b).to_owned();
+            let w = apply(block.as_ref());
+            stats.block_solves += 1;
+            for j in 0..b {
+                av.col_mut(with_a + j).copy_from(w.col(j));
+            }
+            with_a += b;
+            if cols < max_basis + b {
+                cols += append_orthonormal(&mut v, &mut mv, cols, w, m, &mut rng);
+            }
+        }
+        // Rayleigh-Ritz on the columns whose images are known.
+        let vb = v.subcols(0, with_a);
+        let t = mv.subcols(0, with_a).transpose() * av.subcols(0, with_a);
+        let t = Mat::from_fn(with_a, with_a, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
+        let evd = t
+            .self_adjoint_eigen(Side::Lower)
+            .map_err(|_| Error::DecompositionFailed {
+                what: "Lanczos Rayleigh quotient eigen".into(),
+            })?;
+        // Descending θ.
+        let order: Vec<usize> = (0..with_a).rev().collect();
+        theta = order.iter().map(|&i| evd.S()[i]).collect();
+        let y = Mat::from_fn(with_a, with_a, |r, c| evd.U()[(r, order[c])]);
+        ritz = vb * &y;
+        let a_ritz = av.subcols(0, with_a) * &y;
+        let residual = Mat::from_fn(n, wanted, |r, c| a_ritz[(r, c)] - theta[c] * ritz[(r, c)]);
+        let m_residual = m.mul(residual.as_ref());
+        let converged = (0..wanted)
+            .take_while(|&c| {
+                let norm = residual.col(c).transpose() * m_residual.col(c);
+                norm.max(0.0).sqrt() <= params.ritz_tolerance * theta[c].abs()
+            })
+            .count();
+        if converged == wanted {
+            break;
+        }
+        if stats.restarts == params.max_restarts {
+            let worst = (0..wanted)
+                .map(|c| {
+                    let norm = residual.col(c).transpose() * m_residual.col(c);
+                    norm.max(0.0).sqrt() / theta[c].abs()
+                })
+                .fold(0.0f64, f64::max);
+            return Err(Error::EigenNotConverged {
+                converged,
+                wanted,
+                residual: worst,
+            });
+        }
+        stats.restarts += 1;
+        // Thick restart: keep the best Ritz vectors and their images, then the pending block.
+        let keep = (wanted + (max_basis - wanted) / 2).min(max_basis - b) / b * b;
+        let pending = v.subcols(with_a, cols - with_a).to_owned();
+        let pending_m = mv.subcols(with_a, cols - with_a).to_owned();
+        let m_ritz = mv.subcols(0, with_a) * &y;
+        for c in 0..keep {
+            v.col_mut(c).copy_from(ritz.col(c));
+            mv.col_mut(c).copy_from(m_ritz.col(c));
+            av.col_mut(c).copy_from(a_ritz.col(c));
+        }
+        for c in 0..pending.ncols() {
+            v.col_mut(keep + c).copy_from(pending.col(c));
+            mv.col_mut(keep + c).copy_from(pending_m.col(c));
+        }
+        with_a = keep;
+        cols = keep + pending.ncols();
+    }
+
+    // λ = σ + 1/θ, ascending, and the residual check on the original pencil.
+    let mut values = Vec::with_capacity(wanted);
+    let mut vectors = Mat::<f64>::zeros(n, wanted);
+    for c in 0..wanted {
+        values.push(sigma + 1.0 / theta[c]);
+        vectors.col_mut(c).copy_from(ritz.col(c));
+        fix_sign(vectors.col_mut(c));
+    }
+    let kv = k.mul(vectors.as_ref());
+    let mvv = m.mul(vectors.as_ref());
+    for c in 0..wanted {
+        let r = Mat::from_fn(n, 1, |i, _| kv[(i, c)] - values[c] * mvv[(i, c)]);
+        let denom = kv.col(c).norm_l2().max(f64::MIN_POSITIVE);
+        stats.max_residual = stats.max_residual.max(r.norm_l2() / denom);
+    }
+    if !(stats.max_residual <= params.residual_tolerance) {
+        return Err(Error::EigenNotConverged {
+            converged: 0,
+            wanted,
+            residual: stats.max_residual,
+        });
+    }
+    Ok((GeneralizedEigen { values, vectors }, stats))
+}
+
+/// A shift $\sigma < 0$ for a singular (positive semi-definite) $K$: $10^{-8}$ of the largest
+/// diagonal ratio $K_{jj}/M_{jj}$ below zero, well below the lowest elastic eigenvalue and
+/// well above the round-off of $K$, so $K - \sigma M$ is positive definite.
+pub fn negative_shift(k: &SparseSymmetric, m: &MassMatrix) -> f64 {
+    let ratio = (0..k.dim())
+        .map(|j| k.get(j, j) / m.get(j, j))
+        .filter(|r| r.is_finite())
+        .fold(0.0f64, f64::max);
+    -1e-8 * ratio
+}
+
+/// Makes the columns of `x` $M$-orthonormal to `v[:, ..cols]` and to each other, appends them
+/// and returns how many were appended (a column that vanishes is replaced by a random one).
+fn append_orthonormal(
+    v: &mut Mat<f64>,
+    mv: &mut Mat<f64>,
+    cols: usize,
+    mut x: Mat<f64>,
+    m: &MassMatrix,
+    rng: &mut u64,
+) -> usize {
+    let room = v.ncols() - cols;
+    let count = x.ncols().min(room);
+    for j in 0..count {
+        let mut tries = 0;
+        loop {
+            let original = m_norm(x.col(j).as_mat(), m);
+            // Twice is enough (Kahan's rule for classical Gram-Schmidt).
+            for _ in 0..2 {
+                let filled = cols + j;
+                if filled > 0 {
+                    let coeffs = mv.subcols(0, filled).transpose() * x.col(j);
+                    let proj = v.subcols(0, filled) * &coeffs;
+                    for i in 0..x.nrows() {
+                        x[(i, j)] -= proj[i];
+                    }
+                }
+            }
+            let norm = m_norm(x.col(j).as_mat(), m);
+            if norm > 1e-10 * original && norm > 0.0 {
+                let target = cols + j;
+                for i in 0..x.nrows() {
+                    v[(i, target)] = x[(i, j)] / norm;
+                }
+                let mcol = m.mul(v.col(target).as_mat());
+                mv.col_mut(target).copy_from(mcol.col(0));
+                break;
+            }
+            tries += 1;
+            assert!(tries < 10, "random vectors keep falling into the basis");
+            for i in 0..x.nrows() {
+                x[(i, j)] = next_uniform(rng);
+            }
+        }
+    }
+    count
+}
+
+fn m_norm(x: MatRef<'_, f64>, m: &MassMatrix) -> f64 {
+    let mx = m.mul(x);
+    (x.col(0).transpose() * mx.col(0)).max(0.0).sqrt()
+}
+
+/// A uniform number in [−1, 1) from a xorshift64* state.
+fn next_uniform(state: &mut u64) -> f64 {
+    let mut s = *state;
+    s ^= s >> 12;
+    s ^= s << 25;
+    s ^= s >> 27;
+    *state = s;
+    let bits = s.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
+    bits as f64 / (1u64 << 52) as f64 - 1.0
+}

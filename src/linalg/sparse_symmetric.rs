@@ -1,0 +1,320 @@
+//! A sparse symmetric matrix stored by columns with both triangles, built from a sparsity
+//! pattern first and values second.
+
+use super::MassMatrix;
+use faer::{
+    Accum, Mat, MatRef, Par,
+    sparse::{SparseColMat, SymbolicSparseColMat, linalg::matmul::sparse_dense_matmul},
+};
+
+/// The sparsity pattern of a symmetric matrix whose DOF come in blocks of `block` per node
+/// (node-major order), known from which nodes share an element. Every node–node coupling is a
+/// dense `block`×`block` block, so the position of an element entry is found by a binary search
+/// over a node's neighbours, never by a hash or a dense n×n array.
+#[derive(Debug, Clone)]
+pub struct SparsityPattern {
+    block: usize,
+    /// Sorted neighbour nodes (itself included) of each node.
+    neighbours: Vec<Vec<usize>>,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+}
+
+impl SparsityPattern {
+    /// The pattern of `node_count` nodes with `block` DOF each, coupled by elements given as
+    /// their node lists.
+    pub fn from_elements<'a>(
+        node_count: usize,
+        block: usize,
+        elements: impl IntoIterator<Item = &'a [usize]>,
+    ) -> Self {
+        let mut neighbours: Vec<Vec<usize>> = (0..node_count).map(|i| vec![i]).collect();
+        for element in elements {
+            for &a in element {
+                neighbours[a].extend_from_slice(element);
+            }
+        }
+        for list in &mut neighbours {
+            list.sort_unstable();
+            list.dedup();
+        }
+        let n = node_count * block;
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        col_ptr.push(0);
+        let nnz: usize = neighbours.iter().map(|l| l.len() * block * block).sum();
+        let mut row_idx = Vec::with_capacity(nnz);
+        for list in &neighbours {
+            for _ in 0..block {
+                for &a in list {
+                    row_idx.extend((0..block).map(|d| a * block + d));
+                }
+                col_ptr.push(row_idx.len());
+            }
+        }
+        Self {
+            block,
+            neighbours,
+            col_ptr,
+            row_idx,
+        }
+    }
+
+    /// Number of rows (= columns).
+    pub fn dim(&self) -> usize {
+        self.col_ptr.len() - 1
+    }
+
+    /// Number of stored entries (both triangles).
+    pub fn nnz(&self) -> usize {
+        self.row_idx.len()
+    }
+
+    /// Position in the value array of entry (`row`, `col`), if it is in the pattern.
+    pub fn position(&self, row: usize, col: usize) -> Option<usize> {
+        let (node_r, dr) = (row / self.block, row % self.block);
+        let node_c = col / self.block;
+        let k = self.neighbours[node_c].binary_search(&node_r).ok()?;
+        Some(self.col_ptr[col] + k * self.block + dr)
+    }
+}
+
+/// A real symmetric matrix in compressed sparse columns with both triangles stored, so column
+/// `j` is also row `j`. Units are those of what it holds (N/m for a stiffness, kg for a mass).
+#[derive(Debug, Clone)]
+pub struct SparseSymmetric {
+    inner: SparseColMat<usize, f64>,
+}
+
+impl SparseSymmetric {
+    /// Values summed into a pattern by [`SparseAssembly`].
+    fn from_parts(pattern: SparsityPattern, values: Vec<f64>) -> Self {
+        let n = pattern.dim();
+        let symbolic =
+            SymbolicSparseColMat::new_checked(n, n, pattern.col_ptr, None, pattern.row_idx);
+        Self {
+            inner: SparseColMat::new(symbolic, values),
+        }
+    }
+
+    /// The matrix from `(row, col, value)` contributions (duplicates add up). For small
+    /// matrices (the App. A beam's condensed stiffness); large ones go through a pattern.
+    pub fn from_triplets(n: usize, entries: &[(usize, usize, f64)]) -> Self {
+        let mut cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+        for &(i, j, v) in entries {
+            cols[j].push((i, v));
+        }
+        let mut col_ptr = vec![0];
+        let mut row_idx = Vec::new();
+        let mut values = Vec::new();
+        for mut col in cols {
+            col.sort_by_key(|e| e.0);
+            for (i, v) in col {
+                if row_idx.len() > *col_ptr.last().unwrap() && *row_idx.last().unwrap() == i {
+                    *values.last_mut().unwrap() += v;
+                } else {
+                    row_idx.push(i);
+                    values.push(v);
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        Self {
+            inner: SparseColMat::new(symbolic, values),
+        }
+    }
+
+    /// A dense symmetric matrix (only its exact zeros are dropped).
+    pub fn from_dense(a: MatRef<'_, f64>) -> Self {
+        let n = a.nrows();
+        let mut entries = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                if a[(i, j)] != 0.0 {
+                    entries.push((i, j, a[(i, j)]));
+                }
+            }
+        }
+        Self::from_triplets(n, &entries)
+    }
+
+    /// Number of rows (= columns).
+    pub fn dim(&self) -> usize {
+        self.inner.nrows()
+    }
+
+    /// Stored entries, both triangles.
+    pub fn nnz(&self) -> usize {
+        self.inner.val().len()
+    }
+
+    /// The faer matrix.
+    pub fn as_faer(&self) -> &SparseColMat<usize, f64> {
+        &self.inner
+    }
+
+    /// Entry (`i`, `j`), zero where nothing is stored.
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        let rows = self.inner.symbolic().row_idx_of_col_raw(j);
+        match rows.binary_search(&i) {
+            Ok(k) => self.inner.val_of_col(j)[k],
+            Err(_) => 0.0,
+        }
+    }
+
+    /// The diagonal.
+    pub fn diagonal(&self) -> Vec<f64> {
+        (0..self.dim()).map(|j| self.get(j, j)).collect()
+    }
+
+    /// The dense copy (small matrices only).
+    pub fn to_dense(&self) -> Mat<f64> {
+        self.inner.to_dense()
+    }
+
+    /// $A X$ for a dense block $X$.
+    pub fn mul(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        let mut y = Mat::zeros(self.dim(), x.ncols());
+        sparse_dense_matmul(
+            y.as_mut(),
+            Accum::Replace,
+            self.inner.as_ref(),
+            x,
+            1.0,
+            Par::Seq,
+        );
+        y
+    }
+
+    /// Largest absolute entry.
+    pub fn max_abs(&self) -> f64 {
+        self.inner.val().iter().fold(0.0f64, |a, v| a.max(v.abs()))
+    }
+
+    /// $\max|A - A^T| / \max|A|$ over the stored entries (0 for a zero matrix).
+    pub fn symmetry_defect(&self) -> f64 {
+        let scale = self.max_abs();
+        if scale == 0.0 {
+            return 0.0;
+        }
+        let mut worst = 0.0f64;
+        for j in 0..self.dim() {
+            let rows = self.inner.symbolic().row_idx_of_col_raw(j);
+            for (k, &i) in rows.iter().enumerate() {
+                worst = worst.max((self.inner.val_of_col(j)[k] - self.get(j, i)).abs());
+            }
+        }
+        worst / scale
+    }
+
+    /// The block `A[rows, cols]` as a sparse matrix (`rows` and `cols` are DOF lists; `cols`
+    /// may be in any order, `rows` ascending keeps each column sorted).
+    pub fn block(&self, rows: &[usize], cols: &[usize]) -> SparseColMat<usize, f64> {
+        let mut map = vec![usize::MAX; self.dim()];
+        for (new, &old) in rows.iter().enumerate() {
+            map[old] = new;
+        }
+        let mut col_ptr = Vec::with_capacity(cols.len() + 1);
+        col_ptr.push(0);
+        let mut row_idx = Vec::new();
+        let mut values = Vec::new();
+        for &c in cols {
+            let src_rows = self.inner.symbolic().row_idx_of_col_raw(c);
+            let src_vals = self.inner.val_of_col(c);
+            let start = row_idx.len();
+            for (&r, &v) in src_rows.iter().zip(src_vals) {
+                let new = map[r];
+                if new != usize::MAX {
+                    row_idx.push(new);
+                    values.push(v);
+                }
+            }
+            // Keep row indices sorted within the column whatever the order of `rows`.
+            let mut pairs: Vec<(usize, f64)> = row_idx[start..]
+                .iter()
+                .copied()
+                .zip(values[start..].iter().copied())
+                .collect();
+            if !pairs.is_sorted_by_key(|p| p.0) {
+                pairs.sort_by_key(|p| p.0);
+                for (k, (r, v)) in pairs.into_iter().enumerate() {
+                    row_idx[start + k] = r;
+                    values[start + k] = v;
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        let symbolic =
+            SymbolicSparseColMat::new_checked(rows.len(), cols.len(), col_ptr, None, row_idx);
+        SparseColMat::new(symbolic, values)
+    }
+
+    /// $A - \sigma M$ on $A$'s pattern ($M$'s entries must lie in it: lumped, or consistent
+    /// on the same elements).
+    pub fn shifted(&self, m: &MassMatrix, sigma: f64) -> SparseSymmetric {
+        let mut out = self.clone();
+        for j in 0..self.dim() {
+            let (rows, vals) = {
+                let rows = self.inner.symbolic().row_idx_of_col_raw(j).to_vec();
+                (rows, out.inner.val_of_col_mut(j))
+            };
+            for (&i, v) in rows.iter().zip(vals) {
+                *v -= sigma * m.get(i, j);
+            }
+        }
+        out
+    }
+
+    /// The symmetric block `A[set, set]`.
+    pub fn principal_block(&self, set: &[usize]) -> SparseSymmetric {
+        SparseSymmetric {
+            inner: self.block(set, set),
+        }
+    }
+}
+
+/// Values being summed into a [`SparsityPattern`]: element matrices are scattered, then
+/// [`SparseAssembly::finish`] symmetrises away round-off and returns the matrix.
+#[derive(Debug)]
+pub struct SparseAssembly {
+    pattern: SparsityPattern,
+    values: Vec<f64>,
+}
+
+impl SparseAssembly {
+    /// Zero values on `pattern`.
+    pub fn new(pattern: SparsityPattern) -> Self {
+        let values = vec![0.0; pattern.nnz()];
+        Self { pattern, values }
+    }
+
+    /// Adds element matrix `ke` whose rows and columns are the DOF `dofs`. Every pair of
+    /// `dofs` must share an element of the pattern.
+    pub fn add_element(&mut self, dofs: &[usize], ke: MatRef<'_, f64>) {
+        for (b, &col) in dofs.iter().enumerate() {
+            for (a, &row) in dofs.iter().enumerate() {
+                let pos = self.pattern.position(row, col).expect(
+                    "element DOF pair outside the sparsity pattern built from the same elements",
+                );
+                self.values[pos] += ke[(a, b)];
+            }
+        }
+    }
+
+    /// The assembled matrix, with $(A + A^T)/2$ taken entry by entry.
+    pub fn finish(mut self) -> SparseSymmetric {
+        let n = self.pattern.dim();
+        for j in 0..n {
+            for pos in self.pattern.col_ptr[j]..self.pattern.col_ptr[j + 1] {
+                let i = self.pattern.row_idx[pos];
+                if i < j {
+                    let mirror = self.pattern.position(j, i).expect("symmetric pattern");
+                    let mean = 0.5 * (self.values[pos] + self.values[mirror]);
+                    self.values[pos] = mean;
+                    self.values[mirror] = mean;
+                }
+            }
+        }
+        SparseSymmetric::from_parts(self.pattern, self.values)
+    }
+}

@@ -1,0 +1,178 @@
+//! Cholesky factorisation $A = LL^T$ of a symmetric positive definite matrix on either path:
+//! faer's dense LLᵀ for small matrices, faer's sparse (simplicial or supernodal) LLᵀ with an
+//! AMD fill-reducing ordering for large ones. The sparse symbolic analysis is kept apart from
+//! the numeric factorisation so a shifted matrix with the same pattern reuses it.
+
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::{
+    Conj, Mat, MatRef, Par, Side,
+    linalg::solvers::{Llt as DenseLlt, LltError, Solve},
+    sparse::{
+        SparseColMat,
+        linalg::cholesky::{
+            LltRef, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+        },
+    },
+};
+
+use crate::{Error, Result};
+
+/// The symbolic analysis of a sparse symmetric pattern: fill-reducing ordering, elimination
+/// tree and the structure of $L$. Computed once per pattern.
+#[derive(Debug, Clone)]
+pub struct SymbolicFactor {
+    inner: Arc<SymbolicCholesky<usize>>,
+}
+
+impl SymbolicFactor {
+    /// Analyses the pattern of `a` (its lower triangle is read).
+    pub fn analyse(a: &SparseColMat<usize, f64>) -> Result<Self> {
+        let inner = factorize_symbolic_cholesky(
+            a.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        )
+        .map_err(|_| Error::OutOfMemory {
+            what: "symbolic Cholesky analysis".into(),
+        })?;
+        Ok(Self {
+            inner: Arc::new(inner),
+        })
+    }
+
+    /// Entries of $L$ (the fill).
+    pub fn factor_nnz(&self) -> usize {
+        self.inner.len_val()
+    }
+}
+
+enum Kind {
+    Dense(DenseLlt<f64>),
+    Sparse {
+        symbolic: SymbolicFactor,
+        values: Vec<f64>,
+    },
+}
+
+/// $A = LL^T$ on the dense or the sparse path, solving with many right-hand sides at once.
+pub struct SymmetricFactor {
+    kind: Kind,
+    dim: usize,
+}
+
+impl std::fmt::Debug for SymmetricFactor {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SymmetricFactor")
+            .field("dim", &self.dim)
+            .field("sparse", &matches!(self.kind, Kind::Sparse { .. }))
+            .finish()
+    }
+}
+
+impl SymmetricFactor {
+    /// Factors a dense symmetric positive definite `a`. `what` names the matrix in errors.
+    pub fn dense(a: MatRef<'_, f64>, what: &str) -> Result<Self> {
+        let llt = a.llt(Side::Lower).map_err(|e| {
+            let LltError::NonPositivePivot { index } = e;
+            Error::NonPositivePivot {
+                matrix: what.into(),
+                index,
+            }
+        })?;
+        Ok(Self {
+            kind: Kind::Dense(llt),
+            dim: a.nrows(),
+        })
+    }
+
+    /// Factors a sparse symmetric positive definite `a` with the analysis `symbolic` of its
+    /// pattern. `what` names the matrix in errors; a pivot that is not positive is reported
+    /// with its row in `a`'s own numbering.
+    pub fn sparse(
+        a: &SparseColMat<usize, f64>,
+        symbolic: &SymbolicFactor,
+        what: &str,
+    ) -> Result<Self> {
+        let sym = &symbolic.inner;
+        let mut values = Vec::new();
+        values
+            .try_reserve_exact(sym.len_val())
+            .map_err(|_| Error::OutOfMemory {
+                what: format!("Cholesky factor of {what} ({} entries)", sym.len_val()),
+            })?;
+        values.resize(sym.len_val(), 0.0);
+        let par = Par::Seq;
+        let mut mem =
+            MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
+                .map_err(|_| Error::OutOfMemory {
+                what: format!("Cholesky workspace of {what}"),
+            })?;
+        let result = sym.factorize_numeric_llt(
+            &mut values,
+            a.as_ref(),
+            Side::Lower,
+            Default::default(),
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+        if let Err(LltError::NonPositivePivot { index }) = result {
+            let original = match sym.perm() {
+                Some(p) => p.arrays().0[index],
+                None => index,
+            };
+            return Err(Error::NonPositivePivot {
+                matrix: what.into(),
+                index: original,
+            });
+        }
+        Ok(Self {
+            kind: Kind::Sparse {
+                symbolic: symbolic.clone(),
+                values,
+            },
+            dim: a.nrows(),
+        })
+    }
+
+    /// Number of rows.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Entries of the factor $L$ (for the dense path, its lower triangle).
+    pub fn factor_nnz(&self) -> usize {
+        match &self.kind {
+            Kind::Dense(_) => self.dim * (self.dim + 1) / 2,
+            Kind::Sparse { values, .. } => values.len(),
+        }
+    }
+
+    /// Bytes held by the factor's values.
+    pub fn factor_bytes(&self) -> usize {
+        8 * self.factor_nnz()
+    }
+
+    /// $A^{-1}B$ for a block of right-hand sides.
+    pub fn solve(&self, rhs: MatRef<'_, f64>) -> Mat<f64> {
+        match &self.kind {
+            Kind::Dense(llt) => llt.solve(rhs),
+            Kind::Sparse { symbolic, values } => {
+                let mut x = rhs.to_owned();
+                let par = Par::Seq;
+                let sym = &symbolic.inner;
+                let mut mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(x.ncols(), par));
+                LltRef::<'_, usize, f64>::new(sym, values).solve_in_place_with_conj(
+                    Conj::No,
+                    x.as_mut(),
+                    par,
+                    MemStack::new(&mut mem),
+                );
+                x
+            }
+        }
+    }
+}
