@@ -134,6 +134,33 @@ struct OptionArgs {
     /// Simulated interval of the dynamic scenes, s.
     #[arg(long)]
     end_time: Option<f64>,
+    /// Bricks of the slab mesh along x, y, z (slab-modes; App. B is 4,2,1).
+    #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
+    refine: Option<[usize; 3]>,
+}
+
+/// `NX,NY,NZ`: three positive brick counts.
+fn parse_refine(s: &str) -> std::result::Result<[usize; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!(
+            "expected three brick counts NX,NY,NZ, got {} value(s)",
+            parts.len()
+        ));
+    }
+    let mut out = [0; 3];
+    for (d, p) in parts.iter().enumerate() {
+        let axis = ["x", "y", "z"][d];
+        out[d] = p
+            .parse::<usize>()
+            .map_err(|_| format!("brick count along {axis} `{p}` is not a positive integer"))?;
+        if out[d] == 0 {
+            return Err(format!(
+                "brick count along {axis} must be at least 1, got 0"
+            ));
+        }
+    }
+    Ok(out)
 }
 
 fn parse_method(s: &str) -> std::result::Result<Method, String> {
@@ -153,6 +180,7 @@ impl From<OptionArgs> for SceneOptions {
             boundary: a.boundary,
             axes: a.axes,
             end_time: a.end_time,
+            refine: a.refine,
             ..Default::default()
         }
     }
@@ -226,7 +254,7 @@ fn run(cli: Cli) -> Result<()> {
             options,
         } => {
             let s = scenes::find(&scene)?;
-            let out = (s.run)(&options.into())?;
+            let out = s.execute(&options.into())?;
             if json {
                 println!("{}", out.report.to_json());
             } else {
@@ -270,7 +298,7 @@ fn run(cli: Cli) -> Result<()> {
             let recorder = Recorder::default();
             for s in found {
                 progress(&format!("recording {} ...", s.info.id));
-                let output = (s.run)(&opts)?;
+                let output = s.execute(&opts)?;
                 let path = save
                     .clone()
                     .unwrap_or_else(|| out.join(format!("{}.rrd", s.info.id)));

@@ -5,7 +5,15 @@ use std::collections::BTreeSet;
 use faer::Mat;
 
 use super::{FeModel, hex8_stiffness};
-use crate::linalg::{MassMatrix, SparseAssembly, SparsityPattern};
+use crate::{
+    Error, Result,
+    linalg::{MassMatrix, SparseAssembly, SparsityPattern},
+};
+
+/// Meshes of up to this many bricks draw every brick edge.
+const SMALL_MESH_BRICKS: usize = 64;
+/// Grid lines drawn per face and direction on a refined mesh.
+const DRAWN_LINES: usize = 8;
 
 /// Parameters of the App. B slab. Defaults are the thesis values.
 #[derive(Debug, Clone, PartialEq)]
@@ -31,6 +39,55 @@ impl Default for SlabParameters {
             poisson_ratio: 0.33,
             total_mass: 62.4,
         }
+    }
+}
+
+impl SlabParameters {
+    /// The App. B slab (same 4 × 2 × 1 m body, material and total mass) meshed with
+    /// `bricks` = [NX, NY, NZ] bricks; `[4, 2, 1]` is App. B itself. A zero count is
+    /// [`Error::InvalidOption`].
+    pub fn refined(bricks: [usize; 3]) -> Result<Self> {
+        if let Some(d) = (0..3).find(|&d| bricks[d] == 0) {
+            return Err(Error::InvalidOption {
+                scene: "slab".into(),
+                reason: format!(
+                    "--refine needs at least one brick along each axis, got 0 along {}",
+                    ["x", "y", "z"][d]
+                ),
+            });
+        }
+        Ok(Self {
+            bricks,
+            ..Default::default()
+        })
+    }
+
+    /// Number of nodes of the mesh.
+    pub fn node_count(&self) -> usize {
+        self.bricks.iter().map(|&b| b.max(1) + 1).product()
+    }
+
+    /// Number of DOF (three per node).
+    pub fn dof_count(&self) -> usize {
+        3 * self.node_count()
+    }
+
+    /// The 1-based number of the node nearest to `position` (m, slab lying flat), in the
+    /// numbering of [`slab`]: top layer first, ξ-major, η-minor (Table B-1 for App. B).
+    pub fn nearest_node(&self, position: [f64; 3]) -> usize {
+        let [nx, ny, nz] = self.bricks.map(|b| b.max(1));
+        let index = |d: usize, n: usize| {
+            ((position[d] / self.size[d] * n as f64).round().max(0.0) as usize).min(n)
+        };
+        let (ix, iy) = (index(0, nx), index(1, ny));
+        let iz_from_top = nz - index(2, nz);
+        iz_from_top * (nx + 1) * (ny + 1) + ix * (ny + 1) + iy + 1
+    }
+
+    /// The four bottom corners, 1-based (App. B: nodes 16, 18, 28, 30).
+    pub fn bottom_corners(&self) -> [usize; 4] {
+        let [lx, ly, _] = self.size;
+        [[0.0, 0.0], [0.0, ly], [lx, 0.0], [lx, ly]].map(|[x, y]| self.nearest_node([x, y, 0.0]))
     }
 }
 
@@ -98,6 +155,42 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
     let mut mass = vec![0.0; 3 * nodes.len()];
     let brick_mass = p.total_mass / (nx * ny * nz) as f64;
     let mut edges = BTreeSet::new();
+    // Drawing: a small mesh shows every brick edge; a refined one only grid lines on the
+    // surface, at most DRAWN_LINES per face and direction (full resolution along each line),
+    // so an animated mode of a 150 000-DOF mesh stays a few thousand points per frame.
+    let grid = |c: usize| {
+        let iz = c / layer;
+        let rest = c % layer;
+        [rest / py, rest % py, iz]
+    };
+    let refined = nx * ny * nz > SMALL_MESH_BRICKS;
+    let n_per = [nx, ny, nz];
+    let stride = n_per.map(|n| {
+        if refined {
+            n.div_ceil(DRAWN_LINES).max(1)
+        } else {
+            1
+        }
+    });
+    let on_grid = |g: [usize; 3], d: usize| g[d] % stride[d] == 0 || g[d] == n_per[d];
+    let on_face = |g: [usize; 3], d: usize| g[d] == 0 || g[d] == n_per[d];
+    let drawn = |c: usize| {
+        let g = grid(c);
+        !refined || (0..3).any(|d| on_face(g, d))
+    };
+    // An edge along direction a is drawn when it lies on a face and on a drawn grid line.
+    let on_one_line = |u: usize, v: usize| {
+        if !refined {
+            return true;
+        }
+        let (gu, gv) = (grid(u), grid(v));
+        let Some(a) = (0..3).find(|&d| gu[d] != gv[d]) else {
+            return false;
+        };
+        let others: Vec<usize> = (0..3).filter(|&d| d != a).collect();
+        let (p, q) = (others[0], others[1]);
+        (on_face(gu, p) && on_grid(gu, q)) || (on_face(gu, q) && on_grid(gu, p))
+    };
     // Bricks of one mesh are congruent translates: the element matrix is computed once per
     // shape (node offsets from the first local node), not once per brick.
     let mut cached: Option<([[f64; 3]; 8], Mat<f64>)> = None;
@@ -139,7 +232,9 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
             (3, 7),
         ] {
             let (u, v) = (conn[a].min(conn[b]), conn[a].max(conn[b]));
-            edges.insert([u, v]);
+            if drawn(u) && drawn(v) && on_one_line(u, v) {
+                edges.insert([u, v]);
+            }
         }
     }
     let k = assembly.finish();

@@ -158,7 +158,7 @@ fn compute(job: &Job, keep_user_layout: bool) -> Result<Computed, String> {
         msg
     };
     let s = scenes::find(scene).map_err(chain)?;
-    let out = (s.run)(options).map_err(chain)?;
+    let out = s.execute(options).map_err(chain)?;
     let recorder = Recorder {
         recording_suffix: Some(generation.to_string()),
         keep_user_layout,

@@ -6,6 +6,7 @@ mod dense;
 mod generalized_eigen;
 mod lyapunov;
 mod mass_matrix;
+mod memory;
 mod partial_eigen;
 mod sparse_symmetric;
 mod symmetric_factor;
@@ -17,6 +18,7 @@ pub use dense::{
 pub use generalized_eigen::{GeneralizedEigen, fix_sign, generalized_eigen, hz_from_eigenvalue};
 pub use lyapunov::solve_lyapunov;
 pub use mass_matrix::MassMatrix;
+pub use memory::{available_bytes, estimated_reduction_bytes, peak_resident_bytes};
 pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,
 };

@@ -39,7 +39,7 @@ impl Default for PartialEigenParameters {
             block_size: 4,
             basis_factor: 3,
             max_restarts: 200,
-            ritz_tolerance: 1e-12,
+            ritz_tolerance: 1e-10,
             residual_tolerance: 1e-8,
             seed: 0x5eed_f1e7,
         }

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::{
-    Conj, Mat, MatRef, Par, Side,
+    Conj, Mat, MatRef, Side,
     linalg::solvers::{Llt as DenseLlt, LltError, Solve},
     sparse::{
         SparseColMat,
@@ -104,7 +104,7 @@ impl SymmetricFactor {
                 what: format!("Cholesky factor of {what} ({} entries)", sym.len_val()),
             })?;
         values.resize(sym.len_val(), 0.0);
-        let par = Par::Seq;
+        let par = faer::get_global_parallelism();
         let mut mem =
             MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
                 .map_err(|_| Error::OutOfMemory {
@@ -162,7 +162,7 @@ impl SymmetricFactor {
             Kind::Dense(llt) => llt.solve(rhs),
             Kind::Sparse { symbolic, values } => {
                 let mut x = rhs.to_owned();
-                let par = Par::Seq;
+                let par = faer::get_global_parallelism();
                 let sym = &symbolic.inner;
                 let mut mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(x.ncols(), par));
                 LltRef::<'_, usize, f64>::new(sym, values).solve_in_place_with_conj(

@@ -21,7 +21,7 @@ impl Geometry {
         let strips = if model.dim == 2 {
             vec![(0..model.node_count()).collect()]
         } else {
-            model.edges.iter().map(|e| vec![e[0], e[1]]).collect()
+            straight_strips(&model.nodes, &model.edges)
         };
         Self {
             nodes: model.nodes.clone(),
@@ -36,6 +36,58 @@ impl Geometry {
             strips: self.strips.clone(),
         }
     }
+}
+
+/// Joins edges into straight polylines (edges meeting end to end in one direction), so a
+/// refined mesh's grid lines are logged as one strip each instead of one per segment.
+fn straight_strips(nodes: &[[f64; 3]], edges: &[[usize; 2]]) -> Vec<Vec<usize>> {
+    let mut at: Vec<Vec<usize>> = vec![Vec::new(); nodes.len()];
+    for (k, e) in edges.iter().enumerate() {
+        at[e[0]].push(k);
+        at[e[1]].push(k);
+    }
+    let dir = |a: usize, b: usize| {
+        let d = [0, 1, 2].map(|i| nodes[b][i] - nodes[a][i]);
+        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
+            .sqrt()
+            .max(f64::MIN_POSITIVE);
+        d.map(|x| x / n)
+    };
+    let mut used = vec![false; edges.len()];
+    let mut strips = Vec::new();
+    for start in 0..edges.len() {
+        if used[start] {
+            continue;
+        }
+        used[start] = true;
+        let mut strip = vec![edges[start][0], edges[start][1]];
+        for _ in 0..2 {
+            // Extend at the end while an unused edge continues straight on.
+            loop {
+                let (prev, last) = (strip[strip.len() - 2], strip[strip.len() - 1]);
+                let d = dir(prev, last);
+                let next = at[last].iter().copied().find(|&k| {
+                    let other = if edges[k][0] == last {
+                        edges[k][1]
+                    } else {
+                        edges[k][0]
+                    };
+                    let e = dir(last, other);
+                    !used[k] && d[0] * e[0] + d[1] * e[1] + d[2] * e[2] > 1.0 - 1e-9
+                });
+                let Some(k) = next else { break };
+                used[k] = true;
+                strip.push(if edges[k][0] == last {
+                    edges[k][1]
+                } else {
+                    edges[k][0]
+                });
+            }
+            strip.reverse();
+        }
+        strips.push(strip);
+    }
+    strips
 }
 
 /// One thing to log.

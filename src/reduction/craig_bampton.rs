@@ -26,7 +26,20 @@ pub fn craig_bampton_on(
     modes: ModeSelection,
     path: SolverPath,
 ) -> Result<Basis> {
-    let mut problem = InteriorProblem::new(model, boundary, path)?;
+    craig_bampton_from(
+        model,
+        &mut InteriorProblem::new(model, boundary, path)?,
+        modes,
+    )
+}
+
+/// [`craig_bampton`] on an interior problem whose factor and modes may be shared with other
+/// methods of the same boundary set.
+pub fn craig_bampton_from(
+    model: &FeModel,
+    problem: &mut InteriorProblem<'_>,
+    modes: ModeSelection,
+) -> Result<Basis> {
     let psi_s = problem.constraint_modes()?;
     let fi = problem.kept_modes(modes)?;
     let kept = fi.values.len();

@@ -13,7 +13,7 @@ mod nodal_fixed;
 mod partition;
 
 pub use basis::{Basis, Column, ColumnKind};
-pub use craig_bampton::{craig_bampton, craig_bampton_on};
+pub use craig_bampton::{craig_bampton, craig_bampton_from, craig_bampton_on};
 pub use eitelberg::{
     EITELBERG_DOF_LIMIT, EitelbergParameters, EitelbergReduction, StateSpaceReduction, eitelberg,
     eitelberg_state_space,
@@ -21,10 +21,10 @@ pub use eitelberg::{
 pub use full::no_reduction;
 pub use guyan::{guyan, guyan_on};
 pub use method::{Method, ModeSelection, ReductionParameters, SolverPath, reduce};
-pub use modal_truncation::{modal_truncation, modal_truncation_on};
+pub use modal_truncation::{modal_truncation, modal_truncation_from, modal_truncation_on};
 pub use mode_condensation::{
-    MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, mode_condensation, mode_condensation_on,
-    mode_condensation_route,
+    MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, mode_condensation, mode_condensation_from,
+    mode_condensation_on, mode_condensation_route,
 };
 pub use nodal_fixed::{NodalFixedAxes, TableConfiguration};
 pub use partition::{

@@ -26,7 +26,19 @@ pub fn modal_truncation_on(
     modes: ModeSelection,
     path: SolverPath,
 ) -> Result<Basis> {
-    let mut problem = InteriorProblem::new(model, boundary, path)?;
+    modal_truncation_from(
+        model,
+        &mut InteriorProblem::new(model, boundary, path)?,
+        modes,
+    )
+}
+
+/// [`modal_truncation`] on an interior problem shared with other methods.
+pub fn modal_truncation_from(
+    model: &FeModel,
+    problem: &mut InteriorProblem<'_>,
+    modes: ModeSelection,
+) -> Result<Basis> {
     let fi = problem.kept_modes(modes)?;
     let kept = fi.values.len();
     let p = &problem.partition;

@@ -72,7 +72,21 @@ pub fn mode_condensation_route(
     path: SolverPath,
     route: ModeCondensationRoute,
 ) -> Result<Basis> {
-    let mut problem = InteriorProblem::new(model, boundary, path)?;
+    mode_condensation_from(
+        model,
+        &mut InteriorProblem::new(model, boundary, path)?,
+        modes,
+        route,
+    )
+}
+
+/// [`mode_condensation`] on an interior problem shared with other methods.
+pub fn mode_condensation_from(
+    model: &FeModel,
+    problem: &mut InteriorProblem<'_>,
+    modes: ModeSelection,
+    route: ModeCondensationRoute,
+) -> Result<Basis> {
     // A zero fixed-interface eigenvalue would make K̄_n^d singular: refused even when that
     // mode would be kept, as Craig-Bampton refuses it.
     problem.check_restraint()?;

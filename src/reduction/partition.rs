@@ -125,6 +125,7 @@ pub struct InteriorProblem<'a> {
     k_ib: Mat<f64>,
     factor: Option<(SymmetricFactor, f64)>,
     free_motions: Option<Vec<String>>,
+    partial_modes: Option<GeneralizedEigen>,
     /// Phase timings and sizes so far.
     pub statistics: ReductionStatistics,
 }
@@ -151,6 +152,7 @@ impl<'a> InteriorProblem<'a> {
             k_ib,
             factor: None,
             free_motions: None,
+            partial_modes: None,
             statistics: ReductionStatistics {
                 sparse,
                 ..Default::default()
@@ -300,6 +302,11 @@ impl<'a> InteriorProblem<'a> {
     }
 
     fn partial(&mut self, wanted: usize) -> Result<GeneralizedEigen> {
+        if let Some(cached) = &self.partial_modes
+            && cached.values.len() >= wanted
+        {
+            return Ok(first_modes(cached, wanted));
+        }
         self.factor()?;
         let started = Instant::now();
         let (f, sigma) = self.factor.as_ref().expect("factored above");
@@ -315,6 +322,7 @@ impl<'a> InteriorProblem<'a> {
         self.statistics.eigen_block_solves += stats.block_solves;
         self.statistics.eigen_max_residual =
             self.statistics.eigen_max_residual.max(stats.max_residual);
+        self.partial_modes = Some(eig.clone());
         Ok(eig)
     }
 }

@@ -27,6 +27,7 @@ pub const INFO: SceneInfo = SceneInfo {
         modes: None,
         axes: &[],
         end_time: None,
+        refine: None,
     },
 };
 

@@ -35,6 +35,7 @@ pub const INFO: SceneInfo = SceneInfo {
         modes: Some(2),
         axes: &["mean"],
         end_time: None,
+        refine: None,
     },
 };
 

@@ -30,6 +30,7 @@ pub const INFO: SceneInfo = SceneInfo {
         modes: Some(2),
         axes: &[],
         end_time: None,
+        refine: None,
     },
 };
 

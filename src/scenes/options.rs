@@ -22,6 +22,8 @@ pub struct SceneOptions {
     pub axes: Option<String>,
     /// `--end-time`: simulated interval of the dynamic scenes, s.
     pub end_time: Option<f64>,
+    /// `--refine NX,NY,NZ`: bricks of the slab mesh (App. B: 4, 2, 1).
+    pub refine: Option<[usize; 3]>,
     /// Where the time integrations report how far they got; cancelling it stops the scene.
     pub progress: Progress,
     /// Time integrations kept from earlier requests (the desktop explorer's).

@@ -35,6 +35,7 @@ pub const INFO: SceneInfo = SceneInfo {
         modes: Some(6),
         axes: &["nodal_fixed", "mean"],
         end_time: Some(END_TIME),
+        refine: None,
     },
 };
 

@@ -32,6 +32,8 @@ pub struct SceneControls {
     pub axes: &'static [&'static str],
     /// Default simulated interval, s (`None`: not a simulation).
     pub end_time: Option<f64>,
+    /// Default mesh as bricks along x, y, z (`None`: the scene's body cannot be refined).
+    pub refine: Option<[usize; 3]>,
 }
 
 /// A scene: computes its results and visuals for given options.
@@ -40,6 +42,19 @@ pub struct Scene {
     pub info: SceneInfo,
     /// Runs the scene.
     pub run: fn(&SceneOptions) -> Result<SceneOutput>,
+}
+
+impl Scene {
+    /// Runs the scene after checking the options it does not offer.
+    pub fn execute(&self, opts: &SceneOptions) -> Result<SceneOutput> {
+        if opts.refine.is_some() && self.info.controls.refine.is_none() {
+            return Err(Error::InvalidOption {
+                scene: self.info.id.into(),
+                reason: "--refine applies to slab-modes only".into(),
+            });
+        }
+        (self.run)(opts)
+    }
 }
 
 /// Every scene, in catalogue order.

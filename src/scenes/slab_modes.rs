@@ -35,6 +35,7 @@ pub const INFO: SceneInfo = SceneInfo {
         modes: Some(6),
         axes: &["nodal_fixed"],
         end_time: None,
+        refine: Some([4, 2, 1]),
     },
 };
 

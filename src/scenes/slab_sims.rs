@@ -28,6 +28,7 @@ const fn sim_controls(end: f64) -> super::registry::SceneControls {
         modes: Some(6),
         axes: &["nodal_fixed", "mean", "principal"],
         end_time: Some(end),
+        refine: None,
     }
 }
 
