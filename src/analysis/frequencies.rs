@@ -57,6 +57,7 @@ pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<General
         &factor,
         sigma,
         wanted,
+        Some(model.rigid_body_modes().as_ref()),
         &PartialEigenParameters::default(),
     )?;
     Ok(eig)

@@ -316,6 +316,7 @@ impl<'a> InteriorProblem<'a> {
             f,
             *sigma,
             wanted,
+            None,
             &PartialEigenParameters::default(),
         )?;
         self.statistics.eigen_s += started.elapsed().as_secs_f64();

@@ -11,6 +11,7 @@ mod registry;
 mod run_cache;
 mod sim_visuals;
 mod slab_modes;
+mod slab_refined;
 pub mod slab_sims;
 
 pub use options::{SceneOptions, SceneOutput};

@@ -40,6 +40,8 @@ pub const INFO: SceneInfo = SceneInfo {
 };
 
 const DEFAULT_BOUNDARY: [usize; 4] = [16, 18, 28, 30];
+/// The App. B mesh: 4 × 2 × 1 bricks.
+pub(super) const APP_B_BRICKS: [usize; 3] = [4, 2, 1];
 /// §7.2.1: Guyan adds two masters so it has as many coordinates as the others (18).
 const EXTRA_GUYAN_MASTERS: [usize; 2] = [5, 11];
 const DEFAULT_MODES: usize = 6;
@@ -53,6 +55,11 @@ const AVAILABLE: [Method; 4] = [
 ];
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
+    if let Some(bricks) = opts.refine
+        && bricks != APP_B_BRICKS
+    {
+        return super::slab_refined::run(opts, bricks);
+    }
     opts.check_axes(INFO.id, &["nodal_fixed"])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
     let boundary = opts
