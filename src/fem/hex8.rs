@@ -94,3 +94,43 @@ pub fn hex8_stiffness(x: &[[f64; 3]; 8], e: f64, nu: f64) -> Mat<f64> {
     }
     k
 }
+
+/// Consistent mass (24×24, kg) of a brick with node positions `x` (m) and density `rho`
+/// (kg/m³): $M_e = \rho \sum_g N^T N \,\det J\, w_g$ over the 2×2×2 Gauss points, the same
+/// shape function for each direction.
+pub fn hex8_consistent_mass(x: &[[f64; 3]; 8], rho: f64) -> Mat<f64> {
+    let g = 1.0 / 3.0f64.sqrt();
+    let mut m = Mat::<f64>::zeros(24, 24);
+    for &gx in &[-g, g] {
+        for &gy in &[-g, g] {
+            for &gz in &[-g, g] {
+                let mut n = [0.0; 8];
+                let mut dn = [[0.0; 3]; 8];
+                for (a, l) in LOCAL_NODES.iter().enumerate() {
+                    n[a] = 0.125 * (1.0 + l[0] * gx) * (1.0 + l[1] * gy) * (1.0 + l[2] * gz);
+                    dn[a][0] = 0.125 * l[0] * (1.0 + l[1] * gy) * (1.0 + l[2] * gz);
+                    dn[a][1] = 0.125 * l[1] * (1.0 + l[0] * gx) * (1.0 + l[2] * gz);
+                    dn[a][2] = 0.125 * l[2] * (1.0 + l[0] * gx) * (1.0 + l[1] * gy);
+                }
+                let mut j = nalgebra::Matrix3::<f64>::zeros();
+                for a in 0..8 {
+                    for r in 0..3 {
+                        for c in 0..3 {
+                            j[(r, c)] += dn[a][r] * x[a][c];
+                        }
+                    }
+                }
+                let det = j.determinant();
+                for a in 0..8 {
+                    for b in 0..8 {
+                        let v = rho * n[a] * n[b] * det;
+                        for d in 0..3 {
+                            m[(3 * a + d, 3 * b + d)] += v;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    m
+}

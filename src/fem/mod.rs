@@ -10,5 +10,5 @@ mod triplets;
 pub use beam2d::{BeamParameters, beam};
 pub use brick_mesh::{SlabParameters, plank, slab};
 pub use fe_model::{Direction, FeModel};
-pub use hex8::{LOCAL_NODES as HEX8_LOCAL_NODES, hex8_stiffness};
+pub use hex8::{LOCAL_NODES as HEX8_LOCAL_NODES, hex8_consistent_mass, hex8_stiffness};
 pub use triplets::Triplets;

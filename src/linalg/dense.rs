@@ -66,15 +66,39 @@ pub fn symmetry_defect(a: MatRef<'_, f64>) -> f64 {
 pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> crate::Result<Vec<f64>> {
     let qa = orthonormal_basis(a)?;
     let qb = orthonormal_basis(b)?;
+    let (qa, qb) = if qa.ncols() >= qb.ncols() {
+        (qa, qb)
+    } else {
+        (qb, qa)
+    };
     let c = qa.transpose() * &qb;
-    let s = c
+    let svd_err = |_| crate::Error::DecompositionFailed {
+        what: "principal-angle SVD".into(),
+    };
+    let cosines = c.singular_values().map_err(svd_err)?;
+    let mut from_cos: Vec<f64> = cosines.iter().map(|&c| c.clamp(-1.0, 1.0).acos()).collect();
+    from_cos.sort_by(f64::total_cmp);
+    // acos loses half the digits of a small angle (cos θ ≈ 1 − θ²/2); the sines, singular
+    // values of Q_b − Q_a Q_aᵀ Q_b, keep them (Björck & Golub). Small angles from sines.
+    let rest = &qb - &qa * &c;
+    let mut from_sin: Vec<f64> = rest
         .singular_values()
-        .map_err(|_| crate::Error::DecompositionFailed {
-            what: "principal-angle SVD".into(),
-        })?;
-    let mut angles: Vec<f64> = s.iter().map(|&c| c.clamp(-1.0, 1.0).acos()).collect();
-    angles.sort_by(f64::total_cmp);
-    Ok(angles)
+        .map_err(svd_err)?
+        .iter()
+        .map(|&s| s.clamp(-1.0, 1.0).asin())
+        .collect();
+    from_sin.sort_by(f64::total_cmp);
+    Ok(from_cos
+        .iter()
+        .zip(&from_sin)
+        .map(|(&ac, &as_)| {
+            if ac < std::f64::consts::FRAC_PI_4 {
+                as_
+            } else {
+                ac
+            }
+        })
+        .collect())
 }
 
 fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::Result<Mat<f64>> {

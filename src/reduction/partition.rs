@@ -416,7 +416,32 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
             w[0] * t[1] - w[1] * t[0],
         ];
         let a: Vec<f64> = (0..3).map(|d| c[d] + wxt[d] / (wn * wn)).collect();
+        // Name a boundary node the axis passes through, if any (a point support).
+        let unit = [w[0] / wn, w[1] / wn, w[2] / wn];
+        let through_node = p.boundary_nodes.iter().copied().find(|&node| {
+            let x = model.nodes[node - 1];
+            let d = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
+            let along = d[0] * unit[0] + d[1] * unit[1] + d[2] * unit[2];
+            let off = (0..3)
+                .map(|k| (d[k] - along * unit[k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            off <= 1e-9 * size
+        });
         let clean = |x: f64| if x.abs() < 1e-9 { 0.0 } else { x };
+        if let Some(node) = through_node {
+            let x = model.nodes[node - 1];
+            return format!(
+                "rotation about ({:.3}, {:.3}, {:.3}) through node {node} at ({:.3}, {:.3}, \
+                 {:.3}) m",
+                clean(unit[0]),
+                clean(unit[1]),
+                clean(unit[2]),
+                clean(x[0]),
+                clean(x[1]),
+                clean(x[2])
+            );
+        }
         format!(
             "rotation about ({:.3}, {:.3}, {:.3}) through ({:.3}, {:.3}, {:.3}) m",
             clean(w[0] / wn),

@@ -8,3 +8,4 @@ mod invariants;
 mod linalg;
 mod published;
 mod scenes;
+mod sparse;
