@@ -46,6 +46,9 @@ enum Command {
         /// Print one JSON object per scene.
         #[arg(long)]
         json: bool,
+        /// slab-modes only: refined meshes to time, `1k,7k,28k,74k,150k` or `NXxNYxNZ,...`.
+        #[arg(long)]
+        sizes: Option<String>,
     },
     /// The desktop explorer: the Rerun viewer beside live controls.
     #[cfg(feature = "gui")]
@@ -228,7 +231,31 @@ fn run(cli: Cli) -> Result<()> {
         }
         #[cfg(feature = "gui")]
         Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),
-        Command::Bench { scenes: ids, json } => {
+        Command::Bench {
+            scenes: ids,
+            json,
+            sizes: Some(sizes),
+        } => {
+            if ids.iter().any(|id| id != "slab-modes") {
+                return Err(Error::InvalidOption {
+                    scene: ids.join(","),
+                    reason: "--sizes times the refined slab-modes scene only".into(),
+                });
+            }
+            let meshes = crate::bench_sizes::parse_sizes(&sizes)?;
+            let (value, table) = crate::bench_sizes::bench_sizes(&meshes, &|s| progress(s))?;
+            if json {
+                println!("{value}");
+            } else {
+                println!("# bench slab-modes --sizes {sizes}\n\n{table}");
+            }
+            Ok(())
+        }
+        Command::Bench {
+            scenes: ids,
+            json,
+            sizes: None,
+        } => {
             let ids = if ids.is_empty() {
                 vec!["slab-sim1".to_string()]
             } else {

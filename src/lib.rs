@@ -12,6 +12,7 @@
 
 pub mod analysis;
 pub mod bench;
+pub mod bench_sizes;
 pub mod cli;
 pub mod dynamics;
 mod error;

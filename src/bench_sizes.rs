@@ -1,0 +1,251 @@
+//! `flexmodes bench slab-modes --sizes 1k,7k,28k,74k,150k`: the offline cost of each reduction
+//! against the size of the refined slab, with the fitted growth exponent per method.
+//!
+//! Timings are wall-clock seconds measured in one run on this machine; they are reported,
+//! never asserted.
+
+use std::time::Instant;
+
+use serde_json::{Map, Value, json};
+
+use crate::{
+    Error, Result,
+    fem::{SlabParameters, slab},
+    linalg::{available_bytes, estimated_reduction_bytes, peak_resident_bytes},
+    reduction::{
+        InteriorProblem, MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, ModeSelection, SolverPath,
+        craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
+        mode_condensation_route,
+    },
+    report::{markdown_table, sig, sig_vec},
+};
+
+/// Kept fixed-interface modes of the benchmark work (and the frequencies reported).
+pub const BENCH_MODES: usize = 20;
+
+/// The named sizes: DOF in thousands → bricks (the meshes of the SciPy/Exudyn peer script).
+const NAMED_SIZES: [(&str, [usize; 3]); 5] = [
+    ("1k", [12, 6, 3]),
+    ("7k", [24, 12, 6]),
+    ("28k", [40, 20, 10]),
+    ("74k", [56, 28, 14]),
+    ("150k", [72, 36, 18]),
+];
+
+/// Parses `1k,7k,28k` or `24x12x6,40x20x10` into meshes, ascending in size.
+pub fn parse_sizes(text: &str) -> Result<Vec<[usize; 3]>> {
+    let mut out = Vec::new();
+    for token in text.split(',').map(str::trim) {
+        let bricks = if let Some((_, b)) = NAMED_SIZES.iter().find(|(n, _)| *n == token) {
+            *b
+        } else {
+            let parts: Vec<Option<usize>> = token.split('x').map(|p| p.parse().ok()).collect();
+            match parts.as_slice() {
+                [Some(a), Some(b), Some(c)] if *a > 0 && *b > 0 && *c > 0 => [*a, *b, *c],
+                _ => {
+                    return Err(Error::InvalidOption {
+                        scene: "slab-modes".into(),
+                        reason: format!(
+                            "size `{token}` is neither one of {} nor NXxNYxNZ with positive counts",
+                            NAMED_SIZES.map(|(n, _)| n).join(", ")
+                        ),
+                    });
+                }
+            }
+        };
+        out.push(bricks);
+    }
+    out.sort_by_key(|b| b.iter().map(|&n| n + 1).product::<usize>());
+    Ok(out)
+}
+
+/// Least-squares slope of log y against log x (None with fewer than two positive points).
+pub fn growth_exponent(points: &[(f64, f64)]) -> Option<f64> {
+    let logs: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    if logs.len() < 2 {
+        return None;
+    }
+    let n = logs.len() as f64;
+    let (mx, my) = (
+        logs.iter().map(|p| p.0).sum::<f64>() / n,
+        logs.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxy: f64 = logs.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = logs.iter().map(|(x, _)| (x - mx).powi(2)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// Runs every size; returns the JSON object and a markdown table.
+pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<(Value, String)> {
+    let mut points = Vec::new();
+    let mut rows = Vec::new();
+    let mut series: Map<String, Value> = Map::new();
+    let mut totals: std::collections::BTreeMap<&str, Vec<(f64, f64)>> = Default::default();
+    for &bricks in sizes {
+        let params = SlabParameters::refined(bricks)?;
+        let dofs = params.dof_count();
+        let needed = estimated_reduction_bytes(dofs);
+        if let Some(available) = available_bytes()
+            && needed > available
+        {
+            return Err(Error::MeshTooLarge {
+                dofs,
+                estimated_gb: needed as f64 / 1e9,
+                available_gb: available as f64 / 1e9,
+            });
+        }
+        progress(&format!("{dofs} DOF ({bricks:?}): assembly"));
+        let started = Instant::now();
+        let model = slab(&params);
+        let assembly_s = started.elapsed().as_secs_f64();
+        let corners = params.bottom_corners();
+        progress(&format!("{dofs} DOF: Craig-Bampton"));
+        let started = Instant::now();
+        let mut problem = InteriorProblem::new(&model, &corners, SolverPath::Auto)?;
+        let cb = craig_bampton_from(&model, &mut problem, ModeSelection::Count(BENCH_MODES))?;
+        let cb_s = started.elapsed().as_secs_f64();
+        let phases = cb.statistics;
+        let hz: Vec<f64> = cb
+            .columns
+            .iter()
+            .filter_map(|c| match c.kind {
+                crate::reduction::ColumnKind::Normal { hz } => Some(hz),
+                _ => None,
+            })
+            .collect();
+        let started = Instant::now();
+        modal_truncation_from(&model, &mut problem, ModeSelection::Count(BENCH_MODES))?;
+        // MT reuses CB's factor and modes: its own cost is the basis assembly on top.
+        let mt_s = phases.factorization_s + phases.eigen_s + started.elapsed().as_secs_f64();
+        let started = Instant::now();
+        mode_condensation_from(
+            &model,
+            &mut problem,
+            ModeSelection::Count(BENCH_MODES),
+            ModeCondensationRoute::KeptModes,
+        )?;
+        let mc_kept_s = cb_s + started.elapsed().as_secs_f64();
+        let interior = problem.interior_dofs();
+        drop(problem);
+        let mc_complete_s = if interior <= MC_COMPLETE_ROUTE_LIMIT {
+            progress(&format!("{dofs} DOF: mode condensation, complete route"));
+            let started = Instant::now();
+            mode_condensation_route(
+                &model,
+                &corners,
+                ModeSelection::Count(BENCH_MODES),
+                SolverPath::Auto,
+                ModeCondensationRoute::Complete,
+            )?;
+            Some(started.elapsed().as_secs_f64())
+        } else {
+            None
+        };
+        progress(&format!("{dofs} DOF: Guyan"));
+        let started = Instant::now();
+        guyan_on(&model, &corners, SolverPath::Auto)?;
+        let gr_s = started.elapsed().as_secs_f64();
+        let peak = peak_resident_bytes();
+        for (id, s) in [
+            ("gr", Some(gr_s)),
+            ("mt", Some(mt_s)),
+            ("cb", Some(cb_s)),
+            ("mc", Some(mc_kept_s)),
+            ("mc_complete", mc_complete_s),
+        ] {
+            if let Some(s) = s {
+                totals.entry(id).or_default().push((dofs as f64, s));
+            }
+        }
+        rows.push(vec![
+            format!("{}×{}×{}", bricks[0], bricks[1], bricks[2]),
+            dofs.to_string(),
+            model.stiffness_nnz().to_string(),
+            phases.factor_nnz.to_string(),
+            format!("{assembly_s:.3}"),
+            format!("{:.3}", phases.factorization_s),
+            format!("{:.3}", phases.constraint_modes_s),
+            format!("{:.3}", phases.eigen_s),
+            format!("{cb_s:.3}"),
+            format!("{gr_s:.3}"),
+            format!("{mt_s:.3}"),
+            format!("{mc_kept_s:.3}"),
+            mc_complete_s.map_or("—".into(), |s| format!("{s:.3}")),
+            peak.map_or("?".into(), |b| format!("{:.0}", b as f64 / 1e6)),
+        ]);
+        points.push(json!({
+            "bricks": bricks,
+            "dofs": dofs,
+            "nnz": model.stiffness_nnz(),
+            "factor_nnz": phases.factor_nnz,
+            "timing_s": {
+                "assembly": sig(assembly_s),
+                "factorization": sig(phases.factorization_s),
+                "constraint_modes": sig(phases.constraint_modes_s),
+                "eigen": sig(phases.eigen_s),
+                "reduction": sig(cb_s),
+            },
+            "offline_s": {
+                "gr": sig(gr_s), "mt": sig(mt_s), "cb": sig(cb_s), "mc": sig(mc_kept_s),
+                "mc_complete": mc_complete_s.map(sig),
+            },
+            "eigen_block_solves": phases.eigen_block_solves,
+            "eigen_max_residual": phases.eigen_max_residual,
+            "peak_memory_bytes": peak,
+            "fixed_interface_hz": sig_vec(&hz),
+        }));
+    }
+    let mut exponents = Map::new();
+    for (id, pts) in &totals {
+        series.insert(
+            (*id).into(),
+            json!(pts.iter().map(|p| [p.0, sig(p.1)]).collect::<Vec<_>>()),
+        );
+        exponents.insert((*id).into(), json!(growth_exponent(pts).map(sig)));
+    }
+    let value = json!({
+        "scene": "slab-modes",
+        "modes": BENCH_MODES,
+        "boundary": "four bottom corners (12 DOF)",
+        "points": points,
+        "offline_s_against_dofs": series,
+        "growth_exponent": exponents,
+    });
+    let table = format!(
+        "Refined slab, Craig-Bampton with the four bottom corners (12 DOF) and {BENCH_MODES} kept \
+         fixed-interface modes; wall seconds in one run. MT and MC reuse CB's factor and \
+         modes (their times include CB's shared phases); MC complete is the thesis' route \
+         (complete dense interior eigenproblem, up to {MC_COMPLETE_ROUTE_LIMIT} interior DOF). \
+         Peak memory is the process's peak so far (sizes run ascending).\n\n{}\nGrowth \
+         exponents (offline s ∝ DOF^p): {}\n",
+        markdown_table(
+            &[
+                "mesh",
+                "DOF",
+                "nnz K",
+                "nnz L",
+                "assembly",
+                "factor",
+                "constraint",
+                "eigen",
+                "CB",
+                "GR",
+                "MT",
+                "MC",
+                "MC complete",
+                "peak MB",
+            ],
+            &rows
+        ),
+        exponents
+            .iter()
+            .map(|(k, v)| format!("{k} {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Ok((value, table))
+}
