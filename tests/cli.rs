@@ -251,3 +251,54 @@ fn bench_reports_speed_and_accuracy_points() {
     }
     assert_eq!(flexmodes(&["bench", "beam-modes"]).status.code(), Some(1));
 }
+
+#[test]
+fn refined_slab_report_has_sizes_and_phase_timings() {
+    let v = json(&[
+        "report",
+        "slab-modes",
+        "--refine",
+        "12,6,3",
+        "--modes",
+        "8",
+        "--json",
+    ]);
+    let r = &v["results"];
+    assert_eq!(r["dofs"], 3 * 13 * 7 * 4);
+    assert!(r["nnz"].as_u64().unwrap() > 0);
+    for key in [
+        "assembly",
+        "factorization",
+        "constraint_modes",
+        "eigen",
+        "reduction",
+    ] {
+        assert!(r["timing_s"][key].as_f64().unwrap() >= 0.0, "{key}");
+    }
+    assert!(r["peak_memory_bytes"].as_u64().unwrap() > 0);
+    let fi = r["fixed_interface_hz"].as_array().unwrap();
+    assert_eq!(fi.len(), 20);
+    // The four bottom corners of a 12×6×3 mesh (bottom layer numbered last).
+    let layer = 13 * 7;
+    let corners: Vec<usize> = [0, 6, 12 * 7, 12 * 7 + 6]
+        .iter()
+        .map(|c| 3 * layer + c + 1)
+        .collect();
+    assert_eq!(v["parameters"]["boundary"], serde_json::json!(corners));
+    // 12 constraint modes + 8 normal modes, 6 of them rigid.
+    assert_eq!(r["reduced_hz"]["cb"].as_array().unwrap().len(), 12 + 8 - 6);
+    // Usage errors before any work: zero, negative, non-numeric, wrong count.
+    for bad in ["0,1,1", "-1,2,2", "a,2,2", "4,2"] {
+        let out = flexmodes(&["report", "slab-modes", "--refine", bad]);
+        assert_eq!(out.status.code(), Some(2), "{bad}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("--refine"), "{bad}: {err}");
+    }
+    // A mesh larger than the machine: a named error, exit 1.
+    let out = flexmodes(&["report", "slab-modes", "--refine", "2000,2000,2000"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("GB"));
+    // --refine on another scene.
+    let out = flexmodes(&["report", "beam-modes", "--refine", "8,4,2"]);
+    assert_eq!(out.status.code(), Some(1));
+}
