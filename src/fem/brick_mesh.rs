@@ -180,7 +180,7 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
             1
         }
     });
-    let on_grid = |g: [usize; 3], d: usize| g[d] % stride[d] == 0 || g[d] == n_per[d];
+    let on_grid = |g: [usize; 3], d: usize| g[d].is_multiple_of(stride[d]) || g[d] == n_per[d];
     let on_face = |g: [usize; 3], d: usize| g[d] == 0 || g[d] == n_per[d];
     let drawn = |c: usize| {
         let g = grid(c);

@@ -207,8 +207,8 @@ pub fn lowest_modes(
     // λ = σ + 1/θ, ascending, and the residual check on the original pencil.
     let mut values = Vec::with_capacity(wanted);
     let mut vectors = Mat::<f64>::zeros(n, wanted);
-    for c in 0..wanted {
-        values.push(sigma + 1.0 / theta[c]);
+    for (c, &t) in theta.iter().take(wanted).enumerate() {
+        values.push(sigma + 1.0 / t);
         vectors.col_mut(c).copy_from(ritz.col(c));
         fix_sign(vectors.col_mut(c));
     }
@@ -230,7 +230,7 @@ pub fn lowest_modes(
         }
         stats.max_residual = stats.max_residual.max(rel);
     }
-    if !(stats.max_residual <= params.residual_tolerance) {
+    if stats.max_residual.is_nan() || stats.max_residual > params.residual_tolerance {
         return Err(Error::EigenNotConverged {
             converged,
             wanted,
