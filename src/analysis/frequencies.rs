@@ -5,7 +5,7 @@ use crate::{
     fem::FeModel,
     linalg::{
         GeneralizedEigen, PartialEigenParameters, SymbolicFactor, SymmetricFactor,
-        generalized_eigen, lowest_modes, negative_shift,
+        generalized_eigen, lowest_modes, negative_shift, nested_dissection,
     },
     reduction::{Basis, COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT},
 };
@@ -49,7 +49,9 @@ pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<General
     }
     let sigma = negative_shift(&model.k, &model.m);
     let shifted = model.k.shifted(&model.m, sigma);
-    let symbolic = SymbolicFactor::analyse(shifted.as_faer())?;
+    let coords: Vec<[f64; 3]> = (0..n).map(|d| model.nodes[d / model.dim]).collect();
+    let order = nested_dissection(shifted.as_faer(), &coords);
+    let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), Some(&order))?;
     let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
     let (eig, _) = lowest_modes(
         &model.k,

@@ -7,6 +7,7 @@ mod generalized_eigen;
 mod lyapunov;
 mod mass_matrix;
 mod memory;
+mod nested_dissection;
 mod partial_eigen;
 mod sparse_symmetric;
 mod symmetric_factor;
@@ -19,6 +20,7 @@ pub use generalized_eigen::{GeneralizedEigen, fix_sign, generalized_eigen, hz_fr
 pub use lyapunov::solve_lyapunov;
 pub use mass_matrix::MassMatrix;
 pub use memory::{available_bytes, estimated_reduction_bytes, peak_resident_bytes};
+pub use nested_dissection::nested_dissection;
 pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,
 };

@@ -9,6 +9,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::{
     Conj, Mat, MatRef, Side,
     linalg::solvers::{Llt as DenseLlt, LltError, Solve},
+    perm::PermRef,
     sparse::{
         SparseColMat,
         linalg::cholesky::{
@@ -27,17 +28,32 @@ pub struct SymbolicFactor {
 }
 
 impl SymbolicFactor {
-    /// Analyses the pattern of `a` (its lower triangle is read).
+    /// Analyses the pattern of `a` (its lower triangle is read) with an AMD ordering.
     pub fn analyse(a: &SparseColMat<usize, f64>) -> Result<Self> {
-        let inner = factorize_symbolic_cholesky(
-            a.symbolic(),
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            Default::default(),
-        )
-        .map_err(|_| Error::OutOfMemory {
-            what: "symbolic Cholesky analysis".into(),
-        })?;
+        Self::analyse_ordered(a, None)
+    }
+
+    /// Analyses the pattern of `a` with the elimination order `order` (new position → old
+    /// index, e.g. from [`nested_dissection`](super::nested_dissection)), or AMD for `None`.
+    pub fn analyse_ordered(a: &SparseColMat<usize, f64>, order: Option<&[usize]>) -> Result<Self> {
+        let inverse: Option<Vec<usize>> = order.map(|fwd| {
+            let mut inv = vec![0; fwd.len()];
+            for (new, &old) in fwd.iter().enumerate() {
+                inv[old] = new;
+            }
+            inv
+        });
+        let ordering = match (order, inverse.as_deref()) {
+            (Some(fwd), Some(inv)) => {
+                SymmetricOrdering::Custom(PermRef::new_checked(fwd, inv, a.nrows()))
+            }
+            _ => SymmetricOrdering::Amd,
+        };
+        let inner =
+            factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ordering, Default::default())
+                .map_err(|_| Error::OutOfMemory {
+                    what: "symbolic Cholesky analysis".into(),
+                })?;
         Ok(Self {
             inner: Arc::new(inner),
         })

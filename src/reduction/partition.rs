@@ -11,7 +11,7 @@ use crate::{
     fem::FeModel,
     linalg::{
         GeneralizedEigen, MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor,
-        SymmetricFactor, generalized_eigen, lowest_modes, negative_shift,
+        SymmetricFactor, generalized_eigen, lowest_modes, negative_shift, nested_dissection,
     },
 };
 
@@ -212,7 +212,15 @@ impl<'a> InteriorProblem<'a> {
             };
             let a = shifted.as_ref().unwrap_or(&self.k_ii);
             let f = if self.sparse {
-                let symbolic = SymbolicFactor::analyse(a.as_faer())?;
+                // Geometric nested dissection on the interior DOF's node positions.
+                let coords: Vec<[f64; 3]> = self
+                    .partition
+                    .i
+                    .iter()
+                    .map(|&d| self.model.nodes[d / self.model.dim])
+                    .collect();
+                let order = nested_dissection(a.as_faer(), &coords);
+                let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), Some(&order))?;
                 SymmetricFactor::sparse(a.as_faer(), &symbolic, "interior stiffness K_ii")?
             } else {
                 SymmetricFactor::dense(a.to_dense().as_ref(), "interior stiffness K_ii")?
