@@ -1,6 +1,6 @@
 //! Cholesky factorisation $A = LL^T$ of a symmetric positive definite matrix on either path:
 //! faer's dense LLᵀ for small matrices, faer's sparse (simplicial or supernodal) LLᵀ with an
-//! AMD fill-reducing ordering for large ones. The sparse symbolic analysis is kept apart from
+//! AMD or a caller's (nested-dissection) fill-reducing ordering for large ones. The sparse symbolic analysis is kept apart from
 //! the numeric factorisation so a shifted matrix with the same pattern reuses it.
 
 use std::sync::Arc;

@@ -201,7 +201,7 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
         "# slab-modes, refined\n\nThe App. B slab (4 × 2 × 1 m, E = 0.2e6 Pa, ν = 0.33, 62.4 \
          kg lumped equally per brick corner) meshed with {}×{}×{} trilinear bricks. The \
          interface defaults to the four bottom corners, nodes 16, 18, 28, 30 of App. B. K is \
-         assembled sparse; Craig-Bampton factors K_ii once (sparse Cholesky, AMD ordering), \
+         assembled sparse; Craig-Bampton factors K_ii once (sparse Cholesky, nested-dissection ordering), \
          takes the constraint modes as right-hand sides and the kept fixed-interface modes \
          from shift-invert block Lanczos on the same factor; MT and MC reuse both (MC from \
          the kept modes above {} interior DOF). Four point supports soften as the mesh \
