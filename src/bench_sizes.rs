@@ -11,7 +11,7 @@ use serde_json::{Map, Value, json};
 use crate::{
     Error, Result,
     fem::{SlabParameters, slab},
-    linalg::{available_bytes, estimated_reduction_bytes, peak_resident_bytes},
+    linalg::{check_reduction_memory, peak_resident_bytes},
     reduction::{
         InteriorProblem, MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, ModeSelection, SolverPath,
         craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
@@ -88,16 +88,7 @@ pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<(Val
     for &bricks in sizes {
         let params = SlabParameters::refined(bricks)?;
         let dofs = params.dof_count();
-        let needed = estimated_reduction_bytes(dofs);
-        if let Some(available) = available_bytes()
-            && needed > available
-        {
-            return Err(Error::MeshTooLarge {
-                dofs,
-                estimated_gb: needed as f64 / 1e9,
-                available_gb: available as f64 / 1e9,
-            });
-        }
+        check_reduction_memory(dofs)?;
         progress(&format!("{dofs} DOF ({bricks:?}): assembly"));
         let started = Instant::now();
         let model = slab(&params);
@@ -109,14 +100,7 @@ pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<(Val
         let cb = craig_bampton_from(&model, &mut problem, ModeSelection::Count(BENCH_MODES))?;
         let cb_s = started.elapsed().as_secs_f64();
         let phases = cb.statistics;
-        let hz: Vec<f64> = cb
-            .columns
-            .iter()
-            .filter_map(|c| match c.kind {
-                crate::reduction::ColumnKind::Normal { hz } => Some(hz),
-                _ => None,
-            })
-            .collect();
+        let hz = cb.normal_hz();
         let started = Instant::now();
         modal_truncation_from(&model, &mut problem, ModeSelection::Count(BENCH_MODES))?;
         // MT reuses CB's factor and modes: its own cost is the basis assembly on top.

@@ -1,4 +1,4 @@
-//! The command line of DESIGN §4 (`main.rs` only calls [`main`]).
+//! The command line (`main.rs` only calls [`main`]).
 
 use std::{io::IsTerminal, path::PathBuf, process::ExitCode};
 

@@ -1,4 +1,4 @@
-//! The command line as users and CI run it (DESIGN §4): exit codes, JSON keys, atomic writes.
+//! The command line as users and CI run it: exit codes, JSON keys, atomic writes.
 
 use std::process::{Command, Output};
 

@@ -11,7 +11,7 @@ use crate::{
 };
 
 /// Frequencies below this (Hz) count as rigid-body modes and are left out of every `*_hz`
-/// result (DESIGN §6). Rigid-body eigenvalues come out at round-off level, ≲ 1e-5 Hz here.
+/// result. Rigid-body eigenvalues come out at round-off level, ≲ 1e-5 Hz here.
 pub const RIGID_BODY_HZ: f64 = 1e-3;
 
 /// Free-free modes of the full body, $[V, \Lambda] = \mathrm{eig}(K, M)$ (§6.2.1): every mode,

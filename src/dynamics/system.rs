@@ -24,7 +24,7 @@ pub struct System {
     pub bodies: Vec<Body>,
     /// The constraints.
     pub constraints: Vec<Constraint>,
-    /// Gravity, m/s² (DESIGN §6: 9.80665 in −z).
+    /// Gravity, m/s² (standard gravity 9.80665 in −z, §7.2).
     pub gravity: Vector3<f64>,
     /// Constant global forces on nodes: (body, node, force in N).
     pub nodal_forces: Vec<(usize, usize, Vector3<f64>)>,

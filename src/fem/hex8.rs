@@ -14,6 +14,32 @@ pub const LOCAL_NODES: [[f64; 3]; 8] = [
     [-1.0, 1.0, 1.0],
 ];
 
+/// Shape functions $N_a$, their natural derivatives $\partial N_a/\partial\xi$ and the
+/// Jacobian $J = \sum_a (\partial N_a/\partial\xi)\, x_a^T$ at natural point `xi` of a brick
+/// with node positions `x` (local order of [`LOCAL_NODES`]).
+fn shape_at(xi: [f64; 3], x: &[[f64; 3]; 8]) -> ([f64; 8], [[f64; 3]; 8], nalgebra::Matrix3<f64>) {
+    let mut n = [0.0; 8];
+    let mut dn = [[0.0; 3]; 8];
+    for (a, l) in LOCAL_NODES.iter().enumerate() {
+        let f = [0, 1, 2].map(|d| 1.0 + l[d] * xi[d]);
+        n[a] = 0.125 * f[0] * f[1] * f[2];
+        dn[a] = [
+            0.125 * l[0] * f[1] * f[2],
+            0.125 * l[1] * f[0] * f[2],
+            0.125 * l[2] * f[0] * f[1],
+        ];
+    }
+    let mut j = nalgebra::Matrix3::<f64>::zeros();
+    for a in 0..8 {
+        for r in 0..3 {
+            for c in 0..3 {
+                j[(r, c)] += dn[a][r] * x[a][c];
+            }
+        }
+    }
+    (n, dn, j)
+}
+
 /// Isotropic linear-elastic constitutive matrix (Voigt order xx, yy, zz, xy, yz, zx;
 /// engineering shear strains). `e` in Pa.
 fn elasticity(e: f64, nu: f64) -> [[f64; 6]; 6] {
@@ -38,21 +64,7 @@ pub fn hex8_stiffness(x: &[[f64; 3]; 8], e: f64, nu: f64) -> Mat<f64> {
     for &gx in &[-g, g] {
         for &gy in &[-g, g] {
             for &gz in &[-g, g] {
-                // dN/dξ for each node.
-                let mut dn = [[0.0; 3]; 8];
-                for (a, n) in LOCAL_NODES.iter().enumerate() {
-                    dn[a][0] = 0.125 * n[0] * (1.0 + n[1] * gy) * (1.0 + n[2] * gz);
-                    dn[a][1] = 0.125 * n[1] * (1.0 + n[0] * gx) * (1.0 + n[2] * gz);
-                    dn[a][2] = 0.125 * n[2] * (1.0 + n[0] * gx) * (1.0 + n[1] * gy);
-                }
-                let mut j = nalgebra::Matrix3::<f64>::zeros();
-                for a in 0..8 {
-                    for r in 0..3 {
-                        for c in 0..3 {
-                            j[(r, c)] += dn[a][r] * x[a][c];
-                        }
-                    }
-                }
+                let (_, dn, j) = shape_at([gx, gy, gz], x);
                 let det = j.determinant();
                 let jinv = j
                     .try_inverse()
@@ -104,22 +116,7 @@ pub fn hex8_consistent_mass(x: &[[f64; 3]; 8], rho: f64) -> Mat<f64> {
     for &gx in &[-g, g] {
         for &gy in &[-g, g] {
             for &gz in &[-g, g] {
-                let mut n = [0.0; 8];
-                let mut dn = [[0.0; 3]; 8];
-                for (a, l) in LOCAL_NODES.iter().enumerate() {
-                    n[a] = 0.125 * (1.0 + l[0] * gx) * (1.0 + l[1] * gy) * (1.0 + l[2] * gz);
-                    dn[a][0] = 0.125 * l[0] * (1.0 + l[1] * gy) * (1.0 + l[2] * gz);
-                    dn[a][1] = 0.125 * l[1] * (1.0 + l[0] * gx) * (1.0 + l[2] * gz);
-                    dn[a][2] = 0.125 * l[2] * (1.0 + l[0] * gx) * (1.0 + l[1] * gy);
-                }
-                let mut j = nalgebra::Matrix3::<f64>::zeros();
-                for a in 0..8 {
-                    for r in 0..3 {
-                        for c in 0..3 {
-                            j[(r, c)] += dn[a][r] * x[a][c];
-                        }
-                    }
-                }
+                let (n, _, j) = shape_at([gx, gy, gz], x);
                 let det = j.determinant();
                 for a in 0..8 {
                     for b in 0..8 {

@@ -16,6 +16,23 @@ pub fn estimated_reduction_bytes(dofs: usize) -> u64 {
     (stiffness + factor + lanczos) as u64
 }
 
+/// Refuses, before anything is allocated, a `dofs`-DOF sparse reduction whose
+/// [estimate](estimated_reduction_bytes) exceeds the memory the machine has free
+/// ([`Error::MeshTooLarge`](crate::Error::MeshTooLarge)); returns the estimate otherwise.
+pub fn check_reduction_memory(dofs: usize) -> crate::Result<u64> {
+    let needed = estimated_reduction_bytes(dofs);
+    if let Some(available) = available_bytes()
+        && needed > available
+    {
+        return Err(crate::Error::MeshTooLarge {
+            dofs,
+            estimated_gb: needed as f64 / 1e9,
+            available_gb: available as f64 / 1e9,
+        });
+    }
+    Ok(needed)
+}
+
 /// `MemAvailable` of `/proc/meminfo`, bytes (None where it cannot be read).
 pub fn available_bytes() -> Option<u64> {
     proc_kib("/proc/meminfo", "MemAvailable:")

@@ -19,7 +19,9 @@ pub use dense::{
 pub use generalized_eigen::{GeneralizedEigen, fix_sign, generalized_eigen, hz_from_eigenvalue};
 pub use lyapunov::solve_lyapunov;
 pub use mass_matrix::MassMatrix;
-pub use memory::{available_bytes, estimated_reduction_bytes, peak_resident_bytes};
+pub use memory::{
+    available_bytes, check_reduction_memory, estimated_reduction_bytes, peak_resident_bytes,
+};
 pub use nested_dissection::nested_dissection;
 pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,

@@ -1,6 +1,6 @@
 //! What a scene draws, independent of Rerun (so scenes are testable without a viewer).
 
-/// Steps of the `phase` timeline per oscillation period of a mode animation (DESIGN §5).
+/// Steps of the `phase` timeline per oscillation period of a mode animation.
 pub const PHASE_STEPS: usize = 32;
 
 /// RGBA colour.

@@ -73,6 +73,17 @@ impl Basis {
             .collect()
     }
 
+    /// Frequencies (Hz) of the kept normal-mode columns, in column order.
+    pub fn normal_hz(&self) -> Vec<f64> {
+        self.columns
+            .iter()
+            .filter_map(|c| match c.kind {
+                ColumnKind::Normal { hz } => Some(hz),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// Column `j` as a DOF vector.
     pub fn column(&self, j: usize) -> Vec<f64> {
         (0..self.psi.nrows()).map(|i| self.psi[(i, j)]).collect()

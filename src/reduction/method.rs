@@ -6,7 +6,7 @@ use super::{
 };
 use crate::{Error, Result, fem::FeModel};
 
-/// The reduction methods (ids as in DESIGN §3).
+/// The reduction methods and their stable ids.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Method {
     /// `nr`: no reduction, Ψ = I.

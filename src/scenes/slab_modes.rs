@@ -1,6 +1,7 @@
 //! `slab-modes`: the App. B slab's free-free, constraint and fixed-interface modes and the
 //! frequencies of each reduced model (§7.2.1).
 
+use faer::Mat;
 use serde_json::{Map, Value, json};
 
 use super::{
@@ -10,7 +11,8 @@ use super::{
 use crate::{
     Result,
     analysis::{RIGID_BODY_HZ, elastic_hz, free_free_modes, reduced_hz, reduced_modes},
-    fem::{SlabParameters, slab},
+    fem::{FeModel, SlabParameters, slab},
+    linalg::GeneralizedEigen,
     record::{Layout, Visual},
     reduction::{
         Method, ModeSelection, NodalFixedAxes, Partition, ReductionParameters, constraint_modes,
@@ -184,62 +186,18 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         report.table
     );
 
-    let ff_modes: Vec<(Vec<f64>, String)> = columns(&ff.vectors)
-        .into_iter()
-        .zip(ff.hz())
-        .filter(|(_, f)| *f >= RIGID_BODY_HZ)
-        .take(SHOWN_FREE_FREE)
-        .enumerate()
-        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
-        .collect();
-    visuals.extend(mode_set(&model, "free_free", &ff_modes, REFERENCE));
-    let nb = part.b.len();
-    let constraint = part.assemble(crate::linalg::identity(nb).as_ref(), psi_s.as_ref());
-    let c_modes: Vec<(Vec<f64>, String)> = columns(&constraint)
-        .into_iter()
-        .zip(&part.b)
-        .map(|(u, &dof)| (u, model.dof_label(dof)))
-        .collect();
-    visuals.extend(mode_set(
+    let (mode_visuals, layout) = slab_mode_views(
         &model,
-        "guyan_c",
-        &c_modes,
-        method_color(Method::Guyan),
-    ));
-    let shown = kept.min(fi.vectors.ncols());
-    let fi_full = part.assemble(
-        faer::Mat::<f64>::zeros(nb, shown).as_ref(),
-        fi.vectors.subcols(0, shown),
+        &part,
+        &psi_s,
+        &fi,
+        &ff,
+        SHOWN_FREE_FREE,
+        kept,
+        "free_free",
+        bars,
     );
-    let fi_modes: Vec<(Vec<f64>, String)> = columns(&fi_full)
-        .into_iter()
-        .zip(&fixed_interface_hz)
-        .enumerate()
-        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
-        .collect();
-    visuals.extend(mode_set(
-        &model,
-        "fixed_interface",
-        &fi_modes,
-        method_color(Method::CraigBampton),
-    ));
-    let layout = Layout::Horizontal(
-        vec![
-            Layout::Vertical(
-                vec![
-                    Layout::Tabs(vec![
-                        Layout::view3d("free_free", "/modes/free_free"),
-                        Layout::view3d("guyan_c", "/modes/guyan_c"),
-                        Layout::view3d("fixed_interface", "/modes/fixed_interface"),
-                    ]),
-                    Layout::Horizontal(bars, vec![]),
-                ],
-                vec![3.0, 1.0],
-            ),
-            Layout::scene_text(),
-        ],
-        vec![3.0, 2.0],
-    );
+    visuals.extend(mode_visuals);
     Ok(SceneOutput {
         report,
         markdown,
@@ -248,4 +206,84 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         timeline: Some("phase".into()),
         y_up: false,
     })
+}
+
+/// The slab's mode views: free-free elastic modes (at most `shown_free_free`), the constraint
+/// modes $[I; \Psi_s]$ of the boundary DOF and the first `kept` fixed-interface modes, each
+/// set under `modes/<set>/<k>`, and the layout with those tabs (`first_tab` in front) above the
+/// reduced-frequency bar charts, beside the scene text.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn slab_mode_views(
+    model: &FeModel,
+    part: &Partition,
+    psi_s: &Mat<f64>,
+    fixed_interface: &GeneralizedEigen,
+    free_free: &GeneralizedEigen,
+    shown_free_free: usize,
+    kept: usize,
+    first_tab: &str,
+    bars: Vec<Layout>,
+) -> (Vec<Visual>, Layout) {
+    let mut visuals = Vec::new();
+    let ff_modes: Vec<(Vec<f64>, String)> = columns(&free_free.vectors)
+        .into_iter()
+        .zip(free_free.hz())
+        .filter(|(_, f)| *f >= RIGID_BODY_HZ)
+        .take(shown_free_free)
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
+        .collect();
+    visuals.extend(mode_set(model, "free_free", &ff_modes, REFERENCE));
+    let nb = part.b.len();
+    let constraint = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
+    let c_modes: Vec<(Vec<f64>, String)> = columns(&constraint)
+        .into_iter()
+        .zip(&part.b)
+        .map(|(u, &dof)| (u, model.dof_label(dof)))
+        .collect();
+    visuals.extend(mode_set(
+        model,
+        "guyan_c",
+        &c_modes,
+        method_color(Method::Guyan),
+    ));
+    let shown = kept.min(fixed_interface.vectors.ncols());
+    let fi_full = part.assemble(
+        Mat::<f64>::zeros(nb, shown).as_ref(),
+        fixed_interface.vectors.subcols(0, shown),
+    );
+    let fi_modes: Vec<(Vec<f64>, String)> = columns(&fi_full)
+        .into_iter()
+        .zip(fixed_interface.hz())
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
+        .collect();
+    visuals.extend(mode_set(
+        model,
+        "fixed_interface",
+        &fi_modes,
+        method_color(Method::CraigBampton),
+    ));
+    let mut tabs: Vec<Layout> = ["free_free", "guyan_c", "fixed_interface"]
+        .into_iter()
+        .map(|set| Layout::view3d(set, &format!("/modes/{set}")))
+        .collect();
+    if let Some(i) = ["free_free", "guyan_c", "fixed_interface"]
+        .iter()
+        .position(|s| *s == first_tab)
+    {
+        let front = tabs.remove(i);
+        tabs.insert(0, front);
+    }
+    let layout = Layout::Horizontal(
+        vec![
+            Layout::Vertical(
+                vec![Layout::Tabs(tabs), Layout::Horizontal(bars, vec![])],
+                vec![3.0, 1.0],
+            ),
+            Layout::scene_text(),
+        ],
+        vec![3.0, 2.0],
+    );
+    (visuals, layout)
 }

@@ -5,16 +5,12 @@ use std::time::Instant;
 
 use serde_json::{Map, Value, json};
 
-use super::{
-    SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE, columns, method_color, mode_set, undeformed},
-    slab_modes::INFO,
-};
+use super::{SceneOptions, SceneOutput, mode_visuals::undeformed, slab_modes::INFO};
 use crate::{
     Error, Result,
-    analysis::{RIGID_BODY_HZ, elastic_hz, lowest_free_free_modes, reduced_modes},
+    analysis::{elastic_hz, lowest_free_free_modes, reduced_modes},
     fem::{SlabParameters, slab},
-    linalg::{available_bytes, estimated_reduction_bytes, peak_resident_bytes},
+    linalg::{check_reduction_memory, peak_resident_bytes},
     record::{Layout, Visual},
     reduction::{
         InteriorProblem, Method, ModeCondensationRoute, ModeSelection, SolverPath,
@@ -50,16 +46,7 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
     let params = SlabParameters::refined(bricks)?;
     let dofs = params.dof_count();
     // Refuse before allocating anything a mesh the machine cannot hold.
-    let needed = estimated_reduction_bytes(dofs);
-    if let Some(available) = available_bytes()
-        && needed > available
-    {
-        return Err(Error::MeshTooLarge {
-            dofs,
-            estimated_gb: needed as f64 / 1e9,
-            available_gb: available as f64 / 1e9,
-        });
-    }
+    let needed = check_reduction_memory(dofs)?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
     let boundary = opts
         .boundary
@@ -215,62 +202,18 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
         report.table
     );
 
-    let ff_modes: Vec<(Vec<f64>, String)> = columns(&ff.vectors)
-        .into_iter()
-        .zip(ff.hz())
-        .filter(|(_, f)| *f >= RIGID_BODY_HZ)
-        .enumerate()
-        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
-        .collect();
-    visuals.extend(mode_set(&model, "free_free", &ff_modes, REFERENCE));
-    let part = &problem.partition;
-    let nb = part.b.len();
-    let constraint = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
-    let c_modes: Vec<(Vec<f64>, String)> = columns(&constraint)
-        .into_iter()
-        .zip(&part.b)
-        .map(|(u, &dof)| (u, model.dof_label(dof)))
-        .collect();
-    visuals.extend(mode_set(
+    let (mode_visuals, layout) = super::slab_modes::slab_mode_views(
         &model,
-        "guyan_c",
-        &c_modes,
-        method_color(Method::Guyan),
-    ));
-    let shown = kept.min(fi.vectors.ncols());
-    let fi_full = part.assemble(
-        faer::Mat::<f64>::zeros(nb, shown).as_ref(),
-        fi.vectors.subcols(0, shown),
-    );
-    let fi_modes: Vec<(Vec<f64>, String)> = columns(&fi_full)
-        .into_iter()
-        .zip(&fixed_interface_hz)
-        .enumerate()
-        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
-        .collect();
-    visuals.extend(mode_set(
-        &model,
+        &problem.partition,
+        &psi_s,
+        &fi,
+        &ff,
+        FREE_FREE,
+        kept,
         "fixed_interface",
-        &fi_modes,
-        method_color(Method::CraigBampton),
-    ));
-    let layout = Layout::Horizontal(
-        vec![
-            Layout::Vertical(
-                vec![
-                    Layout::Tabs(vec![
-                        Layout::view3d("fixed_interface", "/modes/fixed_interface"),
-                        Layout::view3d("free_free", "/modes/free_free"),
-                        Layout::view3d("guyan_c", "/modes/guyan_c"),
-                    ]),
-                    Layout::Horizontal(bars, vec![]),
-                ],
-                vec![3.0, 1.0],
-            ),
-            Layout::scene_text(),
-        ],
-        vec![3.0, 2.0],
+        bars,
     );
+    visuals.extend(mode_visuals);
     Ok(SceneOutput {
         report,
         markdown,

@@ -1,4 +1,4 @@
-//! Library-level tests in one binary (one link step): the published numbers of DESIGN §7 and
+//! Library-level tests in one binary (one link step): the published numbers of the thesis and
 //! the physical and algebraic invariants of the bodies and reduction methods.
 
 mod common;

@@ -1,4 +1,4 @@
-//! DESIGN §7: every published number of the beam, reproduced to all printed digits
+//! Every published number of the beam (Lin 2005, chapters 6-8 and App. A), reproduced to all printed digits
 //! (half a unit in the last printed digit) unless a test says otherwise and why.
 
 use flexmodes::{

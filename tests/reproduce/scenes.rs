@@ -1,4 +1,4 @@
-//! Scenes: report keys of DESIGN §6, the entity paths of §5, options honoured.
+//! Scenes: stable report keys, entity paths, options honoured.
 
 use flexmodes::{
     analysis::reduced_hz,

@@ -18,17 +18,6 @@ use flexmodes::{
 
 const APP_B_CORNERS: [usize; 4] = [16, 18, 28, 30];
 
-fn normal_hz(basis: &flexmodes::reduction::Basis) -> Vec<f64> {
-    basis
-        .columns
-        .iter()
-        .filter_map(|c| match c.kind {
-            flexmodes::reduction::ColumnKind::Normal { hz } => Some(hz),
-            _ => None,
-        })
-        .collect()
-}
-
 #[test]
 fn sparse_and_dense_paths_agree_on_the_app_b_slab() {
     let model = slab(&SlabParameters::default());
@@ -53,7 +42,7 @@ fn sparse_and_dense_paths_agree_on_the_app_b_slab() {
             };
             let (dense, sparse) = (run(SolverPath::Dense), run(SolverPath::Sparse));
             assert!(!dense.statistics.sparse && sparse.statistics.sparse);
-            let (hd, hs) = (normal_hz(&dense), normal_hz(&sparse));
+            let (hd, hs) = (dense.normal_hz(), sparse.normal_hz());
             assert_eq!(hd.len(), hs.len(), "{method:?} {modes}");
             for (a, b) in hd.iter().zip(&hs) {
                 assert!((a - b).abs() <= 1e-10 * a, "{method:?} {modes}: {a} vs {b}");
