@@ -3,7 +3,7 @@
 use faer::Mat;
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 
-use super::{AxisType, rotation::skew};
+use super::{AxisType, InertiaInvariants};
 use crate::{Error, Result, fem::FeModel, linalg::MassMatrix, reduction::Basis};
 
 /// A rigid body whose frame sits at its mass centre.
@@ -40,11 +40,16 @@ impl RigidBody {
 
 /// A deformable body on a floating frame, $d_j = r + A(\bar s_j + \Psi_j z)$ (Eq. 3.14 with
 /// Eq. 5.12), with a lumped mass matrix.
+///
+/// [`FlexibleBody::new`] is the one place a reduced body gets its frame: nodal-fixed axes
+/// remove the anchored columns of Ψ (Table 4-1) and put the origin at node i; mean and
+/// principal axes put the origin at the mass centre, and [`crate::dynamics::System`] adds
+/// their six condition rows (Table 4-2, §4.3) for every such body it is given.
 #[derive(Debug, Clone)]
 pub struct FlexibleBody {
     /// The finite-element model (its node positions in model coordinates).
     pub model: FeModel,
-    /// The reduction basis (labels, method) the body is simulated with.
+    /// The reduction basis the body is simulated with (nodal-fixed columns removed).
     pub basis: Basis,
     /// Axis conditions.
     pub axes: AxisType,
@@ -60,14 +65,14 @@ pub struct FlexibleBody {
     pub m_zz: DMatrix<f64>,
     /// $\Psi^T K \Psi$.
     pub k_zz: DMatrix<f64>,
-    /// $\sum_j m_j \Psi_j$ (3 × k): the translational mean-axis rows.
-    pub p_sum: Matrix3xX<f64>,
+    /// The inertia invariants, computed once.
+    pub invariants: InertiaInvariants,
 }
 
 impl FlexibleBody {
-    /// Builds the body from a model, a basis (already with nodal-fixed columns removed when
-    /// `axes` is nodal-fixed) and the frame origin in model coordinates.
-    pub fn new(model: FeModel, basis: Basis, axes: AxisType, origin: Vector3<f64>) -> Result<Self> {
+    /// Builds the body on its floating frame from a model and a reduction basis (all of the
+    /// basis' columns; nodal-fixed axes remove theirs here).
+    pub fn new(model: FeModel, basis: Basis, axes: AxisType) -> Result<Self> {
         if model.dim != 3 {
             return Err(Error::InvalidOption {
                 scene: model.name.clone(),
@@ -75,7 +80,6 @@ impl FlexibleBody {
             });
         }
         let n = model.node_count();
-        let k = basis.size();
         let not_lumped = || Error::InvalidOption {
             scene: model.name.clone(),
             reason: "the floating-frame body needs a lumped (diagonal, isotropic per node) mass \
@@ -93,7 +97,15 @@ impl FlexibleBody {
             }
             masses.push(m);
         }
-        let s_bar = model
+        let (basis, origin) = match axes {
+            AxisType::NodalFixed(nf) => {
+                let o = model.nodes[model.node_index(nf.origin)?];
+                (nf.apply(&model, &basis)?, Vector3::new(o[0], o[1], o[2]))
+            }
+            AxisType::Mean | AxisType::Principal => (basis, Vector3::from(model.mass_centre())),
+        };
+        let k = basis.size();
+        let s_bar: Vec<Vector3<f64>> = model
             .nodes
             .iter()
             .map(|p| Vector3::new(p[0], p[1], p[2]) - origin)
@@ -105,10 +117,7 @@ impl FlexibleBody {
         let to_na = |m: &Mat<f64>| DMatrix::from_fn(m.nrows(), m.ncols(), |i, j| m[(i, j)]);
         let m_zz = to_na(&basis.reduced_mass(&model));
         let k_zz = to_na(&basis.reduced_stiffness(&model));
-        let mut p_sum = Matrix3xX::zeros(k);
-        for j in 0..n {
-            p_sum += &psi_nodes[j] * masses[j];
-        }
+        let invariants = InertiaInvariants::new(&masses, &s_bar, &psi_nodes);
         Ok(Self {
             model,
             basis,
@@ -119,7 +128,7 @@ impl FlexibleBody {
             psi_nodes,
             m_zz,
             k_zz,
-            p_sum,
+            invariants,
         })
     }
 
@@ -130,7 +139,12 @@ impl FlexibleBody {
 
     /// Total mass, kg.
     pub fn mass(&self) -> f64 {
-        self.masses.iter().sum()
+        self.invariants.mass
+    }
+
+    /// $\sum_j m_j \Psi_j$ (3 × k): the translational mean-axis rows (Eq. 4.20).
+    pub fn p_sum(&self) -> &Matrix3xX<f64> {
+        &self.invariants.p_sum
     }
 
     /// Local deflection of node `j`, $\Psi_j z$.
@@ -145,12 +159,7 @@ impl FlexibleBody {
 
     /// Body inertia about the frame origin in body axes, $\sum m_j \tilde b_j^T \tilde b_j$.
     pub fn inertia(&self, z: &DVector<f64>) -> Matrix3<f64> {
-        let mut j_bar = Matrix3::zeros();
-        for j in 0..self.masses.len() {
-            let bt = skew(&self.b(j, z));
-            j_bar += bt.transpose() * bt * self.masses[j];
-        }
-        j_bar
+        self.invariants.inertia(z)
     }
 }
 

@@ -1,5 +1,6 @@
-//! Constraints: spherical joints (Eq. 2.22–2.24, 5.1–5.7), prescribed nodal motion
-//! (Eq. 7.7–7.9) and the axis conditions of mean and principal axes (Table 4-2, §4.3).
+//! Constraints between bodies: spherical joints (Eq. 2.22–2.24, 5.1–5.7) and prescribed nodal
+//! motion (Eq. 7.7–7.9). The axis conditions of mean and principal axes (Table 4-2, §4.3) are
+//! not listed here: [`super::System`] derives them from each body's [`super::AxisType`].
 
 use nalgebra::Vector3;
 
@@ -47,18 +48,6 @@ pub enum Constraint {
         /// Initial velocity, m/s.
         v0: f64,
     },
-    /// Mean axes of a deformable body: $\hat I^T M \Psi z = 0$ (holonomic, 3 rows) and
-    /// $\tilde b^T M \Psi \dot z = 0$ (non-holonomic, 3 rows).
-    MeanAxes {
-        /// Deformable body index.
-        body: usize,
-    },
-    /// Principal axes: $\hat I^T M \Psi z = 0$ and the products of inertia of the deformed
-    /// body held at their undeformed values (zero when the frame starts principal).
-    PrincipalAxes {
-        /// Deformable body index.
-        body: usize,
-    },
 }
 
 impl Constraint {
@@ -67,7 +56,6 @@ impl Constraint {
         match self {
             Constraint::Spherical(..) => 3,
             Constraint::PrescribedNode { .. } => 1,
-            Constraint::MeanAxes { .. } | Constraint::PrincipalAxes { .. } => 6,
         }
     }
 }

@@ -24,6 +24,12 @@ pub struct IntegratorParameters {
     pub min_step: f64,
     /// Largest number of steps.
     pub max_steps: usize,
+    /// A fixed step, s: no error control, every step accepted (how a critical step is
+    /// verified). `None` for adaptive steps.
+    pub fixed_step: Option<f64>,
+    /// A state component beyond this magnitude (m, m/s, rad/s, modal units) counts as
+    /// diverged.
+    pub divergence_bound: f64,
 }
 
 impl Default for IntegratorParameters {
@@ -35,6 +41,8 @@ impl Default for IntegratorParameters {
             atol: 1e-9,
             min_step: 1e-9,
             max_steps: 2_000_000,
+            fixed_step: None,
+            divergence_bound: 1e4,
         }
     }
 }
@@ -160,11 +168,54 @@ fn sample(sys: &System, t: f64, state: &State) -> Sample {
     }
 }
 
+/// The step $h$ at which $h\omega$ leaves the stability region of the 5th-order solution on the
+/// imaginary axis: the first $y > 0$ with $|R(iy)| > 1$ ($y \approx 3.31$).
+pub fn imaginary_stability_limit() -> f64 {
+    let c = stability_polynomial();
+    let modulus = |y: f64| {
+        let (mut re, mut im) = (0.0, 0.0);
+        for (k, ck) in c.iter().enumerate() {
+            // i^k y^k
+            let v = ck * y.powi(k as i32);
+            match k % 4 {
+                0 => re += v,
+                1 => im += v,
+                2 => re -= v,
+                _ => im -= v,
+            }
+        }
+        (re * re + im * im).sqrt()
+    };
+    // Scan for the first crossing, then bisect.
+    let (mut lo, mut hi) = (1e-3, 1e-3);
+    while modulus(hi) <= 1.0 + 1e-14 && hi < 10.0 {
+        lo = hi;
+        hi += 1e-3;
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if modulus(mid) <= 1.0 + 1e-14 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+/// The critical fixed step of the explicit scheme for an undamped system whose highest
+/// circular frequency is `omega_max` (rad/s): [`imaginary_stability_limit`] / ω, s.
+pub fn critical_step(omega_max: f64) -> f64 {
+    imaginary_stability_limit() / omega_max
+}
+
 /// Integrates `sys` from `initial` over `[0, end_time]`.
 ///
-/// The initial state is first projected onto the constraints. A non-finite state, a step
-/// below `min_step` or more than `max_steps` steps is [`Error::Diverged`] with the time it
-/// happened, never NaN output. `progress` receives the time after each output and stops the
+/// The initial state is first projected onto the constraints. A non-finite state, one with a
+/// component beyond `divergence_bound`, a step below `min_step` or more than `max_steps`
+/// steps is [`Error::Diverged`] with the time it happened, never NaN output. With
+/// `fixed_step` every step has that length (shortened only to land on output times) and is
+/// accepted without error control. `progress` receives the time after each output and stops the
 /// integration with [`Error::Cancelled`] once cancelled.
 pub fn simulate(
     sys: &System,
@@ -182,11 +233,25 @@ pub fn simulate(
     let mut y = DVector::zeros(nq + sys.nv());
     y.rows_mut(0, nq).copy_from(&state.q);
     y.rows_mut(nq, sys.nv()).copy_from(&state.v);
+    if let Some(dt) = p.fixed_step
+        && !(dt > 0.0 && dt.is_finite())
+    {
+        return Err(Error::InvalidOption {
+            scene: "integrator".into(),
+            reason: format!("the fixed step must be a positive number of seconds, not {dt}"),
+        });
+    }
     let (mut t, mut h) = (0.0f64, p.output_interval.min(1e-3));
     let (mut steps, mut rejected) = (0usize, 0usize);
     let mut next_output = p.output_interval;
     let mut k1 = derivative(sys, t, &y)?;
     while t < p.end_time - 1e-12 {
+        if !y.iter().all(|v| v.abs() <= p.divergence_bound) {
+            return Err(Error::Diverged {
+                time: t,
+                reason: format!("the state grew beyond {:e}", p.divergence_bound),
+            });
+        }
         if steps + rejected > p.max_steps {
             return Err(Error::Diverged {
                 time: t,
@@ -194,8 +259,12 @@ pub fn simulate(
             });
         }
         let target = next_output.min(p.end_time);
+        if let Some(dt) = p.fixed_step {
+            h = dt;
+        }
         h = h.min(target - t);
         let mut k = vec![k1.clone()];
+        let mut bounded = true;
         for stage in 1..7 {
             let mut ys = y.clone();
             for (j, kj) in k.iter().enumerate() {
@@ -203,7 +272,43 @@ pub fn simulate(
                     ys += kj * (h * A[stage][j]);
                 }
             }
-            k.push(derivative(sys, t + C[stage] * h, &ys)?);
+            // A stage far outside the bound is the step blowing up, not a state to evaluate.
+            if !ys.iter().all(|v| v.abs() <= p.divergence_bound) {
+                bounded = false;
+                break;
+            }
+            match derivative(sys, t + C[stage] * h, &ys) {
+                Ok(d) => k.push(d),
+                // Without error control a blown-up step reaches states whose mass matrix has
+                // lost definiteness in floating point: that is the divergence.
+                Err(Error::SingularMatrix { matrix, .. }) if p.fixed_step.is_some() => {
+                    return Err(Error::Diverged {
+                        time: t,
+                        reason: format!("with the fixed step {h:e} s the {matrix} became singular"),
+                    });
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        if !bounded {
+            if p.fixed_step.is_some() {
+                return Err(Error::Diverged {
+                    time: t,
+                    reason: format!(
+                        "with the fixed step {:e} s a stage grew beyond {:e}",
+                        h, p.divergence_bound
+                    ),
+                });
+            }
+            h *= 0.2;
+            rejected += 1;
+            if h < p.min_step {
+                return Err(Error::Diverged {
+                    time: t,
+                    reason: "the state grew without bound".into(),
+                });
+            }
+            continue;
         }
         let mut y5 = y.clone();
         let mut err = DVector::zeros(y.len());
@@ -217,6 +322,16 @@ pub fn simulate(
             norm += (err[i] / sc).powi(2);
         }
         let norm = (norm / y.len() as f64).sqrt();
+        if p.fixed_step.is_some() && !y5.iter().all(|v| v.abs() <= p.divergence_bound) {
+            return Err(Error::Diverged {
+                time: t,
+                reason: format!(
+                    "with the fixed step {:e} s the state grew beyond {:e}",
+                    p.fixed_step.unwrap_or_default(),
+                    p.divergence_bound
+                ),
+            });
+        }
         if !norm.is_finite() || !y5.iter().all(|v| v.is_finite()) {
             h *= 0.2;
             rejected += 1;
@@ -228,7 +343,7 @@ pub fn simulate(
             }
             continue;
         }
-        if norm <= 1.0 {
+        if norm <= 1.0 || p.fixed_step.is_some() {
             t += h;
             steps += 1;
             let mut s = State {
@@ -254,7 +369,7 @@ pub fn simulate(
         };
         h *= factor.clamp(0.2, 5.0);
         h = h.min(p.output_interval);
-        if h < p.min_step {
+        if p.fixed_step.is_none() && h < p.min_step {
             return Err(Error::Diverged {
                 time: t,
                 reason: format!("step size fell below {:e} s", p.min_step),

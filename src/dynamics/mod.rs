@@ -5,6 +5,7 @@
 mod axes;
 mod body;
 mod constraint;
+mod inertia_invariants;
 mod integrator;
 mod prescribed;
 mod rotation;
@@ -13,7 +14,11 @@ mod system;
 pub use axes::AxisType;
 pub use body::{Body, FlexibleBody, RigidBody};
 pub use constraint::{Attachment, Constraint};
-pub use integrator::{IntegratorParameters, Sample, Simulation, simulate, stability_polynomial};
+pub use inertia_invariants::InertiaInvariants;
+pub use integrator::{
+    IntegratorParameters, Sample, Simulation, critical_step, imaginary_stability_limit, simulate,
+    stability_polynomial,
+};
 pub use prescribed::Motion;
 pub use rotation::{euler_parameters_from_matrix, rotation_matrix, skew};
 pub use system::{State, System};

@@ -1,9 +1,9 @@
 //! The assembled multibody system: $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, SymmetricEigen, Vector3, Vector4};
+use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen, Vector3, Vector4};
 
 use super::{
-    Attachment, Body, Constraint,
+    Attachment, AxisType, Body, Constraint, FlexibleBody,
     rotation::{l_matrix, rotate_body, rotation_matrix, skew},
 };
 use crate::{Error, Result};
@@ -98,9 +98,23 @@ impl System {
         *self.v_off.last().unwrap()
     }
 
-    /// Number of constraint rows.
+    /// Number of constraint rows: the joints' and six per body on mean or principal axes.
     pub fn constraint_rows(&self) -> usize {
-        self.constraints.iter().map(Constraint::rows).sum()
+        self.constraints.iter().map(Constraint::rows).sum::<usize>()
+            + 6 * self.axis_condition_bodies().count()
+    }
+
+    /// The deformable bodies whose frame is held by axis conditions (mean or principal axes).
+    fn axis_condition_bodies(&self) -> impl Iterator<Item = (usize, &FlexibleBody)> {
+        self.bodies
+            .iter()
+            .enumerate()
+            .filter_map(|(b, body)| match body {
+                Body::Flexible(fb) if !matches!(fb.axes, AxisType::NodalFixed(_)) => {
+                    Some((b, &**fb))
+                }
+                _ => None,
+            })
     }
 
     /// A state with every body at `r`, `A` given per body, at rest, undeformed.
@@ -232,7 +246,6 @@ impl System {
                 reason,
             })
         };
-        let flexible = |b: usize| matches!(self.bodies.get(b), Some(Body::Flexible(_)));
         let node_ok = |b: usize, n: usize| match self.bodies.get(b) {
             Some(Body::Flexible(f)) => n < f.s_bar.len(),
             _ => false,
@@ -259,11 +272,6 @@ impl System {
                 } => {
                     if !node_ok(*body, *node) || *axis > 2 {
                         return bad(format!("prescribed motion of missing node {node}"));
-                    }
-                }
-                Constraint::MeanAxes { body } | Constraint::PrincipalAxes { body } => {
-                    if !flexible(*body) {
-                        return bad(format!("axis conditions on body {body}, not deformable"));
                     }
                 }
             }
@@ -297,39 +305,37 @@ impl System {
                 }
                 Body::Flexible(fb) => {
                     let k = fb.modes();
-                    let mut ext = vec![Vector3::zeros(); fb.masses.len()];
+                    let inv = &fb.invariants;
+                    let at = f.a.transpose();
+                    let h = inv.h(&f.z);
+                    let first = inv.first_moment(&f.z);
+                    let j_bar = {
+                        let b = inv.second_moment(&f.z, &h);
+                        Matrix3::identity() * b.trace() - b
+                    };
+                    let wz = inv.rotation_coupling(&h);
+                    // Gravity acts on every node: sum m_j A^T g, its moment and modal force.
+                    let g_local = at * self.gravity;
+                    let mut q_r = g_local * inv.mass;
+                    let mut q_w = first.cross(&g_local);
+                    let mut q_z = inv.p_sum.transpose() * g_local;
                     for &(bb, n, force) in &self.nodal_forces {
                         if bb == b {
-                            ext[n] += force;
+                            let local = at * force;
+                            q_r += local;
+                            q_w += fb.b(n, &f.z).cross(&local);
+                            q_z += fb.psi_nodes[n].transpose() * local;
                         }
                     }
-                    let mass = fb.mass();
-                    let mut first = Vector3::zeros();
-                    let mut j_bar = Matrix3::zeros();
-                    let mut wz = Matrix3xX::zeros(k);
-                    let mut q_r = Vector3::zeros();
-                    let mut q_w = Vector3::zeros();
-                    let mut q_z = DVector::zeros(k);
-                    let at = f.a.transpose();
-                    for (j, &mj) in fb.masses.iter().enumerate() {
-                        let bj = fb.b(j, &f.z);
-                        let bt = skew(&bj);
-                        first += bj * mj;
-                        j_bar += bt.transpose() * bt * mj;
-                        wz += bt * &fb.psi_nodes[j] * mj;
-                        let u = &fb.psi_nodes[j] * &f.zd;
-                        let alpha = f.w.cross(&f.w.cross(&bj)) + 2.0 * f.w.cross(&u);
-                        let force = self.gravity * mj + ext[j];
-                        let local = at * force - alpha * mj;
-                        q_r += f.a * local;
-                        q_w += bt * local;
-                        q_z += fb.psi_nodes[j].transpose() * local;
-                    }
+                    let (ar, aw, az) = inv.velocity_forces(&f.w, &f.z, &f.zd, &h);
+                    let q_r = f.a * (q_r - ar);
+                    q_w -= aw;
+                    q_z -= az;
                     q_z -= &fb.k_zz * &f.z;
                     let rw = -f.a * skew(&first);
-                    let rz = f.a * &fb.p_sum;
+                    let rz = f.a * &inv.p_sum;
                     for i in 0..3 {
-                        m[(o + i, o + i)] = mass;
+                        m[(o + i, o + i)] = inv.mass;
                     }
                     m.view_mut((o, o + 3), (3, 3)).copy_from(&rw);
                     m.view_mut((o + 3, o), (3, 3)).copy_from(&rw.transpose());
@@ -390,54 +396,52 @@ impl System {
                     out.target[r] = v;
                     out.phi[r] = p.d[*axis] - x;
                 }
-                Constraint::MeanAxes { body } | Constraint::PrincipalAxes { body } => {
-                    let Body::Flexible(fb) = &self.bodies[*body] else {
-                        unreachable!("checked by validate")
-                    };
-                    let f = self.frame(*body, s);
-                    let o = self.v_off[*body] + 6;
-                    let k = fb.modes();
-                    // Translational: sum m_j Psi_j z = 0 (Eq. 4.20), holonomic.
-                    out.c.view_mut((r, o), (3, k)).copy_from(&fb.p_sum);
-                    out.phi.rows_mut(r, 3).copy_from(&(&fb.p_sum * &f.z));
-                    if matches!(c, Constraint::MeanAxes { .. }) {
-                        // Rotational: sum m_j b_j x (Psi_j zdot) = 0 (Eq. 4.15); its
-                        // acceleration form has no quadratic term for a lumped M (Eq. 4.17).
-                        let mut rot = Matrix3xX::zeros(k);
-                        for (j, &mj) in fb.masses.iter().enumerate() {
-                            rot += skew(&fb.b(j, &f.z)) * &fb.psi_nodes[j] * mj;
-                        }
-                        out.c.view_mut((r + 3, o), (3, k)).copy_from(&rot);
-                        for i in 3..6 {
-                            out.holonomic[r + i] = false;
-                        }
-                    } else {
-                        // Products of inertia J_xy, J_yz, J_zx = -sum m b_a b_b, held at 0.
-                        let pairs = [(0, 1), (1, 2), (2, 0)];
-                        let j0 = fb.inertia(&DVector::zeros(k));
-                        let jz = fb.inertia(&f.z);
-                        for (i, &(a, b)) in pairs.iter().enumerate() {
-                            let mut grad = DVector::zeros(k);
-                            let mut quad = 0.0;
-                            for (j, &mj) in fb.masses.iter().enumerate() {
-                                let bj = fb.b(j, &f.z);
-                                let pa = fb.psi_nodes[j].row(a).transpose();
-                                let pb = fb.psi_nodes[j].row(b).transpose();
-                                grad -= (pa.clone() * bj[b] + pb.clone() * bj[a]) * mj;
-                                quad -= 2.0 * mj * pa.dot(&f.zd) * pb.dot(&f.zd);
-                            }
-                            out.c
-                                .view_mut((r + 3 + i, o), (1, k))
-                                .copy_from(&grad.transpose());
-                            out.gamma[r + 3 + i] = -quad;
-                            out.phi[r + 3 + i] = jz[(a, b)] - j0[(a, b)];
-                        }
-                    }
-                }
             }
             r += c.rows();
         }
+        for (body, fb) in self.axis_condition_bodies() {
+            self.axis_rows(body, fb, s, r, &mut out);
+            r += 6;
+        }
         out
+    }
+
+    /// The six rows of mean axes (Table 4-2) or principal axes (§4.3) of body `body` from row
+    /// `r` on.
+    fn axis_rows(&self, body: usize, fb: &FlexibleBody, s: &State, r: usize, out: &mut Rows) {
+        let f = self.frame(body, s);
+        let o = self.v_off[body] + 6;
+        let k = fb.modes();
+        let inv = &fb.invariants;
+        let h = inv.h(&f.z);
+        // Translational: sum m_j Psi_j z = 0 (Eq. 4.20), holonomic.
+        out.c.view_mut((r, o), (3, k)).copy_from(&inv.p_sum);
+        out.phi.rows_mut(r, 3).copy_from(&(&inv.p_sum * &f.z));
+        if matches!(fb.axes, AxisType::Mean) {
+            // Rotational: sum m_j b_j x (Psi_j zdot) = 0 (Eq. 4.15); its acceleration form has
+            // no quadratic term for a lumped M (Eq. 4.17).
+            out.c
+                .view_mut((r + 3, o), (3, k))
+                .copy_from(&inv.rotation_coupling(&h));
+            for i in 3..6 {
+                out.holonomic[r + i] = false;
+            }
+        } else {
+            // Products of inertia J_xy, J_yz, J_zx = -sum m b_a b_b, held at their undeformed
+            // values: gradient -(H_c[a,b] + H_c[b,a]), quadratic term -2 sum m (Psi zd)_a (Psi zd)_b.
+            let pairs = [(0, 1), (1, 2), (2, 0)];
+            let j0 = fb.inertia(&DVector::zeros(k));
+            let jz = Matrix3::identity() * inv.second_moment(&f.z, &h).trace()
+                - inv.second_moment(&f.z, &h);
+            let udot = inv.modal_outer(&f.zd, &f.zd);
+            for (i, &(a, b)) in pairs.iter().enumerate() {
+                for (c, hc) in h.iter().enumerate() {
+                    out.c[(r + 3 + i, o + c)] = -(hc[(a, b)] + hc[(b, a)]);
+                }
+                out.gamma[r + 3 + i] = 2.0 * udot[(a, b)];
+                out.phi[r + 3 + i] = jz[(a, b)] - j0[(a, b)];
+            }
+        }
     }
 
     /// Accelerations $\dot v$ from $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
@@ -494,9 +498,10 @@ impl System {
                 Body::Rigid(rb) => e -= rb.mass * self.gravity.dot(&f.r),
                 Body::Flexible(fb) => {
                     e += 0.5 * f.z.dot(&(&fb.k_zz * &f.z));
-                    for (j, &mj) in fb.masses.iter().enumerate() {
-                        e -= mj * self.gravity.dot(&(f.r + f.a * fb.b(j, &f.z)));
-                    }
+                    let inv = &fb.invariants;
+                    e -= self
+                        .gravity
+                        .dot(&(f.r * inv.mass + f.a * inv.first_moment(&f.z)));
                 }
             }
         }

@@ -7,7 +7,7 @@ use super::{
     SceneInfo, SceneOptions, SceneOutput,
     mode_visuals::method_color,
     sim_visuals::{body_trajectory, frame_axes, health_series, simulation_layout, times},
-    slab_sims::{mass_centre, run_key},
+    slab_sims::run_key,
 };
 use crate::{
     Result,
@@ -86,14 +86,7 @@ pub fn plank_body(model: &FeModel, v: Variant, modes: usize) -> Result<FlexibleB
             ..Default::default()
         },
     )?;
-    let (basis, origin) = match v.axes {
-        AxisType::NodalFixed(nf) => {
-            let o = model.nodes[model.node_index(nf.origin)?];
-            (nf.apply(model, &basis)?, Vector3::new(o[0], o[1], o[2]))
-        }
-        _ => (basis, mass_centre(model)),
-    };
-    FlexibleBody::new(model.clone(), basis, v.axes, origin)
+    FlexibleBody::new(model.clone(), basis, v.axes)
 }
 
 /// The plank, four links and six spherical joints, at rest with each chain folded
@@ -101,7 +94,6 @@ pub fn plank_body(model: &FeModel, v: Variant, modes: usize) -> Result<FlexibleB
 pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
     let model = body.model.clone();
     let origin = body.origin;
-    let axes = body.axes;
     let top = |node: usize| {
         let p = model.nodes[node - 1];
         Vector3::new(p[0], p[1], p[2])
@@ -147,11 +139,6 @@ pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
         link(4, 1.0),
         Attachment::Node { body: 0, node: 14 },
     ));
-    match axes {
-        AxisType::Mean => joints.push(Constraint::MeanAxes { body: 0 }),
-        AxisType::Principal => joints.push(Constraint::PrincipalAxes { body: 0 }),
-        AxisType::NodalFixed(_) => {}
-    }
     let mut system = System::new(bodies, joints);
     system
         .nodal_forces

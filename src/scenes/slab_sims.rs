@@ -110,7 +110,7 @@ pub fn record_driving_tables(
         placed(Vector3::new(p[0], p[1], p[2]))
     };
     let origin = placed(body.origin);
-    let mut constraints: Vec<Constraint> = axis_constraint(axes, 0).into_iter().collect();
+    let mut constraints: Vec<Constraint> = Vec::new();
     let (n18, n30) = (node(18), node(30));
     let far18 = n18 - Vector3::new(2.0, 0.0, 0.0);
     let far30 = n30 + Vector3::new(3.0, 0.0, 0.0);
@@ -246,27 +246,7 @@ pub fn slab_body(
             ..Default::default()
         },
     )?;
-    let (basis, origin) = match axes {
-        AxisType::NodalFixed(nf) => {
-            let o = model.nodes[model.node_index(nf.origin)?];
-            (nf.apply(model, &basis)?, Vector3::new(o[0], o[1], o[2]))
-        }
-        AxisType::Mean | AxisType::Principal => (basis, mass_centre(model)),
-    };
-    FlexibleBody::new(model.clone(), basis, axes, origin)
-}
-
-/// Mass centre of a lumped-mass body, m.
-pub fn mass_centre(model: &FeModel) -> Vector3<f64> {
-    Vector3::from(model.mass_centre())
-}
-
-fn axis_constraint(axes: AxisType, body: usize) -> Option<Constraint> {
-    match axes {
-        AxisType::NodalFixed(_) => None,
-        AxisType::Mean => Some(Constraint::MeanAxes { body }),
-        AxisType::Principal => Some(Constraint::PrincipalAxes { body }),
-    }
+    FlexibleBody::new(model.clone(), basis, axes)
 }
 
 fn fixed(model: &FeModel, node: usize, axis: usize) -> Constraint {
@@ -286,10 +266,9 @@ pub fn slab_system(
     body: FlexibleBody,
 ) -> Result<(System, crate::dynamics::State)> {
     let model = body.model.clone();
-    let axes = body.axes;
     let mut origin = body.origin;
     let mut rotation = Matrix3::identity();
-    let mut constraints: Vec<Constraint> = axis_constraint(axes, 0).into_iter().collect();
+    let mut constraints: Vec<Constraint> = Vec::new();
     let omega = 2.0 * std::f64::consts::PI / ORBIT_T;
     match scenario {
         Scenario::HeldAtSix => {

@@ -268,18 +268,85 @@ fn a_frame_change_leaves_absolute_positions_unchanged_to_second_order() {
     }
 }
 
+/// Highest circular frequency of the reduced body, rad/s: $\max\sqrt{\lambda}$ of
+/// $K_{zz}\phi = \lambda M_{zz}\phi$ by a Cholesky factor of $M_{zz}$ and a symmetric eigensolve.
+fn highest_circular_frequency(body: &flexmodes::dynamics::FlexibleBody) -> f64 {
+    let l = body.m_zz.clone().cholesky().unwrap().l();
+    let li = l.clone().try_inverse().unwrap();
+    let a = &li * &body.k_zz * li.transpose();
+    let a = (&a + a.transpose()) * 0.5;
+    a.symmetric_eigenvalues().max().sqrt()
+}
+
 #[test]
-fn a_diverging_integration_is_a_named_error() {
+fn fixed_steps_diverge_above_the_critical_step_and_not_below() {
+    // The critical step of Dormand–Prince on an undamped system is y_c / omega_max with y_c
+    // the end of its stability interval on the imaginary axis, where |R(iy)| first exceeds 1:
+    // R = 1 + z + z²/2 + z³/6 + z⁴/24 + z⁵/120 + z⁶/600 gives |R(i)|² - 1 = 2.78e-6 > 0 and
+    // |R(0.99 i)| < 1. Just above y_c the growth is slow (|R(1.5 i)| = 1.003 per step); at
+    // 3 y_c it is 1.44 per step. The held slab's CB body is integrated with fixed steps 10 %
+    // below y_c / omega_max and three times above it.
+    let y_c = flexmodes::dynamics::imaginary_stability_limit();
+    assert!((0.99..1.0).contains(&y_c), "DP5 imaginary-axis limit {y_c}");
+    let model = slab(&SlabParameters::default());
+    let body = slab_body(&model, Method::CraigBampton, nodal(), &BOUNDARY, 6).unwrap();
+    let omega = highest_circular_frequency(&body);
+    let critical = flexmodes::dynamics::critical_step(omega);
+    let (system, state) = slab_system(&Scenario::HeldAtSix, body).unwrap();
+    let run = |factor: f64| {
+        let p = IntegratorParameters {
+            end_time: 4.0,
+            output_interval: 0.2,
+            fixed_step: Some(factor * critical),
+            ..Default::default()
+        };
+        // Steps per output interval stay well above one, so the fixed step, not the output
+        // grid, sets the step.
+        assert!(p.output_interval > 10.0 * factor * critical);
+        simulate(&system, &state, &p, &Progress::default())
+    };
+    eprintln!("omega_max {omega} rad/s, critical step {critical:e} s");
+    let below = run(0.9).expect("10 % below the critical step stays bounded");
+    assert_eq!(below.rejected, 0);
+    assert!(below.steps as f64 >= 4.0 / (0.9 * critical) - 1.0);
+    let energy: Vec<f64> = below.samples.iter().map(|s| s.energy).collect();
+    let spread = energy
+        .iter()
+        .fold(0.0f64, |m, e| m.max((e - energy[0]).abs()));
+    match run(3.0) {
+        Err(Error::Diverged { time, reason }) => {
+            assert!(time < 4.0 && time > 0.0, "{time}: {reason}");
+            assert!(reason.contains("fixed step"), "{reason}");
+        }
+        other => panic!(
+            "expected Diverged at three times the critical step {critical:e} s, got {other:?}",
+            other = other.map(|s| s.steps)
+        ),
+    }
+    // Below the limit the (slightly dissipative) scheme keeps the energy.
+    assert!(
+        spread < 1e-3 * energy[0].abs().max(1.0),
+        "energy spread {spread:e}"
+    );
+}
+
+#[test]
+fn an_impossible_step_size_is_a_named_error() {
     let model = slab(&SlabParameters::default());
     let body = slab_body(&model, Method::CraigBampton, nodal(), &BOUNDARY, 6).unwrap();
     let (system, state) = slab_system(&Scenario::HeldAtSix, body).unwrap();
     let p = IntegratorParameters {
         end_time: 0.5,
-        min_step: 1e-2,
+        rtol: 1e-14,
+        atol: 1e-16,
+        min_step: 1e-4,
         ..Default::default()
     };
     match simulate(&system, &state, &p, &Progress::default()) {
-        Err(Error::Diverged { time, .. }) => assert!(time < 0.5),
+        Err(Error::Diverged { time, reason }) => {
+            assert!(time < 0.5);
+            assert!(reason.contains("fell below"), "{reason}");
+        }
         other => panic!(
             "expected Diverged, got {other:?}",
             other = other.map(|s| s.steps)

@@ -4,6 +4,7 @@
 mod common;
 mod dynamics;
 mod errors;
+mod floating_frame;
 mod invariants;
 mod linalg;
 mod published;

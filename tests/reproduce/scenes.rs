@@ -119,9 +119,13 @@ fn slab_modes_honours_boundary_and_modes() {
     // rigid-body mode at all.
     let cb = out.report.result_vec("reduced_hz.cb").unwrap();
     let mc = out.report.result_vec("reduced_hz.mc").unwrap();
+    let gr = out.report.result_vec("reduced_hz.gr").unwrap();
+    assert_eq!(cb.len(), 16 - 6);
+    assert_eq!(mc.len(), cb.len());
     for (a, b) in cb.iter().zip(&mc) {
         assert!((a - b).abs() < 1e-6 * a);
     }
+    assert!(gr[0] > cb[0], "GR {} Hz, CB {} Hz", gr[0], cb[0]);
     assert_eq!(out.report.result("rigid_body_modes.mt").unwrap(), 0);
     assert_eq!(out.report.result("rigid_body_modes.cb").unwrap(), 6);
 }
@@ -132,6 +136,8 @@ fn slab_modes_shows_rayleigh_ritz_ordering() {
     let full = out.report.result_vec("free_free_hz").unwrap();
     for m in ["cb", "mc", "gr"] {
         let r = out.report.result_vec(&format!("reduced_hz.{m}")).unwrap();
+        assert_eq!(r.len(), 18 - 6, "{m}");
+        assert!(full.len() > r.len());
         for (k, (a, b)) in r.iter().zip(&full).enumerate() {
             assert!(a >= &(b * (1.0 - 1e-9)), "{m} mode {k}: {a} below full {b}");
         }

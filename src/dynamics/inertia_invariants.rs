@@ -1,0 +1,198 @@
+//! Inertia invariants of a reduced deformable body with a lumped mass matrix, computed once so
+//! that the mass matrix, the quadratic-velocity forces and the axis conditions of the
+//! floating-frame equations (§3.3, §5.3) never loop over nodes.
+//!
+//! With $b_j = \bar s_j + \Psi_j z$ and node masses $m_j$, every node sum the equations need
+//! is a polynomial of degree two in $z$ whose coefficients are
+//!
+//! - $m = \sum_j m_j$, $\;c_0 = \sum_j m_j \bar s_j$, $\;P = \sum_j m_j \Psi_j$ (3 × k),
+//! - $S = \sum_j m_j \bar s_j \bar s_j^T$ (3 × 3),
+//! - $L_c = \sum_j m_j \bar s_j \psi_{jc}^T$ (3 × 3 per mode $c$),
+//! - $Q_{cd} = \sum_j m_j \psi_{jc} \psi_{jd}^T$ (3 × 3 per pair of modes),
+//!
+//! where $\psi_{jc}$ is column $c$ of $\Psi_j$. Cross products need no invariants of their
+//! own: $\sum_j m_j\, u_j \times v_j$ is the axial vector of $\sum_j m_j (v_j u_j^T - u_j v_j^T)$.
+
+use nalgebra::{DVector, Matrix3, Matrix3xX, Vector3};
+
+/// The vector with $\sum u \times v = \mathrm{axial}(\sum v u^T)$ for any pairs $(u, v)$.
+fn axial(m: &Matrix3<f64>) -> Vector3<f64> {
+    // (u x v)_x = u_y v_z - u_z v_y = (v u^T)[2,1] - (v u^T)[1,2]
+    Vector3::new(
+        m[(2, 1)] - m[(1, 2)],
+        m[(0, 2)] - m[(2, 0)],
+        m[(1, 0)] - m[(0, 1)],
+    )
+}
+
+/// The invariants of one reduced body (see the module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InertiaInvariants {
+    /// Total mass $m$, kg.
+    pub mass: f64,
+    /// First moment of the undeformed body about the frame origin, $c_0$, kg m.
+    pub first_moment0: Vector3<f64>,
+    /// $P = \sum_j m_j \Psi_j$ (3 × k): the translational mean-axis rows (Eq. 4.20).
+    pub p_sum: Matrix3xX<f64>,
+    /// $S = \sum_j m_j \bar s_j \bar s_j^T$, kg m².
+    pub s_outer: Matrix3<f64>,
+    /// $L_c$ per mode.
+    pub l: Vec<Matrix3<f64>>,
+    /// $Q_{cd}$, row-major over $(c, d)$.
+    pub q: Vec<Matrix3<f64>>,
+    modes: usize,
+}
+
+impl InertiaInvariants {
+    /// Computes the invariants from node masses (kg), undeformed positions in the body frame
+    /// (m) and the per-node rows of Ψ.
+    pub fn new(masses: &[f64], s_bar: &[Vector3<f64>], psi_nodes: &[Matrix3xX<f64>]) -> Self {
+        let k = psi_nodes.first().map_or(0, |p| p.ncols());
+        let mut out = Self {
+            mass: 0.0,
+            first_moment0: Vector3::zeros(),
+            p_sum: Matrix3xX::zeros(k),
+            s_outer: Matrix3::zeros(),
+            l: vec![Matrix3::zeros(); k],
+            q: vec![Matrix3::zeros(); k * k],
+            modes: k,
+        };
+        for ((&mj, s), psi) in masses.iter().zip(s_bar).zip(psi_nodes) {
+            out.mass += mj;
+            out.first_moment0 += s * mj;
+            out.p_sum += psi * mj;
+            out.s_outer += s * s.transpose() * mj;
+            for c in 0..k {
+                let pc = psi.column(c);
+                out.l[c] += s * pc.transpose() * mj;
+                for d in c..k {
+                    out.q[c * k + d] += pc * psi.column(d).transpose() * mj;
+                }
+            }
+        }
+        for c in 0..k {
+            for d in 0..c {
+                out.q[c * k + d] = out.q[d * k + c].transpose();
+            }
+        }
+        out
+    }
+
+    /// Number of modal coordinates k.
+    pub fn modes(&self) -> usize {
+        self.modes
+    }
+
+    /// $Q_{cd}$.
+    pub fn q(&self, c: usize, d: usize) -> &Matrix3<f64> {
+        &self.q[c * self.modes + d]
+    }
+
+    /// First moment about the frame origin, $\sum_j m_j b_j = c_0 + P z$, kg m.
+    pub fn first_moment(&self, z: &DVector<f64>) -> Vector3<f64> {
+        self.first_moment0 + &self.p_sum * z
+    }
+
+    /// $H_c(z) = \sum_j m_j \psi_{jc} b_j^T = L_c^T + \sum_d z_d Q_{cd}$ for every mode $c$.
+    pub fn h(&self, z: &DVector<f64>) -> Vec<Matrix3<f64>> {
+        (0..self.modes)
+            .map(|c| {
+                let mut h = self.l[c].transpose();
+                for d in 0..self.modes {
+                    if z[d] != 0.0 {
+                        h += self.q(c, d) * z[d];
+                    }
+                }
+                h
+            })
+            .collect()
+    }
+
+    /// $\sum_j m_j b_j b_j^T = S + \sum_c z_c (L_c + H_c)$, kg m², from $H$ of [`Self::h`].
+    pub fn second_moment(&self, z: &DVector<f64>, h: &[Matrix3<f64>]) -> Matrix3<f64> {
+        let mut out = self.s_outer;
+        for c in 0..self.modes {
+            out += (self.l[c] + h[c]) * z[c];
+        }
+        out
+    }
+
+    /// Inertia about the frame origin in body axes,
+    /// $\bar J = \sum_j m_j \tilde b_j^T \tilde b_j = \mathrm{tr}(B) I - B$ with $B$ the second
+    /// moment, kg m².
+    pub fn inertia(&self, z: &DVector<f64>) -> Matrix3<f64> {
+        let b = self.second_moment(z, &self.h(z));
+        Matrix3::identity() * b.trace() - b
+    }
+
+    /// $\sum_j m_j \tilde b_j \Psi_j$ (3 × k): the rotation–deformation coupling of the mass
+    /// matrix and the rotational mean-axis rows (Eq. 4.15). Column $d$ is
+    /// $\sum_j m_j b_j \times \psi_{jd}$, the axial vector of $H_d$.
+    pub fn rotation_coupling(&self, h: &[Matrix3<f64>]) -> Matrix3xX<f64> {
+        let mut out = Matrix3xX::zeros(self.modes);
+        for (d, hd) in h.iter().enumerate() {
+            out.set_column(d, &axial(hd));
+        }
+        out
+    }
+
+    /// $\sum_j m_j (\Psi_j a)(\Psi_j b)^T = \sum_{cd} a_c b_d Q_{cd}$.
+    pub fn modal_outer(&self, a: &DVector<f64>, b: &DVector<f64>) -> Matrix3<f64> {
+        let mut out = Matrix3::zeros();
+        for c in 0..self.modes {
+            if a[c] == 0.0 {
+                continue;
+            }
+            for d in 0..self.modes {
+                if b[d] != 0.0 {
+                    out += self.q(c, d) * (a[c] * b[d]);
+                }
+            }
+        }
+        out
+    }
+
+    /// The velocity-dependent inertia forces of the floating-frame equations for frame angular
+    /// velocity $\bar\omega$ (body axes, rad/s), deformation $z$ and its rate $\dot z$, as
+    /// $(\sum_j m_j\alpha_j,\ \sum_j m_j\, b_j\times\alpha_j,\ \sum_j m_j \Psi_j^T\alpha_j)$ with
+    /// $\alpha_j = \bar\omega\times(\bar\omega\times b_j) + 2\bar\omega\times\Psi_j\dot z$
+    /// (body axes; the generalised forces subtract them).
+    pub fn velocity_forces(
+        &self,
+        w: &Vector3<f64>,
+        z: &DVector<f64>,
+        zd: &DVector<f64>,
+        h: &[Matrix3<f64>],
+    ) -> (Vector3<f64>, Vector3<f64>, DVector<f64>) {
+        let first = self.first_moment(z);
+        let u_sum = &self.p_sum * zd;
+        let translational = w.cross(&w.cross(&first)) + 2.0 * w.cross(&u_sum);
+        // sum m b x (w x (w x b)) = w x (J w); sum m b x (w x u) = w tr(G) - G w with
+        // G = sum m u b^T = sum_c zd_c H_c.
+        let inertia = {
+            let b = self.second_moment(z, h);
+            Matrix3::identity() * b.trace() - b
+        };
+        let mut g = Matrix3::zeros();
+        for (c, hc) in h.iter().enumerate() {
+            g += hc * zd[c];
+        }
+        let rotational = w.cross(&(inertia * w)) + 2.0 * (w * g.trace() - g * w);
+        // psi_c . (w x (w x b)) = w^T (psi_c b^T) w - |w|^2 psi_c . b, summed over nodes:
+        // w^T H_c w - |w|^2 tr H_c. And psi_c . (w x u) = w . (u x psi_c), summed:
+        // w . axial(sum m psi_c u^T) = w . axial(sum_d zd_d Q_cd).
+        let w2 = w.norm_squared();
+        let mut modal = DVector::zeros(self.modes);
+        for c in 0..self.modes {
+            let centrifugal = (w.transpose() * h[c] * w)[0] - w2 * h[c].trace();
+            let mut qc = Matrix3::zeros();
+            for d in 0..self.modes {
+                if zd[d] != 0.0 {
+                    qc += self.q(c, d) * zd[d];
+                }
+            }
+            modal[c] = centrifugal + 2.0 * w.dot(&axial(&qc));
+        }
+        (translational, rotational, modal)
+    }
+}

@@ -1,0 +1,139 @@
+//! The floating frame built in one place: inertia invariants against node-by-node sums, axis
+//! conditions derived from the body's axis type, nodal-fixed columns removed by the body's
+//! constructor.
+
+use flexmodes::{
+    dynamics::{AxisType, Body, FlexibleBody, InertiaInvariants, System, skew},
+    fem::{SlabParameters, slab},
+    reduction::{Method, ModeSelection, NodalFixedAxes, ReductionParameters, reduce},
+};
+use nalgebra::{DVector, Matrix3, Matrix3xX, Vector3};
+
+use crate::common::Rng;
+
+fn random_body(
+    rng: &mut Rng,
+    nodes: usize,
+    k: usize,
+) -> (Vec<f64>, Vec<Vector3<f64>>, Vec<Matrix3xX<f64>>) {
+    let masses = (0..nodes).map(|_| 1.0 + rng.unit().abs()).collect();
+    let s = (0..nodes)
+        .map(|_| Vector3::new(rng.unit(), rng.unit(), rng.unit()) * 2.0)
+        .collect();
+    let psi = (0..nodes)
+        .map(|_| Matrix3xX::from_fn(k, |_, _| 0.3 * rng.unit()))
+        .collect();
+    (masses, s, psi)
+}
+
+fn random_vector(rng: &mut Rng, k: usize) -> DVector<f64> {
+    DVector::from_fn(k, |_, _| rng.unit())
+}
+
+#[test]
+fn inertia_invariants_equal_node_by_node_sums() {
+    let mut rng = Rng::new(17);
+    for &(nodes, k) in &[(1, 0), (3, 1), (8, 5), (45, 12), (20, 30)] {
+        let (m, s, psi) = random_body(&mut rng, nodes, k);
+        let inv = InertiaInvariants::new(&m, &s, &psi);
+        assert_eq!(inv.modes(), k);
+        let (z, zd) = (random_vector(&mut rng, k), random_vector(&mut rng, k));
+        let w = Vector3::new(rng.unit(), rng.unit(), rng.unit()) * 3.0;
+        // The sums the floating-frame equations need, node by node (Eq. 3.14, 5.12).
+        let mut first = Vector3::zeros();
+        let mut j_bar = Matrix3::zeros();
+        let mut wz = Matrix3xX::zeros(k);
+        let (mut ar, mut aw, mut az) = (Vector3::zeros(), Vector3::zeros(), DVector::zeros(k));
+        let mut uu = Matrix3::zeros();
+        let mut p_sum = Matrix3xX::zeros(k);
+        for j in 0..nodes {
+            let b = s[j] + &psi[j] * &z;
+            let u = &psi[j] * &zd;
+            let bt = skew(&b);
+            first += b * m[j];
+            j_bar += bt.transpose() * bt * m[j];
+            wz += bt * &psi[j] * m[j];
+            p_sum += &psi[j] * m[j];
+            let alpha = w.cross(&w.cross(&b)) + 2.0 * w.cross(&u);
+            ar += alpha * m[j];
+            aw += b.cross(&alpha) * m[j];
+            az += psi[j].transpose() * alpha * m[j];
+            uu += u * u.transpose() * m[j];
+        }
+        let scale = 1.0 + nodes as f64;
+        let close = |a: f64, what: &str| {
+            assert!(a <= 1e-12 * scale * scale, "{what} ({nodes}, {k}): {a:e}")
+        };
+        let h = inv.h(&z);
+        assert_eq!(h.len(), k);
+        close((inv.first_moment(&z) - first).amax(), "first moment");
+        close((inv.inertia(&z) - j_bar).amax(), "inertia");
+        close(
+            (inv.rotation_coupling(&h) - &wz).amax(),
+            "rotation coupling",
+        );
+        close((&inv.p_sum - &p_sum).amax(), "p_sum");
+        close((inv.modal_outer(&zd, &zd) - uu).amax(), "modal outer");
+        let (gr, gw, gz) = inv.velocity_forces(&w, &z, &zd, &h);
+        close((gr - ar).amax(), "translational velocity forces");
+        close((gw - aw).amax(), "rotational velocity forces");
+        assert_eq!(gz.len(), az.len());
+        close((gz - &az).amax(), "modal velocity forces");
+        // Not trivially zero: the sums are of order one.
+        assert!(j_bar.amax() > 0.1 && (k == 0 || az.amax() > 1e-3));
+    }
+}
+
+fn slab_body(axes: AxisType) -> FlexibleBody {
+    let model = slab(&SlabParameters::default());
+    let basis = reduce(
+        &model,
+        Method::CraigBampton,
+        &ReductionParameters {
+            boundary_nodes: vec![16, 18, 28, 30],
+            modes: ModeSelection::Count(6),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    FlexibleBody::new(model, basis, axes).unwrap()
+}
+
+#[test]
+fn the_body_constructor_places_the_frame_and_the_system_adds_axis_conditions() {
+    let nf = slab_body(AxisType::NodalFixed(NodalFixedAxes::slab_default()));
+    let mean = slab_body(AxisType::Mean);
+    let principal = slab_body(AxisType::Principal);
+    // Nodal-fixed: six columns of the 18 removed (Table 4-1), origin at node 16.
+    assert_eq!(nf.modes(), 12);
+    assert_eq!(mean.modes(), 18);
+    let n16 = nf.model.nodes[15];
+    assert!((nf.origin - Vector3::new(n16[0], n16[1], n16[2])).norm() < 1e-15);
+    // Node 16's deflection is zero in every column: it is the origin.
+    assert!(nf.psi_nodes[15].amax() < 1e-14);
+    // Mean and principal axes: origin at the mass centre, so the first moment vanishes.
+    assert!(mean.invariants.first_moment0.norm() < 1e-12 * mean.mass());
+    assert!((mean.mass() - nf.mass()).abs() < 1e-12 * nf.mass());
+    // The system adds six rows for a body on mean or principal axes and none otherwise.
+    let rows =
+        |b: FlexibleBody| System::new(vec![Body::Flexible(Box::new(b))], vec![]).constraint_rows();
+    assert_eq!(rows(nf), 0);
+    assert_eq!(rows(mean.clone()), 6);
+    assert_eq!(rows(principal), 6);
+    // The mean-axis rows hold at a state that satisfies them and not at one that does not.
+    let system = System::new(vec![Body::Flexible(Box::new(mean))], vec![]);
+    let mut state = system.state_at(&[(Vector3::zeros(), Matrix3::identity())]);
+    assert_eq!(system.violation(0.0, &state), (0.0, 0.0));
+    let Body::Flexible(fb) = &system.bodies[0] else {
+        unreachable!()
+    };
+    // A rigid translation of the deformation field breaks Eq. 4.20: the first column of the
+    // constraint modes moves node 16 in x.
+    state.q[7] = 1e-3;
+    let expected = (fb.p_sum().column(0) * 1e-3).amax();
+    let (pos, _) = system.violation(0.0, &state);
+    assert!(
+        (pos - expected).abs() < 1e-15 && pos > 1e-6,
+        "{pos:e} vs {expected:e}"
+    );
+}
