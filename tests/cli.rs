@@ -196,10 +196,17 @@ fn record_writes_every_scene_and_failures_write_nothing() {
 #[test]
 fn report_dynamic_scenes_json() {
     let v = json(&["report", "slab-sim1", "--method", "nr,cb", "--json"]);
+    // --method nr,cb: exactly the two methods; NR is the reference the errors are taken
+    // against, CB's error is small (0.024-0.034 in the thesis' ranking of simulation 1).
+    let methods: Vec<&String> = v["results"]["rel_rms_error"]
+        .as_object()
+        .unwrap()
+        .keys()
+        .collect();
+    assert_eq!(methods, ["cb", "nr"]);
     for d in ["xi", "eta", "zeta"] {
         let e = v["results"]["rel_rms_error"]["cb"][d].as_f64().unwrap();
-        assert!(e > 0.0 && e < 0.05, "{d}: {e}");
-        assert_eq!(v["results"]["rel_rms_error"]["nr"][d].as_f64(), Some(0.0));
+        assert!(e > 0.01 && e < 0.05, "{d}: {e}");
     }
     assert!(v["results"]["wall_time_s"]["cb"].as_f64().unwrap() > 0.0);
     let v = json(&["report", "plank-symmetry", "--method", "cb", "--json"]);

@@ -2,7 +2,6 @@
 //! the physical and algebraic invariants of the bodies and reduction methods.
 
 mod common;
-mod dynamics;
 mod errors;
 mod floating_frame;
 mod invariants;
