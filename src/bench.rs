@@ -11,13 +11,13 @@ use serde_json::{Map, Value, json};
 use crate::{
     Error, Progress, Result,
     analysis::reduced_modes,
+    analysis::relative_rms,
     dynamics::{AxisType, IntegratorParameters, simulate, stability_polynomial},
     fem::{SlabParameters, slab},
     reduction::{Method, NodalFixedAxes},
     report::{markdown_table, sig},
     scenes::slab_sims::{
-        BOUNDARY, PROBE_NODE, Scenario, end_time, probe_history, relative_rms, slab_body,
-        slab_system,
+        BOUNDARY, PROBE_NODE, Scenario, end_time, probe_history, slab_body, slab_system,
     },
 };
 

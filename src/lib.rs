@@ -27,4 +27,4 @@ pub mod report;
 pub mod scenes;
 
 pub use error::{Error, Result};
-pub use progress::{Progress, ProgressReading};
+pub use progress::{PhaseReading, Progress, ProgressReading};

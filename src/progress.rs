@@ -1,8 +1,11 @@
 //! How far a running computation got, and the request that it stop.
 
-use std::sync::{
-    Arc,
-    atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering},
+use std::{
+    sync::{
+        Arc, Mutex,
+        atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering},
+    },
+    time::Instant,
 };
 
 use crate::{Error, Result};
@@ -13,6 +16,20 @@ struct Shared {
     simulations: AtomicUsize,
     time_bits: AtomicU64,
     end_bits: AtomicU64,
+    phase: Mutex<Option<(String, Instant)>>,
+    phases: AtomicUsize,
+}
+
+/// The phase a computation is in (a reduction's factorisation, constraint modes,
+/// eigensolve, ...).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PhaseReading {
+    /// What runs.
+    pub name: String,
+    /// Phases started so far, this one included.
+    pub number: usize,
+    /// Seconds since it started.
+    pub elapsed_s: f64,
 }
 
 /// A handle shared by a running computation and whoever waits for it: time integrations report
@@ -79,6 +96,31 @@ impl Progress {
             s.time_bits.store(time.to_bits(), Ordering::SeqCst);
         }
         self.check()
+    }
+
+    /// A phase of a long computation starts: `Err(Error::Cancelled)` if the computation was
+    /// cancelled meanwhile, so a superseded request stops at the next phase boundary.
+    pub fn phase(&self, name: &str) -> Result<()> {
+        self.check()?;
+        if let Some(s) = &self.0 {
+            s.phases.fetch_add(1, Ordering::SeqCst);
+            if let Ok(mut p) = s.phase.lock() {
+                *p = Some((name.to_string(), Instant::now()));
+            }
+        }
+        Ok(())
+    }
+
+    /// The current phase; `None` when detached or before any phase.
+    pub fn phase_reading(&self) -> Option<PhaseReading> {
+        let s = self.0.as_ref()?;
+        let p = s.phase.lock().ok()?;
+        let (name, started) = p.as_ref()?;
+        Some(PhaseReading {
+            name: name.clone(),
+            number: s.phases.load(Ordering::SeqCst),
+            elapsed_s: started.elapsed().as_secs_f64(),
+        })
     }
 
     /// What was recorded so far; `None` when detached or before any time integration.

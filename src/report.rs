@@ -13,6 +13,112 @@ pub struct Report {
     pub results: Map<String, Value>,
     /// The result table in markdown (printed by `report`, shown in the `scene` panel).
     pub table: String,
+    /// The result tables with their numbers, for panels that rank them (the explorer
+    /// highlights the best and worst value of each ranked column).
+    pub tables: Vec<Table>,
+}
+
+/// One cell of a result table: its text and, where it stands for a number, the number.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cell {
+    /// What is printed.
+    pub text: String,
+    /// The number it stands for (`None` for labels, and for reference rows that are not
+    /// ranked, such as NR's zero error against itself).
+    pub value: Option<f64>,
+}
+
+impl Cell {
+    /// A text cell.
+    pub fn text(text: impl Into<String>) -> Self {
+        Self {
+            text: text.into(),
+            value: None,
+        }
+    }
+
+    /// A number printed as `text`.
+    pub fn number(value: f64, text: impl Into<String>) -> Self {
+        Self {
+            text: text.into(),
+            value: Some(value),
+        }
+    }
+}
+
+/// A result table: header, rows, and the columns in which a lower value is better.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Table {
+    /// Column titles.
+    pub header: Vec<String>,
+    /// Rows of cells (as many as the header).
+    pub rows: Vec<Vec<Cell>>,
+    /// Columns ranked lower-is-better (errors, defects).
+    pub lower_is_better: Vec<usize>,
+}
+
+impl Table {
+    /// An empty table with a header.
+    pub fn new(header: &[&str]) -> Self {
+        Self {
+            header: header.iter().map(|h| h.to_string()).collect(),
+            ..Default::default()
+        }
+    }
+
+    /// A table of text rows (nothing ranked).
+    pub fn from_text(header: &[&str], rows: &[Vec<String>]) -> Self {
+        let mut t = Self::new(header);
+        t.rows = rows
+            .iter()
+            .map(|r| r.iter().map(|c| Cell::text(c.clone())).collect())
+            .collect();
+        t
+    }
+
+    /// Marks columns in which a lower value is better.
+    pub fn rank_lower(mut self, columns: &[usize]) -> Self {
+        self.lower_is_better = columns.to_vec();
+        self
+    }
+
+    /// Appends a row.
+    pub fn push(&mut self, row: Vec<Cell>) {
+        self.rows.push(row);
+    }
+
+    /// The table in markdown.
+    pub fn markdown(&self) -> String {
+        let header: Vec<&str> = self.header.iter().map(String::as_str).collect();
+        let rows: Vec<Vec<String>> = self
+            .rows
+            .iter()
+            .map(|r| r.iter().map(|c| c.text.clone()).collect())
+            .collect();
+        markdown_table(&header, &rows)
+    }
+
+    /// The rows with the best (lowest) and worst (highest) value of a ranked column, among
+    /// the cells that carry a number; `None` when the column is not ranked or fewer than two
+    /// rows carry one.
+    pub fn best_and_worst(&self, column: usize) -> Option<(usize, usize)> {
+        if !self.lower_is_better.contains(&column) {
+            return None;
+        }
+        let vals: Vec<(usize, f64)> = self
+            .rows
+            .iter()
+            .enumerate()
+            .filter_map(|(r, row)| Some((r, row.get(column)?.value?)))
+            .filter(|(_, v)| v.is_finite())
+            .collect();
+        if vals.len() < 2 {
+            return None;
+        }
+        let best = vals.iter().min_by(|a, b| a.1.total_cmp(&b.1))?.0;
+        let worst = vals.iter().max_by(|a, b| a.1.total_cmp(&b.1))?.0;
+        (best != worst).then_some((best, worst))
+    }
 }
 
 impl Report {
@@ -23,7 +129,15 @@ impl Report {
             parameters: Map::new(),
             results: Map::new(),
             table: String::new(),
+            tables: Vec::new(),
         }
+    }
+
+    /// Keeps `table` for ranking panels and returns its markdown for the text.
+    pub fn add_table(&mut self, table: Table) -> String {
+        let md = table.markdown();
+        self.tables.push(table);
+        md
     }
 
     /// The JSON object of `report --json`.

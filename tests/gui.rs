@@ -94,17 +94,88 @@ fn a_singular_boundary_is_shown_and_the_last_recording_kept() {
 }
 
 #[test]
-fn a_newer_request_supersedes_a_running_one() {
-    let mut h = harness("beam-modes");
-    // Two changes before the first result: only the last one's result is applied.
-    h.get_by_role_and_label(Role::CheckBox, "GR").click();
-    h.step();
-    h.get_by_role_and_label(Role::CheckBox, "MT").click();
+fn a_newer_request_abandons_a_running_reduction_at_its_next_phase() {
+    use flexmodes::{gui::Worker, scenes::SceneOptions};
+    let mut w = Worker::new();
+    // A refined slab (6 825 DOF) goes through assembly, factorisation, constraint modes,
+    // eigensolve, the other methods and the free-free modes; a worker that ran requests in
+    // order would finish all of them before the newer request's result.
+    let slow = SceneOptions {
+        refine: Some([24, 12, 6]),
+        ..Default::default()
+    };
+    let first = w.submit(1, "slab-modes", slow, false);
+    let start = Instant::now();
+    let at_cancel = loop {
+        if let Some(p) = first.phase_reading() {
+            break p;
+        }
+        assert!(start.elapsed() < Duration::from_secs(120), "no phase");
+        std::thread::sleep(Duration::from_millis(1));
+    };
+    let second = w.submit(2, "beam-modes", SceneOptions::default(), false);
+    assert!(first.is_cancelled() && !second.is_cancelled());
+    let finished = loop {
+        if let Some(f) = w.poll() {
+            break f;
+        }
+        assert!(start.elapsed() < Duration::from_secs(300), "no result");
+        std::thread::sleep(Duration::from_millis(1));
+    };
+    assert_eq!(
+        finished.generation, 2,
+        "the abandoned request reports nothing"
+    );
+    assert!(finished.result.is_ok());
+    // The first request stopped at the phase boundary after the cancel (a cancel that lands
+    // between a boundary's check and its start lets one more phase begin).
+    let last = first.phase_reading().unwrap();
+    assert!(
+        last.number <= at_cancel.number + 1,
+        "ran on from phase {} ({}) to {} ({})",
+        at_cancel.number,
+        at_cancel.name,
+        last.number,
+        last.name
+    );
+    assert_ne!(last.name, "free-free modes");
+}
+
+#[test]
+fn the_slab_mesh_is_a_control_and_long_reductions_show_their_phase() {
+    let mut h = harness("slab-modes");
     settle(&mut h);
-    let p = paths(&h);
-    assert!(!p.iter().any(|p| p.starts_with("modes/guyan_a")), "GR off");
-    assert!(!p.iter().any(|p| p.starts_with("modes/boundary")), "MT off");
-    assert!(p.iter().any(|p| p.starts_with("modes/craig_bampton")));
+    assert_eq!(h.state().controls.refine, vec![4, 2, 1]);
+    h.get_by_label("mesh").click();
+    // Let the popup finish opening so the items are where they will be clicked.
+    for _ in 0..10 {
+        h.step();
+    }
+    h.get_by_label("24×12×6 (6825 DOF)").click();
+    let start = Instant::now();
+    let mut phases = Vec::new();
+    while h.state().is_computing() || phases.is_empty() {
+        h.step();
+        if let Some(node) = h.query_by_label_contains("phase ") {
+            let text = format!("{node:?}");
+            if !phases.contains(&text) {
+                phases.push(text);
+            }
+        }
+        assert!(start.elapsed() < Duration::from_secs(300), "no result");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    settle(&mut h);
+    assert!(
+        !phases.is_empty(),
+        "a phase was shown while the reduction ran"
+    );
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(report.parameters["refine"], serde_json::json!([24, 12, 6]));
+    assert_eq!(report.result("dofs").unwrap(), 6825);
+    // The App. B node numbers do not apply to the refined mesh: the bottom corners do.
+    assert_eq!(report.parameters["boundary"].as_array().unwrap().len(), 4);
 }
 
 #[test]

@@ -1,11 +1,17 @@
-//! Analyses on bodies and bases: natural frequencies, deformed profiles (§7.1), subspaces.
+//! Analyses on bodies, bases and simulations: natural frequencies, deformed profiles (§7.1),
+//! mean-axis evaluation (§8.4), simulation measures (§7.2, §5.3.3).
 
 mod frequencies;
 mod mean_axes;
 mod profiles;
+mod simulation_metrics;
 
 pub use frequencies::{
     RIGID_BODY_HZ, elastic_hz, free_free_modes, lowest_free_free_modes, reduced_hz, reduced_modes,
 };
 pub use mean_axes::{MeanAxesEvaluation, evaluate_with_mean_axes, rigid_modes_about_mass_centre};
 pub use profiles::{PROFILE_DELTA, ProfileFit, fit_given_modal_coordinates, fit_least_squares};
+pub use simulation_metrics::{
+    max_energy_drift, max_position_violation, max_until, mirror_defect_history,
+    node_deflection_history, relative_rms,
+};

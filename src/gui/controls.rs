@@ -24,7 +24,15 @@ pub struct Controls {
     /// Simulated interval, s (simulations only).
     #[serde(default)]
     pub end_time: f64,
+    /// Mesh as bricks along x, y, z (scenes whose body can be refined; empty otherwise).
+    #[serde(default)]
+    pub refine: Vec<usize>,
 }
+
+/// Meshes the explorer offers for a refinable slab: App. B and the benchmark's sizes that a
+/// desktop reduces in seconds.
+pub const MESH_PRESETS: [[usize; 3]; 5] =
+    [[4, 2, 1], [8, 4, 2], [16, 8, 4], [24, 12, 6], [40, 20, 10]];
 
 impl Controls {
     /// The defaults of a scene.
@@ -39,6 +47,7 @@ impl Controls {
             // Empty: the scene's own choice (plank-symmetry compares both frames).
             axes: String::new(),
             end_time: c.end_time.unwrap_or(0.0),
+            refine: c.refine.map(|r| r.to_vec()).unwrap_or_default(),
         })
     }
 
@@ -53,7 +62,14 @@ impl Controls {
     pub fn options(&self) -> Result<SceneOptions> {
         let info = scenes::find(&self.scene)?.info;
         let c = info.controls;
-        let boundary = if c.boundary.is_empty() {
+        let refine = match (c.refine, self.refine.as_slice()) {
+            (Some(_), &[x, y, z]) => Some([x, y, z]),
+            _ => None,
+        };
+        // The default boundary names App. B nodes; on another mesh the scene's own default
+        // (the same four bottom corners) applies.
+        let refined = refine.is_some() && refine != c.refine;
+        let boundary = if c.boundary.is_empty() || (refined && self.boundary == join(c.boundary)) {
             None
         } else {
             let nodes = self
@@ -90,6 +106,7 @@ impl Controls {
                 Some(self.axes.clone())
             },
             end_time: c.end_time.map(|_| self.end_time),
+            refine,
             ..Default::default()
         })
     }

@@ -4,7 +4,10 @@ use std::time::{Duration, Instant};
 
 use rerun::external::egui;
 
-use crate::scenes;
+use crate::{
+    report::{Report, Table},
+    scenes,
+};
 
 use super::{Command, Computed, Controls, Worker};
 
@@ -226,6 +229,25 @@ impl Explorer {
                 }
             });
         }
+        if info.controls.refine.is_some() {
+            let dofs = |b: &[usize]| 3 * b.iter().map(|n| n + 1).product::<usize>();
+            let label = |b: &[usize]| match b {
+                [x, y, z] => format!("{x}×{y}×{z} ({} DOF)", dofs(b)),
+                _ => "default".into(),
+            };
+            let mut mesh = self.controls.refine.clone();
+            egui::ComboBox::from_label("mesh")
+                .selected_text(label(&mesh))
+                .show_ui(ui, |ui| {
+                    for p in super::controls::MESH_PRESETS {
+                        ui.selectable_value(&mut mesh, p.to_vec(), label(&p));
+                    }
+                });
+            if mesh != self.controls.refine {
+                self.controls.refine = mesh;
+                out.push(Command::Recompute);
+            }
+        }
         if info.controls.end_time.is_some() {
             ui.horizontal(|ui| {
                 ui.label(format!("end time: {:.2} s", self.controls.end_time));
@@ -245,6 +267,12 @@ impl Explorer {
                 ui.spinner();
                 ui.label(format!("computing… {:.1} s", since.elapsed().as_secs_f64()));
             });
+            if let Some(p) = self.worker.phase() {
+                ui.label(format!(
+                    "phase {}: {} ({:.1} s)",
+                    p.number, p.name, p.elapsed_s
+                ));
+            }
             if let Some(r) = self.worker.progress() {
                 let fraction = (r.time / r.end_time).clamp(0.0, 1.0) as f32;
                 ui.add(egui::ProgressBar::new(fraction).text(format!(
@@ -268,7 +296,7 @@ impl Explorer {
             ui.separator();
             ui.strong(format!("results: {}", c.scene));
             egui::ScrollArea::both().max_height(320.0).show(ui, |ui| {
-                table_ui(ui, &c.report.table);
+                table_ui(ui, &c.report);
             });
         }
         ui.separator();
@@ -285,75 +313,61 @@ impl Explorer {
     }
 }
 
-/// Draws the markdown tables of a report as grids; the best and worst value of every error
-/// column are highlighted (green, red). Other lines are shown as text.
-fn table_ui(ui: &mut egui::Ui, markdown: &str) {
-    let mut block: Vec<Vec<String>> = Vec::new();
-    let flush = |ui: &mut egui::Ui, block: &mut Vec<Vec<String>>, id: usize| {
-        if block.is_empty() {
-            return;
-        }
-        let header = block[0].clone();
-        let rows: Vec<Vec<String>> = block[1..]
-            .iter()
-            .filter(|r| !r.iter().all(|c| c.chars().all(|ch| ch == '-')))
-            .cloned()
-            .collect();
-        let mut marks = vec![vec![None; header.len()]; rows.len()];
-        for (c, h) in header.iter().enumerate() {
-            let h = h.to_lowercase();
-            if !(h.contains("error") || h.contains("rms") || h.contains("defect")) {
-                continue;
-            }
-            let vals: Vec<(usize, f64)> = rows
-                .iter()
-                .enumerate()
-                .filter_map(|(r, row)| row.get(c)?.parse::<f64>().ok().map(|v| (r, v)))
-                .filter(|(_, v)| *v > 0.0)
-                .collect();
-            if vals.len() >= 2 {
-                let best = vals.iter().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
-                let worst = vals.iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
-                marks[best][c] = Some(egui::Color32::from_rgb(90, 200, 110));
-                marks[worst][c] = Some(egui::Color32::from_rgb(230, 90, 80));
-            }
-        }
-        egui::Grid::new(("report", id))
-            .striped(true)
-            .show(ui, |ui| {
-                for h in &header {
-                    ui.strong(h);
-                }
-                ui.end_row();
-                for (r, row) in rows.iter().enumerate() {
-                    for (c, cell) in row.iter().enumerate() {
-                        match marks[r].get(c).copied().flatten() {
-                            Some(color) => ui.colored_label(color, cell),
-                            None => ui.label(cell),
-                        };
-                    }
-                    ui.end_row();
-                }
-            });
-        block.clear();
-    };
-    let mut id = 0;
-    for line in markdown.lines() {
+/// Draws a report's text with its tables as grids: the k-th table block of the markdown is the
+/// report's k-th [`Table`], drawn from its cells, with the best and worst value of each ranked
+/// column highlighted (green, red) from the cells' numbers. Other lines are shown as text.
+fn table_ui(ui: &mut egui::Ui, report: &Report) {
+    let mut tables = report.tables.iter().enumerate();
+    let mut in_block = false;
+    for line in report.table.lines() {
         let t = line.trim();
-        if t.starts_with('|') && t.ends_with('|') && t.len() > 1 {
-            block.push(
-                t[1..t.len() - 1]
-                    .split('|')
-                    .map(|c| c.trim().to_string())
-                    .collect(),
-            );
-        } else {
-            flush(ui, &mut block, id);
-            id += 1;
-            if !t.is_empty() {
-                ui.label(egui::RichText::new(t).small());
+        let is_row = t.starts_with('|') && t.ends_with('|') && t.len() > 1;
+        if is_row && in_block {
+            continue;
+        }
+        in_block = is_row;
+        if is_row {
+            match tables.next() {
+                Some((id, table)) => grid_ui(ui, id, table),
+                None => {
+                    ui.label(egui::RichText::new(t).small().monospace());
+                }
             }
+        } else if !t.is_empty() {
+            ui.label(egui::RichText::new(t).small());
         }
     }
-    flush(ui, &mut block, id);
 }
+
+fn grid_ui(ui: &mut egui::Ui, id: usize, table: &Table) {
+    let columns = table.header.len();
+    let mut marks = vec![vec![None; columns]; table.rows.len()];
+    for c in table.lower_is_better.iter().copied().filter(|&c| c < columns) {
+        if let Some((best, worst)) = table.best_and_worst(c) {
+            marks[best][c] = Some(BEST);
+            marks[worst][c] = Some(WORST);
+        }
+    }
+    egui::Grid::new(("report", id))
+        .striped(true)
+        .show(ui, |ui| {
+            for h in &table.header {
+                ui.strong(h);
+            }
+            ui.end_row();
+            for (r, row) in table.rows.iter().enumerate() {
+                for (c, cell) in row.iter().enumerate() {
+                    match marks[r].get(c).copied().flatten() {
+                        Some(color) => ui.colored_label(color, &cell.text),
+                        None => ui.label(&cell.text),
+                    };
+                }
+                ui.end_row();
+            }
+        });
+}
+
+/// Colour of a column's best value.
+pub const BEST: egui::Color32 = egui::Color32::from_rgb(90, 200, 110);
+/// Colour of a column's worst value.
+pub const WORST: egui::Color32 = egui::Color32::from_rgb(230, 90, 80);

@@ -10,6 +10,6 @@ mod explorer;
 mod worker;
 
 pub use app::{ViewerOptions, run};
-pub use controls::{Command, Controls};
+pub use controls::{Command, Controls, MESH_PRESETS};
 pub use explorer::Explorer;
 pub use worker::{Computed, Finished, Worker};

@@ -140,6 +140,11 @@ impl Worker {
         self.running.as_ref().and_then(Progress::reading)
     }
 
+    /// The phase the newest request is in (a refined reduction's factorisation, ...).
+    pub fn phase(&self) -> Option<crate::PhaseReading> {
+        self.running.as_ref().and_then(Progress::phase_reading)
+    }
+
     /// A finished computation, if one is ready.
     pub fn poll(&self) -> Option<Finished> {
         self.done.try_recv().ok()

@@ -1,10 +1,13 @@
-//! The one recorder used by the CLI (and the GUI): scene visuals to Rerun entities, the default
-//! blueprint, and atomic `.rrd` writing.
+//! The one recorder used by the CLI and the GUI: visuals to Rerun entities, the default
+//! blueprint, and atomic `.rrd` writing. It knows nothing of scenes: it logs a
+//! [`RecordingContent`].
 
 mod layout;
 mod recorder;
+mod recording_content;
 mod visual;
 
 pub use layout::Layout;
 pub use recorder::{Recorder, write_atomically};
+pub use recording_content::RecordingContent;
 pub use visual::{Color, Geometry, PHASE_STEPS, Visual};

@@ -1,4 +1,4 @@
-//! Scene output → Rerun recording (in memory), and atomic `.rrd` writing.
+//! Recording content → Rerun recording (in memory), and atomic `.rrd` writing.
 
 use std::path::Path;
 
@@ -6,14 +6,14 @@ use rerun::{
     RecordingStream, RecordingStreamBuilder, blueprint as bp, blueprint::components::PanelState,
 };
 
-use super::{Geometry, Layout, PHASE_STEPS, Visual};
-use crate::{Error, Result, scenes::SceneOutput};
+use super::{Geometry, Layout, PHASE_STEPS, RecordingContent, Visual};
+use crate::{Error, Result};
 
 /// Prefix of every recording's application id (`flexmodes-<scene>`: one default layout per
 /// scene in the viewer).
 pub const APPLICATION_ID: &str = "flexmodes";
 
-/// Turns a [`SceneOutput`] into Rerun data. Used by the CLI and the desktop app alike.
+/// Turns a [`RecordingContent`] into Rerun data. Used by the CLI and the desktop app alike.
 #[derive(Debug, Clone, Default)]
 pub struct Recorder {
     /// Appended to the recording id, so successive recordings of one scene in the desktop
@@ -27,7 +27,7 @@ pub struct Recorder {
 impl Recorder {
     /// Encodes the scene as the bytes of an `.rrd` file (recording plus default blueprint).
     /// Log time is disabled so two runs give the same data.
-    pub fn encode(&self, out: &SceneOutput) -> Result<Vec<u8>> {
+    pub fn encode(&self, out: &RecordingContent) -> Result<Vec<u8>> {
         let id = match &self.recording_suffix {
             Some(s) => format!("flexmodes-{}-{s}", out.report.scene),
             None => format!("flexmodes-{}", out.report.scene),
@@ -49,13 +49,13 @@ impl Recorder {
     }
 
     /// Encodes and writes to `path` atomically (temporary file, then rename).
-    pub fn save(&self, out: &SceneOutput, path: &Path) -> Result<()> {
+    pub fn save(&self, out: &RecordingContent, path: &Path) -> Result<()> {
         let bytes = self.encode(out)?;
         write_atomically(path, &bytes)
     }
 
     /// Logs everything of `out` to `rec`: the text panel, the visuals, the blueprint.
-    pub fn log(&self, rec: &RecordingStream, out: &SceneOutput) -> Result<()> {
+    pub fn log(&self, rec: &RecordingStream, out: &RecordingContent) -> Result<()> {
         rec.log_static(
             "scene",
             &rerun::TextDocument::from_markdown(out.markdown.clone()),

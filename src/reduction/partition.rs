@@ -7,7 +7,7 @@ use faer::{Mat, MatRef};
 
 use super::{ModeSelection, SolverPath};
 use crate::{
-    Error, Result,
+    Error, Progress, Result,
     fem::FeModel,
     linalg::{
         GeneralizedEigen, MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor,
@@ -128,6 +128,7 @@ pub struct InteriorProblem<'a> {
     partial_modes: Option<GeneralizedEigen>,
     /// Phase timings and sizes so far.
     pub statistics: ReductionStatistics,
+    progress: Progress,
 }
 
 impl<'a> InteriorProblem<'a> {
@@ -153,11 +154,19 @@ impl<'a> InteriorProblem<'a> {
             factor: None,
             free_motions: None,
             partial_modes: None,
+            progress: Progress::default(),
             statistics: ReductionStatistics {
                 sparse,
                 ..Default::default()
             },
         })
+    }
+
+    /// Reports each phase (factorisation, constraint modes, eigensolve) to `progress` and stops
+    /// with [`Error::Cancelled`] at the next phase boundary once it is cancelled.
+    pub fn with_progress(mut self, progress: Progress) -> Self {
+        self.progress = progress;
+        self
     }
 
     /// Whether the sparse path runs.
@@ -199,6 +208,7 @@ impl<'a> InteriorProblem<'a> {
     /// invertible, only its eigenvectors).
     fn factor(&mut self) -> Result<&(SymmetricFactor, f64)> {
         if self.factor.is_none() {
+            self.progress.phase("factorisation of K_ii")?;
             let started = Instant::now();
             let sigma = if self.check_restraint().is_ok() {
                 0.0
@@ -237,6 +247,7 @@ impl<'a> InteriorProblem<'a> {
     pub fn constraint_modes(&mut self) -> Result<Mat<f64>> {
         self.check_restraint()?;
         self.factor()?;
+        self.progress.phase("constraint modes")?;
         let started = Instant::now();
         let (f, _) = self.factor.as_ref().expect("factored above");
         let psi_s = -f.solve(self.k_ib.as_ref());
@@ -257,6 +268,7 @@ impl<'a> InteriorProblem<'a> {
                 limit: COMPLETE_EIGEN_LIMIT,
             });
         }
+        self.progress.phase("complete interior eigenproblem")?;
         let started = Instant::now();
         let eig = generalized_eigen(
             self.k_ii.to_dense().as_ref(),
@@ -316,6 +328,7 @@ impl<'a> InteriorProblem<'a> {
             return Ok(first_modes(cached, wanted));
         }
         self.factor()?;
+        self.progress.phase("fixed-interface eigensolve")?;
         let started = Instant::now();
         let (f, sigma) = self.factor.as_ref().expect("factored above");
         let (eig, stats) = lowest_modes(

@@ -13,7 +13,7 @@ use crate::{
     linalg::principal_angles,
     record::Layout,
     reduction::{EitelbergParameters, EitelbergReduction, Method, eitelberg, guyan},
-    report::{Report, fmt_hz, sig, sig_vec},
+    report::{Report, Table, fmt_hz, sig, sig_vec},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -34,7 +34,7 @@ pub const INFO: SceneInfo = SceneInfo {
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
     opts.methods_or(INFO.id, &[Method::Eitelberg, Method::Guyan], &[])?;
-    let masters = opts.boundary.clone().unwrap_or_else(|| vec![1, 3, 5]);
+    let masters = opts.boundary_or_default(&INFO);
     let model = beam(&BeamParameters::default());
     let eit = eitelberg(&model, &masters, &EitelbergParameters::default())?;
     let g = guyan(&model, &masters)?;
@@ -90,15 +90,24 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         matrix.push('\n');
     }
     matrix.push_str("```\n");
+    let hz_table = report.add_table(Table::from_text(
+        &["", "Hz"],
+        &[
+            vec!["Eitelberg".into(), fmt_hz(&eit.hz)],
+            vec!["Guyan".into(), fmt_hz(&guyan_hz)],
+            vec![
+                "published (§6.6.4)".into(),
+                "5.95823, 71.1763, 123.281".into(),
+            ],
+        ],
+    ));
     report.table = format!(
         "Restored M⁻¹K (1/s², rows/columns: boundary DOF of nodes {masters:?}):\n\n{matrix}\n\
-         | | Hz |\n|---|---|\n| Eitelberg | {} |\n| Guyan | {} |\n| published (§6.6.4) | 5.95823, 71.1763, 123.281 |\n\n\
+         {hz_table}\n\
          Largest relative difference to Guyan's M⁻¹K: {:.1e} (R S Rᵀ has condition number \
          {:.1e}, so about five digits are lost to round-off); largest principal angle between \
          the implied basis and Ψ_Guyan: {:.1e} rad; zero singular values of A / restored A_r: \
          {} / {}.\n",
-        fmt_hz(&eit.hz),
-        fmt_hz(&guyan_hz),
         diff,
         eit.gramian_condition,
         max_angle,

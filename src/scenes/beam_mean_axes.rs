@@ -16,7 +16,7 @@ use crate::{
         Method, ModeSelection, Partition, ReductionParameters, constraint_modes,
         fixed_interface_modes, reduce,
     },
-    report::{Report, markdown_table, sig, sig_vec},
+    report::{Cell, Report, Table, sig, sig_vec},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -49,8 +49,8 @@ const AVAILABLE: [Method; 4] = [
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &["mean"])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &[Method::ModeCondensation])?;
-    let boundary = opts.boundary.clone().unwrap_or_else(|| vec![1, 5]);
-    let kept = opts.modes.unwrap_or(2);
+    let boundary = opts.boundary_or_default(&INFO);
+    let kept = opts.modes_or_default(&INFO);
     let model = beam(&BeamParameters::default());
     let part = Partition::new(&model, &boundary)?;
     // The full model's constraint modes (Eq. 8.37) and fixed-interface modes (Eq. 8.38).
@@ -67,7 +67,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         "methods".into(),
         json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
     );
-    let mut rows = Vec::new();
+    let mut table = Table::new(&[
+        "method",
+        "constraint modes: max diff to full",
+        "normal modes with mean axes, Hz",
+        "largest angle to full normal modes, rad",
+    ])
+    .rank_lower(&[1, 3]);
     let mut visuals = vec![undeformed(&model)];
     let mut tabs = Vec::new();
     for (i, &m) in methods.iter().enumerate() {
@@ -117,11 +123,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 "normal_modes_max_angle_vs_full_rad": angle,
             }),
         );
-        rows.push(vec![
-            m.id().to_uppercase(),
-            format!("{static_diff:.1e}"),
-            crate::report::fmt_hz(&ev.normal_hz),
-            format!("{angle:.1e}"),
+        table.push(vec![
+            Cell::text(m.id().to_uppercase()),
+            Cell::number(static_diff, format!("{static_diff:.1e}")),
+            Cell::text(crate::report::fmt_hz(&ev.normal_hz)),
+            Cell::number(angle, format!("{angle:.1e}")),
         ]);
         let color = method_color(m);
         let cm_modes: Vec<(Vec<f64>, String)> = columns(&ev.constraint_modes)
@@ -155,15 +161,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report.table = format!(
         "{}\nFull model, fixed interface {boundary:?}: {} Hz (published for MC: 3.10366, \
          12.3283 Hz; constraint modes: linear interpolation between nodes 1 and 5).\n",
-        markdown_table(
-            &[
-                "method",
-                "constraint modes: max diff to full",
-                "normal modes with mean axes, Hz",
-                "largest angle to full normal modes, rad",
-            ],
-            &rows
-        ),
+        report.add_table(table),
         crate::report::fmt_hz(&full_hz[..full_hz.len().min(4)]),
     );
     let markdown = format!(

@@ -16,7 +16,7 @@ use crate::{
         Basis, Method, ModeSelection, Partition, craig_bampton, fixed_interface_modes, guyan,
         modal_truncation, mode_condensation,
     },
-    report::{Report, fmt_hz, markdown_table, sig, sig_vec},
+    report::{Report, Table, fmt_hz, sig, sig_vec},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -41,8 +41,6 @@ pub const INFO: SceneInfo = SceneInfo {
 
 const MASTERS_A: [usize; 3] = [1, 3, 5];
 const MASTERS_B: [usize; 3] = [1, 2, 5];
-const DEFAULT_BOUNDARY: [usize; 2] = [1, 5];
-const DEFAULT_MODES: usize = 2;
 const AVAILABLE: [Method; 4] = [
     Method::Guyan,
     Method::ModalTruncation,
@@ -75,11 +73,8 @@ fn labelled_columns(basis: &Basis) -> Vec<(Vec<f64>, String)> {
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
-    let boundary = opts
-        .boundary
-        .clone()
-        .unwrap_or_else(|| DEFAULT_BOUNDARY.to_vec());
-    let kept = opts.modes.unwrap_or(DEFAULT_MODES);
+    let boundary = opts.boundary_or_default(&INFO);
+    let kept = opts.modes_or_default(&INFO);
     let model = beam(&BeamParameters::default());
     // Validate the user's set before anything else, so its error names the cause.
     let part = Partition::new(&model, &boundary)?;
@@ -165,7 +160,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report.table = format!(
         "{}\nLargest principal angle between span(Ψ_CB) and span(Ψ_MC): {:.2e} rad (§6.5.4: they \
          span one space).\n",
-        markdown_table(&["mode set", "computed, Hz", "published, Hz"], &rows),
+        report.add_table(Table::from_text(
+            &["mode set", "computed, Hz", "published, Hz"],
+            &rows
+        )),
         sig(max_angle)
     );
 

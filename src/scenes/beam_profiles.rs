@@ -12,7 +12,7 @@ use crate::{
     fem::{BeamParameters, beam},
     record::{Geometry, Layout, Visual},
     reduction::{Method, ModeSelection, Partition, ReductionParameters, reduce},
-    report::{Report, markdown_table, sig, sig_vec},
+    report::{Cell, Report, Table, sig, sig_vec},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -43,8 +43,8 @@ const AVAILABLE: [Method; 3] = [
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
-    let boundary = opts.boundary.clone().unwrap_or_else(|| vec![1, 5]);
-    let kept = opts.modes.unwrap_or(2);
+    let boundary = opts.boundary_or_default(&INFO);
+    let kept = opts.modes_or_default(&INFO);
     let model = beam(&BeamParameters::default());
     let part = Partition::new(&model, &boundary)?;
     let params = ReductionParameters {
@@ -59,7 +59,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report.parameters.insert("modes".into(), json!(kept));
     report.parameters.insert("delta".into(), json!(delta));
     let (mut e1, mut e2, mut d1, mut d2) = (Map::new(), Map::new(), Map::new(), Map::new());
-    let mut rows = Vec::new();
+    let mut table =
+        Table::new(&["method", "profile 1 ‖δ*−δ‖, m", "profile 2 ‖δ*−δ‖, m"]).rank_lower(&[1, 2]);
     let geometry = Geometry::of(&model);
     let mut visuals = vec![undeformed(&model)];
     for (profile, offset) in [("profile1", 0.0), ("profile2", -0.6)] {
@@ -82,10 +83,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         e2.insert(m.id().into(), json!(sig(p2.error)));
         d1.insert(m.id().into(), json!(sig_vec(&p1.delta)));
         d2.insert(m.id().into(), json!(sig_vec(&p2.delta)));
-        rows.push(vec![
-            m.id().to_uppercase(),
-            format!("{:.4}", p1.error),
-            format!("{:.4}", p2.error),
+        table.push(vec![
+            Cell::text(m.id().to_uppercase()),
+            Cell::number(p1.error, format!("{:.4}", p1.error)),
+            Cell::number(p2.error, format!("{:.4}", p2.error)),
         ]);
         for (profile, fit) in [("profile1", &p1), ("profile2", &p2)] {
             visuals.push(Visual::Wireframe {
@@ -111,10 +112,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report.table = format!(
         "{}\nPublished (§7.1): profile 1 MT 0.1569, CB 0.0826, MC 0.0826; profile 2 MT 0.1569, \
          CB 0.0612, MC 0.0612.\n",
-        markdown_table(
-            &["method", "profile 1 ‖δ*−δ‖, m", "profile 2 ‖δ*−δ‖, m"],
-            &rows
-        )
+        report.add_table(table)
     );
     let markdown = format!(
         "# beam-profiles\n\n§7.1 on the App. A beam with boundary nodes {boundary:?} and {kept} \

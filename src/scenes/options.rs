@@ -1,13 +1,11 @@
 //! Options a scene is run with and what it returns.
 
-use crate::{
-    Error, Progress, Result,
-    record::{Layout, Visual},
-    reduction::Method,
-    report::Report,
-};
+use crate::{Error, Progress, Result, reduction::Method};
 
-use super::RunCache;
+/// What a scene produces is what the recorder logs: numbers, text panel, visuals, layout.
+pub use crate::record::RecordingContent as SceneOutput;
+
+use super::{RunCache, SceneInfo};
 
 /// Scene options from the command line (or the GUI). `None` means the scene's default.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -60,6 +58,27 @@ impl SceneOptions {
         }
     }
 
+    /// `--boundary`, or the scene's default (its `SceneControls`).
+    pub fn boundary_or_default(&self, info: &SceneInfo) -> Vec<usize> {
+        self.boundary
+            .clone()
+            .unwrap_or_else(|| info.controls.boundary.to_vec())
+    }
+
+    /// `--modes`, or the scene's default (0 when it keeps none).
+    pub fn modes_or_default(&self, info: &SceneInfo) -> usize {
+        self.modes.or(info.controls.modes).unwrap_or(0)
+    }
+
+    /// `--end-time` checked as in [`Self::end_time_or`], or the scene's default.
+    pub fn end_time_or_default(&self, info: &SceneInfo) -> Result<f64> {
+        let default = info.controls.end_time.ok_or_else(|| Error::InvalidOption {
+            scene: info.id.into(),
+            reason: "--end-time applies to simulations only".into(),
+        })?;
+        self.end_time_or(info.id, default)
+    }
+
     /// The simulated interval: `--end-time` checked (0 < t ≤ 60 s), or `default`.
     pub fn end_time_or(&self, scene: &str, default: f64) -> Result<f64> {
         match self.end_time {
@@ -91,23 +110,4 @@ impl SceneOptions {
 
 fn ids(ms: &[Method]) -> String {
     ms.iter().map(|m| m.id()).collect::<Vec<_>>().join(", ")
-}
-
-/// Everything a scene produces: numbers, the text panel, visuals and the default layout.
-#[derive(Debug, Clone)]
-pub struct SceneOutput {
-    /// The numeric report.
-    pub report: Report,
-    /// Markdown for the `scene` panel: what it shows, parameters, result table.
-    pub markdown: String,
-    /// What to log.
-    pub visuals: Vec<Visual>,
-    /// The default blueprint.
-    pub layout: Layout,
-    /// The timeline the time panel starts on (`phase` or `sim_time`); `None` for static scenes,
-    /// whose time panel is collapsed.
-    pub timeline: Option<String>,
-    /// Planar scenes (the beam in the x-y plane) declare y up, so the 3D views face the plane;
-    /// solids declare z up.
-    pub y_up: bool,
 }

@@ -11,6 +11,7 @@ use super::{
 };
 use crate::{
     Result,
+    analysis::{max_energy_drift, max_position_violation, max_until, mirror_defect_history},
     dynamics::{
         Attachment, AxisType, Body, Constraint, FlexibleBody, IntegratorParameters, RigidBody,
         Simulation, State, System, simulate,
@@ -21,7 +22,7 @@ use crate::{
     reduction::{
         Method, ModeSelection, NodalFixedAxes, ReductionParameters, TableConfiguration, reduce,
     },
-    report::{Report, markdown_table, sig},
+    report::{Cell, Report, Table, sig},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -149,15 +150,7 @@ pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
 
 /// x of nodes 3 and 15 and the symmetry defect $|x_3 + x_{15} - 2x_{mid}|$ per sample.
 pub fn symmetry_history(system: &System, sim: &Simulation) -> [Vec<f64>; 3] {
-    let mut out = [Vec::new(), Vec::new(), Vec::new()];
-    for s in &sim.samples {
-        let x3 = system.node_position(0, 2, &s.state).x;
-        let x15 = system.node_position(0, 14, &s.state).x;
-        out[0].push(x3);
-        out[1].push(x15);
-        out[2].push((x3 + x15 - 2.0 * MID_X).abs());
-    }
-    out
+    mirror_defect_history(system, sim, 0, (2, 14), MID_X)
 }
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
@@ -190,10 +183,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 .into(),
         });
     }
-    let modes = opts.modes.unwrap_or(6);
+    let modes = opts.modes_or_default(&INFO);
     let model = plank(&SlabParameters::default());
     let params = IntegratorParameters {
-        end_time: opts.end_time_or(INFO.id, END_TIME)?,
+        end_time: opts.end_time_or_default(&INFO)?,
         ..Default::default()
     };
     let mut report = Report::new(INFO.id);
@@ -208,7 +201,16 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut defects = Map::new();
     let mut defects_before = Map::new();
     let mut walls = Map::new();
-    let mut rows = Vec::new();
+    let mut table = Table::new(&[
+        "method",
+        "axes",
+        "max defect before 0.45 s, m",
+        "max defect, m",
+        "max energy drift, J",
+        "max Φ violation",
+        "wall s",
+    ])
+    .rank_lower(&[2, 3]);
     let geometry = Geometry::of(&model);
     let mut visuals = Vec::new();
     let mut plots = Vec::new();
@@ -229,15 +231,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         })?;
         let (system, sim) = (*run).clone();
         let hist = symmetry_history(&system, &sim);
-        let max_defect = hist[2].iter().copied().fold(0.0, f64::max);
+        let max_defect = max_until(&sim, &hist[2], f64::INFINITY);
         // Before the chains snap taut (free fall lasts about 0.49 s).
-        let before = sim
-            .samples
-            .iter()
-            .zip(&hist[2])
-            .filter(|(s, _)| s.t <= SNAP_TIME)
-            .map(|(_, d)| *d)
-            .fold(0.0, f64::max);
+        let before = max_until(&sim, &hist[2], SNAP_TIME);
         defects_before.insert(
             if v.method == Method::NoReduction {
                 v.axes.id().to_string()
@@ -253,25 +249,16 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         };
         defects.insert(key.clone(), json!(max_defect));
         walls.insert(key.clone(), json!(sig(sim.wall_time_s)));
-        let e0 = sim.samples[0].energy;
-        let drift = sim
-            .samples
-            .iter()
-            .map(|s| (s.energy - e0).abs())
-            .fold(0.0, f64::max);
-        let viol = sim
-            .samples
-            .iter()
-            .map(|s| s.position_violation)
-            .fold(0.0, f64::max);
-        rows.push(vec![
-            v.method.id().to_uppercase(),
-            v.axes.id().into(),
-            format!("{before:.2e}"),
-            format!("{max_defect:.2e}"),
-            format!("{:.2e}", drift),
-            format!("{viol:.1e}"),
-            format!("{:.2}", sim.wall_time_s),
+        let drift = max_energy_drift(&sim);
+        let viol = max_position_violation(&sim);
+        table.push(vec![
+            Cell::text(v.method.id().to_uppercase()),
+            Cell::text(v.axes.id()),
+            Cell::number(before, format!("{before:.2e}")),
+            Cell::number(max_defect, format!("{max_defect:.2e}")),
+            Cell::number(drift, format!("{drift:.2e}")),
+            Cell::number(viol, format!("{viol:.1e}")),
+            Cell::number(sim.wall_time_s, format!("{:.2}", sim.wall_time_s)),
         ]);
         let times = times(&sim);
         let color = if v.method == Method::NoReduction {
@@ -362,18 +349,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report
         .results
         .insert("wall_time_s".into(), serde_json::Value::Object(walls));
-    report.table = markdown_table(
-        &[
-            "method",
-            "axes",
-            "max defect before 0.45 s, m",
-            "max defect, m",
-            "max energy drift, J",
-            "max Φ violation",
-            "wall s",
-        ],
-        &rows,
-    );
+    report.table = report.add_table(table);
     let markdown = format!(
         "# plank-symmetry\n\n§5.3.3: the App. B mesh standing as a plank (4 m wide, 2 m high, \
          1 m deep) hangs from its top front corners, nodes 3 and 15, each by a chain of two \

@@ -18,7 +18,7 @@ use crate::{
         Method, ModeSelection, NodalFixedAxes, Partition, ReductionParameters, constraint_modes,
         fixed_interface_modes, reduce,
     },
-    report::{Report, fmt_hz, markdown_table, sig_vec},
+    report::{Report, Table, fmt_hz, sig_vec},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -37,16 +37,14 @@ pub const INFO: SceneInfo = SceneInfo {
         modes: Some(6),
         axes: &["nodal_fixed"],
         end_time: None,
-        refine: Some([4, 2, 1]),
+        refine: Some(APP_B_BRICKS),
     },
 };
 
-const DEFAULT_BOUNDARY: [usize; 4] = [16, 18, 28, 30];
 /// The App. B mesh: 4 × 2 × 1 bricks.
 pub(super) const APP_B_BRICKS: [usize; 3] = [4, 2, 1];
 /// §7.2.1: Guyan adds two masters so it has as many coordinates as the others (18).
 const EXTRA_GUYAN_MASTERS: [usize; 2] = [5, 11];
-const DEFAULT_MODES: usize = 6;
 /// Free-free modes drawn (all frequencies are reported).
 const SHOWN_FREE_FREE: usize = 12;
 const AVAILABLE: [Method; 4] = [
@@ -64,11 +62,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }
     opts.check_axes(INFO.id, &["nodal_fixed"])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
-    let boundary = opts
-        .boundary
-        .clone()
-        .unwrap_or_else(|| DEFAULT_BOUNDARY.to_vec());
-    let kept = opts.modes.unwrap_or(DEFAULT_MODES);
+    let boundary = opts.boundary_or_default(&INFO);
+    let kept = opts.modes_or_default(&INFO);
     let model = slab(&SlabParameters::default());
     let part = Partition::new(&model, &boundary)?;
     let psi_s = constraint_modes(&model, &part)?;
@@ -171,7 +166,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report.table = format!(
         "Lowest elastic free-free frequencies, Hz (boundary {boundary:?}, {kept} kept modes, GR \
          masters {gr_masters:?}):\n\n{}\nFixed-interface: {}\n",
-        markdown_table(&["model", "Hz"], &rows),
+        report.add_table(Table::from_text(&["model", "Hz"], &rows)),
         fmt_hz(&fixed_interface_hz[..fixed_interface_hz.len().min(8)]),
     );
     let markdown = format!(

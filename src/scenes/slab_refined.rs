@@ -16,7 +16,7 @@ use crate::{
         InteriorProblem, Method, ModeCondensationRoute, ModeSelection, SolverPath,
         craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
     },
-    report::{Report, fmt_hz, markdown_table, sig, sig_vec},
+    report::{Report, Table, fmt_hz, sig, sig_vec},
 };
 
 const AVAILABLE: [Method; 4] = [
@@ -26,7 +26,6 @@ const AVAILABLE: [Method; 4] = [
     Method::Guyan,
 ];
 /// Kept normal modes unless `--modes` says otherwise (as on the App. B slab).
-const DEFAULT_MODES: usize = 6;
 /// Fixed-interface frequencies reported at least (the benchmark's 20).
 const REPORTED_FIXED_INTERFACE: usize = 20;
 /// Elastic free-free modes computed and drawn.
@@ -52,7 +51,7 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
         .boundary
         .clone()
         .unwrap_or_else(|| params.bottom_corners().to_vec());
-    let kept = opts.modes.unwrap_or(DEFAULT_MODES);
+    let kept = opts.modes_or_default(&super::slab_modes::INFO);
     let mut gr_masters = boundary.clone();
     for p in EXTRA_GUYAN_MASTER_POSITIONS {
         let node = params.nearest_node(p);
@@ -61,6 +60,7 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
         }
     }
 
+    opts.progress.phase("assembly")?;
     let started = Instant::now();
     let model = slab(&params);
     let assembly_s = started.elapsed().as_secs_f64();
@@ -68,7 +68,8 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
     // The Craig-Bampton work of the benchmark: one factorisation of K_ii, the constraint modes
     // and the lowest fixed-interface modes; MT and MC reuse both.
     let started = Instant::now();
-    let mut problem = InteriorProblem::new(&model, &boundary, SolverPath::Auto)?;
+    let mut problem = InteriorProblem::new(&model, &boundary, SolverPath::Auto)?
+        .with_progress(opts.progress.clone());
     let psi_s = problem.constraint_modes()?;
     let fi = problem.kept_modes(ModeSelection::Count(kept.max(REPORTED_FIXED_INTERFACE)))?;
     let cb = craig_bampton_from(&model, &mut problem, ModeSelection::Count(kept))?;
@@ -93,7 +94,10 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
                 let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
                 mode_condensation_from(&model, &mut problem, ModeSelection::Count(kept), route)?
             }
-            _ => guyan_on(&model, &gr_masters, SolverPath::Auto)?,
+            _ => {
+                opts.progress.phase("Guyan reduction")?;
+                guyan_on(&model, &gr_masters, SolverPath::Auto)?
+            }
         };
         let elapsed = if m == Method::CraigBampton {
             reduction_s
@@ -118,6 +122,7 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
             origin: format!("/metrics/reduced_hz/{}", m.id()),
         });
     }
+    opts.progress.phase("free-free modes")?;
     let ff = lowest_free_free_modes(&model, FREE_FREE)?;
     let free_free_hz = elastic_hz(&ff);
     let peak = peak_resident_bytes();
@@ -180,7 +185,10 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
         fixed_interface_hz.len(),
         phases.eigen_s,
         peak.map_or("unknown".into(), |b| format!("{:.0} MB", b as f64 / 1e6)),
-        markdown_table(&["model", "lowest elastic Hz", "s"], &rows),
+        report.add_table(Table::from_text(
+            &["model", "lowest elastic Hz", "s"],
+            &rows
+        )),
         fmt_hz(&fixed_interface_hz[..fixed_interface_hz.len().min(8)]),
         fmt_hz(&free_free_hz),
     );

@@ -10,6 +10,7 @@ use super::{
 };
 use crate::{
     Error, Progress, Result,
+    analysis::{max_position_violation, node_deflection_history, relative_rms},
     dynamics::{
         AxisType, Body, Constraint, FlexibleBody, IntegratorParameters, Motion, Simulation, System,
         simulate,
@@ -17,7 +18,7 @@ use crate::{
     fem::{FeModel, SlabParameters, slab},
     record::{Geometry, Layout, Visual},
     reduction::{Method, ModeSelection, NodalFixedAxes, ReductionParameters, reduce},
-    report::{Report, markdown_table, sig},
+    report::{Cell, Report, Table, sig},
 };
 
 /// The options of the three slab simulations; `end` is the default interval, s.
@@ -203,11 +204,12 @@ const ORBIT_T: f64 = 1.0;
 
 /// Simulated interval of a scenario, s.
 pub fn end_time(s: &Scenario) -> f64 {
-    match s {
-        Scenario::HeldAtSix => 2.0,
-        Scenario::Orbit => 2.0,
-        Scenario::Driven(_) => SIM3_END,
-    }
+    let info = match s {
+        Scenario::HeldAtSix => &INFO_1,
+        Scenario::Orbit => &INFO_2,
+        Scenario::Driven(_) => &INFO_3,
+    };
+    info.controls.end_time.unwrap_or(SIM3_END)
 }
 
 /// Parses `--axes` for the dynamic scenes.
@@ -349,34 +351,9 @@ pub fn slab_system(
     Ok((system, state))
 }
 
-/// Node 8's local deflections (ξ, η, ζ) at every sample.
+/// Node `node`'s (1-based) local deflections (ξ, η, ζ) of the slab at every sample.
 pub fn probe_history(system: &System, sim: &Simulation, node: usize) -> [Vec<f64>; 3] {
-    let Body::Flexible(fb) = &system.bodies[0] else {
-        unreachable!("the slab is body 0")
-    };
-    let mut out = [Vec::new(), Vec::new(), Vec::new()];
-    for s in &sim.samples {
-        let d = fb.deflection(node - 1, &system.modal(0, &s.state));
-        for a in 0..3 {
-            out[a].push(d[a]);
-        }
-    }
-    out
-}
-
-/// $\sqrt{\sum (x - r)^2 / \sum r^2}$.
-pub fn relative_rms(x: &[f64], reference: &[f64]) -> f64 {
-    let num: f64 = x
-        .iter()
-        .zip(reference)
-        .map(|(a, b)| (a - b) * (a - b))
-        .sum();
-    let den: f64 = reference.iter().map(|b| b * b).sum();
-    if den == 0.0 {
-        num.sqrt()
-    } else {
-        (num / den).sqrt()
-    }
+    node_deflection_history(system, sim, 0, node)
 }
 
 /// What determines one method's time integration in a scene (the [`RunCache`](super::RunCache) key): boundary
@@ -413,11 +390,11 @@ pub fn run_scenario(
 ) -> Result<SceneOutput> {
     let methods = opts.methods_or(info.id, &METHODS, &METHODS)?;
     let axes = axis_type(opts.axes.as_deref(), info.id)?;
-    let boundary = opts.boundary.clone().unwrap_or_else(|| BOUNDARY.to_vec());
-    let modes = opts.modes.unwrap_or(6);
+    let boundary = opts.boundary_or_default(info);
+    let modes = opts.modes_or_default(info);
     let model = slab(&SlabParameters::default());
     let params = IntegratorParameters {
-        end_time: opts.end_time_or(info.id, end_time(&scenario))?,
+        end_time: opts.end_time_or_default(info)?,
         ..Default::default()
     };
     let mut runs = Vec::new();
@@ -450,32 +427,46 @@ pub fn run_scenario(
         .map(|r| r.3.clone());
     let mut errors = Map::new();
     let mut walls = Map::new();
-    let mut rows = Vec::new();
+    let mut table = Table::new(&[
+        "method",
+        "rel. RMS ξ",
+        "rel. RMS η",
+        "rel. RMS ζ",
+        "coordinates",
+        "wall s",
+        "steps / rejected",
+        "max Φ violation",
+    ])
+    .rank_lower(&[1, 2, 3]);
     let dirs = ["xi", "eta", "zeta"];
     for (m, system, sim, hist) in &runs {
         walls.insert(m.id().into(), json!(sig(sim.wall_time_s)));
         let mut e = Map::new();
-        let mut cells = vec![m.id().to_uppercase()];
+        let mut cells = vec![Cell::text(m.id().to_uppercase())];
         if let Some(r) = &reference {
             for a in 0..3 {
                 let v = relative_rms(&hist[a], &r[a]);
                 e.insert(dirs[a].into(), json!(sig(v)));
-                cells.push(format!("{:.4}", v));
+                // NR is the reference: its zero is not ranked.
+                cells.push(if *m == Method::NoReduction {
+                    Cell::text(format!("{v:.4}"))
+                } else {
+                    Cell::number(v, format!("{v:.4}"))
+                });
             }
             errors.insert(m.id().into(), Value::Object(e));
         } else {
-            cells.extend(["-".into(), "-".into(), "-".into()]);
+            cells.extend([Cell::text("-"), Cell::text("-"), Cell::text("-")]);
         }
-        let max_pos = sim
-            .samples
-            .iter()
-            .map(|s| s.position_violation)
-            .fold(0.0, f64::max);
-        cells.push(format!("{}", system.nv()));
-        cells.push(format!("{:.3}", sim.wall_time_s));
-        cells.push(format!("{} / {}", sim.steps, sim.rejected));
-        cells.push(format!("{:.1e}", max_pos));
-        rows.push(cells);
+        let max_pos = max_position_violation(sim);
+        cells.push(Cell::text(format!("{}", system.nv())));
+        cells.push(Cell::number(
+            sim.wall_time_s,
+            format!("{:.3}", sim.wall_time_s),
+        ));
+        cells.push(Cell::text(format!("{} / {}", sim.steps, sim.rejected)));
+        cells.push(Cell::number(max_pos, format!("{max_pos:.1e}")));
+        table.push(cells);
     }
     report
         .results
@@ -483,19 +474,7 @@ pub fn run_scenario(
     report
         .results
         .insert("wall_time_s".into(), Value::Object(walls));
-    report.table = markdown_table(
-        &[
-            "method",
-            "rel. RMS ξ",
-            "rel. RMS η",
-            "rel. RMS ζ",
-            "coordinates",
-            "wall s",
-            "steps / rejected",
-            "max Φ violation",
-        ],
-        &rows,
-    );
+    report.table = report.add_table(table);
     let markdown = format!(
         "# {}\n\n{}\n\nEvery method is integrated by the same Dormand-Prince 5(4) scheme with \
          adaptive steps (rtol 1e-6, atol 1e-9), Euler parameters renormalised and positions \
@@ -614,7 +593,7 @@ pub fn run_sim2(opts: &SceneOptions) -> Result<SceneOutput> {
 
 pub fn run_sim3(opts: &SceneOptions) -> Result<SceneOutput> {
     let axes = axis_type(opts.axes.as_deref(), INFO_3.id)?;
-    let end = opts.end_time_or(INFO_3.id, SIM3_END)?;
+    let end = opts.end_time_or_default(&INFO_3)?;
     let tables = opts.cache.get_or_run(
         format!("{}/tables/{axes:?}/{:x}", INFO_3.id, end.to_bits()),
         || record_driving_tables(axes, end, &opts.progress),

@@ -3,12 +3,13 @@
 
 use flexmodes::{
     Error, Progress,
+    analysis::relative_rms,
     dynamics::{AxisType, Body, IntegratorParameters, Motion, Simulation, System, simulate},
     fem::{SlabParameters, plank, slab},
     reduction::{Method, NodalFixedAxes},
     scenes::{
         plank_symmetry::{Variant, plank_body, plank_nodal_fixed, plank_system, symmetry_history},
-        slab_sims::{PROBE_NODE, Scenario, probe_history, relative_rms, slab_body, slab_system},
+        slab_sims::{PROBE_NODE, Scenario, probe_history, slab_body, slab_system},
     },
 };
 
