@@ -162,3 +162,23 @@ fn method_filter_restricts_what_is_logged() {
     assert!(!p.iter().any(|p| p.starts_with("modes/mode_condensation/")));
     assert!(p.iter().any(|p| p.starts_with("modes/free_free/")));
 }
+
+#[test]
+fn result_tables_rank_errors_from_their_numbers() {
+    let out = run("beam-profiles", SceneOptions::default());
+    let table = &out.report.tables[0];
+    assert_eq!(table.rows.len(), 3, "MT, CB, MC");
+    assert_eq!(table.lower_is_better, vec![1, 2]);
+    let method = |r: usize| table.rows[r][0].text.clone();
+    for column in [1, 2] {
+        let (best, worst) = table.best_and_worst(column).unwrap();
+        // Profile errors of §7.1: MT 0.1569 the worst, CB = MC the best.
+        assert_eq!(method(worst), "MT");
+        assert!(["CB", "MC"].contains(&method(best).as_str()));
+        let value = |r: usize| table.rows[r][column].value.unwrap();
+        assert!(value(worst) > 1.5 * value(best));
+    }
+    // The method column is not ranked, and the markdown shows the same cells.
+    assert!(table.best_and_worst(0).is_none());
+    assert!(out.report.table.contains(&table.markdown()));
+}
