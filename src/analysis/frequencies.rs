@@ -38,7 +38,7 @@ pub fn free_free_modes(model: &FeModel) -> Result<GeneralizedEigen> {
 /// shift (K itself is singular) above [`DENSE_INTERIOR_LIMIT`] DOF.
 pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<GeneralizedEigen> {
     let n = model.dof_count();
-    let rigid = if model.dim == 3 { 6 } else { 3 };
+    let rigid = model.dofs.rigid_body_count();
     let wanted = (rigid + elastic).min(n);
     if n <= DENSE_INTERIOR_LIMIT {
         let all = free_free_modes(model)?;
@@ -49,7 +49,9 @@ pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<General
     }
     let sigma = negative_shift(&model.k, &model.m);
     let shifted = model.k.shifted(&model.m, sigma);
-    let coords: Vec<[f64; 3]> = (0..n).map(|d| model.nodes[d / model.dim]).collect();
+    let coords: Vec<[f64; 3]> = (0..n)
+        .map(|d| model.nodes[d / model.dofs.per_node()])
+        .collect();
     let order = nested_dissection(shifted.as_faer(), &coords);
     let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), Some(&order))?;
     let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;

@@ -4,7 +4,12 @@ use faer::Mat;
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 
 use super::{AxisType, InertiaInvariants};
-use crate::{Error, Result, fem::FeModel, linalg::MassMatrix, reduction::Basis};
+use crate::{
+    Error, Result,
+    fem::{DofMap, FeModel},
+    linalg::MassMatrix,
+    reduction::Basis,
+};
 
 /// A rigid body whose frame sits at its mass centre.
 #[derive(Debug, Clone)]
@@ -73,10 +78,12 @@ impl FlexibleBody {
     /// Builds the body on its floating frame from a model and a reduction basis (all of the
     /// basis' columns; nodal-fixed axes remove theirs here).
     pub fn new(model: FeModel, basis: Basis, axes: AxisType) -> Result<Self> {
-        if model.dim != 3 {
+        if model.dofs != DofMap::solid() {
             return Err(Error::InvalidOption {
                 scene: model.name.clone(),
-                reason: "dynamics needs a 3-D body".into(),
+                reason: "the floating-frame body needs x, y, z translations per node and no \
+                         rotations"
+                    .into(),
             });
         }
         let n = model.node_count();

@@ -2,7 +2,7 @@
 
 use faer::{Mat, Side, prelude::Solve};
 
-use super::{FeModel, Triplets};
+use super::{DofMap, FeModel, Triplets};
 use crate::linalg::{MassMatrix, SparseSymmetric, select};
 
 /// Parameters of the App. A beam. Defaults are the thesis values.
@@ -94,7 +94,7 @@ pub fn beam(p: &BeamParameters) -> FeModel {
     }
     FeModel {
         name: "beam".into(),
-        dim: 2,
+        dofs: DofMap::planar(),
         nodes: (0..nn).map(|i| [i as f64 * le, 0.0, 0.0]).collect(),
         edges: (0..ne).map(|e| [e, e + 1]).collect(),
         // The condensed stiffness couples every translation (a dense 2nn × 2nn block).

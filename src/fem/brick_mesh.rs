@@ -4,7 +4,7 @@ use std::collections::BTreeSet;
 
 use faer::Mat;
 
-use super::{FeModel, hex8_consistent_mass, hex8_stiffness};
+use super::{DofMap, FeModel, hex8_consistent_mass, hex8_stiffness};
 use crate::{
     Error, Result,
     linalg::{MassMatrix, SparseAssembly, SparsityPattern},
@@ -256,7 +256,7 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
     };
     FeModel {
         name: name.into(),
-        dim: 3,
+        dofs: DofMap::solid(),
         nodes,
         edges: edges.into_iter().collect(),
         k,

@@ -2,6 +2,7 @@
 
 use faer::Mat;
 
+use super::{DofMap, NodeDof};
 use crate::{
     Error, Result,
     linalg::{MassMatrix, SparseSymmetric},
@@ -46,14 +47,14 @@ impl Direction {
     }
 }
 
-/// A body discretised by finite elements with translational nodal DOF only, node-major
-/// DOF order (`x, y[, z]` per node). Units: m, kg, N/m.
+/// A body discretised by finite elements, its DOF laid out by a [`DofMap`] (node-major).
+/// Units: m, kg, N/m (N m/rad for rotations).
 #[derive(Debug, Clone)]
 pub struct FeModel {
     /// Body name used in entity paths (`beam`, `slab`, `plank`).
     pub name: String,
-    /// Translational DOF per node: 2 (planar) or 3.
-    pub dim: usize,
+    /// The DOF each node carries (2, 3 or 6) and their order.
+    pub dofs: DofMap,
     /// Undeformed node positions in m (z = 0 for planar bodies).
     pub nodes: Vec<[f64; 3]>,
     /// Wireframe edges as 0-based node index pairs.
@@ -72,7 +73,12 @@ impl FeModel {
 
     /// Number of DOF.
     pub fn dof_count(&self) -> usize {
-        self.dim * self.nodes.len()
+        self.dofs.per_node() * self.nodes.len()
+    }
+
+    /// 2 for a planar body, 3 for a spatial one.
+    pub fn spatial_dim(&self) -> usize {
+        self.dofs.spatial_dim()
     }
 
     /// Checks a 1-based node number and returns its 0-based index.
@@ -87,39 +93,40 @@ impl FeModel {
         Ok(node - 1)
     }
 
-    /// The DOF index of a 1-based node in a direction.
+    /// The DOF index of a 1-based node's translation in a direction.
     pub fn dof(&self, node: usize, dir: Direction) -> Result<usize> {
         let i = self.node_index(node)?;
-        if dir.index() >= self.dim {
-            return Err(Error::InvalidAxes {
+        self.dofs
+            .index(i, NodeDof::Translation(dir))
+            .ok_or_else(|| Error::InvalidAxes {
                 reason: format!("the {} is planar and has no {} DOF", self.name, dir.name()),
-            });
-        }
-        Ok(i * self.dim + dir.index())
+            })
     }
 
     /// All DOF of the given 1-based nodes, in the given node order; rejects duplicates.
     pub fn dofs_of_nodes(&self, nodes: &[usize]) -> Result<Vec<usize>> {
-        let mut out = Vec::with_capacity(nodes.len() * self.dim);
+        let per = self.dofs.per_node();
+        let mut out = Vec::with_capacity(nodes.len() * per);
         for (n, &node) in nodes.iter().enumerate() {
             if nodes[..n].contains(&node) {
                 return Err(Error::DuplicateNode { node });
             }
             let i = self.node_index(node)?;
-            out.extend((0..self.dim).map(|d| i * self.dim + d));
+            out.extend((0..per).map(|d| i * per + d));
         }
         Ok(out)
     }
 
-    /// `(1-based node, direction)` of a DOF index.
-    pub fn dof_node(&self, dof: usize) -> (usize, Direction) {
-        (dof / self.dim + 1, Direction::from_index(dof % self.dim))
+    /// `(1-based node, DOF)` of a DOF index.
+    pub fn dof_node(&self, dof: usize) -> (usize, NodeDof) {
+        let (node, d) = self.dofs.locate(dof);
+        (node + 1, d)
     }
 
-    /// `node 3 y` style label of a DOF.
+    /// `node 3 y` (or `node 3 θz`) style label of a DOF.
     pub fn dof_label(&self, dof: usize) -> String {
-        let (node, dir) = self.dof_node(dof);
-        format!("node {node} {}", dir.name())
+        let (node, d) = self.dof_node(dof);
+        format!("node {node} {}", d.name())
     }
 
     /// The stiffness as a dense matrix (for the small bodies' dense path).
@@ -142,18 +149,25 @@ impl FeModel {
         let n = self.dof_count();
         let mut t = Mat::<f64>::zeros(n, 1);
         for i in 0..self.node_count() {
-            t[(i * self.dim, 0)] = 1.0;
+            if let Some(d) = self.dofs.index(i, NodeDof::Translation(Direction::X)) {
+                t[(d, 0)] = 1.0;
+            }
         }
         let mt = self.m.mul(t.as_ref());
         (t.transpose() * &mt)[(0, 0)]
     }
 
-    /// Mass centre (m) of the lumped masses (the diagonal of M on each node's first DOF).
+    /// Mass centre (m) of the lumped masses (the diagonal of M on each node's x translation).
     pub fn mass_centre(&self) -> [f64; 3] {
         let mut c = [0.0; 3];
         let mut m = 0.0;
+        let x = self
+            .dofs
+            .offset(NodeDof::Translation(Direction::X))
+            .unwrap_or(0);
+        let per = self.dofs.per_node();
         for (j, p) in self.nodes.iter().enumerate() {
-            let mj = self.m.get(self.dim * j, self.dim * j);
+            let mj = self.m.get(per * j + x, per * j + x);
             for (ca, pa) in c.iter_mut().zip(p) {
                 *ca += mj * pa;
             }
@@ -163,30 +177,15 @@ impl FeModel {
     }
 
     /// Rigid-body motions as columns: translations, then small rotations about the origin
-    /// (one in 2-D, three in 3-D).
+    /// (one in the plane, three in space), on every DOF of the map (a rotation DOF takes the
+    /// rotation's component).
     pub fn rigid_body_modes(&self) -> Mat<f64> {
-        let n = self.dof_count();
-        let count = if self.dim == 3 { 6 } else { 3 };
-        let mut r = Mat::zeros(n, count);
-        for (i, p) in self.nodes.iter().enumerate() {
-            let b = i * self.dim;
-            for d in 0..self.dim {
-                r[(b + d, d)] = 1.0;
-            }
-            if self.dim == 2 {
-                r[(b, 2)] = -p[1];
-                r[(b + 1, 2)] = p[0];
-            } else {
-                // rotation about x, y, z: omega × p
-                r[(b + 1, 3)] = -p[2];
-                r[(b + 2, 3)] = p[1];
-                r[(b, 4)] = p[2];
-                r[(b + 2, 4)] = -p[0];
-                r[(b, 5)] = -p[1];
-                r[(b + 1, 5)] = p[0];
-            }
-        }
-        r
+        let count = self.dofs.rigid_body_count();
+        let per = self.dofs.per_node();
+        Mat::from_fn(self.dof_count(), count, |row, k| {
+            let (t, w) = self.dofs.rigid_motion(k);
+            self.dofs.node_dofs()[row % per].rigid_motion(self.nodes[row / per], t, w)
+        })
     }
 
     /// Node positions displaced by a DOF vector `u` scaled by `scale`.
@@ -196,8 +195,9 @@ impl FeModel {
             .enumerate()
             .map(|(i, p)| {
                 let mut q = *p;
-                for d in 0..self.dim {
-                    q[d] += scale * u[i * self.dim + d];
+                let base = i * self.dofs.per_node();
+                for (dir, o) in self.dofs.translations() {
+                    q[dir.index()] += scale * u[base + o];
                 }
                 q
             })

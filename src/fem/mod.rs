@@ -3,12 +3,16 @@
 
 mod beam2d;
 mod brick_mesh;
+mod dof_map;
 mod fe_model;
+mod frame3d;
 mod hex8;
 mod triplets;
 
 pub use beam2d::{BeamParameters, beam};
 pub use brick_mesh::{SlabParameters, plank, slab};
+pub use dof_map::{DofMap, NodeDof};
 pub use fe_model::{Direction, FeModel};
+pub use frame3d::{FrameSection, frame, frame_stiffness};
 pub use hex8::{LOCAL_NODES as HEX8_LOCAL_NODES, hex8_consistent_mass, hex8_stiffness};
 pub use triplets::Triplets;

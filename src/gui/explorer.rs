@@ -342,7 +342,12 @@ fn table_ui(ui: &mut egui::Ui, report: &Report) {
 fn grid_ui(ui: &mut egui::Ui, id: usize, table: &Table) {
     let columns = table.header.len();
     let mut marks = vec![vec![None; columns]; table.rows.len()];
-    for c in table.lower_is_better.iter().copied().filter(|&c| c < columns) {
+    for c in table
+        .lower_is_better
+        .iter()
+        .copied()
+        .filter(|&c| c < columns)
+    {
         if let Some((best, worst)) = table.best_and_worst(c) {
             marks[best][c] = Some(BEST);
             marks[worst][c] = Some(WORST);

@@ -18,7 +18,7 @@ pub struct Geometry {
 impl Geometry {
     /// Geometry of a body: one chain for a beam, the brick edges for a solid.
     pub fn of(model: &crate::fem::FeModel) -> Self {
-        let strips = if model.dim == 2 {
+        let strips = if model.spatial_dim() == 2 {
             vec![(0..model.node_count()).collect()]
         } else {
             straight_strips(&model.nodes, &model.edges)

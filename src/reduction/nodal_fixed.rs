@@ -62,7 +62,7 @@ impl NodalFixedAxes {
                 reason: format!("a plane needs two different axes, got {0}{0}", axis.name()),
             });
         }
-        let nodes: &[usize] = if model.dim == 3 {
+        let nodes: &[usize] = if model.spatial_dim() == 3 {
             &[self.origin, self.axis_node, self.plane_node]
         } else {
             &[self.origin, self.axis_node]
@@ -75,8 +75,8 @@ impl NodalFixedAxes {
                 });
             }
         }
-        let dims: Vec<Direction> = Direction::ALL[..model.dim].to_vec();
-        if !dims.contains(&axis) || (model.dim == 3 && !dims.contains(&plane_with)) {
+        let dims: Vec<Direction> = Direction::ALL[..model.spatial_dim()].to_vec();
+        if !dims.contains(&axis) || (model.spatial_dim() == 3 && !dims.contains(&plane_with)) {
             return Err(Error::InvalidAxes {
                 reason: format!("the {} is planar: use the x or y axis", model.name),
             });
@@ -88,7 +88,7 @@ impl NodalFixedAxes {
         for &d in dims.iter().filter(|&&d| d != axis) {
             out.push((self.axis_node, d, model.dof(self.axis_node, d)?));
         }
-        if model.dim == 3 {
+        if model.spatial_dim() == 3 {
             let normal = *dims
                 .iter()
                 .find(|&&d| d != axis && d != plane_with)

@@ -24,8 +24,6 @@ pub struct Partition {
     pub b: Vec<usize>,
     /// Interior DOF indices (set i), ascending.
     pub i: Vec<usize>,
-    /// DOF per node of the body.
-    pub dim: usize,
 }
 
 impl Partition {
@@ -55,7 +53,6 @@ impl Partition {
             boundary_nodes: boundary_nodes.to_vec(),
             b,
             i,
-            dim: model.dim,
         })
     }
 
@@ -199,7 +196,7 @@ impl<'a> InteriorProblem<'a> {
             boundary_nodes: self.partition.boundary_nodes.clone(),
             rank_deficiency: free.len(),
             free_motions: free.join("; "),
-            needed: if self.model.dim == 3 { 6 } else { 3 },
+            needed: self.model.dofs.rigid_body_count(),
         })
     }
 
@@ -227,7 +224,7 @@ impl<'a> InteriorProblem<'a> {
                     .partition
                     .i
                     .iter()
-                    .map(|&d| self.model.nodes[d / self.model.dim])
+                    .map(|&d| self.model.nodes[d / self.model.dofs.per_node()])
                     .collect();
                 let order = nested_dissection(a.as_faer(), &coords);
                 let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), Some(&order))?;
@@ -360,7 +357,7 @@ fn first_modes(all: &GeneralizedEigen, kept: usize) -> GeneralizedEigen {
 /// to the boundary DOF have full rank), each described as a rotation about an axis or a
 /// translation.
 fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
-    let rigid = if model.dim == 3 { 6 } else { 3 };
+    let rigid = model.dofs.rigid_body_count();
     // Rigid motions about the body's centroid, rotations scaled by its size so the columns
     // are commensurate: u = t + (w / L) × (x − c).
     let count = model.node_count() as f64;
@@ -372,34 +369,17 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
     }
     let size = model.size().max(f64::MIN_POSITIVE);
     let r_b = Mat::from_fn(p.b.len(), rigid, |row, col| {
-        let (node, dir) = model.dof_node(p.b[row]);
+        let (node, dof) = model.dof_node(p.b[row]);
         let x = model.nodes[node - 1];
         let r = [
             (x[0] - c[0]) / size,
             (x[1] - c[1]) / size,
             (x[2] - c[2]) / size,
         ];
-        let d = dir.index();
-        if model.dim == 2 {
-            return match col {
-                0 | 1 => f64::from(u8::from(d == col)),
-                _ => [-r[1], r[0]][d],
-            };
-        }
-        match col {
-            0..=2 => f64::from(u8::from(d == col)),
-            // ω = e_k: (e_k × r)_d
-            _ => {
-                let k = col - 3;
-                let e = |a: usize| f64::from(u8::from(a == k));
-                let cross = [
-                    e(1) * r[2] - e(2) * r[1],
-                    e(2) * r[0] - e(0) * r[2],
-                    e(0) * r[1] - e(1) * r[0],
-                ];
-                cross[d]
-            }
-        }
+        // A rotation DOF takes the scaled rotation's component times the size: a row
+        // scaling, which leaves the null space as it is.
+        let (t, w) = model.dofs.rigid_motion(col);
+        dof.rigid_motion(r, t, w)
     });
     // Null space of R_b from the eigenvectors of R_bᵀR_b (6 × 6).
     let gram = r_b.transpose() * &r_b;
@@ -414,7 +394,7 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
         .collect();
     let describe = |k: usize| -> String {
         let v = evd.U().col(k);
-        if model.dim == 2 {
+        if model.spatial_dim() == 2 {
             let w = v[2] / size;
             let t = [v[0] - (-w * c[1]), v[1] - (w * c[0])];
             if w.abs() * size < 1e-9 {

@@ -30,8 +30,9 @@ pub fn display_shape(model: &FeModel, u: &[f64]) -> Vec<[f64; 3]> {
     let mut per_node: Vec<[f64; 3]> = (0..model.node_count())
         .map(|i| {
             let mut d = [0.0; 3];
-            for (k, v) in d.iter_mut().enumerate().take(model.dim) {
-                *v = u[i * model.dim + k];
+            let base = i * model.dofs.per_node();
+            for (dir, o) in model.dofs.translations() {
+                d[dir.index()] = u[base + o];
             }
             d
         })
@@ -53,7 +54,7 @@ pub fn display_shape(model: &FeModel, u: &[f64]) -> Vec<[f64; 3]> {
 
 /// Where mode `k` (0-based) of a set is placed, so a set reads like the thesis' figures.
 fn slot(model: &FeModel, k: usize) -> [f64; 3] {
-    if model.dim == 2 {
+    if model.spatial_dim() == 2 {
         [0.0, -0.5 * model.size() * k as f64, 0.0]
     } else {
         // Three columns; a gap of half the body's size between neighbours.

@@ -4,6 +4,7 @@
 mod common;
 mod errors;
 mod floating_frame;
+mod frame;
 mod invariants;
 mod linalg;
 mod published;
