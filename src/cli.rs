@@ -49,6 +49,9 @@ enum Command {
         /// slab-modes only: refined meshes to time, `1k,7k,28k,74k,150k` or `NXxNYxNZ,...`.
         #[arg(long)]
         sizes: Option<String>,
+        /// With --sizes: also write the log–log chart of time against DOF to this `.rrd`.
+        #[arg(long)]
+        save: Option<PathBuf>,
     },
     /// The desktop explorer: the Rerun viewer beside live controls.
     #[cfg(feature = "gui")]
@@ -235,6 +238,7 @@ fn run(cli: Cli) -> Result<()> {
             scenes: ids,
             json,
             sizes: Some(sizes),
+            save,
         } => {
             if ids.iter().any(|id| id != "slab-modes") {
                 return Err(Error::InvalidOption {
@@ -243,11 +247,15 @@ fn run(cli: Cli) -> Result<()> {
                 });
             }
             let meshes = crate::bench_sizes::parse_sizes(&sizes)?;
-            let (value, table) = crate::bench_sizes::bench_sizes(&meshes, &|s| progress(s))?;
+            let bench = crate::bench_sizes::bench_sizes(&meshes, &|s| progress(s))?;
+            if let Some(path) = &save {
+                Recorder::default().save(&bench.recording, path)?;
+                progress(&format!("wrote {}", path.display()));
+            }
             if json {
-                println!("{value}");
+                println!("{}", bench.value);
             } else {
-                println!("# bench slab-modes --sizes {sizes}\n\n{table}");
+                println!("# bench slab-modes --sizes {sizes}\n\n{}", bench.table);
             }
             Ok(())
         }
@@ -255,7 +263,15 @@ fn run(cli: Cli) -> Result<()> {
             scenes: ids,
             json,
             sizes: None,
+            save,
         } => {
+            if save.is_some() {
+                return Err(Error::InvalidOption {
+                    scene: ids.join(","),
+                    reason: "--save goes with --sizes (the log–log chart of the refined slab)"
+                        .into(),
+                });
+            }
             let ids = if ids.is_empty() {
                 vec!["slab-sim1".to_string()]
             } else {

@@ -309,3 +309,50 @@ fn refined_slab_report_has_sizes_and_phase_timings() {
     let out = flexmodes(&["report", "beam-modes", "--refine", "8,4,2"]);
     assert_eq!(out.status.code(), Some(1));
 }
+
+#[test]
+fn bench_sizes_writes_the_log_log_chart() {
+    let dir = temp_dir("bench-sizes");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("sizes.rrd");
+    let v = json(&[
+        "bench",
+        "slab-modes",
+        "--sizes",
+        "8x4x2,4x2x1,12x6x3",
+        "--json",
+        "--save",
+        file.to_str().unwrap(),
+    ]);
+    // Sizes run ascending whatever the order given.
+    let dofs: Vec<u64> = v["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["dofs"].as_u64().unwrap())
+        .collect();
+    assert_eq!(dofs, [90, 405, 1092]);
+    for m in ["gr", "mt", "cb", "mc", "mc_complete"] {
+        assert_eq!(
+            v["offline_s_against_dofs"][m].as_array().unwrap().len(),
+            3,
+            "{m}"
+        );
+        assert!(v["growth_exponent"][m].as_f64().is_some(), "{m}");
+    }
+    // The factor's fill grows with the mesh; frequencies: 20 per size.
+    let fill: Vec<u64> = v["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["factor_nnz"].as_u64().unwrap())
+        .collect();
+    assert!(fill.windows(2).all(|w| w[1] > w[0]), "{fill:?}");
+    let bytes = std::fs::read(&file).unwrap();
+    assert!(bytes.starts_with(b"RRF"), "an .rrd file");
+    // --save belongs to --sizes.
+    let out = flexmodes(&["bench", "slab-sim1", "--save", file.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--sizes"));
+    let _ = std::fs::remove_dir_all(dir);
+}

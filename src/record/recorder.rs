@@ -258,6 +258,23 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
                     .with_radii([rerun::Radius::new_ui_points(6.0)]),
             )?;
         }
+        Visual::Polyline2D {
+            path,
+            points,
+            color: c,
+            label,
+        } => {
+            let mut strips = rerun::LineStrips2D::new([points
+                .iter()
+                .map(|p| [p[0] as f32, p[1] as f32])
+                .collect::<Vec<_>>()])
+            .with_colors([color(*c)])
+            .with_radii([rerun::Radius::new_ui_points(2.0)]);
+            if let Some(l) = label {
+                strips = strips.with_labels([l.clone()]);
+            }
+            rec.log_static(path.as_str(), &strips)?;
+        }
         Visual::Bars { path, values } => {
             rec.log_static(path.as_str(), &rerun::BarChart::new(values.clone()))?;
         }

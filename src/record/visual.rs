@@ -174,6 +174,17 @@ pub enum Visual {
         /// One colour per point.
         colors: Vec<Color>,
     },
+    /// A polyline in a plane (a chart's series), with an optional label.
+    Polyline2D {
+        /// Entity path.
+        path: String,
+        /// Vertices (x, y).
+        points: Vec<[f64; 2]>,
+        /// Line colour.
+        color: Color,
+        /// Label shown at the line.
+        label: Option<String>,
+    },
     /// Scalar values shown as a bar chart (`metrics/...`).
     Bars {
         /// Entity path.
@@ -194,6 +205,7 @@ impl Visual {
             | Visual::Series { path, .. }
             | Visual::FrameAxes { path, .. }
             | Visual::Scatter { path, .. }
+            | Visual::Polyline2D { path, .. }
             | Visual::Bars { path, .. } => path,
         }
     }

@@ -14,6 +14,7 @@ mod slab_modes;
 mod slab_refined;
 pub mod slab_sims;
 
+pub use mode_visuals::method_color;
 pub use options::{SceneOptions, SceneOutput};
 pub use registry::{Scene, SceneInfo, all, find, ids};
 pub use run_cache::RunCache;
