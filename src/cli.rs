@@ -218,6 +218,7 @@ fn progress(msg: &str) {
 }
 
 fn run(cli: Cli) -> Result<()> {
+    crate::linalg::use_sequential_kernels();
     match cli.command {
         Command::List => {
             for s in scenes::all() {

@@ -44,7 +44,21 @@ impl MassMatrix {
     /// $M X$.
     pub fn mul(&self, x: MatRef<'_, f64>) -> Mat<f64> {
         match self {
-            MassMatrix::Lumped(d) => Mat::from_fn(x.nrows(), x.ncols(), |i, j| d[i] * x[(i, j)]),
+            MassMatrix::Lumped(d) => {
+                let mut out = Mat::<f64>::zeros(x.nrows(), x.ncols());
+                for j in 0..x.ncols() {
+                    let col = x.col(j);
+                    let dst = out
+                        .col_mut(j)
+                        .try_as_col_major_mut()
+                        .expect("a fresh matrix is column-major")
+                        .as_slice_mut();
+                    for (i, (o, di)) in dst.iter_mut().zip(d).enumerate() {
+                        *o = di * col[i];
+                    }
+                }
+                out
+            }
             MassMatrix::Consistent(m) => m.mul(x),
         }
     }

@@ -28,3 +28,12 @@ pub use partial_eigen::{
 };
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
 pub use symmetric_factor::{SymbolicFactor, SymmetricFactor};
+
+/// Runs faer's kernels on the calling thread. On the 2-core machines flexmodes is measured on,
+/// faer's thread-pool parallelism cost more in wake-ups than it gained: the refined slab's
+/// Craig–Bampton took 0.68 s instead of 1.42 s at 6 825 DOF and 12.8 s instead of 18.8 s at
+/// 74 385 DOF sequentially (block solves of four right-hand sides and n × 64 products are
+/// too small to split). The command line calls this once at start.
+pub fn use_sequential_kernels() {
+    faer::set_global_parallelism(faer::Par::Seq);
+}

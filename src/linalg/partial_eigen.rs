@@ -253,37 +253,48 @@ pub fn negative_shift(k: &SparseSymmetric, m: &MassMatrix) -> f64 {
 
 /// Makes the columns of `x` $M$-orthonormal to `v[:, ..cols]` and to each other, appends them
 /// and returns how many were appended (a column that vanishes is replaced by a random one).
+///
+/// Block classical Gram–Schmidt, twice, against the basis already there (two matrix–matrix
+/// products per pass instead of two matrix–vector products per column), then column by column
+/// within the new block, twice (Kahan's rule).
 fn append_orthonormal(
     v: &mut Mat<f64>,
     mv: &mut Mat<f64>,
     cols: usize,
-    mut x: Mat<f64>,
+    x: Mat<f64>,
     m: &MassMatrix,
     rng: &mut u64,
 ) -> usize {
     let room = v.ncols() - cols;
     let count = x.ncols().min(room);
+    let mut x = x.subcols(0, count).to_owned();
+    let original: Vec<f64> = (0..count).map(|j| m_norm(x.col(j).as_mat(), m)).collect();
+    if cols > 0 {
+        for _ in 0..2 {
+            let coeffs = mv.subcols(0, cols).transpose() * &x;
+            x -= v.subcols(0, cols) * &coeffs;
+        }
+    }
     for j in 0..count {
         let mut tries = 0;
+        let mut reference = original[j];
         loop {
-            let original = m_norm(x.col(j).as_mat(), m);
-            // Twice is enough (Kahan's rule for classical Gram-Schmidt).
+            // Against the new columns appended so far (all of them after a random restart).
+            let from = if tries == 0 { cols } else { 0 };
             for _ in 0..2 {
                 let filled = cols + j;
-                if filled > 0 {
-                    let coeffs = mv.subcols(0, filled).transpose() * x.col(j);
-                    let proj = v.subcols(0, filled) * &coeffs;
-                    for i in 0..x.nrows() {
-                        x[(i, j)] -= proj[i];
-                    }
+                if filled > from {
+                    let coeffs = mv.subcols(from, filled - from).transpose() * x.col(j);
+                    let proj = v.subcols(from, filled - from) * &coeffs;
+                    let mut xj = x.col_mut(j);
+                    xj -= &proj;
                 }
             }
             let norm = m_norm(x.col(j).as_mat(), m);
-            if norm > 1e-10 * original && norm > 0.0 {
+            if norm > 1e-10 * reference && norm > 0.0 {
                 let target = cols + j;
-                for i in 0..x.nrows() {
-                    v[(i, target)] = x[(i, j)] / norm;
-                }
+                let scaled = x.col(j) * (1.0 / norm);
+                v.col_mut(target).copy_from(&scaled);
                 let mcol = m.mul(v.col(target).as_mat());
                 mv.col_mut(target).copy_from(mcol.col(0));
                 break;
@@ -293,6 +304,7 @@ fn append_orthonormal(
             for i in 0..x.nrows() {
                 x[(i, j)] = next_uniform(rng);
             }
+            reference = m_norm(x.col(j).as_mat(), m);
         }
     }
     count
