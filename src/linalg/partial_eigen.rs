@@ -25,7 +25,8 @@ pub struct PartialEigenParameters {
     pub basis_factor: usize,
     /// Restarts before giving up.
     pub max_restarts: usize,
-    /// Ritz pairs count as converged when $\|A u - \theta u\|_M \le$ this $\cdot\,\theta$.
+    /// Ritz pairs count as converged when $\|A u - \theta u\|_M \le$ this $\cdot\,\theta$;
+    /// tightened tenfold (down to $10^{-14}$) while a converged set fails the residual check.
     pub ritz_tolerance: f64,
     /// Largest accepted $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ of a returned pair.
     pub residual_tolerance: f64,
@@ -131,6 +132,8 @@ pub fn lowest_modes(
     let start = Mat::from_fn(n, b, |_, _| next_uniform(&mut rng));
     cols += append_orthonormal(&mut v, &mut mv, cols, start, m, &mut rng);
     let mut theta: Vec<f64>;
+    let mut ritz_tolerance = params.ritz_tolerance;
+    let result;
     let mut ritz: Mat<f64>;
     loop {
         // Expand: A applied to the newest block, orthogonalised against everything.
@@ -166,11 +169,24 @@ pub fn lowest_modes(
         let converged = (0..wanted)
             .take_while(|&c| {
                 let norm = residual.col(c).transpose() * m_residual.col(c);
-                norm.max(0.0).sqrt() <= params.ritz_tolerance * theta[c].abs()
+                norm.max(0.0).sqrt() <= ritz_tolerance * theta[c].abs()
             })
             .count();
         if converged == wanted {
-            break;
+            let checked = checked_pairs(k, m, sigma, wanted, known, &theta, &ritz, params)?;
+            if checked.max_residual <= params.residual_tolerance {
+                stats.max_residual = checked.max_residual;
+                result = (checked.eigen, stats);
+                break;
+            }
+            if ritz_tolerance <= 1e-14 || stats.restarts == params.max_restarts {
+                return Err(Error::EigenNotConverged {
+                    converged: checked.converged,
+                    wanted,
+                    residual: checked.max_residual,
+                });
+            }
+            ritz_tolerance *= 0.1;
         }
         if stats.restarts == params.max_restarts {
             let worst = (0..wanted)
@@ -204,40 +220,7 @@ pub fn lowest_modes(
         cols = keep + pending.ncols();
     }
 
-    // λ = σ + 1/θ, ascending, and the residual check on the original pencil.
-    let mut values = Vec::with_capacity(wanted);
-    let mut vectors = Mat::<f64>::zeros(n, wanted);
-    for (c, &t) in theta.iter().take(wanted).enumerate() {
-        values.push(sigma + 1.0 / t);
-        vectors.col_mut(c).copy_from(ritz.col(c));
-        fix_sign(vectors.col_mut(c));
-    }
-    let kv = k.mul(vectors.as_ref());
-    let mvv = m.mul(vectors.as_ref());
-    // The known null vectors (the lowest pairs) have Kφ ≈ 0: measured against ‖K‖‖φ‖.
-    let k_scale = k.max_abs();
-    let mut converged = 0;
-    for c in 0..wanted {
-        let r = Mat::from_fn(n, 1, |i, _| kv[(i, c)] - values[c] * mvv[(i, c)]);
-        let denom = if c < known {
-            k_scale * vectors.col(c).norm_l2()
-        } else {
-            kv.col(c).norm_l2()
-        };
-        let rel = r.norm_l2() / denom.max(f64::MIN_POSITIVE);
-        if rel <= params.residual_tolerance {
-            converged += 1;
-        }
-        stats.max_residual = stats.max_residual.max(rel);
-    }
-    if stats.max_residual.is_nan() || stats.max_residual > params.residual_tolerance {
-        return Err(Error::EigenNotConverged {
-            converged,
-            wanted,
-            residual: stats.max_residual,
-        });
-    }
-    Ok((GeneralizedEigen { values, vectors }, stats))
+    Ok(result)
 }
 
 /// A shift $\sigma < 0$ for a singular (positive semi-definite) $K$: $10^{-6}$ of the largest
@@ -324,4 +307,63 @@ fn next_uniform(state: &mut u64) -> f64 {
     *state = s;
     let bits = s.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
     bits as f64 / (1u64 << 52) as f64 - 1.0
+}
+
+struct CheckedPairs {
+    eigen: GeneralizedEigen,
+    converged: usize,
+    max_residual: f64,
+}
+
+/// λ = σ + 1/θ, ascending, with the residual check on the original pencil.
+#[allow(clippy::too_many_arguments)]
+fn checked_pairs(
+    k: &SparseSymmetric,
+    m: &MassMatrix,
+    sigma: f64,
+    wanted: usize,
+    known: usize,
+    theta: &[f64],
+    ritz: &Mat<f64>,
+    params: &PartialEigenParameters,
+) -> Result<CheckedPairs> {
+    let n = k.dim();
+    let mut max_residual = 0.0f64;
+    let mut values = Vec::with_capacity(wanted);
+    let mut vectors = Mat::<f64>::zeros(n, wanted);
+    for (c, &t) in theta.iter().take(wanted).enumerate() {
+        values.push(sigma + 1.0 / t);
+        vectors.col_mut(c).copy_from(ritz.col(c));
+        fix_sign(vectors.col_mut(c));
+    }
+    let kv = k.mul(vectors.as_ref());
+    let mvv = m.mul(vectors.as_ref());
+    // The known null vectors (the lowest pairs) have Kφ ≈ 0: measured against ‖K‖‖φ‖.
+    let k_scale = k.max_abs();
+    let mut converged = 0;
+    for c in 0..wanted {
+        let r = Mat::from_fn(n, 1, |i, _| kv[(i, c)] - values[c] * mvv[(i, c)]);
+        let denom = if c < known {
+            k_scale * vectors.col(c).norm_l2()
+        } else {
+            kv.col(c).norm_l2()
+        };
+        let rel = r.norm_l2() / denom.max(f64::MIN_POSITIVE);
+        if rel <= params.residual_tolerance {
+            converged += 1;
+        }
+        max_residual = max_residual.max(rel);
+    }
+    if max_residual.is_nan() {
+        return Err(Error::EigenNotConverged {
+            converged,
+            wanted,
+            residual: max_residual,
+        });
+    }
+    Ok(CheckedPairs {
+        eigen: GeneralizedEigen { values, vectors },
+        converged,
+        max_residual,
+    })
 }

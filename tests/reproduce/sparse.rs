@@ -136,6 +136,41 @@ fn partial_eigensolver_reports_how_far_it_got() {
 }
 
 #[test]
+fn a_loose_ritz_tolerance_is_tightened_until_the_residuals_pass() {
+    let p = SlabParameters::refined([6, 3, 2]).unwrap();
+    let model = slab(&p);
+    let corners = p.bottom_corners();
+    let problem = InteriorProblem::new(&model, &corners, SolverPath::Sparse).unwrap();
+    let part = &problem.partition;
+    let k_ii = model.k.principal_block(&part.i);
+    let m_ii: MassMatrix = model.m.principal_block(&part.i);
+    let symbolic = SymbolicFactor::analyse(k_ii.as_faer()).unwrap();
+    let factor = SymmetricFactor::sparse(k_ii.as_faer(), &symbolic, "K_ii").unwrap();
+    let loose = PartialEigenParameters {
+        ritz_tolerance: 1e-4,
+        residual_tolerance: 1e-10,
+        ..Default::default()
+    };
+    let (eig, stats) = lowest_modes(&k_ii, &m_ii, &factor, 0.0, 10, None, &loose).unwrap();
+    assert!(stats.max_residual <= 1e-10, "{:e}", stats.max_residual);
+    // The same pairs as with the default tolerance.
+    let (reference, _) =
+        lowest_modes(&k_ii, &m_ii, &factor, 0.0, 10, None, &Default::default()).unwrap();
+    assert_eq!(eig.values.len(), 10);
+    for (a, b) in eig.values.iter().zip(&reference.values) {
+        assert!((a - b).abs() <= 1e-9 * b, "{a} vs {b}");
+    }
+    // A Ritz tolerance of 1e-4 alone would have stopped with residuals far above 1e-10.
+    let unchecked = PartialEigenParameters {
+        ritz_tolerance: 1e-4,
+        residual_tolerance: 1.0,
+        ..Default::default()
+    };
+    let (_, early) = lowest_modes(&k_ii, &m_ii, &factor, 0.0, 10, None, &unchecked).unwrap();
+    assert!(early.max_residual > 1e-8, "{:e}", early.max_residual);
+}
+
+#[test]
 fn mode_condensation_routes_span_one_space() {
     for (bricks, boundary) in [
         ([4, 2, 1], APP_B_CORNERS.to_vec()),
