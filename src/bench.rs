@@ -12,7 +12,7 @@ use crate::{
     Error, Progress, Result,
     analysis::reduced_modes,
     analysis::relative_rms,
-    dynamics::{AxisType, IntegratorParameters, simulate, stability_polynomial},
+    dynamics::{AxisType, IntegratorParameters, imaginary_stability_limit, simulate},
     fem::{SlabParameters, slab},
     reduction::{Method, NodalFixedAxes},
     report::{markdown_table, sig},
@@ -41,31 +41,6 @@ pub struct BenchPoint {
     pub rel_rms_error: f64,
     /// Accepted integration steps.
     pub steps: usize,
-}
-
-/// The imaginary-axis stability limit $y^*$ of the Dormand–Prince 5(4) scheme: $|R(iy)| \le 1$
-/// for $|y| \le y^*$, found from its stability polynomial $R(z) = \sum_k c_k z^k$.
-pub fn dormand_prince_imaginary_limit() -> f64 {
-    let c = stability_polynomial();
-    let r = |y: f64| {
-        let (mut re, mut im) = (0.0, 0.0);
-        for (k, ck) in c.iter().enumerate() {
-            // (iy)^k
-            let p = y.powi(k as i32) * ck;
-            match k % 4 {
-                0 => re += p,
-                1 => im += p,
-                2 => re -= p,
-                _ => im -= p,
-            }
-        }
-        (re * re + im * im).sqrt()
-    };
-    let mut y = 0.01;
-    while y < 10.0 && r(y) <= 1.0 + 1e-12 {
-        y += 0.001;
-    }
-    y - 0.001
 }
 
 /// Runs the benchmark of one simulation scene and returns the `bench --json` object.
@@ -97,7 +72,7 @@ pub fn bench(scene: &str) -> Result<(Value, String)> {
             cases.push((m, k));
         }
     }
-    let y_star = dormand_prince_imaginary_limit();
+    let y_star = imaginary_stability_limit();
     let mut points = Vec::new();
     let mut reference: Option<[Vec<f64>; 3]> = None;
     let mut stability = Map::new();

@@ -325,12 +325,10 @@ fn bench_sizes_writes_the_log_log_chart() {
         file.to_str().unwrap(),
     ]);
     // Sizes run ascending whatever the order given.
-    let dofs: Vec<u64> = v["points"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| p["dofs"].as_u64().unwrap())
-        .collect();
+    let points = v["points"].as_array().unwrap();
+    let per_point =
+        |key: &str| -> Vec<u64> { points.iter().map(|p| p[key].as_u64().unwrap()).collect() };
+    let dofs = per_point("dofs");
     assert_eq!(dofs, [90, 405, 1092]);
     for m in ["gr", "mt", "cb", "mc", "mc_complete"] {
         assert_eq!(
@@ -340,14 +338,12 @@ fn bench_sizes_writes_the_log_log_chart() {
         );
         assert!(v["growth_exponent"][m].as_f64().is_some(), "{m}");
     }
-    // The factor's fill grows with the mesh; frequencies: 20 per size.
-    let fill: Vec<u64> = v["points"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| p["factor_nnz"].as_u64().unwrap())
-        .collect();
+    // The factor's fill grows with the mesh; 20 fixed-interface frequencies per size.
+    let fill = per_point("factor_nnz");
     assert!(fill.windows(2).all(|w| w[1] > w[0]), "{fill:?}");
+    for p in points {
+        assert_eq!(p["fixed_interface_hz"].as_array().unwrap().len(), 20);
+    }
     let bytes = std::fs::read(&file).unwrap();
     assert!(bytes.starts_with(b"RRF"), "an .rrd file");
     // --save belongs to --sizes.

@@ -41,6 +41,21 @@ fn paths(h: &Harness<'static, Explorer>) -> Vec<String> {
     h.state().current.as_ref().unwrap().entity_paths.clone()
 }
 
+/// The worker's next finished request, polled until `limit_s` seconds after `start`.
+fn next_result(
+    w: &flexmodes::gui::Worker,
+    start: Instant,
+    limit_s: u64,
+) -> flexmodes::gui::Finished {
+    loop {
+        if let Some(f) = w.poll() {
+            return f;
+        }
+        assert!(start.elapsed() < Duration::from_secs(limit_s), "no result");
+        std::thread::sleep(Duration::from_millis(1));
+    }
+}
+
 #[test]
 fn toggling_a_method_and_changing_modes_recompute_the_recording() {
     let mut h = harness("beam-profiles");
@@ -115,13 +130,7 @@ fn a_newer_request_abandons_a_running_reduction_at_its_next_phase() {
     };
     let second = w.submit(2, "beam-modes", SceneOptions::default(), false);
     assert!(first.is_cancelled() && !second.is_cancelled());
-    let finished = loop {
-        if let Some(f) = w.poll() {
-            break f;
-        }
-        assert!(start.elapsed() < Duration::from_secs(300), "no result");
-        std::thread::sleep(Duration::from_millis(1));
-    };
+    let finished = next_result(&w, start, 300);
     assert_eq!(
         finished.generation, 2,
         "the abandoned request reports nothing"
@@ -220,13 +229,7 @@ fn a_newer_request_cancels_a_running_simulation() {
     }
     let second = w.submit(2, "beam-modes", SceneOptions::default(), false);
     assert!(first.is_cancelled() && !second.is_cancelled());
-    let finished = loop {
-        if let Some(f) = w.poll() {
-            break f;
-        }
-        assert!(start.elapsed() < Duration::from_secs(120), "no result");
-        std::thread::sleep(Duration::from_millis(1));
-    };
+    let finished = next_result(&w, start, 120);
     // The cancelled request reports nothing; the full-order run stopped short of its end.
     assert_eq!(finished.generation, 2);
     assert!(finished.result.is_ok());

@@ -49,9 +49,7 @@ pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<General
     }
     let sigma = negative_shift(&model.k, &model.m);
     let shifted = model.k.shifted(&model.m, sigma);
-    let coords: Vec<[f64; 3]> = (0..n)
-        .map(|d| model.nodes[d / model.dofs.per_node()])
-        .collect();
+    let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
     let order = nested_dissection(shifted.as_faer(), &coords);
     let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), Some(&order))?;
     let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;

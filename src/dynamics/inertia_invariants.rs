@@ -121,8 +121,12 @@ impl InertiaInvariants {
     /// $\bar J = \sum_j m_j \tilde b_j^T \tilde b_j = \mathrm{tr}(B) I - B$ with $B$ the second
     /// moment, kg m².
     pub fn inertia(&self, z: &DVector<f64>) -> Matrix3<f64> {
-        let b = self.second_moment(z, &self.h(z));
-        Matrix3::identity() * b.trace() - b
+        Self::inertia_from(&self.second_moment(z, &self.h(z)))
+    }
+
+    /// $\mathrm{tr}(B) I - B$: the inertia from a second moment $B$ of [`Self::second_moment`].
+    pub fn inertia_from(second_moment: &Matrix3<f64>) -> Matrix3<f64> {
+        Matrix3::identity() * second_moment.trace() - second_moment
     }
 
     /// $\sum_j m_j \tilde b_j \Psi_j$ (3 × k): the rotation–deformation coupling of the mass
@@ -156,23 +160,21 @@ impl InertiaInvariants {
     /// velocity $\bar\omega$ (body axes, rad/s), deformation $z$ and its rate $\dot z$, as
     /// $(\sum_j m_j\alpha_j,\ \sum_j m_j\, b_j\times\alpha_j,\ \sum_j m_j \Psi_j^T\alpha_j)$ with
     /// $\alpha_j = \bar\omega\times(\bar\omega\times b_j) + 2\bar\omega\times\Psi_j\dot z$
-    /// (body axes; the generalised forces subtract them).
+    /// (body axes; the generalised forces subtract them). `h` and `inertia` are those of the
+    /// same `z` ([`Self::h`], [`Self::inertia_from`]), which the mass matrix needs too.
     pub fn velocity_forces(
         &self,
         w: &Vector3<f64>,
         z: &DVector<f64>,
         zd: &DVector<f64>,
         h: &[Matrix3<f64>],
+        inertia: &Matrix3<f64>,
     ) -> (Vector3<f64>, Vector3<f64>, DVector<f64>) {
         let first = self.first_moment(z);
         let u_sum = &self.p_sum * zd;
         let translational = w.cross(&w.cross(&first)) + 2.0 * w.cross(&u_sum);
         // sum m b x (w x (w x b)) = w x (J w); sum m b x (w x u) = w tr(G) - G w with
         // G = sum m u b^T = sum_c zd_c H_c.
-        let inertia = {
-            let b = self.second_moment(z, h);
-            Matrix3::identity() * b.trace() - b
-        };
         let mut g = Matrix3::zeros();
         for (c, hc) in h.iter().enumerate() {
             g += hc * zd[c];

@@ -3,7 +3,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen, Vector3, Vector4};
 
 use super::{
-    Attachment, AxisType, Body, Constraint, FlexibleBody,
+    Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
     rotation::{l_matrix, rotate_body, rotation_matrix, skew},
 };
 use crate::{Error, Result};
@@ -309,10 +309,7 @@ impl System {
                     let at = f.a.transpose();
                     let h = inv.h(&f.z);
                     let first = inv.first_moment(&f.z);
-                    let j_bar = {
-                        let b = inv.second_moment(&f.z, &h);
-                        Matrix3::identity() * b.trace() - b
-                    };
+                    let j_bar = InertiaInvariants::inertia_from(&inv.second_moment(&f.z, &h));
                     let wz = inv.rotation_coupling(&h);
                     // Gravity acts on every node: sum m_j A^T g, its moment and modal force.
                     let g_local = at * self.gravity;
@@ -327,7 +324,7 @@ impl System {
                             q_z += fb.psi_nodes[n].transpose() * local;
                         }
                     }
-                    let (ar, aw, az) = inv.velocity_forces(&f.w, &f.z, &f.zd, &h);
+                    let (ar, aw, az) = inv.velocity_forces(&f.w, &f.z, &f.zd, &h, &j_bar);
                     let q_r = f.a * (q_r - ar);
                     q_w -= aw;
                     q_z -= az;
@@ -428,18 +425,17 @@ impl System {
             }
         } else {
             // Products of inertia J_xy, J_yz, J_zx = -sum m b_a b_b, held at their undeformed
-            // values: gradient -(H_c[a,b] + H_c[b,a]), quadratic term -2 sum m (Psi zd)_a (Psi zd)_b.
+            // values -S_ab: gradient -(H_c[a,b] + H_c[b,a]), quadratic term
+            // -2 sum m (Psi zd)_a (Psi zd)_b.
             let pairs = [(0, 1), (1, 2), (2, 0)];
-            let j0 = fb.inertia(&DVector::zeros(k));
-            let jz = Matrix3::identity() * inv.second_moment(&f.z, &h).trace()
-                - inv.second_moment(&f.z, &h);
+            let b_z = inv.second_moment(&f.z, &h);
             let udot = inv.modal_outer(&f.zd, &f.zd);
             for (i, &(a, b)) in pairs.iter().enumerate() {
                 for (c, hc) in h.iter().enumerate() {
                     out.c[(r + 3 + i, o + c)] = -(hc[(a, b)] + hc[(b, a)]);
                 }
                 out.gamma[r + 3 + i] = 2.0 * udot[(a, b)];
-                out.phi[r + 3 + i] = jz[(a, b)] - j0[(a, b)];
+                out.phi[r + 3 + i] = inv.s_outer[(a, b)] - b_z[(a, b)];
             }
         }
     }

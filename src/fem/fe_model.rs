@@ -40,11 +40,6 @@ impl Direction {
             Direction::Z => "z",
         }
     }
-
-    /// Direction from its index inside a node's DOF block.
-    pub fn from_index(i: usize) -> Direction {
-        Direction::ALL[i]
-    }
 }
 
 /// A body discretised by finite elements, its DOF laid out by a [`DofMap`] (node-major).
@@ -121,6 +116,11 @@ impl FeModel {
     pub fn dof_node(&self, dof: usize) -> (usize, NodeDof) {
         let (node, d) = self.dofs.locate(dof);
         (node + 1, d)
+    }
+
+    /// Position (m) of the node a DOF belongs to, for orderings that need coordinates.
+    pub fn dof_position(&self, dof: usize) -> [f64; 3] {
+        self.nodes[self.dofs.locate(dof).0]
     }
 
     /// `node 3 y` (or `node 3 θz`) style label of a DOF.

@@ -190,7 +190,10 @@ pub fn frame(
             .flat_map(|&node| (0..per).map(move |d| node * per + d))
             .collect();
         k.add_element(&element_dofs, ke.as_ref());
-        let (_, l) = local_axes(nodes[i], nodes[j], up)?;
+        let l = (0..3)
+            .map(|a| (nodes[j][a] - nodes[i][a]).powi(2))
+            .sum::<f64>()
+            .sqrt();
         let half = 0.5 * section.density * section.area * l;
         let rotary =
             half * l * l / 12.0 + 0.5 * section.density * (section.iy + section.iz) * l / 3.0;

@@ -5,6 +5,7 @@ use std::time::{Duration, Instant};
 use rerun::external::egui;
 
 use crate::{
+    fem::SlabParameters,
     report::{Report, Table},
     scenes,
 };
@@ -230,9 +231,11 @@ impl Explorer {
             });
         }
         if info.controls.refine.is_some() {
-            let dofs = |b: &[usize]| 3 * b.iter().map(|n| n + 1).product::<usize>();
             let label = |b: &[usize]| match b {
-                [x, y, z] => format!("{x}×{y}×{z} ({} DOF)", dofs(b)),
+                &[x, y, z] => match SlabParameters::refined([x, y, z]) {
+                    Ok(p) => format!("{x}×{y}×{z} ({} DOF)", p.dof_count()),
+                    Err(_) => format!("{x}×{y}×{z}"),
+                },
                 _ => "default".into(),
             };
             let mut mesh = self.controls.refine.clone();

@@ -224,7 +224,7 @@ impl<'a> InteriorProblem<'a> {
                     .partition
                     .i
                     .iter()
-                    .map(|&d| self.model.nodes[d / self.model.dofs.per_node()])
+                    .map(|&d| self.model.dof_position(d))
                     .collect();
                 let order = nested_dissection(a.as_faer(), &coords);
                 let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), Some(&order))?;

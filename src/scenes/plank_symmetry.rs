@@ -204,7 +204,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut table = Table::new(&[
         "method",
         "axes",
-        "max defect before 0.45 s, m",
+        &format!("max defect before {SNAP_TIME} s, m"),
         "max defect, m",
         "max energy drift, J",
         "max Φ violation",

@@ -408,7 +408,7 @@ fn dormand_prince_stability_polynomial() {
     for (k, (a, b)) in c.iter().zip(expected).enumerate() {
         assert!((a - b).abs() < 1e-15, "c_{k} = {a}, expected {b}");
     }
-    let y = flexmodes::bench::dormand_prince_imaginary_limit();
+    let y = flexmodes::dynamics::imaginary_stability_limit();
     assert!(y > 0.9 && y < 1.05, "{y}");
 }
 

@@ -74,7 +74,7 @@ fn inertia_invariants_equal_node_by_node_sums() {
         );
         close((&inv.p_sum - &p_sum).amax(), "p_sum");
         close((inv.modal_outer(&zd, &zd) - uu).amax(), "modal outer");
-        let (gr, gw, gz) = inv.velocity_forces(&w, &z, &zd, &h);
+        let (gr, gw, gz) = inv.velocity_forces(&w, &z, &zd, &h, &inv.inertia(&z));
         close((gr - ar).amax(), "translational velocity forces");
         close((gw - aw).amax(), "rotational velocity forces");
         assert_eq!(gz.len(), az.len());

@@ -7,8 +7,8 @@ use flexmodes::{
     analysis::{elastic_hz, free_free_modes, lowest_free_free_modes},
     fem::{HEX8_LOCAL_NODES, SlabParameters, Triplets, hex8_stiffness, slab},
     linalg::{
-        MassMatrix, PartialEigenParameters, SymbolicFactor, SymmetricFactor, generalized_eigen,
-        lowest_modes, principal_angles,
+        MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor, SymmetricFactor,
+        generalized_eigen, lowest_modes, principal_angles,
     },
     reduction::{
         InteriorProblem, Method, ModeCondensationRoute, ModeSelection, ReductionParameters,
@@ -104,8 +104,8 @@ fn partial_eigensolver_matches_the_dense_solver_with_small_residuals() {
     }
 }
 
-#[test]
-fn partial_eigensolver_reports_how_far_it_got() {
+/// K_ii, M_ii and the sparse factor of K_ii of the 6 × 3 × 2 slab held at its bottom corners.
+fn interior_of_6_3_2() -> (SparseSymmetric, MassMatrix, SymmetricFactor) {
     let p = SlabParameters::refined([6, 3, 2]).unwrap();
     let model = slab(&p);
     let corners = p.bottom_corners();
@@ -115,6 +115,12 @@ fn partial_eigensolver_reports_how_far_it_got() {
     let m_ii: MassMatrix = model.m.principal_block(&part.i);
     let symbolic = SymbolicFactor::analyse(k_ii.as_faer()).unwrap();
     let factor = SymmetricFactor::sparse(k_ii.as_faer(), &symbolic, "K_ii").unwrap();
+    (k_ii, m_ii, factor)
+}
+
+#[test]
+fn partial_eigensolver_reports_how_far_it_got() {
+    let (k_ii, m_ii, factor) = interior_of_6_3_2();
     // No restart allowed and an unreachable tolerance: a named error with the counts.
     let params = PartialEigenParameters {
         max_restarts: 0,
@@ -137,15 +143,7 @@ fn partial_eigensolver_reports_how_far_it_got() {
 
 #[test]
 fn a_loose_ritz_tolerance_is_tightened_until_the_residuals_pass() {
-    let p = SlabParameters::refined([6, 3, 2]).unwrap();
-    let model = slab(&p);
-    let corners = p.bottom_corners();
-    let problem = InteriorProblem::new(&model, &corners, SolverPath::Sparse).unwrap();
-    let part = &problem.partition;
-    let k_ii = model.k.principal_block(&part.i);
-    let m_ii: MassMatrix = model.m.principal_block(&part.i);
-    let symbolic = SymbolicFactor::analyse(k_ii.as_faer()).unwrap();
-    let factor = SymmetricFactor::sparse(k_ii.as_faer(), &symbolic, "K_ii").unwrap();
+    let (k_ii, m_ii, factor) = interior_of_6_3_2();
     let loose = PartialEigenParameters {
         ritz_tolerance: 1e-4,
         residual_tolerance: 1e-10,
