@@ -11,8 +11,10 @@
 //! - [`record`]: the one Rerun recorder used by the CLI (and later the GUI).
 
 pub mod analysis;
+pub mod assets;
 pub mod bench;
 pub mod bench_sizes;
+pub mod body_file;
 pub mod cli;
 pub mod dynamics;
 mod error;

@@ -2,7 +2,7 @@
 
 use crate::{
     Error, Result,
-    fem::FeModel,
+    fem::{FeModel, RigidMotions},
     linalg::{
         GeneralizedEigen, PartialEigenParameters, SymbolicFactor, SymmetricFactor,
         generalized_eigen, lowest_modes, negative_shift, nested_dissection,
@@ -51,7 +51,7 @@ pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<General
     let shifted = model.k.shifted(&model.m, sigma);
     let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
     let order = nested_dissection(shifted.as_faer(), &coords);
-    let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), Some(&order))?;
+    let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
     let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
     let (eig, _) = lowest_modes(
         &model.k,
@@ -59,7 +59,10 @@ pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<General
         &factor,
         sigma,
         wanted,
-        Some(model.rigid_body_modes().as_ref()),
+        (model.rigid_motions == RigidMotions::FromGeometry)
+            .then(|| model.rigid_body_modes())
+            .as_ref()
+            .map(|r| r.as_ref()),
         &PartialEigenParameters::default(),
     )?;
     Ok(eig)
@@ -84,4 +87,72 @@ pub fn reduced_modes(model: &FeModel, basis: &Basis) -> Result<GeneralizedEigen>
 /// Elastic free-free frequencies of a reduced model, Hz, ascending.
 pub fn reduced_hz(model: &FeModel, basis: &Basis) -> Result<Vec<f64>> {
     Ok(elastic_hz(&reduced_modes(model, basis)?))
+}
+
+/// The lowest modes of a body about which nothing is assumed (an imported one: free, or
+/// restrained before export, or a mechanism), and how many of them have zero energy.
+#[derive(Debug, Clone)]
+pub struct ZeroEnergyCount {
+    /// The lowest eigenpairs, zero-energy ones first.
+    pub modes: GeneralizedEigen,
+    /// Modes below [`Self::threshold_hz`]: rigid-body motions and mechanisms.
+    pub zero_modes: usize,
+    /// Frequency below which a mode counts as zero-energy, Hz: the larger of
+    /// [`RIGID_BODY_HZ`] and $10^{-5}$ of the body's highest diagonal frequency
+    /// $\max_i \sqrt{K_{ii}/M_{ii}}/2\pi$ (round-off lifts a rigid mode to about
+    /// $\sqrt{\varepsilon}$ of it).
+    pub threshold_hz: f64,
+}
+
+impl ZeroEnergyCount {
+    /// Elastic frequencies, Hz: the modes after the zero-energy ones.
+    pub fn elastic_hz(&self) -> Vec<f64> {
+        self.modes.hz()[self.zero_modes..].to_vec()
+    }
+}
+
+/// The `rigid + 1 + elastic` lowest modes of $(K, M)$ without handing the solver any rigid
+/// motion (`rigid` = the DOF map's rigid-body count), and the number of zero-energy ones. The
+/// complete dense eigenproblem for small bodies; above [`DENSE_INTERIOR_LIMIT`] DOF
+/// shift-invert Lanczos on $K - \sigma M$ with a small negative shift.
+pub fn count_zero_energy_modes(model: &FeModel, elastic: usize) -> Result<ZeroEnergyCount> {
+    let n = model.dof_count();
+    let rigid = model.dofs.rigid_body_count();
+    let wanted = (rigid + 1 + elastic).min(n);
+    let modes = if n <= DENSE_INTERIOR_LIMIT {
+        let all = free_free_modes(model)?;
+        GeneralizedEigen {
+            values: all.values[..wanted].to_vec(),
+            vectors: all.vectors.subcols(0, wanted).to_owned(),
+        }
+    } else {
+        let sigma = negative_shift(&model.k, &model.m);
+        let shifted = model.k.shifted(&model.m, sigma);
+        let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
+        let order = nested_dissection(shifted.as_faer(), &coords);
+        let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
+        let factor =
+            SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
+        lowest_modes(
+            &model.k,
+            &model.m,
+            &factor,
+            sigma,
+            wanted,
+            None,
+            &PartialEigenParameters::default(),
+        )?
+        .0
+    };
+    let top = (0..n)
+        .map(|j| model.k.get(j, j) / model.m.get(j, j))
+        .filter(|r| r.is_finite())
+        .fold(0.0f64, f64::max);
+    let threshold_hz = RIGID_BODY_HZ.max(1e-5 * top.sqrt() / (2.0 * std::f64::consts::PI));
+    let zero_modes = modes.hz().iter().filter(|&&f| f < threshold_hz).count();
+    Ok(ZeroEnergyCount {
+        modes,
+        zero_modes,
+        threshold_hz,
+    })
 }

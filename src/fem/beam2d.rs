@@ -2,11 +2,12 @@
 
 use faer::{Mat, Side, prelude::Solve};
 
-use super::{DofMap, FeModel, Triplets};
+use super::{DofMap, FeModel, RigidMotions, Triplets};
 use crate::linalg::{MassMatrix, SparseSymmetric, select};
 
 /// Parameters of the App. A beam. Defaults are the thesis values.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct BeamParameters {
     /// Length, m.
     pub length: f64,
@@ -24,15 +25,9 @@ pub struct BeamParameters {
 }
 
 impl Default for BeamParameters {
+    /// The App. A values, read from the embedded `assets/thesis/beam-app-a.toml`.
     fn default() -> Self {
-        Self {
-            length: 1.0,
-            area: 0.005,
-            second_moment: 1.0417e-6,
-            youngs_modulus: 30e5,
-            elements: 4,
-            total_mass: 0.8,
-        }
+        crate::assets::parameters("thesis/beam-app-a.toml")
     }
 }
 
@@ -100,5 +95,6 @@ pub fn beam(p: &BeamParameters) -> FeModel {
         // The condensed stiffness couples every translation (a dense 2nn × 2nn block).
         k: SparseSymmetric::from_dense(k.as_ref()),
         m: MassMatrix::Lumped(m),
+        rigid_motions: RigidMotions::FromGeometry,
     }
 }

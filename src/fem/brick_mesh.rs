@@ -4,7 +4,7 @@ use std::collections::BTreeSet;
 
 use faer::Mat;
 
-use super::{DofMap, FeModel, hex8_consistent_mass, hex8_stiffness};
+use super::{DofMap, FeModel, RigidMotions, hex8_consistent_mass, hex8_stiffness};
 use crate::{
     Error, Result,
     linalg::{MassMatrix, SparseAssembly, SparsityPattern},
@@ -34,14 +34,27 @@ pub struct SlabParameters {
     pub consistent_mass: bool,
 }
 
+/// The App. B slab as stored in `assets/thesis/slab-app-b.toml`.
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SlabAsset {
+    size: [f64; 3],
+    bricks: [usize; 3],
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    total_mass: f64,
+}
+
 impl Default for SlabParameters {
+    /// The App. B values, read from the embedded `assets/thesis/slab-app-b.toml`; lumped mass.
     fn default() -> Self {
+        let a: SlabAsset = crate::assets::parameters("thesis/slab-app-b.toml");
         Self {
-            size: [4.0, 2.0, 1.0],
-            bricks: [4, 2, 1],
-            youngs_modulus: 0.2e6,
-            poisson_ratio: 0.33,
-            total_mass: 62.4,
+            size: a.size,
+            bricks: a.bricks,
+            youngs_modulus: a.youngs_modulus,
+            poisson_ratio: a.poisson_ratio,
+            total_mass: a.total_mass,
             consistent_mass: false,
         }
     }
@@ -261,6 +274,7 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
         edges: edges.into_iter().collect(),
         k,
         m,
+        rigid_motions: RigidMotions::FromGeometry,
     }
 }
 

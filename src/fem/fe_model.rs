@@ -58,6 +58,20 @@ pub struct FeModel {
     pub k: SparseSymmetric,
     /// Mass matrix, kg: a diagonal when lumped.
     pub m: MassMatrix,
+    /// What is known of the body's zero-energy motions.
+    pub rigid_motions: RigidMotions,
+}
+
+/// What is known of a body's zero-energy motions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RigidMotions {
+    /// A free body: its rigid-body motions follow from the node coordinates
+    /// ([`FeModel::rigid_body_modes`]) and are K's null space. Every built-in body.
+    FromGeometry,
+    /// Not assumed (an imported body restrained before export, or without coordinates):
+    /// whether a boundary restrains it is decided by factorising $K_{ii}$, and free-free
+    /// modes are computed without handing the solver any rigid motion.
+    Unknown,
 }
 
 impl FeModel {

@@ -5,7 +5,7 @@
 
 use faer::Mat;
 
-use super::{DofMap, FeModel};
+use super::{DofMap, FeModel, RigidMotions};
 use crate::{
     Error, Result,
     linalg::{MassMatrix, SparseAssembly, SparsityPattern},
@@ -211,5 +211,6 @@ pub fn frame(
         edges: elements.iter().map(|(e, _)| *e).collect(),
         k: k.finish(),
         m: MassMatrix::Lumped(m),
+        rigid_motions: RigidMotions::FromGeometry,
     })
 }

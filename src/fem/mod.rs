@@ -7,12 +7,14 @@ mod dof_map;
 mod fe_model;
 mod frame3d;
 mod hex8;
+mod l_bracket;
 mod triplets;
 
 pub use beam2d::{BeamParameters, beam};
 pub use brick_mesh::{SlabParameters, plank, slab};
 pub use dof_map::{DofMap, NodeDof};
-pub use fe_model::{Direction, FeModel};
+pub use fe_model::{Direction, FeModel, RigidMotions};
 pub use frame3d::{FrameSection, frame, frame_stiffness};
 pub use hex8::{LOCAL_NODES as HEX8_LOCAL_NODES, hex8_consistent_mass, hex8_stiffness};
+pub use l_bracket::{LBracketParameters, l_bracket};
 pub use triplets::Triplets;

@@ -10,14 +10,20 @@ const LEAF: usize = 64;
 
 /// The elimination order (new position → old index) of `a`'s unknowns, given each unknown's
 /// position `coords` (m). Unknowns with the same position (the DOF of one node) stay together.
-pub fn nested_dissection(a: &SparseColMat<usize, f64>, coords: &[[f64; 3]]) -> Vec<usize> {
+///
+/// `None` when every unknown has the same position (an imported body without node
+/// coordinates): there is nothing to cut by, and the caller falls back to AMD.
+pub fn nested_dissection(a: &SparseColMat<usize, f64>, coords: &[[f64; 3]]) -> Option<Vec<usize>> {
     let n = a.nrows();
     assert_eq!(coords.len(), n);
+    if coords.windows(2).all(|w| w[0] == w[1]) {
+        return None;
+    }
     let mut order = Vec::with_capacity(n);
     let mut side = vec![0u8; n];
     dissect((0..n).collect(), a, coords, &mut side, &mut order, 0);
     debug_assert_eq!(order.len(), n);
-    order
+    Some(order)
 }
 
 fn dissect(

@@ -8,7 +8,7 @@ use faer::{Mat, MatRef};
 use super::{ModeSelection, SolverPath};
 use crate::{
     Error, Progress, Result,
-    fem::FeModel,
+    fem::{FeModel, RigidMotions},
     linalg::{
         GeneralizedEigen, MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor,
         SymmetricFactor, generalized_eigen, lowest_modes, negative_shift, nested_dissection,
@@ -184,7 +184,12 @@ impl<'a> InteriorProblem<'a> {
     /// Whether the boundary restrains every rigid-body motion, i.e. $K_{ii}$ is invertible;
     /// otherwise [`Error::SingularInterior`] naming the free motions. Decided from the rigid
     /// motions restricted to the boundary DOF (rank of a b × 6 matrix), no eigenproblem.
+    /// A body whose rigid motions are [`RigidMotions::Unknown`] passes; its factorisation
+    /// decides.
     pub fn check_restraint(&mut self) -> Result<()> {
+        if self.model.rigid_motions == RigidMotions::Unknown {
+            return Ok(());
+        }
         if self.free_motions.is_none() {
             self.free_motions = Some(free_rigid_motions(self.model, &self.partition)?);
         }
@@ -227,7 +232,7 @@ impl<'a> InteriorProblem<'a> {
                     .map(|&d| self.model.dof_position(d))
                     .collect();
                 let order = nested_dissection(a.as_faer(), &coords);
-                let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), Some(&order))?;
+                let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), order.as_deref())?;
                 SymmetricFactor::sparse(a.as_faer(), &symbolic, "interior stiffness K_ii")?
             } else {
                 SymmetricFactor::dense(a.to_dense().as_ref(), "interior stiffness K_ii")?

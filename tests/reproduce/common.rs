@@ -8,6 +8,17 @@ pub fn data_rows(name: &str) -> Vec<Vec<f64>> {
         .join("tests/data")
         .join(name);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path:?}: {e}"));
+    rows_of(&text, name)
+}
+
+/// Rows of numbers of the embedded asset `assets/<path>` (the thesis' printed tables the
+/// built-in bodies must match), skipping `#` comments.
+pub fn asset_rows(path: &str) -> Vec<Vec<f64>> {
+    let text = flexmodes::assets::text(path).unwrap_or_else(|| panic!("asset {path} missing"));
+    rows_of(text, path)
+}
+
+fn rows_of(text: &str, name: &str) -> Vec<Vec<f64>> {
     text.lines()
         .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
         .map(|l| {

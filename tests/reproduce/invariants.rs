@@ -96,6 +96,7 @@ fn distorted_brick_keeps_rigid_modes_and_scales_with_size() {
             edges: vec![],
             k: SparseSymmetric::from_dense(k.as_ref()),
             m: MassMatrix::Lumped(vec![1.0; 24]),
+            rigid_motions: flexmodes::fem::RigidMotions::FromGeometry,
         };
         let r = model.rigid_body_modes();
         let rel = max_abs((&k * &r).as_ref()) / max_abs(k.as_ref());

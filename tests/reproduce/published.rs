@@ -13,12 +13,12 @@ use flexmodes::{
     },
 };
 
-use crate::common::{Printed, assert_printed, data_rows, published};
+use crate::common::{Printed, assert_printed, asset_rows, data_rows, published};
 
 #[test]
 fn beam_stiffness_matches_the_printed_app_a_table() {
     let model = beam(&BeamParameters::default());
-    let printed = data_rows("beam_stiffness_app_a.txt");
+    let printed = asset_rows("thesis/beam-stiffness-app-a.txt");
     assert_eq!(printed.len(), 10);
     for (i, row) in printed.iter().enumerate() {
         for (j, &p) in row.iter().enumerate() {
@@ -177,7 +177,7 @@ fn eitelberg_restored_minv_k_and_frequencies() {
 #[test]
 fn slab_matches_table_b1() {
     let model = slab(&SlabParameters::default());
-    let rows = data_rows("slab_table_b1.txt");
+    let rows = asset_rows("thesis/slab-table-b1.txt");
     assert_eq!(model.node_count(), 30);
     assert_eq!(rows.len(), 30);
     for row in rows {

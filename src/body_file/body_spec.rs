@@ -1,0 +1,135 @@
+//! The body file: a TOML document naming a body's stiffness and mass (Matrix Market files),
+//! its DOF map, node coordinates, wireframe and named node sets.
+//!
+//! ```toml
+//! name = "app-b-slab"
+//! description = "Lin (2005) App. B: 4 x 2 x 1 m slab, 12 bricks, lumped mass"
+//! dofs = ["x", "y", "z"]        # the DOF of every node, in block order (x y z rx ry rz)
+//! dof_order = "node-major"      # or "dof-major": all first DOF, then all second DOF, ...
+//!
+//! [units]                       # informational; frequencies are in Hz if they are coherent
+//! length = "m"
+//! mass = "kg"
+//! force = "N"
+//!
+//! [matrices]
+//! stiffness = "k.mtx"           # Matrix Market, coordinate or array, .gz allowed
+//! mass = "m.mtx"                # a square matrix, or an n x 1 vector for a lumped mass
+//!
+//! [geometry]
+//! nodes = "nodes.csv"           # x,y,z per node (or inline [[x, y, z], ...])
+//! edges = [[1, 2], [2, 3]]      # optional wireframe, 1-based node pairs (or a CSV file)
+//!
+//! [node_sets]                   # 1-based node numbers
+//! interface = [16, 18, 28, 30]
+//! sensors = [8]
+//! ```
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+
+/// The whole body file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Body name, used in entity paths (lower case, no spaces recommended).
+    pub name: String,
+    /// One line shown by `flexmodes import`.
+    #[serde(default)]
+    pub description: String,
+    /// The DOF of every node in block order: `x`, `y`, `z`, `rx`, `ry`, `rz`.
+    pub dofs: Vec<String>,
+    /// `node-major` (default) or `dof-major`.
+    #[serde(default)]
+    pub dof_order: DofOrder,
+    /// Units the matrices are written in.
+    #[serde(default)]
+    pub units: Units,
+    /// The stiffness and mass files.
+    pub matrices: MatrixFiles,
+    /// Node coordinates and wireframe.
+    #[serde(default)]
+    pub geometry: GeometrySpec,
+    /// Named node sets (interfaces, sensors), 1-based node numbers.
+    #[serde(default)]
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+}
+
+/// Order of the DOF in the matrices.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DofOrder {
+    /// All DOF of node 1, then node 2, ... (what most FE codes export).
+    #[default]
+    NodeMajor,
+    /// The first DOF of every node, then the second DOF of every node, ...
+    DofMajor,
+}
+
+/// Units of the body's numbers (informational: shown, not converted).
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Units {
+    /// Length unit of the coordinates and translations.
+    #[serde(default = "metre")]
+    pub length: String,
+    /// Mass unit.
+    #[serde(default = "kilogram")]
+    pub mass: String,
+    /// Force unit.
+    #[serde(default = "newton")]
+    pub force: String,
+}
+
+fn metre() -> String {
+    "m".into()
+}
+fn kilogram() -> String {
+    "kg".into()
+}
+fn newton() -> String {
+    "N".into()
+}
+
+impl Default for Units {
+    fn default() -> Self {
+        Self {
+            length: metre(),
+            mass: kilogram(),
+            force: newton(),
+        }
+    }
+}
+
+/// The matrix files, relative to the body file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MatrixFiles {
+    /// Stiffness K.
+    pub stiffness: String,
+    /// Mass M: square, or a vector (n × 1 or 1 × n) of a lumped mass.
+    pub mass: String,
+}
+
+/// Node coordinates and wireframe, each inline or as a CSV file.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GeometrySpec {
+    /// Node coordinates: a CSV file (x,y[,z] per line, optionally a leading node number) or
+    /// inline `[[x, y, z], ...]`.
+    pub nodes: Option<TableOrFile<f64>>,
+    /// Wireframe edges as 1-based node pairs, or faces as 1-based node cycles: a CSV file or
+    /// inline lists.
+    pub edges: Option<TableOrFile<usize>>,
+}
+
+/// Rows of numbers given inline or as a CSV file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum TableOrFile<T> {
+    /// A file name relative to the body file.
+    File(String),
+    /// Inline rows.
+    Inline(Vec<Vec<T>>),
+}

@@ -1,0 +1,164 @@
+//! Writes a body in the body-file format (how the examples in `assets/bodies/` were made).
+
+use std::{collections::BTreeMap, fmt::Write as _, io::Write, path::Path};
+
+use crate::{Error, Result, fem::FeModel, linalg::MassMatrix};
+
+use super::matrix_market::{write_atomically, write_coordinate_symmetric_to};
+
+/// The files of a body, by name, as bytes (what [`write_body`] puts in the folder).
+pub type BodyFiles = BTreeMap<String, Vec<u8>>;
+
+/// The body file and its data files for `model`: `body.toml`, `k.mtx` and `m.mtx` (a vector when
+/// M is lumped; both `.mtx.gz` when `compress`), `nodes.csv`, `edges.csv`. Values are
+/// written in Rust's shortest round-trip form, so an import reproduces `model` exactly.
+pub fn write_body(
+    model: &FeModel,
+    node_sets: &BTreeMap<String, Vec<usize>>,
+    description: &str,
+    compress: bool,
+) -> Result<BodyFiles> {
+    let mut files = BodyFiles::new();
+    let n = model.dof_count();
+    let lower = |a: &crate::linalg::SparseSymmetric| {
+        let f = a.as_faer();
+        let mut out = Vec::with_capacity(a.nnz() / 2 + n);
+        for j in 0..n {
+            let rows = f.symbolic().row_idx_of_col_raw(j);
+            for (&i, &v) in rows.iter().zip(f.val_of_col(j)) {
+                if i >= j && v != 0.0 {
+                    out.push((i, j, v));
+                }
+            }
+        }
+        out
+    };
+    let io = |source| Error::Io {
+        path: "(memory)".into(),
+        source,
+    };
+    let mut k = Vec::new();
+    write_coordinate_symmetric_to(
+        &mut k,
+        n,
+        &lower(&model.k),
+        &format!("stiffness of {} ({description}), N/m", model.name),
+    )
+    .map_err(io)?;
+    let mut store = |name: &str, bytes: Vec<u8>| -> Result<String> {
+        if compress {
+            let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+            gz.write_all(&bytes).map_err(io)?;
+            files.insert(format!("{name}.gz"), gz.finish().map_err(io)?);
+            Ok(format!("{name}.gz"))
+        } else {
+            files.insert(name.into(), bytes);
+            Ok(name.into())
+        }
+    };
+    let k_name = store("k.mtx", k)?;
+    let mut m = Vec::new();
+    match &model.m {
+        MassMatrix::Lumped(d) => {
+            writeln!(m, "%%MatrixMarket matrix array real general").map_err(io)?;
+            writeln!(m, "% lumped mass of {}, kg, one entry per DOF", model.name).map_err(io)?;
+            writeln!(m, "{n} 1").map_err(io)?;
+            for v in d {
+                writeln!(m, "{v:e}").map_err(io)?;
+            }
+        }
+        MassMatrix::Consistent(a) => {
+            write_coordinate_symmetric_to(
+                &mut m,
+                n,
+                &lower(a),
+                &format!("consistent mass of {}, kg", model.name),
+            )
+            .map_err(io)?;
+        }
+    }
+    let m_name = store("m.mtx", m)?;
+    let mut nodes = String::from("x,y,z\n");
+    for p in &model.nodes {
+        let _ = writeln!(nodes, "{:e},{:e},{:e}", p[0], p[1], p[2]);
+    }
+    files.insert("nodes.csv".into(), nodes.into_bytes());
+    let mut edges = String::from("node_a,node_b\n");
+    for e in &model.edges {
+        let _ = writeln!(edges, "{},{}", e[0] + 1, e[1] + 1);
+    }
+    files.insert("edges.csv".into(), edges.into_bytes());
+
+    let dofs: Vec<String> = model
+        .dofs
+        .node_dofs()
+        .iter()
+        .map(|d| format!("\"{}\"", d.name().replace('θ', "r")))
+        .collect();
+    let mut toml = format!(
+        "# flexmodes body file (see the README, \"Bring your own body\")\n\
+         name = \"{}\"\n\
+         description = \"{}\"\n\
+         dofs = [{}]\n\
+         dof_order = \"node-major\"\n\n\
+         [units]\nlength = \"m\"\nmass = \"kg\"\nforce = \"N\"\n\n\
+         [matrices]\nstiffness = \"{k_name}\"\nmass = \"{m_name}\"\n\n\
+         [geometry]\nnodes = \"nodes.csv\"\nedges = \"edges.csv\"\n\n\
+         [node_sets]\n",
+        model.name,
+        description.replace('"', "'"),
+        dofs.join(", "),
+    );
+    for (set, members) in node_sets {
+        let list: Vec<String> = members.iter().map(|m| m.to_string()).collect();
+        let _ = writeln!(toml, "{set} = [{}]", list.join(", "));
+    }
+    files.insert("body.toml".into(), toml.into_bytes());
+    Ok(files)
+}
+
+/// Writes `files` into the folder `dir` (created if missing), each file atomically.
+pub fn write_files(dir: &Path, files: &BodyFiles) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+        path: dir.display().to_string(),
+        source,
+    })?;
+    for (name, bytes) in files {
+        write_atomically(&dir.join(name), |w| w.write_all(bytes))?;
+    }
+    Ok(())
+}
+
+/// The example bodies of `assets/bodies/`, as [`write_body`] makes them: the App. B slab
+/// (`app-b-slab`) and the L-bracket (`l-bracket`, stiffness gzip-compressed).
+pub fn example_bodies() -> Result<Vec<(&'static str, BodyFiles)>> {
+    let slab = crate::fem::slab(&crate::fem::SlabParameters::default());
+    let slab_sets = BTreeMap::from([
+        ("bottom_corners".to_string(), vec![16, 18, 28, 30]),
+        ("guyan_extra".to_string(), vec![5, 11]),
+        ("top_centre".to_string(), vec![8]),
+    ]);
+    let (bracket, bracket_sets) = crate::fem::l_bracket(&crate::fem::LBracketParameters::default());
+    Ok(vec![
+        (
+            "app-b-slab",
+            write_body(
+                &slab,
+                &slab_sets,
+                "Lin (2005) App. B slab: 4 x 2 x 1 m, 8 trilinear bricks, E = 0.2e6 Pa, nu = 0.33, \
+                 62.4 kg lumped",
+                false,
+            )?,
+        ),
+        (
+            "l-bracket",
+            write_body(
+                &bracket,
+                &bracket_sets,
+                "steel L-bracket, 60 x 30 x 10 mm base with a 10 x 10 mm bolt hole, 50 mm \
+                 upright, 5 mm trilinear bricks, consistent mass",
+                true,
+            )?,
+        ),
+    ])
+}

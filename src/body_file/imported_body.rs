@@ -1,0 +1,593 @@
+//! A body read from a body file: its [`FeModel`], named node sets and units, checked.
+
+use std::{
+    collections::BTreeMap,
+    path::{Path, PathBuf},
+    sync::Arc,
+};
+
+use super::{BodySpec, DofOrder, MatrixMarket, TableOrFile, Units, parse_matrix_market};
+use crate::{
+    Error, Result,
+    fem::{Direction, DofMap, FeModel, NodeDof, RigidMotions},
+    linalg::{MassMatrix, SparseSymmetric, SymbolicFactor, SymmetricFactor},
+};
+
+/// Largest accepted $|a_{ij} - a_{ji}|$ relative to the largest entry of K or M: exporters
+/// that print 7 significant digits stay below it, a wrong matrix does not.
+pub const SYMMETRY_TOLERANCE: f64 = 1e-6;
+
+/// Where a body file and the files it names are read from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum BodyLocation {
+    /// A body file on disk; the files it names are relative to its folder.
+    Disk(PathBuf),
+    /// A body embedded in the binary (`builtin:NAME`, from `assets/bodies/NAME/`).
+    Builtin(String),
+}
+
+impl BodyLocation {
+    /// `builtin:NAME` for an embedded body, a path otherwise.
+    pub fn parse(s: &str) -> Self {
+        match s.strip_prefix("builtin:") {
+            Some(name) => Self::Builtin(name.to_string()),
+            None => Self::Disk(PathBuf::from(s)),
+        }
+    }
+
+    /// The body file itself, as shown in messages.
+    pub fn display(&self) -> String {
+        match self {
+            Self::Disk(p) => p.display().to_string(),
+            Self::Builtin(name) => format!("builtin:{name}"),
+        }
+    }
+
+    /// Reads the body file (`None`) or a file it names, relative to it; returns the bytes and
+    /// the name used in error messages.
+    fn read(&self, relative: Option<&str>) -> Result<(Vec<u8>, String)> {
+        match self {
+            Self::Disk(body) => {
+                let path = match relative {
+                    None => body.clone(),
+                    Some(r) => body.parent().unwrap_or(Path::new(".")).join(r),
+                };
+                let bytes = std::fs::read(&path).map_err(|source| Error::Io {
+                    path: path.display().to_string(),
+                    source,
+                })?;
+                Ok((bytes, path.display().to_string()))
+            }
+            Self::Builtin(name) => {
+                let file = relative.unwrap_or("body.toml");
+                let asset = format!("bodies/{name}/{file}");
+                let bytes = crate::assets::get(&asset).ok_or_else(|| Error::BodyFile {
+                    path: format!("builtin:{name}"),
+                    line: None,
+                    reason: format!(
+                        "no embedded file `{asset}` (built-in bodies: {})",
+                        crate::assets::builtin_bodies().join(", ")
+                    ),
+                })?;
+                Ok((bytes.to_vec(), format!("assets/{asset}")))
+            }
+        }
+    }
+}
+
+/// A body from a body file: the model every reduction takes, plus what the file names.
+#[derive(Debug, Clone)]
+pub struct ImportedBody {
+    /// The body (node-major DOF, sparse K, lumped or consistent M). Without coordinates its
+    /// nodes all sit at the origin and [`Self::has_coordinates`] is false.
+    pub model: FeModel,
+    /// Named node sets, 1-based node numbers.
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+    /// Whether the file gave node coordinates (drawing and rigid-body motions need them).
+    pub has_coordinates: bool,
+    /// Units of the numbers.
+    pub units: Units,
+    /// The description line of the file.
+    pub description: String,
+    /// Where it came from.
+    pub location: BodyLocation,
+}
+
+/// A shared imported body, compared by identity (scene options carry it).
+#[derive(Debug, Clone)]
+pub struct BodyHandle(pub Arc<ImportedBody>);
+
+impl PartialEq for BodyHandle {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl std::ops::Deref for BodyHandle {
+    type Target = ImportedBody;
+    fn deref(&self) -> &ImportedBody {
+        &self.0
+    }
+}
+
+fn node_dof(name: &str) -> Option<NodeDof> {
+    Some(match name.to_ascii_lowercase().as_str() {
+        "x" | "ux" => NodeDof::Translation(Direction::X),
+        "y" | "uy" => NodeDof::Translation(Direction::Y),
+        "z" | "uz" => NodeDof::Translation(Direction::Z),
+        "rx" | "θx" => NodeDof::Rotation(Direction::X),
+        "ry" | "θy" => NodeDof::Rotation(Direction::Y),
+        "rz" | "θz" => NodeDof::Rotation(Direction::Z),
+        _ => return None,
+    })
+}
+
+/// 1-based line of a byte offset.
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
+}
+
+impl ImportedBody {
+    /// Reads and checks a body file: `builtin:NAME` or a path.
+    pub fn load(location: &str) -> Result<Self> {
+        Self::load_from(BodyLocation::parse(location))
+    }
+
+    /// Reads and checks the body file at `location`.
+    pub fn load_from(location: BodyLocation) -> Result<Self> {
+        let (bytes, name) = location.read(None)?;
+        let body_error = |line: Option<usize>, reason: String| Error::BodyFile {
+            path: name.clone(),
+            line,
+            reason,
+        };
+        let text = String::from_utf8(bytes)
+            .map_err(|e| body_error(None, format!("not UTF-8 text: {e}")))?;
+        let spec: BodySpec = toml::from_str(&text).map_err(|e| {
+            let line = e.span().map(|s| line_of(&text, s.start));
+            body_error(line, e.message().trim().to_string())
+        })?;
+        let key_line = |key: &str| {
+            text.lines()
+                .position(|l| l.trim_start().starts_with(key))
+                .map(|k| k + 1)
+        };
+
+        // DOF map.
+        if spec.dofs.is_empty() {
+            return Err(body_error(key_line("dofs"), "`dofs` lists no DOF".into()));
+        }
+        let mut per_node = Vec::new();
+        for d in &spec.dofs {
+            let dof = node_dof(d).ok_or_else(|| {
+                body_error(
+                    key_line("dofs"),
+                    format!("unknown DOF `{d}` (known: x, y, z, rx, ry, rz)"),
+                )
+            })?;
+            if per_node.contains(&dof) {
+                return Err(body_error(
+                    key_line("dofs"),
+                    format!("DOF `{d}` is listed twice"),
+                ));
+            }
+            per_node.push(dof);
+        }
+        let dofs = DofMap::new(per_node);
+        let per = dofs.per_node();
+
+        // Matrices.
+        let (k_bytes, k_name) = location.read(Some(&spec.matrices.stiffness))?;
+        let k_file = parse_matrix_market(&k_bytes, &k_name)?;
+        drop(k_bytes);
+        let (m_bytes, m_name) = location.read(Some(&spec.matrices.mass))?;
+        let m_file = parse_matrix_market(&m_bytes, &m_name)?;
+        drop(m_bytes);
+        if k_file.rows != k_file.cols {
+            return Err(Error::MatrixSizeMismatch {
+                path: k_name,
+                what: "stiffness".into(),
+                rows: k_file.rows,
+                cols: k_file.cols,
+                expected: "a stiffness must be square".into(),
+            });
+        }
+        let n = k_file.rows;
+
+        // Nodes.
+        let coordinates = match &spec.geometry.nodes {
+            Some(table) => Some(read_table(&location, table, "nodes", &name)?),
+            None => None,
+        };
+        let node_count = match &coordinates {
+            Some((rows, _)) => rows.len(),
+            None => {
+                if n % per != 0 {
+                    return Err(Error::MatrixSizeMismatch {
+                        path: k_name,
+                        what: "stiffness".into(),
+                        rows: n,
+                        cols: n,
+                        expected: format!(
+                            "{n} DOF do not divide into nodes of {per} DOF (`dofs` in {name})"
+                        ),
+                    });
+                }
+                n / per
+            }
+        };
+        if node_count * per != n {
+            return Err(Error::MatrixSizeMismatch {
+                path: k_name,
+                what: "stiffness".into(),
+                rows: n,
+                cols: n,
+                expected: format!(
+                    "{node_count} nodes with {per} DOF each make {} DOF",
+                    node_count * per
+                ),
+            });
+        }
+        let nodes = match coordinates {
+            None => vec![[0.0; 3]; node_count],
+            Some((rows, table_name)) => {
+                let mut out = Vec::with_capacity(rows.len());
+                for (k, (line, row)) in rows.into_iter().enumerate() {
+                    let xyz: &[f64] = match row.len() {
+                        2 | 3 => &row,
+                        4 if row[0] == (k + 1) as f64 => &row[1..],
+                        4 => {
+                            return Err(Error::MatrixMarketLine {
+                                path: table_name,
+                                line,
+                                reason: format!(
+                                    "a leading node number must count 1, 2, 3, ... in order: \
+                                     expected {}, got {}",
+                                    k + 1,
+                                    row[0]
+                                ),
+                            });
+                        }
+                        c => {
+                            return Err(Error::MatrixMarketLine {
+                                path: table_name,
+                                line,
+                                reason: format!(
+                                    "a node needs 2 or 3 coordinates (optionally after its \
+                                     number), got {c} values"
+                                ),
+                            });
+                        }
+                    };
+                    out.push([xyz[0], xyz[1], xyz.get(2).copied().unwrap_or(0.0)]);
+                }
+                out
+            }
+        };
+        let has_coordinates = spec.geometry.nodes.is_some();
+
+        // Node-major permutation of a file index.
+        let to_node_major = |i: usize| match spec.dof_order {
+            DofOrder::NodeMajor => i,
+            DofOrder::DofMajor => (i % node_count) * per + i / node_count,
+        };
+        let k = symmetric_matrix(&k_file, &k_name, "stiffness", &to_node_major)?;
+        let m = mass_matrix(&m_file, &m_name, n, &to_node_major)?;
+
+        let edges = match &spec.geometry.edges {
+            None => Vec::new(),
+            Some(table) => edges(&location, table, node_count, &name)?,
+        };
+        let mut model = FeModel {
+            name: spec.name.clone(),
+            dofs,
+            nodes,
+            edges,
+            k,
+            m,
+            rigid_motions: RigidMotions::Unknown,
+        };
+        check_mass(&model, &m_name)?;
+        if has_coordinates && rigid_motions_are_null_space(&model) {
+            model.rigid_motions = RigidMotions::FromGeometry;
+        }
+
+        for (set, members) in &spec.node_sets {
+            if let Some(&node) = members.iter().find(|&&x| x == 0 || x > node_count) {
+                return Err(Error::NodeSetOutOfRange {
+                    path: name.clone(),
+                    set: set.clone(),
+                    node,
+                    count: node_count,
+                });
+            }
+        }
+        Ok(Self {
+            model,
+            node_sets: spec.node_sets,
+            has_coordinates,
+            units: spec.units,
+            description: spec.description,
+            location,
+        })
+    }
+
+    /// The boundary nodes of `spec`: a node set's name, or 1-based node numbers
+    /// (`1,4,5`). Several set names or numbers may be mixed, comma separated.
+    pub fn boundary(&self, spec: &[String]) -> Result<Vec<usize>> {
+        let mut nodes = Vec::new();
+        for item in spec {
+            let item = item.trim();
+            match item.parse::<usize>() {
+                Ok(node) => {
+                    self.model.node_index(node)?;
+                    nodes.push(node);
+                }
+                Err(_) => {
+                    let set = self
+                        .node_sets
+                        .get(item)
+                        .ok_or_else(|| Error::UnknownNodeSet {
+                            name: item.into(),
+                            known: if self.node_sets.is_empty() {
+                                "no node sets".into()
+                            } else {
+                                self.node_sets
+                                    .keys()
+                                    .cloned()
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            },
+                        })?;
+                    for &n in set {
+                        if !nodes.contains(&n) {
+                            nodes.push(n);
+                        }
+                    }
+                }
+            }
+        }
+        Ok(nodes)
+    }
+
+    /// Fails with [`Error::NoCoordinates`] when the body cannot be drawn.
+    pub fn require_coordinates(&self) -> Result<()> {
+        if self.has_coordinates {
+            Ok(())
+        } else {
+            Err(Error::NoCoordinates {
+                body: self.model.name.clone(),
+            })
+        }
+    }
+}
+
+/// A CSV table (or inline rows): `(line, values)` per row and the name used in messages.
+/// Commas, semicolons or white space separate values; `#` starts a comment; a first line that
+/// does not parse is taken as a header.
+fn read_table<T: std::str::FromStr + Copy>(
+    location: &BodyLocation,
+    table: &TableOrFile<T>,
+    key: &str,
+    body_name: &str,
+) -> Result<(Vec<(usize, Vec<T>)>, String)> {
+    match table {
+        TableOrFile::Inline(rows) => Ok((
+            rows.iter()
+                .cloned()
+                .enumerate()
+                .map(|(k, r)| (k + 1, r))
+                .collect(),
+            format!("{body_name} [geometry] {key}"),
+        )),
+        TableOrFile::File(file) => {
+            let (bytes, name) = location.read(Some(file))?;
+            let text = String::from_utf8_lossy(&bytes);
+            let mut rows = Vec::new();
+            for (k, raw) in text.lines().enumerate() {
+                let line = raw.split('#').next().unwrap_or("").trim();
+                if line.is_empty() {
+                    continue;
+                }
+                let values: std::result::Result<Vec<T>, _> = line
+                    .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+                    .filter(|t| !t.is_empty())
+                    .map(|t| t.parse::<T>())
+                    .collect();
+                match values {
+                    Ok(v) => rows.push((k + 1, v)),
+                    Err(_) if rows.is_empty() && k == 0 => {} // a header
+                    Err(_) => {
+                        return Err(Error::MatrixMarketLine {
+                            path: name,
+                            line: k + 1,
+                            reason: format!("`{line}` is not a row of numbers"),
+                        });
+                    }
+                }
+            }
+            Ok((rows, name))
+        }
+    }
+}
+
+/// Wireframe edges from 1-based node pairs or face cycles.
+fn edges(
+    location: &BodyLocation,
+    table: &TableOrFile<usize>,
+    node_count: usize,
+    body_name: &str,
+) -> Result<Vec<[usize; 2]>> {
+    let (rows, name) = read_table(location, table, "edges", body_name)?;
+    let mut out = Vec::new();
+    for (line, row) in rows {
+        if row.len() < 2 {
+            return Err(Error::MatrixMarketLine {
+                path: name,
+                line,
+                reason: "an edge needs two nodes (a face three or more)".into(),
+            });
+        }
+        if let Some(&bad) = row.iter().find(|&&x| x == 0 || x > node_count) {
+            return Err(Error::MatrixMarketLine {
+                path: name,
+                line,
+                reason: format!("node {bad} is out of range: the body has nodes 1 to {node_count}"),
+            });
+        }
+        let cycle = row.len() > 2;
+        for w in row.windows(2) {
+            out.push([w[0] - 1, w[1] - 1]);
+        }
+        if cycle {
+            out.push([row[row.len() - 1] - 1, row[0] - 1]);
+        }
+    }
+    Ok(out)
+}
+
+/// A symmetric matrix from a file: a `symmetric` file mirrored, a `general` one checked for
+/// symmetry (largest defect reported) and symmetrised.
+fn symmetric_matrix(
+    file: &MatrixMarket,
+    name: &str,
+    what: &str,
+    to_node_major: &dyn Fn(usize) -> usize,
+) -> Result<SparseSymmetric> {
+    let n = file.rows;
+    let mut entries = Vec::with_capacity(2 * file.entries.len());
+    if file.symmetric {
+        for &(i, j, v) in &file.entries {
+            let (i, j) = (to_node_major(i), to_node_major(j));
+            entries.push((i, j, v));
+            if i != j {
+                entries.push((j, i, v));
+            }
+        }
+        return Ok(SparseSymmetric::from_triplets(n, &entries));
+    }
+    let stored = SparseSymmetric::from_triplets(n, &file.entries);
+    let scale = stored.max_abs();
+    let mut worst = (0.0f64, 0, 0);
+    let a = stored.as_faer();
+    for j in 0..n {
+        let rows = a.symbolic().row_idx_of_col_raw(j);
+        for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
+            let d = (v - stored.get(j, i)).abs();
+            if d > worst.0 {
+                worst = (d, i, j);
+            }
+        }
+    }
+    if scale > 0.0 && worst.0 > SYMMETRY_TOLERANCE * scale {
+        return Err(Error::NotSymmetric {
+            path: name.into(),
+            what: what.into(),
+            row: worst.1 + 1,
+            col: worst.2 + 1,
+            asymmetry: worst.0 / scale,
+            tolerance: SYMMETRY_TOLERANCE,
+        });
+    }
+    for &(i, j, v) in &file.entries {
+        let (i, j) = (to_node_major(i), to_node_major(j));
+        entries.push((i, j, 0.5 * v));
+        entries.push((j, i, 0.5 * v));
+    }
+    Ok(SparseSymmetric::from_triplets(n, &entries))
+}
+
+/// The mass: a vector (n × 1 or 1 × n) or a diagonal square matrix becomes lumped, anything
+/// else a consistent sparse matrix.
+fn mass_matrix(
+    file: &MatrixMarket,
+    name: &str,
+    n: usize,
+    to_node_major: &dyn Fn(usize) -> usize,
+) -> Result<MassMatrix> {
+    let vector = (file.rows == n && file.cols == 1) || (file.rows == 1 && file.cols == n);
+    if vector {
+        let mut d = vec![0.0; n];
+        for &(i, j, v) in &file.entries {
+            d[to_node_major(i.max(j))] += v;
+        }
+        return Ok(MassMatrix::Lumped(d));
+    }
+    if file.rows != n || file.cols != n {
+        return Err(Error::MatrixSizeMismatch {
+            path: name.into(),
+            what: "mass".into(),
+            rows: file.rows,
+            cols: file.cols,
+            expected: format!("the stiffness is {n} × {n} (or give an {n} × 1 lumped vector)"),
+        });
+    }
+    if file.entries.iter().all(|&(i, j, _)| i == j) {
+        let mut d = vec![0.0; n];
+        for &(i, _, v) in &file.entries {
+            d[to_node_major(i)] += v;
+        }
+        return Ok(MassMatrix::Lumped(d));
+    }
+    Ok(MassMatrix::Consistent(symmetric_matrix(
+        file,
+        name,
+        "mass",
+        to_node_major,
+    )?))
+}
+
+/// M must be positive definite: every lumped entry positive, a consistent M factorisable.
+fn check_mass(model: &FeModel, name: &str) -> Result<()> {
+    let fail = |dof: usize, reason: String| Error::MassNotPositive {
+        path: name.into(),
+        dof: dof + 1,
+        label: model.dof_label(dof),
+        reason,
+    };
+    match &model.m {
+        MassMatrix::Lumped(d) => {
+            if let Some((dof, v)) = d.iter().enumerate().find(|(_, v)| **v <= 0.0) {
+                return Err(fail(dof, format!("its lumped mass is {v:e}")));
+            }
+        }
+        MassMatrix::Consistent(m) => {
+            if let Some((dof, v)) = m
+                .diagonal()
+                .into_iter()
+                .enumerate()
+                .find(|(_, v)| *v <= 0.0)
+            {
+                return Err(fail(dof, format!("its diagonal entry is {v:e}")));
+            }
+            let symbolic = SymbolicFactor::analyse(m.as_faer())?;
+            if let Err(Error::NonPositivePivot { index, .. }) =
+                SymmetricFactor::sparse(m.as_faer(), &symbolic, "mass")
+            {
+                return Err(fail(
+                    index,
+                    "the Cholesky pivot of this DOF is not positive".into(),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Whether the rigid motions built from the coordinates are K's null space to round-off:
+/// $\max|KR| \le 10^{-9}\,\max|K|\,\max|R|$. True for a free body exported with full
+/// precision; false for one restrained before export.
+fn rigid_motions_are_null_space(model: &FeModel) -> bool {
+    let r = model.rigid_body_modes();
+    let kr = model.k.mul(r.as_ref());
+    let max = |a: &faer::Mat<f64>| {
+        let mut m = 0.0f64;
+        for j in 0..a.ncols() {
+            for i in 0..a.nrows() {
+                m = m.max(a[(i, j)].abs());
+            }
+        }
+        m
+    };
+    max(&kr) <= 1e-9 * model.k.max_abs() * max(&r)
+}

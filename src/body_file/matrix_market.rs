@@ -1,0 +1,400 @@
+//! The NIST Matrix Market exchange format (`.mtx`, optionally gzip-compressed): read real
+//! `coordinate` and `array` matrices, general or symmetric, and write them back.
+//!
+//! Every FE code can write it (Abaqus `*MATRIX GENERATE` through a converter, ANSYS `HBMAT`
+//! via SciPy, Code_Aster `IMPR_RESU`, scikit-fem and SciPy `mmwrite` directly), and SciPy,
+//! Julia's `MatrixMarket.jl` and MATLAB's `mmread.m` read what [`write_array`] and
+//! [`write_coordinate_symmetric`] produce. The reader is lenient where exporters differ
+//! (upper-case keywords, blank lines, comments between entries, Fortran `D` exponents,
+//! `integer` and `double` fields, duplicate coordinate entries summed) and strict where a
+//! mistake would change the body: every error names the file and the line.
+
+use std::{
+    fs,
+    io::{BufRead, BufReader, Read, Write},
+    path::Path,
+};
+
+use faer::MatRef;
+
+use crate::{Error, Result};
+
+/// How the entries of a Matrix Market file are stored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MatrixMarketFormat {
+    /// `coordinate`: one `row col value` line per stored entry (1-based indices).
+    Coordinate,
+    /// `array`: every entry (the lower triangle for symmetric), column-major.
+    Array,
+}
+
+/// A real matrix read from a Matrix Market file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MatrixMarket {
+    /// Rows.
+    pub rows: usize,
+    /// Columns.
+    pub cols: usize,
+    /// Storage of the file.
+    pub format: MatrixMarketFormat,
+    /// Whether the file said `symmetric` (only one triangle stored).
+    pub symmetric: bool,
+    /// Stored entries as `(row, col, value)`, 0-based, in file order. For a symmetric file
+    /// each off-diagonal entry appears once, as stored; [`Self::expanded`] adds its mirror.
+    pub entries: Vec<(usize, usize, f64)>,
+}
+
+impl MatrixMarket {
+    /// Every entry of the matrix, a symmetric file's mirrored entries included.
+    pub fn expanded(&self) -> Vec<(usize, usize, f64)> {
+        let mut out = Vec::with_capacity(self.entries.len() * if self.symmetric { 2 } else { 1 });
+        for &(i, j, v) in &self.entries {
+            out.push((i, j, v));
+            if self.symmetric && i != j {
+                out.push((j, i, v));
+            }
+        }
+        out
+    }
+}
+
+/// Reads a Matrix Market file from disk; gzip is recognised by its magic bytes, whatever the
+/// file is called.
+pub fn read_matrix_market(path: &Path) -> Result<MatrixMarket> {
+    let bytes = fs::read(path).map_err(|source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    parse_matrix_market(&bytes, &path.display().to_string())
+}
+
+/// Parses Matrix Market bytes (plain or gzip) named `name` in error messages.
+pub fn parse_matrix_market(bytes: &[u8], name: &str) -> Result<MatrixMarket> {
+    if bytes.starts_with(&[0x1f, 0x8b]) {
+        let mut text = Vec::new();
+        flate2::read::MultiGzDecoder::new(bytes)
+            .read_to_end(&mut text)
+            .map_err(|e| Error::MatrixMarketLine {
+                path: name.into(),
+                line: 0,
+                reason: format!("the gzip stream is damaged: {e}"),
+            })?;
+        parse_text(BufReader::new(text.as_slice()), name)
+    } else {
+        parse_text(BufReader::new(bytes), name)
+    }
+}
+
+fn line_error(name: &str, line: usize, reason: impl Into<String>) -> Error {
+    Error::MatrixMarketLine {
+        path: name.into(),
+        line,
+        reason: reason.into(),
+    }
+}
+
+/// A real number; Fortran writers' `1.0D+03` is accepted.
+fn parse_value(token: &str) -> Option<f64> {
+    token
+        .parse::<f64>()
+        .ok()
+        .or_else(|| token.replace(['D', 'd'], "E").parse::<f64>().ok())
+}
+
+fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
+    let mut lines = reader.lines().enumerate().map(|(k, l)| (k + 1, l));
+    let next = |lines: &mut dyn Iterator<Item = (usize, std::io::Result<String>)>| {
+        while let Some((no, line)) = lines.next() {
+            let line = line.map_err(|e| line_error(name, no, format!("unreadable: {e}")))?;
+            let t = line.trim();
+            if t.is_empty() || t.starts_with('%') {
+                continue;
+            }
+            return Ok(Some((no, line)));
+        }
+        Ok::<_, Error>(None)
+    };
+
+    // Header: the first line, `%%MatrixMarket matrix <format> <field> <symmetry>`.
+    let (header_no, header) = match lines.next() {
+        Some((no, Ok(l))) => (no, l),
+        Some((no, Err(e))) => return Err(line_error(name, no, format!("unreadable: {e}"))),
+        None => {
+            return Err(Error::MatrixMarketHeader {
+                path: name.into(),
+                line: 1,
+                found: "an empty file".into(),
+            });
+        }
+    };
+    let words: Vec<String> = header
+        .split_whitespace()
+        .map(|w| w.to_ascii_lowercase())
+        .collect();
+    let bad_header = |what: &str| Error::MatrixMarketHeader {
+        path: name.into(),
+        line: header_no,
+        found: format!("{what} in `{}`", header.trim()),
+    };
+    if words.len() != 5 || words[0] != "%%matrixmarket" || words[1] != "matrix" {
+        return Err(bad_header(
+            "not a `%%MatrixMarket matrix <format> <field> <symmetry>` header",
+        ));
+    }
+    let format = match words[2].as_str() {
+        "coordinate" => MatrixMarketFormat::Coordinate,
+        "array" => MatrixMarketFormat::Array,
+        other => {
+            return Err(bad_header(&format!(
+                "format `{other}` (coordinate or array)"
+            )));
+        }
+    };
+    match words[3].as_str() {
+        "real" | "double" | "integer" => {}
+        other => {
+            return Err(bad_header(&format!(
+                "field `{other}` (a stiffness or mass must be real)"
+            )));
+        }
+    }
+    let symmetric = match words[4].as_str() {
+        "general" => false,
+        "symmetric" => true,
+        other => {
+            return Err(bad_header(&format!(
+                "symmetry `{other}` (general or symmetric)"
+            )));
+        }
+    };
+
+    let (size_no, size_line) = next(&mut lines)?
+        .ok_or_else(|| line_error(name, header_no + 1, "the size line is missing"))?;
+    let sizes: Vec<usize> = size_line
+        .split_whitespace()
+        .map(|t| t.parse::<usize>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|_| line_error(name, size_no, format!("size line `{}`", size_line.trim())))?;
+    let expected_sizes = match format {
+        MatrixMarketFormat::Coordinate => 3,
+        MatrixMarketFormat::Array => 2,
+    };
+    if sizes.len() != expected_sizes {
+        return Err(line_error(
+            name,
+            size_no,
+            format!(
+                "the size line `{}` needs {expected_sizes} numbers ({})",
+                size_line.trim(),
+                if expected_sizes == 3 {
+                    "rows cols entries"
+                } else {
+                    "rows cols"
+                }
+            ),
+        ));
+    }
+    let (rows, cols) = (sizes[0], sizes[1]);
+    if symmetric && rows != cols {
+        return Err(line_error(
+            name,
+            size_no,
+            format!("a symmetric matrix must be square, the file says {rows} × {cols}"),
+        ));
+    }
+    let count = match format {
+        MatrixMarketFormat::Coordinate => sizes[2],
+        MatrixMarketFormat::Array if symmetric => rows * (rows + 1) / 2,
+        MatrixMarketFormat::Array => rows * cols,
+    };
+    let mut entries = Vec::with_capacity(count);
+    let finite = |v: f64, no: usize, token: &str| {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(Error::NonFiniteEntry {
+                path: name.into(),
+                line: no,
+                value: token.into(),
+            })
+        }
+    };
+    match format {
+        MatrixMarketFormat::Coordinate => {
+            while entries.len() < count {
+                let Some((no, line)) = next(&mut lines)? else {
+                    return Err(line_error(
+                        name,
+                        size_no,
+                        format!(
+                            "the size line promises {count} entries, the file ends after {}",
+                            entries.len()
+                        ),
+                    ));
+                };
+                let t: Vec<&str> = line.split_whitespace().collect();
+                if t.len() != 3 {
+                    return Err(line_error(
+                        name,
+                        no,
+                        format!("expected `row col value`, got `{}`", line.trim()),
+                    ));
+                }
+                let index = |s: &str| {
+                    s.parse::<usize>().map_err(|_| {
+                        line_error(name, no, format!("index `{s}` is not a positive integer"))
+                    })
+                };
+                let (i, j) = (index(t[0])?, index(t[1])?);
+                if i == 0 || j == 0 || i > rows || j > cols {
+                    return Err(Error::MatrixIndexOutOfRange {
+                        path: name.into(),
+                        line: no,
+                        row: i,
+                        col: j,
+                        rows,
+                        cols,
+                    });
+                }
+                let v = parse_value(t[2]).ok_or_else(|| {
+                    line_error(name, no, format!("value `{}` is not a number", t[2]))
+                })?;
+                let v = finite(v, no, t[2])?;
+                // Some writers store the upper triangle of a `symmetric` file: the same matrix.
+                let (i, j) = if symmetric && j > i { (j, i) } else { (i, j) };
+                entries.push((i - 1, j - 1, v));
+            }
+        }
+        MatrixMarketFormat::Array => {
+            // Column-major; a symmetric array lists column j from row j down.
+            let (mut i, mut j) = (0usize, 0usize);
+            while entries.len() < count {
+                let Some((no, line)) = next(&mut lines)? else {
+                    return Err(line_error(
+                        name,
+                        size_no,
+                        format!(
+                            "the size line promises {count} values, the file ends after {}",
+                            entries.len()
+                        ),
+                    ));
+                };
+                for token in line.split_whitespace() {
+                    if entries.len() == count {
+                        return Err(line_error(name, no, "more values than the size line says"));
+                    }
+                    let v = parse_value(token).ok_or_else(|| {
+                        line_error(name, no, format!("value `{token}` is not a number"))
+                    })?;
+                    entries.push((i, j, finite(v, no, token)?));
+                    i += 1;
+                    if i == rows {
+                        j += 1;
+                        i = if symmetric { j } else { 0 };
+                    }
+                }
+            }
+        }
+    }
+    if let Some((no, line)) = next(&mut lines)? {
+        return Err(line_error(
+            name,
+            no,
+            format!(
+                "`{}` follows the {count} entries the size line promises",
+                line.trim()
+            ),
+        ));
+    }
+    Ok(MatrixMarket {
+        rows,
+        cols,
+        format,
+        symmetric,
+        entries,
+    })
+}
+
+/// Writes `text` to `path` through a temporary file in the same folder and a rename, so a
+/// failed write never leaves a half-written file behind.
+pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    let io = |source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    let tmp = path.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
+    let result = (|| {
+        let mut out = std::io::BufWriter::new(fs::File::create(&tmp)?);
+        write(&mut out)?;
+        out.flush()?;
+        out.into_inner().map_err(|e| e.into_error())?.sync_all()?;
+        fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result.map_err(io)
+}
+
+/// Writes a dense matrix as `array real general` (column-major), or `array real symmetric`
+/// (the lower triangle) when `symmetric`. Values are printed in Rust's shortest
+/// round-trip form, so reading the file back gives the same `f64`s.
+pub fn write_array(path: &Path, a: MatRef<'_, f64>, symmetric: bool, comment: &str) -> Result<()> {
+    write_atomically(path, |w| {
+        writeln!(
+            w,
+            "%%MatrixMarket matrix array real {}",
+            if symmetric { "symmetric" } else { "general" }
+        )?;
+        for c in comment.lines() {
+            writeln!(w, "% {c}")?;
+        }
+        writeln!(w, "{} {}", a.nrows(), a.ncols())?;
+        for j in 0..a.ncols() {
+            let start = if symmetric { j } else { 0 };
+            for i in start..a.nrows() {
+                writeln!(w, "{:e}", a[(i, j)])?;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// Writes the lower triangle `(row, col, value)` entries (0-based, `row ≥ col`) of an `n × n`
+/// symmetric matrix as `coordinate real symmetric`.
+pub fn write_coordinate_symmetric(
+    path: &Path,
+    n: usize,
+    lower: &[(usize, usize, f64)],
+    comment: &str,
+) -> Result<()> {
+    write_atomically(path, |w| {
+        write_coordinate_symmetric_to(w, n, lower, comment)
+    })
+}
+
+/// [`write_coordinate_symmetric`] into any writer (a gzip encoder, a buffer).
+pub fn write_coordinate_symmetric_to(
+    w: &mut dyn Write,
+    n: usize,
+    lower: &[(usize, usize, f64)],
+    comment: &str,
+) -> std::io::Result<()> {
+    writeln!(w, "%%MatrixMarket matrix coordinate real symmetric")?;
+    for c in comment.lines() {
+        writeln!(w, "% {c}")?;
+    }
+    writeln!(w, "{n} {n} {}", lower.len())?;
+    for &(i, j, v) in lower {
+        debug_assert!(i >= j);
+        writeln!(w, "{} {} {v:e}", i + 1, j + 1)?;
+    }
+    Ok(())
+}

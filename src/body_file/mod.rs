@@ -1,0 +1,16 @@
+//! Bodies from other FE codes: the body file (TOML) naming Matrix Market stiffness and mass
+//! files, node coordinates, wireframe and node sets; and the files a reduced model is
+//! exported to.
+
+mod body_spec;
+mod body_writer;
+mod imported_body;
+mod matrix_market;
+
+pub use body_spec::{BodySpec, DofOrder, GeometrySpec, MatrixFiles, TableOrFile, Units};
+pub use body_writer::{BodyFiles, example_bodies, write_body, write_files};
+pub use imported_body::{BodyHandle, BodyLocation, ImportedBody, SYMMETRY_TOLERANCE};
+pub use matrix_market::{
+    MatrixMarket, MatrixMarketFormat, parse_matrix_market, read_matrix_market, write_array,
+    write_atomically, write_coordinate_symmetric, write_coordinate_symmetric_to,
+};
