@@ -4,8 +4,11 @@ use std::{io::IsTerminal, path::PathBuf, process::ExitCode};
 
 use clap::{Args, Parser, Subcommand};
 
+use std::sync::Arc;
+
 use crate::{
     Error, Result,
+    body_file::{BodyHandle, ImportedBody},
     record::Recorder,
     reduction::Method,
     scenes::{self, SceneOptions},
@@ -69,6 +72,34 @@ enum Command {
         #[command(flatten)]
         window: WindowArgs,
     },
+    /// Check a body file and print what it holds (DOF, entries, mass, rigid-body modes, lowest
+    /// frequencies, node sets).
+    Import {
+        /// The body file (TOML), or `builtin:NAME` (app-b-slab, l-bracket).
+        body: String,
+        /// Print the summary as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Reduce a body and write Ψ, K_r, M_r (Matrix Market) and model.json to a folder.
+    Export {
+        /// The body file (TOML), or `builtin:NAME`.
+        #[arg(long)]
+        body: String,
+        /// The reduction: gr, mt, cb, mc.
+        #[arg(long, value_parser = parse_method)]
+        method: Method,
+        /// Interface: node set names or 1-based nodes, comma separated (default: the set
+        /// `interface`, else the body's first set).
+        #[arg(long, value_delimiter = ',')]
+        boundary: Option<Vec<String>>,
+        /// Kept fixed-interface normal modes (mt, cb, mc).
+        #[arg(long, default_value_t = 10)]
+        modes: usize,
+        /// Destination folder (replaced as a whole once everything is written).
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {
         /// Scene id.
@@ -131,9 +162,13 @@ struct OptionArgs {
     /// Kept normal modes.
     #[arg(long)]
     modes: Option<usize>,
-    /// Boundary (master, interface) nodes, 1-based, comma separated.
+    /// Boundary (master, interface) nodes, 1-based, comma separated; with --body also the
+    /// names of the body's node sets.
     #[arg(long, value_delimiter = ',')]
-    boundary: Option<Vec<usize>>,
+    boundary: Option<Vec<String>>,
+    /// A body file (TOML) or `builtin:NAME`, for the `modes` scene.
+    #[arg(long)]
+    body: Option<String>,
     /// Axis type: nodal_fixed, mean, principal.
     #[arg(long)]
     axes: Option<String>,
@@ -178,18 +213,44 @@ fn parse_method(s: &str) -> std::result::Result<Method, String> {
     })
 }
 
-impl From<OptionArgs> for SceneOptions {
-    fn from(a: OptionArgs) -> Self {
-        SceneOptions {
-            methods: a.method,
-            modes: a.modes,
-            boundary: a.boundary,
-            axes: a.axes,
-            end_time: a.end_time,
-            refine: a.refine,
+impl OptionArgs {
+    /// The scene options: the body file loaded and checked, set names resolved to nodes.
+    fn into_scene_options(self) -> Result<SceneOptions> {
+        let body = match &self.body {
+            Some(b) => Some(BodyHandle(Arc::new(ImportedBody::load(b)?))),
+            None => None,
+        };
+        let boundary = match (&self.boundary, &body) {
+            (None, _) => None,
+            (Some(items), Some(body)) => Some(body.boundary(items)?),
+            (Some(items), None) => Some(parse_nodes(items)?),
+        };
+        Ok(SceneOptions {
+            methods: self.method,
+            modes: self.modes,
+            boundary,
+            axes: self.axes,
+            end_time: self.end_time,
+            refine: self.refine,
+            body,
             ..Default::default()
-        }
+        })
     }
+}
+
+/// 1-based node numbers; a name is a node set, which needs a body file.
+fn parse_nodes(items: &[String]) -> Result<Vec<usize>> {
+    items
+        .iter()
+        .map(|s| {
+            s.trim().parse::<usize>().map_err(|_| Error::InvalidOption {
+                scene: "-".into(),
+                reason: format!(
+                    "--boundary `{s}` is not a node number (node set names need --body)"
+                ),
+            })
+        })
+        .collect()
 }
 
 /// Parses the arguments (exit 2 on a usage error), runs, and maps errors to exit code 1 with
@@ -292,13 +353,51 @@ fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
+        Command::Import { body, json } => {
+            let body = ImportedBody::load(&body)?;
+            let (value, text) = scenes::body_modes::import_summary(&body)?;
+            if json {
+                println!("{value}");
+            } else {
+                println!("{text}");
+            }
+            Ok(())
+        }
+        Command::Export {
+            body,
+            method,
+            boundary,
+            modes,
+            out,
+        } => {
+            let body = ImportedBody::load(&body)?;
+            let boundary = match boundary {
+                Some(items) => body.boundary(&items)?,
+                None => scenes::body_modes::default_boundary(&body)?,
+            };
+            let summary = crate::export::export(&body, method, &boundary, modes, &out)?;
+            println!(
+                "{}: {} of `{}` on {} interface node(s), Ψ {} × {}; wrote {} in {}\nreduced \
+                 elastic Hz: {}",
+                method.id(),
+                method.name(),
+                body.model.name,
+                boundary.len(),
+                summary.shape[0],
+                summary.shape[1],
+                summary.files.join(", "),
+                summary.dir.display(),
+                crate::report::fmt_hz(&summary.hz[..summary.hz.len().min(8)]),
+            );
+            Ok(())
+        }
         Command::Report {
             scene,
             json,
             options,
         } => {
             let s = scenes::find(&scene)?;
-            let out = s.execute(&options.into())?;
+            let out = s.execute(&options.into_scene_options()?)?;
             if json {
                 println!("{}", out.report.to_json());
             } else {
@@ -338,7 +437,10 @@ fn run(cli: Cli) -> Result<()> {
                 .iter()
                 .map(|id| scenes::find(id))
                 .collect::<Result<Vec<_>>>()?;
-            let opts: SceneOptions = options.into();
+            let opts = options.into_scene_options()?;
+            if let Some(body) = &opts.body {
+                body.require_coordinates()?;
+            }
             let recorder = Recorder::default();
             for s in found {
                 progress(&format!("recording {} ...", s.info.id));

@@ -18,6 +18,7 @@ pub mod body_file;
 pub mod cli;
 pub mod dynamics;
 mod error;
+pub mod export;
 pub mod fem;
 #[cfg(feature = "gui")]
 pub mod gui;

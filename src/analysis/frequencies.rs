@@ -111,8 +111,8 @@ impl ZeroEnergyCount {
     }
 }
 
-/// The `rigid + 1 + elastic` lowest modes of $(K, M)$ without handing the solver any rigid
-/// motion (`rigid` = the DOF map's rigid-body count), and the number of zero-energy ones. The
+/// The `rigid + 1 + elastic` lowest modes of $(K, M)$, handing the solver the rigid motions
+/// only when they are known to be K's null space (`rigid` = the DOF map's rigid-body count), and the number of zero-energy ones. The
 /// complete dense eigenproblem for small bodies; above [`DENSE_INTERIOR_LIMIT`] DOF
 /// shift-invert Lanczos on $K - \sigma M$ with a small negative shift.
 pub fn count_zero_energy_modes(model: &FeModel, elastic: usize) -> Result<ZeroEnergyCount> {
@@ -133,14 +133,22 @@ pub fn count_zero_energy_modes(model: &FeModel, elastic: usize) -> Result<ZeroEn
         let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
         let factor =
             SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
+        // A free body's rigid motions, when the coordinates give them, enter exact; otherwise
+        // up to six zero eigenvalues coincide, and a block at least that wide finds them all.
+        let rigid_modes =
+            (model.rigid_motions == RigidMotions::FromGeometry).then(|| model.rigid_body_modes());
+        let parameters = PartialEigenParameters {
+            block_size: if rigid_modes.is_some() { 4 } else { 8 },
+            ..Default::default()
+        };
         lowest_modes(
             &model.k,
             &model.m,
             &factor,
             sigma,
             wanted,
-            None,
-            &PartialEigenParameters::default(),
+            rigid_modes.as_ref().map(|r| r.as_ref()),
+            &parameters,
         )?
         .0
     };

@@ -6,6 +6,7 @@
 //! description = "Lin (2005) App. B: 4 x 2 x 1 m slab, 12 bricks, lumped mass"
 //! dofs = ["x", "y", "z"]        # the DOF of every node, in block order (x y z rx ry rz)
 //! dof_order = "node-major"      # or "dof-major": all first DOF, then all second DOF, ...
+//! default_interface = "interface"  # the node set reductions use unless told otherwise
 //!
 //! [units]                       # informational; frequencies are in Hz if they are coherent
 //! length = "m"
@@ -54,6 +55,10 @@ pub struct BodySpec {
     /// Named node sets (interfaces, sensors), 1-based node numbers.
     #[serde(default)]
     pub node_sets: BTreeMap<String, Vec<usize>>,
+    /// The node set reductions use when no boundary is given (else `interface`, else the
+    /// first set).
+    #[serde(default)]
+    pub default_interface: Option<String>,
 }
 
 /// Order of the DOF in the matrices.

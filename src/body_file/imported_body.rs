@@ -89,6 +89,8 @@ pub struct ImportedBody {
     pub units: Units,
     /// The description line of the file.
     pub description: String,
+    /// The node set used as interface unless another is given.
+    pub default_interface: Option<String>,
     /// Where it came from.
     pub location: BodyLocation,
 }
@@ -292,6 +294,16 @@ impl ImportedBody {
             model.rigid_motions = RigidMotions::FromGeometry;
         }
 
+        if let Some(set) = &spec.default_interface
+            && !spec.node_sets.contains_key(set)
+        {
+            return Err(body_error(
+                key_line("default_interface"),
+                format!(
+                    "`default_interface` names the node set `{set}`, which [node_sets] does not define"
+                ),
+            ));
+        }
         for (set, members) in &spec.node_sets {
             if let Some(&node) = members.iter().find(|&&x| x == 0 || x > node_count) {
                 return Err(Error::NodeSetOutOfRange {
@@ -308,6 +320,7 @@ impl ImportedBody {
             has_coordinates,
             units: spec.units,
             description: spec.description,
+            default_interface: spec.default_interface,
             location,
         })
     }

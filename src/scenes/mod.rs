@@ -4,6 +4,7 @@ mod beam_eitelberg;
 mod beam_mean_axes;
 mod beam_modes;
 mod beam_profiles;
+pub mod body_modes;
 mod mode_visuals;
 mod options;
 pub mod plank_symmetry;

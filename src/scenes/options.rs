@@ -22,6 +22,8 @@ pub struct SceneOptions {
     pub end_time: Option<f64>,
     /// `--refine NX,NY,NZ`: bricks of the slab mesh (App. B: 4, 2, 1).
     pub refine: Option<[usize; 3]>,
+    /// `--body`: a body from a body file (the `modes` scene).
+    pub body: Option<crate::body_file::BodyHandle>,
     /// Where the time integrations report how far they got; cancelling it stops the scene.
     pub progress: Progress,
     /// Time integrations kept from earlier requests (the desktop explorer's).

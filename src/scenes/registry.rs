@@ -2,7 +2,7 @@
 
 use super::{
     SceneOptions, SceneOutput, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
-    plank_symmetry, slab_modes, slab_sims,
+    body_modes, plank_symmetry, slab_modes, slab_sims,
 };
 use crate::{Error, Result, reduction::Method};
 
@@ -53,6 +53,16 @@ impl Scene {
                 reason: "--refine applies to slab-modes only".into(),
             });
         }
+        if opts.body.is_some() && self.info.id != super::body_modes::INFO.id {
+            return Err(Error::InvalidOption {
+                scene: self.info.id.into(),
+                reason: format!(
+                    "--body applies to the `{}` scene only (the other scenes are the thesis' \
+                     bodies)",
+                    super::body_modes::INFO.id
+                ),
+            });
+        }
         (self.run)(opts)
     }
 }
@@ -95,6 +105,10 @@ pub fn all() -> Vec<Scene> {
         Scene {
             info: beam_mean_axes::INFO,
             run: beam_mean_axes::run,
+        },
+        Scene {
+            info: body_modes::INFO,
+            run: body_modes::run,
         },
     ]
 }

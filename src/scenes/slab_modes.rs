@@ -45,6 +45,8 @@ pub const INFO: SceneInfo = SceneInfo {
 pub(super) const APP_B_BRICKS: [usize; 3] = [4, 2, 1];
 /// §7.2.1: Guyan adds two masters so it has as many coordinates as the others (18).
 const EXTRA_GUYAN_MASTERS: [usize; 2] = [5, 11];
+/// Constraint modes drawn at most (all are computed).
+const MAX_DRAWN_CONSTRAINT_MODES: usize = 24;
 /// Free-free modes drawn (all frequencies are reported).
 const SHOWN_FREE_FREE: usize = 12;
 const AVAILABLE: [Method; 4] = [
@@ -231,8 +233,10 @@ pub(super) fn slab_mode_views(
     visuals.extend(mode_set(model, "free_free", &ff_modes, REFERENCE));
     let nb = part.b.len();
     let constraint = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
+    // Bodies with large interfaces (an imported body's bolt hole) show the first few.
     let c_modes: Vec<(Vec<f64>, String)> = columns(&constraint)
         .into_iter()
+        .take(MAX_DRAWN_CONSTRAINT_MODES)
         .zip(&part.b)
         .map(|(u, &dof)| (u, model.dof_label(dof)))
         .collect();

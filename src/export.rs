@@ -1,0 +1,235 @@
+//! `flexmodes export`: a reduced model written for another code. The folder holds
+//!
+//! - `psi.mtx`: Ψ (n × r, `array real general`), the full DOF in the body file's node-major
+//!   order; `k_r.mtx` and `m_r.mtx`: $\Psi^TK\Psi$ and $\Psi^TM\Psi$ (`array real
+//!   symmetric`), all readable by `scipy.io.mmread`, Julia's `MatrixMarket.mmread` and
+//!   MATLAB's `mmread`;
+//! - `model.json`: the body, method, interface and kept modes, one label per column, the
+//!   reduced model's frequencies, and for floating-frame use the inertia invariants of the
+//!   reduced body about the body frame's origin: the rigid-body mass matrix $R^TMR$ (6 × 6:
+//!   translations, then rotations; 3 × 3 for a planar body) and the couplings $R^TM\Psi$
+//!   (translations and rotations against each column).
+//!
+//! Everything is written to a temporary folder beside the destination and renamed into place,
+//! so an interrupted export leaves the previous folder (or none) as it was.
+
+use std::path::{Path, PathBuf};
+
+use faer::Mat;
+use serde_json::json;
+
+use crate::{
+    Error, Result,
+    analysis::elastic_hz,
+    body_file::{ImportedBody, write_array, write_atomically},
+    linalg::generalized_eigen,
+    reduction::{
+        Basis, ColumnKind, Method, ModeSelection, ReductionParameters, SolverPath, reduce,
+    },
+    report::sig_vec,
+};
+
+/// What [`export`] wrote.
+#[derive(Debug, Clone)]
+pub struct ExportSummary {
+    /// The folder.
+    pub dir: PathBuf,
+    /// Files written, by name.
+    pub files: Vec<String>,
+    /// Full DOF × reduced coordinates.
+    pub shape: [usize; 2],
+    /// Elastic frequencies of the reduced model, Hz.
+    pub hz: Vec<f64>,
+}
+
+/// Reduces `body` by `method` on `boundary` (1-based nodes) keeping `modes` normal modes and
+/// writes the reduced model to `dir`.
+pub fn export(
+    body: &ImportedBody,
+    method: Method,
+    boundary: &[usize],
+    modes: usize,
+    dir: &Path,
+) -> Result<ExportSummary> {
+    let model = &body.model;
+    let basis = reduce(
+        model,
+        method,
+        &ReductionParameters {
+            boundary_nodes: boundary.to_vec(),
+            modes: ModeSelection::Count(modes),
+            solver: SolverPath::Auto,
+        },
+    )?;
+    let k_r = basis.reduced_stiffness(model);
+    let m_r = basis.reduced_mass(model);
+    let eig = generalized_eigen(k_r.as_ref(), m_r.as_ref(), "reduced model")?;
+    let hz = elastic_hz(&eig);
+
+    let columns: Vec<serde_json::Value> = basis
+        .columns
+        .iter()
+        .map(|c| {
+            json!({
+                "label": c.label,
+                "kind": kind_name(&c.kind),
+                "dof": c.dof.map(|d| {
+                    let (node, dof) = model.dof_node(d);
+                    json!({ "node": node, "dof": dof.name(), "index": d + 1 })
+                }),
+                "hz": match c.kind { ColumnKind::Normal { hz } => Some(hz), _ => None },
+            })
+        })
+        .collect();
+    let inertia = if body.has_coordinates {
+        Some(inertia_invariants(body, &basis))
+    } else {
+        None
+    };
+    let doc = json!({
+        "format": "flexmodes reduced model 1",
+        "body": body.location.display(),
+        "body_name": model.name,
+        "units": { "length": body.units.length, "mass": body.units.mass, "force": body.units.force },
+        "method": method.id(),
+        "method_name": method.name(),
+        "boundary_nodes": boundary,
+        "kept_modes": modes,
+        "dofs": model.dof_count(),
+        "dof_order": "node-major",
+        "dofs_per_node": model.dofs.node_dofs().iter().map(|d| d.name()).collect::<Vec<_>>(),
+        "size": basis.size(),
+        "columns": columns,
+        "reduced_elastic_hz": sig_vec(&hz),
+        "files": { "psi": "psi.mtx", "stiffness": "k_r.mtx", "mass": "m_r.mtx" },
+        "inertia": inertia,
+        "inertia_note": if inertia.is_none() {
+            "the body file gives no node coordinates, so the rigid-body motions and the inertia \
+             invariants are unknown"
+        } else {
+            "about the body file's origin; rigid motions R = [translations x y z, small \
+             rotations about x y z] (planar: x, y, rotation about z); mass_matrix = R^T M R, \
+             translation_coupling and rotation_coupling = rows of R^T M Psi"
+        },
+    });
+
+    // Write into a temporary folder, then rename it into place.
+    let io = |path: &Path| {
+        let path = path.display().to_string();
+        move |source| Error::Io { path, source }
+    };
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "export".into());
+    let parent = dir
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(parent).map_err(io(parent))?;
+    let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    std::fs::create_dir(&tmp).map_err(io(&tmp))?;
+    let written = (|| -> Result<Vec<String>> {
+        let comment = format!(
+            "{} of {} ({}), interface {:?}, {} kept modes; flexmodes export",
+            method.name(),
+            model.name,
+            body.location.display(),
+            boundary,
+            modes
+        );
+        write_array(&tmp.join("psi.mtx"), basis.psi.as_ref(), false, &comment)?;
+        write_array(&tmp.join("k_r.mtx"), k_r.as_ref(), true, &comment)?;
+        write_array(&tmp.join("m_r.mtx"), m_r.as_ref(), true, &comment)?;
+        let text = serde_json::to_string_pretty(&doc).expect("JSON of plain values");
+        write_atomically(&tmp.join("model.json"), |w| w.write_all(text.as_bytes()))?;
+        Ok(vec![
+            "psi.mtx".into(),
+            "k_r.mtx".into(),
+            "m_r.mtx".into(),
+            "model.json".into(),
+        ])
+    })();
+    let files = match written {
+        Ok(f) => f,
+        Err(e) => {
+            let _ = std::fs::remove_dir_all(&tmp);
+            return Err(e);
+        }
+    };
+    let old = parent.join(format!(".{name}.old-{}", std::process::id()));
+    let had_old = dir.exists();
+    if had_old {
+        std::fs::rename(dir, &old).map_err(io(dir))?;
+    }
+    if let Err(e) = std::fs::rename(&tmp, dir) {
+        if had_old {
+            let _ = std::fs::rename(&old, dir);
+        }
+        let _ = std::fs::remove_dir_all(&tmp);
+        return Err(io(dir)(e));
+    }
+    if had_old {
+        let _ = std::fs::remove_dir_all(&old);
+    }
+    Ok(ExportSummary {
+        dir: dir.to_path_buf(),
+        files,
+        shape: [basis.psi.nrows(), basis.psi.ncols()],
+        hz,
+    })
+}
+
+fn kind_name(k: &ColumnKind) -> &'static str {
+    match k {
+        ColumnKind::Nodal => "nodal",
+        ColumnKind::BoundaryMovement => "boundary_movement",
+        ColumnKind::Constraint => "constraint",
+        ColumnKind::CondensedBoundary => "condensed_boundary",
+        ColumnKind::EitelbergBoundary => "eitelberg_boundary",
+        ColumnKind::Normal { .. } => "normal",
+    }
+}
+
+/// $R^TMR$ and $R^TM\Psi$ about the body file's origin.
+fn inertia_invariants(body: &ImportedBody, basis: &Basis) -> serde_json::Value {
+    let model = &body.model;
+    let r = model.rigid_body_modes();
+    let mr = model.m.mul(r.as_ref());
+    let rmr: Mat<f64> = r.transpose() * &mr;
+    let coupling: Mat<f64> = mr.transpose() * &basis.psi;
+    let rows = |a: &Mat<f64>, from: usize, to: usize| -> Vec<Vec<f64>> {
+        (from..to)
+            .map(|i| (0..a.ncols()).map(|j| a[(i, j)]).collect())
+            .collect()
+    };
+    let count = r.ncols();
+    let translations = model.spatial_dim();
+    let mass = rmr[(0, 0)];
+    // Mass centre c_d = t_d^T M p_d / m with p_d the coordinate field on the d translations
+    // (exact for a consistent mass as well as a lumped one).
+    let per = model.dofs.per_node();
+    let mut centre = [0.0; 3];
+    for (dir, offset) in model.dofs.translations() {
+        let d = dir.index();
+        let p = Mat::from_fn(model.dof_count(), 1, |i, _| {
+            if i % per == offset {
+                model.nodes[i / per][d]
+            } else {
+                0.0
+            }
+        });
+        let t = Mat::from_fn(model.dof_count(), 1, |i, _| {
+            if i % per == offset { 1.0 } else { 0.0 }
+        });
+        centre[d] = (t.transpose() * model.m.mul(p.as_ref()))[(0, 0)] / mass;
+    }
+    json!({
+        "mass": mass,
+        "mass_centre": centre,
+        "mass_matrix": rows(&rmr, 0, count),
+        "translation_coupling": rows(&coupling, 0, translations),
+        "rotation_coupling": rows(&coupling, translations, count),
+    })
+}

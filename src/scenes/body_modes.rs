@@ -1,0 +1,402 @@
+//! `modes`: any body from a body file (`--body FILE` or `builtin:NAME`; the L-bracket by
+//! default) reduced by Guyan, modal truncation, Craig–Bampton and mode condensation on one
+//! interface, each model's frequencies against the full body's, and the principal angles
+//! between the bases and the full body's lowest modes.
+
+use std::time::Instant;
+
+use serde_json::{Map, Value, json};
+
+use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed};
+use crate::{
+    Error, Result,
+    analysis::{count_zero_energy_modes, reduced_modes},
+    body_file::{BodyHandle, ImportedBody},
+    linalg::{GeneralizedEigen, principal_angles},
+    record::{Layout, Visual},
+    reduction::{
+        InteriorProblem, Method, ModeCondensationRoute, ModeSelection, SolverPath,
+        craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
+    },
+    report::{Cell, Report, Table, fmt_hz, sig, sig_vec},
+};
+
+/// The body shown when no `--body` is given.
+pub const DEFAULT_BODY: &str = "builtin:l-bracket";
+
+pub const INFO: SceneInfo = SceneInfo {
+    id: "modes",
+    summary: "any body from a body file (--body FILE; the L-bracket by default): GR, MT, CB and \
+              MC on one interface against the full body's frequencies",
+    sections: "§6.2–6.5 on a body of your own",
+    controls: super::registry::SceneControls {
+        methods: &AVAILABLE,
+        boundary: &[],
+        modes: Some(10),
+        axes: &[],
+        end_time: None,
+        refine: None,
+    },
+};
+
+const AVAILABLE: [Method; 4] = [
+    Method::Guyan,
+    Method::ModalTruncation,
+    Method::CraigBampton,
+    Method::ModeCondensation,
+];
+/// Elastic free-free modes of the full body computed and drawn.
+const FULL_MODES: usize = 10;
+/// The lowest elastic modes whose frequency error and subspace angle the table shows (every
+/// error is in the JSON, paired by order).
+const COMPARED_MODES: usize = 6;
+
+/// The body of a run: `--body`, or [`DEFAULT_BODY`].
+pub fn body_of(opts: &SceneOptions) -> Result<BodyHandle> {
+    match &opts.body {
+        Some(b) => Ok(b.clone()),
+        None => Ok(BodyHandle(std::sync::Arc::new(ImportedBody::load(
+            DEFAULT_BODY,
+        )?))),
+    }
+}
+
+/// The interface when `--boundary` is not given: the body file's `default_interface` set,
+/// else its set `interface`, else its first set.
+pub fn default_boundary(body: &ImportedBody) -> Result<Vec<usize>> {
+    for name in body
+        .default_interface
+        .iter()
+        .map(String::as_str)
+        .chain(["interface"])
+    {
+        if let Some(set) = body.node_sets.get(name) {
+            return Ok(set.clone());
+        }
+    }
+    body.node_sets
+        .values()
+        .next()
+        .cloned()
+        .ok_or_else(|| Error::InvalidOption {
+            scene: INFO.id.into(),
+            reason: format!(
+                "the body `{}` defines no node sets: give the interface with --boundary",
+                body.model.name
+            ),
+        })
+}
+
+pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
+    opts.check_axes(INFO.id, &[])?;
+    let body = body_of(opts)?;
+    let model = &body.model;
+    let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
+    let boundary = match &opts.boundary {
+        Some(b) => b.clone(),
+        None => default_boundary(&body)?,
+    };
+    let kept = opts.modes_or_default(&INFO);
+    let dofs = model.dof_count();
+
+    opts.progress.phase("full body's lowest modes")?;
+    let started = Instant::now();
+    let full = count_zero_energy_modes(model, FULL_MODES)?;
+    let full_s = started.elapsed().as_secs_f64();
+    let rigid = model.dofs.rigid_body_count();
+    if full.zero_modes > rigid {
+        return Err(Error::Mechanism {
+            body: model.name.clone(),
+            zero_modes: full.zero_modes,
+            rigid,
+            threshold_hz: full.threshold_hz,
+        });
+    }
+    let full_hz = full.elastic_hz();
+    let elastic = GeneralizedEigen {
+        values: full.modes.values[full.zero_modes..].to_vec(),
+        vectors: full
+            .modes
+            .vectors
+            .subcols(full.zero_modes, full_hz.len())
+            .to_owned(),
+    };
+
+    let started = Instant::now();
+    let mut problem = InteriorProblem::new(model, &boundary, SolverPath::Auto)?
+        .with_progress(opts.progress.clone());
+    let psi_s = problem.constraint_modes()?;
+    let fi = problem.kept_modes(ModeSelection::Count(kept))?;
+    let shared_s = started.elapsed().as_secs_f64();
+
+    let mut reduced = Map::new();
+    let mut errors = Map::new();
+    let mut angles = Map::new();
+    let mut rigid_max = Map::new();
+    let mut sizes = Map::new();
+    let mut table = Table::new(&[
+        "model",
+        "size",
+        "lowest elastic Hz",
+        "max rel. error, first 6 modes",
+        "largest angle to full modes (rad)",
+        "rigid modes at ≤ Hz",
+        "s",
+    ])
+    .rank_lower(&[3, 4, 5]);
+    let mut visuals = Vec::new();
+    if body.has_coordinates {
+        visuals.push(undeformed(model));
+    }
+    let mut bars = Vec::new();
+    // The full body's rigid and lowest elastic modes each basis should contain.
+    let compared =
+        (full.zero_modes + full_hz.len().min(COMPARED_MODES)).min(full.modes.vectors.ncols());
+    let target = full.modes.vectors.subcols(0, compared);
+    for &m in &methods {
+        let started = Instant::now();
+        let basis = match m {
+            Method::CraigBampton => {
+                craig_bampton_from(model, &mut problem, ModeSelection::Count(kept))?
+            }
+            Method::ModalTruncation => {
+                modal_truncation_from(model, &mut problem, ModeSelection::Count(kept))?
+            }
+            Method::ModeCondensation => {
+                let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
+                mode_condensation_from(model, &mut problem, ModeSelection::Count(kept), route)?
+            }
+            _ => {
+                opts.progress.phase("Guyan reduction")?;
+                guyan_on(model, &boundary, SolverPath::Auto)?
+            }
+        };
+        let elapsed =
+            started.elapsed().as_secs_f64() + if m == Method::Guyan { 0.0 } else { shared_s };
+        let eig = reduced_modes(model, &basis)?;
+        // GR, CB and MC contain the rigid motions (their constraint modes reproduce them);
+        // modal truncation's boundary movements do not, so it has no zero-energy modes.
+        let all_hz = eig.hz();
+        let skip = if m == Method::ModalTruncation {
+            all_hz.iter().filter(|&&f| f < full.threshold_hz).count()
+        } else {
+            full.zero_modes.min(all_hz.len())
+        };
+        let rigid_hz = all_hz[..skip].iter().fold(0.0f64, |a, &f| a.max(f));
+        let hz: Vec<f64> = all_hz[skip..].to_vec();
+        let rel: Vec<f64> = full_hz.iter().zip(&hz).map(|(f, r)| (r - f) / f).collect();
+        let worst = rel
+            .iter()
+            .take(COMPARED_MODES)
+            .fold(0.0f64, |a, e| a.max(e.abs()));
+        let angle = principal_angles(basis.psi.as_ref(), target)?
+            .into_iter()
+            .fold(0.0f64, f64::max);
+        reduced.insert(m.id().into(), json!(sig_vec(&hz)));
+        errors.insert(m.id().into(), json!(sig_vec(&rel)));
+        angles.insert(m.id().into(), json!(sig(angle)));
+        rigid_max.insert(m.id().into(), json!(sig(rigid_hz)));
+        sizes.insert(m.id().into(), json!(basis.size()));
+        table.push(vec![
+            Cell::text(m.id().to_uppercase()),
+            Cell::number(basis.size() as f64, format!("{dofs} × {}", basis.size())),
+            Cell::text(fmt_hz(&hz[..hz.len().min(5)])),
+            Cell::number(worst, format!("{worst:.2e}")),
+            Cell::number(angle, format!("{angle:.2e}")),
+            Cell::number(rigid_hz, format!("{rigid_hz:.2e}")),
+            Cell::number(elapsed, format!("{elapsed:.3}")),
+        ]);
+        visuals.push(Visual::Bars {
+            path: format!("metrics/reduced_hz/{}", m.id()),
+            values: hz[..hz.len().min(12)].to_vec(),
+        });
+        bars.push(Layout::BarChart {
+            name: m.id().into(),
+            origin: format!("/metrics/reduced_hz/{}", m.id()),
+        });
+    }
+
+    let mut report = Report::new(INFO.id);
+    let p = &mut report.parameters;
+    p.insert("body".into(), json!(body.location.display()));
+    p.insert("boundary".into(), json!(boundary));
+    p.insert("modes".into(), json!(kept));
+    p.insert(
+        "methods".into(),
+        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
+    );
+    let r = &mut report.results;
+    r.insert("dofs".into(), json!(dofs));
+    r.insert("nnz".into(), json!(model.stiffness_nnz()));
+    r.insert("zero_energy_modes".into(), json!(full.zero_modes));
+    r.insert("free_free_hz".into(), json!(sig_vec(&full_hz)));
+    r.insert("fixed_interface_hz".into(), json!(sig_vec(&fi.hz())));
+    r.insert("reduced_hz".into(), Value::Object(reduced));
+    r.insert("rel_error".into(), Value::Object(errors));
+    r.insert("max_principal_angle_rad".into(), Value::Object(angles));
+    r.insert("basis_size".into(), Value::Object(sizes));
+    r.insert("zero_energy_hz_max".into(), Value::Object(rigid_max));
+    r.insert("full_modes_s".into(), json!(sig(full_s)));
+    let summary = table.markdown();
+    report.add_table(table);
+    let units = &body.units;
+    report.table = format!(
+        "Body `{}` ({}): {dofs} DOF, {} stiffness entries, {} zero-energy mode(s); units {}, \
+         {}, {}. Interface {} node(s) {boundary:?}, {kept} kept modes.\n\n{summary}\nFull body, \
+         lowest elastic: {}\n\nFixed-interface: {}\n",
+        model.name,
+        body.location.display(),
+        model.stiffness_nnz(),
+        full.zero_modes,
+        units.length,
+        units.mass,
+        units.force,
+        boundary.len(),
+        fmt_hz(&full_hz),
+        fmt_hz(&fi.hz()[..fi.hz().len().min(8)]),
+    );
+    let markdown = format!(
+        "# modes: {}\n\n{}\n\nEvery method reduces the same body on the same interface: \
+         Guyan keeps only the interface (static constraint modes), modal truncation the \
+         interface movements and the {kept} lowest fixed-interface modes, Craig–Bampton the \
+         constraint modes and those modes, mode condensation the same space in its own \
+         coordinates. \"max rel. error\" compares each model's six lowest elastic frequencies \
+         with the full body's, paired by order; the angle is the largest principal angle between the basis \
+         and the full body's zero-energy and six lowest elastic modes (0: contained). \"rigid \
+         modes at\" is the highest frequency a reduced model gives its rigid-body motions, \
+         which should be zero: round-off in the method's coordinates lifts it.\n\n{}",
+        model.name, body.description, report.table
+    );
+    let layout;
+    if body.has_coordinates {
+        let (mode_visuals, l) = super::slab_modes::slab_mode_views(
+            model,
+            &problem.partition,
+            &psi_s,
+            &fi,
+            &elastic,
+            FULL_MODES,
+            kept,
+            "free_free",
+            bars,
+        );
+        visuals.extend(mode_visuals);
+        layout = l;
+    } else {
+        layout = Layout::Horizontal(
+            vec![Layout::Horizontal(bars, vec![]), Layout::scene_text()],
+            vec![3.0, 2.0],
+        );
+    }
+    Ok(SceneOutput {
+        report,
+        markdown,
+        visuals,
+        layout,
+        timeline: Some("phase".into()),
+        y_up: false,
+    })
+}
+
+/// What `flexmodes import` prints: the body's size, mass, zero-energy modes and lowest
+/// frequencies, its node sets; JSON and text. A mechanism is [`Error::Mechanism`].
+pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
+    let model = &body.model;
+    let full = count_zero_energy_modes(model, FULL_MODES)?;
+    let rigid = model.dofs.rigid_body_count();
+    if full.zero_modes > rigid {
+        return Err(Error::Mechanism {
+            body: model.name.clone(),
+            zero_modes: full.zero_modes,
+            rigid,
+            threshold_hz: full.threshold_hz,
+        });
+    }
+    let hz = full.elastic_hz();
+    let mass = model.total_mass();
+    let (mass_kind, mass_nnz) = match &model.m {
+        crate::linalg::MassMatrix::Lumped(d) => ("lumped", d.len()),
+        crate::linalg::MassMatrix::Consistent(m) => ("consistent", m.nnz()),
+    };
+    let dof_names: Vec<String> = model.dofs.node_dofs().iter().map(|d| d.name()).collect();
+    let sets: Map<String, Value> = body
+        .node_sets
+        .iter()
+        .map(|(k, v)| (k.clone(), json!(v.len())))
+        .collect();
+    let value = json!({
+        "body": body.location.display(),
+        "name": model.name,
+        "description": body.description,
+        "nodes": model.node_count(),
+        "dofs_per_node": dof_names,
+        "dofs": model.dof_count(),
+        "stiffness_nnz": model.stiffness_nnz(),
+        "mass": mass_kind,
+        "mass_nnz": mass_nnz,
+        "total_mass": sig(mass),
+        "units": { "length": body.units.length, "mass": body.units.mass, "force": body.units.force },
+        "coordinates": body.has_coordinates,
+        "size": if body.has_coordinates { Some(sig(model.size())) } else { None },
+        "rigid_motions_from_coordinates":
+            model.rigid_motions == crate::fem::RigidMotions::FromGeometry,
+        "zero_energy_modes": full.zero_modes,
+        "zero_energy_threshold_hz": sig(full.threshold_hz),
+        "lowest_elastic_hz": sig_vec(&hz),
+        "node_sets": sets,
+    });
+    let set_text: Vec<String> = body
+        .node_sets
+        .iter()
+        .map(|(k, v)| format!("{k} ({} nodes)", v.len()))
+        .collect();
+    let text = format!(
+        "# {} ({})\n\n{}\n\n- {} nodes × {} DOF ({}) = {} DOF, node-major\n- K: {} stored \
+         entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
+         coordinates: {}\n- zero-energy modes: {} (below {:.2e} Hz; a free {} body has {rigid}){}\n\
+         - lowest elastic frequencies, Hz: {}\n- node sets: {}\n- units: {}, {}, {}",
+        model.name,
+        body.location.display(),
+        body.description,
+        model.node_count(),
+        model.dofs.per_node(),
+        dof_names.join(" "),
+        model.dof_count(),
+        model.stiffness_nnz(),
+        crate::report::sig6(mass),
+        body.units.mass,
+        if body.has_coordinates {
+            format!(
+                "yes, largest extent {} {}",
+                crate::report::sig6(model.size()),
+                body.units.length
+            )
+        } else {
+            "none (report and export work; drawing does not)".into()
+        },
+        full.zero_modes,
+        full.threshold_hz,
+        if model.spatial_dim() == 2 {
+            "planar"
+        } else {
+            "spatial"
+        },
+        if full.zero_modes == 0 {
+            " — the body was restrained before export".to_string()
+        } else if model.rigid_motions == crate::fem::RigidMotions::FromGeometry {
+            "; they are the rigid motions of the node coordinates".to_string()
+        } else {
+            String::new()
+        },
+        fmt_hz(&hz),
+        if set_text.is_empty() {
+            "none".into()
+        } else {
+            set_text.join(", ")
+        },
+        body.units.length,
+        body.units.mass,
+        body.units.force,
+    );
+    Ok((value, text))
+}
