@@ -20,7 +20,7 @@ use serde_json::json;
 
 use crate::{
     Error, Result,
-    analysis::elastic_hz,
+    analysis::zero_energy_threshold_hz,
     body_file::{ImportedBody, write_array, write_atomically},
     linalg::generalized_eigen,
     reduction::{
@@ -64,7 +64,8 @@ pub fn export(
     let k_r = basis.reduced_stiffness(model);
     let m_r = basis.reduced_mass(model);
     let eig = generalized_eigen(k_r.as_ref(), m_r.as_ref(), "reduced model")?;
-    let hz = elastic_hz(&eig);
+    let threshold = zero_energy_threshold_hz(model);
+    let hz: Vec<f64> = eig.hz().into_iter().filter(|&f| f >= threshold).collect();
 
     let columns: Vec<serde_json::Value> = basis
         .columns

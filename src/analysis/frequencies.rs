@@ -152,15 +152,21 @@ pub fn count_zero_energy_modes(model: &FeModel, elastic: usize) -> Result<ZeroEn
         )?
         .0
     };
-    let top = (0..n)
-        .map(|j| model.k.get(j, j) / model.m.get(j, j))
-        .filter(|r| r.is_finite())
-        .fold(0.0f64, f64::max);
-    let threshold_hz = RIGID_BODY_HZ.max(1e-5 * top.sqrt() / (2.0 * std::f64::consts::PI));
+    let threshold_hz = zero_energy_threshold_hz(model);
     let zero_modes = modes.hz().iter().filter(|&&f| f < threshold_hz).count();
     Ok(ZeroEnergyCount {
         modes,
         zero_modes,
         threshold_hz,
     })
+}
+
+/// Frequency (Hz) below which a mode of `model` (or of a model reduced from it) counts as
+/// zero-energy: the larger of [`RIGID_BODY_HZ`] and $10^{-5}\max_i\sqrt{K_{ii}/M_{ii}}/2\pi$.
+pub fn zero_energy_threshold_hz(model: &FeModel) -> f64 {
+    let top = (0..model.dof_count())
+        .map(|j| model.k.get(j, j) / model.m.get(j, j))
+        .filter(|r| r.is_finite())
+        .fold(0.0f64, f64::max);
+    RIGID_BODY_HZ.max(1e-5 * top.sqrt() / (2.0 * std::f64::consts::PI))
 }

@@ -8,7 +8,7 @@ mod simulation_metrics;
 
 pub use frequencies::{
     RIGID_BODY_HZ, ZeroEnergyCount, count_zero_energy_modes, elastic_hz, free_free_modes,
-    lowest_free_free_modes, reduced_hz, reduced_modes,
+    lowest_free_free_modes, reduced_hz, reduced_modes, zero_energy_threshold_hz,
 };
 pub use mean_axes::{MeanAxesEvaluation, evaluate_with_mean_axes, rigid_modes_about_mass_centre};
 pub use profiles::{PROFILE_DELTA, ProfileFit, fit_given_modal_coordinates, fit_least_squares};

@@ -15,7 +15,7 @@ pub type BodyFiles = BTreeMap<String, Vec<u8>>;
 pub fn write_body(
     model: &FeModel,
     node_sets: &BTreeMap<String, Vec<usize>>,
-    default_interface: &str,
+    default_interface: Option<&str>,
     description: &str,
     compress: bool,
 ) -> Result<BodyFiles> {
@@ -101,8 +101,7 @@ pub fn write_body(
          name = \"{}\"\n\
          description = \"{}\"\n\
          dofs = [{}]\n\
-         dof_order = \"node-major\"\n\
-         default_interface = \"{default_interface}\"\n\n\
+         dof_order = \"node-major\"\n{}\n\
          [units]\nlength = \"m\"\nmass = \"kg\"\nforce = \"N\"\n\n\
          [matrices]\nstiffness = \"{k_name}\"\nmass = \"{m_name}\"\n\n\
          [geometry]\nnodes = \"nodes.csv\"\nedges = \"edges.csv\"\n\n\
@@ -110,6 +109,9 @@ pub fn write_body(
         model.name,
         description.replace('"', "'"),
         dofs.join(", "),
+        default_interface
+            .map(|s| format!("default_interface = \"{s}\"\n"))
+            .unwrap_or_default(),
     );
     for (set, members) in node_sets {
         let list: Vec<String> = members.iter().map(|m| m.to_string()).collect();
@@ -147,7 +149,7 @@ pub fn example_bodies() -> Result<Vec<(&'static str, BodyFiles)>> {
             write_body(
                 &slab,
                 &slab_sets,
-                "bottom_corners",
+                Some("bottom_corners"),
                 "Lin (2005) App. B slab: 4 x 2 x 1 m, 8 trilinear bricks, E = 0.2e6 Pa, nu = 0.33, \
                  62.4 kg lumped",
                 false,
@@ -158,7 +160,7 @@ pub fn example_bodies() -> Result<Vec<(&'static str, BodyFiles)>> {
             write_body(
                 &bracket,
                 &bracket_sets,
-                "bolt_hole",
+                Some("bolt_hole"),
                 "steel L-bracket, 60 x 30 x 10 mm base with a 10 x 10 mm bolt hole, \
                  upright 40 mm above the base (50 mm overall), 5 mm trilinear bricks, consistent mass",
                 true,

@@ -375,6 +375,9 @@ impl ImportedBody {
     }
 }
 
+/// A row of a table and its 1-based line.
+type Row<T> = (usize, Vec<T>);
+
 /// A CSV table (or inline rows): `(line, values)` per row and the name used in messages.
 /// Commas, semicolons or white space separate values; `#` starts a comment; a first line that
 /// does not parse is taken as a header.
@@ -383,7 +386,7 @@ fn read_table<T: std::str::FromStr + Copy>(
     table: &TableOrFile<T>,
     key: &str,
     body_name: &str,
-) -> Result<(Vec<(usize, Vec<T>)>, String)> {
+) -> Result<(Vec<Row<T>>, String)> {
     match table {
         TableOrFile::Inline(rows) => Ok((
             rows.iter()

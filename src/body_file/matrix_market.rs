@@ -104,7 +104,7 @@ fn parse_value(token: &str) -> Option<f64> {
 fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
     let mut lines = reader.lines().enumerate().map(|(k, l)| (k + 1, l));
     let next = |lines: &mut dyn Iterator<Item = (usize, std::io::Result<String>)>| {
-        while let Some((no, line)) = lines.next() {
+        for (no, line) in &mut *lines {
             let line = line.map_err(|e| line_error(name, no, format!("unreadable: {e}")))?;
             let t = line.trim();
             if t.is_empty() || t.starts_with('%') {

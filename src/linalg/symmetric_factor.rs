@@ -13,7 +13,8 @@ use faer::{
     sparse::{
         SparseColMat,
         linalg::cholesky::{
-            LltRef, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+            LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+            factorize_symbolic_cholesky,
         },
     },
 };
@@ -136,6 +137,12 @@ impl SymmetricFactor {
             Default::default(),
         );
         if let Err(LltError::NonPositivePivot { index }) = result {
+            // faer 0.24 counts the failed pivot from 1 on its simplicial path and from 0 on
+            // its supernodal one.
+            let index = match sym.raw() {
+                SymbolicCholeskyRaw::Simplicial(_) => index.saturating_sub(1),
+                SymbolicCholeskyRaw::Supernodal(_) => index,
+            };
             let original = match sym.perm() {
                 Some(p) => p.arrays().0[index],
                 None => index,

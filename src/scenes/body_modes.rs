@@ -267,8 +267,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          which should be zero: round-off in the method's coordinates lifts it.\n\n{}",
         model.name, body.description, report.table
     );
-    let layout;
-    if body.has_coordinates {
+    let layout = if body.has_coordinates {
         let (mode_visuals, l) = super::slab_modes::slab_mode_views(
             model,
             &problem.partition,
@@ -281,13 +280,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             bars,
         );
         visuals.extend(mode_visuals);
-        layout = l;
+        l
     } else {
-        layout = Layout::Horizontal(
+        Layout::Horizontal(
             vec![Layout::Horizontal(bars, vec![]), Layout::scene_text()],
             vec![3.0, 2.0],
-        );
-    }
+        )
+    };
     Ok(SceneOutput {
         report,
         markdown,

@@ -1,6 +1,7 @@
 //! Library-level tests in one binary (one link step): the published numbers of the thesis and
 //! the physical and algebraic invariants of the bodies and reduction methods.
 
+mod body_file;
 mod common;
 mod errors;
 mod floating_frame;
