@@ -17,6 +17,8 @@ pub static FILES: &[(&str, &[u8])] = &[
     embed!("thesis/beam-stiffness-app-a.txt"),
     embed!("thesis/slab-app-b.toml"),
     embed!("thesis/slab-table-b1.txt"),
+    embed!("thesis/slab-bricks-app-b.txt"),
+    embed!("thesis/plank-5-3-3.toml"),
     embed!("bodies/app-b-slab/body.toml"),
     embed!("bodies/app-b-slab/k.mtx"),
     embed!("bodies/app-b-slab/m.mtx"),

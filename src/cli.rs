@@ -61,6 +61,9 @@ enum Command {
     Gui {
         /// Scene to open (default: the last session's, else beam-modes).
         scene: Option<String>,
+        /// Open the `modes` scene on this body file (TOML) or `builtin:NAME`.
+        #[arg(long, conflicts_with = "scene")]
+        body: Option<String>,
         #[command(flatten)]
         window: WindowArgs,
     },
@@ -238,19 +241,27 @@ impl OptionArgs {
     }
 }
 
-/// 1-based node numbers; a name is a node set, which needs a body file.
+/// 1-based node numbers; a name is a node set, which needs a body file: without one, a usage
+/// error (exit 2) as any other malformed option.
 fn parse_nodes(items: &[String]) -> Result<Vec<usize>> {
-    items
-        .iter()
-        .map(|s| {
-            s.trim().parse::<usize>().map_err(|_| Error::InvalidOption {
-                scene: "-".into(),
-                reason: format!(
-                    "--boundary `{s}` is not a node number (node set names need --body)"
-                ),
-            })
-        })
-        .collect()
+    let mut nodes = Vec::with_capacity(items.len());
+    for s in items {
+        match s.trim().parse::<usize>() {
+            Ok(n) => nodes.push(n),
+            Err(_) => {
+                use clap::CommandFactory;
+                Cli::command()
+                    .error(
+                        clap::error::ErrorKind::ValueValidation,
+                        format!(
+                            "--boundary `{s}` is not a node number (node set names need --body)"
+                        ),
+                    )
+                    .exit()
+            }
+        }
+    }
+    Ok(nodes)
 }
 
 /// Parses the arguments (exit 2 on a usage error), runs, and maps errors to exit code 1 with
@@ -288,11 +299,15 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         #[cfg(feature = "gui")]
-        Command::Gui { scene, window } => {
+        Command::Gui {
+            scene,
+            body,
+            window,
+        } => {
             if let Some(s) = &scene {
                 scenes::find(s)?;
             }
-            crate::gui::run(scene.as_deref(), None, window.into())
+            crate::gui::run_with_body(scene.as_deref(), body.as_deref(), None, window.into())
         }
         #[cfg(feature = "gui")]
         Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),

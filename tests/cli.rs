@@ -2,7 +2,7 @@
 
 use std::process::{Command, Output};
 
-const SCENES: [&str; 9] = [
+const SCENES: [&str; 10] = [
     "beam-modes",
     "slab-modes",
     "beam-profiles",
@@ -12,6 +12,7 @@ const SCENES: [&str; 9] = [
     "slab-sim3",
     "plank-symmetry",
     "beam-mean-axes",
+    "modes",
 ];
 
 fn flexmodes(args: &[&str]) -> Output {
@@ -350,5 +351,99 @@ fn bench_sizes_writes_the_log_log_chart() {
     let out = flexmodes(&["bench", "slab-sim1", "--save", file.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--sizes"));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn import_report_and_export_a_body_file() {
+    // import: the summary of a built-in body, as JSON.
+    let v = json(&["import", "builtin:l-bracket", "--json"]);
+    assert_eq!(v["dofs"], 1314);
+    assert_eq!(v["zero_energy_modes"], 6);
+    assert_eq!(v["node_sets"]["bolt_hole"], 24);
+    let first = v["lowest_elastic_hz"][0].as_f64().unwrap();
+    assert!(first > 1000.0 && first < 10000.0, "{first}");
+
+    // report modes on a body copied to disk, the interface named by its set.
+    let dir = temp_dir("body");
+    for f in ["body.toml", "k.mtx", "m.mtx", "nodes.csv", "edges.csv"] {
+        let bytes = flexmodes::assets::get(&format!("bodies/app-b-slab/{f}")).unwrap();
+        std::fs::write(dir.join(f), bytes).unwrap();
+    }
+    let body = dir.join("body.toml");
+    let body = body.to_str().unwrap();
+    let v = json(&[
+        "report",
+        "modes",
+        "--body",
+        body,
+        "--boundary",
+        "bottom_corners",
+        "--method",
+        "cb,gr",
+        "--modes",
+        "6",
+        "--json",
+    ]);
+    assert_eq!(
+        v["parameters"]["boundary"],
+        serde_json::json!([16, 18, 28, 30])
+    );
+    // The thesis' Craig-Bampton slab: 7.49872 Hz first (§7.2.1), as slab-modes reports it.
+    let cb = v["results"]["reduced_hz"]["cb"][0].as_f64().unwrap();
+    assert!((cb - 7.49872).abs() < 5e-5, "{cb}");
+
+    // export: the files, and a second export replacing the folder.
+    let out_dir = dir.join("cb");
+    let out = flexmodes(&[
+        "export",
+        "--body",
+        body,
+        "--method",
+        "cb",
+        "--modes",
+        "6",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for f in ["psi.mtx", "k_r.mtx", "m_r.mtx", "model.json"] {
+        assert!(out_dir.join(f).is_file(), "{f}");
+    }
+    let model: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out_dir.join("model.json")).unwrap()).unwrap();
+    assert_eq!(model["size"], 18);
+    assert!((model["reduced_elastic_hz"][0].as_f64().unwrap() - 7.49872).abs() < 5e-5);
+
+    // A broken body file: exit 1, the file and line on stderr, nothing written.
+    std::fs::write(
+        dir.join("k.mtx"),
+        "%%MatrixMarket matrix coordinate real symmetric\n90 90 1\n91 1 1.0\n",
+    )
+    .unwrap();
+    let bad_out = dir.join("never");
+    let out = flexmodes(&[
+        "export",
+        "--body",
+        body,
+        "--method",
+        "cb",
+        "--out",
+        bad_out.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("k.mtx:3") && err.contains("(91, 1)"), "{err}");
+    assert!(!bad_out.exists());
+    // --body on a thesis scene, and a set name without a body.
+    let out = flexmodes(&["report", "slab-modes", "--body", "builtin:l-bracket"]);
+    assert_eq!(out.status.code(), Some(1));
+    let out = flexmodes(&["report", "slab-modes", "--boundary", "bottom_corners"]);
+    assert_eq!(out.status.code(), Some(2), "a usage error");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("node set names need --body"));
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -259,3 +259,54 @@ fn a_running_simulation_shows_its_simulated_time() {
     settle(&mut h);
     assert!(h.query_by_label_contains("simulation 1: t = ").is_none());
 }
+
+#[test]
+fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
+    let explorer = Explorer::new(Controls::for_body("builtin:app-b-slab").unwrap());
+    let mut h = Harness::new_ui_state(
+        |ui: &mut egui::Ui, e: &mut Explorer| {
+            e.poll();
+            let commands = e.panel_ui(ui);
+            e.apply(commands);
+        },
+        explorer,
+    );
+    settle(&mut h);
+    assert_eq!(h.state().controls.scene, "modes");
+    let report = &h.state().current.as_ref().unwrap().report;
+    // The body file's default interface: the four bottom corners.
+    assert_eq!(
+        report.parameters["boundary"],
+        serde_json::json!([16, 18, 28, 30])
+    );
+    // Its node sets are offered; picking one recomputes on it. Nodes 5 and 11 alone leave the
+    // rotation about their line free: the error is shown, the last recording stays.
+    h.get_by_label("guyan_extra").click();
+    settle(&mut h);
+    assert_eq!(h.state().controls.boundary, "guyan_extra");
+    let error = h.state().error.clone().expect("a singular interface");
+    assert!(error.contains("K_ii is singular"), "{error}");
+    h.get_by_label("top_centre").click();
+    settle(&mut h);
+    assert!(h.state().error.is_some(), "one node restrains nothing");
+    h.get_by_label("bottom_corners").click();
+    settle(&mut h);
+    assert!(h.state().error.is_none());
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(
+        report.parameters["boundary"],
+        serde_json::json!([16, 18, 28, 30])
+    );
+    // The other built-in body; a missing file is an error and the last recording stays.
+    h.get_by_label("l-bracket").click();
+    settle(&mut h);
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(report.results["dofs"], 1314);
+    assert!(h.query_by_label("bolt_hole").is_some());
+    h.state_mut().controls.body = "/nonexistent/body.toml".into();
+    h.state_mut().request();
+    h.step();
+    let error = h.state().error.clone().unwrap();
+    assert!(error.contains("/nonexistent/body.toml"), "{error}");
+    assert!(h.state().current.is_some());
+}

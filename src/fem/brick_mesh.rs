@@ -123,6 +123,36 @@ pub fn plank(p: &SlabParameters) -> FeModel {
     brick_mesh("plank", p, move |q| [q[0], depth - q[2], q[1]])
 }
 
+/// The bricks of the mesh as 0-based node lists in the local order of
+/// [`LOCAL_NODES`](super::HEX8_LOCAL_NODES) (lower ζ face counter-clockwise, then the upper),
+/// ξ-major, then η, then ζ from the top; for App. B the eight bricks of
+/// `assets/thesis/slab-bricks-app-b.txt`.
+pub fn slab_bricks(p: &SlabParameters) -> Vec<[usize; 8]> {
+    let [nx, ny, nz] = p.bricks.map(|b| b.max(1));
+    let py = ny + 1;
+    let layer = (nx + 1) * py;
+    let index = |ix: usize, iy: usize, iz_from_top: usize| iz_from_top * layer + ix * py + iy;
+    let mut elements = Vec::with_capacity(nx * ny * nz);
+    for ix in 0..nx {
+        for iy in 0..ny {
+            for izb in 0..nz {
+                let (bot, top) = (izb + 1, izb);
+                elements.push([
+                    index(ix, iy, bot),
+                    index(ix + 1, iy, bot),
+                    index(ix + 1, iy + 1, bot),
+                    index(ix, iy + 1, bot),
+                    index(ix, iy, top),
+                    index(ix + 1, iy, top),
+                    index(ix + 1, iy + 1, top),
+                    index(ix, iy + 1, top),
+                ]);
+            }
+        }
+    }
+    elements
+}
+
 fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 3]) -> FeModel {
     let [nx, ny, nz] = p.bricks.map(|b| b.max(1));
     let (px, py) = (nx + 1, ny + 1);
@@ -148,25 +178,7 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
         }
     }
     // Connectivity first (the sparsity pattern), values second.
-    let mut elements = Vec::with_capacity(nx * ny * nz);
-    for ix in 0..nx {
-        for iy in 0..ny {
-            for izb in 0..nz {
-                // Local order of hex8::LOCAL_NODES: bottom face (lower ζ) then top.
-                let (bot, top) = (izb + 1, izb);
-                elements.push([
-                    index(ix, iy, bot),
-                    index(ix + 1, iy, bot),
-                    index(ix + 1, iy + 1, bot),
-                    index(ix, iy + 1, bot),
-                    index(ix, iy, top),
-                    index(ix + 1, iy, top),
-                    index(ix + 1, iy + 1, top),
-                    index(ix, iy + 1, top),
-                ]);
-            }
-        }
-    }
+    let elements = slab_bricks(p);
     let pattern =
         SparsityPattern::from_elements(nodes.len(), 3, elements.iter().map(|c| c.as_slice()));
     let mut mass_assembly = p

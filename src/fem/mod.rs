@@ -11,7 +11,7 @@ mod l_bracket;
 mod triplets;
 
 pub use beam2d::{BeamParameters, beam};
-pub use brick_mesh::{SlabParameters, plank, slab};
+pub use brick_mesh::{SlabParameters, plank, slab, slab_bricks};
 pub use dof_map::{DofMap, NodeDof};
 pub use fe_model::{Direction, FeModel, RigidMotions};
 pub use frame3d::{FrameSection, frame, frame_stiffness};

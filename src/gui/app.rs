@@ -227,6 +227,17 @@ struct FlexmodesShot;
 
 /// Opens the explorer on `scene` (default `beam-modes`), or the viewer on a saved recording.
 pub fn run(scene: Option<&str>, file: Option<&Path>, opts: ViewerOptions) -> Result<()> {
+    run_with_body(scene, None, file, opts)
+}
+
+/// [`run`], or the explorer on the `modes` scene with the body file `body` (loaded and checked
+/// first, so a bad file fails before a window opens).
+pub fn run_with_body(
+    scene: Option<&str>,
+    body: Option<&str>,
+    file: Option<&Path>,
+    opts: ViewerOptions,
+) -> Result<()> {
     let gui_error = |e: String| Error::Rerun(format!("desktop app: {e}"));
     let file_bytes = match file {
         Some(p) => Some(std::fs::read(p).map_err(|source| Error::Io {
@@ -235,10 +246,14 @@ pub fn run(scene: Option<&str>, file: Option<&Path>, opts: ViewerOptions) -> Res
         })?),
         None => None,
     };
-    let explicit_scene = scene.is_some();
-    let initial = match (&file_bytes, scene) {
-        (Some(_), _) => None,
-        (None, s) => Some(Controls::for_scene(s.unwrap_or("beam-modes"))?),
+    let explicit_scene = scene.is_some() || body.is_some();
+    let initial = match (&file_bytes, scene, body) {
+        (Some(_), _, _) => None,
+        (None, _, Some(b)) => {
+            crate::body_file::ImportedBody::load(b)?;
+            Some(Controls::for_body(b)?)
+        }
+        (None, s, None) => Some(Controls::for_scene(s.unwrap_or("beam-modes"))?),
     };
     let toggles = if opts.toggle.is_some() {
         opts.repeat.max(1)

@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::{
     Error, Result,
+    body_file::BodyHandle,
     reduction::Method,
     scenes::{self, SceneOptions},
 };
@@ -27,6 +28,9 @@ pub struct Controls {
     /// Mesh as bricks along x, y, z (scenes whose body can be refined; empty otherwise).
     #[serde(default)]
     pub refine: Vec<usize>,
+    /// Body file of the `modes` scene (a path or `builtin:NAME`; empty: its default body).
+    #[serde(default)]
+    pub body: String,
 }
 
 /// Meshes the explorer offers for a refinable slab: App. B and the benchmark's sizes that a
@@ -48,7 +52,21 @@ impl Controls {
             axes: String::new(),
             end_time: c.end_time.unwrap_or(0.0),
             refine: c.refine.map(|r| r.to_vec()).unwrap_or_default(),
+            body: String::new(),
         })
+    }
+
+    /// The defaults of the `modes` scene on the body file `body`.
+    pub fn for_body(body: &str) -> Result<Self> {
+        Ok(Self {
+            body: body.into(),
+            ..Self::for_scene(scenes::body_modes::INFO.id)?
+        })
+    }
+
+    /// Whether the scene takes a body file (and node-set names as boundary).
+    pub fn takes_body(&self) -> bool {
+        self.scene == scenes::body_modes::INFO.id
     }
 
     /// The scene's default boundary, as text.
@@ -56,6 +74,28 @@ impl Controls {
         scenes::find(&self.scene)
             .map(|s| join(s.info.controls.boundary))
             .unwrap_or_default()
+    }
+
+    /// Scene options from the controls; a malformed boundary is an error that names it. For
+    /// the `modes` scene, `body` is the loaded body file: the boundary may name its node sets.
+    pub fn options_with(&self, body: Option<&BodyHandle>) -> Result<SceneOptions> {
+        if self.takes_body() {
+            let items: Vec<String> = self
+                .boundary
+                .split([',', ' '])
+                .filter(|t| !t.trim().is_empty())
+                .map(|t| t.trim().to_string())
+                .collect();
+            let boundary = match body {
+                Some(b) if !items.is_empty() => Some(b.boundary(&items)?),
+                _ => None,
+            };
+            let mut options = self.options()?;
+            options.boundary = boundary;
+            options.body = body.cloned();
+            return Ok(options);
+        }
+        self.options()
     }
 
     /// Scene options from the controls; a malformed boundary is an error that names it.

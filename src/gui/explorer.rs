@@ -11,6 +11,7 @@ use crate::{
 };
 
 use super::{Command, Computed, Controls, Worker};
+use crate::body_file::{BodyHandle, ImportedBody};
 
 /// Controls, the worker, the last good recording and what went wrong.
 pub struct Explorer {
@@ -33,6 +34,8 @@ pub struct Explorer {
     pub save_path: String,
     fresh: bool,
     shown_scenes: std::collections::HashSet<String>,
+    /// The body file of the `modes` scene as loaded, with the text it was loaded from.
+    body: Option<(String, BodyHandle)>,
 }
 
 impl Explorer {
@@ -51,6 +54,7 @@ impl Explorer {
             save_path,
             fresh: false,
             shown_scenes: Default::default(),
+            body: None,
         };
         e.request();
         e
@@ -58,7 +62,10 @@ impl Explorer {
 
     /// Recomputes with the current controls (superseding a running request).
     pub fn request(&mut self) {
-        match self.controls.options() {
+        let options = self
+            .loaded_body()
+            .and_then(|body| self.controls.options_with(body.as_ref()));
+        match options {
             Ok(options) => {
                 self.generation += 1;
                 let seen = self.shown_scenes.contains(&self.controls.scene);
@@ -67,6 +74,39 @@ impl Explorer {
                 self.computing_since = Some(Instant::now());
             }
             Err(e) => self.error = Some(e.to_string()),
+        }
+    }
+
+    /// The body file of the `modes` scene, loaded (and checked) when its name changed; `None`
+    /// for other scenes.
+    fn loaded_body(&mut self) -> crate::Result<Option<BodyHandle>> {
+        if !self.controls.takes_body() {
+            return Ok(None);
+        }
+        let name = if self.controls.body.trim().is_empty() {
+            scenes::body_modes::DEFAULT_BODY.to_string()
+        } else {
+            self.controls.body.trim().to_string()
+        };
+        if let Some((loaded, handle)) = &self.body
+            && *loaded == name
+        {
+            return Ok(Some(handle.clone()));
+        }
+        let handle = BodyHandle(std::sync::Arc::new(ImportedBody::load(&name)?));
+        self.body = Some((name, handle.clone()));
+        Ok(Some(handle))
+    }
+
+    /// Node sets of the loaded body file, for the boundary menu.
+    pub fn node_sets(&self) -> Vec<(String, usize)> {
+        match &self.body {
+            Some((_, b)) if self.controls.takes_body() => b
+                .node_sets
+                .iter()
+                .map(|(k, v)| (k.clone(), v.len()))
+                .collect(),
+            _ => Vec::new(),
         }
     }
 
@@ -196,7 +236,51 @@ impl Explorer {
                 }
             });
         }
-        if !info.controls.boundary.is_empty() {
+        if self.controls.takes_body() {
+            ui.horizontal(|ui| {
+                ui.label("body file");
+                let r = ui.add(
+                    egui::TextEdit::singleline(&mut self.controls.body)
+                        .hint_text(scenes::body_modes::DEFAULT_BODY)
+                        .desired_width(170.0),
+                );
+                if r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
+                    self.controls.boundary.clear();
+                    out.push(Command::Recompute);
+                }
+            });
+            ui.horizontal_wrapped(|ui| {
+                ui.label("built-in:");
+                for name in crate::assets::builtin_bodies() {
+                    let id = format!("builtin:{name}");
+                    if ui
+                        .selectable_label(self.controls.body == id, name)
+                        .clicked()
+                    {
+                        self.controls.body = id;
+                        self.controls.boundary.clear();
+                        out.push(Command::Recompute);
+                    }
+                }
+            });
+            let sets = self.node_sets();
+            if !sets.is_empty() {
+                ui.horizontal_wrapped(|ui| {
+                    ui.label("interface:");
+                    for (name, count) in sets {
+                        if ui
+                            .selectable_label(self.controls.boundary == name, &name)
+                            .on_hover_text(format!("node set, {count} nodes"))
+                            .clicked()
+                        {
+                            self.controls.boundary = name;
+                            out.push(Command::Recompute);
+                        }
+                    }
+                });
+            }
+        }
+        if !info.controls.boundary.is_empty() || self.controls.takes_body() {
             ui.horizontal(|ui| {
                 ui.label("boundary nodes");
                 let r = ui.add(

@@ -40,13 +40,29 @@ pub const INFO: SceneInfo = SceneInfo {
     },
 };
 
-/// Link length, m, and mass, kg (§5.3.3).
-const LINK_LENGTH: f64 = 2.0;
-const LINK_MASS: f64 = 1.0;
-/// How far the plank falls before the chains straighten, m (≈ 0.5 s of free fall).
-const DROP: f64 = 1.2;
-/// Downward force at node 22, N.
-const FORCE_22: f64 = 250.0;
+/// The §5.3.3 set-up as stored in `assets/thesis/plank-5-3-3.toml`.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlankSetup {
+    /// Length of each rigid link, m.
+    pub link_length: f64,
+    /// Mass of each rigid link, kg.
+    pub link_mass: f64,
+    /// The loaded node, 1-based.
+    pub force_node: usize,
+    /// The downward force at it, N.
+    pub force: f64,
+    /// The top front corners the chains hold, 1-based.
+    pub hanging_nodes: [usize; 2],
+    /// How far the plank falls before the chains straighten, m (≈ 0.5 s of free fall).
+    pub drop: f64,
+}
+
+/// The set-up, read once from the embedded asset.
+pub fn plank_setup() -> &'static PlankSetup {
+    static SETUP: std::sync::OnceLock<PlankSetup> = std::sync::OnceLock::new();
+    SETUP.get_or_init(|| crate::assets::parameters("thesis/plank-5-3-3.toml"))
+}
 /// The plane of mirror symmetry, x = 2 m.
 const MID_X: f64 = 2.0;
 const END_TIME: f64 = 1.5;
@@ -91,7 +107,7 @@ pub fn plank_body(model: &FeModel, v: Variant, modes: usize) -> Result<FlexibleB
 }
 
 /// The plank, four links and six spherical joints, at rest with each chain folded
-/// symmetrically so the plank falls [`DROP`] before the chains straighten.
+/// symmetrically so the plank falls [`PlankSetup::drop`] before the chains straighten.
 pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
     let model = body.model.clone();
     let origin = body.origin;
@@ -99,11 +115,14 @@ pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
         let p = model.nodes[node - 1];
         Vector3::new(p[0], p[1], p[2])
     };
-    let (c, f) = (top(3), top(15));
+    let setup = plank_setup();
+    let [left, right] = setup.hanging_nodes;
+    let (c, f) = (top(left), top(right));
     // Anchors above the top corners, the chain's elbow pushed outward (mirror images).
-    let height = 2.0 * LINK_LENGTH - DROP;
+    let length = setup.link_length;
+    let height = 2.0 * length - setup.drop;
     let half = height / 2.0;
-    let out = (LINK_LENGTH * LINK_LENGTH - half * half).sqrt();
+    let out = (length * length - half * half).sqrt();
     let a = c + Vector3::new(0.0, 0.0, height);
     let b = c + Vector3::new(-out, 0.0, half);
     let d = f + Vector3::new(0.0, 0.0, height);
@@ -111,7 +130,7 @@ pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
     let mut bodies = vec![Body::Flexible(Box::new(body))];
     let mut placements = vec![(origin, Matrix3::identity())];
     let mut joints = Vec::new();
-    let ends = Vector3::new(LINK_LENGTH / 2.0, 0.0, 0.0);
+    let ends = Vector3::new(length / 2.0, 0.0, 0.0);
     for (i, (p0, p1)) in [(a, b), (b, c), (d, e), (e, f)].into_iter().enumerate() {
         let dir = (p1 - p0).normalize();
         let rot = Rotation3::rotation_between(&Vector3::x(), &dir).unwrap_or_else(|| {
@@ -119,8 +138,8 @@ pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
         });
         bodies.push(Body::Rigid(RigidBody::rod(
             &format!("link{}", i + 1),
-            LINK_LENGTH,
-            LINK_MASS,
+            length,
+            setup.link_mass,
         )));
         placements.push(((p0 + p1) / 2.0, *rot.matrix()));
     }
@@ -141,9 +160,11 @@ pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
         Attachment::Node { body: 0, node: 14 },
     ));
     let mut system = System::new(bodies, joints);
-    system
-        .nodal_forces
-        .push((0, 21, Vector3::new(0.0, 0.0, -FORCE_22)));
+    system.nodal_forces.push((
+        0,
+        setup.force_node - 1,
+        Vector3::new(0.0, 0.0, -setup.force),
+    ));
     let state = system.state_at(&placements);
     Ok((system, state))
 }
@@ -193,7 +214,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report
         .parameters
         .insert("end_time_s".into(), json!(params.end_time));
-    report.parameters.insert("drop_m".into(), json!(DROP));
+    report
+        .parameters
+        .insert("drop_m".into(), json!(plank_setup().drop));
     report
         .parameters
         .insert("cb_boundary".into(), json!(PLANK_BOUNDARY));
@@ -300,7 +323,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 for b in 1..5 {
                     let (r, a) = system.placement(b, &s.state);
                     for end in [-1.0, 1.0] {
-                        let p = r + a * Vector3::new(end * LINK_LENGTH / 2.0, 0.0, 0.0);
+                        let p =
+                            r + a * Vector3::new(end * plank_setup().link_length / 2.0, 0.0, 0.0);
                         pts.push([p.x, p.y, p.z]);
                     }
                 }
@@ -356,7 +380,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          rigid links (2 m, 1 kg) from fixed points; 250 N pull down at node 22 and gravity acts. \
          The thesis' figure with the initial configuration is missing: here each chain starts \
          folded outward in the front plane (anchors {height:.1} m above the corners, elbows \
-         {out:.2} m outside), mirror-symmetric about x = 2 m, so the plank falls {DROP} m and \
+         {out:.2} m outside), mirror-symmetric about x = 2 m, so the plank falls {drop} m and \
          the chains snap taut after about 0.5 s (\"hits the bottom\"). Everything is \
          symmetric, so x3 + x15 should stay 4 m: the defect is the largest \
          deviation, |x3 + x15 − 4 m|. The nodal-fixed frame (origin node 8, ξ \
@@ -368,8 +392,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          parameters renormalised and joint positions and velocities projected after every \
          step.\n\n{}",
         report.table,
-        height = 2.0 * LINK_LENGTH - DROP,
-        out = (LINK_LENGTH.powi(2) - (LINK_LENGTH - DROP / 2.0).powi(2)).sqrt(),
+        height = 2.0 * plank_setup().link_length - plank_setup().drop,
+        out = (plank_setup().link_length.powi(2)
+            - (plank_setup().link_length - plank_setup().drop / 2.0).powi(2))
+        .sqrt(),
+        drop = plank_setup().drop,
     );
     let layout = simulation_layout(
         Layout::Spatial3D {

@@ -682,3 +682,27 @@ fn export_round_trip_gives_the_same_frequencies() {
         .collect();
     assert_eq!(leftovers, vec!["cb".to_string()]);
 }
+
+#[test]
+fn the_app_b_bricks_and_the_plank_set_up_are_read_from_the_assets() {
+    let printed = crate::common::asset_rows("thesis/slab-bricks-app-b.txt");
+    let bricks = flexmodes::fem::slab_bricks(&SlabParameters::default());
+    assert_eq!(printed.len(), 8);
+    assert_eq!(bricks.len(), printed.len());
+    for (b, row) in bricks.iter().zip(&printed) {
+        let one_based: Vec<f64> = b.iter().map(|&n| (n + 1) as f64).collect();
+        assert_eq!(&one_based, row);
+    }
+    let setup = flexmodes::scenes::plank_symmetry::plank_setup();
+    assert_eq!(setup.hanging_nodes, [3, 15]);
+    assert_eq!((setup.force_node, setup.force), (22, 250.0));
+    assert_eq!((setup.link_length, setup.link_mass), (2.0, 1.0));
+    // The defaults the thesis bodies are built with come from the same files.
+    let beam = flexmodes::fem::BeamParameters::default();
+    assert_eq!((beam.elements, beam.second_moment), (4, 1.0417e-6));
+    let s = SlabParameters::default();
+    assert_eq!(
+        (s.bricks, s.total_mass, s.poisson_ratio),
+        ([4, 2, 1], 62.4, 0.33)
+    );
+}
