@@ -264,12 +264,27 @@ impl Explorer {
                 }
             });
             let sets = self.node_sets();
+            // With no boundary typed, the body file's default interface is the one in use.
+            let in_use = if self.controls.boundary.trim().is_empty() {
+                self.body
+                    .as_ref()
+                    .and_then(|(_, b)| scenes::body_modes::default_boundary(b).ok())
+                    .and_then(|nodes| {
+                        sets.iter().map(|(name, _)| name.clone()).find(|name| {
+                            self.body.as_ref().and_then(|(_, b)| b.node_sets.get(name))
+                                == Some(&nodes)
+                        })
+                    })
+                    .unwrap_or_default()
+            } else {
+                self.controls.boundary.clone()
+            };
             if !sets.is_empty() {
                 ui.horizontal_wrapped(|ui| {
                     ui.label("interface:");
                     for (name, count) in sets {
                         if ui
-                            .selectable_label(self.controls.boundary == name, &name)
+                            .selectable_label(in_use == name, &name)
                             .on_hover_text(format!("node set, {count} nodes"))
                             .clicked()
                         {
