@@ -44,7 +44,7 @@ pub struct BenchPoint {
 }
 
 /// Runs the benchmark of one simulation scene and returns the `bench --json` object.
-pub fn bench(scene: &str) -> Result<(Value, String)> {
+pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
     let scenario = match scene {
         "slab-sim1" => Scenario::HeldAtSix,
         "slab-sim2" => Scenario::Orbit,
@@ -76,7 +76,18 @@ pub fn bench(scene: &str) -> Result<(Value, String)> {
     let mut points = Vec::new();
     let mut reference: Option<[Vec<f64>; 3]> = None;
     let mut stability = Map::new();
-    for (m, k) in cases {
+    let count = cases.len();
+    for (i, (m, k)) in cases.into_iter().enumerate() {
+        progress.phase(&format!(
+            "point {} of {count}: {}{}",
+            i + 1,
+            m.id(),
+            if m.keeps_normal_modes() {
+                format!(" {k} modes")
+            } else {
+                String::new()
+            }
+        ))?;
         let start = Instant::now();
         let body = slab_body(&model, m, axes, &BOUNDARY, k)?;
         let offline_s = start.elapsed().as_secs_f64();
@@ -86,7 +97,7 @@ pub fn bench(scene: &str) -> Result<(Value, String)> {
         let highest_hz = hz.last().copied().unwrap_or(0.0);
         let dofs = body.modes();
         let (system, state) = slab_system(&scenario, body)?;
-        let sim = simulate(&system, &state, &params, &Progress::default())?;
+        let sim = simulate(&system, &state, &params, progress)?;
         let hist = probe_history(&system, &sim, PROBE_NODE);
         if m == Method::NoReduction {
             reference = Some(hist.clone());

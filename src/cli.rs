@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand};
 use std::sync::Arc;
 
 use crate::{
-    Error, Result,
+    Error, Progress, Result, TerminalProgress,
     body_file::{BodyHandle, ImportedBody},
     record::Recorder,
     reduction::Method,
@@ -357,9 +357,13 @@ fn run(cli: Cli) -> Result<()> {
             for id in &ids {
                 scenes::find(id)?;
             }
-            for id in ids {
-                progress(&format!("benchmarking {id} ..."));
-                let (value, table) = crate::bench::bench(&id)?;
+            let count = ids.len();
+            for (k, id) in ids.into_iter().enumerate() {
+                let handle = Progress::new();
+                let bar =
+                    TerminalProgress::start(&handle, &format!("bench {id} ({} of {count})", k + 1));
+                let (value, table) = crate::bench::bench(&id, &handle)?;
+                drop(bar);
                 if json {
                     println!("{value}");
                 } else {
@@ -412,7 +416,11 @@ fn run(cli: Cli) -> Result<()> {
             options,
         } => {
             let s = scenes::find(&scene)?;
-            let out = s.execute(&options.into_scene_options()?)?;
+            let mut opts = options.into_scene_options()?;
+            opts.progress = Progress::new();
+            let bar = TerminalProgress::start(&opts.progress, s.info.id);
+            let out = s.execute(&opts)?;
+            drop(bar);
             if json {
                 println!("{}", out.report.to_json());
             } else {
@@ -452,14 +460,20 @@ fn run(cli: Cli) -> Result<()> {
                 .iter()
                 .map(|id| scenes::find(id))
                 .collect::<Result<Vec<_>>>()?;
-            let opts = options.into_scene_options()?;
+            let mut opts = options.into_scene_options()?;
             if let Some(body) = &opts.body {
                 body.require_coordinates()?;
             }
             let recorder = Recorder::default();
-            for s in found {
-                progress(&format!("recording {} ...", s.info.id));
+            let count = found.len();
+            for (k, s) in found.into_iter().enumerate() {
+                opts.progress = Progress::new();
+                let bar = TerminalProgress::start(
+                    &opts.progress,
+                    &format!("recording {} ({} of {count})", s.info.id, k + 1),
+                );
                 let output = s.execute(&opts)?;
+                drop(bar);
                 let path = save
                     .clone()
                     .unwrap_or_else(|| out.join(format!("{}.rrd", s.info.id)));

@@ -28,6 +28,8 @@ pub mod record;
 pub mod reduction;
 pub mod report;
 pub mod scenes;
+mod terminal_progress;
 
 pub use error::{Error, Result};
 pub use progress::{PhaseReading, Progress, ProgressReading};
+pub use terminal_progress::TerminalProgress;

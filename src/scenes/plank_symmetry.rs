@@ -247,6 +247,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             params.end_time,
         );
         let run = opts.cache.get_or_run(key, || {
+            opts.progress
+                .phase(&format!("{} with {} axes", v.method.name(), v.axes.id()))?;
             let body = plank_body(&model, *v, modes)?;
             let (system, state) = plank_system(body)?;
             let sim = simulate(&system, &state, &params, &opts.progress)?;

@@ -169,6 +169,7 @@ pub fn record_driving_tables(
         output_interval: TABLE_DT,
         ..Default::default()
     };
+    progress.phase("two-link pre-simulation (§7.2.4)")?;
     let sim = simulate(&system, &state, &params, progress)?;
     let mut values: Vec<[Vec<f64>; 3]> = vec![[vec![], vec![], vec![]]; 4];
     for s in &sim.samples {
@@ -401,6 +402,7 @@ pub fn run_scenario(
     for &m in &methods {
         let key = run_key(info.id, m, axes, &boundary, modes, params.end_time);
         let run = opts.cache.get_or_run(key, || {
+            opts.progress.phase(&format!("{} integration", m.name()))?;
             let body = slab_body(&model, m, axes, &boundary, modes)?;
             let (system, state) = slab_system(&scenario, body)?;
             let sim = simulate(&system, &state, &params, &opts.progress)?;
