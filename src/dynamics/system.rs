@@ -174,6 +174,26 @@ impl System {
         }
     }
 
+    /// Position of `node` of body `b` with its elastic deflection (relative to the body frame)
+    /// multiplied by `scale`: 1 is [`Self::node_position`], 0 the rigidly moved undeformed
+    /// node (for drawing deflections too small to see, and the ghost beside them).
+    pub fn node_position_scaled(
+        &self,
+        b: usize,
+        node: usize,
+        s: &State,
+        scale: f64,
+    ) -> Vector3<f64> {
+        let f = self.frame(b, s);
+        match &self.bodies[b] {
+            Body::Flexible(fb) => {
+                let rigid = fb.b(node, &DVector::zeros(f.z.len()));
+                f.r + f.a * (rigid + scale * (fb.b(node, &f.z) - rigid))
+            }
+            Body::Rigid(_) => f.r,
+        }
+    }
+
     /// Frame position and orientation of body `b`.
     pub fn placement(&self, b: usize, s: &State) -> (Vector3<f64>, Matrix3<f64>) {
         let f = self.frame(b, s);

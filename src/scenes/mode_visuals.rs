@@ -24,6 +24,9 @@ pub fn method_color(m: Method) -> Color {
 /// Colour of the undeformed bodies and references.
 pub const REFERENCE: Color = [200, 200, 200, 255];
 
+/// Colour of the undeformed ghost beside a body drawn with magnified deflections.
+pub const REFERENCE_GHOST: Color = [170, 170, 170, 110];
+
 /// Per-node displacement of a DOF vector, scaled so its largest nodal displacement is
 /// [`MODE_AMPLITUDE`] of the body size (a zero vector stays zero).
 pub fn display_shape(model: &FeModel, u: &[f64]) -> Vec<[f64; 3]> {

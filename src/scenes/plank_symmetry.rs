@@ -312,6 +312,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             format!("world/plank/{suffix}"),
             &geometry,
             color,
+            1.0,
         ));
         let link_geometry = Geometry {
             nodes: vec![[0.0; 3]; 8],

@@ -10,7 +10,46 @@ pub fn times(sim: &Simulation) -> Vec<f64> {
     sim.samples.iter().map(|s| s.t).collect()
 }
 
-/// The deformable body `body` (its nodes drawn with `geometry`) over `sim_time`.
+/// Largest drawn elastic deflection as a fraction of the body's size: what a student can see.
+const VISIBLE_DEFLECTION: f64 = 0.1;
+
+/// The factor that draws the largest elastic deflection of body `body` over all `runs` at
+/// about [`VISIBLE_DEFLECTION`] of `size` (m), rounded down to 1, 2 or 5 × 10ⁿ; never below 1
+/// (deflections already visible are drawn true to scale). One factor for all runs of a view,
+/// so methods compare.
+pub fn deformation_scale<'a>(
+    runs: impl IntoIterator<Item = (&'a System, &'a Simulation)>,
+    body: usize,
+    nodes: usize,
+    size: f64,
+) -> f64 {
+    let mut largest = 0.0f64;
+    for (system, sim) in runs {
+        for s in &sim.samples {
+            for j in 0..nodes {
+                let d = system.node_position(body, j, &s.state)
+                    - system.node_position_scaled(body, j, &s.state, 0.0);
+                largest = largest.max(d.norm());
+            }
+        }
+    }
+    if largest <= 0.0 {
+        return 1.0;
+    }
+    let wanted = VISIBLE_DEFLECTION * size / largest;
+    if wanted <= 1.0 {
+        return 1.0;
+    }
+    let decade = 10f64.powf(wanted.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&f| f <= wanted)
+        .unwrap_or(decade)
+}
+
+/// The deformable body `body` (its nodes drawn with `geometry`) over `sim_time`, its elastic
+/// deflection drawn `scale` times (0: the undeformed ghost moving with the frame).
 pub fn body_trajectory(
     system: &System,
     sim: &Simulation,
@@ -18,6 +57,7 @@ pub fn body_trajectory(
     path: String,
     geometry: &Geometry,
     color: Color,
+    scale: f64,
 ) -> Visual {
     let positions = sim
         .samples
@@ -25,7 +65,7 @@ pub fn body_trajectory(
         .map(|s| {
             (0..geometry.nodes.len())
                 .map(|j| {
-                    let p = system.node_position(body, j, &s.state);
+                    let p = system.node_position_scaled(body, j, &s.state, scale);
                     [p.x, p.y, p.z]
                 })
                 .collect()

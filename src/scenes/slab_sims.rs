@@ -5,8 +5,10 @@ use serde_json::{Map, Value, json};
 
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::method_color,
-    sim_visuals::{body_trajectory, frame_axes, health_series, simulation_layout, times},
+    mode_visuals::{REFERENCE_GHOST, method_color},
+    sim_visuals::{
+        body_trajectory, deformation_scale, frame_axes, health_series, simulation_layout, times,
+    },
 };
 use crate::{
     Error, Progress, Result,
@@ -544,6 +546,25 @@ pub fn run_scenario(
         },
     ]);
     plot_views.push(Layout::Tabs(tabs));
+    // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method,
+    // beside the undeformed ghost carried by the first method's frame.
+    let scale = deformation_scale(
+        runs.iter().map(|(_, system, sim, _)| (system, sim)),
+        0,
+        geometry.nodes.len(),
+        model.size(),
+    );
+    if let Some((_, system, sim, _)) = runs.first() {
+        visuals.push(body_trajectory(
+            system,
+            sim,
+            0,
+            "world/slab/undeformed_ghost".into(),
+            &geometry,
+            REFERENCE_GHOST,
+            0.0,
+        ));
+    }
     for (m, system, sim, hist) in &runs {
         let times = times(sim);
         visuals.extend(health_series(sim, m.id(), method_color(*m)));
@@ -554,6 +575,7 @@ pub fn run_scenario(
             format!("world/slab/{}/{}", m.id(), axes.id()),
             &geometry,
             method_color(*m),
+            scale,
         ));
         for (a, dir) in dirs.iter().enumerate() {
             visuals.push(Visual::Series {
@@ -574,7 +596,15 @@ pub fn run_scenario(
             ));
         }
     }
-    let layout = simulation_layout(Layout::view3d("slab", "/world/slab"), plot_views);
+    let view = if scale > 1.0 {
+        format!("slab (deflection ×{scale}; grey: undeformed)")
+    } else {
+        "slab (grey: undeformed)".to_string()
+    };
+    report
+        .results
+        .insert("deformation_scale".into(), json!(scale));
+    let layout = simulation_layout(Layout::view3d(&view, "/world/slab"), plot_views);
     Ok(SceneOutput {
         report,
         markdown,
