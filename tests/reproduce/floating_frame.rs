@@ -137,3 +137,38 @@ fn the_body_constructor_places_the_frame_and_the_system_adds_axis_conditions() {
         "{pos:e} vs {expected:e}"
     );
 }
+
+#[test]
+fn magnified_deflections_scale_only_the_elastic_part() {
+    let body = slab_body(AxisType::NodalFixed(NodalFixedAxes::slab_default()));
+    let system = System::new(vec![Body::Flexible(Box::new(body))], vec![]);
+    let rot = *nalgebra::Rotation3::from_euler_angles(0.3, -0.2, 0.7).matrix();
+    let mut state = system.state_at(&[(Vector3::new(1.0, -2.0, 0.5), rot)]);
+    let mut rng = crate::common::Rng::new(7);
+    for k in 7..state.q.len() {
+        state.q[k] = 0.01 * rng.unit();
+    }
+    for node in [0, 7, 29] {
+        let full = system.node_position(0, node, &state);
+        let s = |f: f64| system.node_position_scaled(0, node, &state, f);
+        assert!(
+            (s(1.0) - full).norm() < 1e-14,
+            "scale 1 is the true position"
+        );
+        // Linear in the factor, and 0 is the undeformed node carried by the frame.
+        assert!((s(20.0) - (s(0.0) + 20.0 * (full - s(0.0)))).norm() < 1e-12);
+        let (r, a) = system.placement(0, &state);
+        let zero = system.node_position_scaled(0, node, &state, 0.0);
+        let local = a.transpose() * (zero - r);
+        let Body::Flexible(fb) = &system.bodies[0] else {
+            unreachable!()
+        };
+        let p = fb.model.nodes[node];
+        let undeformed = Vector3::new(p[0], p[1], p[2]) - fb.origin;
+        assert!(
+            (local - undeformed).norm() < 1e-12,
+            "node {node}: {local} vs {undeformed}"
+        );
+        assert!((full - zero).norm() > 1e-4, "the state deforms node {node}");
+    }
+}
