@@ -169,6 +169,10 @@ struct OptionArgs {
     /// names of the body's node sets.
     #[arg(long, value_delimiter = ',')]
     boundary: Option<Vec<String>>,
+    /// Factor on the drawn elastic deflections of the simulations (default: automatic, the
+    /// largest at ~10 % of the body).
+    #[arg(long, value_name = "FACTOR")]
+    deformation_scale: Option<f64>,
     /// A body file (TOML) or `builtin:NAME`, for the `modes` scene.
     #[arg(long)]
     body: Option<String>,
@@ -235,6 +239,7 @@ impl OptionArgs {
             axes: self.axes,
             end_time: self.end_time,
             refine: self.refine,
+            deformation_scale: self.deformation_scale,
             body,
             ..Default::default()
         })

@@ -210,6 +210,21 @@ fn the_end_time_of_a_simulation_can_be_changed() {
     let report = &h.state().current.as_ref().unwrap().report;
     assert_eq!(report.parameters["end_time_s"], 0.25);
     assert!(paths(&h).iter().any(|p| p == "plots/node8/delta_zeta/cb"));
+    // The drawn deflection: automatic first, then doubled from it by the panel.
+    let auto = report.results["deformation_scale"].as_f64().unwrap();
+    assert!(auto >= 1.0);
+    h.get_by_label("×2").click();
+    settle(&mut h);
+    assert_eq!(h.state().controls.deformation_scale, 2.0 * auto);
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(
+        report.results["deformation_scale"].as_f64(),
+        Some(2.0 * auto)
+    );
+    h.get_by_label("auto").click();
+    settle(&mut h);
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(report.results["deformation_scale"].as_f64(), Some(auto));
 }
 
 #[test]

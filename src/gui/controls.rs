@@ -28,6 +28,9 @@ pub struct Controls {
     /// Mesh as bricks along x, y, z (scenes whose body can be refined; empty otherwise).
     #[serde(default)]
     pub refine: Vec<usize>,
+    /// Factor on the drawn deflections of the simulations (0: automatic).
+    #[serde(default)]
+    pub deformation_scale: f64,
     /// Body file of the `modes` scene (a path or `builtin:NAME`; empty: its default body).
     #[serde(default)]
     pub body: String,
@@ -53,6 +56,7 @@ impl Controls {
             end_time: c.end_time.unwrap_or(0.0),
             refine: c.refine.map(|r| r.to_vec()).unwrap_or_default(),
             body: String::new(),
+            deformation_scale: 0.0,
         })
     }
 
@@ -146,6 +150,8 @@ impl Controls {
                 Some(self.axes.clone())
             },
             end_time: c.end_time.map(|_| self.end_time),
+            deformation_scale: (c.end_time.is_some() && self.deformation_scale > 0.0)
+                .then_some(self.deformation_scale),
             refine,
             ..Default::default()
         })

@@ -351,6 +351,36 @@ impl Explorer {
             }
         }
         if info.controls.end_time.is_some() {
+            // The factor in use: the typed one, else the scene's automatic one.
+            let shown = self
+                .current
+                .as_ref()
+                .and_then(|c| c.report.results.get("deformation_scale"))
+                .and_then(|v| v.as_f64());
+            ui.horizontal(|ui| {
+                ui.label(match (self.controls.deformation_scale, shown) {
+                    (f, _) if f > 0.0 => format!("deflection ×{f}"),
+                    (_, Some(f)) => format!("deflection ×{f} (auto)"),
+                    _ => "deflection: auto".into(),
+                });
+                let base = if self.controls.deformation_scale > 0.0 {
+                    self.controls.deformation_scale
+                } else {
+                    shown.unwrap_or(1.0)
+                };
+                if ui.button("×½").clicked() {
+                    self.controls.deformation_scale = base / 2.0;
+                    out.push(Command::Recompute);
+                }
+                if ui.button("×2").clicked() {
+                    self.controls.deformation_scale = base * 2.0;
+                    out.push(Command::Recompute);
+                }
+                if ui.button("auto").clicked() && self.controls.deformation_scale != 0.0 {
+                    self.controls.deformation_scale = 0.0;
+                    out.push(Command::Recompute);
+                }
+            });
             ui.horizontal(|ui| {
                 ui.label(format!("end time: {:.2} s", self.controls.end_time));
                 if ui.button("shorter").clicked() && self.controls.end_time > 0.25 {

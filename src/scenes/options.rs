@@ -22,6 +22,9 @@ pub struct SceneOptions {
     pub end_time: Option<f64>,
     /// `--refine NX,NY,NZ`: bricks of the slab mesh (App. B: 4, 2, 1).
     pub refine: Option<[usize; 3]>,
+    /// `--deformation-scale`: factor on the drawn elastic deflections of the simulations
+    /// (`None`: automatic).
+    pub deformation_scale: Option<f64>,
     /// `--body`: a body from a body file (the `modes` scene).
     pub body: Option<crate::body_file::BodyHandle>,
     /// Where the time integrations report how far they got; cancelling it stops the scene.
@@ -89,6 +92,18 @@ impl SceneOptions {
             Some(t) => Err(Error::InvalidOption {
                 scene: scene.into(),
                 reason: format!("end time {t} s must lie in (0, 60] s"),
+            }),
+        }
+    }
+
+    /// `--deformation-scale` checked (a finite factor ≥ 0; 0 draws no deflection), or `auto`.
+    pub fn deformation_scale_or(&self, scene: &str, auto: impl FnOnce() -> f64) -> Result<f64> {
+        match self.deformation_scale {
+            None => Ok(auto()),
+            Some(f) if f.is_finite() && f >= 0.0 => Ok(f),
+            Some(f) => Err(Error::InvalidOption {
+                scene: scene.into(),
+                reason: format!("deformation scale {f} must be a finite number ≥ 0"),
             }),
         }
     }

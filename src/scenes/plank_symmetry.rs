@@ -235,6 +235,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     ])
     .rank_lower(&[2, 3]);
     let geometry = Geometry::of(&model);
+    // The plank swings metres; its deflections are drawn true to scale unless asked otherwise.
+    let deflection = opts.deformation_scale_or(INFO.id, || 1.0)?;
     let mut visuals = Vec::new();
     let mut plots = Vec::new();
     for v in &variants {
@@ -312,7 +314,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             format!("world/plank/{suffix}"),
             &geometry,
             color,
-            1.0,
+            deflection,
         ));
         let link_geometry = Geometry {
             nodes: vec![[0.0; 3]; 8],

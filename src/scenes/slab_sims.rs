@@ -548,12 +548,14 @@ pub fn run_scenario(
     plot_views.push(Layout::Tabs(tabs));
     // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method,
     // beside the undeformed ghost carried by the first method's frame.
-    let scale = deformation_scale(
-        runs.iter().map(|(_, system, sim, _)| (system, sim)),
-        0,
-        geometry.nodes.len(),
-        model.size(),
-    );
+    let scale = opts.deformation_scale_or(info.id, || {
+        deformation_scale(
+            runs.iter().map(|(_, system, sim, _)| (system, sim)),
+            0,
+            geometry.nodes.len(),
+            model.size(),
+        )
+    })?;
     if let Some((_, system, sim, _)) = runs.first() {
         visuals.push(body_trajectory(
             system,
@@ -596,7 +598,7 @@ pub fn run_scenario(
             ));
         }
     }
-    let view = if scale > 1.0 {
+    let view = if scale != 1.0 {
         format!("slab (deflection ×{scale}; grey: undeformed)")
     } else {
         "slab (grey: undeformed)".to_string()

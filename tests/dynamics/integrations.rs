@@ -504,3 +504,30 @@ fn a_kept_simulation_is_not_integrated_again() {
     assert_eq!(integrations(&third), 1);
     assert_eq!(cache.len(), 4);
 }
+
+#[test]
+fn the_drawn_deflection_is_automatic_or_as_asked() {
+    let scene = flexmodes::scenes::find("slab-sim1").unwrap();
+    let run = |scale: Option<f64>| {
+        scene.execute(&flexmodes::scenes::SceneOptions {
+            methods: Some(vec![Method::CraigBampton]),
+            end_time: Some(0.2),
+            deformation_scale: scale,
+            ..Default::default()
+        })
+    };
+    let auto = run(None).unwrap();
+    let f = auto.report.results["deformation_scale"].as_f64().unwrap();
+    // 1, 2 or 5 times a power of ten, at least 1.
+    let mantissa = f / 10f64.powf(f.log10().floor());
+    assert!(
+        f >= 1.0 && [1.0, 2.0, 5.0].iter().any(|m| (m - mantissa).abs() < 1e-9),
+        "{f}"
+    );
+    let asked = run(Some(7.0)).unwrap();
+    assert_eq!(asked.report.results["deformation_scale"], 7.0);
+    assert!(matches!(
+        run(Some(-1.0)).unwrap_err(),
+        flexmodes::Error::InvalidOption { .. }
+    ));
+}
