@@ -247,6 +247,20 @@ fn bench_reports_speed_and_accuracy_points() {
         .map(|p| p["rel_rms_error"].as_f64().unwrap())
         .collect();
     assert!(cb.windows(2).all(|w| w[1] < w[0]), "{cb:?}");
+    // Every predicted critical step is checked: bounded 10 % below it, diverged at 3×.
+    let stability = v["stability"].as_object().unwrap();
+    assert_eq!(stability.len(), points.len());
+    for (m, s) in stability {
+        assert_eq!(s["run_below_ok"], true, "{m}: {s}");
+        assert_eq!(s["run_above_diverged"], true, "{m}: {s}");
+    }
+    // Reduction buys the explicit scheme a larger step: the full model's is the smallest.
+    let nr = v["stability"]["nr"]["critical_dt_s"].as_f64().unwrap();
+    assert!(
+        stability
+            .values()
+            .all(|s| s["critical_dt_s"].as_f64().unwrap() >= nr)
+    );
     for m in ["nr", "gr", "cb_6"] {
         assert!(
             v["stability"][m]["critical_dt_s"].as_f64().unwrap() > 0.0,
