@@ -434,7 +434,12 @@ fn cancelled_integration_stops_with_named_error() {
     let early = Progress::new();
     early.cancel();
     assert!(matches!(run(&options(&early)), Err(Error::Cancelled)));
-    assert_eq!(early.reading().unwrap().time, 0.0);
+    // The scene stops at its first phase boundary, before the integration starts.
+    assert!(
+        early.reading().is_none_or(|r| r.time == 0.0),
+        "{:?}",
+        early.reading()
+    );
 
     // Cancelled from another thread once past 0.05 s: stops before the end.
     let mid = Progress::new();
