@@ -403,7 +403,8 @@ fn import_report_and_export_a_body_file() {
         v["parameters"]["boundary"],
         serde_json::json!([16, 18, 28, 30])
     );
-    // The thesis' Craig-Bampton slab: 7.49872 Hz first (§7.2.1), as slab-modes reports it.
+    // Craig-Bampton's first elastic frequency of the built-in App. B slab, as slab-modes
+    // reports it (7.49872 Hz): the imported body is the same body.
     let cb = v["results"]["reduced_hz"]["cb"][0].as_f64().unwrap();
     assert!((cb - 7.49872).abs() < 5e-5, "{cb}");
 
