@@ -4,7 +4,7 @@ use std::collections::BTreeSet;
 
 use faer::Mat;
 
-use super::{DofMap, FeModel, RigidMotions, hex8_consistent_mass, hex8_stiffness};
+use super::{DofMap, FeModel, HEX8_EDGES, RigidMotions, hex8_consistent_mass, hex8_stiffness};
 use crate::{
     Error, Result,
     linalg::{MassMatrix, SparseAssembly, SparsityPattern},
@@ -254,20 +254,7 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
                 mass[3 * c + d] += brick_mass / 8.0;
             }
         }
-        for (a, b) in [
-            (0, 1),
-            (1, 2),
-            (2, 3),
-            (3, 0),
-            (4, 5),
-            (5, 6),
-            (6, 7),
-            (7, 4),
-            (0, 4),
-            (1, 5),
-            (2, 6),
-            (3, 7),
-        ] {
+        for (a, b) in HEX8_EDGES {
             let (u, v) = (conn[a].min(conn[b]), conn[a].max(conn[b]));
             if drawn(u) && drawn(v) && on_one_line(u, v) {
                 edges.insert([u, v]);

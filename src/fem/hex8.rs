@@ -14,6 +14,22 @@ pub const LOCAL_NODES: [[f64; 3]; 8] = [
     [-1.0, 1.0, 1.0],
 ];
 
+/// The 12 edges of a brick as pairs of local nodes (order of [`LOCAL_NODES`]).
+pub const EDGES: [(usize, usize); 12] = [
+    (0, 1),
+    (1, 2),
+    (2, 3),
+    (3, 0),
+    (4, 5),
+    (5, 6),
+    (6, 7),
+    (7, 4),
+    (0, 4),
+    (1, 5),
+    (2, 6),
+    (3, 7),
+];
+
 /// Shape functions $N_a$, their natural derivatives $\partial N_a/\partial\xi$ and the
 /// Jacobian $J = \sum_a (\partial N_a/\partial\xi)\, x_a^T$ at natural point `xi` of a brick
 /// with node positions `x` (local order of [`LOCAL_NODES`]).

@@ -9,7 +9,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::{DofMap, FeModel, RigidMotions, hex8_consistent_mass, hex8_stiffness};
+use super::{DofMap, FeModel, HEX8_EDGES, RigidMotions, hex8_consistent_mass, hex8_stiffness};
 use crate::linalg::{MassMatrix, SparseAssembly, SparsityPattern};
 
 /// Parameters of the bracket. Defaults: a 60 × 30 mm steel base 10 mm thick, an upright
@@ -102,14 +102,14 @@ pub fn l_bracket(p: &LBracketParameters) -> (FeModel, BTreeMap<String, Vec<usize
             .collect();
         k.add_element(&dofs, ke.as_ref());
         m.add_element(&dofs, me.as_ref());
-        for (a, b) in BRICK_EDGES {
+        for (a, b) in HEX8_EDGES {
             edges.insert([e[a].min(e[b]), e[a].max(e[b])]);
         }
     }
     // Only the surface edges are drawn: an edge shared by four cells is inside.
     let mut count: BTreeMap<[usize; 2], usize> = BTreeMap::new();
     for e in &elements {
-        for (a, b) in BRICK_EDGES {
+        for (a, b) in HEX8_EDGES {
             *count.entry([e[a].min(e[b]), e[a].max(e[b])]).or_default() += 1;
         }
     }
@@ -148,22 +148,6 @@ pub fn l_bracket(p: &LBracketParameters) -> (FeModel, BTreeMap<String, Vec<usize
     };
     (model, sets)
 }
-
-/// The 12 edges of a brick in the local order of [`corner`].
-const BRICK_EDGES: [(usize, usize); 12] = [
-    (0, 1),
-    (1, 2),
-    (2, 3),
-    (3, 0),
-    (4, 5),
-    (5, 6),
-    (6, 7),
-    (7, 4),
-    (0, 4),
-    (1, 5),
-    (2, 6),
-    (3, 7),
-];
 
 /// Grid corner `d` of cell `c` in the local order of
 /// [`LOCAL_NODES`](super::HEX8_LOCAL_NODES): the lower face counter-clockwise, then the

@@ -15,6 +15,8 @@ pub use brick_mesh::{SlabParameters, plank, slab, slab_bricks};
 pub use dof_map::{DofMap, NodeDof};
 pub use fe_model::{Direction, FeModel, RigidMotions};
 pub use frame3d::{FrameSection, frame, frame_stiffness};
-pub use hex8::{LOCAL_NODES as HEX8_LOCAL_NODES, hex8_consistent_mass, hex8_stiffness};
+pub use hex8::{
+    EDGES as HEX8_EDGES, LOCAL_NODES as HEX8_LOCAL_NODES, hex8_consistent_mass, hex8_stiffness,
+};
 pub use l_bracket::{LBracketParameters, l_bracket};
 pub use triplets::Triplets;

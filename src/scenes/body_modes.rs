@@ -103,15 +103,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let started = Instant::now();
     let full = count_zero_energy_modes(model, FULL_MODES)?;
     let full_s = started.elapsed().as_secs_f64();
-    let rigid = model.dofs.rigid_body_count();
-    if full.zero_modes > rigid {
-        return Err(Error::Mechanism {
-            body: model.name.clone(),
-            zero_modes: full.zero_modes,
-            rigid,
-            threshold_hz: full.threshold_hz,
-        });
-    }
+    refuse_mechanism(model, &full)?;
     let full_hz = full.elastic_hz();
     let elastic = GeneralizedEigen {
         values: full.modes.values[full.zero_modes..].to_vec(),
@@ -297,11 +289,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     })
 }
 
-/// What `flexmodes import` prints: the body's size, mass, zero-energy modes and lowest
-/// frequencies, its node sets; JSON and text. A mechanism is [`Error::Mechanism`].
-pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
-    let model = &body.model;
-    let full = count_zero_energy_modes(model, FULL_MODES)?;
+/// [`Error::Mechanism`] when the body has more zero-energy modes than a free body's rigid
+/// motions.
+fn refuse_mechanism(
+    model: &crate::fem::FeModel,
+    full: &crate::analysis::ZeroEnergyCount,
+) -> Result<()> {
     let rigid = model.dofs.rigid_body_count();
     if full.zero_modes > rigid {
         return Err(Error::Mechanism {
@@ -311,6 +304,15 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
             threshold_hz: full.threshold_hz,
         });
     }
+    Ok(())
+}
+
+/// What `flexmodes import` prints: the body's size, mass, zero-energy modes and lowest
+/// frequencies, its node sets; JSON and text. A mechanism is [`Error::Mechanism`].
+pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
+    let model = &body.model;
+    let full = count_zero_energy_modes(model, FULL_MODES)?;
+    refuse_mechanism(model, &full)?;
     let hz = full.elastic_hz();
     let mass = model.total_mass();
     let (mass_kind, mass_nnz) = match &model.m {
@@ -352,7 +354,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
     let text = format!(
         "# {} ({})\n\n{}\n\n- {} nodes × {} DOF ({}) = {} DOF, node-major\n- K: {} stored \
          entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
-         coordinates: {}\n- zero-energy modes: {} (below {:.2e} Hz; a free {} body has {rigid}){}\n\
+         coordinates: {}\n- zero-energy modes: {} (below {:.2e} Hz; a free {} body has {}){}\n\
          - lowest elastic frequencies, Hz: {}\n- node sets: {}\n- units: {}, {}, {}",
         model.name,
         body.location.display(),
@@ -380,6 +382,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         } else {
             "spatial"
         },
+        model.dofs.rigid_body_count(),
         if full.zero_modes == 0 {
             " — the body was restrained before export".to_string()
         } else if model.rigid_motions == crate::fem::RigidMotions::FromGeometry {
