@@ -70,8 +70,58 @@ pub struct FlexibleBody {
     pub m_zz: DMatrix<f64>,
     /// $\Psi^T K \Psi$.
     pub k_zz: DMatrix<f64>,
+    /// $(\Psi^T M \Psi)^{-1}$ as a factorisation, computed once: the modal mass block is
+    /// constant, so the equations of motion eliminate the modal accelerations with it.
+    pub m_zz_inverse: ModalMassInverse,
     /// The inertia invariants, computed once.
     pub invariants: InertiaInvariants,
+}
+
+/// The inverse of a constant modal mass block $M_{zz} = \Psi^T M \Psi$: a reciprocal
+/// diagonal when $M_{zz}$ is diagonal (no reduction, or mass-normalised modes), a Cholesky
+/// factor otherwise.
+#[derive(Debug, Clone)]
+pub enum ModalMassInverse {
+    /// $1 / M_{zz,ii}$.
+    Diagonal(DVector<f64>),
+    /// $M_{zz} = LL^T$.
+    Cholesky(nalgebra::Cholesky<f64, nalgebra::Dyn>),
+}
+
+impl ModalMassInverse {
+    /// Factors `m_zz`; `body` names it in the error when it is not positive definite (the
+    /// basis' columns are dependent).
+    pub fn new(m_zz: &DMatrix<f64>, body: &str) -> Result<Self> {
+        let n = m_zz.nrows();
+        let off_diagonal = (0..n).any(|i| (0..n).any(|j| i != j && m_zz[(i, j)] != 0.0));
+        let singular = || Error::SingularMatrix {
+            matrix: format!("modal mass ΨᵀMΨ of {body}"),
+            rcond: 0.0,
+        };
+        if !off_diagonal {
+            let d = m_zz.diagonal();
+            if d.iter().any(|&x| x <= 0.0) {
+                return Err(singular());
+            }
+            return Ok(Self::Diagonal(d.map(|x| 1.0 / x)));
+        }
+        m_zz.clone()
+            .cholesky()
+            .map(Self::Cholesky)
+            .ok_or_else(singular)
+    }
+
+    /// $M_{zz}^{-1} B$, in place.
+    pub fn solve_mut(&self, b: &mut DMatrix<f64>) {
+        match self {
+            Self::Diagonal(d) => {
+                for mut col in b.column_iter_mut() {
+                    col.component_mul_assign(d);
+                }
+            }
+            Self::Cholesky(c) => c.solve_mut(b),
+        }
+    }
 }
 
 impl FlexibleBody {
@@ -125,6 +175,7 @@ impl FlexibleBody {
         let m_zz = to_na(&basis.reduced_mass(&model));
         let k_zz = to_na(&basis.reduced_stiffness(&model));
         let invariants = InertiaInvariants::new(&masses, &s_bar, &psi_nodes);
+        let m_zz_inverse = ModalMassInverse::new(&m_zz, &model.name)?;
         Ok(Self {
             model,
             basis,
@@ -135,6 +186,7 @@ impl FlexibleBody {
             psi_nodes,
             m_zz,
             k_zz,
+            m_zz_inverse,
             invariants,
         })
     }

@@ -40,6 +40,10 @@ pub struct InertiaInvariants {
     pub l: Vec<Matrix3<f64>>,
     /// $Q_{cd}$, row-major over $(c, d)$.
     pub q: Vec<Matrix3<f64>>,
+    /// Per mode $c$, the modes $d$ with $Q_{cd} \neq 0$. Without reduction (Ψ = I) a mode
+    /// couples only with the three of its own node, so the sums over $(c, d)$ cost $O(k)$
+    /// instead of $O(k^2)$.
+    coupled: Vec<Vec<usize>>,
     modes: usize,
 }
 
@@ -55,6 +59,7 @@ impl InertiaInvariants {
             s_outer: Matrix3::zeros(),
             l: vec![Matrix3::zeros(); k],
             q: vec![Matrix3::zeros(); k * k],
+            coupled: Vec::new(),
             modes: k,
         };
         for ((&mj, s), psi) in masses.iter().zip(s_bar).zip(psi_nodes) {
@@ -75,6 +80,13 @@ impl InertiaInvariants {
                 out.q[c * k + d] = out.q[d * k + c].transpose();
             }
         }
+        out.coupled = (0..k)
+            .map(|c| {
+                (0..k)
+                    .filter(|&d| out.q[c * k + d].iter().any(|&x| x != 0.0))
+                    .collect()
+            })
+            .collect();
         out
     }
 
@@ -98,7 +110,7 @@ impl InertiaInvariants {
         (0..self.modes)
             .map(|c| {
                 let mut h = self.l[c].transpose();
-                for d in 0..self.modes {
+                for &d in &self.coupled[c] {
                     if z[d] != 0.0 {
                         h += self.q(c, d) * z[d];
                     }
@@ -147,7 +159,7 @@ impl InertiaInvariants {
             if a[c] == 0.0 {
                 continue;
             }
-            for d in 0..self.modes {
+            for &d in &self.coupled[c] {
                 if b[d] != 0.0 {
                     out += self.q(c, d) * (a[c] * b[d]);
                 }
@@ -188,7 +200,7 @@ impl InertiaInvariants {
         for c in 0..self.modes {
             let centrifugal = (w.transpose() * h[c] * w)[0] - w2 * h[c].trace();
             let mut qc = Matrix3::zeros();
-            for d in 0..self.modes {
+            for &d in &self.coupled[c] {
                 if zd[d] != 0.0 {
                     qc += self.q(c, d) * zd[d];
                 }

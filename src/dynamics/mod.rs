@@ -12,7 +12,7 @@ mod rotation;
 mod system;
 
 pub use axes::AxisType;
-pub use body::{Body, FlexibleBody, RigidBody};
+pub use body::{Body, FlexibleBody, ModalMassInverse, RigidBody};
 pub use constraint::{Attachment, Constraint};
 pub use inertia_invariants::InertiaInvariants;
 pub use integrator::{

@@ -172,3 +172,82 @@ fn magnified_deflections_scale_only_the_elastic_part() {
         assert!((full - zero).norm() > 1e-4, "the state deforms node {node}");
     }
 }
+
+/// A state off the rest position: random deformation and velocities of every coordinate,
+/// Euler parameters left unit.
+fn stirred(
+    system: &System,
+    rest: &flexmodes::dynamics::State,
+    rng: &mut Rng,
+) -> flexmodes::dynamics::State {
+    let mut s = rest.clone();
+    for (b, body) in system.bodies.iter().enumerate() {
+        let (qo, _) = system.offsets(b);
+        for i in 7..body.position_count() {
+            s.q[qo + i] += 1e-3 * rng.unit();
+        }
+    }
+    for v in s.v.iter_mut() {
+        *v = rng.unit();
+    }
+    s
+}
+
+#[test]
+fn block_eliminated_accelerations_equal_the_dense_regularised_solve() {
+    use flexmodes::dynamics::{Attachment, Constraint};
+    use flexmodes::scenes::{plank_symmetry, slab_sims};
+    let mut rng = Rng::new(41);
+    let slab_model = slab(&SlabParameters::default());
+    let plank_model = flexmodes::fem::plank(&SlabParameters::default());
+    let mut systems = Vec::new();
+    for method in [Method::NoReduction, Method::CraigBampton, Method::Guyan] {
+        for axes in [
+            AxisType::Mean,
+            AxisType::Principal,
+            AxisType::NodalFixed(NodalFixedAxes::slab_default()),
+        ] {
+            let body =
+                slab_sims::slab_body(&slab_model, method, axes, &slab_sims::BOUNDARY, 6).unwrap();
+            for scenario in [slab_sims::Scenario::HeldAtSix, slab_sims::Scenario::Orbit] {
+                systems.push(slab_sims::slab_system(&scenario, body.clone()).unwrap());
+            }
+        }
+    }
+    for (method, axes) in [
+        (Method::NoReduction, AxisType::Mean),
+        (Method::CraigBampton, AxisType::Mean),
+        (
+            Method::NoReduction,
+            AxisType::NodalFixed(plank_symmetry::plank_nodal_fixed()),
+        ),
+    ] {
+        let variant = plank_symmetry::Variant { method, axes };
+        let body = plank_symmetry::plank_body(&plank_model, variant, 6).unwrap();
+        systems.push(plank_symmetry::plank_system(body).unwrap());
+    }
+    // Redundant constraints: the plank's first joint twice (the saddle-point system is then
+    // singular and its pseudo-inverse is taken).
+    let (mut redundant, state) = systems.last().unwrap().clone();
+    assert!(matches!(
+        redundant.constraints[2],
+        Constraint::Spherical(_, Attachment::Node { body: 0, node: 2 })
+    ));
+    redundant.constraints.push(redundant.constraints[2].clone());
+    systems.push((redundant, state));
+    assert_eq!(systems.len(), 3 * 3 * 2 + 3 + 1);
+    for (i, (system, rest)) in systems.iter().enumerate() {
+        for t in [0.0, 0.3] {
+            let s = stirred(system, rest, &mut rng);
+            let fast = system.accelerations(t, &s).unwrap();
+            let dense = system.accelerations_dense(t, &s).unwrap();
+            assert_eq!(fast.len(), dense.len());
+            let diff = (&fast - &dense).amax();
+            assert!(
+                diff <= 1e-8 * dense.amax().max(1.0),
+                "system {i} at t = {t}: |Δv̇| = {diff:e} of {:e}",
+                dense.amax()
+            );
+        }
+    }
+}
