@@ -229,7 +229,7 @@ pub fn simulate(
     let start = Instant::now();
     let nq = sys.nq();
     let mut state = initial.clone();
-    sys.project(0.0, &mut state);
+    sys.project(0.0, &mut state)?;
     let mut samples = vec![sample(sys, 0.0, &state)];
     let mut y = DVector::zeros(nq + sys.nv());
     y.rows_mut(0, nq).copy_from(&state.q);
@@ -334,7 +334,7 @@ pub fn simulate(
                 q: y5.rows(0, nq).into_owned(),
                 v: y5.rows(nq, sys.nv()).into_owned(),
             };
-            sys.project(t, &mut s);
+            sys.project(t, &mut s)?;
             y.rows_mut(0, nq).copy_from(&s.q);
             y.rows_mut(nq, sys.nv()).copy_from(&s.v);
             k1 = derivative(sys, t, &y)?;

@@ -510,20 +510,38 @@ impl System {
     /// after scaling, or a pseudo-inverse when constraints are redundant.
     pub fn accelerations(&self, t: f64, s: &State) -> Result<DVector<f64>> {
         let rows = self.rows(t, s);
+        self.saddle_point(s, &rows.c, &rows.gamma, true)
+    }
+
+    /// $x$ of $\begin{bmatrix} M & C^T \\ C & 0\end{bmatrix}
+    /// \begin{bmatrix} x \\ \lambda\end{bmatrix} = \begin{bmatrix} f \\ g\end{bmatrix}$
+    /// with $f = Q$ when `forces` (the accelerations) or $f = 0$ (the mass-weighted
+    /// correction of [`Self::project`]), by the block elimination of
+    /// [`Self::accelerations`].
+    fn saddle_point(
+        &self,
+        s: &State,
+        c: &DMatrix<f64>,
+        g: &DVector<f64>,
+        forces: bool,
+    ) -> Result<DVector<f64>> {
         let nb = self.bodies.len();
-        let nr = rows.c.nrows();
+        let nr = c.nrows();
         let nf = 6 * nb;
         let n = nf + nr;
         let mut kkt = DMatrix::zeros(n, n);
         let mut rhs = DVector::zeros(n);
-        rhs.rows_mut(nf, nr).copy_from(&rows.gamma);
+        rhs.rows_mut(nf, nr).copy_from(g);
         let mut eliminated: Vec<Option<DMatrix<f64>>> = Vec::with_capacity(nb);
         for (b, body) in self.bodies.iter().enumerate() {
-            let blocks = self.body_blocks(b, s);
+            let mut blocks = self.body_blocks(b, s);
+            if !forces {
+                blocks.q.fill(0.0);
+            }
             let (vo, fo) = (self.v_off[b], 6 * b);
             kkt.view_mut((fo, fo), (6, 6)).copy_from(&blocks.m_ff);
             rhs.rows_mut(fo, 6).copy_from(&blocks.q.rows(0, 6));
-            let c_f = rows.c.columns(vo, 6);
+            let c_f = c.columns(vo, 6);
             kkt.view_mut((nf, fo), (nr, 6)).copy_from(&c_f);
             kkt.view_mut((fo, nf), (6, nr)).copy_from(&c_f.transpose());
             let Body::Flexible(fb) = body else {
@@ -531,7 +549,7 @@ impl System {
                 continue;
             };
             let k = fb.modes();
-            let c_z = rows.c.columns(vo + 6, k);
+            let c_z = c.columns(vo + 6, k);
             // X = M_zz^-1 [M_zf, C_z^T, Q_z].
             let mut x = DMatrix::zeros(k, 7 + nr);
             x.columns_mut(0, 6).copy_from(&blocks.m_fz.transpose());
@@ -649,8 +667,13 @@ impl System {
     }
 
     /// Normalises Euler parameters and projects positions, then velocities, onto the
-    /// constraint manifold (minimum-norm Gauss–Newton corrections).
-    pub(crate) fn project(&self, t: f64, s: &mut State) {
+    /// constraint manifold. Positions take minimum-norm Gauss–Newton corrections (round-off
+    /// drift). Velocities take the correction of least kinetic energy,
+    /// $\min \tfrac12\Delta v^T M\Delta v$ subject to $C(v - \Delta v) = $ target: the
+    /// velocity jump constraint impulses cause. It is the same for every basis of one space
+    /// (a Euclidean minimum norm in modal coordinates is not), which matters when a
+    /// scenario starts with velocities the constraints do not allow (Simulation 2's orbit).
+    pub(crate) fn project(&self, t: f64, s: &mut State) -> Result<()> {
         for b in 0..self.bodies.len() {
             let qo = self.q_off[b];
             let n = s.q.rows(qo + 3, 4).norm();
@@ -670,11 +693,10 @@ impl System {
         }
         let rows = self.rows(t, s);
         if rows.c.nrows() > 0 {
-            let cc_t = &rows.c * rows.c.transpose();
             let r = &rows.c * &s.v - &rows.target;
-            let dv = rows.c.transpose() * pinv_solve(&cc_t, &r);
-            s.v -= dv;
+            s.v -= self.saddle_point(s, &rows.c, &r, false)?;
         }
+        Ok(())
     }
 
     fn apply_increment(&self, s: &mut State, dx: &DVector<f64>) {

@@ -482,11 +482,14 @@ pub fn run_scenario(
     let markdown = format!(
         "# {}\n\n{}\n\nEvery method is integrated by the same Dormand-Prince 5(4) scheme with \
          adaptive steps (rtol 1e-6, atol 1e-9), Euler parameters renormalised and positions \
-         and velocities projected onto the constraints after each step, so differences come \
-         from the bases alone (and from step control: CB and MC span one space, so their \
-         histories agree to the integration tolerance). Coordinates are the six of the frame \
-         plus the modal ones. Errors are the relative RMS of node 8's local deflection \
-         against NR over the interval.\n\n{}",
+         and velocities projected onto the constraints after each step (velocities by the \
+         correction of least kinetic energy, which no choice of basis changes), so \
+         differences come from the bases alone: CB and MC span one space and their errors \
+         agree to 1e-6. The integration error of the NR reference, measured against a rerun \
+         at rtol 1e-10, is at most ~1e-5 of node 8's RMS deflection in every simulation and \
+         axis type: at least 100 times below the smallest error these tables print (a test \
+         checks both). Coordinates are the six of the frame plus the modal ones. Errors are \
+         the relative RMS of node 8's local deflection against NR over the interval.\n\n{}",
         info.id, info.summary, report.table
     );
     let geometry = Geometry::of(&model);

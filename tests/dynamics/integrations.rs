@@ -62,6 +62,87 @@ fn craig_bampton_and_mode_condensation_give_one_history() {
     }
 }
 
+/// The rel. RMS errors of node 8 the scene reports, per method and direction.
+fn reported_errors(scene: &str, axes: &str) -> serde_json::Map<String, serde_json::Value> {
+    let options = flexmodes::scenes::SceneOptions {
+        methods: Some(vec![
+            Method::NoReduction,
+            Method::CraigBampton,
+            Method::ModeCondensation,
+        ]),
+        axes: Some(axes.into()),
+        ..Default::default()
+    };
+    let output = (flexmodes::scenes::find(scene).unwrap().run)(&options).unwrap();
+    output.report.results["rel_rms_error"]
+        .as_object()
+        .unwrap()
+        .clone()
+}
+
+#[test]
+fn craig_bampton_and_mode_condensation_report_one_error_in_every_simulation() {
+    for scene in ["slab-sim1", "slab-sim2", "slab-sim3"] {
+        for axes in ["nodal_fixed", "mean", "principal"] {
+            let errors = reported_errors(scene, axes);
+            let (cb, mc) = (&errors["cb"], &errors["mc"]);
+            for direction in ["xi", "eta", "zeta"] {
+                let (a, b) = (
+                    cb[direction].as_f64().unwrap(),
+                    mc[direction].as_f64().unwrap(),
+                );
+                assert!(
+                    a > 1e-3,
+                    "{scene} {axes} {direction}: CB error {a} is not an error"
+                );
+                assert!(
+                    (a - b).abs() <= 1e-4,
+                    "{scene} {axes} {direction}: CB {a} against MC {b}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_reference_integration_error_is_a_hundred_times_below_the_reduction_errors() {
+    let tight = |end: f64| IntegratorParameters {
+        end_time: end,
+        rtol: 1e-10,
+        atol: 1e-13,
+        ..Default::default()
+    };
+    let tables =
+        flexmodes::scenes::slab_sims::record_driving_tables(nodal(), 1.0, &Progress::default())
+            .unwrap();
+    for (name, scenario) in [
+        ("simulation 1", Scenario::HeldAtSix),
+        ("simulation 2", Scenario::Orbit),
+        ("simulation 3", Scenario::Driven(tables)),
+    ] {
+        let end = flexmodes::scenes::slab_sims::end_time(&scenario);
+        let histories = |method: Method, p: &IntegratorParameters| {
+            let (system, sim) = run_slab(&scenario, method, nodal(), p);
+            probe_history(&system, &sim, PROBE_NODE)
+        };
+        let reference = histories(Method::NoReduction, &params(end));
+        let converged = histories(Method::NoReduction, &tight(end));
+        let integration = (0..3)
+            .map(|d| relative_rms(&reference[d], &converged[d]))
+            .fold(0.0f64, f64::max);
+        // The smallest error the table prints: Craig–Bampton's, whose basis is the best.
+        let cb = histories(Method::CraigBampton, &params(end));
+        let reduction = (0..3)
+            .map(|d| relative_rms(&cb[d], &reference[d]))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            integration > 0.0 && 100.0 * integration <= reduction,
+            "{name}: integration error {integration:e}, smallest reduction error \
+             {reduction:e}"
+        );
+    }
+}
+
 fn first_peak_time(sim: &Simulation, v: &[f64]) -> f64 {
     let sign = v
         .iter()
