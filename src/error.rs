@@ -147,6 +147,18 @@ pub enum Error {
     #[error("the integration diverged at t = {time:.4} s: {reason}")]
     Diverged { time: f64, reason: String },
 
+    /// The Newton iterations of an implicit step did not converge, even with a fresh
+    /// iteration matrix.
+    #[error(
+        "Newton's method did not converge at t = {time:.4} s: residual {residual:e} after \
+         {iterations} iterations (a smaller --dt may help)"
+    )]
+    NewtonFailed {
+        time: f64,
+        iterations: usize,
+        residual: f64,
+    },
+
     /// The computation was asked to stop (a newer request superseded it).
     #[error("cancelled: a newer request superseded this computation")]
     Cancelled,

@@ -1,6 +1,7 @@
-//! One integrator for every method: Dormand–Prince 5(4) with adaptive steps, followed after
-//! every accepted step by Euler-parameter normalisation and coordinate projection onto the
-//! position and velocity constraints.
+//! Two integrators behind one interface, [`simulate`]: the explicit Dormand–Prince 5(4) with
+//! adaptive steps (or fixed ones, to verify a critical step) and the implicit generalized-α
+//! scheme with fixed steps ([`super::generalized_alpha`]). Both normalise Euler parameters and
+//! project the coordinates onto the position and velocity constraints after every step.
 
 use std::time::Instant;
 
@@ -9,9 +10,65 @@ use nalgebra::DVector;
 use super::{State, System};
 use crate::{Error, Progress, Result};
 
+/// The implicit scheme's step when none is given, s.
+pub const DEFAULT_IMPLICIT_STEP: f64 = 1e-3;
+/// The implicit scheme's spectral radius at infinite frequency when none is given.
+pub const DEFAULT_SPECTRAL_RADIUS: f64 = 0.8;
+
+/// Which time-integration scheme [`simulate`] runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IntegrationScheme {
+    /// Dormand–Prince 5(4): explicit, adaptive steps unless
+    /// [`IntegratorParameters::fixed_step`] is set (then without error control).
+    DormandPrince,
+    /// Generalized-α (Chung–Hulbert): implicit, fixed steps of
+    /// [`IntegratorParameters::fixed_step`] or [`DEFAULT_IMPLICIT_STEP`].
+    GeneralizedAlpha {
+        /// Spectral radius $\rho_\infty \in [0, 1]$ at infinite frequency (1: no numerical
+        /// damping; 0: the highest frequencies annihilated in one step).
+        spectral_radius: f64,
+    },
+}
+
+impl IntegrationScheme {
+    /// The ids `--integrator` accepts.
+    pub const IDS: [&'static str; 2] = ["dp5", "gen-alpha"];
+
+    /// `dp5` or `gen-alpha`.
+    pub fn id(&self) -> &'static str {
+        match self {
+            Self::DormandPrince => "dp5",
+            Self::GeneralizedAlpha { .. } => "gen-alpha",
+        }
+    }
+
+    /// The scheme for an id of [`Self::IDS`] (generalized-α with [`DEFAULT_SPECTRAL_RADIUS`]).
+    pub fn from_id(id: &str) -> Option<Self> {
+        match id {
+            "dp5" => Some(Self::DormandPrince),
+            "gen-alpha" => Some(Self::GeneralizedAlpha {
+                spectral_radius: DEFAULT_SPECTRAL_RADIUS,
+            }),
+            _ => None,
+        }
+    }
+
+    /// Its name in tables and panels.
+    pub fn name(&self) -> String {
+        match self {
+            Self::DormandPrince => "Dormand–Prince 5(4)".into(),
+            Self::GeneralizedAlpha { spectral_radius } => {
+                format!("generalized-α (ρ∞ = {spectral_radius})")
+            }
+        }
+    }
+}
+
 /// Settings of [`simulate`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct IntegratorParameters {
+    /// The scheme.
+    pub scheme: IntegrationScheme,
     /// End time, s.
     pub end_time: f64,
     /// Output interval, s (also the largest step).
@@ -35,6 +92,7 @@ pub struct IntegratorParameters {
 impl Default for IntegratorParameters {
     fn default() -> Self {
         Self {
+            scheme: IntegrationScheme::DormandPrince,
             end_time: 1.0,
             output_interval: 5e-3,
             rtol: 1e-6,
@@ -69,8 +127,10 @@ pub struct Simulation {
     pub samples: Vec<Sample>,
     /// Accepted steps.
     pub steps: usize,
-    /// Rejected steps.
+    /// Rejected steps (explicit scheme); rebuilt Newton iteration matrices (implicit one).
     pub rejected: usize,
+    /// Newton iterations (implicit scheme; 0 for the explicit one).
+    pub newton_iterations: usize,
     /// Wall-clock time of the integration, s.
     pub wall_time_s: f64,
 }
@@ -157,7 +217,7 @@ fn derivative(sys: &System, t: f64, y: &DVector<f64>) -> Result<DVector<f64>> {
     Ok(out)
 }
 
-fn sample(sys: &System, t: f64, state: &State) -> Sample {
+pub(super) fn sample(sys: &System, t: f64, state: &State) -> Sample {
     let (p, v) = sys.violation(t, state);
     Sample {
         t,
@@ -226,6 +286,17 @@ pub fn simulate(
 ) -> Result<Simulation> {
     sys.validate()?;
     progress.start_simulation(p.end_time)?;
+    if let IntegrationScheme::GeneralizedAlpha { spectral_radius } = p.scheme {
+        let step = p.fixed_step.unwrap_or(DEFAULT_IMPLICIT_STEP);
+        return super::generalized_alpha::integrate(
+            sys,
+            initial,
+            p,
+            step,
+            spectral_radius,
+            progress,
+        );
+    }
     let start = Instant::now();
     let nq = sys.nq();
     let mut state = initial.clone();
@@ -364,6 +435,7 @@ pub fn simulate(
         samples,
         steps,
         rejected,
+        newton_iterations: 0,
         wall_time_s: start.elapsed().as_secs_f64(),
     })
 }

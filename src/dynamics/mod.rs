@@ -1,10 +1,12 @@
 //! Multibody dynamics with floating frames (chapters 2–5, 7.2, 8): rigid bodies with Euler
 //! parameters, deformable bodies in modal coordinates $\delta = \Psi z$ on a floating frame,
-//! spherical joints, prescribed nodal motion, axis conditions, and one integrator for all.
+//! spherical joints, prescribed nodal motion, axis conditions, and two integrators (explicit
+//! Dormand–Prince, implicit generalized-α) behind one interface.
 
 mod axes;
 mod body;
 mod constraint;
+mod generalized_alpha;
 mod inertia_invariants;
 mod integrator;
 mod prescribed;
@@ -14,10 +16,11 @@ mod system;
 pub use axes::AxisType;
 pub use body::{Body, FlexibleBody, ModalMassInverse, RigidBody};
 pub use constraint::{Attachment, Constraint};
+pub use generalized_alpha::GeneralizedAlphaCoefficients;
 pub use inertia_invariants::InertiaInvariants;
 pub use integrator::{
-    IntegratorParameters, Sample, Simulation, critical_step, imaginary_stability_limit, simulate,
-    stability_polynomial,
+    DEFAULT_IMPLICIT_STEP, DEFAULT_SPECTRAL_RADIUS, IntegrationScheme, IntegratorParameters,
+    Sample, Simulation, critical_step, imaginary_stability_limit, simulate, stability_polynomial,
 };
 pub use prescribed::Motion;
 pub use rotation::{euler_parameters_from_matrix, rotation_matrix, skew};

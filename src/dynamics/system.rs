@@ -635,10 +635,15 @@ impl System {
         qd
     }
 
+    /// Kinetic energy $\tfrac12 v^T M v$, J.
+    pub fn kinetic_energy(&self, s: &State) -> f64 {
+        let (m, _) = self.mass_and_forces(s);
+        0.5 * s.v.dot(&(&m * &s.v))
+    }
+
     /// Total energy (J): kinetic + strain − work potential of gravity and the constant forces.
     pub fn energy(&self, s: &State) -> f64 {
-        let (m, _) = self.mass_and_forces(s);
-        let mut e = 0.5 * s.v.dot(&(&m * &s.v));
+        let mut e = self.kinetic_energy(s);
         for (b, body) in self.bodies.iter().enumerate() {
             let f = self.frame(b, s);
             match body {
@@ -699,7 +704,9 @@ impl System {
         Ok(())
     }
 
-    fn apply_increment(&self, s: &mut State, dx: &DVector<f64>) {
+    /// Moves positions by an increment `dx` in velocity coordinates: translations and modal
+    /// coordinates added, each body's orientation turned by the body-axis rotation vector.
+    pub(crate) fn apply_increment(&self, s: &mut State, dx: &DVector<f64>) {
         for b in 0..self.bodies.len() {
             let (qo, vo) = (self.q_off[b], self.v_off[b]);
             for i in 0..3 {

@@ -2,4 +2,5 @@
 //! because they are the slow tests: accuracy ordering of the methods, invariants of the
 //! integration, the symmetry study, fixed-step stability and errors.
 
+mod generalized_alpha;
 mod integrations;

@@ -1,0 +1,303 @@
+//! The implicit generalized-α scheme of Chung and Hulbert (1993) in the form of Arnold and
+//! Brüls (2007) for the floating-frame equations, with fixed steps.
+//!
+//! The unknown of a step is $\dot v_{n+1}$, the accelerations that satisfy the equations of
+//! motion at $t_{n+1}$: $\dot v_{n+1} = f(t_{n+1}, q_{n+1}, v_{n+1})$, where $f$ is
+//! [`System::accelerations`] (constraints at acceleration level, index 1). An auxiliary
+//! acceleration $a$ carries the numerical damping,
+//! $(1-\alpha_m)a_{n+1} + \alpha_m a_n = (1-\alpha_f)\dot v_{n+1} + \alpha_f\dot v_n$, and
+//! $$\Delta_{n} = h v_n + h^2(\tfrac12-\beta)a_n + h^2\beta a_{n+1},\quad
+//! v_{n+1} = v_n + h(1-\gamma)a_n + h\gamma a_{n+1},$$
+//! with $q_{n+1} = q_n \oplus \Delta_n$ (translations and modal coordinates added, each body
+//! turned by the body-axis rotation vector, so Euler parameters stay unit). For a spectral
+//! radius $\rho_\infty \in [0, 1]$ at infinite frequency,
+//! $\alpha_m = \frac{2\rho_\infty-1}{\rho_\infty+1}$, $\alpha_f = \frac{\rho_\infty}{\rho_\infty+1}$,
+//! $\gamma = \tfrac12-\alpha_m+\alpha_f$, $\beta = \tfrac14(\gamma+\tfrac12)^2$: second order,
+//! unconditionally stable for linear systems; $\rho_\infty = 1$ is the trapezoidal rule, which
+//! keeps the energy of an undamped linear system.
+//!
+//! Newton's method solves for $\dot v_{n+1}$ with the iteration matrix
+//! $J = I - \frac{1-\alpha_f}{1-\alpha_m}\left(h^2\beta F_q + h\gamma F_v\right)$, where
+//! $F_q$, $F_v$ are finite-difference derivatives of $f$ with respect to position increments
+//! and velocities. $J$ is kept across steps (the stiff part, $M^{-1}K$, is constant) and
+//! rebuilt only when the iterations stall; positions and velocities are projected onto the
+//! constraints after every step as with the explicit scheme.
+
+use std::time::Instant;
+
+use faer::{
+    Mat,
+    linalg::solvers::{PartialPivLu, Solve},
+};
+use nalgebra::DVector;
+
+use super::{IntegratorParameters, Simulation, State, System, integrator::sample};
+use crate::{Error, Progress, Result};
+
+/// Newton iterations per step before the iteration matrix is rebuilt (and, with a fresh one,
+/// before the step fails).
+const MAX_NEWTON_ITERATIONS: usize = 12;
+/// Convergence: the Newton correction below this fraction of the largest acceleration.
+const NEWTON_TOLERANCE: f64 = 1e-10;
+
+/// The four parameters of the scheme.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GeneralizedAlphaCoefficients {
+    /// $\alpha_m$.
+    pub alpha_m: f64,
+    /// $\alpha_f$.
+    pub alpha_f: f64,
+    /// $\gamma$.
+    pub gamma: f64,
+    /// $\beta$.
+    pub beta: f64,
+}
+
+impl GeneralizedAlphaCoefficients {
+    /// Chung and Hulbert's optimal coefficients for the spectral radius $\rho_\infty$.
+    pub fn from_spectral_radius(rho: f64) -> Self {
+        let alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
+        let alpha_f = rho / (rho + 1.0);
+        let gamma = 0.5 - alpha_m + alpha_f;
+        Self {
+            alpha_m,
+            alpha_f,
+            gamma,
+            beta: 0.25 * (gamma + 0.5).powi(2),
+        }
+    }
+}
+
+/// The iteration matrix and what it was built from.
+struct IterationMatrix {
+    /// $F_q$ and $F_v$ (nv × nv each).
+    f_q: Mat<f64>,
+    f_v: Mat<f64>,
+    /// The step $J$ is factored for.
+    h: f64,
+    lu: PartialPivLu<f64>,
+}
+
+fn to_faer(v: &DVector<f64>) -> Mat<f64> {
+    Mat::from_fn(v.len(), 1, |i, _| v[i])
+}
+
+/// Finite-difference derivatives of the accelerations at `(t, s)` with respect to position
+/// increments and velocities.
+fn derivatives(sys: &System, t: f64, s: &State, f0: &DVector<f64>) -> Result<(Mat<f64>, Mat<f64>)> {
+    let nv = sys.nv();
+    let mut f_q = Mat::zeros(nv, nv);
+    let mut f_v = Mat::zeros(nv, nv);
+    for j in 0..nv {
+        let eps = 1e-7;
+        let mut dx = DVector::zeros(nv);
+        dx[j] = eps;
+        let mut moved = s.clone();
+        sys.apply_increment(&mut moved, &dx);
+        let fq = sys.accelerations(t, &moved)?;
+        let eps_v = 1e-7 * s.v[j].abs().max(1.0);
+        let mut faster = s.clone();
+        faster.v[j] += eps_v;
+        let fv = sys.accelerations(t, &faster)?;
+        for i in 0..nv {
+            f_q[(i, j)] = (fq[i] - f0[i]) / eps;
+            f_v[(i, j)] = (fv[i] - f0[i]) / eps_v;
+        }
+    }
+    Ok((f_q, f_v))
+}
+
+fn factor(
+    f_q: Mat<f64>,
+    f_v: Mat<f64>,
+    h: f64,
+    c: &GeneralizedAlphaCoefficients,
+) -> IterationMatrix {
+    let nv = f_q.nrows();
+    let ratio = (1.0 - c.alpha_f) / (1.0 - c.alpha_m);
+    let j = Mat::from_fn(nv, nv, |r, k| {
+        let identity = if r == k { 1.0 } else { 0.0 };
+        identity - ratio * (h * h * c.beta * f_q[(r, k)] + h * c.gamma * f_v[(r, k)])
+    });
+    IterationMatrix {
+        lu: j.partial_piv_lu(),
+        f_q,
+        f_v,
+        h,
+    }
+}
+
+/// Integrates `sys` with generalized-α steps of `step` seconds (shortened only to land on
+/// output times) and spectral radius `rho`; see the module documentation. Same outputs and
+/// divergence checks as the explicit scheme; `rejected` counts rebuilt iteration matrices.
+pub(crate) fn integrate(
+    sys: &System,
+    initial: &State,
+    p: &IntegratorParameters,
+    step: f64,
+    rho: f64,
+    progress: &Progress,
+) -> Result<Simulation> {
+    if !(step > 0.0 && step.is_finite()) {
+        return Err(Error::InvalidOption {
+            scene: "integrator".into(),
+            reason: format!("the step must be a positive number of seconds, not {step}"),
+        });
+    }
+    if !(0.0..=1.0).contains(&rho) {
+        return Err(Error::InvalidOption {
+            scene: "integrator".into(),
+            reason: format!("the spectral radius ρ∞ must lie in [0, 1], not {rho}"),
+        });
+    }
+    let c = GeneralizedAlphaCoefficients::from_spectral_radius(rho);
+    let clock = Instant::now();
+    let mut s = initial.clone();
+    sys.project(0.0, &mut s)?;
+    let mut samples = vec![sample(sys, 0.0, &s)];
+    let mut t = 0.0f64;
+    let mut vdot = sys.accelerations(t, &s)?;
+    let mut a = vdot.clone();
+    let (f_q, f_v) = derivatives(sys, t, &s, &vdot)?;
+    let mut matrix = factor(f_q, f_v, step, &c);
+    let (mut steps, mut rebuilt, mut newton) = (0usize, 0usize, 0usize);
+    let mut next_output = p.output_interval;
+    while t < p.end_time - 1e-12 {
+        if steps > p.max_steps {
+            return Err(Error::Diverged {
+                time: t,
+                reason: format!("more than {} steps", p.max_steps),
+            });
+        }
+        let target = next_output.min(p.end_time);
+        let h = step.min(target - t);
+        if (h - matrix.h).abs() > 1e-15 * h {
+            matrix = factor(matrix.f_q.clone(), matrix.f_v.clone(), h, &c);
+        }
+        let t1 = t + h;
+        let start = StepStart {
+            s: &s,
+            vdot: &vdot,
+            a: &a,
+        };
+        let mut fresh = false;
+        let end = loop {
+            match start.solve(sys, t1, h, &c, &matrix, &mut newton) {
+                Ok(end) => break end,
+                Err(_) if !fresh => {
+                    // Rebuild the iteration matrix at the start of the step and try again.
+                    let (f_q, f_v) = derivatives(sys, t, &s, &vdot)?;
+                    matrix = factor(f_q, f_v, h, &c);
+                    rebuilt += 1;
+                    fresh = true;
+                }
+                Err(residual) => {
+                    return Err(Error::NewtonFailed {
+                        time: t1,
+                        iterations: MAX_NEWTON_ITERATIONS,
+                        residual,
+                    });
+                }
+            }
+        };
+        let StepEnd {
+            state: mut s1,
+            a: a1,
+            vdot: x,
+        } = end;
+        if !(s1.q.iter().chain(s1.v.iter())).all(|v| v.is_finite() && v.abs() <= p.divergence_bound)
+        {
+            return Err(Error::Diverged {
+                time: t1,
+                reason: format!("the state grew beyond {:e}", p.divergence_bound),
+            });
+        }
+        sys.project(t1, &mut s1)?;
+        t = t1;
+        steps += 1;
+        s = s1;
+        a = a1;
+        vdot = x;
+        if (t - target).abs() < 1e-12 {
+            samples.push(sample(sys, target, &s));
+            progress.advance(t)?;
+            next_output += p.output_interval;
+        }
+    }
+    Ok(Simulation {
+        samples,
+        steps,
+        rejected: rebuilt,
+        newton_iterations: newton,
+        wall_time_s: clock.elapsed().as_secs_f64(),
+    })
+}
+
+/// Where a step starts: $t_n$, $q_n$, $v_n$, $\dot v_n$, $a_n$.
+struct StepStart<'a> {
+    s: &'a State,
+    vdot: &'a DVector<f64>,
+    a: &'a DVector<f64>,
+}
+
+/// The end of a step: $q_{n+1}$, $v_{n+1}$, $a_{n+1}$ and $\dot v_{n+1}$.
+struct StepEnd {
+    state: State,
+    a: DVector<f64>,
+    vdot: DVector<f64>,
+}
+
+impl StepStart<'_> {
+    /// $a_{n+1}$, $q_{n+1}$ and $v_{n+1}$ for the accelerations `x` $= \dot v_{n+1}$.
+    fn advance(
+        &self,
+        sys: &System,
+        x: &DVector<f64>,
+        h: f64,
+        c: &GeneralizedAlphaCoefficients,
+    ) -> (State, DVector<f64>) {
+        let a1 = (x * (1.0 - c.alpha_f) + self.vdot * c.alpha_f - self.a * c.alpha_m)
+            / (1.0 - c.alpha_m);
+        let increment = &self.s.v * h + self.a * (h * h * (0.5 - c.beta)) + &a1 * (h * h * c.beta);
+        let mut s1 = self.s.clone();
+        sys.apply_increment(&mut s1, &increment);
+        s1.v = &self.s.v + self.a * (h * (1.0 - c.gamma)) + &a1 * (h * c.gamma);
+        (s1, a1)
+    }
+
+    /// Newton's iterations from the guess $\dot v_{n+1} = \dot v_n$, or the last
+    /// correction's size when they do not converge in [`MAX_NEWTON_ITERATIONS`].
+    fn solve(
+        &self,
+        sys: &System,
+        t1: f64,
+        h: f64,
+        c: &GeneralizedAlphaCoefficients,
+        matrix: &IterationMatrix,
+        count: &mut usize,
+    ) -> std::result::Result<StepEnd, f64> {
+        let mut x = self.vdot.clone();
+        let mut correction = f64::INFINITY;
+        for _ in 0..MAX_NEWTON_ITERATIONS {
+            *count += 1;
+            let (s1, _) = self.advance(sys, &x, h, c);
+            let Ok(f) = sys.accelerations(t1, &s1) else {
+                return Err(f64::INFINITY);
+            };
+            let dx = matrix.lu.solve(to_faer(&(&x - &f)));
+            let scale = x.amax().max(f.amax()).max(1e-12);
+            correction = (0..x.len()).map(|i| dx[(i, 0)].abs()).fold(0.0, f64::max) / scale;
+            if !correction.is_finite() {
+                return Err(f64::INFINITY);
+            }
+            for i in 0..x.len() {
+                x[i] -= dx[(i, 0)];
+            }
+            if correction <= NEWTON_TOLERANCE {
+                let (state, a) = self.advance(sys, &x, h, c);
+                return Ok(StepEnd { state, a, vdot: x });
+            }
+        }
+        Err(correction)
+    }
+}
