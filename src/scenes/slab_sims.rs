@@ -254,7 +254,8 @@ pub fn slab_body(
     FlexibleBody::new(model.clone(), basis, axes)
 }
 
-fn fixed(model: &FeModel, node: usize, axis: usize) -> Constraint {
+/// Node `node` (1-based) of the slab (body 0) held at its undeformed coordinate `axis`.
+pub fn fixed(model: &FeModel, node: usize, axis: usize) -> Constraint {
     Constraint::PrescribedNode {
         body: 0,
         node: node - 1,

@@ -5,12 +5,14 @@ use flexmodes::{
     Error, Progress,
     analysis::relative_rms,
     dynamics::{
-        Body, Constraint, GeneralizedAlphaCoefficients, IntegrationScheme, IntegratorParameters,
-        Motion, Simulation, State, System, simulate,
+        Body, GeneralizedAlphaCoefficients, IntegrationScheme, IntegratorParameters, Simulation,
+        State, System, simulate,
     },
     fem::{SlabParameters, slab},
     reduction::{Method, NodalFixedAxes},
-    scenes::slab_sims::{BOUNDARY, PROBE_NODE, Scenario, probe_history, slab_body, slab_system},
+    scenes::slab_sims::{
+        BOUNDARY, PROBE_NODE, Scenario, fixed, probe_history, slab_body, slab_system,
+    },
 };
 
 fn alpha(spectral_radius: f64) -> IntegrationScheme {
@@ -25,14 +27,7 @@ fn held_slab() -> (System, State) {
     let model = slab(&SlabParameters::default());
     let axes = flexmodes::dynamics::AxisType::NodalFixed(NodalFixedAxes::slab_default());
     let body = slab_body(&model, Method::CraigBampton, axes, &BOUNDARY, 6).unwrap();
-    let hold = |node: usize, axis: usize| Constraint::PrescribedNode {
-        body: 0,
-        node: node - 1,
-        axis,
-        motion: Motion::Fixed,
-        x0: model.nodes[node - 1][axis],
-        v0: 0.0,
-    };
+    let hold = |node: usize, axis: usize| fixed(&model, node, axis);
     let constraints = vec![
         hold(16, 0),
         hold(16, 1),
