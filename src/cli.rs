@@ -9,6 +9,7 @@ use std::sync::Arc;
 use crate::{
     Error, Progress, Result, TerminalProgress,
     body_file::{BodyHandle, ImportedBody},
+    dynamics::IntegrationScheme,
     record::Recorder,
     reduction::Method,
     scenes::{self, SceneOptions},
@@ -182,6 +183,18 @@ struct OptionArgs {
     /// Simulated interval of the dynamic scenes, s.
     #[arg(long)]
     end_time: Option<f64>,
+    /// Time-integration scheme of the simulations: dp5 (explicit Dormand–Prince 5(4), adaptive
+    /// steps) or gen-alpha (implicit generalized-α, fixed steps).
+    #[arg(long, value_parser = parse_integrator)]
+    integrator: Option<IntegrationScheme>,
+    /// Fixed step of the simulations, s: dp5 then runs without error control (how a critical
+    /// step is checked); gen-alpha's default is 0.001.
+    #[arg(long, value_name = "SECONDS")]
+    dt: Option<f64>,
+    /// Spectral radius ρ∞ of gen-alpha at infinite frequency, in [0, 1] (default 0.8; 1 adds
+    /// no numerical damping).
+    #[arg(long, value_name = "RHO")]
+    rho_inf: Option<f64>,
     /// Bricks of the slab mesh along x, y, z (slab-modes; App. B is 4,2,1).
     #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
     refine: Option<[usize; 3]>,
@@ -211,6 +224,15 @@ fn parse_refine(s: &str) -> std::result::Result<[usize; 3], String> {
     Ok(out)
 }
 
+fn parse_integrator(s: &str) -> std::result::Result<IntegrationScheme, String> {
+    IntegrationScheme::from_id(s.trim()).ok_or_else(|| {
+        format!(
+            "unknown integrator `{s}` (known: {})",
+            IntegrationScheme::IDS.join(", ")
+        )
+    })
+}
+
 fn parse_method(s: &str) -> std::result::Result<Method, String> {
     Method::from_id(s.trim()).ok_or_else(|| {
         format!(
@@ -232,12 +254,31 @@ impl OptionArgs {
             (Some(items), Some(body)) => Some(body.boundary(items)?),
             (Some(items), None) => Some(parse_nodes(items)?),
         };
+        let integrator = match (self.integrator, self.rho_inf) {
+            (Some(IntegrationScheme::GeneralizedAlpha { .. }) | None, Some(rho)) => {
+                Some(IntegrationScheme::GeneralizedAlpha {
+                    spectral_radius: rho,
+                })
+            }
+            (Some(IntegrationScheme::DormandPrince), Some(_)) => {
+                use clap::CommandFactory;
+                Cli::command()
+                    .error(
+                        clap::error::ErrorKind::ArgumentConflict,
+                        "--rho-inf is a parameter of --integrator gen-alpha, not of dp5",
+                    )
+                    .exit()
+            }
+            (scheme, None) => scheme,
+        };
         Ok(SceneOptions {
             methods: self.method,
             modes: self.modes,
             boundary,
             axes: self.axes,
             end_time: self.end_time,
+            integrator,
+            dt: self.dt,
             refine: self.refine,
             deformation_scale: self.deformation_scale,
             body,

@@ -224,6 +224,95 @@ fn report_dynamic_scenes_json() {
 }
 
 #[test]
+fn the_integrator_is_chosen_per_run() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "report",
+            "slab-sim1",
+            "--method",
+            "nr,cb",
+            "--end-time",
+            "0.5",
+        ];
+        args.extend_from_slice(extra);
+        args.push("--json");
+        json(&args)
+    };
+    let explicit = run(&[]);
+    assert_eq!(explicit["parameters"]["integrator"], "dp5");
+    assert!(explicit["parameters"]["dt_s"].is_null());
+    let implicit = run(&[
+        "--integrator",
+        "gen-alpha",
+        "--dt",
+        "0.00025",
+        "--rho-inf",
+        "0.9",
+    ]);
+    assert_eq!(implicit["parameters"]["integrator"], "gen-alpha");
+    assert_eq!(implicit["parameters"]["dt_s"].as_f64(), Some(0.00025));
+    assert_eq!(implicit["parameters"]["rho_inf"].as_f64(), Some(0.9));
+    // One reduction error whichever scheme integrates it (second order at 0.25 ms).
+    for d in ["xi", "eta", "zeta"] {
+        let a = explicit["results"]["rel_rms_error"]["cb"][d]
+            .as_f64()
+            .unwrap();
+        let b = implicit["results"]["rel_rms_error"]["cb"][d]
+            .as_f64()
+            .unwrap();
+        assert!((a - b).abs() <= 0.02 * a, "{d}: dp5 {a}, gen-alpha {b}");
+    }
+    // Bad choices: an unknown scheme and ρ∞ with dp5 are usage errors; a step out of range
+    // and the integrator of a scene without simulation are named errors.
+    for (args, code, says) in [
+        (
+            vec!["report", "slab-sim1", "--integrator", "rk4"],
+            2,
+            "unknown integrator",
+        ),
+        (
+            vec![
+                "report",
+                "slab-sim1",
+                "--integrator",
+                "dp5",
+                "--rho-inf",
+                "0.5",
+            ],
+            2,
+            "--rho-inf",
+        ),
+        (
+            vec!["report", "slab-sim1", "--dt", "0"],
+            1,
+            "step 0 s must lie in",
+        ),
+        (
+            vec![
+                "report",
+                "slab-sim1",
+                "--integrator",
+                "gen-alpha",
+                "--rho-inf",
+                "1.5",
+            ],
+            1,
+            "spectral radius",
+        ),
+        (
+            vec!["report", "slab-modes", "--integrator", "gen-alpha"],
+            1,
+            "apply to the simulations only",
+        ),
+    ] {
+        let out = flexmodes(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {stderr}");
+        assert!(stderr.contains(says), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
 fn bench_reports_speed_and_accuracy_points() {
     let v = json(&["bench", "--json"]);
     assert_eq!(v["scene"], "slab-sim1");

@@ -105,6 +105,39 @@ impl Default for IntegratorParameters {
     }
 }
 
+impl IntegratorParameters {
+    /// The step the run uses: the fixed one, the implicit default, or `None` (adaptive).
+    pub fn step(&self) -> Option<f64> {
+        match self.scheme {
+            IntegrationScheme::DormandPrince => self.fixed_step,
+            IntegrationScheme::GeneralizedAlpha { .. } => {
+                Some(self.fixed_step.unwrap_or(DEFAULT_IMPLICIT_STEP))
+            }
+        }
+    }
+
+    /// One sentence for panels: scheme, steps and tolerances.
+    pub fn describe(&self) -> String {
+        match (self.scheme, self.step()) {
+            (IntegrationScheme::DormandPrince, None) => format!(
+                "the explicit Dormand-Prince 5(4) scheme with adaptive steps (rtol {:e}, atol \
+                 {:e})",
+                self.rtol, self.atol
+            ),
+            (IntegrationScheme::DormandPrince, Some(h)) => format!(
+                "the explicit Dormand-Prince 5(4) scheme with fixed steps of {h} s and no error \
+                 control"
+            ),
+            (scheme, h) => format!(
+                "the implicit {} scheme with fixed steps of {} s (Newton on a \
+                 finite-difference iteration matrix kept across steps)",
+                scheme.name(),
+                h.unwrap_or(DEFAULT_IMPLICIT_STEP)
+            ),
+        }
+    }
+}
+
 /// One output sample.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sample {

@@ -1,6 +1,10 @@
 //! Options a scene is run with and what it returns.
 
-use crate::{Error, Progress, Result, reduction::Method};
+use crate::{
+    Error, Progress, Result,
+    dynamics::{IntegrationScheme, IntegratorParameters},
+    reduction::Method,
+};
 
 /// What a scene produces is what the recorder logs: numbers, text panel, visuals, layout.
 pub use crate::record::RecordingContent as SceneOutput;
@@ -20,6 +24,13 @@ pub struct SceneOptions {
     pub axes: Option<String>,
     /// `--end-time`: simulated interval of the dynamic scenes, s.
     pub end_time: Option<f64>,
+    /// `--integrator` (with `--rho-inf`): the time-integration scheme of the simulations
+    /// (`None`: Dormand–Prince 5(4)).
+    pub integrator: Option<IntegrationScheme>,
+    /// `--dt`: a fixed step of the simulations, s (the explicit scheme then runs without error
+    /// control; the implicit one defaults to
+    /// [`DEFAULT_IMPLICIT_STEP`](crate::dynamics::DEFAULT_IMPLICIT_STEP)).
+    pub dt: Option<f64>,
     /// `--refine NX,NY,NZ`: bricks of the slab mesh (App. B: 4, 2, 1).
     pub refine: Option<[usize; 3]>,
     /// `--deformation-scale`: factor on the drawn elastic deflections of the simulations
@@ -94,6 +105,48 @@ impl SceneOptions {
                 reason: format!("end time {t} s must lie in (0, 60] s"),
             }),
         }
+    }
+
+    /// The integrator settings of a simulation scene: `--end-time`, `--integrator` and `--dt`
+    /// checked (0 < dt ≤ 10 ms), or the scene's defaults.
+    pub fn integrator_parameters(&self, info: &SceneInfo) -> Result<IntegratorParameters> {
+        let end_time = self.end_time_or_default(info)?;
+        let defaults = IntegratorParameters::default();
+        if let Some(dt) = self.dt
+            && !(dt > 0.0 && dt <= 0.01)
+        {
+            return Err(Error::InvalidOption {
+                scene: info.id.into(),
+                reason: format!("step {dt} s must lie in (0, 0.01] s"),
+            });
+        }
+        if let Some(IntegrationScheme::GeneralizedAlpha { spectral_radius }) = self.integrator
+            && !(0.0..=1.0).contains(&spectral_radius)
+        {
+            return Err(Error::InvalidOption {
+                scene: info.id.into(),
+                reason: format!("spectral radius ρ∞ = {spectral_radius} must lie in [0, 1]"),
+            });
+        }
+        Ok(IntegratorParameters {
+            scheme: self.integrator.unwrap_or(defaults.scheme),
+            end_time,
+            fixed_step: self.dt,
+            ..defaults
+        })
+    }
+
+    /// Rejects `--integrator` and `--dt` for scenes without a simulation.
+    pub fn check_integrator(&self, info: &SceneInfo) -> Result<()> {
+        if info.controls.end_time.is_none() && (self.integrator.is_some() || self.dt.is_some()) {
+            return Err(Error::InvalidOption {
+                scene: info.id.into(),
+                reason: "--integrator, --dt and --rho-inf apply to the simulations only \
+                         (slab-sim1, slab-sim2, slab-sim3, plank-symmetry)"
+                    .into(),
+            });
+        }
+        Ok(())
     }
 
     /// `--deformation-scale` checked (a finite factor ≥ 0; 0 draws no deflection), or `auto`.

@@ -13,8 +13,8 @@ use crate::{
     Result,
     analysis::{max_energy_drift, max_position_violation, max_until, mirror_defect_history},
     dynamics::{
-        Attachment, AxisType, Body, Constraint, FlexibleBody, IntegratorParameters, RigidBody,
-        Simulation, State, System, simulate,
+        Attachment, AxisType, Body, Constraint, FlexibleBody, RigidBody, Simulation, State, System,
+        simulate,
     },
     fem::Direction,
     fem::{FeModel, SlabParameters, plank},
@@ -206,14 +206,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }
     let modes = opts.modes_or_default(&INFO);
     let model = plank(&SlabParameters::default());
-    let params = IntegratorParameters {
-        end_time: opts.end_time_or_default(&INFO)?,
-        ..Default::default()
-    };
+    let params = opts.integrator_parameters(&INFO)?;
     let mut report = Report::new(INFO.id);
     report
         .parameters
         .insert("end_time_s".into(), json!(params.end_time));
+    super::slab_sims::insert_integrator(&mut report, &params);
     report
         .parameters
         .insert("drop_m".into(), json!(plank_setup().drop));
@@ -240,14 +238,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut visuals = Vec::new();
     let mut plots = Vec::new();
     for v in &variants {
-        let key = run_key(
-            INFO.id,
-            v.method,
-            v.axes,
-            &PLANK_BOUNDARY,
-            modes,
-            params.end_time,
-        );
+        let key = run_key(INFO.id, v.method, v.axes, &PLANK_BOUNDARY, modes, &params);
         let run = opts.cache.get_or_run(key, || {
             opts.progress
                 .phase(&format!("{} with {} axes", v.method.name(), v.axes.id()))?;
@@ -393,9 +384,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          (origin at the mass centre) treat all nodes alike. Craig-Bampton with boundary nodes \
          3, 15, 22 and mean axes shows reduction works with mean axes (chapter 8). \
          The system is conservative (fixed anchors, gravity, a constant force), so the energy \
-         plot checks the integrator: Dormand-Prince 5(4) with adaptive steps, Euler \
-         parameters renormalised and joint positions and velocities projected after every \
-         step.\n\n{}",
+         plot checks the integrator: {}, Euler parameters renormalised and joint positions \
+         and velocities projected after every step.\n\n{}",
+        params.describe(),
         report.table,
         height = 2.0 * plank_setup().link_length - plank_setup().drop,
         out = (plank_setup().link_length.powi(2)

@@ -53,6 +53,7 @@ impl Scene {
                 reason: "--refine applies to slab-modes only".into(),
             });
         }
+        opts.check_integrator(&self.info)?;
         if opts.body.is_some() && self.info.id != super::body_modes::INFO.id {
             return Err(Error::InvalidOption {
                 scene: self.info.id.into(),
