@@ -13,6 +13,8 @@
 //! where $\psi_{jc}$ is column $c$ of $\Psi_j$. Cross products need no invariants of their
 //! own: $\sum_j m_j\, u_j \times v_j$ is the axial vector of $\sum_j m_j (v_j u_j^T - u_j v_j^T)$.
 
+use std::collections::BTreeMap;
+
 use nalgebra::{DVector, Matrix3, Matrix3xX, Vector3};
 
 /// The vector with $\sum u \times v = \mathrm{axial}(\sum v u^T)$ for any pairs $(u, v)$.
@@ -38,12 +40,11 @@ pub struct InertiaInvariants {
     pub s_outer: Matrix3<f64>,
     /// $L_c$ per mode.
     pub l: Vec<Matrix3<f64>>,
-    /// $Q_{cd}$, row-major over $(c, d)$.
-    pub q: Vec<Matrix3<f64>>,
-    /// Per mode $c$, the modes $d$ with $Q_{cd} \neq 0$. Without reduction (Ψ = I) a mode
-    /// couples only with the three of its own node, so the sums over $(c, d)$ cost $O(k)$
-    /// instead of $O(k^2)$.
-    coupled: Vec<Vec<usize>>,
+    /// $Q_{cd}$ by rows: for each mode $c$ the modes $d$ with $Q_{cd} \neq 0$ and the
+    /// matrix. Without reduction (Ψ = I) a mode couples only with the three of its own node,
+    /// so the sums over $(c, d)$ and the storage cost $O(k)$ instead of $O(k^2)$ (a refined
+    /// slab of 1 092 DOF would otherwise need 86 MB).
+    q: Vec<Vec<(usize, Matrix3<f64>)>>,
     modes: usize,
 }
 
@@ -58,35 +59,40 @@ impl InertiaInvariants {
             p_sum: Matrix3xX::zeros(k),
             s_outer: Matrix3::zeros(),
             l: vec![Matrix3::zeros(); k],
-            q: vec![Matrix3::zeros(); k * k],
-            coupled: Vec::new(),
+            q: vec![Vec::new(); k],
             modes: k,
         };
+        // Q_cd for c <= d, accumulated over the nodes whose rows of Ψ have both columns.
+        let mut upper: BTreeMap<(usize, usize), Matrix3<f64>> = BTreeMap::new();
         for ((&mj, s), psi) in masses.iter().zip(s_bar).zip(psi_nodes) {
             out.mass += mj;
             out.first_moment0 += s * mj;
-            out.p_sum += psi * mj;
             out.s_outer += s * s.transpose() * mj;
-            for c in 0..k {
+            let present: Vec<usize> = (0..k)
+                .filter(|&c| psi.column(c).iter().any(|&x| x != 0.0))
+                .collect();
+            for (i, &c) in present.iter().enumerate() {
                 let pc = psi.column(c);
+                out.p_sum.column_mut(c).axpy(mj, &pc, 1.0);
                 out.l[c] += s * pc.transpose() * mj;
-                for d in c..k {
-                    out.q[c * k + d] += pc * psi.column(d).transpose() * mj;
+                for &d in &present[i..] {
+                    *upper.entry((c, d)).or_insert_with(Matrix3::zeros) +=
+                        pc * psi.column(d).transpose() * mj;
                 }
             }
         }
-        for c in 0..k {
-            for d in 0..c {
-                out.q[c * k + d] = out.q[d * k + c].transpose();
+        for ((c, d), q) in upper {
+            if q.iter().all(|&x| x == 0.0) {
+                continue;
             }
+            if c != d {
+                out.q[d].push((c, q.transpose()));
+            }
+            out.q[c].push((d, q));
         }
-        out.coupled = (0..k)
-            .map(|c| {
-                (0..k)
-                    .filter(|&d| out.q[c * k + d].iter().any(|&x| x != 0.0))
-                    .collect()
-            })
-            .collect();
+        for row in &mut out.q {
+            row.sort_by_key(|&(d, _)| d);
+        }
         out
     }
 
@@ -95,9 +101,12 @@ impl InertiaInvariants {
         self.modes
     }
 
-    /// $Q_{cd}$.
-    pub fn q(&self, c: usize, d: usize) -> &Matrix3<f64> {
-        &self.q[c * self.modes + d]
+    /// $Q_{cd}$ (zero when no node moves in both modes).
+    pub fn q(&self, c: usize, d: usize) -> Matrix3<f64> {
+        self.q[c]
+            .iter()
+            .find(|&&(e, _)| e == d)
+            .map_or_else(Matrix3::zeros, |&(_, q)| q)
     }
 
     /// First moment about the frame origin, $\sum_j m_j b_j = c_0 + P z$, kg m.
@@ -110,9 +119,9 @@ impl InertiaInvariants {
         (0..self.modes)
             .map(|c| {
                 let mut h = self.l[c].transpose();
-                for &d in &self.coupled[c] {
+                for &(d, ref q) in &self.q[c] {
                     if z[d] != 0.0 {
-                        h += self.q(c, d) * z[d];
+                        h += q * z[d];
                     }
                 }
                 h
@@ -159,9 +168,9 @@ impl InertiaInvariants {
             if a[c] == 0.0 {
                 continue;
             }
-            for &d in &self.coupled[c] {
+            for &(d, ref q) in &self.q[c] {
                 if b[d] != 0.0 {
-                    out += self.q(c, d) * (a[c] * b[d]);
+                    out += q * (a[c] * b[d]);
                 }
             }
         }
@@ -200,9 +209,9 @@ impl InertiaInvariants {
         for c in 0..self.modes {
             let centrifugal = (w.transpose() * h[c] * w)[0] - w2 * h[c].trace();
             let mut qc = Matrix3::zeros();
-            for &d in &self.coupled[c] {
+            for &(d, ref q) in &self.q[c] {
                 if zd[d] != 0.0 {
-                    qc += self.q(c, d) * zd[d];
+                    qc += q * zd[d];
                 }
             }
             modal[c] = centrifugal + 2.0 * w.dot(&axial(&qc));

@@ -36,6 +36,9 @@ pub struct Controls {
     pub body: String,
 }
 
+/// The largest preset a simulation scene offers, DOF (its full model is integrated too).
+pub const SIMULATION_MESH_DOF_LIMIT: usize = 2_500;
+
 /// Meshes the explorer offers for a refinable slab: App. B and the benchmark's sizes that a
 /// desktop reduces in seconds.
 pub const MESH_PRESETS: [[usize; 3]; 5] =

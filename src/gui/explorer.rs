@@ -341,8 +341,14 @@ impl Explorer {
             egui::ComboBox::from_label("mesh")
                 .selected_text(label(&mesh))
                 .show_ui(ui, |ui| {
+                    // A simulation integrates the full model too: meshes up to a few
+                    // thousand DOF only.
+                    let simulation = info.controls.end_time.is_some();
                     for p in super::controls::MESH_PRESETS {
-                        ui.selectable_value(&mut mesh, p.to_vec(), label(&p));
+                        let dofs = SlabParameters::refined(p).map_or(0, |q| q.dof_count());
+                        if !simulation || dofs <= super::controls::SIMULATION_MESH_DOF_LIMIT {
+                            ui.selectable_value(&mut mesh, p.to_vec(), label(&p));
+                        }
                     }
                 });
             if mesh != self.controls.refine {

@@ -42,7 +42,7 @@ pub const INFO: SceneInfo = SceneInfo {
 };
 
 /// The App. B mesh: 4 × 2 × 1 bricks.
-pub(super) const APP_B_BRICKS: [usize; 3] = [4, 2, 1];
+pub const APP_B_BRICKS: [usize; 3] = [4, 2, 1];
 /// §7.2.1: Guyan adds two masters so it has as many coordinates as the others (18).
 const EXTRA_GUYAN_MASTERS: [usize; 2] = [5, 11];
 /// Constraint modes drawn at most (all are computed).

@@ -31,7 +31,7 @@ const fn sim_controls(end: f64) -> super::registry::SceneControls {
         modes: Some(6),
         axes: &["nodal_fixed", "mean", "principal"],
         end_time: Some(end),
-        refine: None,
+        refine: Some(super::slab_modes::APP_B_BRICKS),
     }
 }
 
@@ -230,7 +230,10 @@ pub fn axis_type(id: Option<&str>, scene: &str) -> Result<AxisType> {
 }
 
 /// The deformable slab for one method and axis type: the basis (nodal-fixed columns removed
-/// when the frame is nodal-fixed) and the frame origin (node 16, or the mass centre).
+/// when the frame is nodal-fixed) and the frame origin (node 16, or the mass centre). On a
+/// refined `model`, Guyan's extra masters (App. B nodes 5 and 11) and the nodes of nodal-fixed
+/// axes (given in App. B numbers) are taken at their App. B positions ([`slab_node`]);
+/// `boundary` is in the model's own numbers.
 pub fn slab_body(
     model: &FeModel,
     method: Method,
@@ -240,8 +243,22 @@ pub fn slab_body(
 ) -> Result<FlexibleBody> {
     let mut nodes = boundary.to_vec();
     if method == Method::Guyan {
-        nodes.extend(EXTRA_GUYAN_MASTERS.iter().filter(|n| !boundary.contains(n)));
+        nodes.extend(
+            EXTRA_GUYAN_MASTERS
+                .iter()
+                .map(|&n| slab_node(model, n))
+                .filter(|n| !boundary.contains(n)),
+        );
     }
+    let axes = match axes {
+        AxisType::NodalFixed(nf) => AxisType::NodalFixed(NodalFixedAxes {
+            origin: slab_node(model, nf.origin),
+            axis_node: slab_node(model, nf.axis_node),
+            plane_node: slab_node(model, nf.plane_node),
+            ..nf
+        }),
+        other => other,
+    };
     let basis = reduce(
         model,
         method,
@@ -252,6 +269,28 @@ pub fn slab_body(
         },
     )?;
     FlexibleBody::new(model.clone(), basis, axes)
+}
+
+/// The 1-based node of `model` (the App. B slab or a refinement of it) at the position of App.
+/// B's node `app_b_node` (Table B-1 numbering): the identity on App. B itself; on a refined
+/// mesh the corners 16, 18, 28, 30, node 8 (the top-face centre) and nodes 5 and 11 keep
+/// their places, exactly when the brick counts are multiples of 4, 2, 1.
+pub fn slab_node(model: &FeModel, app_b_node: usize) -> usize {
+    static APP_B: std::sync::OnceLock<FeModel> = std::sync::OnceLock::new();
+    let app_b = APP_B.get_or_init(|| slab(&SlabParameters::default()));
+    if model.node_count() == app_b.node_count() {
+        return app_b_node;
+    }
+    let target = app_b.nodes[app_b_node - 1];
+    let distance = |p: &[f64; 3]| (0..3).map(|d| (p[d] - target[d]).powi(2)).sum::<f64>();
+    1 + (0..model.node_count())
+        .min_by(|&a, &b| distance(&model.nodes[a]).total_cmp(&distance(&model.nodes[b])))
+        .unwrap_or(0)
+}
+
+/// The scene's default boundary on `model`: App. B's nodes 16, 18, 28, 30 where they are.
+pub fn default_boundary(model: &FeModel) -> Vec<usize> {
+    BOUNDARY.iter().map(|&n| slab_node(model, n)).collect()
 }
 
 /// Node `node` (1-based) of the slab (body 0) held at its undeformed coordinate `axis`.
@@ -272,6 +311,7 @@ pub fn slab_system(
     body: FlexibleBody,
 ) -> Result<(System, crate::dynamics::State)> {
     let model = body.model.clone();
+    let n = |app_b: usize| slab_node(&model, app_b);
     let mut origin = body.origin;
     let mut rotation = Matrix3::identity();
     let mut constraints: Vec<Constraint> = Vec::new();
@@ -279,22 +319,22 @@ pub fn slab_system(
     match scenario {
         Scenario::HeldAtSix => {
             for a in 0..3 {
-                constraints.push(fixed(&model, 16, a));
+                constraints.push(fixed(&model, n(16), a));
             }
-            constraints.push(fixed(&model, 18, 0));
-            constraints.push(fixed(&model, 28, 2));
-            constraints.push(fixed(&model, 30, 2));
+            constraints.push(fixed(&model, n(18), 0));
+            constraints.push(fixed(&model, n(28), 2));
+            constraints.push(fixed(&model, n(30), 2));
         }
         Scenario::Orbit => {
             for a in 0..3 {
-                constraints.push(fixed(&model, 16, a));
-                constraints.push(fixed(&model, 18, a));
+                constraints.push(fixed(&model, n(16), a));
+                constraints.push(fixed(&model, n(18), a));
             }
             let a = ORBIT_R * omega * omega;
-            let p30 = model.nodes[29];
+            let p30 = model.nodes[n(30) - 1];
             constraints.push(Constraint::PrescribedNode {
                 body: 0,
-                node: 29,
+                node: n(30) - 1,
                 axis: 0,
                 motion: Motion::Harmonic {
                     a,
@@ -305,11 +345,11 @@ pub fn slab_system(
                 x0: p30[0],
                 v0: 0.0,
             });
-            constraints.push(fixed(&model, 30, 1));
+            constraints.push(fixed(&model, n(30), 1));
             // z velocity of the closed orbit, R Ω (1 + 1/16); see the scene text.
             constraints.push(Constraint::PrescribedNode {
                 body: 0,
-                node: 29,
+                node: n(30) - 1,
                 axis: 2,
                 motion: Motion::Harmonic {
                     a,
@@ -325,13 +365,14 @@ pub fn slab_system(
             rotation = tables.rotation;
             let pivot = Vector3::new(0.0, 2.0, 0.0);
             origin = pivot + rotation * (origin - pivot);
-            for (i, &n) in DRIVEN_NODES.iter().enumerate() {
-                let p = model.nodes[n - 1];
+            for (i, &app_b) in DRIVEN_NODES.iter().enumerate() {
+                let node = n(app_b);
+                let p = model.nodes[node - 1];
                 let x = pivot + rotation * (Vector3::new(p[0], p[1], p[2]) - pivot);
                 for axis in 0..3 {
                     constraints.push(Constraint::PrescribedNode {
                         body: 0,
-                        node: n - 1,
+                        node: node - 1,
                         axis,
                         motion: Motion::table(tables.dt, tables.values[i][axis].clone()),
                         x0: x[axis],
@@ -413,13 +454,21 @@ pub fn run_scenario(
 ) -> Result<SceneOutput> {
     let methods = opts.methods_or(info.id, &METHODS, &METHODS)?;
     let axes = axis_type(opts.axes.as_deref(), info.id)?;
-    let boundary = opts.boundary_or_default(info);
     let modes = opts.modes_or_default(info);
-    let model = slab(&SlabParameters::default());
+    let bricks = opts.refine.unwrap_or(super::slab_modes::APP_B_BRICKS);
+    let model = slab(&SlabParameters::refined(bricks)?);
+    let boundary = opts
+        .boundary
+        .clone()
+        .unwrap_or_else(|| default_boundary(&model));
+    let probe = slab_node(&model, PROBE_NODE);
     let params = opts.integrator_parameters(info)?;
     let mut runs = Vec::new();
     for &m in &methods {
-        let key = run_key(info.id, m, axes, &boundary, modes, &params);
+        let key = format!(
+            "{}/{bricks:?}",
+            run_key(info.id, m, axes, &boundary, modes, &params)
+        );
         let run = opts.cache.get_or_run(key, || {
             opts.progress.phase(&format!("{} integration", m.name()))?;
             let body = slab_body(&model, m, axes, &boundary, modes)?;
@@ -428,7 +477,7 @@ pub fn run_scenario(
             Ok((system, sim))
         })?;
         let (system, sim) = (*run).clone();
-        let hist = probe_history(&system, &sim, PROBE_NODE);
+        let hist = probe_history(&system, &sim, probe);
         runs.push((m, system, sim, hist));
     }
     let mut report = Report::new(info.id);
@@ -439,6 +488,10 @@ pub fn run_scenario(
         .parameters
         .insert("end_time_s".into(), json!(params.end_time));
     insert_integrator(&mut report, &params);
+    report.parameters.insert("bricks".into(), json!(bricks));
+    report
+        .parameters
+        .insert("dofs".into(), json!(model.dof_count()));
     report.parameters.insert(
         "methods".into(),
         json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
@@ -505,9 +558,8 @@ pub fn run_scenario(
         .insert("wall_time_s".into(), Value::Object(walls));
     report.table = report.add_table(table);
     let markdown = format!(
-        "# {}\n\n{}\n\nEvery method is integrated by {}, Euler parameters renormalised and \
-         positions \
-         and velocities projected onto the constraints after each step (velocities by the \
+        "# {}\n\n{}\n\nThe slab: {} bricks, {} DOF{}. Every method is integrated by {}, Euler \
+         parameters renormalised and positions and velocities projected onto the constraints after each step (velocities by the \
          correction of least kinetic energy, which no choice of basis changes), so \
          differences come from the bases alone: CB and MC span one space and their errors \
          agree to 1e-6. With the default explicit scheme the integration error of the NR \
@@ -515,10 +567,26 @@ pub fn run_scenario(
          deflection in every simulation and axis type: at least 100 times below the smallest \
          error these tables print (a test checks both). The implicit generalized-α scheme is \
          second order: at its default 1 ms step it differs from the explicit one by ~2e-3 \
-         (simulation 1) to ~6e-3 (simulation 2), at 0.25 ms by ~1e-4 (--dt). Coordinates are the six of the frame plus the modal ones. Errors are \
+         (simulation 1) to ~6e-3 (simulation 2), at 0.25 ms by ~1e-4 (--dt). Coordinates are \
+         the six of the frame plus the modal ones. Errors are \
          the relative RMS of node 8's local deflection against NR over the interval.\n\n{}",
         info.id,
         info.summary,
+        bricks.map(|b| b.to_string()).join(" × "),
+        model.dof_count(),
+        if bricks == super::slab_modes::APP_B_BRICKS {
+            " (App. B)".to_string()
+        } else {
+            format!(
+                " (refined; nodes {} are App. B's 16, 18, 28, 30 and node {probe} is App. B's \
+                 node 8, the top-face centre)",
+                default_boundary(&model)
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        },
         params.describe(),
         report.table
     );

@@ -617,3 +617,27 @@ fn the_drawn_deflection_is_automatic_or_as_asked() {
         flexmodes::Error::InvalidOption { .. }
     ));
 }
+
+#[test]
+fn a_refined_slab_simulation_runs_every_method_and_cb_stays_close_to_the_full_model() {
+    let options = flexmodes::scenes::SceneOptions {
+        refine: Some([8, 4, 2]),
+        end_time: Some(0.3),
+        ..Default::default()
+    };
+    let output = (flexmodes::scenes::find("slab-sim1").unwrap().run)(&options).unwrap();
+    let report = &output.report;
+    assert_eq!(report.parameters["dofs"], 405);
+    assert_eq!(report.parameters["bricks"], serde_json::json!([8, 4, 2]));
+    let errors = report.results["rel_rms_error"].as_object().unwrap();
+    assert_eq!(errors.len(), 5);
+    for d in ["xi", "eta", "zeta"] {
+        let cb = errors["cb"][d].as_f64().unwrap();
+        let mc = errors["mc"][d].as_f64().unwrap();
+        let mt = errors["mt"][d].as_f64().unwrap();
+        assert!(cb < 0.1, "{d}: CB {cb}");
+        assert!((cb - mc).abs() <= 1e-4, "{d}: CB {cb}, MC {mc}");
+        // Modal truncation cannot follow the supports (§7.2): far worse than CB.
+        assert!(mt > 5.0 * cb, "{d}: MT {mt}, CB {cb}");
+    }
+}

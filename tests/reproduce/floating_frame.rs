@@ -251,3 +251,26 @@ fn block_eliminated_accelerations_equal_the_dense_regularised_solve() {
         }
     }
 }
+
+#[test]
+fn a_refined_slab_keeps_the_scenario_nodes_at_their_app_b_places() {
+    use flexmodes::scenes::slab_sims::{default_boundary, slab_node};
+    let app_b = slab(&SlabParameters::default());
+    for bricks in [[4, 2, 1], [8, 4, 2], [12, 6, 3]] {
+        let refined = slab(&SlabParameters::refined(bricks).unwrap());
+        for n in [5, 8, 11, 16, 18, 28, 30] {
+            let m = slab_node(&refined, n);
+            assert_eq!(
+                refined.nodes[m - 1],
+                app_b.nodes[n - 1],
+                "{bricks:?}: App. B node {n} mapped to node {m}"
+            );
+        }
+        let corners = SlabParameters::refined(bricks).unwrap().bottom_corners();
+        assert_eq!(default_boundary(&refined), corners.to_vec());
+    }
+    // App. B itself is numbered as Table B-1.
+    assert_eq!(slab_node(&app_b, 8), 8);
+    // Node 8 is the top-face centre.
+    assert_eq!(app_b.nodes[7], [2.0, 1.0, 1.0]);
+}
