@@ -70,6 +70,10 @@ pub struct FlexibleBody {
     pub m_zz: DMatrix<f64>,
     /// $\Psi^T K \Psi$.
     pub k_zz: DMatrix<f64>,
+    /// The nonzeros of $K_{zz}$ by row when fewer than a quarter of its entries are nonzero
+    /// (no reduction: the element stiffness pattern), so the elastic force costs the nonzeros
+    /// and not $k^2$.
+    k_zz_rows: Option<Vec<Vec<(usize, f64)>>>,
     /// $(\Psi^T M \Psi)^{-1}$ as a factorisation, computed once: the modal mass block is
     /// constant, so the equations of motion eliminate the modal accelerations with it.
     pub m_zz_inverse: ModalMassInverse,
@@ -176,6 +180,17 @@ impl FlexibleBody {
         let k_zz = to_na(&basis.reduced_stiffness(&model));
         let invariants = InertiaInvariants::new(&masses, &s_bar, &psi_nodes);
         let m_zz_inverse = ModalMassInverse::new(&m_zz, &model.name)?;
+        let nonzeros = k_zz.iter().filter(|&&x| x != 0.0).count();
+        let k_zz_rows = (4 * nonzeros < k * k).then(|| {
+            (0..k)
+                .map(|i| {
+                    (0..k)
+                        .filter(|&j| k_zz[(i, j)] != 0.0)
+                        .map(|j| (j, k_zz[(i, j)]))
+                        .collect()
+                })
+                .collect()
+        });
         Ok(Self {
             model,
             basis,
@@ -186,9 +201,22 @@ impl FlexibleBody {
             psi_nodes,
             m_zz,
             k_zz,
+            k_zz_rows,
             m_zz_inverse,
             invariants,
         })
+    }
+
+    /// The elastic force $K_{zz} z$ (N in modal units).
+    pub fn elastic_force(&self, z: &DVector<f64>) -> DVector<f64> {
+        match &self.k_zz_rows {
+            Some(rows) => DVector::from_iterator(
+                rows.len(),
+                rows.iter()
+                    .map(|row| row.iter().map(|&(j, k)| k * z[j]).sum::<f64>()),
+            ),
+            None => &self.k_zz * z,
+        }
     }
 
     /// Number of modal coordinates.

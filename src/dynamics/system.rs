@@ -362,7 +362,7 @@ impl System {
                 let q_r = f.a * (q_r - ar);
                 q_w -= aw;
                 q_z -= az;
-                q_z -= &fb.k_zz * &f.z;
+                q_z -= fb.elastic_force(&f.z);
                 let rw = -f.a * skew(&first);
                 let mut m_ff = Matrix6::zeros();
                 for i in 0..3 {
@@ -649,7 +649,7 @@ impl System {
             match body {
                 Body::Rigid(rb) => e -= rb.mass * self.gravity.dot(&f.r),
                 Body::Flexible(fb) => {
-                    e += 0.5 * f.z.dot(&(&fb.k_zz * &f.z));
+                    e += 0.5 * f.z.dot(&fb.elastic_force(&f.z));
                     let inv = &fb.invariants;
                     e -= self
                         .gravity
