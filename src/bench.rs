@@ -12,12 +12,16 @@ use crate::{
     Error, Progress, Result,
     analysis::reduced_modes,
     analysis::relative_rms,
-    dynamics::{AxisType, IntegratorParameters, imaginary_stability_limit, simulate},
+    dynamics::{
+        AxisType, DEFAULT_SPECTRAL_RADIUS, IntegrationScheme, IntegratorParameters,
+        imaginary_stability_limit, simulate,
+    },
     fem::{SlabParameters, slab},
     reduction::{Method, NodalFixedAxes},
     report::{markdown_table, sig},
     scenes::slab_sims::{
-        BOUNDARY, PROBE_NODE, Scenario, end_time, probe_history, slab_body, slab_system,
+        PROBE_NODE, Scenario, default_boundary, end_time, probe_history, slab_body, slab_node,
+        slab_system,
     },
 };
 
@@ -50,10 +54,50 @@ pub struct BenchPoint {
     pub rel_rms_error: f64,
     /// Accepted integration steps.
     pub steps: usize,
+    /// The integrator.
+    pub integrator: IntegrationScheme,
+    /// Not dominated: no other point is at once faster online and more accurate.
+    pub pareto: bool,
 }
 
-/// Runs the benchmark of one simulation scene and returns the `bench --json` object.
-pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
+/// The schemes `bench` compares when none is named: the explicit one with adaptive steps and
+/// the implicit one with its default step.
+pub const BENCH_SCHEMES: [IntegrationScheme; 2] = [
+    IntegrationScheme::DormandPrince,
+    IntegrationScheme::GeneralizedAlpha {
+        spectral_radius: DEFAULT_SPECTRAL_RADIUS,
+    },
+];
+
+/// Marks the points no other point dominates in (online cost, error): lower or equal in both
+/// and lower in one.
+pub fn mark_pareto(points: &mut [BenchPoint]) {
+    let cost_error: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| (p.online_s_per_sim_s, p.rel_rms_error))
+        .collect();
+    for (i, p) in points.iter_mut().enumerate() {
+        let (c, e) = cost_error[i];
+        p.pareto = !cost_error
+            .iter()
+            .any(|&(c2, e2)| c2 <= c && e2 <= e && (c2 < c || e2 < e));
+    }
+}
+
+/// Runs the benchmark of one simulation scene with each of `schemes` (all of
+/// [`BENCH_SCHEMES`] when empty; the explicit scheme, when among them, first: its full-model
+/// run is the reference of every error) and returns the `bench --json` object.
+pub fn bench(
+    scene: &str,
+    schemes: &[IntegrationScheme],
+    bricks: Option<[usize; 3]>,
+    progress: &Progress,
+) -> Result<(Value, String)> {
+    let mut schemes = schemes.to_vec();
+    if schemes.is_empty() {
+        schemes = BENCH_SCHEMES.to_vec();
+    }
+    schemes.sort_by_key(|s| !matches!(s, IntegrationScheme::DormandPrince));
     let scenario = match scene {
         "slab-sim1" => Scenario::HeldAtSix,
         "slab-sim2" => Scenario::Orbit,
@@ -64,13 +108,14 @@ pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
             });
         }
     };
-    let model = slab(&SlabParameters::default());
+    let model = match bricks {
+        Some(b) => slab(&SlabParameters::refined(b)?),
+        None => slab(&SlabParameters::default()),
+    };
+    let boundary = default_boundary(&model);
+    let probe = slab_node(&model, PROBE_NODE);
     let axes = AxisType::NodalFixed(NodalFixedAxes::slab_default());
     let t_end = end_time(&scenario);
-    let params = IntegratorParameters {
-        end_time: t_end,
-        ..Default::default()
-    };
     let mut cases = vec![(Method::NoReduction, 0), (Method::Guyan, 0)];
     for m in [
         Method::ModalTruncation,
@@ -99,7 +144,7 @@ pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
             }
         ))?;
         let start = Instant::now();
-        let body = slab_body(&model, m, axes, &BOUNDARY, k)?;
+        let body = slab_body(&model, m, axes, &boundary, k)?;
         let offline_s = start.elapsed().as_secs_f64();
         // Highest frequency the integrator has to resolve: the reduced model held by the
         // nodal-fixed frame (its anchors are the determinate supports).
@@ -107,15 +152,24 @@ pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
         let highest_hz = hz.last().copied().unwrap_or(0.0);
         let dofs = body.modes();
         let (system, state) = slab_system(&scenario, body)?;
-        let sim = simulate(&system, &state, &params, progress)?;
-        let hist = probe_history(&system, &sim, PROBE_NODE);
-        if m == Method::NoReduction {
-            reference = Some(hist.clone());
+        let mut runs = Vec::new();
+        for &scheme in &schemes {
+            let params = IntegratorParameters {
+                scheme,
+                end_time: t_end,
+                ..Default::default()
+            };
+            let sim = simulate(&system, &state, &params, progress)?;
+            let hist = probe_history(&system, &sim, probe);
+            if m == Method::NoReduction && reference.is_none() {
+                reference = Some(hist.clone());
+            }
+            let err = match &reference {
+                Some(r) => (0..3).map(|d| relative_rms(&hist[d], &r[d])).sum::<f64>() / 3.0,
+                None => f64::NAN,
+            };
+            runs.push((scheme, sim, err));
         }
-        let err = match &reference {
-            Some(r) => (0..3).map(|d| relative_rms(&hist[d], &r[d])).sum::<f64>() / 3.0,
-            None => f64::NAN,
-        };
         let key = if m.keeps_normal_modes() {
             format!("{}_{k}", m.id())
         } else {
@@ -155,15 +209,43 @@ pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
         } else {
             (true, false)
         };
-        stability.insert(
-            key.clone(),
-            json!({
-                "highest_hz": sig(highest_hz),
-                "critical_dt_s": if critical.is_finite() { sig(critical) } else { f64::INFINITY },
-                "run_below_ok": below_ok,
-                "run_above_diverged": above_diverged,
-            }),
-        );
+        // What the implicit scheme does with the step that breaks the explicit one.
+        let implicit = schemes
+            .iter()
+            .copied()
+            .find(|s| matches!(s, IntegrationScheme::GeneralizedAlpha { .. }));
+        let implicit_above_bounded = match implicit {
+            Some(scheme) if critical.is_finite() => {
+                progress.phase(&format!("point {} of {count}: implicit, large step", i + 1))?;
+                let run = simulate(
+                    &system,
+                    &state,
+                    &IntegratorParameters {
+                        scheme,
+                        end_time: t_end,
+                        output_interval: ABOVE_CRITICAL * critical,
+                        fixed_step: Some(ABOVE_CRITICAL * critical),
+                        ..Default::default()
+                    },
+                    progress,
+                );
+                if let Err(Error::Cancelled) = run {
+                    return Err(Error::Cancelled);
+                }
+                Some(run.is_ok())
+            }
+            _ => None,
+        };
+        let mut entry = json!({
+            "highest_hz": sig(highest_hz),
+            "critical_dt_s": if critical.is_finite() { sig(critical) } else { f64::INFINITY },
+            "run_below_ok": below_ok,
+            "run_above_diverged": above_diverged,
+        });
+        if let Some(bounded) = implicit_above_bounded {
+            entry["implicit_above_bounded"] = json!(bounded);
+        }
+        stability.insert(key.clone(), entry);
         stability_rows.push(vec![
             key,
             format!("{highest_hz:.1}"),
@@ -175,23 +257,35 @@ pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
                 "BOUNDED"
             }
             .to_string(),
+            match implicit_above_bounded {
+                Some(true) => "bounded",
+                Some(false) => "FAILED",
+                None => "-",
+            }
+            .to_string(),
         ]);
-        points.push(BenchPoint {
-            method: m,
-            modes: k,
-            dofs,
-            offline_s,
-            online_s_per_sim_s: sim.wall_time_s / t_end,
-            rel_rms_error: err,
-            steps: sim.steps,
-        });
+        for (scheme, sim, err) in runs {
+            points.push(BenchPoint {
+                method: m,
+                modes: k,
+                dofs,
+                offline_s,
+                online_s_per_sim_s: sim.wall_time_s / t_end,
+                rel_rms_error: err,
+                steps: sim.steps,
+                integrator: scheme,
+                pareto: false,
+            });
+        }
     }
+    mark_pareto(&mut points);
     let nr_online = points[0].online_s_per_sim_s;
     let rows: Vec<Vec<String>> = points
         .iter()
         .map(|p| {
             vec![
                 p.method.id().into(),
+                p.integrator.id().into(),
                 p.modes.to_string(),
                 p.dofs.to_string(),
                 format!("{:.2e}", p.offline_s),
@@ -199,21 +293,31 @@ pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
                 format!("{:.1}", nr_online / p.online_s_per_sim_s),
                 format!("{:.4}", p.rel_rms_error),
                 p.steps.to_string(),
+                if p.pareto { "★" } else { "" }.to_string(),
             ]
         })
         .collect();
     let table = format!(
-        "{}\nUndamped modes sit on the imaginary axis, where Dormand-Prince 5(4) keeps \
+        "Errors are node 8's mean relative RMS against the full model integrated by {}; speed-up \
+         is against the first row. ★ marks the Pareto front: no other point is both faster \
+         online and more accurate.\n\n{}\nUndamped modes sit on the imaginary axis, where Dormand-Prince 5(4) keeps \
          |R(iωh)| ≤ 1 only for ωh ≤ {y_star:.3} (beyond it the growth per step stays below \
          1e-4 up to ωh ≈ 1.1, so the error control, not stability, sets the step here). \
          `stability.<method>.critical_dt_s` = {y_star:.3} / ω_max of the reduced model held \
          by the nodal-fixed frame: Guyan's and the full model's stiff high modes bound the \
          step most. Checked by fixed-step runs without error control, at {BELOW_CRITICAL}× \
          the critical step over {STABILITY_RUN_S} s (must stay bounded) and at \
-         {ABOVE_CRITICAL}× over the whole interval (must diverge, `Error::Diverged`):\n\n{}",
+         {ABOVE_CRITICAL}× over the whole interval (must diverge, `Error::Diverged`). The \
+         implicit generalized-α scheme is unconditionally stable for linear systems; the last \
+         column runs it with the step that breaks the explicit one \
+         (`stability.<method>.implicit_above_bounded`; FAILED: it diverged or its Newton \
+         iterations did not converge, a named error). Reduction buys the implicit scheme \
+         cheaper steps, not larger ones:\n\n{}",
+        schemes[0].name(),
         markdown_table(
             &[
                 "method",
+                "integrator",
                 "modes",
                 "DOF",
                 "offline s",
@@ -221,6 +325,7 @@ pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
                 "speed-up vs NR",
                 "rel. RMS error",
                 "steps",
+                "Pareto",
             ],
             &rows,
         ),
@@ -231,12 +336,14 @@ pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
                 "critical step s",
                 &format!("{BELOW_CRITICAL}× step"),
                 &format!("{ABOVE_CRITICAL}× step"),
+                &format!("gen-alpha at {ABOVE_CRITICAL}×"),
             ],
             &stability_rows,
         )
     );
     let json = json!({
         "scene": scene,
+        "dofs": model.dof_count(),
         "points": points.iter().map(|p| json!({
             "method": p.method.id(),
             "modes": p.modes,
@@ -245,6 +352,8 @@ pub fn bench(scene: &str, progress: &Progress) -> Result<(Value, String)> {
             "online_s_per_sim_s": sig(p.online_s_per_sim_s),
             "rel_rms_error": sig(p.rel_rms_error),
             "steps": p.steps,
+            "integrator": p.integrator.id(),
+            "pareto": p.pareto,
         })).collect::<Vec<_>>(),
         "stability": Value::Object(stability),
     });

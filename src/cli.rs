@@ -56,6 +56,12 @@ enum Command {
         /// With --sizes: also write the log–log chart of time against DOF to this `.rrd`.
         #[arg(long)]
         save: Option<PathBuf>,
+        /// Integrators to compare, comma separated (default: dp5,gen-alpha).
+        #[arg(long, value_delimiter = ',', value_parser = parse_integrator)]
+        integrator: Vec<IntegrationScheme>,
+        /// Simulations on the slab meshed with NX × NY × NZ bricks (App. B is 4,2,1).
+        #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
+        refine: Option<[usize; 3]>,
     },
     /// The desktop explorer: the Rerun viewer beside live controls.
     #[cfg(feature = "gui")]
@@ -362,6 +368,7 @@ fn run(cli: Cli) -> Result<()> {
             json,
             sizes: Some(sizes),
             save,
+            ..
         } => {
             if ids.iter().any(|id| id != "slab-modes") {
                 return Err(Error::InvalidOption {
@@ -387,6 +394,8 @@ fn run(cli: Cli) -> Result<()> {
             json,
             sizes: None,
             save,
+            integrator,
+            refine,
         } => {
             if save.is_some() {
                 return Err(Error::InvalidOption {
@@ -408,7 +417,7 @@ fn run(cli: Cli) -> Result<()> {
                 let handle = Progress::new();
                 let bar =
                     TerminalProgress::start(&handle, &format!("bench {id} ({} of {count})", k + 1));
-                let (value, table) = crate::bench::bench(&id, &handle)?;
+                let (value, table) = crate::bench::bench(&id, &integrator, refine, &handle)?;
                 drop(bar);
                 if json {
                     println!("{value}");

@@ -316,6 +316,7 @@ fn the_integrator_is_chosen_per_run() {
 fn bench_reports_speed_and_accuracy_points() {
     let v = json(&["bench", "--json"]);
     assert_eq!(v["scene"], "slab-sim1");
+    assert_eq!(v["dofs"], 90);
     let points = v["points"].as_array().unwrap();
     assert!(points.len() >= 10);
     for p in points {
@@ -328,20 +329,47 @@ fn bench_reports_speed_and_accuracy_points() {
         ] {
             assert!(p[key].is_number(), "{key} in {p}");
         }
+        assert!(p["pareto"].is_boolean(), "{p}");
     }
+    // Both integrators at every point.
+    for scheme in ["dp5", "gen-alpha"] {
+        let n = points.iter().filter(|p| p["integrator"] == scheme).count();
+        assert_eq!(2 * n, points.len(), "{scheme}");
+    }
+    // The Pareto flags, recomputed: a point is on the front exactly when no other point is at
+    // once no slower and no less accurate, and better in one.
+    let cost_error: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| {
+            (
+                p["online_s_per_sim_s"].as_f64().unwrap(),
+                p["rel_rms_error"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    for (p, &(c, e)) in points.iter().zip(&cost_error) {
+        let dominated = cost_error
+            .iter()
+            .any(|&(c2, e2)| c2 <= c && e2 <= e && (c2 < c || e2 < e));
+        assert_eq!(p["pareto"], !dominated, "{p}");
+    }
+    // The most accurate point (the reference) is always on the front.
+    assert!(points.iter().any(|p| p["pareto"] == true));
     // Accuracy (not speed) may be asserted: Craig-Bampton converges as modes are added.
     let cb: Vec<f64> = points
         .iter()
-        .filter(|p| p["method"] == "cb")
+        .filter(|p| p["method"] == "cb" && p["integrator"] == "dp5")
         .map(|p| p["rel_rms_error"].as_f64().unwrap())
         .collect();
     assert!(cb.windows(2).all(|w| w[1] < w[0]), "{cb:?}");
     // Every predicted critical step is checked: bounded 10 % below it, diverged at 3×.
     let stability = v["stability"].as_object().unwrap();
-    assert_eq!(stability.len(), points.len());
+    assert_eq!(2 * stability.len(), points.len());
     for (m, s) in stability {
         assert_eq!(s["run_below_ok"], true, "{m}: {s}");
         assert_eq!(s["run_above_diverged"], true, "{m}: {s}");
+        // The implicit scheme takes the step that breaks the explicit one.
+        assert_eq!(s["implicit_above_bounded"], true, "{m}: {s}");
     }
     // Reduction buys the explicit scheme a larger step: the full model's is the smallest.
     let nr = v["stability"]["nr"]["critical_dt_s"].as_f64().unwrap();
