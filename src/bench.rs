@@ -17,8 +17,10 @@ use crate::{
         imaginary_stability_limit, simulate,
     },
     fem::{SlabParameters, slab},
+    record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::{Method, NodalFixedAxes},
     report::{markdown_table, sig},
+    scenes::method_color,
     scenes::slab_sims::{
         PROBE_NODE, Scenario, default_boundary, end_time, probe_history, slab_body, slab_node,
         slab_system,
@@ -92,7 +94,7 @@ pub fn bench(
     schemes: &[IntegrationScheme],
     bricks: Option<[usize; 3]>,
     progress: &Progress,
-) -> Result<(Value, String)> {
+) -> Result<(Value, String, RecordingContent)> {
     let mut schemes = schemes.to_vec();
     if schemes.is_empty() {
         schemes = BENCH_SCHEMES.to_vec();
@@ -357,5 +359,126 @@ pub fn bench(
         })).collect::<Vec<_>>(),
         "stability": Value::Object(stability),
     });
-    Ok((json, table))
+    let recording = speed_accuracy_charts(scene, &points, &table);
+    Ok((json, table, recording))
+}
+
+/// The recording of a simulation bench: error against online cost (log–log), one line per
+/// method and integrator through its kept-mode counts and the Pareto front in white; error
+/// against kept modes per method (explicit scheme); the table beside them. The reference
+/// (error 0) has no place on a log axis and is left out of the charts.
+fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> RecordingContent {
+    let mut by_method: Vec<((Method, &'static str), Vec<&BenchPoint>)> = Vec::new();
+    for p in points {
+        let key = (p.method, p.integrator.id());
+        match by_method.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, v)) => v.push(p),
+            None => by_method.push((key, vec![p])),
+        }
+    }
+    let shade = |c: crate::record::Color, implicit: bool| {
+        if implicit {
+            [c[0] / 2 + 60, c[1] / 2 + 60, c[2] / 2 + 60, 255]
+        } else {
+            c
+        }
+    };
+    let mut cost_series: Vec<LogLogSeries> = by_method
+        .iter()
+        .map(|((m, integrator), pts)| LogLogSeries {
+            id: format!("{}_{}", m.id(), integrator.replace('-', "_")),
+            // One label per method (on the explicit line); the paler line is gen-alpha.
+            label: if *integrator == "dp5" {
+                m.id().to_uppercase()
+            } else {
+                String::new()
+            },
+            color: shade(method_color(*m), *integrator != "dp5"),
+            points: pts
+                .iter()
+                .map(|p| (p.online_s_per_sim_s, p.rel_rms_error))
+                .collect(),
+            line: true,
+        })
+        .collect();
+    let mut front: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.pareto)
+        .map(|p| (p.online_s_per_sim_s, p.rel_rms_error))
+        .collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    cost_series.push(LogLogSeries {
+        id: "pareto_front".into(),
+        label: "Pareto".into(),
+        color: [255, 255, 255, 255],
+        points: front,
+        line: true,
+    });
+    let mode_series: Vec<LogLogSeries> = by_method
+        .iter()
+        .filter(|((m, integrator), _)| m.keeps_normal_modes() && *integrator == "dp5")
+        .map(|((m, _), pts)| LogLogSeries {
+            id: m.id().into(),
+            label: m.id().to_uppercase(),
+            color: method_color(*m),
+            points: pts
+                .iter()
+                .map(|p| (p.modes as f64, p.rel_rms_error))
+                .collect(),
+            line: true,
+        })
+        .collect();
+    let mut visuals = LogLogChart {
+        path: "bench/error_vs_cost".into(),
+        x_unit: "s/s".into(),
+        y_unit: "".into(),
+        series: cost_series,
+    }
+    .visuals();
+    visuals.extend(
+        LogLogChart {
+            path: "bench/error_vs_modes".into(),
+            x_unit: "".into(),
+            y_unit: "".into(),
+            series: mode_series,
+        }
+        .visuals(),
+    );
+    let mut report = crate::report::Report::new(&format!("bench-{scene}"));
+    report.table = table.to_string();
+    RecordingContent {
+        report,
+        markdown: format!(
+            "# bench {scene}\n\nLeft: node 8's relative RMS error against the online cost \
+             (wall seconds per simulated second), log–log; one line per method and \
+             integrator through 2, 4, 6, 12 kept modes (gen-alpha in the paler shade), the \
+             Pareto front in white. Right: error against kept modes (Dormand–Prince).\n\n\
+             {table}"
+        ),
+        visuals,
+        layout: Layout::Horizontal(
+            vec![
+                Layout::Spatial2D {
+                    name: "error against online cost (log–log)".into(),
+                    origin: "/bench/error_vs_cost".into(),
+                },
+                Layout::Vertical(
+                    vec![
+                        Layout::Spatial2D {
+                            name: "error against kept modes 2–12 (log–log)".into(),
+                            origin: "/bench/error_vs_modes".into(),
+                        },
+                        Layout::Text {
+                            name: "table".into(),
+                            origin: "/scene".into(),
+                        },
+                    ],
+                    vec![1.0, 1.0],
+                ),
+            ],
+            vec![3.0, 2.0],
+        ),
+        timeline: None,
+        y_up: false,
+    }
 }

@@ -12,7 +12,7 @@ use crate::{
     Error, Result,
     fem::{SlabParameters, slab},
     linalg::{check_reduction_memory, peak_resident_bytes},
-    record::{Layout, RecordingContent, Visual},
+    record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::Method,
     reduction::{
         InteriorProblem, MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, ModeSelection, SolverPath,
@@ -259,74 +259,38 @@ fn log_log_chart(
     exponents: &Map<String, Value>,
     table: String,
 ) -> RecordingContent {
-    // Decades spanned, so the x axis can be stretched to make the chart about square.
-    let all: Vec<(f64, f64)> = totals.values().flatten().copied().collect();
-    let span = |f: &dyn Fn(&(f64, f64)) -> f64| {
-        let lo = all.iter().map(f).fold(f64::MAX, f64::min).floor();
-        let hi = all.iter().map(f).fold(f64::MIN, f64::max).ceil();
-        (lo, hi.max(lo + 1.0))
-    };
-    let (x0, x1) = span(&|p| p.0.log10());
-    let (y0, y1) = span(&|p| p.1.max(1e-6).log10());
-    let stretch = 1.2 * (y1 - y0) / (x1 - x0);
-    // Rerun's 2-D views point y down: plot −log₁₀ s so slower is higher.
-    let at = |dofs: f64, s: f64| [stretch * (dofs.log10() - x0), -s.max(1e-6).log10()];
-    let mut visuals = Vec::new();
-    for (id, pts) in totals {
-        let color = match *id {
-            "gr" => method_color(Method::Guyan),
-            "mt" => method_color(Method::ModalTruncation),
-            "cb" => method_color(Method::CraigBampton),
-            "mc" => method_color(Method::ModeCondensation),
-            _ => [150, 150, 150, 255],
-        };
-        let points: Vec<[f64; 2]> = pts.iter().map(|&(d, s)| at(d, s)).collect();
-        let exponent = exponents
-            .get(*id)
-            .and_then(Value::as_f64)
-            .map_or("—".into(), |p| format!("{p:.2}"));
-        visuals.push(Visual::Polyline2D {
-            path: format!("bench/offline_time/{id}"),
-            points: points.clone(),
-            color,
-            label: None,
-        });
-        // Only the largest mesh is labelled (method and exponent); the table has every value.
-        let mut labels = vec![String::new(); points.len()];
-        if let Some(last) = labels.last_mut() {
-            *last = format!("{} ∝ DOF^{exponent}", id.to_uppercase());
-        }
-        visuals.push(Visual::Scatter {
-            path: format!("bench/offline_time/{id}/points"),
-            labels,
-            colors: vec![color; points.len()],
-            points,
-        });
+    let series = totals
+        .iter()
+        .map(|(id, pts)| {
+            let color = match *id {
+                "gr" => method_color(Method::Guyan),
+                "mt" => method_color(Method::ModalTruncation),
+                "cb" => method_color(Method::CraigBampton),
+                "mc" => method_color(Method::ModeCondensation),
+                _ => [150, 150, 150, 255],
+            };
+            let exponent = exponents
+                .get(*id)
+                .and_then(Value::as_f64)
+                .map_or("—".into(), |p| format!("{p:.2}"));
+            // Only the largest mesh is labelled (method and exponent); the table has every
+            // value.
+            LogLogSeries {
+                id: (*id).to_string(),
+                label: format!("{} ∝ DOF^{exponent}", id.to_uppercase()),
+                color,
+                points: pts.clone(),
+                line: true,
+            }
+        })
+        .collect();
+    let visuals = LogLogChart {
+        path: "bench/offline_time".into(),
+        x_unit: "DOF".into(),
+        y_unit: "s".into(),
+        series,
     }
-    if !all.is_empty() {
-        let mut tick_points = Vec::new();
-        let mut tick_labels = Vec::new();
-        for e in (x0 as i32)..=(x1 as i32) {
-            tick_points.push([stretch * (f64::from(e) - x0), -y0 + 0.3]);
-            tick_labels.push(format!("10^{e} DOF"));
-        }
-        for e in (y0 as i32)..=(y1 as i32) {
-            tick_points.push([-0.3 * stretch, -f64::from(e)]);
-            tick_labels.push(format!("10^{e} s"));
-        }
-        visuals.push(Visual::Polyline2D {
-            path: "bench/offline_time/axes".into(),
-            points: vec![[stretch * (x1 - x0), -y0], [0.0, -y0], [0.0, -y1]],
-            color: [160, 160, 160, 255],
-            label: None,
-        });
-        visuals.push(Visual::Scatter {
-            path: "bench/offline_time/axes/ticks".into(),
-            colors: vec![[160, 160, 160, 255]; tick_points.len()],
-            points: tick_points,
-            labels: tick_labels,
-        });
-    }
+    .visuals();
     let mut report = Report::new("bench-slab-modes");
     report.table = table.clone();
     RecordingContent {

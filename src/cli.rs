@@ -53,7 +53,8 @@ enum Command {
         /// slab-modes only: refined meshes to time, `1k,7k,28k,74k,150k` or `NXxNYxNZ,...`.
         #[arg(long)]
         sizes: Option<String>,
-        /// With --sizes: also write the log–log chart of time against DOF to this `.rrd`.
+        /// Also write the charts to this `.rrd`: with --sizes time against DOF, else error
+        /// against cost and against kept modes of one simulation bench.
         #[arg(long)]
         save: Option<PathBuf>,
         /// Integrators to compare, comma separated (default: dp5,gen-alpha).
@@ -397,10 +398,10 @@ fn run(cli: Cli) -> Result<()> {
             integrator,
             refine,
         } => {
-            if save.is_some() {
+            if save.is_some() && ids.len() > 1 {
                 return Err(Error::InvalidOption {
                     scene: ids.join(","),
-                    reason: "--save goes with --sizes (the log–log chart of the refined slab)"
+                    reason: "--save writes the charts of one simulation bench: name one scene"
                         .into(),
                 });
             }
@@ -417,8 +418,12 @@ fn run(cli: Cli) -> Result<()> {
                 let handle = Progress::new();
                 let bar =
                     TerminalProgress::start(&handle, &format!("bench {id} ({} of {count})", k + 1));
-                let (value, table) = crate::bench::bench(&id, &integrator, refine, &handle)?;
+                let (value, table, recording) =
+                    crate::bench::bench(&id, &integrator, refine, &handle)?;
                 drop(bar);
+                if let Some(path) = &save {
+                    Recorder::default().save(&recording, path)?;
+                }
                 if json {
                     println!("{value}");
                 } else {

@@ -314,7 +314,13 @@ fn the_integrator_is_chosen_per_run() {
 
 #[test]
 fn bench_reports_speed_and_accuracy_points() {
-    let v = json(&["bench", "--json"]);
+    let dir = temp_dir("bench-charts");
+    let charts = dir.join("bench.rrd");
+    let v = json(&["bench", "--json", "--save", charts.to_str().unwrap()]);
+    // The charts: error against cost and against kept modes, written whole.
+    let bytes = std::fs::read(&charts).expect("bench --save writes the recording");
+    assert!(bytes.len() > 10_000, "{} bytes", bytes.len());
+    assert_eq!(&bytes[..4], b"RRF2", "a Rerun file");
     assert_eq!(v["scene"], "slab-sim1");
     assert_eq!(v["dofs"], 90);
     let points = v["points"].as_array().unwrap();
@@ -478,10 +484,16 @@ fn bench_sizes_writes_the_log_log_chart() {
     }
     let bytes = std::fs::read(&file).unwrap();
     assert!(bytes.starts_with(b"RRF"), "an .rrd file");
-    // --save belongs to --sizes.
-    let out = flexmodes(&["bench", "slab-sim1", "--save", file.to_str().unwrap()]);
+    // Without --sizes, --save writes the charts of one simulation bench: not of two.
+    let out = flexmodes(&[
+        "bench",
+        "slab-sim1",
+        "slab-sim2",
+        "--save",
+        file.to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--sizes"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("name one scene"));
     let _ = std::fs::remove_dir_all(dir);
 }
 

@@ -3,11 +3,13 @@
 //! [`RecordingContent`].
 
 mod layout;
+mod log_log_chart;
 mod recorder;
 mod recording_content;
 mod visual;
 
 pub use layout::Layout;
+pub use log_log_chart::{LogLogChart, LogLogSeries};
 pub use recorder::{Recorder, write_atomically};
 pub use recording_content::RecordingContent;
 pub use visual::{Color, Geometry, PHASE_STEPS, Visual};
