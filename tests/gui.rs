@@ -228,6 +228,26 @@ fn the_end_time_of_a_simulation_can_be_changed() {
 }
 
 #[test]
+fn the_integrator_of_a_simulation_is_a_control() {
+    let mut h = harness("slab-sim1");
+    h.state_mut().controls.methods = vec!["cb".into()];
+    h.state_mut().controls.end_time = 0.25;
+    h.get_by_label("gen-alpha").click();
+    settle(&mut h);
+    assert_eq!(h.state().controls.integrator, "gen-alpha");
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(report.parameters["integrator"], "gen-alpha");
+    assert_eq!(report.parameters["dt_s"].as_f64(), Some(0.001));
+    h.get_by_label("dp5").click();
+    settle(&mut h);
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(report.parameters["integrator"], "dp5");
+    // A scene without a simulation offers no integrator.
+    let h = harness("slab-modes");
+    assert!(h.query_by_label("gen-alpha").is_none());
+}
+
+#[test]
 fn a_newer_request_cancels_a_running_simulation() {
     use flexmodes::{gui::Worker, reduction::Method, scenes::SceneOptions};
     let mut w = Worker::new();

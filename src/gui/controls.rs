@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 use crate::{
     Error, Result,
     body_file::BodyHandle,
+    dynamics::IntegrationScheme,
     reduction::Method,
     scenes::{self, SceneOptions},
 };
@@ -34,6 +35,9 @@ pub struct Controls {
     /// Body file of the `modes` scene (a path or `builtin:NAME`; empty: its default body).
     #[serde(default)]
     pub body: String,
+    /// Integrator id of the simulations (`dp5` or `gen-alpha`; empty: dp5).
+    #[serde(default)]
+    pub integrator: String,
 }
 
 /// The largest preset a simulation scene offers, DOF (its full model is integrated too).
@@ -60,6 +64,7 @@ impl Controls {
             refine: c.refine.map(|r| r.to_vec()).unwrap_or_default(),
             body: String::new(),
             deformation_scale: 0.0,
+            integrator: String::new(),
         })
     }
 
@@ -156,6 +161,7 @@ impl Controls {
             deformation_scale: (c.end_time.is_some() && self.deformation_scale > 0.0)
                 .then_some(self.deformation_scale),
             refine,
+            integrator: c.end_time.and(IntegrationScheme::from_id(&self.integrator)),
             ..Default::default()
         })
     }

@@ -5,6 +5,7 @@ use std::time::{Duration, Instant};
 use rerun::external::egui;
 
 use crate::{
+    dynamics::IntegrationScheme,
     fem::SlabParameters,
     report::{Report, Table},
     scenes,
@@ -355,6 +356,22 @@ impl Explorer {
                 self.controls.refine = mesh;
                 out.push(Command::Recompute);
             }
+        }
+        if info.controls.end_time.is_some() {
+            ui.horizontal(|ui| {
+                ui.label("integrator");
+                for id in IntegrationScheme::IDS {
+                    let chosen = if self.controls.integrator.is_empty() {
+                        id == "dp5"
+                    } else {
+                        self.controls.integrator == id
+                    };
+                    if ui.selectable_label(chosen, id).clicked() && !chosen {
+                        self.controls.integrator = id.to_string();
+                        out.push(Command::Recompute);
+                    }
+                }
+            });
         }
         if info.controls.end_time.is_some() {
             // The factor in use: the typed one, else the scene's automatic one.
