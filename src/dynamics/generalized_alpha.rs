@@ -83,9 +83,11 @@ fn to_faer(v: &DVector<f64>) -> Mat<f64> {
 }
 
 /// Finite-difference derivatives of the accelerations at `(t, s)` with respect to position
-/// increments and velocities.
-fn derivatives(sys: &System, t: f64, s: &State, f0: &DVector<f64>) -> Result<(Mat<f64>, Mat<f64>)> {
+/// increments and velocities. The base point is evaluated here: after a projection the state
+/// is no longer the one the step's accelerations belong to.
+fn derivatives(sys: &System, t: f64, s: &State) -> Result<(Mat<f64>, Mat<f64>)> {
     let nv = sys.nv();
+    let f0 = sys.accelerations(t, s)?;
     let mut f_q = Mat::zeros(nv, nv);
     let mut f_v = Mat::zeros(nv, nv);
     for j in 0..nv {
@@ -158,7 +160,7 @@ pub(crate) fn integrate(
     let mut t = 0.0f64;
     let mut vdot = sys.accelerations(t, &s)?;
     let mut a = vdot.clone();
-    let (f_q, f_v) = derivatives(sys, t, &s, &vdot)?;
+    let (f_q, f_v) = derivatives(sys, t, &s)?;
     let mut matrix = factor(f_q, f_v, step, &c);
     let (mut steps, mut rebuilt, mut newton) = (0usize, 0usize, 0usize);
     let mut next_output = p.output_interval;
@@ -186,7 +188,7 @@ pub(crate) fn integrate(
                 Ok(end) => break end,
                 Err(_) if !fresh => {
                     // Rebuild the iteration matrix at the start of the step and try again.
-                    let (f_q, f_v) = derivatives(sys, t, &s, &vdot)?;
+                    let (f_q, f_v) = derivatives(sys, t, &s)?;
                     matrix = factor(f_q, f_v, h, &c);
                     rebuilt += 1;
                     fresh = true;

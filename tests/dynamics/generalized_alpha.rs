@@ -337,3 +337,29 @@ fn newton_failing_on_a_step_too_long_for_the_swinging_plank_is_a_named_error() {
         other => panic!("expected NewtonFailed, got {other:?}"),
     }
 }
+
+#[test]
+fn a_rebuilt_iteration_matrix_lets_newton_converge_on_long_steps() {
+    // Guyan on the refined 12 × 6 × 3 slab with 5.7 ms steps (3× its explicit critical step)
+    // stalls at t ≈ 0.2 s and rebuilds its iteration matrix at the projected state; a matrix
+    // built around the unprojected accelerations made Newton fail there.
+    let model = slab(&SlabParameters::refined([12, 6, 3]).unwrap());
+    let axes = flexmodes::dynamics::AxisType::NodalFixed(NodalFixedAxes::slab_default());
+    let boundary = flexmodes::scenes::slab_sims::default_boundary(&model);
+    let body = slab_body(&model, Method::Guyan, axes, &boundary, 0).unwrap();
+    let (system, state) = slab_system(&Scenario::HeldAtSix, body).unwrap();
+    let sim = simulate(
+        &system,
+        &state,
+        &IntegratorParameters {
+            end_time: 0.3,
+            scheme: alpha(0.8),
+            fixed_step: Some(5.7e-3),
+            ..Default::default()
+        },
+        &Progress::default(),
+    )
+    .unwrap();
+    assert!(sim.rejected >= 1, "no iteration matrix was rebuilt");
+    assert_eq!(sim.samples.len(), 61);
+}
