@@ -68,14 +68,57 @@ impl GeneralizedAlphaCoefficients {
     }
 }
 
-/// The iteration matrix and what it was built from.
+/// Steps whose lengths differ by less than this fraction share one factorisation.
+const SAME_STEP: f64 = 1e-9;
+/// Factorisations kept for different step lengths (a step that does not divide the output
+/// interval alternates between two or three lengths).
+const KEPT_FACTORS: usize = 4;
+
+/// The derivatives the iteration matrix is built from, and its factorisations for the step
+/// lengths met since they were taken.
 struct IterationMatrix {
     /// $F_q$ and $F_v$ (nv × nv each).
     f_q: Mat<f64>,
     f_v: Mat<f64>,
-    /// The step $J$ is factored for.
-    h: f64,
-    lu: PartialPivLu<f64>,
+    /// $(h, LU(J(h)))$, newest last.
+    factors: Vec<(f64, PartialPivLu<f64>)>,
+}
+
+impl IterationMatrix {
+    fn new(f_q: Mat<f64>, f_v: Mat<f64>) -> Self {
+        Self {
+            f_q,
+            f_v,
+            factors: Vec::new(),
+        }
+    }
+
+    /// $J(h)$ factored: a kept factorisation for the same step length, else a new one.
+    fn for_step(&mut self, h: f64, c: &GeneralizedAlphaCoefficients) -> &PartialPivLu<f64> {
+        let kept = self
+            .factors
+            .iter()
+            .position(|&(k, _)| (k - h).abs() <= SAME_STEP * h);
+        let index = match kept {
+            Some(i) => i,
+            None => {
+                if self.factors.len() == KEPT_FACTORS {
+                    self.factors.remove(0);
+                }
+                let nv = self.f_q.nrows();
+                let ratio = (1.0 - c.alpha_f) / (1.0 - c.alpha_m);
+                let j = Mat::from_fn(nv, nv, |r, k| {
+                    let identity = if r == k { 1.0 } else { 0.0 };
+                    identity
+                        - ratio
+                            * (h * h * c.beta * self.f_q[(r, k)] + h * c.gamma * self.f_v[(r, k)])
+                });
+                self.factors.push((h, j.partial_piv_lu()));
+                self.factors.len() - 1
+            }
+        };
+        &self.factors[index].1
+    }
 }
 
 fn to_faer(v: &DVector<f64>) -> Mat<f64> {
@@ -107,26 +150,6 @@ fn derivatives(sys: &System, t: f64, s: &State) -> Result<(Mat<f64>, Mat<f64>)> 
         }
     }
     Ok((f_q, f_v))
-}
-
-fn factor(
-    f_q: Mat<f64>,
-    f_v: Mat<f64>,
-    h: f64,
-    c: &GeneralizedAlphaCoefficients,
-) -> IterationMatrix {
-    let nv = f_q.nrows();
-    let ratio = (1.0 - c.alpha_f) / (1.0 - c.alpha_m);
-    let j = Mat::from_fn(nv, nv, |r, k| {
-        let identity = if r == k { 1.0 } else { 0.0 };
-        identity - ratio * (h * h * c.beta * f_q[(r, k)] + h * c.gamma * f_v[(r, k)])
-    });
-    IterationMatrix {
-        lu: j.partial_piv_lu(),
-        f_q,
-        f_v,
-        h,
-    }
 }
 
 /// Integrates `sys` with generalized-α steps of `step` seconds (shortened only to land on
@@ -161,7 +184,7 @@ pub(crate) fn integrate(
     let mut vdot = sys.accelerations(t, &s)?;
     let mut a = vdot.clone();
     let (f_q, f_v) = derivatives(sys, t, &s)?;
-    let mut matrix = factor(f_q, f_v, step, &c);
+    let mut matrix = IterationMatrix::new(f_q, f_v);
     let (mut steps, mut rebuilt, mut newton) = (0usize, 0usize, 0usize);
     let mut next_output = p.output_interval;
     while t < p.end_time - 1e-12 {
@@ -173,9 +196,6 @@ pub(crate) fn integrate(
         }
         let target = next_output.min(p.end_time);
         let h = step.min(target - t);
-        if (h - matrix.h).abs() > 1e-15 * h {
-            matrix = factor(matrix.f_q.clone(), matrix.f_v.clone(), h, &c);
-        }
         let t1 = t + h;
         let start = StepStart {
             s: &s,
@@ -184,12 +204,12 @@ pub(crate) fn integrate(
         };
         let mut fresh = false;
         let end = loop {
-            match start.solve(sys, t1, h, &c, &matrix, &mut newton) {
+            match start.solve(sys, t1, h, &c, matrix.for_step(h, &c), &mut newton) {
                 Ok(end) => break end,
                 Err(_) if !fresh => {
                     // Rebuild the iteration matrix at the start of the step and try again.
                     let (f_q, f_v) = derivatives(sys, t, &s)?;
-                    matrix = factor(f_q, f_v, h, &c);
+                    matrix = IterationMatrix::new(f_q, f_v);
                     rebuilt += 1;
                     fresh = true;
                 }
@@ -275,7 +295,7 @@ impl StepStart<'_> {
         t1: f64,
         h: f64,
         c: &GeneralizedAlphaCoefficients,
-        matrix: &IterationMatrix,
+        lu: &PartialPivLu<f64>,
         count: &mut usize,
     ) -> std::result::Result<StepEnd, f64> {
         let mut x = self.vdot.clone();
@@ -286,7 +306,7 @@ impl StepStart<'_> {
             let Ok(f) = sys.accelerations(t1, &s1) else {
                 return Err(f64::INFINITY);
             };
-            let dx = matrix.lu.solve(to_faer(&(&x - &f)));
+            let dx = lu.solve(to_faer(&(&x - &f)));
             let scale = x.amax().max(f.amax()).max(1e-12);
             correction = (0..x.len()).map(|i| dx[(i, 0)].abs()).fold(0.0, f64::max) / scale;
             if !correction.is_finite() {
