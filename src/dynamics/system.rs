@@ -1,6 +1,6 @@
 //! The assembled multibody system: $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, SymmetricEigen, Vector3, Vector4};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector4};
 
 use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
@@ -616,7 +616,7 @@ impl System {
         let minv_ct = chol.solve(&rows.c.transpose());
         let schur = &rows.c * &minv_ct;
         let resid = &rows.c * &v0 - &rows.gamma;
-        let mu = pinv_solve(&schur, &resid);
+        let mu = pinv_solve(&schur, &resid, REDUNDANT_PSD);
         Ok(v0 - minv_ct * mu)
     }
 
@@ -693,7 +693,7 @@ impl System {
             let c = rows.c.select_rows(idx.iter());
             let phi = rows.phi.select_rows(idx.iter());
             let cc_t = &c * c.transpose();
-            let dq = -c.transpose() * pinv_solve(&cc_t, &phi);
+            let dq = -c.transpose() * pinv_solve(&cc_t, &phi, REDUNDANT_PSD);
             self.apply_increment(s, &dq);
         }
         let rows = self.rows(t, s);
@@ -723,21 +723,33 @@ impl System {
     }
 }
 
-/// $x = A^+ b$ for a small symmetric positive semi-definite $A$ (eigenvalues below
-/// $10^{-10}$ of the largest are dropped: redundant constraints).
-fn pinv_solve(a: &DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
+/// Eigenvalues dropped by [`pinv_solve`] (fractions of the largest): for the positive
+/// semi-definite $CC^T$ and $C\tilde M^{-1}C^T$, and for the scaled saddle-point matrix.
+const REDUNDANT_PSD: f64 = 1e-10;
+const REDUNDANT_SADDLE: f64 = 1e-12;
+
+/// $x = A^+ b$ for a small symmetric $A$: eigenvalues below `drop_below` of the largest
+/// magnitude are dropped (redundant constraints). Non-finite when the eigensolver fails.
+fn pinv_solve(a: &DMatrix<f64>, b: &DVector<f64>, drop_below: f64) -> DVector<f64> {
     let n = a.nrows();
     if n == 0 {
         return DVector::zeros(0);
     }
-    let eig = SymmetricEigen::new(a.clone());
-    let top = eig.eigenvalues.amax();
+    let a = faer::MatRef::from_column_major_slice(a.as_slice(), n, n);
+    let Ok(eig) = a.self_adjoint_eigen(faer::Side::Lower) else {
+        return DVector::from_element(n, f64::NAN);
+    };
+    let (values, vectors) = (eig.S(), eig.U());
+    let top = (0..n).map(|i| values[i].abs()).fold(0.0, f64::max);
     let mut x = DVector::zeros(n);
-    let ub = eig.eigenvectors.transpose() * b;
     for i in 0..n {
-        let l = eig.eigenvalues[i];
-        if l > 1e-10 * top {
-            x += eig.eigenvectors.column(i) * (ub[i] / l);
+        let l = values[i];
+        if l.abs() > drop_below * top {
+            let u = vectors.col(i);
+            let coefficient = (0..n).map(|r| u[r] * b[r]).sum::<f64>() / l;
+            for r in 0..n {
+                x[r] += coefficient * u[r];
+            }
         }
     }
     x
@@ -758,9 +770,10 @@ fn saddle_point_solve(a: &DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
         let row = a.row(i).amax();
         if row > 0.0 { 1.0 / row.sqrt() } else { 1.0 }
     });
-    let scaled = faer::Mat::from_fn(n, n, |i, j| d[i] * a[(i, j)] * d[j]);
-    let rhs = faer::Mat::from_fn(n, 1, |i, _| d[i] * b[i]);
-    let lblt = scaled.lblt(faer::Side::Lower);
+    let scaled = DMatrix::from_fn(n, n, |i, j| d[i] * a[(i, j)] * d[j]);
+    let rhs = b.component_mul(&d);
+    let lblt =
+        faer::MatRef::from_column_major_slice(scaled.as_slice(), n, n).lblt(faer::Side::Lower);
     let (diagonal, subdiagonal) = (lblt.B_diag(), lblt.B_subdiag());
     let (mut smallest, mut largest) = (f64::INFINITY, 0.0f64);
     let mut i = 0;
@@ -779,35 +792,12 @@ fn saddle_point_solve(a: &DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
             i += 1;
         }
     }
-    let y = if smallest > 1e-12 * largest && largest.is_finite() {
+    let y = if smallest > REDUNDANT_SADDLE * largest && largest.is_finite() {
         use faer::linalg::solvers::Solve;
-        let y = lblt.solve(&rhs);
+        let y = lblt.solve(faer::MatRef::from_column_major_slice(rhs.as_slice(), n, 1));
         DVector::from_fn(n, |i, _| y[(i, 0)])
     } else {
-        eigen_pinv_solve(&scaled, &rhs)
+        pinv_solve(&scaled, &rhs, REDUNDANT_SADDLE)
     };
     y.component_mul(&d)
-}
-
-/// $A^+ b$ for a symmetric $A$: eigenvalues below $10^{-12}$ of the largest magnitude are
-/// dropped.
-fn eigen_pinv_solve(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> DVector<f64> {
-    let n = a.nrows();
-    let Ok(eig) = a.self_adjoint_eigen(faer::Side::Lower) else {
-        return DVector::from_element(n, f64::NAN);
-    };
-    let (values, vectors) = (eig.S(), eig.U());
-    let top = (0..n).map(|i| values[i].abs()).fold(0.0, f64::max);
-    let mut y = DVector::zeros(n);
-    for i in 0..n {
-        let l = values[i];
-        if l.abs() > 1e-12 * top {
-            let u = vectors.col(i);
-            let coefficient = (0..n).map(|r| u[r] * b[(r, 0)]).sum::<f64>() / l;
-            for r in 0..n {
-                y[r] += coefficient * u[r];
-            }
-        }
-    }
-    y
 }
