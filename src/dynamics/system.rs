@@ -315,9 +315,10 @@ impl System {
     }
 
     /// Body `b`'s rows of $M(q)$ and $Q(q, v)$ (Kane's form with body-axis angular
-    /// velocities): the frame block, the frame–modal coupling and the forces. The modal block
-    /// is the body's constant $M_{zz}$.
-    fn body_blocks(&self, b: usize, s: &State) -> BodyBlocks {
+    /// velocities): the frame block, the frame–modal coupling and, when `forces`, the forces
+    /// (zero otherwise: the mass-weighted projection and the kinetic energy need only $M$).
+    /// The modal block is the body's constant $M_{zz}$.
+    fn body_blocks(&self, b: usize, s: &State, forces: bool) -> BodyBlocks {
         let f = self.frame(b, s);
         match &self.bodies[b] {
             Body::Rigid(rb) => {
@@ -327,10 +328,12 @@ impl System {
                 }
                 m_ff.fixed_view_mut::<3, 3>(3, 3).copy_from(&rb.inertia);
                 let mut q = DVector::zeros(6);
-                q.fixed_rows_mut::<3>(0)
-                    .copy_from(&(self.gravity * rb.mass));
-                q.fixed_rows_mut::<3>(3)
-                    .copy_from(&-f.w.cross(&(rb.inertia * f.w)));
+                if forces {
+                    q.fixed_rows_mut::<3>(0)
+                        .copy_from(&(self.gravity * rb.mass));
+                    q.fixed_rows_mut::<3>(3)
+                        .copy_from(&-f.w.cross(&(rb.inertia * f.w)));
+                }
                 BodyBlocks {
                     m_ff,
                     m_fz: DMatrix::zeros(6, 0),
@@ -340,29 +343,10 @@ impl System {
             Body::Flexible(fb) => {
                 let k = fb.modes();
                 let inv = &fb.invariants;
-                let at = f.a.transpose();
                 let h = inv.h(&f.z);
                 let first = inv.first_moment(&f.z);
                 let j_bar = InertiaInvariants::inertia_from(&inv.second_moment(&f.z, &h));
                 let wz = inv.rotation_coupling(&h);
-                // Gravity acts on every node: sum m_j A^T g, its moment and modal force.
-                let g_local = at * self.gravity;
-                let mut q_r = g_local * inv.mass;
-                let mut q_w = first.cross(&g_local);
-                let mut q_z = inv.p_sum.transpose() * g_local;
-                for &(bb, n, force) in &self.nodal_forces {
-                    if bb == b {
-                        let local = at * force;
-                        q_r += local;
-                        q_w += fb.b(n, &f.z).cross(&local);
-                        q_z += fb.psi_nodes[n].transpose() * local;
-                    }
-                }
-                let (ar, aw, az) = inv.velocity_forces(&f.w, &f.z, &f.zd, &h, &j_bar);
-                let q_r = f.a * (q_r - ar);
-                q_w -= aw;
-                q_z -= az;
-                q_z -= fb.elastic_force(&f.z);
                 let rw = -f.a * skew(&first);
                 let mut m_ff = Matrix6::zeros();
                 for i in 0..3 {
@@ -375,23 +359,43 @@ impl System {
                 m_fz.rows_mut(0, 3).copy_from(&(f.a * &inv.p_sum));
                 m_fz.rows_mut(3, 3).copy_from(&wz);
                 let mut q = DVector::zeros(6 + k);
-                q.fixed_rows_mut::<3>(0).copy_from(&q_r);
-                q.fixed_rows_mut::<3>(3).copy_from(&q_w);
-                q.rows_mut(6, k).copy_from(&q_z);
+                if forces {
+                    // Gravity acts on every node: sum m_j A^T g, its moment and modal force.
+                    let at = f.a.transpose();
+                    let g_local = at * self.gravity;
+                    let mut q_r = g_local * inv.mass;
+                    let mut q_w = first.cross(&g_local);
+                    let mut q_z = inv.p_sum.transpose() * g_local;
+                    for &(bb, n, force) in &self.nodal_forces {
+                        if bb == b {
+                            let local = at * force;
+                            q_r += local;
+                            q_w += fb.b(n, &f.z).cross(&local);
+                            q_z += fb.psi_nodes[n].transpose() * local;
+                        }
+                    }
+                    let (ar, aw, az) = inv.velocity_forces(&f.w, &f.z, &f.zd, &h, &j_bar);
+                    q_w -= aw;
+                    q_z -= az;
+                    q_z -= fb.elastic_force(&f.z);
+                    q.fixed_rows_mut::<3>(0).copy_from(&(f.a * (q_r - ar)));
+                    q.fixed_rows_mut::<3>(3).copy_from(&q_w);
+                    q.rows_mut(6, k).copy_from(&q_z);
+                }
                 BodyBlocks { m_ff, m_fz, q }
             }
         }
     }
 
-    /// $M(q)$ and $Q(q, v)$, assembled dense (the energy, and the reference the block
-    /// elimination of [`Self::accelerations`] is tested against).
+    /// $M(q)$ and $Q(q, v)$, assembled dense: the reference the block elimination of
+    /// [`Self::accelerations`] is tested against.
     pub(crate) fn mass_and_forces(&self, s: &State) -> (DMatrix<f64>, DVector<f64>) {
         let nv = self.nv();
         let mut m = DMatrix::zeros(nv, nv);
         let mut q = DVector::zeros(nv);
         for (b, body) in self.bodies.iter().enumerate() {
             let o = self.v_off[b];
-            let blocks = self.body_blocks(b, s);
+            let blocks = self.body_blocks(b, s, true);
             let k = blocks.m_fz.ncols();
             m.view_mut((o, o), (6, 6)).copy_from(&blocks.m_ff);
             m.view_mut((o, o + 6), (6, k)).copy_from(&blocks.m_fz);
@@ -534,10 +538,7 @@ impl System {
         rhs.rows_mut(nf, nr).copy_from(g);
         let mut eliminated: Vec<Option<DMatrix<f64>>> = Vec::with_capacity(nb);
         for (b, body) in self.bodies.iter().enumerate() {
-            let mut blocks = self.body_blocks(b, s);
-            if !forces {
-                blocks.q.fill(0.0);
-            }
+            let blocks = self.body_blocks(b, s, forces);
             let (vo, fo) = (self.v_off[b], 6 * b);
             kkt.view_mut((fo, fo), (6, 6)).copy_from(&blocks.m_ff);
             rhs.rows_mut(fo, 6).copy_from(&blocks.q.rows(0, 6));
@@ -635,10 +636,22 @@ impl System {
         qd
     }
 
-    /// Kinetic energy $\tfrac12 v^T M v$, J.
+    /// Kinetic energy $\tfrac12 v^T M v$, J, body by body from the blocks of $M$ (no
+    /// $n_v \times n_v$ matrix).
     pub fn kinetic_energy(&self, s: &State) -> f64 {
-        let (m, _) = self.mass_and_forces(s);
-        0.5 * s.v.dot(&(&m * &s.v))
+        let mut e = 0.0;
+        for (b, body) in self.bodies.iter().enumerate() {
+            let blocks = self.body_blocks(b, s, false);
+            let o = self.v_off[b];
+            let k = blocks.m_fz.ncols();
+            let v_f = s.v.fixed_rows::<6>(o);
+            e += 0.5 * v_f.dot(&(blocks.m_ff * v_f));
+            if let Body::Flexible(fb) = body {
+                let zd = s.v.rows(o + 6, k);
+                e += v_f.dot(&(&blocks.m_fz * zd)) + 0.5 * zd.dot(&(&fb.m_zz * zd));
+            }
+        }
+        e
     }
 
     /// Total energy (J): kinetic + strain − work potential of gravity and the constant forces.
@@ -800,4 +813,45 @@ fn saddle_point_solve(a: &DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
         pinv_solve(&scaled, &rhs, REDUNDANT_SADDLE)
     };
     y.component_mul(&d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{
+        fem::{SlabParameters, plank},
+        reduction::Method,
+        scenes::plank_symmetry::{Variant, plank_body, plank_system},
+    };
+
+    #[test]
+    fn kinetic_energy_by_blocks_equals_the_dense_quadratic_form() {
+        let model = plank(&SlabParameters::default());
+        for method in [Method::NoReduction, Method::CraigBampton] {
+            let variant = Variant {
+                method,
+                axes: AxisType::Mean,
+            };
+            let (system, mut state) =
+                plank_system(plank_body(&model, variant, 6).unwrap()).unwrap();
+            // A moving, deformed state: every velocity and modal coordinate nonzero.
+            for (i, v) in state.v.iter_mut().enumerate() {
+                *v = ((i * 7919) % 13) as f64 / 13.0 - 0.4;
+            }
+            for b in 0..system.bodies.len() {
+                let (qo, _) = system.offsets(b);
+                for i in 7..system.bodies[b].position_count() {
+                    state.q[qo + i] += 1e-3 * ((i % 5) as f64 - 2.0);
+                }
+            }
+            let (m, _) = system.mass_and_forces(&state);
+            let dense = 0.5 * state.v.dot(&(&m * &state.v));
+            let blocks = system.kinetic_energy(&state);
+            assert!(dense > 0.0);
+            assert!(
+                (blocks - dense).abs() <= 1e-12 * dense,
+                "{method:?}: {blocks} against {dense}"
+            );
+        }
+    }
 }
