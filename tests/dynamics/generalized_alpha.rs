@@ -19,6 +19,16 @@ fn alpha(spectral_radius: f64) -> IntegrationScheme {
     IntegrationScheme::GeneralizedAlpha { spectral_radius }
 }
 
+/// Generalized-α with spectral radius `rho` and fixed steps `h` over `end` seconds.
+fn implicit(end: f64, rho: f64, h: f64) -> IntegratorParameters {
+    IntegratorParameters {
+        end_time: end,
+        scheme: alpha(rho),
+        fixed_step: Some(h),
+        ..Default::default()
+    }
+}
+
 /// The slab (Craig–Bampton, 6 modes) on nodal-fixed axes held at exactly its six anchored
 /// coordinates (node 16 x y z, node 28 y z, node 18 z): the frame cannot move, so the
 /// equations are linear, $M_{zz}\ddot z + K_{zz}z = \Psi^T f_g$, a multi-DOF oscillator
@@ -98,16 +108,7 @@ fn second_order_convergence_on_a_linear_oscillator() {
     let z_ref = modal_history(&system, &reference);
     let mut errors = Vec::new();
     for h in [1e-3, 5e-4, 2.5e-4] {
-        let sim = run(
-            &system,
-            &state,
-            &IntegratorParameters {
-                end_time: end,
-                scheme: alpha(0.8),
-                fixed_step: Some(h),
-                ..Default::default()
-            },
-        );
+        let sim = run(&system, &state, &implicit(end, 0.8, h));
         let z = modal_history(&system, &sim);
         assert_eq!(z.len(), z_ref.len());
         errors.push(relative_rms(&z, &z_ref));
@@ -125,16 +126,7 @@ fn second_order_convergence_on_a_linear_oscillator() {
 fn without_numerical_damping_the_energy_of_an_undamped_linear_system_is_kept() {
     let (system, state) = held_slab();
     let drift = |rho: f64| {
-        let sim = run(
-            &system,
-            &state,
-            &IntegratorParameters {
-                end_time: 1.0,
-                scheme: alpha(rho),
-                fixed_step: Some(2e-3),
-                ..Default::default()
-            },
-        );
+        let sim = run(&system, &state, &implicit(1.0, rho, 2e-3));
         assert_eq!(sim.samples.len(), 201);
         let e0 = sim.samples[0].energy;
         let swing = sim
@@ -169,16 +161,7 @@ fn constraints_hold_on_the_driven_orbit() {
     let axes = flexmodes::dynamics::AxisType::Mean;
     let body = slab_body(&model, Method::NoReduction, axes, &BOUNDARY, 6).unwrap();
     let (system, state) = slab_system(&Scenario::Orbit, body).unwrap();
-    let sim = run(
-        &system,
-        &state,
-        &IntegratorParameters {
-            end_time: 0.5,
-            scheme: alpha(0.8),
-            fixed_step: Some(1e-3),
-            ..Default::default()
-        },
-    );
+    let sim = run(&system, &state, &implicit(0.5, 0.8, 1e-3));
     assert_eq!(sim.samples.len(), 101);
     for s in &sim.samples {
         assert!(
@@ -214,18 +197,9 @@ fn both_integrators_give_one_simulation_1_history() {
                 ..Default::default()
             },
         );
-        let implicit = run(
-            &system,
-            &state,
-            &IntegratorParameters {
-                end_time: 1.0,
-                scheme: alpha(0.8),
-                fixed_step: Some(2.5e-4),
-                ..Default::default()
-            },
-        );
+        let generalized = run(&system, &state, &implicit(1.0, 0.8, 2.5e-4));
         let a = probe_history(&system, &explicit, PROBE_NODE);
-        let b = probe_history(&system, &implicit, PROBE_NODE);
+        let b = probe_history(&system, &generalized, PROBE_NODE);
         for d in 0..3 {
             assert_eq!(a[d].len(), b[d].len());
             let e = relative_rms(&b[d], &a[d]);
@@ -261,7 +235,7 @@ fn the_implicit_scheme_stays_bounded_where_the_explicit_one_diverges() {
         matches!(explicit, Err(Error::Diverged { .. })),
         "{explicit:?}"
     );
-    let implicit = simulate(&system, &state, &p(alpha(0.8)), &Progress::default()).unwrap();
+    let generalized = simulate(&system, &state, &p(alpha(0.8)), &Progress::default()).unwrap();
     let adaptive = run(
         &system,
         &state,
@@ -276,7 +250,7 @@ fn the_implicit_scheme_stays_bounded_where_the_explicit_one_diverges() {
             .map(|s| system.modal(0, &s.state).amax())
             .fold(0.0f64, f64::max)
     };
-    let (big_step, reference) = (largest(&implicit), largest(&adaptive));
+    let (big_step, reference) = (largest(&generalized), largest(&adaptive));
     assert!(
         big_step <= 1.5 * reference,
         "largest deflection {big_step:e} m against {reference:e} m with adaptive steps"
@@ -290,12 +264,7 @@ fn a_bad_spectral_radius_or_step_is_a_named_error() {
         let r = simulate(
             &system,
             &state,
-            &IntegratorParameters {
-                end_time: 0.01,
-                scheme: alpha(rho),
-                fixed_step: Some(step),
-                ..Default::default()
-            },
+            &implicit(0.01, rho, step),
             &Progress::default(),
         );
         assert!(
@@ -351,12 +320,7 @@ fn a_rebuilt_iteration_matrix_lets_newton_converge_on_long_steps() {
     let sim = simulate(
         &system,
         &state,
-        &IntegratorParameters {
-            end_time: 0.3,
-            scheme: alpha(0.8),
-            fixed_step: Some(5.7e-3),
-            ..Default::default()
-        },
+        &implicit(0.3, 0.8, 5.7e-3),
         &Progress::default(),
     )
     .unwrap();
