@@ -141,9 +141,15 @@ impl SceneOptions {
         if info.controls.end_time.is_none() && (self.integrator.is_some() || self.dt.is_some()) {
             return Err(Error::InvalidOption {
                 scene: info.id.into(),
-                reason: "--integrator, --dt and --rho-inf apply to the simulations only \
-                         (slab-sim1, slab-sim2, slab-sim3, plank-symmetry)"
-                    .into(),
+                reason: format!(
+                    "--integrator, --dt and --rho-inf apply to the simulations only ({})",
+                    super::all()
+                        .iter()
+                        .filter(|s| s.info.controls.end_time.is_some())
+                        .map(|s| s.info.id)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
             });
         }
         Ok(())
