@@ -7,7 +7,7 @@ use super::{AxisType, InertiaInvariants};
 use crate::{
     Error, Result,
     fem::{DofMap, FeModel},
-    linalg::MassMatrix,
+    linalg::{MassMatrix, SparseSymmetric},
     reduction::Basis,
 };
 
@@ -70,10 +70,10 @@ pub struct FlexibleBody {
     pub m_zz: DMatrix<f64>,
     /// $\Psi^T K \Psi$.
     pub k_zz: DMatrix<f64>,
-    /// The nonzeros of $K_{zz}$ by row when fewer than a quarter of its entries are nonzero
-    /// (no reduction: the element stiffness pattern), so the elastic force costs the nonzeros
-    /// and not $k^2$.
-    k_zz_rows: Option<Vec<Vec<(usize, f64)>>>,
+    /// $K_{zz}$ stored sparse when fewer than a quarter of its entries are nonzero (no
+    /// reduction: the element stiffness pattern), so the elastic force costs the nonzeros and
+    /// not $k^2$.
+    k_zz_sparse: Option<SparseSymmetric>,
     /// $(\Psi^T M \Psi)^{-1}$ as a factorisation, computed once: the modal mass block is
     /// constant, so the equations of motion eliminate the modal accelerations with it.
     pub m_zz_inverse: ModalMassInverse,
@@ -181,15 +181,12 @@ impl FlexibleBody {
         let invariants = InertiaInvariants::new(&masses, &s_bar, &psi_nodes);
         let m_zz_inverse = ModalMassInverse::new(&m_zz, &model.name)?;
         let nonzeros = k_zz.iter().filter(|&&x| x != 0.0).count();
-        let k_zz_rows = (4 * nonzeros < k * k).then(|| {
-            (0..k)
-                .map(|i| {
-                    (0..k)
-                        .filter(|&j| k_zz[(i, j)] != 0.0)
-                        .map(|j| (j, k_zz[(i, j)]))
-                        .collect()
-                })
-                .collect()
+        let k_zz_sparse = (4 * nonzeros < k * k).then(|| {
+            SparseSymmetric::from_dense(faer::MatRef::from_column_major_slice(
+                k_zz.as_slice(),
+                k,
+                k,
+            ))
         });
         Ok(Self {
             model,
@@ -201,7 +198,7 @@ impl FlexibleBody {
             psi_nodes,
             m_zz,
             k_zz,
-            k_zz_rows,
+            k_zz_sparse,
             m_zz_inverse,
             invariants,
         })
@@ -209,12 +206,15 @@ impl FlexibleBody {
 
     /// The elastic force $K_{zz} z$ (N in modal units).
     pub fn elastic_force(&self, z: &DVector<f64>) -> DVector<f64> {
-        match &self.k_zz_rows {
-            Some(rows) => DVector::from_iterator(
-                rows.len(),
-                rows.iter()
-                    .map(|row| row.iter().map(|&(j, k)| k * z[j]).sum::<f64>()),
-            ),
+        match &self.k_zz_sparse {
+            Some(k) => {
+                let f = k.mul(faer::MatRef::from_column_major_slice(
+                    z.as_slice(),
+                    z.len(),
+                    1,
+                ));
+                DVector::from_fn(z.len(), |i, _| f[(i, 0)])
+            }
             None => &self.k_zz * z,
         }
     }
