@@ -433,6 +433,7 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
         x_unit: "s/s".into(),
         y_unit: "".into(),
         series: cost_series,
+        x_linear: false,
     }
     .visuals();
     visuals.extend(
@@ -441,6 +442,7 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
             x_unit: "".into(),
             y_unit: "".into(),
             series: mode_series,
+            x_linear: false,
         }
         .visuals(),
     );

@@ -289,6 +289,7 @@ fn log_log_chart(
         x_unit: "DOF".into(),
         y_unit: "s".into(),
         series,
+        x_linear: false,
     }
     .visuals();
     let mut report = Report::new("bench-slab-modes");

@@ -2,7 +2,7 @@
 
 use std::process::{Command, Output};
 
-const SCENES: [&str; 10] = [
+const SCENES: [&str; 11] = [
     "beam-modes",
     "slab-modes",
     "beam-profiles",
@@ -12,6 +12,7 @@ const SCENES: [&str; 10] = [
     "slab-sim3",
     "plank-symmetry",
     "beam-mean-axes",
+    "failures",
     "modes",
 ];
 

@@ -388,7 +388,9 @@ pub fn simulate(
                 Err(Error::SingularMatrix { matrix, .. }) if p.fixed_step.is_some() => {
                     return Err(Error::Diverged {
                         time: t,
-                        reason: format!("with the fixed step {h:e} s the {matrix} became singular"),
+                        reason: format!(
+                            "with the fixed step {h:.4e} s the {matrix} became singular"
+                        ),
                     });
                 }
                 Err(e) => return Err(e),
@@ -418,7 +420,7 @@ pub fn simulate(
             if p.fixed_step.is_some() {
                 return Err(Error::Diverged {
                     time: t,
-                    reason: format!("with the fixed step {h:e} s {what}"),
+                    reason: format!("with the fixed step {h:.4e} s {what}"),
                 });
             }
             h *= 0.2;

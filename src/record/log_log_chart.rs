@@ -29,13 +29,19 @@ pub struct LogLogChart {
     pub y_unit: String,
     /// The series.
     pub series: Vec<LogLogSeries>,
+    /// Draw x on a linear axis from its smallest value (a semi-log chart: exponential growth
+    /// over time is a straight line).
+    pub x_linear: bool,
 }
 
 impl LogLogChart {
     /// The visuals: per series a polyline (when `line`) and labelled points; the axes with
     /// decade ticks. Rerun's 2-D views point y down, so −log₁₀ y is drawn: larger is higher.
     pub fn visuals(&self) -> Vec<Visual> {
-        let positive = |&(x, y): &(f64, f64)| x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite();
+        let x_linear = self.x_linear;
+        let positive = |&(x, y): &(f64, f64)| {
+            (x > 0.0 || (x_linear && x >= 0.0)) && y > 0.0 && x.is_finite() && y.is_finite()
+        };
         let all: Vec<(f64, f64)> = self
             .series
             .iter()
@@ -49,10 +55,18 @@ impl LogLogChart {
             let hi = all.iter().map(f).fold(f64::MIN, f64::max).ceil();
             (lo, hi.max(lo + 1.0))
         };
-        let (x0, x1) = span(&|p| p.0.log10());
+        let fx = |x: f64| if x_linear { x } else { x.log10() };
+        let (x0, x1) = if x_linear {
+            let lo = all.iter().map(|p| p.0).fold(f64::MAX, f64::min);
+            let hi = all.iter().map(|p| p.0).fold(f64::MIN, f64::max);
+            (lo, if hi > lo { hi } else { lo + 1.0 })
+        } else {
+            span(&|p| p.0.log10())
+        };
         let (y0, y1) = span(&|p| p.1.log10());
         let stretch = 1.2 * (y1 - y0) / (x1 - x0);
-        let at = |x: f64, y: f64| [stretch * (x.log10() - x0), -y.log10()];
+        let width = stretch * (x1 - x0);
+        let at = |x: f64, y: f64| [stretch * (fx(x) - x0), -y.log10()];
         let mut visuals = Vec::new();
         for s in &self.series {
             let points: Vec<[f64; 2]> = s
@@ -72,25 +86,52 @@ impl LogLogChart {
                     label: None,
                 });
             }
-            let mut labels = vec![String::new(); points.len()];
-            if let Some(last) = labels.last_mut() {
-                last.clone_from(&s.label);
+            // The label on an entity of its own: the viewer hides the labels of entities with
+            // many points.
+            if let (false, Some(&last)) = (s.label.is_empty(), points.last()) {
+                visuals.push(Visual::Scatter {
+                    path: format!("{}/{}/label", self.path, s.id),
+                    labels: vec![s.label.clone()],
+                    colors: vec![s.color],
+                    points: vec![last],
+                });
             }
             visuals.push(Visual::Scatter {
                 path: format!("{}/{}/points", self.path, s.id),
-                labels,
+                labels: vec![String::new(); points.len()],
                 colors: vec![s.color; points.len()],
                 points,
             });
         }
         let mut tick_points = Vec::new();
         let mut tick_labels = Vec::new();
-        for e in (x0 as i32)..=(x1 as i32) {
-            tick_points.push([stretch * (f64::from(e) - x0), -y0 + 0.3]);
-            tick_labels.push(format!("10^{e} {}", self.x_unit));
+        // The unit only at the last x tick, so neighbouring labels do not run into each other.
+        let x_ticks: Vec<(f64, String)> = if x_linear {
+            let step = nice_step((x1 - x0) / 4.0);
+            let first = (x0 / step).ceil() as i64;
+            let last = (x1 / step).floor() as i64;
+            (first..=last)
+                .map(|k| {
+                    let x = k as f64 * step;
+                    (x, format!("{}", crate::report::sig(x)))
+                })
+                .collect()
+        } else {
+            ((x0 as i32)..=(x1 as i32))
+                .map(|e| (f64::from(e), format!("10^{e}")))
+                .collect()
+        };
+        let count = x_ticks.len();
+        for (k, (x, label)) in x_ticks.into_iter().enumerate() {
+            tick_points.push([stretch * (x - x0), -y0 + 0.3]);
+            tick_labels.push(if k + 1 == count {
+                format!("{label} {}", self.x_unit)
+            } else {
+                label
+            });
         }
         for e in (y0 as i32)..=(y1 as i32) {
-            tick_points.push([-0.3 * stretch, -f64::from(e)]);
+            tick_points.push([-0.1 * width, -f64::from(e)]);
             tick_labels.push(format!("10^{e} {}", self.y_unit));
         }
         let grey = [160, 160, 160, 255];
@@ -108,4 +149,19 @@ impl LogLogChart {
         });
         visuals
     }
+}
+
+/// A tick spacing of 1, 2 or 5 times a power of ten, at least `raw`.
+fn nice_step(raw: f64) -> f64 {
+    let raw = if raw > 0.0 && raw.is_finite() {
+        raw
+    } else {
+        1.0
+    };
+    let decade = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&s| s >= raw)
+        .unwrap_or(10.0 * decade)
 }

@@ -5,6 +5,7 @@ mod beam_mean_axes;
 mod beam_modes;
 mod beam_profiles;
 pub mod body_modes;
+mod failures;
 mod mode_visuals;
 mod options;
 pub mod plank_symmetry;

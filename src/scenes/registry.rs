@@ -2,7 +2,7 @@
 
 use super::{
     SceneOptions, SceneOutput, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
-    body_modes, plank_symmetry, slab_modes, slab_sims,
+    body_modes, failures, plank_symmetry, slab_modes, slab_sims,
 };
 use crate::{Error, Result, reduction::Method};
 
@@ -106,6 +106,10 @@ pub fn all() -> Vec<Scene> {
         Scene {
             info: beam_mean_axes::INFO,
             run: beam_mean_axes::run,
+        },
+        Scene {
+            info: failures::INFO,
+            run: failures::run,
         },
         Scene {
             info: body_modes::INFO,

@@ -4,6 +4,7 @@
 mod body_file;
 mod common;
 mod errors;
+mod failures;
 mod floating_frame;
 mod frame;
 mod invariants;
