@@ -65,20 +65,28 @@ impl Recorder {
         } else {
             rerun::ViewCoordinates::RIGHT_HAND_Z_UP()
         };
-        for origin in out.layout.spatial_origins() {
-            rec.log_static(origin.as_str(), &up)?;
+        // Planar bodies (the beam in the x-y plane) are drawn in 2D views, which frame their
+        // contents exactly; solids in 3D views with their up axis.
+        let planar = out.y_up;
+        if !planar {
+            for origin in out.layout.spatial_origins() {
+                rec.log_static(origin.as_str(), &up)?;
+            }
         }
         for v in &out.visuals {
-            log_visual(rec, v)?;
+            log_visual(rec, v, planar)?;
         }
         let time_panel = match &out.timeline {
+            // Collapsed: the play controls on one line, the views keep the height the streams
+            // tree would take.
             Some(t) => bp::TimePanel::new()
+                .with_state(PanelState::Collapsed)
                 .with_timeline(t.clone())
                 .with_play_state(rerun::blueprint::components::PlayState::Playing)
                 .with_loop_mode(rerun::blueprint::components::LoopMode::All),
             None => bp::TimePanel::new().with_state(PanelState::Collapsed),
         };
-        let blueprint = bp::Blueprint::new(container(&out.layout))
+        let blueprint = bp::Blueprint::new(container(&out.layout, planar))
             .with_auto_views(false)
             .with_blueprint_panel(bp::BlueprintPanel::new().with_state(PanelState::Collapsed))
             .with_selection_panel(bp::SelectionPanel::new().with_state(PanelState::Collapsed))
@@ -103,6 +111,41 @@ fn strips(g: &Geometry, nodes: &[[f64; 3]]) -> Vec<Vec<[f32; 3]>> {
         .collect()
 }
 
+/// Line strips with one colour, radius and optional label, as 3D strips or, for a planar
+/// body, as 2D strips with y pointing up (2D views point y down).
+struct Lines {
+    strips: Vec<Vec<[f32; 3]>>,
+    color: rerun::Color,
+    radius: f32,
+    label: Option<String>,
+}
+
+impl Lines {
+    fn archetype(self, planar: bool) -> Box<dyn rerun::AsComponents> {
+        if planar {
+            let flat = self
+                .strips
+                .iter()
+                .map(|s| s.iter().map(|p| [p[0], -p[1]]).collect::<Vec<_>>());
+            let mut a = rerun::LineStrips2D::new(flat)
+                .with_colors([self.color])
+                .with_radii([self.radius]);
+            if let Some(l) = self.label {
+                a = a.with_labels([l]);
+            }
+            Box::new(a)
+        } else {
+            let mut a = rerun::LineStrips3D::new(self.strips)
+                .with_colors([self.color])
+                .with_radii([self.radius]);
+            if let Some(l) = self.label {
+                a = a.with_labels([l]);
+            }
+            Box::new(a)
+        }
+    }
+}
+
 fn radius(g: &Geometry) -> f32 {
     let mut ext = 0.0f64;
     for d in 0..3 {
@@ -121,7 +164,7 @@ fn color(c: [u8; 4]) -> rerun::Color {
     rerun::Color::from_unmultiplied_rgba(c[0], c[1], c[2], c[3])
 }
 
-fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
+fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
     match v {
         Visual::Wireframe {
             path,
@@ -129,13 +172,13 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
             color: c,
             label,
         } => {
-            let mut a = rerun::LineStrips3D::new(strips(geometry, &geometry.nodes))
-                .with_colors([color(*c)])
-                .with_radii([radius(geometry)]);
-            if let Some(l) = label {
-                a = a.with_labels([l.clone()]);
-            }
-            rec.log_static(path.as_str(), &a)?;
+            let lines = Lines {
+                strips: strips(geometry, &geometry.nodes),
+                color: color(*c),
+                radius: radius(geometry),
+                label: label.clone(),
+            };
+            rec.log_static(path.as_str(), lines.archetype(planar).as_ref())?;
         }
         Visual::Mode {
             path,
@@ -145,11 +188,15 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
             color: c,
         } => {
             let r = radius(geometry);
+            let undeformed = Lines {
+                strips: strips(geometry, &geometry.nodes),
+                color: rerun::Color::from_unmultiplied_rgba(150, 150, 150, 120),
+                radius: r * 0.5,
+                label: None,
+            };
             rec.log_static(
                 format!("{path}/undeformed"),
-                &rerun::LineStrips3D::new(strips(geometry, &geometry.nodes))
-                    .with_colors([rerun::Color::from_unmultiplied_rgba(150, 150, 150, 120)])
-                    .with_radii([r * 0.5]),
+                undeformed.archetype(planar).as_ref(),
             )?;
             for s in 0..PHASE_STEPS {
                 let a = (2.0 * std::f64::consts::PI * s as f64 / PHASE_STEPS as f64).sin();
@@ -160,20 +207,24 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
                     .map(|(p, u)| [p[0] + a * u[0], p[1] + a * u[1], p[2] + a * u[2]])
                     .collect();
                 rec.set_time_sequence("phase", s as i64);
-                rec.log(
-                    path.as_str(),
-                    &rerun::LineStrips3D::new(strips(geometry, &nodes))
-                        .with_colors([color(*c)])
-                        .with_radii([r])
-                        .with_labels([label.clone()]),
-                )?;
+                let lines = Lines {
+                    strips: strips(geometry, &nodes),
+                    color: color(*c),
+                    radius: r,
+                    label: Some(label.clone()),
+                };
+                rec.log(path.as_str(), lines.archetype(planar).as_ref())?;
             }
             rec.reset_time();
         }
         Visual::Offset { path, translation } => {
             rec.log_static(
                 path.as_str(),
-                &rerun::Transform3D::from_translation(translation.map(|x| x as f32)),
+                &rerun::Transform3D::from_translation(if planar {
+                    [translation[0] as f32, -translation[1] as f32, 0.0]
+                } else {
+                    translation.map(|x| x as f32)
+                }),
             )?;
         }
         Visual::Trajectory {
@@ -244,6 +295,20 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
             }
             rec.reset_time();
         }
+        Visual::Label3D {
+            path,
+            position,
+            text,
+            color: c,
+        } => {
+            rec.log_static(
+                path.as_str(),
+                &rerun::Points3D::new([position.map(|x| x as f32)])
+                    .with_labels([text.clone()])
+                    .with_colors([color(*c)])
+                    .with_radii([rerun::Radius::new_ui_points(4.0)]),
+            )?;
+        }
         Visual::Scatter {
             path,
             points,
@@ -282,15 +347,29 @@ fn log_visual(rec: &RecordingStream, v: &Visual) -> Result<()> {
     Ok(())
 }
 
-fn container(l: &Layout) -> bp::ContainerLike {
+fn container(l: &Layout, planar: bool) -> bp::ContainerLike {
+    let each = |items: &Vec<Layout>| {
+        items
+            .iter()
+            .map(|l| container(l, planar))
+            .collect::<Vec<_>>()
+    };
     match l {
-        Layout::Horizontal(items, shares) => bp::Horizontal::new(items.iter().map(container))
+        Layout::Horizontal(items, shares) => bp::Horizontal::new(each(items))
             .with_column_shares(shares.clone())
             .into(),
-        Layout::Vertical(items, shares) => bp::Vertical::new(items.iter().map(container))
+        Layout::Vertical(items, shares) => bp::Vertical::new(each(items))
             .with_row_shares(shares.clone())
             .into(),
-        Layout::Tabs(items) => bp::Tabs::new(items.iter().map(container)).into(),
+        Layout::Tabs(items) => bp::Tabs::new(each(items)).into(),
+        Layout::Spatial3D {
+            name,
+            origin,
+            contents,
+        } if planar => bp::Spatial2DView::new(name.as_str())
+            .with_origin(origin.as_str())
+            .with_contents(contents.iter().cloned())
+            .into(),
         Layout::Spatial3D {
             name,
             origin,

@@ -174,6 +174,17 @@ pub enum Visual {
         /// One colour per point.
         colors: Vec<Color>,
     },
+    /// A labelled point in space (static), naming what is drawn beside it.
+    Label3D {
+        /// Entity path.
+        path: String,
+        /// Where the label sits, m.
+        position: [f64; 3],
+        /// The text.
+        text: String,
+        /// Point and text colour.
+        color: Color,
+    },
     /// A polyline in a plane (a chart's series), with an optional label.
     Polyline2D {
         /// Entity path.
@@ -205,6 +216,7 @@ impl Visual {
             | Visual::Series { path, .. }
             | Visual::FrameAxes { path, .. }
             | Visual::Scatter { path, .. }
+            | Visual::Label3D { path, .. }
             | Visual::Polyline2D { path, .. }
             | Visual::Bars { path, .. } => path,
         }

@@ -58,7 +58,13 @@ pub fn display_shape(model: &FeModel, u: &[f64]) -> Vec<[f64; 3]> {
 /// Where mode `k` (0-based) of a set is placed, so a set reads like the thesis' figures.
 fn slot(model: &FeModel, k: usize) -> [f64; 3] {
     if model.spatial_dim() == 2 {
-        [0.0, -0.5 * model.size() * k as f64, 0.0]
+        // Two columns, so a set of seven modes is about as wide as it is tall and the
+        // default camera of a wide view frames all of it.
+        [
+            1.4 * model.size() * (k % 2) as f64,
+            -0.5 * model.size() * (k / 2) as f64,
+            0.0,
+        ]
     } else {
         // Three columns; a gap of half the body's size between neighbours.
         let ext = |d: usize| {

@@ -631,12 +631,6 @@ pub fn run_scenario(
         })
         .collect();
     let mut tabs = Vec::new();
-    if visuals.iter().any(|v| v.path() == "metrics/speed_accuracy") {
-        tabs.push(Layout::Spatial2D {
-            name: "speed vs accuracy".into(),
-            origin: "/metrics/speed_accuracy".into(),
-        });
-    }
     tabs.extend([
         Layout::TimeSeries {
             name: "constraint violation".into(),
@@ -648,8 +642,7 @@ pub fn run_scenario(
         },
     ]);
     plot_views.push(Layout::Tabs(tabs));
-    // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method,
-    // beside the undeformed ghost carried by the first method's frame.
+    // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method.
     let scale = opts.deformation_scale_or(info.id, || {
         deformation_scale(
             runs.iter().map(|(_, system, sim, _)| (system, sim)),
@@ -658,16 +651,38 @@ pub fn run_scenario(
             model.size(),
         )
     })?;
-    if let Some((_, system, sim, _)) = runs.first() {
+    // One lane per method, side by side along y (1.5 slab widths apart), each with its own
+    // undeformed ghost carried by its frame and a label at App. B node 16's starting place:
+    // bodies of different methods never hide one another.
+    let width = {
+        let ys = geometry.nodes.iter().map(|p| p[1]);
+        ys.clone().fold(f64::MIN, f64::max) - ys.fold(f64::MAX, f64::min)
+    };
+    let label_node = slab_node(&model, 16) - 1;
+    for (k, (m, system, sim, _)) in runs.iter().enumerate() {
+        let lane = format!("world/slab/{}", m.id());
+        visuals.push(Visual::Offset {
+            path: lane.clone(),
+            translation: [0.0, -1.5 * width * k as f64, 0.0],
+        });
         visuals.push(body_trajectory(
             system,
             sim,
             0,
-            "world/slab/undeformed_ghost".into(),
+            format!("{lane}/undeformed_ghost"),
             &geometry,
             REFERENCE_GHOST,
             0.0,
         ));
+        if let Some(first) = sim.samples.first() {
+            let p = system.node_position(0, label_node, &first.state);
+            visuals.push(Visual::Label3D {
+                path: format!("{lane}/label"),
+                position: [p.x, p.y, p.z - 0.3 * width],
+                text: m.id().to_uppercase(),
+                color: method_color(*m),
+            });
+        }
     }
     for (m, system, sim, hist) in &runs {
         let times = times(sim);
@@ -701,14 +716,26 @@ pub fn run_scenario(
         }
     }
     let view = if scale != 1.0 {
-        format!("slab (deflection ×{scale}; grey: undeformed)")
+        format!("slab, one lane per method (deflection ×{scale}; grey: undeformed)")
     } else {
-        "slab (grey: undeformed)".to_string()
+        "slab, one lane per method (grey: undeformed)".to_string()
     };
     report
         .results
         .insert("deformation_scale".into(), json!(scale));
-    let layout = simulation_layout(Layout::view3d(&view, "/world/slab"), plot_views);
+    // The speed–accuracy chart as a tab of the large top view, where its labels fit.
+    let top = if visuals.iter().any(|v| v.path() == "metrics/speed_accuracy") {
+        Layout::Tabs(vec![
+            Layout::view3d(&view, "/world/slab"),
+            Layout::Spatial2D {
+                name: "speed vs accuracy".into(),
+                origin: "/metrics/speed_accuracy".into(),
+            },
+        ])
+    } else {
+        Layout::view3d(&view, "/world/slab")
+    };
+    let layout = simulation_layout(top, plot_views);
     Ok(SceneOutput {
         report,
         markdown,

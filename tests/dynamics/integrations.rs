@@ -641,3 +641,64 @@ fn a_refined_slab_simulation_runs_every_method_and_cb_stays_close_to_the_full_mo
         assert!(mt > 5.0 * cb, "{d}: MT {mt}, CB {cb}");
     }
 }
+
+#[test]
+fn bodies_of_different_methods_are_drawn_in_lanes_that_do_not_overlap() {
+    use flexmodes::record::Visual;
+    let options = flexmodes::scenes::SceneOptions {
+        methods: Some(vec![
+            Method::NoReduction,
+            Method::CraigBampton,
+            Method::Guyan,
+        ]),
+        end_time: Some(0.2),
+        ..Default::default()
+    };
+    let out = flexmodes::scenes::find("slab-sim1")
+        .unwrap()
+        .execute(&options)
+        .unwrap();
+    let offset = |lane: &str| {
+        out.visuals.iter().find_map(|v| match v {
+            Visual::Offset { path, translation } if path == lane => Some(*translation),
+            _ => None,
+        })
+    };
+    // The y extent of each lane's body over the whole run, shifted by its lane's offset.
+    let mut extents = Vec::new();
+    for m in ["nr", "cb", "gr"] {
+        let lane = format!("world/slab/{m}");
+        let shift = offset(&lane).unwrap_or_else(|| panic!("no offset for {lane}"));
+        for part in ["nodal_fixed", "undeformed_ghost"] {
+            let path = format!("{lane}/{part}");
+            let positions = out
+                .visuals
+                .iter()
+                .find_map(|v| match v {
+                    Visual::Trajectory {
+                        path: p, positions, ..
+                    } if *p == path => Some(positions.clone()),
+                    _ => None,
+                })
+                .unwrap_or_else(|| panic!("no trajectory {path}"));
+            assert!(!positions.is_empty());
+            let ys = positions.iter().flatten().map(|p| p[1] + shift[1]);
+            let lo = ys.clone().fold(f64::MAX, f64::min);
+            let hi = ys.fold(f64::MIN, f64::max);
+            extents.push((m, lo, hi));
+        }
+        assert!(
+            out.visuals
+                .iter()
+                .any(|v| v.path() == format!("{lane}/label")),
+            "{lane} has no label"
+        );
+    }
+    for (i, a) in extents.iter().enumerate() {
+        for b in &extents[i + 1..] {
+            if a.0 != b.0 {
+                assert!(a.2 < b.1 || b.2 < a.1, "lanes {a:?} and {b:?} overlap");
+            }
+        }
+    }
+}
