@@ -143,6 +143,10 @@ pub enum Error {
     #[error("invalid nodal-fixed axes: {reason}")]
     InvalidAxes { reason: String },
 
+    /// A static load case that does not fit the body.
+    #[error("static load case: {reason}")]
+    InvalidLoadCase { reason: String },
+
     /// A time integration that could not continue.
     #[error("the integration diverged at t = {time:.4} s: {reason}")]
     Diverged { time: f64, reason: String },

@@ -1,10 +1,11 @@
 //! Analyses on bodies, bases and simulations: natural frequencies, deformed profiles (§7.1),
-//! mean-axis evaluation (§8.4), simulation measures (§7.2, §5.3.3).
+//! mean-axis evaluation (§8.4), simulation measures (§7.2, §5.3.3), static responses.
 
 mod frequencies;
 mod mean_axes;
 mod profiles;
 mod simulation_metrics;
+mod static_response;
 
 pub use frequencies::{
     RIGID_BODY_HZ, ZeroEnergyCount, count_zero_energy_modes, elastic_hz, free_free_modes,
@@ -15,4 +16,7 @@ pub use profiles::{PROFILE_DELTA, ProfileFit, fit_given_modal_coordinates, fit_l
 pub use simulation_metrics::{
     max_energy_drift, max_position_violation, max_until, mirror_defect_history,
     node_deflection_history, relative_rms,
+};
+pub use static_response::{
+    StaticLoadCase, full_static_response, relative_error, ritz_static_response,
 };
