@@ -37,7 +37,7 @@ const BELOW_CRITICAL: f64 = 0.9;
 const ABOVE_CRITICAL: f64 = 3.0;
 
 /// Kept-mode counts swept for the methods that keep normal modes.
-const MODE_SWEEP: [usize; 4] = [2, 4, 6, 12];
+pub(crate) const MODE_SWEEP: [usize; 4] = [2, 4, 6, 12];
 
 /// One measured point.
 #[derive(Debug, Clone, PartialEq)]
@@ -71,18 +71,27 @@ pub const BENCH_SCHEMES: [IntegrationScheme; 2] = [
     },
 ];
 
-/// Marks the points no other point dominates in (online cost, error): lower or equal in both
-/// and lower in one.
+/// For each (cost, error) pair: whether no other pair dominates it (lower or equal in both
+/// and lower in one).
+pub fn pareto_flags(cost_error: &[(f64, f64)]) -> Vec<bool> {
+    cost_error
+        .iter()
+        .map(|&(c, e)| {
+            !cost_error
+                .iter()
+                .any(|&(c2, e2)| c2 <= c && e2 <= e && (c2 < c || e2 < e))
+        })
+        .collect()
+}
+
+/// Marks the points no other point dominates in (online cost, error).
 pub fn mark_pareto(points: &mut [BenchPoint]) {
     let cost_error: Vec<(f64, f64)> = points
         .iter()
         .map(|p| (p.online_s_per_sim_s, p.rel_rms_error))
         .collect();
-    for (i, p) in points.iter_mut().enumerate() {
-        let (c, e) = cost_error[i];
-        p.pareto = !cost_error
-            .iter()
-            .any(|&(c2, e2)| c2 <= c && e2 <= e && (c2 < c || e2 < e));
+    for (p, flag) in points.iter_mut().zip(pareto_flags(&cost_error)) {
+        p.pareto = flag;
     }
 }
 

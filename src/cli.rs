@@ -16,6 +16,9 @@ use crate::{
 };
 
 /// Explorer of model order reduction for restrained deformable bodies.
+/// What `bench --all` measures, in this order.
+const BENCH_ALL: [&str; 3] = ["slab-modes", "slab-sim1", "slab-sim2"];
+
 #[derive(Debug, Parser)]
 #[command(name = "flexmodes", version, about)]
 pub struct Cli {
@@ -43,10 +46,15 @@ enum Command {
         #[command(flatten)]
         options: OptionArgs,
     },
-    /// Speed against accuracy of every method and kept-mode count (slab simulations).
+    /// Speed against accuracy of every method and kept-mode count: slab-modes (offline cost
+    /// against frequency and static error) and the slab simulations (online cost against
+    /// node 8's error, stability).
     Bench {
-        /// Scenes (default: slab-sim1).
+        /// Scenes: slab-modes, slab-sim1, slab-sim2 (default: slab-sim1).
         scenes: Vec<String>,
+        /// Every scene bench measures: slab-modes, slab-sim1, slab-sim2.
+        #[arg(long, conflicts_with = "scenes")]
+        all: bool,
         /// Print one JSON object per scene.
         #[arg(long)]
         json: bool,
@@ -392,12 +400,25 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Bench {
             scenes: ids,
+            all,
             json,
             sizes: None,
             save,
             integrator,
             refine,
         } => {
+            let ids = if all {
+                BENCH_ALL.iter().map(|s| s.to_string()).collect()
+            } else {
+                ids
+            };
+            if !integrator.is_empty() && !ids.is_empty() && ids.iter().all(|id| id == "slab-modes")
+            {
+                return Err(Error::InvalidOption {
+                    scene: "slab-modes".into(),
+                    reason: "--integrator applies to the simulation benches only".into(),
+                });
+            }
             if save.is_some() && ids.len() > 1 {
                 return Err(Error::InvalidOption {
                     scene: ids.join(","),
@@ -418,8 +439,11 @@ fn run(cli: Cli) -> Result<()> {
                 let handle = Progress::new();
                 let bar =
                     TerminalProgress::start(&handle, &format!("bench {id} ({} of {count})", k + 1));
-                let (value, table, recording) =
-                    crate::bench::bench(&id, &integrator, refine, &handle)?;
+                let (value, table, recording) = if id == "slab-modes" {
+                    crate::bench_modes::bench_modes(refine, &handle)?
+                } else {
+                    crate::bench::bench(&id, &integrator, refine, &handle)?
+                };
                 drop(bar);
                 if let Some(path) = &save {
                     Recorder::default().save(&recording, path)?;

@@ -599,3 +599,70 @@ fn import_report_and_export_a_body_file() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("node set names need --body"));
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn bench_slab_modes_reports_offline_cost_against_frequency_and_static_error() {
+    let v = json(&["bench", "slab-modes", "--json"]);
+    assert_eq!(v["scene"], "slab-modes");
+    assert_eq!(v["dofs"], 90);
+    let points = v["points"].as_array().unwrap();
+    // GR, then MT, CB, MC with 2, 4, 6, 12 kept modes.
+    assert_eq!(points.len(), 13);
+    let find = |m: &str, k: u64| {
+        points
+            .iter()
+            .find(|p| p["method"] == m && p["modes"] == k)
+            .unwrap_or_else(|| panic!("no point {m} {k}"))
+    };
+    let err = |m: &str, k: u64, key: &str| find(m, k)[key].as_f64().unwrap();
+    for p in points {
+        for key in ["offline_s", "freq_rel_error", "static_rel_error"] {
+            let x = p[key].as_f64().unwrap_or_else(|| panic!("{key} in {p}"));
+            assert!(x >= 0.0 && x.is_finite(), "{key} in {p}");
+        }
+    }
+    for k in [2, 4, 6, 12] {
+        // One column space: one error.
+        for key in ["freq_rel_error", "static_rel_error"] {
+            let (cb, mc) = (err("cb", k, key), err("mc", k, key));
+            assert!(
+                (cb - mc).abs() <= 1e-6 * cb.max(1e-12),
+                "{key} {k}: {cb} {mc}"
+            );
+        }
+        // Modal truncation cannot take the support reactions into the body.
+        assert!(err("mt", k, "static_rel_error") > 10.0 * err("cb", k, "static_rel_error"));
+    }
+    // More kept modes: closer frequencies (Rayleigh–Ritz on nested spaces).
+    assert!(err("cb", 12, "freq_rel_error") <= err("cb", 6, "freq_rel_error"));
+    assert!(err("cb", 6, "freq_rel_error") <= err("cb", 2, "freq_rel_error"));
+    // The Pareto flags, recomputed with errors compared to three significant digits.
+    let three = |x: f64| {
+        if x == 0.0 {
+            return x;
+        }
+        let f = 10f64.powi(2 - x.abs().log10().floor() as i32);
+        (x * f).round() / f
+    };
+    let cost_error: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| {
+            let e = p["freq_rel_error"]
+                .as_f64()
+                .unwrap()
+                .max(p["static_rel_error"].as_f64().unwrap());
+            (p["offline_s"].as_f64().unwrap(), three(e))
+        })
+        .collect();
+    assert!(points.iter().any(|p| p["pareto"] == true));
+    for (p, &(c, e)) in points.iter().zip(&cost_error) {
+        let dominated = cost_error
+            .iter()
+            .any(|&(c2, e2)| c2 <= c && e2 <= e && (c2 < c || e2 < e));
+        assert_eq!(p["pareto"], !dominated, "{p}");
+    }
+    // The integrator belongs to the simulation benches.
+    let out = flexmodes(&["bench", "slab-modes", "--integrator", "dp5"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("simulation benches"));
+}

@@ -241,15 +241,7 @@ pub fn slab_body(
     boundary: &[usize],
     modes: usize,
 ) -> Result<FlexibleBody> {
-    let mut nodes = boundary.to_vec();
-    if method == Method::Guyan {
-        nodes.extend(
-            EXTRA_GUYAN_MASTERS
-                .iter()
-                .map(|&n| slab_node(model, n))
-                .filter(|n| !boundary.contains(n)),
-        );
-    }
+    let nodes = reduction_nodes(model, method, boundary);
     let axes = match axes {
         AxisType::NodalFixed(nf) => AxisType::NodalFixed(NodalFixedAxes {
             origin: slab_node(model, nf.origin),
@@ -269,6 +261,32 @@ pub fn slab_body(
         },
     )?;
     FlexibleBody::new(model.clone(), basis, axes)
+}
+
+/// The boundary (masters) `method` reduces the slab on: `boundary`, and for Guyan reduction
+/// also App. B's nodes 5 and 11 (§7.2: as many static modes as the others have columns).
+pub fn reduction_nodes(model: &FeModel, method: Method, boundary: &[usize]) -> Vec<usize> {
+    let mut nodes = boundary.to_vec();
+    if method == Method::Guyan {
+        nodes.extend(
+            EXTRA_GUYAN_MASTERS
+                .iter()
+                .map(|&n| slab_node(model, n))
+                .filter(|n| !boundary.contains(n)),
+        );
+    }
+    nodes
+}
+
+/// The six coordinates Simulation 1 holds (§7.2.2): d16 (x, y, z), d18 x, d28 z, d30 z, as
+/// 0-based DOF of `model` (a statically determinate support).
+pub fn held_at_six(model: &FeModel) -> Result<Vec<usize>> {
+    let n = |app_b: usize| slab_node(model, app_b);
+    let mut dofs = model.dofs_of_nodes(&[n(16)])?;
+    dofs.push(model.dofs_of_nodes(&[n(18)])?[0]);
+    dofs.push(model.dofs_of_nodes(&[n(28)])?[2]);
+    dofs.push(model.dofs_of_nodes(&[n(30)])?[2]);
+    Ok(dofs)
 }
 
 /// The 1-based node of `model` (the App. B slab or a refinement of it) at the position of App.
