@@ -16,6 +16,9 @@ use crate::{
 };
 
 /// Explorer of model order reduction for restrained deformable bodies.
+/// Scenes `record` runs side by side at most (the machines here have two cores).
+const RECORD_WORKERS: usize = 2;
+
 /// What `bench --all` measures, in this order.
 const BENCH_ALL: [&str; 3] = ["slab-modes", "slab-sim1", "slab-sim2"];
 
@@ -544,32 +547,105 @@ fn run(cli: Cli) -> Result<()> {
                 .iter()
                 .map(|id| scenes::find(id))
                 .collect::<Result<Vec<_>>>()?;
-            let mut opts = options.into_scene_options()?;
+            let opts = options.into_scene_options()?;
             if let Some(body) = &opts.body {
                 body.require_coordinates()?;
             }
-            let recorder = Recorder::default();
-            let count = found.len();
-            for (k, s) in found.into_iter().enumerate() {
-                opts.progress = Progress::new();
-                let bar = TerminalProgress::start(
-                    &opts.progress,
-                    &format!("recording {} ({} of {count})", s.info.id, k + 1),
-                );
-                let output = s.execute(&opts)?;
-                drop(bar);
-                let path = save
-                    .clone()
-                    .unwrap_or_else(|| out.join(format!("{}.rrd", s.info.id)));
-                recorder.save(&output, &path)?;
-                println!(
-                    "# {} -> {}\n\n{}",
-                    s.info.id,
-                    path.display(),
-                    output.report.table
-                );
-            }
-            Ok(())
+            record_scenes(found, &opts, &out, save.as_deref())
         }
     }
+}
+
+/// Records `scenes` side by side on the machine's cores (at most [`RECORD_WORKERS`]), each
+/// to `save` or `out/<id>.rrd`, and prints each result table in the order given as soon as
+/// it and those before it are done. The first error stops new scenes from starting and is
+/// returned once the running ones finish.
+fn record_scenes(
+    scenes: Vec<scenes::Scene>,
+    opts: &scenes::SceneOptions,
+    out: &std::path::Path,
+    save: Option<&std::path::Path>,
+) -> Result<()> {
+    use std::sync::{
+        atomic::{AtomicBool, AtomicUsize, Ordering},
+        mpsc,
+    };
+    let count = scenes.len();
+    let workers = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .clamp(1, RECORD_WORKERS)
+        .min(count);
+    let next = AtomicUsize::new(0);
+    let failed = AtomicBool::new(false);
+    let group = TerminalProgress::group();
+    let (sender, receiver) = mpsc::channel::<(usize, Result<(PathBuf, String)>)>();
+    let recorder = Recorder::default();
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            let sender = sender.clone();
+            let (next, failed, group, recorder, scenes) =
+                (&next, &failed, &group, &recorder, &scenes);
+            scope.spawn(move || {
+                loop {
+                    let k = next.fetch_add(1, Ordering::SeqCst);
+                    if k >= count || failed.load(Ordering::SeqCst) {
+                        break;
+                    }
+                    let s = &scenes[k];
+                    let mut opts = opts.clone();
+                    opts.progress = Progress::new();
+                    let bar = TerminalProgress::start_in(
+                        Some(group),
+                        &opts.progress,
+                        &format!("recording {} ({} of {count})", s.info.id, k + 1),
+                    );
+                    let result = s.execute(&opts).and_then(|output| {
+                        let path = save
+                            .map(std::path::Path::to_path_buf)
+                            .unwrap_or_else(|| out.join(format!("{}.rrd", s.info.id)));
+                        recorder.save(&output, &path)?;
+                        Ok((path, output.report.table))
+                    });
+                    drop(bar);
+                    if result.is_err() {
+                        failed.store(true, Ordering::SeqCst);
+                    }
+                    if sender.send((k, result)).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(sender);
+        // Print in order: hold what finishes early until those before it are printed.
+        let mut pending: Vec<Option<(PathBuf, String)>> = vec![None; count];
+        let mut printed = 0;
+        let mut first_error: Option<(usize, Error)> = None;
+        for (k, result) in receiver {
+            match result {
+                Ok(done) => pending[k] = Some(done),
+                Err(e) => {
+                    if first_error.as_ref().is_none_or(|(j, _)| k < *j) {
+                        first_error = Some((k, e));
+                    }
+                }
+            }
+            while printed < count {
+                let Some((path, table)) = pending[printed].take() else {
+                    break;
+                };
+                println!(
+                    "# {} -> {}\n\n{}",
+                    scenes[printed].info.id,
+                    path.display(),
+                    table
+                );
+                printed += 1;
+            }
+        }
+        match first_error {
+            Some((_, e)) => Err(e),
+            None => Ok(()),
+        }
+    })
 }

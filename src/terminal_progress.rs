@@ -13,7 +13,7 @@ use std::{
     time::Duration,
 };
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::Progress;
 
@@ -31,6 +31,21 @@ pub struct TerminalProgress {
 impl TerminalProgress {
     /// Draws `what` (e.g. `slab-sim1 (3 of 10)`) and what `progress` reports, every 100 ms.
     pub fn start(progress: &Progress, what: &str) -> Self {
+        Self::start_in(None, progress, what)
+    }
+
+    /// A stderr target for bars drawn together (one line each), hidden when stderr is not a
+    /// terminal.
+    pub fn group() -> MultiProgress {
+        MultiProgress::with_draw_target(if std::io::stderr().is_terminal() {
+            ProgressDrawTarget::stderr()
+        } else {
+            ProgressDrawTarget::hidden()
+        })
+    }
+
+    /// [`start`](Self::start), on a line of `group` when given (work running side by side).
+    pub fn start_in(group: Option<&MultiProgress>, progress: &Progress, what: &str) -> Self {
         let stop = Arc::new(AtomicBool::new(false));
         let target = if std::io::stderr().is_terminal() {
             ProgressDrawTarget::stderr()
@@ -38,6 +53,10 @@ impl TerminalProgress {
             ProgressDrawTarget::hidden()
         };
         let bar = ProgressBar::with_draw_target(Some(STEPS), target);
+        let bar = match group {
+            Some(g) => g.add(bar),
+            None => bar,
+        };
         let style =
             ProgressStyle::with_template("{spinner} {prefix} [{elapsed_precise}] {wide_bar} {msg}")
                 .unwrap_or_else(|_| ProgressStyle::default_bar());
