@@ -61,7 +61,8 @@ enum Command {
         /// Print one JSON object per scene.
         #[arg(long)]
         json: bool,
-        /// slab-modes only: refined meshes to time, `1k,7k,28k,74k,150k` or `NXxNYxNZ,...`.
+        /// Refined meshes to time, `1k,7k,28k,74k,150k` or `NXxNYxNZ,...`: slab-modes'
+        /// offline cost, or one simulation's online cost, against DOF.
         #[arg(long)]
         sizes: Option<String>,
         /// Also write the charts to this `.rrd`: with --sizes time against DOF, else error
@@ -71,6 +72,9 @@ enum Command {
         /// Integrators to compare, comma separated (default: dp5,gen-alpha).
         #[arg(long, value_delimiter = ',', value_parser = parse_integrator)]
         integrator: Vec<IntegrationScheme>,
+        /// Runs of each simulation; the online cost is their median.
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=100))]
+        repeats: u64,
         /// Simulations on the slab meshed with NX × NY × NZ bricks (App. B is 4,2,1).
         #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
         refine: Option<[usize; 3]>,
@@ -382,14 +386,29 @@ fn run(cli: Cli) -> Result<()> {
             save,
             ..
         } => {
-            if ids.iter().any(|id| id != "slab-modes") {
-                return Err(Error::InvalidOption {
-                    scene: ids.join(","),
-                    reason: "--sizes times the refined slab-modes scene only".into(),
-                });
-            }
+            let simulation = match ids.as_slice() {
+                [id] if id == "slab-sim1" || id == "slab-sim2" => Some(id.clone()),
+                _ if ids.iter().all(|id| id == "slab-modes") => None,
+                _ => {
+                    return Err(Error::InvalidOption {
+                        scene: ids.join(","),
+                        reason: "--sizes times slab-modes, or one of slab-sim1 and slab-sim2"
+                            .into(),
+                    });
+                }
+            };
             let meshes = crate::bench_sizes::parse_sizes(&sizes)?;
-            let bench = crate::bench_sizes::bench_sizes(&meshes, &|s| progress(s))?;
+            let bench = match &simulation {
+                Some(id) => {
+                    let handle = Progress::new();
+                    let bar = TerminalProgress::start(&handle, &format!("bench {id} --sizes"));
+                    let bench = crate::bench_sim_sizes::bench_sim_sizes(id, &meshes, &handle)?;
+                    drop(bar);
+                    bench
+                }
+                None => crate::bench_sizes::bench_sizes(&meshes, &|s| progress(s))?,
+            };
+            let title = simulation.as_deref().unwrap_or("slab-modes");
             if let Some(path) = &save {
                 Recorder::default().save(&bench.recording, path)?;
                 progress(&format!("wrote {}", path.display()));
@@ -397,7 +416,7 @@ fn run(cli: Cli) -> Result<()> {
             if json {
                 println!("{}", bench.value);
             } else {
-                println!("# bench slab-modes --sizes {sizes}\n\n{}", bench.table);
+                println!("# bench {title} --sizes {sizes}\n\n{}", bench.table);
             }
             Ok(())
         }
@@ -409,6 +428,7 @@ fn run(cli: Cli) -> Result<()> {
             save,
             integrator,
             refine,
+            repeats,
         } => {
             let ids = if all {
                 BENCH_ALL.iter().map(|s| s.to_string()).collect()
@@ -445,7 +465,7 @@ fn run(cli: Cli) -> Result<()> {
                 let (value, table, recording) = if id == "slab-modes" {
                     crate::bench_modes::bench_modes(refine, &handle)?
                 } else {
-                    crate::bench::bench(&id, &integrator, refine, &handle)?
+                    crate::bench::bench(&id, &integrator, refine, repeats as usize, &handle)?
                 };
                 drop(bar);
                 if let Some(path) = &save {

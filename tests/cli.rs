@@ -317,7 +317,14 @@ fn the_integrator_is_chosen_per_run() {
 fn bench_reports_speed_and_accuracy_points() {
     let dir = temp_dir("bench-charts");
     let charts = dir.join("bench.rrd");
-    let v = json(&["bench", "--json", "--save", charts.to_str().unwrap()]);
+    let v = json(&[
+        "bench",
+        "--json",
+        "--repeats",
+        "1",
+        "--save",
+        charts.to_str().unwrap(),
+    ]);
     // The charts: error against cost and against kept modes, written whole.
     let bytes = std::fs::read(&charts).expect("bench --save writes the recording");
     assert!(bytes.len() > 10_000, "{} bytes", bytes.len());
@@ -665,4 +672,41 @@ fn bench_slab_modes_reports_offline_cost_against_frequency_and_static_error() {
     let out = flexmodes(&["bench", "slab-modes", "--integrator", "dp5"]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("simulation benches"));
+}
+
+#[test]
+fn bench_simulation_sizes_reports_online_cost_against_dof() {
+    let v = json(&["bench", "slab-sim1", "--sizes", "8x4x2,4x2x1", "--json"]);
+    assert_eq!(v["scene"], "slab-sim1");
+    let sizes = v["sizes"].as_array().unwrap();
+    let dofs: Vec<u64> = sizes.iter().map(|s| s["dofs"].as_u64().unwrap()).collect();
+    assert_eq!(dofs, [90, 405], "ascending whatever the order given");
+    for s in sizes {
+        let points = s["points"].as_array().unwrap();
+        let of = |m: &str| {
+            points
+                .iter()
+                .find(|p| p["method"] == m)
+                .unwrap_or_else(|| panic!("no {m} in {s}"))
+        };
+        assert_eq!(points.len(), 5);
+        // The full model: every DOF but the six the nodal-fixed frame removes; the reference.
+        let n = s["dofs"].as_u64().unwrap();
+        assert_eq!(of("nr")["coordinates"], n - 6);
+        assert_eq!(of("nr")["rel_rms_error"], 0.0);
+        // Craig–Bampton keeps its 12 modal coordinates (18 columns less the six the frame
+        // removes) whatever the mesh, and beats MT.
+        assert_eq!(of("cb")["coordinates"], 12);
+        let e = |m: &str| of(m)["rel_rms_error"].as_f64().unwrap();
+        assert!(e("cb") > 0.0 && e("cb") < e("mt"), "{s}");
+        for p in points {
+            assert!(p["online_s_per_sim_s"].as_f64().unwrap() > 0.0, "{p}");
+        }
+    }
+    for m in ["nr", "gr", "mt", "cb", "mc"] {
+        assert!(v["online_growth_exponent"][m].is_number(), "{m}");
+    }
+    let out = flexmodes(&["bench", "slab-sim3", "--sizes", "4x2x1"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--sizes times"));
 }

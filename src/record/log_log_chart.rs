@@ -1,5 +1,6 @@
 //! A log–log chart drawn in a 2-D view: series of (x, y) points with positive values, decade
-//! ticks labelled on both axes, the x axis stretched so the chart is about square.
+//! ticks labelled on both axes, the x axis stretched so the chart is square (the viewer fits
+//! a 2-D view to its height: a wider chart would be cut in views that are not wide).
 
 use super::{Color, Visual};
 
@@ -64,7 +65,7 @@ impl LogLogChart {
             span(&|p| p.0.log10())
         };
         let (y0, y1) = span(&|p| p.1.log10());
-        let stretch = 1.2 * (y1 - y0) / (x1 - x0);
+        let stretch = (y1 - y0) / (x1 - x0);
         let width = stretch * (x1 - x0);
         let at = |x: f64, y: f64| [stretch * (fx(x) - x0), -y.log10()];
         let mut visuals = Vec::new();
