@@ -71,6 +71,20 @@ pub const BENCH_SCHEMES: [IntegrationScheme; 2] = [
     },
 ];
 
+/// The simulation a bench integrates: slab-sim1's or slab-sim2's (slab-sim3 needs its
+/// recorded driving tables and is not benchmarked).
+pub(crate) fn bench_scenario(scene: &str) -> Result<Scenario> {
+    match scene {
+        "slab-sim1" => Ok(Scenario::HeldAtSix),
+        "slab-sim2" => Ok(Scenario::Orbit),
+        other => Err(Error::InvalidOption {
+            scene: other.into(),
+            reason: "bench measures slab-modes and the simulation scenes slab-sim1 and slab-sim2"
+                .into(),
+        }),
+    }
+}
+
 /// For each (cost, error) pair: whether no other pair dominates it (lower or equal in both
 /// and lower in one).
 pub fn pareto_flags(cost_error: &[(f64, f64)]) -> Vec<bool> {
@@ -111,18 +125,7 @@ pub fn bench(
         schemes = BENCH_SCHEMES.to_vec();
     }
     schemes.sort_by_key(|s| !matches!(s, IntegrationScheme::DormandPrince));
-    let scenario = match scene {
-        "slab-sim1" => Scenario::HeldAtSix,
-        "slab-sim2" => Scenario::Orbit,
-        other => {
-            return Err(Error::InvalidOption {
-                scene: other.into(),
-                reason:
-                    "bench measures slab-modes and the simulation scenes slab-sim1 and slab-sim2"
-                        .into(),
-            });
-        }
-    };
+    let scenario = bench_scenario(scene)?;
     let model = match bricks {
         Some(b) => slab(&SlabParameters::refined(b)?),
         None => slab(&SlabParameters::default()),

@@ -11,7 +11,7 @@ use std::time::Instant;
 use serde_json::{Map, Value, json};
 
 use crate::{
-    Error, Progress, Result,
+    Progress, Result,
     analysis::relative_rms,
     bench_sizes::{SizeBench, growth_exponent},
     dynamics::{AxisType, IntegratorParameters, simulate},
@@ -22,8 +22,7 @@ use crate::{
     scenes::{
         method_color,
         slab_sims::{
-            PROBE_NODE, Scenario, default_boundary, probe_history, slab_body, slab_node,
-            slab_system,
+            PROBE_NODE, default_boundary, probe_history, slab_body, slab_node, slab_system,
         },
     },
 };
@@ -59,17 +58,7 @@ pub fn bench_sim_sizes(
     sizes: &[[usize; 3]],
     progress: &Progress,
 ) -> Result<SizeBench> {
-    let scenario = match scene {
-        "slab-sim1" => Scenario::HeldAtSix,
-        "slab-sim2" => Scenario::Orbit,
-        other => {
-            return Err(Error::InvalidOption {
-                scene: other.into(),
-                reason: "--sizes times slab-modes and the simulations slab-sim1 and slab-sim2"
-                    .into(),
-            });
-        }
-    };
+    let scenario = crate::bench::bench_scenario(scene)?;
     let axes = AxisType::NodalFixed(NodalFixedAxes::slab_default());
     let params = IntegratorParameters {
         end_time: SIZES_RUN_S,
