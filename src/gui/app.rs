@@ -99,6 +99,7 @@ impl eframe::App for FlexmodesApp {
     fn logic(&mut self, ctx: &egui::Context, frame: &mut eframe::Frame) {
         self.capture_step(ctx);
         if let Some(mut explorer) = self.explorer.take() {
+            explorer.wake(ctx);
             explorer.poll();
             if let Some(rrd) = explorer.take_fresh().map(|c| c.rrd.clone()) {
                 let start = std::time::Instant::now();
@@ -190,6 +191,15 @@ impl FlexmodesApp {
                     .map(|d| format!("{:.3}", d.as_secs_f64()))
                     .collect();
                 eprintln!("  of which handing to the viewer, s: {}", h.join(", "));
+                let phases: Vec<String> = e
+                    .phase_times
+                    .iter()
+                    .map(|(c, e)| format!("{c:.3}/{e:.3}"))
+                    .collect();
+                eprintln!(
+                    "  of which running the scene / building and encoding the recording, s: {}",
+                    phases.join(", ")
+                );
                 // The first is the scene's opening; the rest are switches.
                 let mut switches: Vec<f64> = total.iter().skip(1).copied().collect();
                 if !switches.is_empty() {

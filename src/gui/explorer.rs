@@ -29,6 +29,8 @@ pub struct Explorer {
     /// From request to result on the UI thread, per finished request (switch latency), newest
     /// last.
     pub latencies: Vec<Duration>,
+    /// Per successful request: running the scene and building/encoding its recording, s.
+    pub phase_times: Vec<(f64, f64)>,
     /// A one-line status (saved file, ...).
     pub status: String,
     /// Where "save" writes.
@@ -51,6 +53,7 @@ impl Explorer {
             current: None,
             error: None,
             latencies: Vec::new(),
+            phase_times: Vec::new(),
             status: String::new(),
             save_path,
             fresh: false,
@@ -112,6 +115,12 @@ impl Explorer {
     }
 
     /// Whether a request is running.
+    /// Repaints `ctx` as soon as a result is ready (the switch latency would otherwise include
+    /// up to one scheduled frame).
+    pub fn wake(&self, ctx: &egui::Context) {
+        self.worker.wake(ctx);
+    }
+
     pub fn is_computing(&self) -> bool {
         self.computing_since.is_some()
     }
@@ -130,6 +139,7 @@ impl Explorer {
                 .push(since.map_or(f.elapsed, |s| s.elapsed().max(f.elapsed)));
             match f.result {
                 Ok(c) => {
+                    self.phase_times.push((c.compute_s, c.encode_s));
                     self.shown_scenes.insert(c.scene.clone());
                     self.current = Some(c);
                     self.error = None;

@@ -10,6 +10,8 @@ use std::{
     time::{Duration, Instant},
 };
 
+use rerun::external::egui;
+
 use crate::{
     Progress, ProgressReading,
     record::Recorder,
@@ -28,6 +30,10 @@ pub struct Computed {
     pub entity_paths: Vec<String>,
     /// The recording as `.rrd` bytes (for saving and for the viewer).
     pub rrd: Vec<u8>,
+    /// Running the scene, s.
+    pub compute_s: f64,
+    /// Building and encoding the recording, s.
+    pub encode_s: f64,
 }
 
 /// The outcome of one request.
@@ -57,6 +63,9 @@ pub struct Worker {
     running: Option<Progress>,
     /// Time integrations kept across requests: ticking a method integrates that method only.
     cache: RunCache,
+    /// Woken when a result is ready, so the UI takes it at once instead of at its next
+    /// scheduled frame.
+    waker: Arc<std::sync::Mutex<Option<egui::Context>>>,
 }
 
 impl Default for Worker {
@@ -72,6 +81,8 @@ impl Worker {
         let (done_tx, done) = channel();
         let latest = Arc::new(AtomicU64::new(0));
         let latest_w = latest.clone();
+        let waker: Arc<std::sync::Mutex<Option<egui::Context>>> = Arc::default();
+        let waker_w = waker.clone();
         std::thread::Builder::new()
             .name("flexmodes-worker".into())
             .spawn(move || {
@@ -94,6 +105,11 @@ impl Worker {
                     if done_tx.send(finished).is_err() {
                         break;
                     }
+                    if let Ok(guard) = waker_w.lock()
+                        && let Some(ctx) = guard.as_ref()
+                    {
+                        ctx.request_repaint();
+                    }
                 }
             })
             .expect("spawning a thread");
@@ -103,6 +119,16 @@ impl Worker {
             latest,
             running: None,
             cache: RunCache::new(),
+            waker,
+        }
+    }
+
+    /// Repaints `ctx` whenever a result is ready.
+    pub fn wake(&self, ctx: &egui::Context) {
+        if let Ok(mut guard) = self.waker.lock()
+            && guard.is_none()
+        {
+            *guard = Some(ctx.clone());
         }
     }
 
@@ -163,16 +189,22 @@ fn compute(job: &Job, keep_user_layout: bool) -> Result<Computed, String> {
         msg
     };
     let s = scenes::find(scene).map_err(chain)?;
+    let start = Instant::now();
     let out = s.execute(options).map_err(chain)?;
+    let compute_s = start.elapsed().as_secs_f64();
     let recorder = Recorder {
         recording_suffix: Some(generation.to_string()),
         keep_user_layout,
     };
+    let start = Instant::now();
     let rrd = recorder.encode(&out).map_err(chain)?;
+    let encode_s = start.elapsed().as_secs_f64();
     Ok(Computed {
         scene: scene.clone(),
         entity_paths: out.visuals.iter().map(|v| v.path().to_string()).collect(),
         report: out.report,
         rrd,
+        compute_s,
+        encode_s,
     })
 }

@@ -120,7 +120,60 @@ struct Lines {
     label: Option<String>,
 }
 
+/// The strips of every frame of an animation, one row per time of `time`, in one
+/// `send_columns` call (the style is logged apart, once).
+fn send_strip_frames(
+    rec: &RecordingStream,
+    path: &str,
+    time: rerun::TimeColumn,
+    frames: Vec<Vec<Vec<[f32; 3]>>>,
+    planar: bool,
+) -> Result<()> {
+    let lengths: Vec<usize> = frames.iter().map(Vec::len).collect();
+    let all = frames.into_iter().flatten();
+    if planar {
+        let flat = all.map(|s| s.into_iter().map(|p| [p[0], -p[1]]).collect::<Vec<_>>());
+        rec.send_columns(
+            path,
+            [time],
+            rerun::LineStrips2D::update_fields()
+                .with_strips(flat)
+                .columns(lengths)?,
+        )?;
+    } else {
+        rec.send_columns(
+            path,
+            [time],
+            rerun::LineStrips3D::update_fields()
+                .with_strips(all)
+                .columns(lengths)?,
+        )?;
+    }
+    Ok(())
+}
+
 impl Lines {
+    /// Colour, radius and label without strips (logged once, static).
+    fn style(self, planar: bool) -> Box<dyn rerun::AsComponents> {
+        if planar {
+            let mut a = rerun::LineStrips2D::update_fields()
+                .with_colors([self.color])
+                .with_radii([self.radius]);
+            if let Some(l) = self.label {
+                a = a.with_labels([l]);
+            }
+            Box::new(a)
+        } else {
+            let mut a = rerun::LineStrips3D::update_fields()
+                .with_colors([self.color])
+                .with_radii([self.radius]);
+            if let Some(l) = self.label {
+                a = a.with_labels([l]);
+            }
+            Box::new(a)
+        }
+    }
+
     fn archetype(self, planar: bool) -> Box<dyn rerun::AsComponents> {
         if planar {
             let flat = self
@@ -198,24 +251,33 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                 format!("{path}/undeformed"),
                 undeformed.archetype(planar).as_ref(),
             )?;
-            for s in 0..PHASE_STEPS {
-                let a = (2.0 * std::f64::consts::PI * s as f64 / PHASE_STEPS as f64).sin();
-                let nodes: Vec<[f64; 3]> = geometry
-                    .nodes
-                    .iter()
-                    .zip(shape)
-                    .map(|(p, u)| [p[0] + a * u[0], p[1] + a * u[1], p[2] + a * u[2]])
-                    .collect();
-                rec.set_time_sequence("phase", s as i64);
-                let lines = Lines {
-                    strips: strips(geometry, &nodes),
-                    color: color(*c),
-                    radius: r,
-                    label: Some(label.clone()),
-                };
-                rec.log(path.as_str(), lines.archetype(planar).as_ref())?;
-            }
-            rec.reset_time();
+            // Colour, radius and label once; the strips of all phase steps in one call.
+            let frames: Vec<Vec<Vec<[f32; 3]>>> = (0..PHASE_STEPS)
+                .map(|s| {
+                    let a = (2.0 * std::f64::consts::PI * s as f64 / PHASE_STEPS as f64).sin();
+                    let nodes: Vec<[f64; 3]> = geometry
+                        .nodes
+                        .iter()
+                        .zip(shape)
+                        .map(|(p, u)| [p[0] + a * u[0], p[1] + a * u[1], p[2] + a * u[2]])
+                        .collect();
+                    strips(geometry, &nodes)
+                })
+                .collect();
+            let style = Lines {
+                strips: Vec::new(),
+                color: color(*c),
+                radius: r,
+                label: Some(label.clone()),
+            };
+            rec.log_static(path.as_str(), style.style(planar).as_ref())?;
+            send_strip_frames(
+                rec,
+                path,
+                rerun::TimeColumn::new_sequence("phase", 0..PHASE_STEPS as i64),
+                frames,
+                planar,
+            )?;
         }
         Visual::Offset { path, translation } => {
             rec.log_static(
@@ -238,16 +300,24 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                 .first()
                 .map(|p| radius(&geometry.with_nodes(p.clone())))
                 .unwrap_or(1e-3);
-            for (t, nodes) in times.iter().zip(positions) {
-                rec.set_duration_secs("sim_time", *t);
-                rec.log(
-                    path.as_str(),
-                    &rerun::LineStrips3D::new(strips(geometry, nodes))
-                        .with_colors([color(*c)])
-                        .with_radii([r]),
-                )?;
-            }
-            rec.reset_time();
+            let style = Lines {
+                strips: Vec::new(),
+                color: color(*c),
+                radius: r,
+                label: None,
+            };
+            rec.log_static(path.as_str(), style.style(false).as_ref())?;
+            let n = times.len().min(positions.len());
+            send_strip_frames(
+                rec,
+                path,
+                rerun::TimeColumn::new_duration_secs("sim_time", times[..n].iter().copied()),
+                positions[..n]
+                    .iter()
+                    .map(|nodes| strips(geometry, nodes))
+                    .collect(),
+                false,
+            )?;
         }
         Visual::Series {
             path,

@@ -667,10 +667,13 @@ fn explicit_step(model: &FeModel, opts: &SceneOptions) -> Result<Failure> {
                 nr.2,
                 critical / nr.3
             ),
-            "an explicit scheme is stable only for ω·h below ≈ 3.3 on the imaginary axis; the \
-             highest retained frequency sets h, which reduction lowers (GR and NR keep the \
-             stiff modes)"
-                .into(),
+            format!(
+                "Dormand–Prince 5(4) is stable on the imaginary axis (undamped modes) only for \
+                 ω·h ≤ {:.3}, so the highest retained frequency bounds the step; reduction \
+                 lowers it (the full model keeps the stiff modes; at 3× the growth is 1.44× per \
+                 step)",
+                crate::dynamics::imaginary_stability_limit()
+            ),
         ],
         visuals: chart.visuals(),
     })

@@ -670,7 +670,7 @@ pub fn run_scenario(
         )
     })?;
     // One lane per method, side by side along y (1.5 slab widths apart), each with its own
-    // undeformed ghost carried by its frame and a label at App. B node 16's starting place:
+    // undeformed ghost carried by its frame and a label above App. B node 16's starting place:
     // bodies of different methods never hide one another.
     let width = {
         let ys = geometry.nodes.iter().map(|p| p[1]);
@@ -693,10 +693,14 @@ pub fn run_scenario(
             0.0,
         ));
         if let Some(first) = sim.samples.first() {
+            // Above the body's highest point at the start, over node 16's corner.
             let p = system.node_position(0, label_node, &first.state);
+            let top = (0..geometry.nodes.len())
+                .map(|j| system.node_position(0, j, &first.state).z)
+                .fold(f64::MIN, f64::max);
             visuals.push(Visual::Label3D {
                 path: format!("{lane}/label"),
-                position: [p.x, p.y, p.z - 0.3 * width],
+                position: [p.x, p.y, top + 0.3 * width],
                 text: m.id().to_uppercase(),
                 color: method_color(*m),
             });
