@@ -142,14 +142,15 @@ impl Controls {
             .iter()
             .filter_map(|id| Method::from_id(id))
             .collect::<Vec<_>>();
-        if methods.is_empty() {
+        // A scene without method choices (the failures scene) runs with its own settings.
+        if methods.is_empty() && !c.methods.is_empty() {
             return Err(Error::InvalidOption {
                 scene: self.scene.clone(),
                 reason: "select at least one method".into(),
             });
         }
         Ok(SceneOptions {
-            methods: Some(methods),
+            methods: (!c.methods.is_empty()).then_some(methods),
             modes: c.modes.map(|_| self.modes),
             boundary,
             axes: if self.axes.is_empty() {
