@@ -37,7 +37,7 @@ use crate::{
         SolverPath, craig_bampton, craig_bampton_on, eitelberg, guyan, modal_truncation,
         mode_condensation_route, no_reduction,
     },
-    report::{Report, markdown_table, sig, sig_vec},
+    report::{Report, Table, sig, sig_vec},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -138,10 +138,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         visuals.extend(failure.visuals);
     }
 
-    report.table = markdown_table(
+    report.table = report.add_table(Table::from_text(
         &["failure", "what happened (measured)", "why"],
         &lines.iter().map(|l| l.to_vec()).collect::<Vec<_>>(),
-    );
+    ));
     // The panel is narrow: one section per failure instead of the three-column table.
     let sections: String = lines
         .iter()
