@@ -16,7 +16,7 @@ use crate::{
         RIGID_BODY_HZ, StaticLoadCase, elastic_hz, full_static_response, lowest_free_free_modes,
         reduced_hz, relative_error, ritz_static_response,
     },
-    bench::{MODE_SWEEP, pareto_flags},
+    bench::{MODE_SWEEP, pareto_flags, three_digits},
     fem::{SlabParameters, slab},
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::{Method, ModeSelection, ReductionParameters, reduce},
@@ -210,15 +210,6 @@ pub fn bench_modes(
     });
     let recording = charts(&points, &table);
     Ok((json, table, recording))
-}
-
-/// `x` rounded to three significant digits.
-pub fn three_digits(x: f64) -> f64 {
-    if x == 0.0 || !x.is_finite() {
-        return x;
-    }
-    let f = 10f64.powi(2 - x.abs().log10().floor() as i32);
-    (x * f).round() / f
 }
 
 /// Error against offline cost (log–log) per method through its kept-mode counts with the
