@@ -17,6 +17,7 @@ use crate::{
         reduced_hz, relative_error, ritz_static_response,
     },
     bench::{MODE_SWEEP, pareto_flags, three_digits},
+    dynamics::STANDARD_GRAVITY,
     fem::{SlabParameters, slab},
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::{Method, ModeSelection, ReductionParameters, reduce},
@@ -29,8 +30,6 @@ use crate::{
 
 /// Elastic free-free frequencies compared with the full model's.
 pub const COMPARED_MODES: usize = 6;
-/// Standard gravity, m/s² (App. B).
-const GRAVITY: f64 = 9.80665;
 /// Repeats of each reduction below this many DOF (the median is reported).
 const REPEAT_BELOW_DOFS: usize = 2000;
 const REPEATS: usize = 3;
@@ -83,7 +82,7 @@ pub fn bench_modes(
             available: full_hz.len(),
         });
     }
-    let case = StaticLoadCase::weight(&model, &held_at_six(&model)?, 2, -GRAVITY);
+    let case = StaticLoadCase::weight(&model, &held_at_six(&model)?, 2, -STANDARD_GRAVITY);
     let start = Instant::now();
     let full_sag = full_static_response(&model, &case)?;
     let reference_static_s = start.elapsed().as_secs_f64();

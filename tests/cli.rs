@@ -353,13 +353,7 @@ fn bench_reports_speed_and_accuracy_points() {
     // The Pareto flags, recomputed: a point is on the front exactly when no other point is at
     // once no slower and no less accurate, and better in one; errors equal to three
     // significant digits count as equal (CB and MC differ by round-off only).
-    let three = |x: f64| {
-        if x == 0.0 {
-            return x;
-        }
-        let f = 10f64.powi(2 - x.abs().log10().floor() as i32);
-        (x * f).round() / f
-    };
+    let three = flexmodes::bench::three_digits;
     let cost_error: Vec<(f64, f64)> = points
         .iter()
         .map(|p| {
@@ -652,13 +646,7 @@ fn bench_slab_modes_reports_offline_cost_against_frequency_and_static_error() {
     assert!(err("cb", 12, "freq_rel_error") <= err("cb", 6, "freq_rel_error"));
     assert!(err("cb", 6, "freq_rel_error") <= err("cb", 2, "freq_rel_error"));
     // The Pareto flags, recomputed with errors compared to three significant digits.
-    let three = |x: f64| {
-        if x == 0.0 {
-            return x;
-        }
-        let f = 10f64.powi(2 - x.abs().log10().floor() as i32);
-        (x * f).round() / f
-    };
+    let three = flexmodes::bench::three_digits;
     let cost_error: Vec<(f64, f64)> = points
         .iter()
         .map(|p| {

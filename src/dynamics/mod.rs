@@ -24,4 +24,4 @@ pub use integrator::{
 };
 pub use prescribed::Motion;
 pub use rotation::{euler_parameters_from_matrix, rotation_matrix, skew};
-pub use system::{State, System};
+pub use system::{STANDARD_GRAVITY, State, System};

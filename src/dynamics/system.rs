@@ -8,6 +8,8 @@ use super::{
 };
 use crate::{Error, Result};
 
+/// Standard gravity, m/s² (App. B, §7.2).
+pub const STANDARD_GRAVITY: f64 = 9.80665;
 /// Positions $q$ (per body r, p, z) and velocities $v$ (per body $\dot r$, $\bar\omega$, $\dot z$).
 #[derive(Debug, Clone, PartialEq)]
 pub struct State {
@@ -91,7 +93,7 @@ impl System {
         Self {
             bodies,
             constraints,
-            gravity: Vector3::new(0.0, 0.0, -9.80665),
+            gravity: Vector3::new(0.0, 0.0, -STANDARD_GRAVITY),
             nodal_forces: Vec::new(),
             q_off,
             v_off,

@@ -153,12 +153,29 @@ fn send_strip_frames(
 }
 
 impl Lines {
-    /// Colour, radius and label without strips (logged once, static).
+    /// Colour, radius and label without strips (logged once, static, beside strips sent as
+    /// columns).
     fn style(self, planar: bool) -> Box<dyn rerun::AsComponents> {
+        self.build(planar, false)
+    }
+
+    /// Strips with their colour, radius and label.
+    fn archetype(self, planar: bool) -> Box<dyn rerun::AsComponents> {
+        self.build(planar, true)
+    }
+
+    fn build(self, planar: bool, with_strips: bool) -> Box<dyn rerun::AsComponents> {
         if planar {
             let mut a = rerun::LineStrips2D::update_fields()
                 .with_colors([self.color])
                 .with_radii([self.radius]);
+            if with_strips {
+                a = a.with_strips(
+                    self.strips
+                        .iter()
+                        .map(|s| s.iter().map(|p| [p[0], -p[1]]).collect::<Vec<_>>()),
+                );
+            }
             if let Some(l) = self.label {
                 a = a.with_labels([l]);
             }
@@ -167,30 +184,9 @@ impl Lines {
             let mut a = rerun::LineStrips3D::update_fields()
                 .with_colors([self.color])
                 .with_radii([self.radius]);
-            if let Some(l) = self.label {
-                a = a.with_labels([l]);
+            if with_strips {
+                a = a.with_strips(self.strips);
             }
-            Box::new(a)
-        }
-    }
-
-    fn archetype(self, planar: bool) -> Box<dyn rerun::AsComponents> {
-        if planar {
-            let flat = self
-                .strips
-                .iter()
-                .map(|s| s.iter().map(|p| [p[0], -p[1]]).collect::<Vec<_>>());
-            let mut a = rerun::LineStrips2D::new(flat)
-                .with_colors([self.color])
-                .with_radii([self.radius]);
-            if let Some(l) = self.label {
-                a = a.with_labels([l]);
-            }
-            Box::new(a)
-        } else {
-            let mut a = rerun::LineStrips3D::new(self.strips)
-                .with_colors([self.color])
-                .with_radii([self.radius]);
             if let Some(l) = self.label {
                 a = a.with_labels([l]);
             }

@@ -19,7 +19,8 @@ use super::{
     SceneInfo, SceneOptions, SceneOutput,
     mode_visuals::{REFERENCE, method_color},
     slab_sims::{
-        PROBE_NODE, Scenario, default_boundary, end_time, probe_history, slab_body, slab_system,
+        PROBE_NODE, Scenario, default_boundary, end_time, probe_history, reduction_nodes,
+        slab_body, slab_system,
     },
 };
 use crate::{
@@ -399,7 +400,8 @@ fn mode_condensation_cost() -> Result<Failure> {
 
 /// The mass matrix of Guyan's masters as a nodal mass matrix under mean axes.
 fn guyan_mass_with_mean_axes(model: &FeModel) -> Result<Failure> {
-    let masters = [16, 18, 28, 30, 5, 11];
+    // §7.2's Guyan masters: the four corners and App. B's nodes 5 and 11.
+    let masters = reduction_nodes(model, Method::Guyan, &default_boundary(model));
     let g = guyan(model, &masters)?;
     // Columns node by node, x y z: the condensed model's nodes are the masters.
     for (c, col) in g.columns.iter().enumerate() {
@@ -797,7 +799,7 @@ fn standing(points: &[[f64; 3]]) -> Vec<[f64; 3]> {
 
 /// Modal truncation and Craig–Bampton following a boundary displacement of the slab.
 fn modal_truncation_boundary(model: &FeModel) -> Result<Failure> {
-    let boundary = [16, 18, 28, 30];
+    let boundary = default_boundary(model);
     let modes = ModeSelection::Count(KEPT_MODES);
     // Every boundary DOF held, node 30 moved 1 m up, no load.
     let moved = model.dofs_of_nodes(&[MOVED_NODE])?[2];
