@@ -42,6 +42,46 @@ pub enum Error {
     #[error("invalid boundary set {nodes:?}: {reason}")]
     InvalidBoundary { nodes: Vec<usize>, reason: String },
 
+    /// A DOF set (boundary, held, interface, r-set, inputs, outputs) naming a DOF that does
+    /// not exist or naming one twice.
+    #[error("invalid {set} DOF set: {reason}")]
+    InvalidDofSet { set: String, reason: String },
+
+    /// A method asked of the generic [`reduce`](crate::reduction::reduce) entry point that
+    /// needs more than a boundary set and a mode count.
+    #[error("{method} needs {needs}")]
+    MethodNeedsContext { method: String, needs: String },
+
+    /// A node that does not carry the named DOF (a rotation of a solid's node, z of a planar
+    /// body).
+    #[error("node {node} of the {body} has no {dof} DOF (its nodes carry {carried})")]
+    NoSuchDof {
+        node: usize,
+        dof: String,
+        body: String,
+        carried: String,
+    },
+
+    /// MacNeal–Rubin's r-set (Spanos–Tsuha Eq. 11) must restrain every rigid motion with
+    /// exactly as many DOF as there are rigid motions (statically determinate).
+    #[error("invalid MacNeal-Rubin r-set {dofs}: {reason}")]
+    InvalidRSet { dofs: String, reason: String },
+
+    /// Balanced truncation of a system whose poles are not all strictly stable.
+    #[error(
+        "balanced truncation needs an asymptotically stable (damped) system: {reason}; add \
+         modal damping or a damping matrix"
+    )]
+    UndampedSystem { reason: String },
+
+    /// A frequency band that contains none of the model's modes.
+    #[error("the band {low_hz} to {high_hz} Hz contains no mode of the {what}")]
+    EmptyBand {
+        low_hz: f64,
+        high_hz: f64,
+        what: String,
+    },
+
     /// $K_{ii}$ is singular: the boundary DOF do not restrain every rigid-body motion.
     #[error(
         "K_ii is singular for boundary nodes {boundary_nodes:?}: {rank_deficiency} rigid-body \

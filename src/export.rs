@@ -78,7 +78,12 @@ pub fn export(
                     let (node, dof) = model.dof_node(d);
                     json!({ "node": node, "dof": dof.name(), "index": d + 1 })
                 }),
-                "hz": match c.kind { ColumnKind::Normal { hz } => Some(hz), _ => None },
+                "hz": match c.kind {
+                    ColumnKind::Normal { hz }
+                    | ColumnKind::FreeInterface { hz }
+                    | ColumnKind::Loaded { hz } => Some(hz),
+                    _ => None,
+                },
             })
         })
         .collect();
@@ -190,6 +195,11 @@ fn kind_name(k: &ColumnKind) -> &'static str {
         ColumnKind::CondensedBoundary => "condensed_boundary",
         ColumnKind::EitelbergBoundary => "eitelberg_boundary",
         ColumnKind::Normal { .. } => "normal",
+        ColumnKind::FreeInterface { .. } => "free_interface",
+        ColumnKind::Residual => "residual",
+        ColumnKind::Loaded { .. } => "loaded",
+        ColumnKind::Krylov { .. } => "krylov",
+        ColumnKind::Balanced { .. } => "balanced",
     }
 }
 

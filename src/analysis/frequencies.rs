@@ -37,35 +37,7 @@ pub fn free_free_modes(model: &FeModel) -> Result<GeneralizedEigen> {
 /// eigenproblem for small bodies, shift-invert Lanczos on $K - \sigma M$ with a small negative
 /// shift (K itself is singular) above [`DENSE_INTERIOR_LIMIT`] DOF.
 pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<GeneralizedEigen> {
-    let n = model.dof_count();
-    let rigid = model.dofs.rigid_body_count();
-    let wanted = (rigid + elastic).min(n);
-    if n <= DENSE_INTERIOR_LIMIT {
-        let all = free_free_modes(model)?;
-        return Ok(GeneralizedEigen {
-            values: all.values[..wanted].to_vec(),
-            vectors: all.vectors.subcols(0, wanted).to_owned(),
-        });
-    }
-    let sigma = negative_shift(&model.k, &model.m);
-    let shifted = model.k.shifted(&model.m, sigma);
-    let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
-    let order = nested_dissection(shifted.as_faer(), &coords);
-    let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
-    let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
-    let (eig, _) = lowest_modes(
-        &model.k,
-        &model.m,
-        &factor,
-        sigma,
-        wanted,
-        (model.rigid_motions == RigidMotions::FromGeometry)
-            .then(|| model.rigid_body_modes())
-            .as_ref()
-            .map(|r| r.as_ref()),
-        &PartialEigenParameters::default(),
-    )?;
-    Ok(eig)
+    crate::reduction::lowest_free_modes(model, elastic)
 }
 
 /// Elastic (non-rigid) frequencies of an eigen-solution, Hz, ascending.

@@ -112,6 +112,24 @@ impl FeModel {
             })
     }
 
+    /// The DOF index of a 1-based node's DOF (translation or rotation); a node without it is
+    /// [`Error::NoSuchDof`].
+    pub fn node_dof(&self, node: usize, dof: super::NodeDof) -> Result<usize> {
+        let i = self.node_index(node)?;
+        self.dofs.index(i, dof).ok_or_else(|| Error::NoSuchDof {
+            node,
+            dof: dof.name(),
+            body: self.name.clone(),
+            carried: self
+                .dofs
+                .node_dofs()
+                .iter()
+                .map(|d| d.name())
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+    }
+
     /// All DOF of the given 1-based nodes, in the given node order; rejects duplicates.
     pub fn dofs_of_nodes(&self, nodes: &[usize]) -> Result<Vec<usize>> {
         let per = self.dofs.per_node();

@@ -24,6 +24,29 @@ pub enum ColumnKind {
         /// Fixed-interface natural frequency, Hz.
         hz: f64,
     },
+    /// A free-interface normal mode (a rigid-body mode at 0 Hz), MacNeal–Rubin (Spanos–Tsuha
+    /// Eq. 8).
+    FreeInterface {
+        /// Free-free natural frequency, Hz (0 for a rigid-body mode).
+        hz: f64,
+    },
+    /// A residual-flexibility mode for a unit force on one interface DOF (Spanos–Tsuha Eq. 12).
+    Residual,
+    /// A loaded-interface normal mode, Benfield–Hruda (Spanos–Tsuha Eq. 18).
+    Loaded {
+        /// Natural frequency of the loaded component, Hz.
+        hz: f64,
+    },
+    /// A vector of a block Krylov space (Witteveen Eq. 21); block 0 is the static response.
+    Krylov {
+        /// Block index j of $P^j R$.
+        block: usize,
+    },
+    /// A balanced-truncation vector with its (position) gramian value.
+    Balanced {
+        /// The eigenvalue of the gramian block the vector belongs to.
+        value: f64,
+    },
 }
 
 /// One column of Ψ.

@@ -21,17 +21,29 @@ pub enum Method {
     ModeCondensation,
     /// `eit`: Eitelberg's method (§6.6, App. C).
     Eitelberg,
+    /// `mr`: MacNeal–Rubin, free-interface plus residual modes (Spanos–Tsuha Eqs. 8–17).
+    MacNealRubin,
+    /// `bh`: Benfield–Hruda, loaded-interface modes (Spanos–Tsuha Eqs. 18–22).
+    BenfieldHruda,
+    /// `mm`: second-order Krylov moment matching (Witteveen Eq. 21).
+    MomentMatching,
+    /// `bt`: balanced truncation (Spanos–Tsuha Eqs. 35–42; Witteveen §3.3).
+    BalancedTruncation,
 }
 
 impl Method {
     /// Every method, in display order.
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 10] = [
         Method::NoReduction,
         Method::Guyan,
         Method::ModalTruncation,
         Method::CraigBampton,
         Method::ModeCondensation,
         Method::Eitelberg,
+        Method::MacNealRubin,
+        Method::BenfieldHruda,
+        Method::MomentMatching,
+        Method::BalancedTruncation,
     ];
 
     /// The stable id used in the CLI, reports and entity paths.
@@ -43,6 +55,10 @@ impl Method {
             Method::CraigBampton => "cb",
             Method::ModeCondensation => "mc",
             Method::Eitelberg => "eit",
+            Method::MacNealRubin => "mr",
+            Method::BenfieldHruda => "bh",
+            Method::MomentMatching => "mm",
+            Method::BalancedTruncation => "bt",
         }
     }
 
@@ -55,6 +71,10 @@ impl Method {
             Method::CraigBampton => "Craig-Bampton",
             Method::ModeCondensation => "mode condensation",
             Method::Eitelberg => "Eitelberg",
+            Method::MacNealRubin => "MacNeal-Rubin",
+            Method::BenfieldHruda => "Benfield-Hruda",
+            Method::MomentMatching => "Krylov moment matching",
+            Method::BalancedTruncation => "balanced truncation",
         }
     }
 
@@ -147,5 +167,21 @@ pub fn reduce(model: &FeModel, method: Method, p: &ReductionParameters) -> Resul
             mode_condensation::mode_condensation_on(model, &p.boundary_nodes, p.modes, p.solver)
         }
         Method::Eitelberg => Ok(eitelberg(model, &p.boundary_nodes, &Default::default())?.basis),
+        Method::MacNealRubin => Err(Error::MethodNeedsContext {
+            method: method.name().into(),
+            needs: "an r-set besides the interface (use `macneal_rubin`)".into(),
+        }),
+        Method::BenfieldHruda => Err(Error::MethodNeedsContext {
+            method: method.name().into(),
+            needs: "the interface loading of the adjacent components (use `benfield_hruda`)".into(),
+        }),
+        Method::MomentMatching => Err(Error::MethodNeedsContext {
+            method: method.name().into(),
+            needs: "input DOF and a block count (use `moment_matching`)".into(),
+        }),
+        Method::BalancedTruncation => Err(Error::MethodNeedsContext {
+            method: method.name().into(),
+            needs: "inputs, outputs and damping (use `balanced_truncation_basis`)".into(),
+        }),
     }
 }

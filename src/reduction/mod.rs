@@ -2,30 +2,38 @@
 //! dense linear algebra for small bodies and sparse for refined meshes.
 
 mod basis;
+mod benfield_hruda;
 mod craig_bampton;
 mod eitelberg;
+mod free_modes;
 mod full;
 mod guyan;
+mod macneal_rubin;
 mod method;
 mod modal_truncation;
 mod mode_condensation;
+mod moment_matching;
 mod nodal_fixed;
 mod partition;
 
 pub use basis::{Basis, Column, ColumnKind};
+pub use benfield_hruda::{InterfaceLoading, LoadedInterface, benfield_hruda};
 pub use craig_bampton::{craig_bampton, craig_bampton_from, craig_bampton_on};
 pub use eitelberg::{
     EITELBERG_DOF_LIMIT, EitelbergParameters, EitelbergReduction, StateSpaceReduction, eitelberg,
     eitelberg_state_space,
 };
+pub use free_modes::{lowest_free_modes, mass_normalised_rigid_modes, selected_free_modes};
 pub use full::no_reduction;
 pub use guyan::{guyan, guyan_on};
+pub use macneal_rubin::{MacNealRubinParameters, macneal_rubin};
 pub use method::{Method, ModeSelection, ReductionParameters, SolverPath, reduce};
 pub use modal_truncation::{modal_truncation, modal_truncation_from, modal_truncation_on};
 pub use mode_condensation::{
     MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, mode_condensation, mode_condensation_from,
     mode_condensation_on, mode_condensation_route,
 };
+pub use moment_matching::{Deflation, MomentMatching, MomentMatchingParameters, moment_matching};
 pub use nodal_fixed::{NodalFixedAxes, TableConfiguration};
 pub use partition::{
     COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, InteriorProblem, Partition, ReductionStatistics,

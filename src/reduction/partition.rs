@@ -15,15 +15,19 @@ use crate::{
     },
 };
 
-/// DOF sets b (boundary) and i (interior) of Eq. (6.1).
+/// DOF sets b (boundary) and i (interior) of Eq. (6.1), and the DOF held at zero (a clamp)
+/// that belong to neither: a basis has zero rows there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Partition {
-    /// Boundary nodes, 1-based, in the order given.
+    /// Boundary nodes, 1-based, in the order given (for a DOF-wise boundary: the nodes its
+    /// DOF belong to).
     pub boundary_nodes: Vec<usize>,
     /// Boundary DOF indices (set b), node by node.
     pub b: Vec<usize>,
     /// Interior DOF indices (set i), ascending.
     pub i: Vec<usize>,
+    /// DOF held at zero (ascending): neither boundary nor interior.
+    pub held: Vec<usize>,
 }
 
 impl Partition {
@@ -53,6 +57,41 @@ impl Partition {
             boundary_nodes: boundary_nodes.to_vec(),
             b,
             i,
+            held: Vec::new(),
+        })
+    }
+
+    /// Splits `model`'s DOF into the boundary DOF `b` (in the order given, e.g. Witteveen's
+    /// seven input/output DOF), the DOF `held` at zero (a clamp) and the interior: the rest.
+    /// A DOF out of range or listed twice is [`Error::InvalidDofSet`].
+    pub fn from_dofs(model: &FeModel, b: &[usize], held: &[usize]) -> Result<Self> {
+        let n = model.dof_count();
+        let mut role = vec![0u8; n];
+        check_dof_set(model, "boundary", b, &mut role, 1)?;
+        if !held.is_empty() {
+            check_dof_set(model, "held", held, &mut role, 2)?;
+        }
+        let i: Vec<usize> = (0..n).filter(|&d| role[d] == 0).collect();
+        if i.is_empty() {
+            return Err(Error::InvalidDofSet {
+                set: "boundary".into(),
+                reason: "every DOF is a boundary or held DOF, nothing is left to reduce".into(),
+            });
+        }
+        let mut boundary_nodes: Vec<usize> = Vec::new();
+        for &d in b {
+            let node = model.dof_node(d).0;
+            if !boundary_nodes.contains(&node) {
+                boundary_nodes.push(node);
+            }
+        }
+        let mut held = held.to_vec();
+        held.sort_unstable();
+        Ok(Self {
+            boundary_nodes,
+            b: b.to_vec(),
+            i,
+            held,
         })
     }
 
@@ -61,7 +100,7 @@ impl Partition {
     pub fn assemble(&self, top: MatRef<'_, f64>, bottom: MatRef<'_, f64>) -> Mat<f64> {
         assert_eq!(top.ncols(), bottom.ncols());
         assert_eq!((top.nrows(), bottom.nrows()), (self.b.len(), self.i.len()));
-        let n = self.b.len() + self.i.len();
+        let n = self.b.len() + self.i.len() + self.held.len();
         let mut psi = Mat::zeros(n, top.ncols());
         for c in 0..top.ncols() {
             for (r, &dof) in self.b.iter().enumerate() {
@@ -132,7 +171,12 @@ impl<'a> InteriorProblem<'a> {
     /// Splits `model` by `boundary_nodes` and extracts the blocks; `path` chooses dense or
     /// sparse linear algebra.
     pub fn new(model: &'a FeModel, boundary_nodes: &[usize], path: SolverPath) -> Result<Self> {
-        let partition = Partition::new(model, boundary_nodes)?;
+        Self::on(model, Partition::new(model, boundary_nodes)?, path)
+    }
+
+    /// The interior problem of a given split (for instance a DOF-wise one with held DOF,
+    /// [`Partition::from_dofs`]).
+    pub fn on(model: &'a FeModel, partition: Partition, path: SolverPath) -> Result<Self> {
         let sparse = match path {
             SolverPath::Dense => false,
             SolverPath::Sparse => true,
@@ -373,8 +417,10 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
         }
     }
     let size = model.size().max(f64::MIN_POSITIVE);
-    let r_b = Mat::from_fn(p.b.len(), rigid, |row, col| {
-        let (node, dof) = model.dof_node(p.b[row]);
+    // Held DOF restrain as boundary DOF do.
+    let restrained: Vec<usize> = p.b.iter().chain(&p.held).copied().collect();
+    let r_b = Mat::from_fn(restrained.len(), rigid, |row, col| {
+        let (node, dof) = model.dof_node(restrained[row]);
         let x = model.nodes[node - 1];
         let r = [
             (x[0] - c[0]) / size,
@@ -459,6 +505,46 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
         )
     };
     Ok(free.iter().map(|&k| describe(k)).collect())
+}
+
+/// Checks a DOF set against the body and against the sets already marked in `taken` (entry
+/// per DOF: 0 free, otherwise the mark of the set that took it), then marks it with `mark`.
+pub(crate) fn check_dof_set(
+    model: &FeModel,
+    set: &str,
+    dofs: &[usize],
+    taken: &mut [u8],
+    mark: u8,
+) -> Result<()> {
+    let n = model.dof_count();
+    if dofs.is_empty() {
+        return Err(Error::InvalidDofSet {
+            set: set.into(),
+            reason: "it is empty".into(),
+        });
+    }
+    for &d in dofs {
+        if d >= n {
+            return Err(Error::InvalidDofSet {
+                set: set.into(),
+                reason: format!("DOF {d} is out of range: the {} has {n} DOF", model.name),
+            });
+        }
+        if taken[d] == mark {
+            return Err(Error::InvalidDofSet {
+                set: set.into(),
+                reason: format!("{} is listed twice", model.dof_label(d)),
+            });
+        }
+        if taken[d] != 0 {
+            return Err(Error::InvalidDofSet {
+                set: set.into(),
+                reason: format!("{} already belongs to another set", model.dof_label(d)),
+            });
+        }
+        taken[d] = mark;
+    }
+    Ok(())
 }
 
 /// Column descriptions of the boundary columns (one per boundary DOF).

@@ -18,6 +18,10 @@ pub fn method_color(m: Method) -> Color {
         Method::CraigBampton => [60, 130, 240, 255],
         Method::ModeCondensation => [60, 200, 110, 255],
         Method::Eitelberg => [190, 90, 220, 255],
+        Method::MacNealRubin => [240, 110, 170, 255],
+        Method::BenfieldHruda => [40, 190, 200, 255],
+        Method::MomentMatching => [250, 210, 60, 255],
+        Method::BalancedTruncation => [150, 110, 70, 255],
     }
 }
 

@@ -1,0 +1,128 @@
+//! Free-interface (free-free) modes of a component: the rigid-body modes, mass-normalised from
+//! the geometry, and the lowest elastic modes (Spanos–Tsuha Eqs. 8–10).
+
+use faer::{Mat, MatRef, Side};
+
+use super::{COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, ModeSelection};
+use crate::{
+    Error, Result,
+    fem::{FeModel, RigidMotions},
+    linalg::{
+        GeneralizedEigen, PartialEigenParameters, SymbolicFactor, SymmetricFactor,
+        generalized_eigen, lowest_modes, negative_shift, nested_dissection,
+    },
+};
+
+/// The rigid-body modes and the `elastic` lowest elastic free-free modes, ascending and
+/// mass-normalised: the complete dense eigenproblem up to [`DENSE_INTERIOR_LIMIT`] DOF,
+/// shift-invert Lanczos on $K - \sigma M$ with a small negative shift above (K itself is
+/// singular).
+pub fn lowest_free_modes(model: &FeModel, elastic: usize) -> Result<GeneralizedEigen> {
+    let n = model.dof_count();
+    let rigid = model.dofs.rigid_body_count();
+    let wanted = (rigid + elastic).min(n);
+    if n <= DENSE_INTERIOR_LIMIT {
+        let all = generalized_eigen(
+            model.k_dense().as_ref(),
+            model.m_dense().as_ref(),
+            "free-free",
+        )?;
+        return Ok(first(&all, wanted));
+    }
+    let sigma = negative_shift(&model.k, &model.m);
+    let shifted = model.k.shifted(&model.m, sigma);
+    let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
+    let order = nested_dissection(shifted.as_faer(), &coords);
+    let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
+    let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
+    let (eig, _) = lowest_modes(
+        &model.k,
+        &model.m,
+        &factor,
+        sigma,
+        wanted,
+        (model.rigid_motions == RigidMotions::FromGeometry)
+            .then(|| model.rigid_body_modes())
+            .as_ref()
+            .map(|r| r.as_ref()),
+        &PartialEigenParameters::default(),
+    )?;
+    Ok(eig)
+}
+
+/// The free-interface modes a selection keeps: the rigid-body modes plus `Count(k)` elastic
+/// modes or every elastic mode up to a frequency (doubling the partial solve until the cut-off
+/// is passed).
+pub fn selected_free_modes(model: &FeModel, selection: ModeSelection) -> Result<GeneralizedEigen> {
+    let rigid = model.dofs.rigid_body_count();
+    let n = model.dof_count();
+    match selection {
+        ModeSelection::Count(k) => {
+            if rigid + k > n {
+                return Err(Error::TooManyModes {
+                    requested: k,
+                    available: n - rigid,
+                });
+            }
+            lowest_free_modes(model, k)
+        }
+        ModeSelection::UpToHz(_) => {
+            selection.count(&[])?;
+            let mut wanted = 8usize;
+            loop {
+                let wanted_now = wanted.min(n - rigid);
+                let eig = lowest_free_modes(model, wanted_now)?;
+                let hz = eig.hz();
+                let kept = rigid + selection.count(&hz[rigid..])?;
+                if kept < rigid + wanted_now || wanted_now == n - rigid {
+                    return Ok(first(&eig, kept));
+                }
+                if n > COMPLETE_EIGEN_LIMIT && 2 * wanted > n / 4 {
+                    return Err(Error::TooManyModes {
+                        requested: 2 * wanted,
+                        available: n / 4,
+                    });
+                }
+                wanted *= 2;
+            }
+        }
+    }
+}
+
+/// The body's rigid-body motions made mass-orthonormal, $\Phi_r^T M \Phi_r = I$ (the
+/// $\Phi_{nr}$ of Spanos–Tsuha Eq. 10, exact rather than from an eigensolver).
+pub fn mass_normalised_rigid_modes(model: &FeModel) -> Result<Mat<f64>> {
+    if model.rigid_motions != RigidMotions::FromGeometry {
+        return Err(Error::InvalidRSet {
+            dofs: String::new(),
+            reason: format!(
+                "the rigid motions of the {} are not known from its geometry",
+                model.name
+            ),
+        });
+    }
+    let r = model.rigid_body_modes();
+    orthonormalise_in(r.as_ref(), model.m.mul(r.as_ref()).as_ref())
+}
+
+/// $X L^{-T}$ with $X^T (MX) = LL^T$: the columns of `x` made orthonormal in the inner product
+/// whose products with them are `mx`.
+pub(crate) fn orthonormalise_in(x: MatRef<'_, f64>, mx: MatRef<'_, f64>) -> Result<Mat<f64>> {
+    let gram = x.transpose() * mx;
+    let llt = gram
+        .llt(Side::Lower)
+        .map_err(|_| Error::NotPositiveDefinite {
+            matrix: "Gram matrix of the rigid-body modes".into(),
+        })?;
+    // Φ = X L^{-T}: solve L Φᵀ = Xᵀ.
+    let mut t = x.transpose().to_owned();
+    llt.L().solve_lower_triangular_in_place(t.as_mut());
+    Ok(t.transpose().to_owned())
+}
+
+fn first(all: &GeneralizedEigen, kept: usize) -> GeneralizedEigen {
+    GeneralizedEigen {
+        values: all.values[..kept].to_vec(),
+        vectors: all.vectors.subcols(0, kept).to_owned(),
+    }
+}
