@@ -2,7 +2,9 @@
 //! mean-axis evaluation (§8.4), simulation measures (§7.2, §5.3.3), static responses.
 
 mod frequencies;
+mod frequency_response;
 mod mean_axes;
+mod mode_pairing;
 mod profiles;
 mod simulation_metrics;
 mod static_response;
@@ -11,7 +13,9 @@ pub use frequencies::{
     RIGID_BODY_HZ, ZeroEnergyCount, count_zero_energy_modes, elastic_hz, free_free_modes,
     lowest_free_free_modes, reduced_hz, reduced_modes, zero_energy_threshold_hz,
 };
+pub use frequency_response::{FrequencyResponse, band_frequencies, modes_in_band};
 pub use mean_axes::{MeanAxesEvaluation, evaluate_with_mean_axes, rigid_modes_about_mass_centre};
+pub use mode_pairing::{MAC_ACCURATE, ModePair, mac, mac_matrix, pair_modes};
 pub use profiles::{PROFILE_DELTA, ProfileFit, fit_given_modal_coordinates, fit_least_squares};
 pub use simulation_metrics::{
     max_energy_drift, max_position_violation, max_until, mirror_defect_history,

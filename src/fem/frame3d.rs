@@ -14,11 +14,11 @@ use crate::{
 /// A homogeneous section and material of a frame.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FrameSection {
-    /// Young's modulus, Pa.
+    /// Young's modulus, Pa (N/mm² in mm–t–s units).
     pub youngs_modulus: f64,
-    /// Shear modulus, Pa.
+    /// Shear modulus, Pa (N/mm²).
     pub shear_modulus: f64,
-    /// Density, kg/m³.
+    /// Density, kg/m³ (t/mm³).
     pub density: f64,
     /// Area, m².
     pub area: f64,
@@ -156,21 +156,66 @@ fn local_axes(a: [f64; 3], b: [f64; 3], up: [f64; 3]) -> Result<([[f64; 3]; 3], 
     Ok(([x, y, z], l))
 }
 
-/// A frame body: nodes (m), elements as 0-based node pairs with their `up` vectors, one
-/// section. Six DOF per node. Lumped mass, isotropic per node: each end of an element gets
-/// half its mass $\rho A L / 2$ on x, y, z, and on each rotation the end's share of the
-/// transverse rotary inertia $\rho A L^3 / 24$ plus a third of its polar inertia
-/// $\rho (I_y + I_z) L / 2$ (so M is positive definite).
+/// The rotary inertia one end of an element carries, about the global x, y, z axes
+/// (kg·m²): in local axes the half element's polar inertia $\rho (I_y + I_z) L / 2$ about its
+/// axis and $\rho I L / 2 + \rho A L^3 / 24$ (section plus the half's mass about the node)
+/// about each transverse axis, rotated to global axes, of which the lumped mass keeps the
+/// diagonal (exact for elements along a global axis).
+fn rotary_inertia_diagonal(
+    a: [f64; 3],
+    b: [f64; 3],
+    up: [f64; 3],
+    s: &FrameSection,
+) -> Result<[f64; 3]> {
+    let (rot, l) = local_axes(a, b, up)?;
+    let rho = s.density;
+    let transverse = rho * s.area * l.powi(3) / 24.0;
+    let local = [
+        rho * (s.iy + s.iz) * l / 2.0,
+        rho * s.iy * l / 2.0 + transverse,
+        rho * s.iz * l / 2.0 + transverse,
+    ];
+    // J_global = Rᵀ diag(local) R, rows of R the local axes: diagonal entry g is
+    // Σ_k local_k R[k][g]².
+    Ok([0, 1, 2].map(|g| (0..3).map(|k| local[k] * rot[k][g] * rot[k][g]).sum()))
+}
+
+/// A frame body: nodes, elements as 0-based node pairs with their `up` vectors, one section,
+/// in any consistent units (m–kg–s with Pa, or mm–t–s with N/mm²). Six DOF per node. Lumped
+/// mass: each end of an element gets half its mass $\rho A L / 2$ on x, y, z and on the
+/// rotations the diagonal of its rotary inertia (see `rotary_inertia_diagonal`).
 pub fn frame(
     name: &str,
     nodes: Vec<[f64; 3]>,
     elements: &[([usize; 2], [f64; 3])],
     section: &FrameSection,
 ) -> Result<FeModel> {
+    let sectioned: Vec<([usize; 2], [f64; 3], usize)> =
+        elements.iter().map(|&(e, up)| (e, up, 0)).collect();
+    frame_of_sections(name, nodes, &sectioned, std::slice::from_ref(section))
+}
+
+/// [`frame`] with several sections: each element names its section by index into
+/// `sections`.
+pub fn frame_of_sections(
+    name: &str,
+    nodes: Vec<[f64; 3]>,
+    elements: &[([usize; 2], [f64; 3], usize)],
+    sections: &[FrameSection],
+) -> Result<FeModel> {
     let dofs = DofMap::frame_3d();
     let per = dofs.per_node();
     let n = nodes.len();
-    for &([i, j], _) in elements {
+    for &([i, j], _, sec) in elements {
+        if sec >= sections.len() {
+            return Err(Error::InvalidOption {
+                scene: name.into(),
+                reason: format!(
+                    "an element uses section {sec} of {} sections",
+                    sections.len()
+                ),
+            });
+        }
         if i >= n || j >= n {
             return Err(Error::NodeOutOfRange {
                 node: i.max(j) + 1,
@@ -179,11 +224,12 @@ pub fn frame(
             });
         }
     }
-    let connectivity: Vec<[usize; 2]> = elements.iter().map(|(e, _)| *e).collect();
+    let connectivity: Vec<[usize; 2]> = elements.iter().map(|(e, _, _)| *e).collect();
     let pattern = SparsityPattern::from_elements(n, per, connectivity.iter().map(|c| c.as_slice()));
     let mut k = SparseAssembly::new(pattern);
     let mut m = vec![0.0; n * per];
-    for &([i, j], up) in elements {
+    for &([i, j], up, sec) in elements {
+        let section = &sections[sec];
         let ke = frame_stiffness(nodes[i], nodes[j], up, section)?;
         let element_dofs: Vec<usize> = [i, j]
             .iter()
@@ -195,12 +241,11 @@ pub fn frame(
             .sum::<f64>()
             .sqrt();
         let half = 0.5 * section.density * section.area * l;
-        let rotary =
-            half * l * l / 12.0 + 0.5 * section.density * (section.iy + section.iz) * l / 3.0;
+        let rotary = rotary_inertia_diagonal(nodes[i], nodes[j], up, section)?;
         for node in [i, j] {
             for a in 0..3 {
                 m[node * per + a] += half;
-                m[node * per + 3 + a] += rotary;
+                m[node * per + 3 + a] += rotary[a];
             }
         }
     }
@@ -208,7 +253,7 @@ pub fn frame(
         name: name.into(),
         dofs,
         nodes,
-        edges: elements.iter().map(|(e, _)| *e).collect(),
+        edges: connectivity,
         k: k.finish(),
         m: MassMatrix::Lumped(m),
         rigid_motions: RigidMotions::FromGeometry,

@@ -8,15 +8,19 @@ mod fe_model;
 mod frame3d;
 mod hex8;
 mod l_bracket;
+mod overhang_frame;
 mod triplets;
 
 pub use beam2d::{BeamParameters, beam};
 pub use brick_mesh::{SlabParameters, plank, slab, slab_bricks};
 pub use dof_map::{DofMap, NodeDof};
 pub use fe_model::{Direction, FeModel, RigidMotions};
-pub use frame3d::{FrameSection, frame, frame_stiffness};
+pub use frame3d::{FrameSection, frame, frame_of_sections, frame_stiffness};
 pub use hex8::{
     EDGES as HEX8_EDGES, LOCAL_NODES as HEX8_LOCAL_NODES, hex8_consistent_mass, hex8_stiffness,
 };
 pub use l_bracket::{LBracketParameters, l_bracket};
+pub use overhang_frame::{
+    OverhangDirection, OverhangFrame, OverhangFrameParameters, overhang_frame,
+};
 pub use triplets::Triplets;

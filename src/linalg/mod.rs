@@ -17,7 +17,7 @@ pub use dense::{
     symmetry_defect,
 };
 pub use generalized_eigen::{GeneralizedEigen, fix_sign, generalized_eigen, hz_from_eigenvalue};
-pub use lyapunov::solve_lyapunov;
+pub use lyapunov::{solve_block_diagonal_lyapunov, solve_lyapunov};
 pub use mass_matrix::MassMatrix;
 pub use memory::{
     available_bytes, check_reduction_memory, estimated_reduction_bytes, peak_resident_bytes,

@@ -406,6 +406,21 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
             }
             rec.log_static(path.as_str(), &strips)?;
         }
+        Visual::SeriesBars {
+            path,
+            abscissa,
+            values,
+            width,
+            color: c,
+        } => {
+            rec.log_static(
+                path.as_str(),
+                &rerun::BarChart::new(values.clone())
+                    .with_abscissa(abscissa.clone())
+                    .with_widths([*width as f32])
+                    .with_color(color(*c)),
+            )?;
+        }
         Visual::Bars { path, values } => {
             rec.log_static(path.as_str(), &rerun::BarChart::new(values.clone()))?;
         }

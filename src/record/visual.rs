@@ -196,6 +196,20 @@ pub enum Visual {
         /// Label shown at the line.
         label: Option<String>,
     },
+    /// One series of a grouped bar chart: bars of one colour at given abscissae (several
+    /// series under one bar-chart view sit side by side when their abscissae are offset).
+    SeriesBars {
+        /// Entity path.
+        path: String,
+        /// Bar positions.
+        abscissa: Vec<f64>,
+        /// Bar heights.
+        values: Vec<f64>,
+        /// Bar width (in abscissa units).
+        width: f64,
+        /// Bar colour.
+        color: Color,
+    },
     /// Scalar values shown as a bar chart (`metrics/...`).
     Bars {
         /// Entity path.
@@ -218,7 +232,8 @@ impl Visual {
             | Visual::Scatter { path, .. }
             | Visual::Label3D { path, .. }
             | Visual::Polyline2D { path, .. }
-            | Visual::Bars { path, .. } => path,
+            | Visual::Bars { path, .. }
+            | Visual::SeriesBars { path, .. } => path,
         }
     }
 }

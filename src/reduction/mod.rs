@@ -1,6 +1,7 @@
 //! Reduction methods: each builds a transformation $\delta = \Psi z$ with labelled columns, on
 //! dense linear algebra for small bodies and sparse for refined meshes.
 
+mod balanced_truncation;
 mod basis;
 mod benfield_hruda;
 mod craig_bampton;
@@ -10,12 +11,19 @@ mod full;
 mod guyan;
 mod macneal_rubin;
 mod method;
+mod modal_influence;
+mod modal_model;
 mod modal_truncation;
 mod mode_condensation;
 mod moment_matching;
 mod nodal_fixed;
 mod partition;
+mod restrained_ritz;
 
+pub use balanced_truncation::{
+    BalancedBasisParameters, BalancedTruncation, balanced_basis, balanced_truncation,
+    modal_gramians,
+};
 pub use basis::{Basis, Column, ColumnKind};
 pub use benfield_hruda::{InterfaceLoading, LoadedInterface, benfield_hruda};
 pub use craig_bampton::{craig_bampton, craig_bampton_from, craig_bampton_on};
@@ -28,6 +36,8 @@ pub use full::no_reduction;
 pub use guyan::{guyan, guyan_on};
 pub use macneal_rubin::{MacNealRubinParameters, macneal_rubin};
 pub use method::{Method, ModeSelection, ReductionParameters, SolverPath, reduce};
+pub use modal_influence::{ModalInfluence, modal_influence};
+pub use modal_model::{IoMap, ModalModel, StateSpace};
 pub use modal_truncation::{modal_truncation, modal_truncation_from, modal_truncation_on};
 pub use mode_condensation::{
     MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, mode_condensation, mode_condensation_from,
@@ -39,3 +49,4 @@ pub use partition::{
     COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, InteriorProblem, Partition, ReductionStatistics,
     constraint_modes, fixed_interface_modes,
 };
+pub use restrained_ritz::RestrainedRitzModel;
