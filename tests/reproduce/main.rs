@@ -3,6 +3,7 @@
 
 mod body_file;
 mod common;
+mod companion;
 mod errors;
 mod failures;
 mod floating_frame;
