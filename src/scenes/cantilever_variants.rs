@@ -273,20 +273,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             .iter()
             .enumerate()
             .map(|(k, &i)| {
-                let macs: Vec<String> = per_method
-                    .iter()
-                    .map(|(m, pairs)| format!("{} {:.2}", m.id().to_uppercase(), pairs[k].mac))
-                    .collect();
                 (
                     (0..model.dof_count())
                         .map(|d| full.vectors[(d, i)])
                         .collect(),
-                    format!(
-                        "mode {} {:.1} Hz · MAC {}",
-                        k + 1,
-                        full_hz[i],
-                        macs.join(" ")
-                    ),
+                    format!("{} · {:.1} Hz", k + 1, full_hz[i]),
                 )
             })
             .collect();
@@ -432,8 +423,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             path: format!("statics/{}/full", case.id),
             points: draw(&full_line),
             color: REFERENCE,
-            label: Some(format!("full (peak {peak:.3e} mm)")),
+            label: None,
         });
+        let mut legend = vec![(format!("full: peak {peak:.3e} mm"), REFERENCE)];
         let mut row = vec![
             Cell::text(case.id.to_uppercase()),
             Cell::number(peak, format!("{peak:.4e}")),
@@ -457,15 +449,24 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 path: format!("statics/{}/{}", case.id, m.id()),
                 points: draw(&line(&u)?),
                 color: method_color(m),
-                label: Some(format!("{} ({:.1e})", m.id().to_uppercase(), err)),
+                label: None,
             });
+            legend.push((
+                format!("{}: error {err:.1e}", m.id().to_uppercase()),
+                method_color(m),
+            ));
             per_method.push((m, err));
         }
-        visuals.push(Visual::Label3D {
-            path: format!("statics/{}/title", case.id),
-            position: [0.0, -360.0, 0.0],
-            text: case.text.into(),
-            color: REFERENCE,
+        legend.insert(0, (case.text.to_string(), REFERENCE));
+        // The legend: labelled points in a column under the curves (the curves coincide
+        // where the methods are exact, so labels on them would overlap).
+        visuals.push(Visual::Scatter {
+            path: format!("statics/{}/legend", case.id),
+            points: (0..legend.len())
+                .map(|k| [500.0, 380.0 + 110.0 * k as f64])
+                .collect(),
+            labels: legend.iter().map(|(t, _)| t.clone()).collect(),
+            colors: legend.iter().map(|(_, c)| *c).collect(),
         });
         static_table.push(row);
         static_values.push((case.id.into(), per_method));
@@ -579,7 +580,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          (SBPOR): a Ritz basis that the changed supports can be applied to; first-order \
          balancing of states (Spanos–Tsuha) gives no displacement basis. \
          **Variants** are applied to the reduced models only: held DOF by the null space of \
-         their rows of V, the 250 kg by m·vᵀv on A's x row.\n\n\
+         their rows of V, the 250 kg added as m·v·v^T, v the row of V at A's x.\n\n\
          **Measures**: static error = max over the bottom section of |ũ − u| in the direction \
          of interest over max |u|; modes of the full model up to {band} Hz paired with the \
          reduced mode of best MAC (Eq. 43, on all DOF: mm and rad together, as the gramian \
