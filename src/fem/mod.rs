@@ -4,6 +4,7 @@
 mod beam2d;
 mod brick_mesh;
 mod dof_map;
+mod dual_spin;
 mod fe_model;
 mod frame3d;
 mod hex8;
@@ -14,6 +15,7 @@ mod triplets;
 pub use beam2d::{BeamParameters, beam};
 pub use brick_mesh::{SlabParameters, plank, slab, slab_bricks};
 pub use dof_map::{DofMap, NodeDof};
+pub use dual_spin::{DualSpin, DualSpinParameters, add_lumped, dual_spin};
 pub use fe_model::{Direction, FeModel, RigidMotions};
 pub use frame3d::{FrameSection, frame, frame_of_sections, frame_stiffness};
 pub use hex8::{

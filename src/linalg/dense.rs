@@ -113,3 +113,18 @@ fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::Result<Mat<f64>> {
     let rank = (0..s.nrows()).filter(|&i| s[i] > tol).count();
     Ok(svd.U().subcols(0, rank).to_owned())
 }
+
+/// An orthonormal basis of $\{z : Az = 0\}$: the right singular vectors of A beyond its
+/// numerical rank (singular values above `tolerance`); the identity for a matrix without rows.
+pub fn null_space(a: MatRef<'_, f64>, tolerance: f64) -> crate::Result<Mat<f64>> {
+    let r = a.ncols();
+    if a.nrows() == 0 {
+        return Ok(identity(r));
+    }
+    let svd = a.svd().map_err(|_| crate::Error::DecompositionFailed {
+        what: "null-space SVD".into(),
+    })?;
+    let s = svd.S().column_vector();
+    let rank = (0..s.nrows()).filter(|&i| s[i] > tolerance).count();
+    Ok(svd.V().subcols(rank, r - rank).to_owned())
+}

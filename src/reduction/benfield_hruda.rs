@@ -98,9 +98,12 @@ pub struct LoadedInterface {
 /// interfaces (several neighbours) add their loadings, the straightforward generalisation the
 /// paper mentions but does not give. `modes` counts every loaded mode, rigid ones included,
 /// or keeps those up to a frequency. Dense: components up to [`COMPLETE_EIGEN_LIMIT`] DOF.
+///
+/// `held` DOF (a component grounded elsewhere) are held at zero: zero rows of the basis.
 pub fn benfield_hruda(
     model: &FeModel,
     interfaces: &[LoadedInterface],
+    held: &[usize],
     modes: ModeSelection,
 ) -> Result<Basis> {
     let n = model.dof_count();
@@ -140,17 +143,30 @@ pub fn benfield_hruda(
             }
         }
     }
+    if !held.is_empty() {
+        let mut taken = vec![0u8; n];
+        super::partition::check_dof_set(model, "held", held, &mut taken, 1)?;
+    }
+    let free: Vec<usize> = (0..n).filter(|d| !held.contains(d)).collect();
+    let k = Mat::from_fn(free.len(), free.len(), |i, j| k[(free[i], free[j])]);
+    let m = Mat::from_fn(free.len(), free.len(), |i, j| m[(free[i], free[j])]);
     let started = std::time::Instant::now();
     let eig = generalized_eigen(k.as_ref(), m.as_ref(), "loaded-interface")?;
     let hz = eig.hz();
     let kept = modes.count(&hz)?;
+    let mut psi = Mat::<f64>::zeros(n, kept);
+    for c in 0..kept {
+        for (r, &d) in free.iter().enumerate() {
+            psi[(d, c)] = eig.vectors[(r, c)];
+        }
+    }
     let statistics = ReductionStatistics {
         eigen_s: started.elapsed().as_secs_f64(),
         ..Default::default()
     };
     Ok(Basis {
         method: Method::BenfieldHruda,
-        psi: eig.vectors.subcols(0, kept).to_owned(),
+        psi,
         columns: (0..kept)
             .map(|j| Column {
                 kind: ColumnKind::Loaded { hz: hz[j] },

@@ -89,6 +89,39 @@ pub fn selected_free_modes(model: &FeModel, selection: ModeSelection) -> Result<
     }
 }
 
+/// The lowest modes of the body with the DOF `held` at zero (dense, up to
+/// [`COMPLETE_EIGEN_LIMIT`] free DOF), padded with zero rows on the held DOF: the
+/// "free-interface" modes of a component grounded elsewhere. `Count(k)` keeps k modes.
+pub fn restrained_modes(
+    model: &FeModel,
+    held: &[usize],
+    selection: ModeSelection,
+) -> Result<GeneralizedEigen> {
+    let n = model.dof_count();
+    let free: Vec<usize> = (0..n).filter(|d| !held.contains(d)).collect();
+    if free.len() > COMPLETE_EIGEN_LIMIT {
+        return Err(Error::TooLarge {
+            method: "restrained free-interface modes (dense)".into(),
+            dofs: free.len(),
+            limit: COMPLETE_EIGEN_LIMIT,
+        });
+    }
+    let k = model.k.principal_block(&free).to_dense();
+    let m = model.m.principal_block(&free).to_dense();
+    let eig = generalized_eigen(k.as_ref(), m.as_ref(), "restrained")?;
+    let kept = selection.count(&eig.hz())?;
+    let mut vectors = Mat::<f64>::zeros(n, kept);
+    for c in 0..kept {
+        for (r, &d) in free.iter().enumerate() {
+            vectors[(d, c)] = eig.vectors[(r, c)];
+        }
+    }
+    Ok(GeneralizedEigen {
+        values: eig.values[..kept].to_vec(),
+        vectors,
+    })
+}
+
 /// The body's rigid-body motions made mass-orthonormal, $\Phi_r^T M \Phi_r = I$ (the
 /// $\Phi_{nr}$ of Spanos–Tsuha Eq. 10, exact rather than from an eigensolver).
 pub fn mass_normalised_rigid_modes(model: &FeModel) -> Result<Mat<f64>> {

@@ -5,7 +5,7 @@ use faer::Mat;
 
 use super::{
     Basis, Column, ColumnKind, DENSE_INTERIOR_LIMIT, Method, ModeSelection, ReductionStatistics,
-    free_modes::{mass_normalised_rigid_modes, selected_free_modes},
+    free_modes::{mass_normalised_rigid_modes, restrained_modes, selected_free_modes},
     partition::check_dof_set,
 };
 use crate::{
@@ -25,6 +25,9 @@ pub struct MacNealRubinParameters {
     pub r_set: Vec<usize>,
     /// The kept elastic free-interface modes (the rigid-body modes are always kept).
     pub modes: ModeSelection,
+    /// DOF held at zero (a component grounded elsewhere): it then has no rigid-body modes,
+    /// $P = I$, $G = K_{ff}^{-1}$ and the r-set must be empty.
+    pub held: Vec<usize>,
 }
 
 /// $\Phi^{MR} = [\Phi_{nk}\ \Psi_{ni}]$ (Eq. 16) with the residual modes of Eq. (12),
@@ -43,13 +46,31 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
     let n = model.dof_count();
     let mut taken = vec![0u8; n];
     check_dof_set(model, "interface", &p.interface, &mut taken, 1)?;
-    check_dof_set(model, "r-set", &p.r_set, &mut taken, 2)?;
-    let phi_r = mass_normalised_rigid_modes(model)?;
-    check_r_set(model, &p.r_set, phi_r.as_ref())?;
+    let phi_r = if p.held.is_empty() {
+        check_dof_set(model, "r-set", &p.r_set, &mut taken, 2)?;
+        let phi_r = mass_normalised_rigid_modes(model)?;
+        check_r_set(model, &p.r_set, phi_r.as_ref())?;
+        phi_r
+    } else {
+        if !p.r_set.is_empty() {
+            return Err(Error::InvalidRSet {
+                dofs: format!("{} DOF", p.r_set.len()),
+                reason: "the component is held, so it has no rigid-body motions to restrain; \
+                         leave the r-set empty"
+                    .into(),
+            });
+        }
+        check_dof_set(model, "held", &p.held, &mut taken, 2)?;
+        Mat::zeros(n, 0)
+    };
     let mut statistics = ReductionStatistics::default();
 
     let started = std::time::Instant::now();
-    let free = selected_free_modes(model, p.modes)?;
+    let free = if p.held.is_empty() {
+        selected_free_modes(model, p.modes)?
+    } else {
+        restrained_modes(model, &p.held, p.modes)?
+    };
     statistics.eigen_s = started.elapsed().as_secs_f64();
     let rigid = phi_r.ncols();
     let elastic = free.values.len() - rigid;
@@ -67,7 +88,8 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
         unit - proj
     });
 
-    // G (P F): solve with K restrained at the r-set, zero rows on the r-set (Eq. 13).
+    // G (P F): solve with K restrained at the r-set (or the held DOF), zero rows there
+    // (Eq. 13).
     let started = std::time::Instant::now();
     let kept: Vec<usize> = (0..n).filter(|&d| taken[d] != 2).collect();
     let k_kept = model.k.principal_block(&kept);

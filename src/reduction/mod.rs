@@ -4,6 +4,7 @@
 mod balanced_truncation;
 mod basis;
 mod benfield_hruda;
+mod component_synthesis;
 mod craig_bampton;
 mod eitelberg;
 mod free_modes;
@@ -26,12 +27,15 @@ pub use balanced_truncation::{
 };
 pub use basis::{Basis, Column, ColumnKind};
 pub use benfield_hruda::{InterfaceLoading, LoadedInterface, benfield_hruda};
+pub use component_synthesis::{Component, Synthesis};
 pub use craig_bampton::{craig_bampton, craig_bampton_from, craig_bampton_on};
 pub use eitelberg::{
     EITELBERG_DOF_LIMIT, EitelbergParameters, EitelbergReduction, StateSpaceReduction, eitelberg,
     eitelberg_state_space,
 };
-pub use free_modes::{lowest_free_modes, mass_normalised_rigid_modes, selected_free_modes};
+pub use free_modes::{
+    lowest_free_modes, mass_normalised_rigid_modes, restrained_modes, selected_free_modes,
+};
 pub use full::no_reduction;
 pub use guyan::{guyan, guyan_on};
 pub use macneal_rubin::{MacNealRubinParameters, macneal_rubin};

@@ -51,7 +51,7 @@ impl RestrainedRitzModel {
         let r = basis.ncols();
         let scale = crate::linalg::max_abs(basis).max(f64::MIN_POSITIVE);
         let vh = Mat::from_fn(held.len(), r, |i, j| basis[(held[i], j)]);
-        let null = null_space(vh.as_ref(), 1e-10 * scale)?;
+        let null = crate::linalg::null_space(vh.as_ref(), 1e-10 * scale)?;
         if null.ncols() == 0 {
             return Err(Error::SingularMatrix {
                 matrix: "restrained Ritz model (the supports hold every coordinate)".into(),
@@ -103,21 +103,6 @@ impl RestrainedRitzModel {
             values: eig.values,
         })
     }
-}
-
-/// An orthonormal basis of $\{z : Az = 0\}$: the right singular vectors of A beyond its
-/// numerical rank (singular values above `tolerance`).
-fn null_space(a: MatRef<'_, f64>, tolerance: f64) -> Result<Mat<f64>> {
-    let r = a.ncols();
-    if a.nrows() == 0 {
-        return Ok(Mat::from_fn(r, r, |i, j| if i == j { 1.0 } else { 0.0 }));
-    }
-    let svd = a.svd().map_err(|_| Error::DecompositionFailed {
-        what: "null-space SVD".into(),
-    })?;
-    let s = svd.S().column_vector();
-    let rank = (0..s.nrows()).filter(|&i| s[i] > tolerance).count();
-    Ok(svd.V().subcols(rank, r - rank).to_owned())
 }
 
 fn symmetric(a: Mat<f64>) -> Mat<f64> {

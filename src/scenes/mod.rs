@@ -13,6 +13,7 @@ pub mod plank_symmetry;
 mod registry;
 mod run_cache;
 mod sim_visuals;
+pub mod slab_mode_sets;
 mod slab_modes;
 mod slab_refined;
 pub mod slab_sims;

@@ -2,7 +2,8 @@
 
 use super::{
     SceneOptions, SceneOutput, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
-    body_modes, cantilever_variants, failures, plank_symmetry, slab_modes, slab_sims,
+    body_modes, cantilever_variants, failures, plank_symmetry, slab_mode_sets, slab_modes,
+    slab_sims,
 };
 use crate::{Error, Result, reduction::Method};
 
@@ -106,6 +107,10 @@ pub fn all() -> Vec<Scene> {
         Scene {
             info: beam_mean_axes::INFO,
             run: beam_mean_axes::run,
+        },
+        Scene {
+            info: slab_mode_sets::INFO,
+            run: slab_mode_sets::run,
         },
         Scene {
             info: cantilever_variants::INFO,

@@ -97,6 +97,7 @@ fn residual_modes_are_the_residual_flexibility_orthogonal_to_the_kept_modes() {
             interface: interface.clone(),
             r_set: r_set.clone(),
             modes: ModeSelection::Count(kept),
+            held: vec![],
         },
     )
     .unwrap();
@@ -173,6 +174,7 @@ fn a_bad_r_set_is_a_named_error() {
                 interface: interface.clone(),
                 r_set,
                 modes: ModeSelection::Count(2),
+                held: vec![],
             },
         )
     };
@@ -210,7 +212,7 @@ fn benfield_hruda_spans_free_and_fixed_interface_limits() {
             stiffness: Mat::zeros(ni, ni),
         },
     };
-    let bh = benfield_hruda(&model, &[none], ModeSelection::Count(10)).unwrap();
+    let bh = benfield_hruda(&model, &[none], &[], ModeSelection::Count(10)).unwrap();
     let k_r = bh.reduced_stiffness(&model);
     let m_r = bh.reduced_mass(&model);
     let red = generalized_eigen(k_r.as_ref(), m_r.as_ref(), "bh").unwrap();
@@ -228,7 +230,7 @@ fn benfield_hruda_spans_free_and_fixed_interface_limits() {
             stiffness: Mat::from_fn(ni, ni, |i, j| if i == j { 1e4 * k_scale } else { 0.0 }),
         },
     };
-    let bh = benfield_hruda(&model, &[stiff], ModeSelection::Count(4)).unwrap();
+    let bh = benfield_hruda(&model, &[stiff], &[], ModeSelection::Count(4)).unwrap();
     let fixed = fixed_interface_modes(&model, &Partition::new(&model, &[1]).unwrap()).unwrap();
     let hz: Vec<f64> = bh
         .columns
