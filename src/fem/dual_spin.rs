@@ -113,7 +113,12 @@ pub fn dual_spin(p: &DualSpinParameters) -> Result<DualSpin> {
         }
     }
     let boom = FrameSection::rectangle(p.boom_section[0], p.boom_section[1], e, g, rho);
-    let rotor = frame_of_sections("rotor", rotor_xyz.clone(), &rotor_el, &[boom.clone()])?;
+    let rotor = frame_of_sections(
+        "rotor",
+        rotor_xyz.clone(),
+        &rotor_el,
+        std::slice::from_ref(&boom),
+    )?;
     // Stator: column from the ground up to the hub, then the arm along x.
     let h = p.column_height;
     let mut stator_xyz: Vec<[f64; 3]> = (0..=p.column_elements)

@@ -557,8 +557,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
 
     let claims = claims_text(&pairs_all, &full_hz_all, &static_values);
     report.table = format!(
-        "{static_md}\n{}\n{cal_md}\n{claims}",
-        dynamics_text.trim_start()
+        "## Calibration\n\n{cal_md}\n## Statics\n\n{static_md}\n## Dynamics\n{dynamics_text}\n\
+         {subspace_md}\n## Claims\n\n{claims}"
     );
     let markdown = format!(
         "# cantilever-variants\n\n\
@@ -570,7 +570,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          {root:.0} % of the bottom section and pointing {dir} (100 mm side {wide}). \
          **A** is the free end of the bottom section (six I/O DOF), **B** its middle (z). The \
          overhang is the part no I/O DOF sees. Calibrated against the printed frequencies by a \
-         grid search over lengths, root and orientation:\n\n{cal_md}\n\
+         grid search over lengths, root and orientation (table below).\n\n\
          **Bases** (14 vectors each, built once on variant 1): **CB** = 7 constraint modes of \
          the I/O DOF + 7 fixed-interface modes; **MM** = block Krylov about s₀ = 0, \
          [K⁻¹B₁, K⁻¹MK⁻¹B₁] by block Arnoldi in the M-inner product with re-orthogonalisation \
@@ -585,7 +585,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          of interest over max |u|; modes of the full model up to {band} Hz paired with the \
          reduced mode of best MAC (Eq. 43, on all DOF: mm and rad together, as the gramian \
          sees them); frequency error (f̃ − f)/f (Eq. 42); ✗ marks MAC < 0.95.\n\n\
-         ## Statics\n\n{static_md}\n## Dynamics\n{dynamics_text}\n{subspace_md}\n## Claims\n\n{claims}",
+         {}",
+        report.table,
         el = params.element_length,
         dofs = model.dof_count(),
         l1 = params.bottom_length,

@@ -476,7 +476,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .iter()
         .filter(|&&f| f <= INTEREST_HZ)
         .count();
-    report.table = format!("{sets_md}\n{sel_md}\n{claims}");
+    report.table = format!(
+        "## Mode sets\n\n{sets_md}\n## Influence against frequency\n\n{sel_md}\n## Claims\n\n\
+         {claims}"
+    );
     let markdown = format!(
         "# slab-mode-sets\n\n\
          Spanos & Tsuha's experiment (their §4, the Galileo spacecraft, whose model is not in \
@@ -500,13 +503,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          joined by equal hub displacements (null space of the compatibility rows). The \
          reference is the same synthesis with identity bases ({dofs} coordinates). **Error** = \
          max over channels and over 0–10 Hz of ||G̃| − |G|| over the channel's peak |G|.\n\n\
-         {sets_md}\n\
          **Second stage** (the rotor's CB set diagonalised, the hub's six DOF as inputs and \
          outputs, Eq. 44): modes with σ ≥ {INFLUENCE_FRACTION:e} σ_max are kept — {kept} of \
          {elastic}: elastic modes {kept_numbers:?}; against the same number of lowest modes. The \
-         stator keeps its whole CB set. Eq. (45)'s closeness is {closeness:.3e} (≪ 1 is \
+         stator keeps its whole CB set. Eq. (45)'s closeness is {closeness:.3e} (much less than 1 is \
          required: repeated boom modes violate it, as Galileo's ten modes at 5.83 Hz did).\n\n\
-         {sel_md}\n## Claims\n\n{claims}",
+         {}",
+        report.table,
         booms = params.booms,
         bl = params.boom_length,
         rotor_dof = ds.rotor.dof_count(),

@@ -52,6 +52,32 @@ fn every_scene_reports_its_stable_keys_and_logs_its_views() {
             ],
         ),
         ("beam-eitelberg", &["minv_k", "hz"]),
+        (
+            "slab-mode-sets",
+            &[
+                "frf_rel_error.cb",
+                "frf_rel_error.mr",
+                "frf_rel_error.bh",
+                "selection.influence",
+                "selection.lowest",
+            ],
+        ),
+        (
+            "cantilever-variants",
+            &[
+                "static_rel_error.cb.lc1",
+                "static_rel_error.mm.lc2",
+                "static_rel_error.bt.v2",
+                "freq_rel_error.v1.cb",
+                "freq_rel_error.v2.mm",
+                "freq_rel_error.v3.bt",
+                "mac.v1.bt",
+                "mac.v3.cb",
+                "hz.v1",
+                "hz.v2",
+                "hz.v3",
+            ],
+        ),
     ];
     for (id, ks) in keys {
         let out = run(id, SceneOptions::default());
