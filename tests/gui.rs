@@ -350,7 +350,13 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
 fn every_scene_opens_with_its_default_controls() {
     // Including the scenes without method choices (the failures scene runs with fixed
     // settings): each shows a recording and no error.
-    for id in ["failures", "beam-mean-axes", "beam-profiles"] {
+    for id in [
+        "failures",
+        "beam-mean-axes",
+        "beam-profiles",
+        "cantilever-variants",
+        "slab-mode-sets",
+    ] {
         let mut h = harness(id);
         settle(&mut h);
         assert!(h.state().error.is_none(), "{id}: {:?}", h.state().error);

@@ -182,6 +182,12 @@ pub fn bottom_line_error(
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
+    if opts.boundary.is_some() || opts.modes.is_some() {
+        return Err(crate::Error::InvalidOption {
+            scene: INFO.id.into(),
+            reason: "--boundary and --modes do not apply: the bases are Witteveen's (the seven I/O DOF, 7 constraint + 7 fixed-interface modes, 2 Krylov blocks, 14 balanced vectors)".into(),
+        });
+    }
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
     let params = OverhangFrameParameters::default();
     let frame = overhang_frame(&params)?;

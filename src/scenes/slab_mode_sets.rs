@@ -284,6 +284,12 @@ fn response(model: &ModalModel, hz: &[f64]) -> FrequencyResponse {
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
+    if opts.boundary.is_some() || opts.modes.is_some() {
+        return Err(crate::Error::InvalidOption {
+            scene: INFO.id.into(),
+            reason: "--boundary and --modes do not apply: the interfaces are the assembly's and the mode sets are truncated at 20 Hz, as in Spanos–Tsuha".into(),
+        });
+    }
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
     let params = DualSpinParameters::default();
     let ds = dual_spin(&params)?;
