@@ -233,6 +233,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut full_hz_all = Vec::new();
     let mut dynamics_text = String::new();
     let mut v3_identified = (f64::NAN, f64::NAN);
+    let mut torsion_modes: Vec<Option<(usize, f64)>> = Vec::new();
     for v in 1..=3 {
         let (held, masses) = io.variant(v);
         let full =
@@ -342,6 +343,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             },
             report.add_table(table)
         ));
+        // Which mode (1-based, in the band) is the bottom section's first torsion.
+        let first_torsion = band
+            .iter()
+            .position(|&i| is_bottom_torsion(&frame, &full.vectors, i))
+            .map(|k| (k + 1, full_hz[band[k]]));
+        torsion_modes.push(first_torsion);
         if v == 3 {
             let torsion = band
                 .iter()
@@ -521,6 +528,23 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             Cell::number(*ours, format!("{ours:.2}")),
             Cell::number(ours / printed, format!("{:.3}", ours / printed)),
         ]);
+    }
+    for (v, printed) in [(0usize, "mode 7, above 200 Hz"), (1, "mode 3")] {
+        let ours = torsion_modes.get(v).copied().flatten();
+        cal_table.push(vec![
+            Cell::text(format!(
+                "variant {}, first torsion of the bottom section",
+                v + 1
+            )),
+            Cell::text(printed),
+            Cell::text(ours.map_or("none in the band".into(), |(k, f)| {
+                format!("mode {k}, {f:.2}")
+            })),
+            Cell::text(""),
+        ]);
+        if let Some((k, _)) = ours {
+            cal.insert(format!("v{}_first_torsion_mode", v + 1), json!(k));
+        }
     }
     report
         .results
