@@ -4,6 +4,9 @@
 
 use super::{Color, Visual};
 
+/// A series drawn as a line with more points than this gets no point markers.
+const DENSE_SERIES: usize = 100;
+
 /// One series of a [`LogLogChart`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct LogLogSeries {
@@ -97,12 +100,16 @@ impl LogLogChart {
                     points: vec![last],
                 });
             }
-            visuals.push(Visual::Scatter {
-                path: format!("{}/{}/points", self.path, s.id),
-                labels: vec![String::new(); points.len()],
-                colors: vec![s.color; points.len()],
-                points,
-            });
+            // Markers for sparse data; a densely sampled curve (a frequency response) is
+            // its line alone, which the markers would only thicken.
+            if !(s.line && points.len() > DENSE_SERIES) {
+                visuals.push(Visual::Scatter {
+                    path: format!("{}/{}/points", self.path, s.id),
+                    labels: vec![String::new(); points.len()],
+                    colors: vec![s.color; points.len()],
+                    points,
+                });
+            }
         }
         let mut tick_points = Vec::new();
         let mut tick_labels = Vec::new();
