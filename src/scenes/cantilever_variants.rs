@@ -586,8 +586,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }
 
     let claims = claims_text(&pairs_all, &full_hz_all, &static_values);
+    // In the order the tables were added, which the explorer's panel follows.
     report.table = format!(
-        "## Calibration\n\n{cal_md}\n## Statics\n\n{static_md}\n## Dynamics\n{dynamics_text}\n\
+        "## Dynamics\n{dynamics_text}\n## Statics\n\n{static_md}\n## Calibration\n\n{cal_md}\n\
          {subspace_md}\n## Claims\n\n{claims}"
     );
     let markdown = format!(
