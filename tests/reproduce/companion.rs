@@ -41,6 +41,17 @@ fn free_frame(n: usize) -> FeModel {
     frame("free frame", nodes, &elements, &section).unwrap()
 }
 
+/// The DOF not in `held` and the stiffness and mass blocks on them.
+fn free_blocks(model: &FeModel, held: &[usize]) -> (Vec<usize>, Mat<f64>, Mat<f64>) {
+    let free: Vec<usize> = (0..model.dof_count())
+        .filter(|d| !held.contains(d))
+        .collect();
+    let (k, m) = (model.k_dense(), model.m_dense());
+    let kf = Mat::from_fn(free.len(), free.len(), |i, j| k[(free[i], free[j])]);
+    let mf = Mat::from_fn(free.len(), free.len(), |i, j| m[(free[i], free[j])]);
+    (free, kf, mf)
+}
+
 fn dense_inverse(a: MatRef<'_, f64>) -> Mat<f64> {
     a.partial_piv_lu().inverse()
 }
@@ -328,12 +339,7 @@ fn moment_matching_matches_the_first_2m_moments() {
     let model = &frame.model;
     let (held, _) = io.variant(1);
     let ioo = io.io();
-    let free: Vec<usize> = (0..model.dof_count())
-        .filter(|d| !held.contains(d))
-        .collect();
-    let (k, m) = (model.k_dense(), model.m_dense());
-    let kf = Mat::from_fn(free.len(), free.len(), |i, j| k[(free[i], free[j])]);
-    let mf = Mat::from_fn(free.len(), free.len(), |i, j| m[(free[i], free[j])]);
+    let (free, kf, mf) = free_blocks(model, &held);
     let b1 = Mat::from_fn(
         free.len(),
         7,
@@ -542,12 +548,7 @@ fn cb_reproduces_the_full_modes_in_band_when_a_is_clamped_after_reduction() {
         witteveen_bases(&frame, &io, &[flexmodes::reduction::Method::CraigBampton]).unwrap();
     let (held, masses) = io.variant(2);
     // The reference by an independent route: the free DOF's dense eigenproblem.
-    let free: Vec<usize> = (0..model.dof_count())
-        .filter(|d| !held.contains(d))
-        .collect();
-    let (k, m) = (model.k_dense(), model.m_dense());
-    let kf = Mat::from_fn(free.len(), free.len(), |i, j| k[(free[i], free[j])]);
-    let mf = Mat::from_fn(free.len(), free.len(), |i, j| m[(free[i], free[j])]);
+    let (free, kf, mf) = free_blocks(model, &held);
     let eig = generalized_eigen(kf.as_ref(), mf.as_ref(), "variant 2").unwrap();
     let shapes = Mat::from_fn(model.dof_count(), free.len(), |r, c| {
         free.iter()
@@ -629,13 +630,8 @@ fn component_synthesis_with_identity_bases_is_the_assembled_body() {
     // The same structure assembled as one body, its base held: an independent route.
     let model = &ds.assembly;
     let base: Vec<usize> = (0..6).map(|d| ds.ground * 6 + d).collect();
-    let free: Vec<usize> = (0..model.dof_count())
-        .filter(|d| !base.contains(d))
-        .collect();
+    let (free, kf, mf) = free_blocks(model, &base);
     assert_eq!(free.len(), syn.size());
-    let (k, m) = (model.k_dense(), model.m_dense());
-    let kf = Mat::from_fn(free.len(), free.len(), |i, j| k[(free[i], free[j])]);
-    let mf = Mat::from_fn(free.len(), free.len(), |i, j| m[(free[i], free[j])]);
     let direct = generalized_eigen(kf.as_ref(), mf.as_ref(), "assembly").unwrap();
     assert_eq!(eig.values.len(), direct.values.len());
     for (i, (a, b)) in eig.values.iter().zip(&direct.values).take(30).enumerate() {
