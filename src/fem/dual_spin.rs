@@ -36,6 +36,9 @@ pub struct DualSpinParameters {
     pub platform_mass: f64,
     /// Platform inertia about x, y, z through its node, kg m².
     pub platform_inertia: [f64; 3],
+    /// The articulation: the rotor turned about z relative to the stator, rad (a frozen
+    /// configuration of the hinge).
+    pub rotor_angle: f64,
 }
 
 impl Default for DualSpinParameters {
@@ -54,6 +57,7 @@ impl Default for DualSpinParameters {
             arm_section: [0.06, 0.04],
             platform_mass: 40.0,
             platform_inertia: [3.0, 3.0, 3.0],
+            rotor_angle: 0.0,
         }
     }
 }
@@ -101,7 +105,7 @@ pub fn dual_spin(p: &DualSpinParameters) -> Result<DualSpin> {
     let mut rotor_xyz = vec![[0.0, 0.0, 0.0]];
     let mut rotor_el = Vec::new();
     for b in 0..p.booms {
-        let angle = 2.0 * std::f64::consts::PI * b as f64 / p.booms as f64;
+        let angle = p.rotor_angle + 2.0 * std::f64::consts::PI * b as f64 / p.booms as f64;
         let (c, s) = (angle.cos(), angle.sin());
         let mut prev = 0;
         for k in 1..=p.boom_elements {
