@@ -345,10 +345,39 @@ fn bench_reports_speed_and_accuracy_points() {
         }
         assert!(p["pareto"].is_boolean(), "{p}");
     }
-    // Both integrators at every point.
-    for scheme in ["dp5", "gen-alpha"] {
-        let n = points.iter().filter(|p| p["integrator"] == scheme).count();
-        assert_eq!(2 * n, points.len(), "{scheme}");
+    // Every point with three settings: Dormand-Prince at the scenes' tolerance and at the
+    // loose one, and generalized-alpha.
+    let setting = |p: &serde_json::Value| (p["integrator"].clone(), p["rtol"].as_f64());
+    for (scheme, rtol) in [
+        ("dp5", Some(1e-6)),
+        ("dp5", Some(1e-3)),
+        ("gen-alpha", None),
+    ] {
+        let n = points
+            .iter()
+            .filter(|p| setting(p) == (serde_json::json!(scheme), rtol))
+            .count();
+        assert_eq!(3 * n, points.len(), "{scheme} {rtol:?}");
+    }
+    // At the loose tolerance the step is no longer set by the error control but by
+    // stability: every reduced model then takes fewer steps than the full model, whose stiff
+    // modes bound its step (an operation count, not a time).
+    let loose_steps = |method: &str, modes: u64| {
+        points
+            .iter()
+            .find(|p| {
+                p["method"] == method && p["modes"] == modes && p["rtol"].as_f64() == Some(1e-3)
+            })
+            .and_then(|p| p["steps"].as_u64())
+            .unwrap_or_else(|| panic!("{method} {modes}: no loose run"))
+    };
+    let nr_steps = loose_steps("nr", 0);
+    for (method, modes) in [("cb", 6), ("mc", 6), ("cb", 2), ("gr", 0)] {
+        let steps = loose_steps(method, modes);
+        assert!(
+            steps < nr_steps,
+            "{method} {modes}: {steps} against NR's {nr_steps}"
+        );
     }
     // The Pareto flags, recomputed: a point is on the front exactly when no other point is at
     // once no slower and no less accurate, and better in one; errors equal to three
@@ -374,13 +403,16 @@ fn bench_reports_speed_and_accuracy_points() {
     // Accuracy (not speed) may be asserted: Craig-Bampton converges as modes are added.
     let cb: Vec<f64> = points
         .iter()
-        .filter(|p| p["method"] == "cb" && p["integrator"] == "dp5")
+        .filter(|p| {
+            p["method"] == "cb" && p["integrator"] == "dp5" && p["rtol"].as_f64() == Some(1e-6)
+        })
         .map(|p| p["rel_rms_error"].as_f64().unwrap())
         .collect();
+    assert_eq!(cb.len(), 4);
     assert!(cb.windows(2).all(|w| w[1] < w[0]), "{cb:?}");
     // Every predicted critical step is checked: bounded 10 % below it, diverged at 3×.
     let stability = v["stability"].as_object().unwrap();
-    assert_eq!(2 * stability.len(), points.len());
+    assert_eq!(3 * stability.len(), points.len());
     for (m, s) in stability {
         assert_eq!(s["run_below_ok"], true, "{m}: {s}");
         assert_eq!(s["run_above_diverged"], true, "{m}: {s}");

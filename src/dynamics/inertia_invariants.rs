@@ -15,7 +15,10 @@
 
 use std::collections::BTreeMap;
 
-use nalgebra::{DVector, Matrix3, Matrix3xX, Vector3};
+use nalgebra::{DVector, Dyn, Matrix3, Matrix3xX, Storage, Vector, Vector3};
+
+/// A column of modal coordinates, owned or a view into a state vector.
+pub type Modal<S> = Vector<f64, Dyn, S>;
 
 /// The vector with $\sum u \times v = \mathrm{axial}(\sum v u^T)$ for any pairs $(u, v)$.
 fn axial(m: &Matrix3<f64>) -> Vector3<f64> {
@@ -110,12 +113,12 @@ impl InertiaInvariants {
     }
 
     /// First moment about the frame origin, $\sum_j m_j b_j = c_0 + P z$, kg m.
-    pub fn first_moment(&self, z: &DVector<f64>) -> Vector3<f64> {
+    pub fn first_moment<S: Storage<f64, Dyn>>(&self, z: &Modal<S>) -> Vector3<f64> {
         self.first_moment0 + &self.p_sum * z
     }
 
     /// $H_c(z) = \sum_j m_j \psi_{jc} b_j^T = L_c^T + \sum_d z_d Q_{cd}$ for every mode $c$.
-    pub fn h(&self, z: &DVector<f64>) -> Vec<Matrix3<f64>> {
+    pub fn h<S: Storage<f64, Dyn>>(&self, z: &Modal<S>) -> Vec<Matrix3<f64>> {
         (0..self.modes)
             .map(|c| {
                 let mut h = self.l[c].transpose();
@@ -130,7 +133,11 @@ impl InertiaInvariants {
     }
 
     /// $\sum_j m_j b_j b_j^T = S + \sum_c z_c (L_c + H_c)$, kg m², from $H$ of [`Self::h`].
-    pub fn second_moment(&self, z: &DVector<f64>, h: &[Matrix3<f64>]) -> Matrix3<f64> {
+    pub fn second_moment<S: Storage<f64, Dyn>>(
+        &self,
+        z: &Modal<S>,
+        h: &[Matrix3<f64>],
+    ) -> Matrix3<f64> {
         let mut out = self.s_outer;
         for c in 0..self.modes {
             out += (self.l[c] + h[c]) * z[c];
@@ -141,7 +148,7 @@ impl InertiaInvariants {
     /// Inertia about the frame origin in body axes,
     /// $\bar J = \sum_j m_j \tilde b_j^T \tilde b_j = \mathrm{tr}(B) I - B$ with $B$ the second
     /// moment, kg m².
-    pub fn inertia(&self, z: &DVector<f64>) -> Matrix3<f64> {
+    pub fn inertia<S: Storage<f64, Dyn>>(&self, z: &Modal<S>) -> Matrix3<f64> {
         Self::inertia_from(&self.second_moment(z, &self.h(z)))
     }
 
@@ -162,7 +169,11 @@ impl InertiaInvariants {
     }
 
     /// $\sum_j m_j (\Psi_j a)(\Psi_j b)^T = \sum_{cd} a_c b_d Q_{cd}$.
-    pub fn modal_outer(&self, a: &DVector<f64>, b: &DVector<f64>) -> Matrix3<f64> {
+    pub fn modal_outer<S: Storage<f64, Dyn>, T: Storage<f64, Dyn>>(
+        &self,
+        a: &Modal<S>,
+        b: &Modal<T>,
+    ) -> Matrix3<f64> {
         let mut out = Matrix3::zeros();
         for c in 0..self.modes {
             if a[c] == 0.0 {
@@ -183,11 +194,11 @@ impl InertiaInvariants {
     /// $\alpha_j = \bar\omega\times(\bar\omega\times b_j) + 2\bar\omega\times\Psi_j\dot z$
     /// (body axes; the generalised forces subtract them). `h` and `inertia` are those of the
     /// same `z` ([`Self::h`], [`Self::inertia_from`]), which the mass matrix needs too.
-    pub fn velocity_forces(
+    pub fn velocity_forces<S: Storage<f64, Dyn>, T: Storage<f64, Dyn>>(
         &self,
         w: &Vector3<f64>,
-        z: &DVector<f64>,
-        zd: &DVector<f64>,
+        z: &Modal<S>,
+        zd: &Modal<T>,
         h: &[Matrix3<f64>],
         inertia: &Matrix3<f64>,
     ) -> (Vector3<f64>, Vector3<f64>, DVector<f64>) {

@@ -1,6 +1,6 @@
 //! The assembled multibody system: $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector4};
+use nalgebra::{DMatrix, DVector, DVectorView, Matrix3, Matrix6, Vector3, Vector4};
 
 use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
@@ -44,11 +44,11 @@ struct BodyBlocks {
     q: DVector<f64>,
 }
 
-/// Kinematics of one point: position, partial velocities (3 × nv) and the velocity-dependent
-/// part of its acceleration.
+/// Kinematics of one point: its position and the velocity-dependent part of its
+/// acceleration; the partial velocities (3 × nv) are written by [`System::point`] into the
+/// rows the caller gives.
 struct PointKin {
     d: Vector3<f64>,
-    l: DMatrix<f64>,
     aq: Vector3<f64>,
 }
 
@@ -66,14 +66,16 @@ pub(crate) struct Rows {
     pub holonomic: Vec<bool>,
 }
 
-struct Frame {
+/// One body's frame and deformation at an instant; the modal coordinates are views into the
+/// state, so reading a frame allocates nothing.
+struct Frame<'a> {
     r: Vector3<f64>,
     p: Vector4<f64>,
     a: Matrix3<f64>,
-    z: DVector<f64>,
+    z: DVectorView<'a, f64>,
     rd: Vector3<f64>,
     w: Vector3<f64>,
-    zd: DVector<f64>,
+    zd: DVectorView<'a, f64>,
 }
 
 impl System {
@@ -149,7 +151,7 @@ impl System {
         (self.q_off[b], self.v_off[b])
     }
 
-    fn frame(&self, b: usize, s: &State) -> Frame {
+    fn frame<'a>(&self, b: usize, s: &'a State) -> Frame<'a> {
         let (qo, vo) = (self.q_off[b], self.v_off[b]);
         let k = self.bodies[b].position_count() - 7;
         let p = Vector4::new(s.q[qo + 3], s.q[qo + 4], s.q[qo + 5], s.q[qo + 6]);
@@ -157,10 +159,10 @@ impl System {
             r: Vector3::new(s.q[qo], s.q[qo + 1], s.q[qo + 2]),
             a: rotation_matrix(&p),
             p,
-            z: s.q.rows(qo + 7, k).into_owned(),
+            z: s.q.rows(qo + 7, k),
             rd: Vector3::new(s.v[vo], s.v[vo + 1], s.v[vo + 2]),
             w: Vector3::new(s.v[vo + 3], s.v[vo + 4], s.v[vo + 5]),
-            zd: s.v.rows(vo + 6, k).into_owned(),
+            zd: s.v.rows(vo + 6, k),
         }
     }
 
@@ -173,8 +175,9 @@ impl System {
         s: &State,
         vdot: &DVector<f64>,
     ) -> Vector3<f64> {
-        let p = self.point(&Attachment::Node { body: b, node }, s);
-        p.l * vdot + p.aq
+        let mut l = DMatrix::zeros(3, self.nv());
+        let p = self.point(&Attachment::Node { body: b, node }, s, 1.0, &mut l, 0, None);
+        l * vdot + p.aq
     }
 
     /// Global position of a node of a deformable body.
@@ -198,11 +201,33 @@ impl System {
     ) -> Vector3<f64> {
         let f = self.frame(b, s);
         match &self.bodies[b] {
-            Body::Flexible(fb) => {
-                let rigid = fb.b(node, &DVector::zeros(f.z.len()));
-                f.r + f.a * (rigid + scale * (fb.b(node, &f.z) - rigid))
-            }
+            Body::Flexible(fb) => f.r + f.a * (fb.s_bar[node] + fb.deflection(node, &f.z) * scale),
             Body::Rigid(_) => f.r,
+        }
+    }
+
+    /// Positions of every node of deformable body `b`, their elastic deflections multiplied
+    /// by `scale` as in [`Self::node_position_scaled`]: the frame is read once for all nodes.
+    /// Empty for a rigid body.
+    pub fn node_positions_scaled(&self, b: usize, s: &State, scale: f64) -> Vec<Vector3<f64>> {
+        let f = self.frame(b, s);
+        match &self.bodies[b] {
+            Body::Flexible(fb) => (0..fb.s_bar.len())
+                .map(|j| f.r + f.a * (fb.s_bar[j] + fb.deflection(j, &f.z) * scale))
+                .collect(),
+            Body::Rigid(_) => Vec::new(),
+        }
+    }
+
+    /// The largest elastic deflection $\max_j |\Psi_j z|$ of deformable body `b`'s nodes, m
+    /// (0 for a rigid body).
+    pub fn largest_deflection(&self, b: usize, s: &State) -> f64 {
+        let f = self.frame(b, s);
+        match &self.bodies[b] {
+            Body::Flexible(fb) => (0..fb.s_bar.len())
+                .map(|j| fb.deflection(j, &f.z).norm())
+                .fold(0.0, f64::max),
+            Body::Rigid(_) => 0.0,
         }
     }
 
@@ -214,31 +239,40 @@ impl System {
 
     /// Modal coordinates of body `b`.
     pub fn modal(&self, b: usize, s: &State) -> DVector<f64> {
-        self.frame(b, s).z
+        self.frame(b, s).z.into_owned()
     }
 
-    fn point(&self, att: &Attachment, s: &State) -> PointKin {
-        let nv = self.nv();
-        let mut l = DMatrix::zeros(3, nv);
+    /// The kinematics of a point, adding `sign` times its partial velocities $L$ (Eq. 3.17)
+    /// to `c`: all three rows of $L$ from row `r` on, or only the row of `axis` at row `r`.
+    /// Only the point's own body's columns are touched.
+    fn point(
+        &self,
+        att: &Attachment,
+        s: &State,
+        sign: f64,
+        c: &mut DMatrix<f64>,
+        r: usize,
+        axis: Option<usize>,
+    ) -> PointKin {
+        let axes = axis.map_or(0..3, |a| a..a + 1);
+        let row = |i: usize| r + i - axes.start;
         match *att {
             Attachment::Ground(x) => PointKin {
                 d: x,
-                l,
                 aq: Vector3::zeros(),
             },
             Attachment::Point { body, local } => {
                 let f = self.frame(body, s);
                 let vo = self.v_off[body];
                 let arm = -f.a * skew(&local);
-                for i in 0..3 {
-                    l[(i, vo + i)] = 1.0;
-                    for c in 0..3 {
-                        l[(i, vo + 3 + c)] = arm[(i, c)];
+                for i in axes.clone() {
+                    c[(row(i), vo + i)] += sign;
+                    for k in 0..3 {
+                        c[(row(i), vo + 3 + k)] += sign * arm[(i, k)];
                     }
                 }
                 PointKin {
                     d: f.r + f.a * local,
-                    l,
                     aq: f.a * (f.w.cross(&f.w.cross(&local))),
                 }
             }
@@ -248,22 +282,24 @@ impl System {
                 let Body::Flexible(fb) = &self.bodies[body] else {
                     unreachable!("node attachments are checked to name deformable bodies")
                 };
+                let psi = &fb.psi_nodes[node];
                 let bj = fb.b(node, &f.z);
                 let arm = -f.a * skew(&bj);
-                let ap = f.a * &fb.psi_nodes[node];
-                for i in 0..3 {
-                    l[(i, vo + i)] = 1.0;
-                    for c in 0..3 {
-                        l[(i, vo + 3 + c)] = arm[(i, c)];
+                for i in axes.clone() {
+                    c[(row(i), vo + i)] += sign;
+                    for k in 0..3 {
+                        c[(row(i), vo + 3 + k)] += sign * arm[(i, k)];
                     }
-                    for c in 0..fb.modes() {
-                        l[(i, vo + 6 + c)] = ap[(i, c)];
+                    // Row i of A Ψ_j.
+                    let a_row = f.a.row(i);
+                    for k in 0..fb.modes() {
+                        let column = psi.column(k);
+                        c[(row(i), vo + 6 + k)] += sign * a_row.dot(&column.transpose());
                     }
                 }
-                let u = &fb.psi_nodes[node] * &f.zd;
+                let u = psi * f.zd;
                 PointKin {
                     d: f.r + f.a * bj,
-                    l,
                     aq: f.a * (f.w.cross(&f.w.cross(&bj)) + 2.0 * f.w.cross(&u)),
                 }
             }
@@ -426,8 +462,8 @@ impl System {
         for c in &self.constraints {
             match c {
                 Constraint::Spherical(a, b) => {
-                    let (pa, pb) = (self.point(a, s), self.point(b, s));
-                    out.c.rows_mut(r, 3).copy_from(&(&pa.l - &pb.l));
+                    let pa = self.point(a, s, 1.0, &mut out.c, r, None);
+                    let pb = self.point(b, s, -1.0, &mut out.c, r, None);
                     out.gamma.rows_mut(r, 3).copy_from(&(pb.aq - pa.aq));
                     out.phi.rows_mut(r, 3).copy_from(&(pa.d - pb.d));
                 }
@@ -445,9 +481,12 @@ impl System {
                             node: *node,
                         },
                         s,
+                        1.0,
+                        &mut out.c,
+                        r,
+                        Some(*axis),
                     );
                     let (x, v, acc) = motion.at(t, *x0, *v0);
-                    out.c.row_mut(r).copy_from(&p.l.row(*axis));
                     out.gamma[r] = acc - p.aq[*axis];
                     out.target[r] = v;
                     out.phi[r] = p.d[*axis] - x;
@@ -472,7 +511,7 @@ impl System {
         let h = inv.h(&f.z);
         // Translational: sum m_j Psi_j z = 0 (Eq. 4.20), holonomic.
         out.c.view_mut((r, o), (3, k)).copy_from(&inv.p_sum);
-        out.phi.rows_mut(r, 3).copy_from(&(&inv.p_sum * &f.z));
+        out.phi.rows_mut(r, 3).copy_from(&(&inv.p_sum * f.z));
         if matches!(fb.axes, AxisType::Mean) {
             // Rotational: sum m_j b_j x (Psi_j zdot) = 0 (Eq. 4.15); its acceleration form has
             // no quadratic term for a lumped M (Eq. 4.17).
@@ -539,8 +578,12 @@ impl System {
         let mut rhs = DVector::zeros(n);
         rhs.rows_mut(nf, nr).copy_from(g);
         let mut eliminated: Vec<Option<DMatrix<f64>>> = Vec::with_capacity(nb);
+        // The largest diagonal entry of the frame blocks before elimination: the scale
+        // the eliminated frame block's pivots are judged against.
+        let mut frame_scale = 0.0f64;
         for (b, body) in self.bodies.iter().enumerate() {
             let blocks = self.body_blocks(b, s, forces);
+            frame_scale = frame_scale.max(blocks.m_ff.diagonal().max());
             let (vo, fo) = (self.v_off[b], 6 * b);
             kkt.view_mut((fo, fo), (6, 6)).copy_from(&blocks.m_ff);
             rhs.rows_mut(fo, 6).copy_from(&blocks.q.rows(0, 6));
@@ -553,27 +596,28 @@ impl System {
             };
             let k = fb.modes();
             let c_z = c.columns(vo + 6, k);
-            // X = M_zz^-1 [M_zf, C_z^T, Q_z].
-            let mut x = DMatrix::zeros(k, 7 + nr);
-            x.columns_mut(0, 6).copy_from(&blocks.m_fz.transpose());
-            x.columns_mut(6, nr).copy_from(&c_z.transpose());
-            x.column_mut(6 + nr).copy_from(&blocks.q.rows(6, k));
-            fb.m_zz_inverse.solve_mut(&mut x);
-            // [M_fz; C_z] X, subtracted from the frame and constraint rows.
-            let mut coupling = DMatrix::zeros(6 + nr, k);
-            coupling.rows_mut(0, 6).copy_from(&blocks.m_fz);
-            coupling.rows_mut(6, nr).copy_from(&c_z);
-            let product = &coupling * &x;
-            let global = |i: usize| if i < 6 { fo + i } else { nf + i - 6 };
-            for i in 0..6 + nr {
-                for j in 0..6 + nr {
-                    kkt[(global(i), global(j))] -= product[(i, j)];
+            // W = [M_zf, C_z^T, Q_z] and X = M_zz^-1 W (k × (7 + nr)).
+            let mut w = DMatrix::zeros(k, 7 + nr);
+            w.columns_mut(0, 6).tr_copy_from(&blocks.m_fz);
+            w.columns_mut(6, nr).tr_copy_from(&c_z);
+            w.column_mut(6 + nr).copy_from(&blocks.q.rows(6, k));
+            let x = fb.m_zz_inverse.solve(&w);
+            // [M_fz; C_z] X = W[:, ..6 + nr]^T X, subtracted from the frame and constraint
+            // rows (entry by entry as dot products: the factors are a few dozen long).
+            let product = w.columns(0, 6 + nr).tr_mul(&x);
+            // Rows and columns 0..6 of the product are the body's frame, 6.. the constraints.
+            for (p0, k0, len) in [(0, fo, 6), (6, nf, nr)] {
+                for (q0, l0, width) in [(0, fo, 6), (6, nf, nr)] {
+                    let mut block = kkt.view_mut((k0, l0), (len, width));
+                    block -= product.view((p0, q0), (len, width));
                 }
-                rhs[global(i)] -= product[(i, 6 + nr)];
+                let mut r = rhs.rows_mut(k0, len);
+                r -= product.view((p0, 6 + nr), (len, 1));
             }
             eliminated.push(Some(x));
         }
-        let solution = saddle_point_solve(&kkt, &rhs);
+        let solution = range_space_solve(&kkt, &rhs, nf, frame_scale)
+            .unwrap_or_else(|| saddle_point_solve(&kkt, &rhs));
         let lambda = solution.rows(nf, nr);
         let mut vdot = DVector::zeros(self.nv());
         for (b, x) in eliminated.iter().enumerate() {
@@ -708,7 +752,7 @@ impl System {
             let c = rows.c.select_rows(idx.iter());
             let phi = rows.phi.select_rows(idx.iter());
             let cc_t = &c * c.transpose();
-            let dq = -c.transpose() * pinv_solve(&cc_t, &phi, REDUNDANT_PSD);
+            let dq = -c.transpose() * psd_solve(&cc_t, &phi);
             self.apply_increment(s, &dq);
         }
         let rows = self.rows(t, s);
@@ -770,6 +814,133 @@ fn pinv_solve(a: &DMatrix<f64>, b: &DVector<f64>, drop_below: f64) -> DVector<f6
     x
 }
 
+/// $x = A^{-1}b$ for a small symmetric positive semi-definite $A$ ($CC^T$ of the position
+/// projection): a Cholesky factorisation of the Jacobi-scaled $A$ when its squared pivots stay
+/// above [`RANGE_SPACE_PIVOT`] of the largest, the pseudo-inverse of [`pinv_solve`] otherwise
+/// (redundant constraints).
+fn psd_solve(a: &DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
+    let n = a.nrows();
+    let scale = DVector::from_fn(n, |i, _| {
+        let d = a[(i, i)];
+        if d > 0.0 { 1.0 / d.sqrt() } else { 1.0 }
+    });
+    let scaled = DMatrix::from_fn(n, n, |i, j| scale[i] * a[(i, j)] * scale[j]);
+    if let Some(chol) = scaled.cholesky() {
+        let d = chol.l_dirty().diagonal().map(|x| x * x);
+        if n == 0 || d.min() > RANGE_SPACE_PIVOT * d.max() {
+            let mut x = b.component_mul(&scale);
+            chol.solve_mut(&mut x);
+            return x.component_mul(&scale);
+        }
+    }
+    pinv_solve(a, b, REDUNDANT_PSD)
+}
+
+/// Pivot ratio below which [`range_space_solve`] hands the system to the indefinite solver:
+/// the smallest over the largest squared Cholesky pivot of $\hat M_{ff}$, and of the
+/// Jacobi-scaled $S$.
+const RANGE_SPACE_PIVOT: f64 = 1e-10;
+/// Smallest squared pivot of the eliminated frame block $\hat M_{ff}$ the range-space method
+/// accepts, as a fraction of the largest diagonal entry of the frame blocks before
+/// elimination (a mass or a moment of inertia of the whole body). Below it Ψ nearly holds a
+/// rigid motion and the frame block is round-off.
+const RANGE_SPACE_FRAME_PIVOT: f64 = 1e-8;
+
+/// The saddle-point system $\begin{bmatrix} A & B^T \\ B & -D\end{bmatrix}
+/// \begin{bmatrix} x \\ \lambda\end{bmatrix} = \begin{bmatrix} f \\ g\end{bmatrix}$
+/// ($A$ the leading `nf` × `nf` block) by the range-space method: with $A$ positive definite,
+/// $S = BA^{-1}B^T + D$ is too when the constraints are independent, and
+/// $\lambda = S^{-1}(BA^{-1}f - g)$, $x = A^{-1}(f - B^T\lambda)$ by two Cholesky
+/// factorisations of the blocks. That is the common case (the frame block
+/// $M_{ff} - M_{fz}M_{zz}^{-1}M_{zf}$ is a Schur complement of the positive definite mass
+/// matrix) and several times cheaper than an indefinite factorisation of the whole on these
+/// few dozen unknowns. `None` when either block is not clearly definite: Ψ holding the rigid
+/// motions (singular $A$) or redundant constraints (singular $S$); [`saddle_point_solve`]
+/// then solves the system.
+fn range_space_solve(
+    kkt: &DMatrix<f64>,
+    rhs: &DVector<f64>,
+    nf: usize,
+    frame_scale: f64,
+) -> Option<DVector<f64>> {
+    // A's squared pivots against the frame blocks' scale before elimination: when Ψ holds
+    // the rigid motions, all of A is round-off and its pivots compare well with each other.
+    let a_ok = |pivots: &[f64]| {
+        pivots
+            .iter()
+            .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale)
+            && pivots_ok(&DVector::from_column_slice(pivots))
+    };
+    if nf == 6 {
+        // One body: the frame block on the stack.
+        let a = Matrix6::from_fn(|i, j| kkt[(i, j)]).cholesky()?;
+        let pivots = a.l_dirty().diagonal();
+        a_ok(pivots.as_slice()).then_some(())?;
+        range_space_with(kkt, rhs, nf, |b| a.solve(b))
+    } else {
+        let a = kkt.view((0, 0), (nf, nf)).into_owned().cholesky()?;
+        let pivots = a.l_dirty().diagonal();
+        a_ok(pivots.as_slice()).then_some(())?;
+        range_space_with(kkt, rhs, nf, |b| a.solve(b))
+    }
+}
+
+/// Whether the squared Cholesky pivots `l_diagonal` stay above [`RANGE_SPACE_PIVOT`] of the
+/// largest.
+fn pivots_ok<S: nalgebra::Storage<f64, nalgebra::Dyn>>(
+    l_diagonal: &nalgebra::Vector<f64, nalgebra::Dyn, S>,
+) -> bool {
+    let d = l_diagonal.map(|x| x * x);
+    d.is_empty() || d.min() > RANGE_SPACE_PIVOT * d.max()
+}
+
+/// [`range_space_solve`] with $A^{-1}$ applied by `a_solve`.
+fn range_space_with(
+    kkt: &DMatrix<f64>,
+    rhs: &DVector<f64>,
+    nf: usize,
+    a_solve: impl Fn(&DMatrix<f64>) -> DMatrix<f64>,
+) -> Option<DVector<f64>> {
+    let n = kkt.nrows();
+    let nr = n - nf;
+    // [A^-1 B^T, A^-1 f] in one solve.
+    let mut rhs_columns = DMatrix::zeros(nf, nr + 1);
+    rhs_columns
+        .columns_mut(0, nr)
+        .tr_copy_from(&kkt.view((nf, 0), (nr, nf)));
+    rhs_columns.column_mut(nr).copy_from(&rhs.rows(0, nf));
+    let solved = a_solve(&rhs_columns);
+    let (y, a_f) = (solved.columns(0, nr), solved.column(nr));
+    let mut out = DVector::zeros(n);
+    if nr == 0 {
+        out.copy_from(&a_f);
+        return Some(out);
+    }
+    let b = kkt.view((nf, 0), (nr, nf));
+    let mut s = b * y - kkt.view((nf, nf), (nr, nr));
+    // Jacobi scaling, so constraint rows of different units compare in the pivot test.
+    let scale = DVector::from_fn(nr, |i, _| {
+        let d = s[(i, i)];
+        if d > 0.0 { 1.0 / d.sqrt() } else { 1.0 }
+    });
+    for j in 0..nr {
+        for i in 0..nr {
+            s[(i, j)] *= scale[i] * scale[j];
+        }
+    }
+    let s = s.cholesky()?;
+    if !pivots_ok(&s.l_dirty().diagonal()) {
+        return None;
+    }
+    let mut lambda = (b * a_f - rhs.rows(nf, nr)).component_mul(&scale);
+    s.solve_mut(&mut lambda);
+    lambda.component_mul_assign(&scale);
+    let x = a_f - y * &lambda;
+    out.rows_mut(0, nf).copy_from(&x);
+    out.rows_mut(nf, nr).copy_from(&lambda);
+    out.iter().all(|v| v.is_finite()).then_some(out)
+}
+
 /// $x = A^{-1} b$, or $A^+ b$ when singular, for a small symmetric, possibly indefinite $A$
 /// (the saddle-point system of [`System::accelerations`]). Rows and columns are first scaled
 /// by $1/\sqrt{\max_j |a_{ij}|}$ so masses and constraint rows of different units compare.
@@ -825,6 +996,72 @@ mod tests {
         reduction::Method,
         scenes::plank_symmetry::{Variant, plank_body, plank_system},
     };
+
+    /// A seeded saddle-point system: A = GGᵀ + I·a_shift (nf × nf), B (nr × nf), D = HHᵀ.
+    fn saddle_system(nf: usize, nr: usize, seed: u64) -> (DMatrix<f64>, DVector<f64>) {
+        let mut state = seed;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+        };
+        let g = DMatrix::from_fn(nf, nf, |_, _| next());
+        let a = &g * g.transpose() + DMatrix::identity(nf, nf) * 0.1;
+        let b = DMatrix::from_fn(nr, nf, |_, _| next());
+        let h = DMatrix::from_fn(nr, 2, |_, _| next());
+        let d = &h * h.transpose();
+        let n = nf + nr;
+        let mut kkt = DMatrix::zeros(n, n);
+        kkt.view_mut((0, 0), (nf, nf)).copy_from(&a);
+        kkt.view_mut((nf, 0), (nr, nf)).copy_from(&b);
+        kkt.view_mut((0, nf), (nf, nr)).copy_from(&b.transpose());
+        kkt.view_mut((nf, nf), (nr, nr)).copy_from(&(-d));
+        let rhs = DVector::from_fn(n, |_, _| next());
+        (kkt, rhs)
+    }
+
+    #[test]
+    fn range_space_solve_agrees_with_the_indefinite_factorisation() {
+        for (nf, nr) in [(6, 0), (6, 3), (6, 6), (12, 5), (18, 10)] {
+            for seed in 0..5 {
+                let (kkt, rhs) = saddle_system(nf, nr, seed + 100 * nf as u64);
+                let fast = range_space_solve(&kkt, &rhs, nf, 1.0).expect("definite blocks");
+                let reference = saddle_point_solve(&kkt, &rhs);
+                assert_eq!(fast.len(), reference.len());
+                // Both solve the same system: the residual of each is round-off.
+                let residual = (&kkt * &fast - &rhs).amax();
+                assert!(
+                    residual < 1e-9 * (nf + nr) as f64,
+                    "{nf}/{nr}: residual {residual:e}"
+                );
+                let gap = (&fast - &reference).amax() / reference.amax();
+                assert!(gap < 1e-8 * (nf + nr) as f64, "{nf}/{nr}: {gap:e}");
+            }
+        }
+    }
+
+    #[test]
+    fn range_space_solve_declines_singular_blocks() {
+        // A frame block that is round-off against the frame scale (Ψ holding the rigid
+        // motions) and a redundant constraint row each hand the system to LBLᵀ.
+        let (mut kkt, rhs) = saddle_system(6, 3, 7);
+        assert!(range_space_solve(&kkt, &rhs, 6, 1.0).is_some());
+        assert!(range_space_solve(&kkt, &rhs, 6, 1e12).is_none());
+        for j in 0..6 {
+            let v = kkt[(6, j)];
+            kkt[(7, j)] = v;
+            kkt[(j, 7)] = v;
+        }
+        for j in 6..9 {
+            kkt[(7, j)] = 0.0;
+            kkt[(j, 7)] = 0.0;
+        }
+        kkt[(6, 6)] = 0.0;
+        kkt[(6, 8)] = 0.0;
+        kkt[(8, 6)] = 0.0;
+        assert!(range_space_solve(&kkt, &rhs, 6, 1.0).is_none());
+    }
 
     #[test]
     fn kinetic_energy_by_blocks_equals_the_dense_quadratic_form() {

@@ -315,6 +315,40 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                 false,
             )?;
         }
+        Visual::RigidTrajectory {
+            path,
+            geometry,
+            times,
+            translations,
+            rotations,
+            color: c,
+        } => {
+            let lines = Lines {
+                strips: strips(geometry, &geometry.nodes),
+                color: color(*c),
+                radius: radius(geometry),
+                label: None,
+            };
+            rec.log_static(path.as_str(), lines.archetype(false).as_ref())?;
+            let n = times.len().min(translations.len()).min(rotations.len());
+            rec.send_columns(
+                path.as_str(),
+                [rerun::TimeColumn::new_duration_secs(
+                    "sim_time",
+                    times[..n].iter().copied(),
+                )],
+                rerun::Transform3D::update_fields()
+                    .with_many_translation(translations[..n].iter().map(|t| t.map(|x| x as f32)))
+                    .with_many_mat3x3(rotations[..n].iter().map(|r| {
+                        rerun::datatypes::Mat3x3::from([
+                            r[0].map(|x| x as f32),
+                            r[1].map(|x| x as f32),
+                            r[2].map(|x| x as f32),
+                        ])
+                    }))
+                    .columns_of_unit_batches()?,
+            )?;
+        }
         Visual::Series {
             path,
             times,

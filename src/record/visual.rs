@@ -137,6 +137,23 @@ pub enum Visual {
         /// Line colour.
         color: Color,
     },
+    /// A rigid outline carried by a moving frame over `sim_time` (an undeformed ghost): the
+    /// strips logged once in body coordinates, the frame's placement per time as a
+    /// transform. A few numbers per time instead of every node's position.
+    RigidTrajectory {
+        /// Entity path.
+        path: String,
+        /// The strips to draw, nodes in body coordinates, m.
+        geometry: Geometry,
+        /// Times, s.
+        times: Vec<f64>,
+        /// Frame origin per time, m.
+        translations: Vec<[f64; 3]>,
+        /// Frame orientation per time: the columns of the rotation matrix (body to world).
+        rotations: Vec<[[f64; 3]; 3]>,
+        /// Line colour.
+        color: Color,
+    },
     /// A scalar time history over `sim_time` (`plots/...`), sent as columns.
     Series {
         /// Entity path.
@@ -227,6 +244,7 @@ impl Visual {
             | Visual::Mode { path, .. }
             | Visual::Offset { path, .. }
             | Visual::Trajectory { path, .. }
+            | Visual::RigidTrajectory { path, .. }
             | Visual::Series { path, .. }
             | Visual::FrameAxes { path, .. }
             | Visual::Scatter { path, .. }

@@ -20,17 +20,12 @@ const VISIBLE_DEFLECTION: f64 = 0.1;
 pub fn deformation_scale<'a>(
     runs: impl IntoIterator<Item = (&'a System, &'a Simulation)>,
     body: usize,
-    nodes: usize,
     size: f64,
 ) -> f64 {
     let mut largest = 0.0f64;
     for (system, sim) in runs {
         for s in &sim.samples {
-            for j in 0..nodes {
-                let d = system.node_position(body, j, &s.state)
-                    - system.node_position_scaled(body, j, &s.state, 0.0);
-                largest = largest.max(d.norm());
-            }
+            largest = largest.max(system.largest_deflection(body, &s.state));
         }
     }
     if largest <= 0.0 {
@@ -63,11 +58,11 @@ pub fn body_trajectory(
         .samples
         .iter()
         .map(|s| {
-            (0..geometry.nodes.len())
-                .map(|j| {
-                    let p = system.node_position_scaled(body, j, &s.state, scale);
-                    [p.x, p.y, p.z]
-                })
+            system
+                .node_positions_scaled(body, &s.state, scale)
+                .into_iter()
+                .take(geometry.nodes.len())
+                .map(|p| [p.x, p.y, p.z])
                 .collect()
         })
         .collect();
@@ -80,16 +75,14 @@ pub fn body_trajectory(
     }
 }
 
-/// The floating frame of `body` over `sim_time` as three arrows of `length` m.
-pub fn frame_axes(
+/// The frame of `body` at every sample: origins (m) and the columns of its rotation matrix.
+#[allow(clippy::type_complexity)]
+fn placements(
     system: &System,
     sim: &Simulation,
     body: usize,
-    path: String,
-    length: f64,
-) -> Visual {
-    let (origins, axes) = sim
-        .samples
+) -> (Vec<[f64; 3]>, Vec<[[f64; 3]; 3]>) {
+    sim.samples
         .iter()
         .map(|s| {
             let (r, a) = system.placement(body, &s.state);
@@ -98,7 +91,47 @@ pub fn frame_axes(
                 [0, 1, 2].map(|c| [a[(0, c)], a[(1, c)], a[(2, c)]]),
             )
         })
-        .unzip();
+        .unzip()
+}
+
+/// Deformable body `body` undeformed and carried by its frame over `sim_time` (the ghost
+/// beside its deflected drawing): its outline once in body coordinates, the frame's
+/// placement per time.
+pub fn ghost_trajectory(
+    system: &System,
+    sim: &Simulation,
+    body: usize,
+    path: String,
+    geometry: &Geometry,
+    color: Color,
+) -> Visual {
+    let local = match &system.bodies[body] {
+        crate::dynamics::Body::Flexible(fb) => Geometry {
+            nodes: fb.s_bar.iter().map(|p| [p.x, p.y, p.z]).collect(),
+            strips: geometry.strips.clone(),
+        },
+        crate::dynamics::Body::Rigid(_) => geometry.clone(),
+    };
+    let (translations, rotations) = placements(system, sim, body);
+    Visual::RigidTrajectory {
+        path,
+        geometry: local,
+        times: times(sim),
+        translations,
+        rotations,
+        color,
+    }
+}
+
+/// The floating frame of `body` over `sim_time` as three arrows of `length` m.
+pub fn frame_axes(
+    system: &System,
+    sim: &Simulation,
+    body: usize,
+    path: String,
+    length: f64,
+) -> Visual {
+    let (origins, axes) = placements(system, sim, body);
     Visual::FrameAxes {
         path,
         times: times(sim),

@@ -7,7 +7,8 @@ use super::{
     SceneInfo, SceneOptions, SceneOutput,
     mode_visuals::{REFERENCE_GHOST, method_color},
     sim_visuals::{
-        body_trajectory, deformation_scale, frame_axes, health_series, simulation_layout, times,
+        body_trajectory, deformation_scale, frame_axes, ghost_trajectory, health_series,
+        simulation_layout, times,
     },
 };
 use crate::{
@@ -665,7 +666,6 @@ pub fn run_scenario(
         deformation_scale(
             runs.iter().map(|(_, system, sim, _)| (system, sim)),
             0,
-            geometry.nodes.len(),
             model.size(),
         )
     })?;
@@ -683,14 +683,13 @@ pub fn run_scenario(
             path: lane.clone(),
             translation: [0.0, -1.5 * width * k as f64, 0.0],
         });
-        visuals.push(body_trajectory(
+        visuals.push(ghost_trajectory(
             system,
             sim,
             0,
             format!("{lane}/undeformed_ghost"),
             &geometry,
             REFERENCE_GHOST,
-            0.0,
         ));
         if let Some(first) = sim.samples.first() {
             // Above the body's highest point at the start, over node 16's corner.

@@ -669,19 +669,59 @@ fn bodies_of_different_methods_are_drawn_in_lanes_that_do_not_overlap() {
     for m in ["nr", "cb", "gr"] {
         let lane = format!("world/slab/{m}");
         let shift = offset(&lane).unwrap_or_else(|| panic!("no offset for {lane}"));
+        let mut first_frames: Option<Vec<[f64; 3]>> = None;
         for part in ["nodal_fixed", "undeformed_ghost"] {
             let path = format!("{lane}/{part}");
-            let positions = out
+            // Node positions per time: logged for the deflected body, a rigid outline moved
+            // by its frame's placement (rotation columns) for the ghost.
+            let positions: Vec<Vec<[f64; 3]>> = out
                 .visuals
                 .iter()
                 .find_map(|v| match v {
                     Visual::Trajectory {
                         path: p, positions, ..
                     } if *p == path => Some(positions.clone()),
+                    Visual::RigidTrajectory {
+                        path: p,
+                        geometry,
+                        translations,
+                        rotations,
+                        ..
+                    } if *p == path => {
+                        assert_eq!(translations.len(), rotations.len());
+                        Some(
+                            translations
+                                .iter()
+                                .zip(rotations)
+                                .map(|(t, r)| {
+                                    geometry
+                                        .nodes
+                                        .iter()
+                                        .map(|x| {
+                                            [0, 1, 2].map(|i| {
+                                                t[i] + (0..3).map(|c| r[c][i] * x[c]).sum::<f64>()
+                                            })
+                                        })
+                                        .collect()
+                                })
+                                .collect(),
+                        )
+                    }
                     _ => None,
                 })
                 .unwrap_or_else(|| panic!("no trajectory {path}"));
             assert!(!positions.is_empty());
+            // At the start the slab is undeformed: the ghost, placed by its frame alone, lies
+            // on the body drawn from every node's position.
+            if let Some(body) = &first_frames {
+                let ghost: &Vec<[f64; 3]> = &positions[0];
+                assert_eq!(ghost.len(), Vec::len(body));
+                for (g, b) in ghost.iter().zip(body) {
+                    let gap = (0..3).map(|i| (g[i] - b[i]).abs()).fold(0.0, f64::max);
+                    assert!(gap < 1e-9, "{path}: ghost {g:?}, body {b:?}");
+                }
+            }
+            first_frames = Some(positions[0].clone());
             let ys = positions.iter().flatten().map(|p| p[1] + shift[1]);
             let lo = ys.clone().fold(f64::MAX, f64::min);
             let hi = ys.fold(f64::MIN, f64::max);
