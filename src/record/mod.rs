@@ -2,12 +2,15 @@
 //! blueprint, and atomic `.rrd` writing. It knows nothing of scenes: it logs a
 //! [`RecordingContent`].
 
+mod blueprint;
+mod eye;
 mod layout;
 mod log_log_chart;
 mod recorder;
 mod recording_content;
 mod visual;
 
+pub use eye::{Bounds, Eye};
 pub use layout::Layout;
 pub use log_log_chart::{LogLogChart, LogLogSeries};
 pub use recorder::{Recorder, write_atomically};

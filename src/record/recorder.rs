@@ -2,11 +2,12 @@
 
 use std::path::Path;
 
-use rerun::{
-    RecordingStream, RecordingStreamBuilder, blueprint as bp, blueprint::components::PanelState,
-};
+use rerun::{RecordingStream, RecordingStreamBuilder};
 
-use super::{Geometry, Layout, PHASE_STEPS, RecordingContent, Visual};
+use super::{
+    Bounds, Eye, Geometry, PHASE_STEPS, RecordingContent, Visual,
+    blueprint::{BlueprintParameters, send_blueprint},
+};
 use crate::{Error, Result};
 
 /// Prefix of every recording's application id (`flexmodes-<scene>`: one default layout per
@@ -76,26 +77,20 @@ impl Recorder {
         for v in &out.visuals {
             log_visual(rec, v, planar)?;
         }
-        let time_panel = match &out.timeline {
-            // Collapsed: the play controls on one line, the views keep the height the streams
-            // tree would take.
-            Some(t) => bp::TimePanel::new()
-                .with_state(PanelState::Collapsed)
-                .with_timeline(t.clone())
-                .with_play_state(rerun::blueprint::components::PlayState::Playing)
-                .with_loop_mode(rerun::blueprint::components::LoopMode::All),
-            None => bp::TimePanel::new().with_state(PanelState::Collapsed),
+        // Each 3D view starts with a camera that frames what it shows.
+        let eye_for = |origin: &str, aspect: f64| {
+            Bounds::of(origin, &out.visuals).map(|b| Eye::framing(&b, aspect))
         };
-        let blueprint = bp::Blueprint::new(container(&out.layout, planar))
-            .with_auto_views(false)
-            .with_blueprint_panel(bp::BlueprintPanel::new().with_state(PanelState::Collapsed))
-            .with_selection_panel(bp::SelectionPanel::new().with_state(PanelState::Collapsed))
-            .with_time_panel(time_panel);
-        let activation = bp::BlueprintActivation {
-            make_active: !self.keep_user_layout,
-            make_default: true,
-        };
-        blueprint.send(rec, activation)?;
+        send_blueprint(
+            rec,
+            &out.layout,
+            &eye_for,
+            &BlueprintParameters {
+                planar,
+                timeline: out.timeline.as_deref(),
+                make_active: !self.keep_user_layout,
+            },
+        )?;
         Ok(())
     }
 }
@@ -460,52 +455,6 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
         }
     }
     Ok(())
-}
-
-fn container(l: &Layout, planar: bool) -> bp::ContainerLike {
-    let each = |items: &Vec<Layout>| {
-        items
-            .iter()
-            .map(|l| container(l, planar))
-            .collect::<Vec<_>>()
-    };
-    match l {
-        Layout::Horizontal(items, shares) => bp::Horizontal::new(each(items))
-            .with_column_shares(shares.clone())
-            .into(),
-        Layout::Vertical(items, shares) => bp::Vertical::new(each(items))
-            .with_row_shares(shares.clone())
-            .into(),
-        Layout::Tabs(items) => bp::Tabs::new(each(items)).into(),
-        Layout::Spatial3D {
-            name,
-            origin,
-            contents,
-        } if planar => bp::Spatial2DView::new(name.as_str())
-            .with_origin(origin.as_str())
-            .with_contents(contents.iter().cloned())
-            .into(),
-        Layout::Spatial3D {
-            name,
-            origin,
-            contents,
-        } => bp::Spatial3DView::new(name.as_str())
-            .with_origin(origin.as_str())
-            .with_contents(contents.iter().cloned())
-            .into(),
-        Layout::Text { name, origin } => bp::TextDocumentView::new(name.as_str())
-            .with_origin(origin.as_str())
-            .into(),
-        Layout::Spatial2D { name, origin } => bp::Spatial2DView::new(name.as_str())
-            .with_origin(origin.as_str())
-            .into(),
-        Layout::TimeSeries { name, origin } => bp::TimeSeriesView::new(name.as_str())
-            .with_origin(origin.as_str())
-            .into(),
-        Layout::BarChart { name, origin } => bp::BarChartView::new(name.as_str())
-            .with_origin(origin.as_str())
-            .into(),
-    }
 }
 
 /// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a

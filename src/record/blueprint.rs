@@ -1,0 +1,234 @@
+//! The default blueprint of a recording, logged entity by entity to a blueprint stream: the
+//! SDK's builder (`rerun::blueprint::Blueprint`) cannot give a 3D view its starting camera
+//! (the view's `EyeControls3D` property), and without one the viewer's default eye sees a row
+//! of bodies from one end, so the far bodies are specks.
+
+use rerun::{
+    RecordingStream, RecordingStreamBuilder,
+    blueprint::components::{
+        ColumnShare, ContainerKind, Eye3DKind, IncludedContent, LoopMode, PanelState, PlayState,
+        QueryExpression, RootContainer, RowShare, ViewClass,
+    },
+    external::{
+        re_log_types::{BlueprintActivationCommand, LogMsg},
+        re_sdk_types::blueprint::archetypes::{
+            ContainerBlueprint, EyeControls3D, PanelBlueprint, TimePanelBlueprint, ViewBlueprint,
+            ViewContents, ViewportBlueprint,
+        },
+    },
+};
+
+use super::{Eye, Layout};
+use crate::{Error, Result};
+
+/// How the blueprint is built and sent.
+pub(crate) struct BlueprintParameters<'a> {
+    /// Planar bodies: their "3D" views are 2D views.
+    pub planar: bool,
+    /// The timeline the time panel plays (looping), if the recording has one.
+    pub timeline: Option<&'a str>,
+    /// Make it the active blueprint (a file, or the explorer's first recording) besides the
+    /// default one (a layout the user changed survives a new recording otherwise).
+    pub make_active: bool,
+}
+
+/// The viewer's area for views at the default window size (1280 × 800 less the top bar and the
+/// collapsed time panel), points: where a view's share of it, and so its aspect, is reckoned.
+const VIEWPORT: (f64, f64) = (1280.0, 740.0);
+
+/// Logs `layout` as a blueprint, each 3D view with the camera `eye_for(origin, aspect)` gives
+/// (aspect: the view's width over height by the layout's shares), and sends it through `rec`.
+pub(crate) fn send_blueprint(
+    rec: &RecordingStream,
+    layout: &Layout,
+    eye_for: &dyn Fn(&str, f64) -> Option<Eye>,
+    params: &BlueprintParameters,
+) -> Result<()> {
+    let rerun_error = |e: rerun::RecordingStreamError| Error::Rerun(format!("blueprint: {e}"));
+    let application_id = rec
+        .store_info()
+        .map(|info| info.application_id().clone())
+        .unwrap_or_else(|| rerun::ApplicationId::new_or_unknown("flexmodes".to_string()));
+    let (bp, storage) = RecordingStreamBuilder::new(application_id)
+        .recording_id(uuid::Uuid::new_v4().to_string())
+        .blueprint()
+        .memory()
+        .map_err(rerun_error)?;
+    bp.set_time_sequence("blueprint", 0);
+    let writer = Writer {
+        bp: &bp,
+        eye_for,
+        planar: params.planar,
+    };
+    // The viewport's root is a container: a lone view goes into tabs.
+    let root = match layout {
+        Layout::Horizontal(..) | Layout::Vertical(..) | Layout::Tabs(..) => {
+            writer.log(layout, VIEWPORT)?
+        }
+        view => writer.log(&Layout::Tabs(vec![view.clone()]), VIEWPORT)?,
+    };
+    let root_id = root
+        .strip_prefix("container/")
+        .and_then(|id| uuid::Uuid::parse_str(id).ok())
+        .ok_or_else(|| Error::Rerun(format!("blueprint: root {root} is not a container")))?;
+    bp.log(
+        "viewport",
+        &ViewportBlueprint::new()
+            .with_root_container(RootContainer(root_id.into()))
+            .with_auto_views(false),
+    )
+    .map_err(rerun_error)?;
+    for panel in ["blueprint_panel", "selection_panel"] {
+        bp.log(
+            panel,
+            &PanelBlueprint::new().with_state(PanelState::Collapsed),
+        )
+        .map_err(rerun_error)?;
+    }
+    // Collapsed: the play controls on one line; the views keep the height the streams tree
+    // would take.
+    let mut time_panel = TimePanelBlueprint::new().with_state(PanelState::Collapsed);
+    if let Some(timeline) = params.timeline {
+        time_panel = time_panel
+            .with_timeline(timeline)
+            .with_play_state(PlayState::Playing)
+            .with_loop_mode(LoopMode::All);
+    }
+    bp.log("time_panel", &time_panel).map_err(rerun_error)?;
+    bp.flush_blocking()
+        .map_err(|e| Error::Rerun(format!("blueprint flush: {e}")))?;
+    let msgs = storage.take();
+    let blueprint_id = msgs
+        .iter()
+        .find_map(|m| match m {
+            LogMsg::SetStoreInfo(info) => Some(info.info.store_id.clone()),
+            _ => None,
+        })
+        .ok_or_else(|| Error::Rerun("blueprint: no store info".into()))?;
+    rec.send_blueprint(
+        msgs,
+        BlueprintActivationCommand {
+            blueprint_id,
+            make_active: params.make_active,
+            make_default: true,
+        },
+    );
+    Ok(())
+}
+
+struct Writer<'a> {
+    bp: &'a RecordingStream,
+    eye_for: &'a dyn Fn(&str, f64) -> Option<Eye>,
+    planar: bool,
+}
+
+/// The parts of `size` that `shares` give, one per item (equal parts without shares).
+fn split(size: f64, shares: &[f32], items: usize) -> Vec<f64> {
+    let shares: Vec<f64> = (0..items)
+        .map(|i| shares.get(i).map_or(1.0, |&s| f64::from(s).max(0.0)))
+        .collect();
+    let total = shares.iter().sum::<f64>().max(f64::MIN_POSITIVE);
+    shares.iter().map(|s| size * s / total).collect()
+}
+
+impl Writer<'_> {
+    /// Logs a container (its children first) or a view given `size` (width, height) of the
+    /// viewport; returns its blueprint path (`container/<id>` or `view/<id>`).
+    fn log(&self, layout: &Layout, size: (f64, f64)) -> Result<String> {
+        let rerun_error = |e: rerun::RecordingStreamError| Error::Rerun(format!("blueprint: {e}"));
+        let id = uuid::Uuid::new_v4();
+        let container = |kind: ContainerKind,
+                         items: &[Layout],
+                         sizes: Vec<(f64, f64)>|
+         -> Result<ContainerBlueprint> {
+            let children = items
+                .iter()
+                .zip(sizes)
+                .map(|(item, size)| {
+                    self.log(item, size)
+                        .map(|p| IncludedContent(p.as_str().into()))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            Ok(ContainerBlueprint::new(kind).with_contents(children))
+        };
+        let (width, height) = size;
+        let arch = match layout {
+            Layout::Horizontal(items, shares) => {
+                let sizes = split(width, shares, items.len())
+                    .into_iter()
+                    .map(|w| (w, height))
+                    .collect();
+                container(ContainerKind::Horizontal, items, sizes)?
+                    .with_col_shares(shares.iter().map(|&s| ColumnShare(s.into())))
+            }
+            Layout::Vertical(items, shares) => {
+                let sizes = split(height, shares, items.len())
+                    .into_iter()
+                    .map(|h| (width, h))
+                    .collect();
+                container(ContainerKind::Vertical, items, sizes)?
+                    .with_row_shares(shares.iter().map(|&s| RowShare(s.into())))
+            }
+            Layout::Tabs(items) => container(ContainerKind::Tabs, items, vec![size; items.len()])?,
+            view => return self.log_view(view, id, width / height.max(1.0)),
+        };
+        let path = format!("container/{id}");
+        self.bp.log(path.as_str(), &arch).map_err(rerun_error)?;
+        Ok(path)
+    }
+
+    fn log_view(&self, layout: &Layout, id: uuid::Uuid, aspect: f64) -> Result<String> {
+        let rerun_error = |e: rerun::RecordingStreamError| Error::Rerun(format!("blueprint: {e}"));
+        let path = format!("view/{id}");
+        let default_contents = vec!["$origin/**".to_string()];
+        let (class, name, origin, contents) = match layout {
+            Layout::Spatial3D {
+                name,
+                origin,
+                contents,
+            } => (
+                if self.planar { "2D" } else { "3D" },
+                name,
+                origin,
+                contents,
+            ),
+            Layout::Text { name, origin } => ("TextDocument", name, origin, &default_contents),
+            Layout::Spatial2D { name, origin } => ("2D", name, origin, &default_contents),
+            Layout::TimeSeries { name, origin } => ("TimeSeries", name, origin, &default_contents),
+            Layout::BarChart { name, origin } => ("BarChart", name, origin, &default_contents),
+            Layout::Horizontal(..) | Layout::Vertical(..) | Layout::Tabs(..) => {
+                unreachable!("containers are logged by Writer::log")
+            }
+        };
+        self.bp
+            .log(
+                format!("{path}/ViewContents").as_str(),
+                &ViewContents::new(contents.iter().map(|q| QueryExpression(q.as_str().into()))),
+            )
+            .map_err(rerun_error)?;
+        self.bp
+            .log(
+                path.as_str(),
+                &ViewBlueprint::new(ViewClass(class.into()))
+                    .with_display_name(name.as_str())
+                    .with_space_origin(origin.as_str()),
+            )
+            .map_err(rerun_error)?;
+        if class == "3D"
+            && let Some(eye) = (self.eye_for)(origin, aspect)
+        {
+            let f = |v: [f64; 3]| v.map(|x| x as f32);
+            self.bp
+                .log(
+                    format!("{path}/EyeControls3D").as_str(),
+                    &EyeControls3D::new()
+                        .with_kind(Eye3DKind::Orbital)
+                        .with_position(f(eye.position))
+                        .with_look_target(f(eye.look_target))
+                        .with_eye_up(f(eye.up)),
+                )
+                .map_err(rerun_error)?;
+        }
+        Ok(path)
+    }
+}
