@@ -354,7 +354,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             origin: "/plots/energy".into(),
         },
         Layout::TimeSeries {
-            name: "constraint violation".into(),
+            name: "log₁₀ constraint violation (m)".into(),
             origin: "/plots/constraint_violation".into(),
         },
     ]));

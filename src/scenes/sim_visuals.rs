@@ -155,14 +155,20 @@ pub fn simulation_layout(view: Layout, plots: Vec<Layout>) -> Layout {
     )
 }
 
-/// The largest position-constraint violation and the total energy over time, at
-/// `plots/constraint_violation/<suffix>` and `plots/energy/<suffix>`.
+/// The largest position-constraint violation (as log₁₀ of metres) and the total energy over
+/// time, at `plots/constraint_violation/<suffix>` and `plots/energy/<suffix>`.
 pub fn health_series(sim: &Simulation, suffix: &str, color: Color) -> [Visual; 2] {
     [
         Visual::Series {
             path: format!("plots/constraint_violation/{suffix}"),
             times: times(sim),
-            values: sim.samples.iter().map(|s| s.position_violation).collect(),
+            // As a power of ten: the violations are round-off (1e-16 to 1e-12 m), which the
+            // viewer's linear axis prints as rows of zeros.
+            values: sim
+                .samples
+                .iter()
+                .map(|s| s.position_violation.max(1e-18).log10())
+                .collect(),
             name: suffix.into(),
             color,
         },

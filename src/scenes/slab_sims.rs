@@ -652,7 +652,7 @@ pub fn run_scenario(
     let mut tabs = Vec::new();
     tabs.extend([
         Layout::TimeSeries {
-            name: "constraint violation".into(),
+            name: "log₁₀ constraint violation (m)".into(),
             origin: "/plots/constraint_violation".into(),
         },
         Layout::TimeSeries {
