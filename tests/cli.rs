@@ -347,10 +347,12 @@ fn bench_reports_speed_and_accuracy_points() {
     }
     // Every point with three settings: Dormand-Prince at the scenes' tolerance and at the
     // loose one, and generalized-alpha.
+    let scene_rtol = flexmodes::dynamics::IntegratorParameters::default().rtol;
+    let loose_rtol = flexmodes::bench::LOOSE_RTOL;
     let setting = |p: &serde_json::Value| (p["integrator"].clone(), p["rtol"].as_f64());
     for (scheme, rtol) in [
-        ("dp5", Some(1e-6)),
-        ("dp5", Some(1e-3)),
+        ("dp5", Some(scene_rtol)),
+        ("dp5", Some(loose_rtol)),
         ("gen-alpha", None),
     ] {
         let n = points
@@ -366,7 +368,9 @@ fn bench_reports_speed_and_accuracy_points() {
         points
             .iter()
             .find(|p| {
-                p["method"] == method && p["modes"] == modes && p["rtol"].as_f64() == Some(1e-3)
+                p["method"] == method
+                    && p["modes"] == modes
+                    && p["rtol"].as_f64() == Some(loose_rtol)
             })
             .and_then(|p| p["steps"].as_u64())
             .unwrap_or_else(|| panic!("{method} {modes}: no loose run"))
@@ -404,7 +408,9 @@ fn bench_reports_speed_and_accuracy_points() {
     let cb: Vec<f64> = points
         .iter()
         .filter(|p| {
-            p["method"] == "cb" && p["integrator"] == "dp5" && p["rtol"].as_f64() == Some(1e-6)
+            p["method"] == "cb"
+                && p["integrator"] == "dp5"
+                && p["rtol"].as_f64() == Some(scene_rtol)
         })
         .map(|p| p["rel_rms_error"].as_f64().unwrap())
         .collect();

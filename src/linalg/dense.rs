@@ -114,6 +114,20 @@ fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::Result<Mat<f64>> {
     Ok(svd.U().subcols(0, rank).to_owned())
 }
 
+/// The numerical rank of `a`: its singular values above `relative` times the largest (0 for
+/// an empty or zero matrix).
+pub fn numerical_rank(a: MatRef<'_, f64>, relative: f64) -> crate::Result<usize> {
+    let s = a
+        .singular_values()
+        .map_err(|_| crate::Error::DecompositionFailed {
+            what: "rank singular values".into(),
+        })?;
+    let largest = s.first().copied().unwrap_or(0.0);
+    Ok(s.iter()
+        .filter(|&&v| largest > 0.0 && v > relative * largest)
+        .count())
+}
+
 /// An orthonormal basis of $\{z : Az = 0\}$: the right singular vectors of A beyond its
 /// numerical rank (singular values above `tolerance`); the identity for a matrix without rows.
 pub fn null_space(a: MatRef<'_, f64>, tolerance: f64) -> crate::Result<Mat<f64>> {

@@ -13,8 +13,8 @@ mod sparse_symmetric;
 mod symmetric_factor;
 
 pub use dense::{
-    frobenius, identity, max_abs, max_abs_diff, null_space, principal_angles, select, select_cols,
-    select_rows, symmetry_defect,
+    frobenius, identity, max_abs, max_abs_diff, null_space, numerical_rank, principal_angles,
+    select, select_cols, select_rows, symmetry_defect,
 };
 pub use generalized_eigen::{GeneralizedEigen, fix_sign, generalized_eigen, hz_from_eigenvalue};
 pub use lyapunov::{solve_block_diagonal_lyapunov, solve_lyapunov};

@@ -44,7 +44,6 @@ pub(crate) fn send_blueprint(
     eye_for: &dyn Fn(&str, f64) -> Option<Eye>,
     params: &BlueprintParameters,
 ) -> Result<()> {
-    let rerun_error = |e: rerun::RecordingStreamError| Error::Rerun(format!("blueprint: {e}"));
     let application_id = rec
         .store_info()
         .map(|info| info.application_id().clone())
@@ -116,6 +115,11 @@ pub(crate) fn send_blueprint(
     Ok(())
 }
 
+/// A failed log call while building the blueprint.
+fn rerun_error(e: rerun::RecordingStreamError) -> Error {
+    Error::Rerun(format!("blueprint: {e}"))
+}
+
 struct Writer<'a> {
     bp: &'a RecordingStream,
     eye_for: &'a dyn Fn(&str, f64) -> Option<Eye>,
@@ -135,7 +139,6 @@ impl Writer<'_> {
     /// Logs a container (its children first) or a view given `size` (width, height) of the
     /// viewport; returns its blueprint path (`container/<id>` or `view/<id>`).
     fn log(&self, layout: &Layout, size: (f64, f64)) -> Result<String> {
-        let rerun_error = |e: rerun::RecordingStreamError| Error::Rerun(format!("blueprint: {e}"));
         let id = uuid::Uuid::new_v4();
         let container = |kind: ContainerKind,
                          items: &[Layout],
@@ -178,7 +181,6 @@ impl Writer<'_> {
     }
 
     fn log_view(&self, layout: &Layout, id: uuid::Uuid, aspect: f64) -> Result<String> {
-        let rerun_error = |e: rerun::RecordingStreamError| Error::Rerun(format!("blueprint: {e}"));
         let path = format!("view/{id}");
         let default_contents = vec!["$origin/**".to_string()];
         let (class, name, origin, contents) = match layout {

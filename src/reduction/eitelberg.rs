@@ -219,14 +219,9 @@ pub fn eitelberg(
         .filter(|&f| f >= crate::analysis::RIGID_BODY_HZ)
         .collect();
     hz.sort_by(f64::total_cmp);
+    // Zero singular values: those at or below 1e-9 of the largest.
     let zero_sv = |x: &Mat<f64>| -> Result<usize> {
-        let s = x
-            .singular_values()
-            .map_err(|_| Error::DecompositionFailed {
-                what: "singular value".into(),
-            })?;
-        let smax = s.first().copied().unwrap_or(0.0);
-        Ok(s.iter().filter(|&&v| v <= 1e-9 * smax).count())
+        Ok(x.nrows().min(x.ncols()) - crate::linalg::numerical_rank(x.as_ref(), 1e-9)?)
     };
     let zero_singular_values = (zero_sv(&a)?, zero_sv(&a_r)?);
     let psi = Mat::from_fn(n, nb, |i, j| t[(i, j)]);

@@ -175,16 +175,7 @@ fn check_r_set(model: &FeModel, r_set: &[usize], phi_r: faer::MatRef<'_, f64>) -
             .join(", ")
     };
     let rows = Mat::from_fn(r_set.len(), rigid, |r, c| phi_r[(r_set[r], c)]);
-    let sv = rows
-        .singular_values()
-        .map_err(|_| Error::DecompositionFailed {
-            what: "r-set rank".into(),
-        })?;
-    let largest = sv.first().copied().unwrap_or(0.0);
-    let rank = sv
-        .iter()
-        .filter(|&&s| s > 1e-9 * largest.max(f64::MIN_POSITIVE))
-        .count();
+    let rank = crate::linalg::numerical_rank(rows.as_ref(), 1e-9)?;
     if rank < rigid {
         return Err(Error::InvalidRSet {
             dofs: format!("[{}]", labels()),

@@ -37,6 +37,21 @@ pub struct SceneControls {
     pub refine: Option<[usize; 3]>,
 }
 
+impl SceneControls {
+    /// A scene whose only choice is which of `methods` to show (no boundary, kept modes, axes,
+    /// interval or mesh): the companion papers' fixed experiments, the failures catalogue.
+    pub const fn methods_only(methods: &'static [Method]) -> Self {
+        Self {
+            methods,
+            boundary: &[],
+            modes: None,
+            axes: &[],
+            end_time: None,
+            refine: None,
+        }
+    }
+}
+
 /// A scene: computes its results and visuals for given options.
 pub struct Scene {
     /// Description.

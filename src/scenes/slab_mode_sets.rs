@@ -33,14 +33,7 @@ pub const INFO: SceneInfo = SceneInfo {
               synthesis, motor-to-platform FRF against the full model over 0–10 Hz; influence \
               ranking against the lowest modes",
     sections: "Spanos–Tsuha §2–4",
-    controls: super::registry::SceneControls {
-        methods: &AVAILABLE,
-        boundary: &[],
-        modes: None,
-        axes: &[],
-        end_time: None,
-        refine: None,
-    },
+    controls: super::registry::SceneControls::methods_only(&AVAILABLE),
 };
 
 const AVAILABLE: [Method; 3] = [

@@ -171,6 +171,28 @@ fn magnified_deflections_scale_only_the_elastic_part() {
         );
         assert!((full - zero).norm() > 1e-4, "the state deforms node {node}");
     }
+    // Every node at once (the frame read once), and the largest deflection, agree with the
+    // node-by-node positions.
+    let Body::Flexible(fb) = &system.bodies[0] else {
+        unreachable!()
+    };
+    let nodes = fb.s_bar.len();
+    for scale in [0.0, 1.0, 20.0] {
+        let all = system.node_positions_scaled(0, &state, scale);
+        assert_eq!(all.len(), nodes);
+        for (j, p) in all.iter().enumerate() {
+            let one = system.node_position_scaled(0, j, &state, scale);
+            assert!((p - one).norm() < 1e-12, "node {j} at scale {scale}");
+        }
+    }
+    let largest = (0..nodes)
+        .map(|j| {
+            (system.node_position(0, j, &state) - system.node_position_scaled(0, j, &state, 0.0))
+                .norm()
+        })
+        .fold(0.0, f64::max);
+    let reported = system.largest_deflection(0, &state);
+    assert!(largest > 1e-4 && (reported - largest).abs() < 1e-12 * largest.max(1.0));
 }
 
 /// A state off the rest position: random deformation and velocities of every coordinate,
