@@ -149,13 +149,17 @@ struct WindowArgs {
     #[arg(long, value_parser = parse_size)]
     window_size: Option<[f32; 2]>,
     /// With --screenshot: toggle this method once the first recording shows, and capture
-    /// the recomputed one.
+    /// the recomputed one; `more-modes` or `fewer-modes` presses that button instead.
     #[arg(long, requires = "screenshot")]
     toggle: Option<String>,
     /// With --toggle: toggle that many times (one recomputation each) and print the median
     /// switch latency.
     #[arg(long, requires = "toggle", default_value_t = 1)]
     repeat: u32,
+    /// With --toggle: seconds to look at each recording before the next toggle (as a user
+    /// would; the explorer anticipates likely requests meanwhile).
+    #[arg(long, requires = "toggle", default_value_t = 0.0)]
+    pause: f64,
 }
 
 #[cfg(feature = "gui")]
@@ -175,6 +179,7 @@ impl From<WindowArgs> for crate::gui::ViewerOptions {
             window_size: w.window_size,
             toggle: w.toggle,
             repeat: w.repeat,
+            pause: std::time::Duration::from_secs_f64(w.pause.max(0.0)),
         }
     }
 }

@@ -363,3 +363,101 @@ fn every_scene_opens_with_its_default_controls() {
         assert!(!paths(&h).is_empty(), "{id}: the recording has no entities");
     }
 }
+
+#[test]
+fn the_explorer_anticipates_one_mode_more_or_fewer_and_unticked_methods() {
+    let mut c = Controls::for_scene("slab-sim1").unwrap();
+    c.methods.retain(|m| m != "mt");
+    let modes = c.modes;
+    assert!(modes > 0);
+    let next = Explorer::new(c.clone()).likely_next();
+    assert_eq!(next.len(), 3, "{next:?}");
+    assert!(
+        next.iter()
+            .any(|n| n.modes == modes + 1 && n.methods == c.methods)
+    );
+    assert!(
+        next.iter()
+            .any(|n| n.modes == modes - 1 && n.methods == c.methods)
+    );
+    assert!(next.iter().any(|n| n.modes == modes
+        && n.methods.len() == c.methods.len() + 1
+        && n.methods.iter().any(|m| m == "mt")));
+    // Everything else stays as the user set it.
+    for n in &next {
+        assert_eq!(
+            (&n.scene, &n.boundary, n.end_time),
+            (&c.scene, &c.boundary, c.end_time)
+        );
+    }
+    // Mode scenes integrate nothing: nothing to anticipate.
+    let modes_scene = Explorer::new(Controls::for_scene("beam-modes").unwrap());
+    assert!(modes_scene.likely_next().is_empty());
+}
+
+#[test]
+fn an_anticipated_request_is_served_from_the_cache() {
+    use flexmodes::{gui::Worker, reduction::Method, scenes::SceneOptions};
+    let mut w = Worker::new();
+    let options = SceneOptions {
+        methods: Some(vec![Method::CraigBampton]),
+        modes: Some(4),
+        end_time: Some(0.1),
+        ..Default::default()
+    };
+    w.anticipate("slab-sim1", vec![options.clone()]);
+    let start = Instant::now();
+    while w.anticipated() < 1 {
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "not anticipated"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let cached = w.cached();
+    assert!(cached > 0, "the anticipation kept its integration");
+    w.submit(1, "slab-sim1", options, false);
+    let finished = next_result(&w, Instant::now(), 120);
+    assert!(finished.result.is_ok());
+    assert_eq!(w.cached(), cached, "the request integrated nothing anew");
+}
+
+#[test]
+fn a_request_stops_a_running_anticipation() {
+    use flexmodes::{gui::Worker, reduction::Method, scenes::SceneOptions};
+    let mut w = Worker::new();
+    let slow = SceneOptions {
+        methods: Some(vec![Method::NoReduction]),
+        end_time: Some(20.0),
+        ..Default::default()
+    };
+    w.anticipate("slab-sim1", vec![slow.clone(), slow]);
+    let start = Instant::now();
+    let running = loop {
+        if let Some(p) = w.anticipation()
+            && p.reading().is_some_and(|r| r.time > 0.0)
+        {
+            break p;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "no anticipation ran"
+        );
+        std::thread::sleep(Duration::from_millis(1));
+    };
+    w.submit(1, "beam-modes", SceneOptions::default(), false);
+    assert!(running.is_cancelled());
+    assert!(next_result(&w, start, 120).result.is_ok());
+    // The anticipating thread stops at the cancelled integration's next output step and
+    // starts nothing else: neither request ran to its end.
+    let stopped = Instant::now();
+    while w.anticipation().is_some() {
+        assert!(
+            stopped.elapsed() < Duration::from_secs(30),
+            "still anticipating"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert_eq!(w.anticipated(), 0);
+    assert!(running.reading().unwrap().time < 20.0);
+}

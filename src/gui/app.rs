@@ -22,12 +22,20 @@ pub struct ViewerOptions {
     pub screenshot: Option<PathBuf>,
     /// Inner window size in points.
     pub window_size: Option<[f32; 2]>,
-    /// Once the first recording shows, toggle this method (as a user would) and recompute.
+    /// Once the first recording shows, toggle this method (as a user would) and recompute;
+    /// [`MORE_MODES`] or [`FEWER_MODES`] presses that button instead.
     pub toggle: Option<String>,
     /// How many times to toggle `toggle` (on, off, on, …), one recomputation each; the
     /// screenshot shows the last. 0 counts as 1.
     pub repeat: u32,
+    /// How long to look at each recording before the next toggle.
+    pub pause: std::time::Duration,
 }
+
+/// [`ViewerOptions::toggle`] that presses "more modes".
+pub const MORE_MODES: &str = "more-modes";
+/// [`ViewerOptions::toggle`] that presses "fewer modes".
+pub const FEWER_MODES: &str = "fewer-modes";
 
 /// Frames to let the viewer ingest and lay out a recording before a screenshot.
 const SETTLE_FRAMES: u32 = 30;
@@ -39,6 +47,10 @@ struct Capture {
     toggle: Option<String>,
     /// Toggles still to make; `wanted` recordings in all before the screenshot.
     toggles_left: u32,
+    /// Time to wait after a recording shows before toggling.
+    pause: std::time::Duration,
+    /// When the next toggle is due.
+    toggle_at: Option<std::time::Instant>,
     wanted: u32,
     shown: u32,
     settle: u32,
@@ -58,9 +70,9 @@ struct FlexmodesApp {
 }
 
 impl FlexmodesApp {
-    fn show_recording(&mut self, rrd: &[u8]) {
+    fn show_recording(&mut self, messages: Vec<LogMsg>) {
         let mut first: Option<StoreId> = None;
-        for msg in DecoderApp::decode_lazy(rrd).flatten() {
+        for msg in messages {
             if let LogMsg::SetStoreInfo(info) = &msg
                 && first.is_none()
                 && info.info.store_id.is_recording()
@@ -101,24 +113,39 @@ impl eframe::App for FlexmodesApp {
         if let Some(mut explorer) = self.explorer.take() {
             explorer.wake(ctx);
             explorer.poll();
-            if let Some(rrd) = explorer.take_fresh().map(|c| c.rrd.clone()) {
+            if let Some(messages) = explorer.take_fresh().map(|c| c.messages.clone()) {
                 let start = std::time::Instant::now();
-                self.show_recording(&rrd);
+                self.show_recording(messages);
                 self.handoffs.push(start.elapsed());
                 if let Some(c) = &mut self.capture {
                     c.shown += 1;
                     c.settle = 0;
-                    if c.toggles_left > 0
-                        && let Some(m) = c.toggle.clone()
-                    {
+                    if c.toggles_left > 0 {
+                        c.toggle_at = Some(std::time::Instant::now() + c.pause);
+                    }
+                }
+            }
+            if let Some(c) = &mut self.capture
+                && let Some(due) = c.toggle_at
+            {
+                if std::time::Instant::now() >= due {
+                    c.toggle_at = None;
+                    if let Some(m) = c.toggle.clone() {
                         c.toggles_left -= 1;
-                        if explorer.controls.methods.contains(&m) {
-                            explorer.controls.methods.retain(|id| *id != m);
-                        } else {
-                            explorer.controls.methods.push(m);
+                        match m.as_str() {
+                            MORE_MODES => explorer.controls.modes += 1,
+                            FEWER_MODES => {
+                                explorer.controls.modes = explorer.controls.modes.saturating_sub(1)
+                            }
+                            _ if explorer.controls.methods.contains(&m) => {
+                                explorer.controls.methods.retain(|id| *id != m)
+                            }
+                            _ => explorer.controls.methods.push(m),
                         }
                         explorer.request();
                     }
+                } else {
+                    ctx.request_repaint_after(due - std::time::Instant::now());
                 }
             }
             if explorer.is_computing() {
@@ -211,6 +238,11 @@ impl FlexmodesApp {
                         0.5 * (switches[n / 2 - 1] + switches[n / 2])
                     };
                     eprintln!("switch latency, s: median {median:.3} over {n}");
+                    let (anticipated, cached) = e.anticipation_counts();
+                    eprintln!(
+                        "  anticipated requests run to their end: {anticipated}; cache entries: \
+                         {cached}"
+                    );
                 }
             }
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
@@ -274,6 +306,8 @@ pub fn run_with_body(
         path,
         toggle: opts.toggle.clone(),
         toggles_left: toggles,
+        pause: opts.pause,
+        toggle_at: None,
         wanted: toggles + 1,
         shown: 0,
         settle: 0,
@@ -322,7 +356,11 @@ pub fn run_with_body(
                 handoffs: Vec::new(),
             };
             if let Some(bytes) = &file_bytes {
-                app.show_recording(bytes);
+                app.show_recording(
+                    DecoderApp::decode_lazy(bytes.as_slice())
+                        .flatten()
+                        .collect(),
+                );
             }
             Ok(Box::new(app))
         }),

@@ -139,6 +139,7 @@ impl Explorer {
                 .push(since.map_or(f.elapsed, |s| s.elapsed().max(f.elapsed)));
             match f.result {
                 Ok(c) => {
+                    self.anticipate();
                     self.phase_times.push((c.compute_s, c.encode_s));
                     self.shown_scenes.insert(c.scene.clone());
                     self.current = Some(c);
@@ -150,6 +151,58 @@ impl Explorer {
             changed = true;
         }
         changed
+    }
+
+    /// The controls one click away that need new time integrations: one kept mode more or
+    /// fewer, and each of the scene's methods not ticked, ticked. Only simulations: their
+    /// integrations are what a switch waits for, and what the cache keeps.
+    pub fn likely_next(&self) -> Vec<Controls> {
+        let Ok(scene) = scenes::find(&self.controls.scene) else {
+            return Vec::new();
+        };
+        let c = scene.info.controls;
+        if c.end_time.is_none() {
+            return Vec::new();
+        }
+        let mut out = Vec::new();
+        if c.modes.is_some() {
+            out.push(Controls {
+                modes: self.controls.modes + 1,
+                ..self.controls.clone()
+            });
+            if self.controls.modes > 0 {
+                out.push(Controls {
+                    modes: self.controls.modes - 1,
+                    ..self.controls.clone()
+                });
+            }
+        }
+        for m in c.methods {
+            if !self.controls.methods.iter().any(|id| id == m.id()) {
+                let mut next = self.controls.clone();
+                next.methods.push(m.id().into());
+                out.push(next);
+            }
+        }
+        out
+    }
+
+    /// Hands [`Self::likely_next`] to the worker to run ahead of time.
+    fn anticipate(&mut self) {
+        let body = self.loaded_body().ok().flatten();
+        let options = self
+            .likely_next()
+            .iter()
+            .filter_map(|c| c.options_with(body.as_ref()).ok())
+            .collect::<Vec<_>>();
+        if !options.is_empty() {
+            self.worker.anticipate(&self.controls.scene, options);
+        }
+    }
+
+    /// Anticipated requests that ran to their end, and the cache's entries.
+    pub fn anticipation_counts(&self) -> (u64, usize) {
+        (self.worker.anticipated(), self.worker.cached())
     }
 
     /// The new recording to show, once per successful computation.
@@ -178,7 +231,10 @@ impl Explorer {
                     self.request();
                 }
                 Command::Save(path) => match &self.current {
-                    Some(c) => match crate::record::write_atomically(&path, &c.rrd) {
+                    Some(c) => match c
+                        .rrd()
+                        .and_then(|bytes| crate::record::write_atomically(&path, &bytes))
+                    {
                         Ok(()) => self.status = format!("saved {}", path.display()),
                         Err(e) => self.error = Some(e.to_string()),
                     },

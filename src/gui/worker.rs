@@ -1,5 +1,7 @@
 //! Scene computation off the UI thread; a newer request supersedes older ones and stops a
-//! running time integration at its next output step.
+//! running time integration at its next output step. While the user looks at a result, a
+//! second thread at low priority runs the requests the user is likely to make next (one mode
+//! more or fewer, a method ticked) so their integrations are in the cache when asked for.
 
 use std::{
     sync::{
@@ -10,7 +12,7 @@ use std::{
     time::{Duration, Instant},
 };
 
-use rerun::external::egui;
+use rerun::external::{egui, re_log_types::LogMsg};
 
 use crate::{
     Progress, ProgressReading,
@@ -28,12 +30,19 @@ pub struct Computed {
     pub report: Report,
     /// Entity paths logged.
     pub entity_paths: Vec<String>,
-    /// The recording as `.rrd` bytes (for saving and for the viewer).
-    pub rrd: Vec<u8>,
+    /// The recording's messages, as the viewer takes them (encoded only to be saved).
+    pub messages: Vec<LogMsg>,
     /// Running the scene, s.
     pub compute_s: f64,
-    /// Building and encoding the recording, s.
+    /// Building the recording's messages, s.
     pub encode_s: f64,
+}
+
+impl Computed {
+    /// The recording as the bytes of an `.rrd` file.
+    pub fn rrd(&self) -> crate::Result<Vec<u8>> {
+        crate::record::encode_messages(&self.messages)
+    }
 }
 
 /// The outcome of one request.
@@ -54,7 +63,25 @@ struct Job {
     keep_user_layout: bool,
 }
 
-/// A background thread that runs scenes.
+/// Requests run ahead of time, only to fill the cache.
+struct Anticipation {
+    /// The newest request's generation when the anticipation was made: a newer request
+    /// makes it stale.
+    generation: u64,
+    scene: String,
+    options: Vec<SceneOptions>,
+}
+
+/// How long the anticipating thread waits after a result before it starts: the viewer
+/// ingests and draws the new recording meanwhile, and a user looks at it for longer.
+const ANTICIPATION_DELAY: Duration = Duration::from_millis(300);
+
+/// Niceness of the anticipating thread (Linux: per thread), so the viewer's drawing and the
+/// user's own requests keep the cores first.
+#[cfg(target_os = "linux")]
+const ANTICIPATION_NICENESS: libc::c_int = 10;
+
+/// A background thread that runs scenes, and one that anticipates requests.
 pub struct Worker {
     jobs: Sender<Job>,
     done: Receiver<Finished>,
@@ -63,6 +90,12 @@ pub struct Worker {
     running: Option<Progress>,
     /// Time integrations kept across requests: ticking a method integrates that method only.
     cache: RunCache,
+    anticipations: Sender<Anticipation>,
+    /// The running anticipation's progress (cancelled by every request).
+    anticipating: Arc<std::sync::Mutex<Option<Progress>>>,
+    /// Anticipations finished (or failed) since the worker started; incremented after each
+    /// request of an anticipation ran to its end.
+    anticipated: Arc<AtomicU64>,
     /// Woken when a result is ready, so the UI takes it at once instead of at its next
     /// scheduled frame.
     waker: Arc<std::sync::Mutex<Option<egui::Context>>>,
@@ -113,14 +146,91 @@ impl Worker {
                 }
             })
             .expect("spawning a thread");
+        let cache = RunCache::new();
+        let (anticipations, anticipation_rx) = channel::<Anticipation>();
+        let anticipating: Arc<std::sync::Mutex<Option<Progress>>> = Arc::default();
+        let anticipated = Arc::new(AtomicU64::new(0));
+        let (cache_a, anticipating_a, anticipated_a, latest_a) = (
+            cache.clone(),
+            anticipating.clone(),
+            anticipated.clone(),
+            latest.clone(),
+        );
+        std::thread::Builder::new()
+            .name("flexmodes-anticipate".into())
+            .spawn(move || {
+                lower_priority();
+                while let Ok(mut next) = anticipation_rx.recv() {
+                    // The viewer first draws the result just shown.
+                    std::thread::sleep(ANTICIPATION_DELAY);
+                    while let Ok(newer) = anticipation_rx.try_recv() {
+                        next = newer;
+                    }
+                    let Ok(scene) = scenes::find(&next.scene) else {
+                        continue;
+                    };
+                    for mut options in next.options {
+                        let progress = Progress::new();
+                        match anticipating_a.lock() {
+                            Ok(mut slot) => *slot = Some(progress.clone()),
+                            Err(_) => return,
+                        }
+                        // Checked after the progress is in its slot: a request either cancels
+                        // it there or is seen here (it raises the generation first).
+                        if next.generation < latest_a.load(Ordering::SeqCst) {
+                            break;
+                        }
+                        options.progress = progress.clone();
+                        options.cache = cache_a.clone();
+                        // Only the cache's entries count; errors show when the user asks.
+                        let _ = scene.execute(&options);
+                        if progress.is_cancelled() {
+                            break;
+                        }
+                        anticipated_a.fetch_add(1, Ordering::SeqCst);
+                    }
+                    if let Ok(mut slot) = anticipating_a.lock() {
+                        *slot = None;
+                    }
+                }
+            })
+            .expect("spawning a thread");
         Self {
             jobs,
             done,
             latest,
             running: None,
-            cache: RunCache::new(),
+            cache,
+            anticipations,
+            anticipating,
+            anticipated,
             waker,
         }
+    }
+
+    /// Runs `options` of `scene` ahead of time at low priority, one after the other, to fill
+    /// the cache (replacing anticipations not yet started). A [`Self::submit`] stops them.
+    pub fn anticipate(&self, scene: &str, options: Vec<SceneOptions>) {
+        let _ = self.anticipations.send(Anticipation {
+            generation: self.latest.load(Ordering::SeqCst),
+            scene: scene.into(),
+            options,
+        });
+    }
+
+    /// The progress of the anticipated request running now, if one runs.
+    pub fn anticipation(&self) -> Option<Progress> {
+        self.anticipating.lock().ok().and_then(|slot| slot.clone())
+    }
+
+    /// Anticipated requests that ran to their end since the worker started.
+    pub fn anticipated(&self) -> u64 {
+        self.anticipated.load(Ordering::SeqCst)
+    }
+
+    /// Entries in the cache shared by requests and anticipations.
+    pub fn cached(&self) -> usize {
+        self.cache.len()
     }
 
     /// Repaints `ctx` whenever a result is ready.
@@ -147,6 +257,11 @@ impl Worker {
         self.latest.store(generation, Ordering::SeqCst);
         if let Some(old) = self.running.take() {
             old.cancel();
+        }
+        if let Ok(slot) = self.anticipating.lock()
+            && let Some(anticipation) = slot.as_ref()
+        {
+            anticipation.cancel();
         }
         let progress = Progress::new();
         options.progress = progress.clone();
@@ -177,6 +292,17 @@ impl Worker {
     }
 }
 
+/// Lowers the calling thread's scheduling priority (Linux gives each thread its own
+/// niceness); elsewhere the thread runs at normal priority.
+fn lower_priority() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: gettid and setpriority take no pointers; failure leaves the priority as it was.
+    unsafe {
+        let tid = libc::gettid();
+        libc::setpriority(libc::PRIO_PROCESS, tid as libc::id_t, ANTICIPATION_NICENESS);
+    }
+}
+
 fn compute(job: &Job, keep_user_layout: bool) -> Result<Computed, String> {
     let (scene, options, generation) = (&job.scene, &job.options, job.generation);
     let chain = |e: crate::Error| {
@@ -197,13 +323,13 @@ fn compute(job: &Job, keep_user_layout: bool) -> Result<Computed, String> {
         keep_user_layout,
     };
     let start = Instant::now();
-    let rrd = recorder.encode(&out).map_err(chain)?;
+    let messages = recorder.messages(&out).map_err(chain)?;
     let encode_s = start.elapsed().as_secs_f64();
     Ok(Computed {
         scene: scene.clone(),
         entity_paths: out.visuals.iter().map(|v| v.path().to_string()).collect(),
         report: out.report,
-        rrd,
+        messages,
         compute_s,
         encode_s,
     })

@@ -2,13 +2,21 @@
 
 use std::path::Path;
 
-use rerun::{RecordingStream, RecordingStreamBuilder};
+use rerun::{
+    RecordingStream, RecordingStreamBuilder,
+    external::{re_log_encoding::Encoder, re_log_types::LogMsg},
+};
 
 use super::{
     Bounds, Eye, Geometry, PHASE_STEPS, RecordingContent, Visual,
     blueprint::{BlueprintParameters, send_blueprint},
 };
 use crate::{Error, Result};
+
+/// The bytes of an `.rrd` file holding `messages` (see [`Recorder::messages`]).
+pub fn encode_messages(messages: &[LogMsg]) -> Result<Vec<u8>> {
+    Encoder::encode(messages.iter().map(Ok)).map_err(|e| Error::Rerun(format!("encode: {e}")))
+}
 
 /// Prefix of every recording's application id (`flexmodes-<scene>`: one default layout per
 /// scene in the viewer).
@@ -29,6 +37,13 @@ impl Recorder {
     /// Encodes the scene as the bytes of an `.rrd` file (recording plus default blueprint).
     /// Log time is disabled so two runs give the same data.
     pub fn encode(&self, out: &RecordingContent) -> Result<Vec<u8>> {
+        encode_messages(&self.messages(out)?)
+    }
+
+    /// The scene as the messages of a recording (plus its blueprint), not encoded: what the
+    /// desktop app hands its embedded viewer. Encoding them into `.rrd` bytes cost about half
+    /// of building them (15 of 28 ms on slab-sim1), and decoding again 5–8 ms more.
+    pub fn messages(&self, out: &RecordingContent) -> Result<Vec<LogMsg>> {
         let id = match &self.recording_suffix {
             Some(s) => format!("flexmodes-{}-{s}", out.report.scene),
             None => format!("flexmodes-{}", out.report.scene),
@@ -44,9 +59,7 @@ impl Recorder {
         self.log(&rec, out)?;
         rec.flush_blocking()
             .map_err(|e| Error::Rerun(format!("flush: {e}")))?;
-        storage
-            .drain_as_bytes()
-            .map_err(|e| Error::Rerun(format!("encode: {e}")))
+        Ok(storage.take())
     }
 
     /// Encodes and writes to `path` atomically (temporary file, then rename).
