@@ -12,7 +12,8 @@ use crate::{Error, Result};
 
 #[derive(Debug, Default)]
 struct Shared {
-    cancelled: AtomicBool,
+    /// Shared with [`Progress::muted`] handles.
+    cancelled: Arc<AtomicBool>,
     simulations: AtomicUsize,
     time_bits: AtomicU64,
     end_bits: AtomicU64,
@@ -55,6 +56,18 @@ impl Progress {
     /// An attached handle (its clones see what it records).
     pub fn new() -> Self {
         Self(Some(Arc::default()))
+    }
+
+    /// A handle that stops when this one is cancelled (and cancels it) but whose readings
+    /// nobody sees: for work running beside the one this handle reports (integrations of
+    /// several methods at once). Detached stays detached.
+    pub fn muted(&self) -> Self {
+        Self(self.0.as_ref().map(|s| {
+            Arc::new(Shared {
+                cancelled: s.cancelled.clone(),
+                ..Default::default()
+            })
+        }))
     }
 
     /// Asks the computation to stop at its next check.

@@ -743,8 +743,9 @@ impl System {
             let n = s.q.rows(qo + 3, 4).norm();
             s.q.rows_mut(qo + 3, 4).scale_mut(1.0 / n);
         }
+        // The rows at the current positions, for the next correction and the velocities.
+        let mut rows = self.rows(t, s);
         for _ in 0..3 {
-            let rows = self.rows(t, s);
             let idx: Vec<usize> = (0..rows.phi.len()).filter(|&i| rows.holonomic[i]).collect();
             if idx.is_empty() || rows.phi.amax() < 1e-13 {
                 break;
@@ -754,8 +755,8 @@ impl System {
             let cc_t = &c * c.transpose();
             let dq = -c.transpose() * psd_solve(&cc_t, &phi);
             self.apply_increment(s, &dq);
+            rows = self.rows(t, s);
         }
-        let rows = self.rows(t, s);
         if rows.c.nrows() > 0 {
             let r = &rows.c * &s.v - &rows.target;
             s.v -= self.saddle_point(s, &rows.c, &r, false)?;

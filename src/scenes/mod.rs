@@ -6,6 +6,7 @@ mod beam_modes;
 mod beam_profiles;
 pub mod body_modes;
 pub mod cantilever_variants;
+mod concurrent;
 mod failures;
 mod mode_visuals;
 mod options;
@@ -18,6 +19,7 @@ mod slab_modes;
 mod slab_refined;
 pub mod slab_sims;
 
+pub use concurrent::run_concurrently;
 pub use mode_visuals::method_color;
 pub use options::{SceneOptions, SceneOutput};
 pub use registry::{Scene, SceneInfo, all, find, ids};

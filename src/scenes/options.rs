@@ -42,6 +42,11 @@ pub struct SceneOptions {
     pub progress: Progress,
     /// Time integrations kept from earlier requests (the desktop explorer's).
     pub cache: RunCache,
+    /// How many of a scene's time integrations may run at once, one thread each (0 and 1:
+    /// one after the other, as the command line and the bench run them). The explorer sets
+    /// the machine's cores, so a switch that integrates several methods anew waits for the
+    /// slowest share, not the sum.
+    pub concurrent_integrations: usize,
 }
 
 impl SceneOptions {

@@ -742,3 +742,34 @@ fn bodies_of_different_methods_are_drawn_in_lanes_that_do_not_overlap() {
         }
     }
 }
+
+/// The explorer integrates a scene's methods on several threads: the same errors, in the same
+/// order, as one after the other; the scene text says so.
+#[test]
+fn concurrent_integrations_give_the_serial_results() {
+    use flexmodes::scenes::{SceneOptions, find};
+    let scene = find("slab-sim1").unwrap();
+    let methods = vec![
+        Method::NoReduction,
+        Method::ModalTruncation,
+        Method::CraigBampton,
+        Method::Guyan,
+    ];
+    let options = |threads: usize| SceneOptions {
+        methods: Some(methods.clone()),
+        end_time: Some(0.2),
+        concurrent_integrations: threads,
+        ..Default::default()
+    };
+    let serial = scene.execute(&options(1)).unwrap();
+    let concurrent = scene.execute(&options(3)).unwrap();
+    let errors = |o: &flexmodes::scenes::SceneOutput| o.report.results["rel_rms_error"].clone();
+    assert_eq!(errors(&serial).as_object().unwrap().len(), methods.len());
+    assert_eq!(errors(&serial), errors(&concurrent));
+    assert_eq!(
+        serial.report.parameters["methods"],
+        concurrent.report.parameters["methods"]
+    );
+    assert!(concurrent.markdown.contains("ran up to 3 at a time"));
+    assert!(!serial.markdown.contains("at a time"));
+}
