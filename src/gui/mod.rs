@@ -9,7 +9,7 @@ mod controls;
 mod explorer;
 mod worker;
 
-pub use app::{ViewerOptions, run, run_with_body};
+pub use app::{FEWER_MODES, MORE_MODES, ViewerOptions, run, run_with_body};
 pub use controls::{Command, Controls, MESH_PRESETS};
 pub use explorer::Explorer;
 pub use worker::{Computed, Finished, Worker};

@@ -247,8 +247,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             let sim = simulate(&system, &state, &params, &opts.progress)?;
             Ok((system, sim))
         })?;
-        let (system, sim) = (*run).clone();
-        let hist = symmetry_history(&system, &sim);
+        let (system, sim) = (&run.0, &run.1);
+        let hist = symmetry_history(system, sim);
         let max_defect = max_until(&sim, &hist[2], f64::INFINITY);
         // Before the chains snap taut (free fall lasts about 0.49 s).
         let before = max_until(&sim, &hist[2], SNAP_TIME);

@@ -501,13 +501,13 @@ pub fn run_scenario(
         &opts.progress,
         integrate,
     );
-    let mut runs = Vec::new();
-    for (&m, run) in methods.iter().zip(integrated) {
-        let run = run?;
-        let (system, sim) = (&run.0, &run.1);
-        let hist = probe_history(system, sim, probe);
-        runs.push((m, system.clone(), sim.clone(), hist));
-    }
+    let integrated = integrated.into_iter().collect::<Result<Vec<_>>>()?;
+    // Borrowed from the cache's entries: a switch copies no samples.
+    let runs: Vec<(Method, &System, &Simulation, [Vec<f64>; 3])> = methods
+        .iter()
+        .zip(&integrated)
+        .map(|(&m, run)| (m, &run.0, &run.1, probe_history(&run.0, &run.1, probe)))
+        .collect();
     let mut report = Report::new(info.id);
     report.parameters.insert("boundary".into(), json!(boundary));
     report.parameters.insert("modes".into(), json!(modes));
@@ -680,7 +680,7 @@ pub fn run_scenario(
     // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method.
     let scale = opts.deformation_scale_or(info.id, || {
         deformation_scale(
-            runs.iter().map(|(_, system, sim, _)| (system, sim)),
+            runs.iter().map(|(_, system, sim, _)| (*system, *sim)),
             0,
             model.size(),
         )
