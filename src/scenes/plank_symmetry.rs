@@ -249,9 +249,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         })?;
         let (system, sim) = (&run.0, &run.1);
         let hist = symmetry_history(system, sim);
-        let max_defect = max_until(&sim, &hist[2], f64::INFINITY);
+        let max_defect = max_until(sim, &hist[2], f64::INFINITY);
         // Before the chains snap taut (free fall lasts about 0.49 s).
-        let before = max_until(&sim, &hist[2], SNAP_TIME);
+        let before = max_until(sim, &hist[2], SNAP_TIME);
         defects_before.insert(
             if v.method == Method::NoReduction {
                 v.axes.id().to_string()
@@ -267,8 +267,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         };
         defects.insert(key.clone(), json!(max_defect));
         walls.insert(key.clone(), json!(sig(sim.wall_time_s)));
-        let drift = max_energy_drift(&sim);
-        let viol = max_position_violation(&sim);
+        let drift = max_energy_drift(sim);
+        let viol = max_position_violation(sim);
         table.push(vec![
             Cell::text(v.method.id().to_uppercase()),
             Cell::text(v.axes.id()),
@@ -278,7 +278,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             Cell::number(viol, format!("{viol:.1e}")),
             Cell::number(sim.wall_time_s, format!("{:.2}", sim.wall_time_s)),
         ]);
-        let times = times(&sim);
+        let times = times(sim);
         let color = if v.method == Method::NoReduction {
             match v.axes {
                 AxisType::Mean => [60, 200, 110, 255],
@@ -297,10 +297,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 color,
             });
         }
-        visuals.extend(health_series(&sim, &suffix, color));
+        visuals.extend(health_series(sim, &suffix, color));
         visuals.push(body_trajectory(
-            &system,
-            &sim,
+            system,
+            sim,
             0,
             format!("world/plank/{suffix}"),
             &geometry,
@@ -335,8 +335,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             color: [200, 200, 200, 255],
         });
         visuals.push(frame_axes(
-            &system,
-            &sim,
+            system,
+            sim,
             0,
             format!("world/plank/frame/{suffix}"),
             0.8,
