@@ -12,8 +12,8 @@ use rerun::{
     external::{
         re_log_types::{BlueprintActivationCommand, LogMsg},
         re_sdk_types::blueprint::archetypes::{
-            ContainerBlueprint, EyeControls3D, PanelBlueprint, TimePanelBlueprint, ViewBlueprint,
-            ViewContents, ViewportBlueprint,
+            ContainerBlueprint, EyeControls3D, PanelBlueprint, PlotLegend, TimePanelBlueprint,
+            ViewBlueprint, ViewContents, ViewportBlueprint,
         },
     },
 };
@@ -197,7 +197,7 @@ impl Writer<'_> {
             Layout::Text { name, origin } => ("TextDocument", name, origin, &default_contents),
             Layout::Spatial2D { name, origin } => ("2D", name, origin, &default_contents),
             Layout::TimeSeries { name, origin } => ("TimeSeries", name, origin, &default_contents),
-            Layout::BarChart { name, origin } => ("BarChart", name, origin, &default_contents),
+            Layout::BarChart { name, origin, .. } => ("BarChart", name, origin, &default_contents),
             Layout::Horizontal(..) | Layout::Vertical(..) | Layout::Tabs(..) => {
                 unreachable!("containers are logged by Writer::log")
             }
@@ -216,6 +216,14 @@ impl Writer<'_> {
                     .with_space_origin(origin.as_str()),
             )
             .map_err(rerun_error)?;
+        if let Layout::BarChart { legend: false, .. } = layout {
+            self.bp
+                .log(
+                    format!("{path}/PlotLegend").as_str(),
+                    &PlotLegend::new().with_visible(false),
+                )
+                .map_err(rerun_error)?;
+        }
         if class == "3D"
             && let Some(eye) = (self.eye_for)(origin, aspect)
         {

@@ -45,6 +45,9 @@ pub enum Layout {
         name: String,
         /// Entity path.
         origin: String,
+        /// Show the legend: for views of several series; a view of one series is named after
+        /// it, and its legend would only cover the bars with the entity path.
+        legend: bool,
     },
 }
 

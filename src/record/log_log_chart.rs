@@ -6,6 +6,9 @@ use super::{Color, Visual};
 
 /// A series drawn as a line with more points than this gets no point markers.
 const DENSE_SERIES: usize = 100;
+/// Labels whose anchors lie closer than this fraction of the chart's height in both x and y
+/// would be drawn over each other: they become one label (`CB, MC`) in the first one's place.
+const LABEL_CLEARANCE: f64 = 0.06;
 
 /// One series of a [`LogLogChart`].
 #[derive(Debug, Clone, PartialEq)]
@@ -71,14 +74,20 @@ impl LogLogChart {
         let stretch = (y1 - y0) / (x1 - x0);
         let width = stretch * (x1 - x0);
         let at = |x: f64, y: f64| [stretch * (fx(x) - x0), -y.log10()];
+        let drawn: Vec<Vec<[f64; 2]>> = self
+            .series
+            .iter()
+            .map(|s| {
+                s.points
+                    .iter()
+                    .filter(|p| positive(p))
+                    .map(|&(x, y)| at(x, y))
+                    .collect()
+            })
+            .collect();
+        let labels = merged_labels(&self.series, &drawn, LABEL_CLEARANCE * (y1 - y0));
         let mut visuals = Vec::new();
-        for s in &self.series {
-            let points: Vec<[f64; 2]> = s
-                .points
-                .iter()
-                .filter(|p| positive(p))
-                .map(|&(x, y)| at(x, y))
-                .collect();
+        for ((s, points), label) in self.series.iter().zip(drawn).zip(labels) {
             if points.is_empty() {
                 continue;
             }
@@ -92,10 +101,10 @@ impl LogLogChart {
             }
             // The label on an entity of its own: the viewer hides the labels of entities with
             // many points.
-            if let (false, Some(&last)) = (s.label.is_empty(), points.last()) {
+            if let (false, Some(&last)) = (label.is_empty(), points.last()) {
                 visuals.push(Visual::Scatter {
                     path: format!("{}/{}/label", self.path, s.id),
-                    labels: vec![s.label.clone()],
+                    labels: vec![label],
                     colors: vec![s.color],
                     points: vec![last],
                 });
@@ -159,6 +168,31 @@ impl LogLogChart {
     }
 }
 
+/// Each series' label at its last drawn point, with the labels of later series whose anchors
+/// lie within `clearance` (chart units, in both x and y) of a kept one appended to it
+/// (`CB, MC`) and their own emptied: series that end in one place (Craig–Bampton and mode
+/// condensation span one space) keep both names visible.
+fn merged_labels(series: &[LogLogSeries], drawn: &[Vec<[f64; 2]>], clearance: f64) -> Vec<String> {
+    let mut labels: Vec<String> = series.iter().map(|s| s.label.clone()).collect();
+    let anchors: Vec<Option<[f64; 2]>> = drawn.iter().map(|p| p.last().copied()).collect();
+    for later in 0..labels.len() {
+        let Some(b) = anchors[later].filter(|_| !labels[later].is_empty()) else {
+            continue;
+        };
+        let near = (0..later).find(|&k| {
+            !labels[k].is_empty()
+                && anchors[k].is_some_and(|a| {
+                    (a[0] - b[0]).abs() < clearance && (a[1] - b[1]).abs() < clearance
+                })
+        });
+        if let Some(k) = near {
+            let name = std::mem::take(&mut labels[later]);
+            labels[k] = format!("{}, {name}", labels[k]);
+        }
+    }
+    labels
+}
+
 /// A tick spacing of 1, 2 or 5 times a power of ten, at least `raw`.
 fn nice_step(raw: f64) -> f64 {
     let raw = if raw > 0.0 && raw.is_finite() {
@@ -172,4 +206,77 @@ fn nice_step(raw: f64) -> f64 {
         .map(|m| m * decade)
         .find(|&s| s >= raw)
         .unwrap_or(10.0 * decade)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn series(id: &str, points: Vec<(f64, f64)>) -> LogLogSeries {
+        LogLogSeries {
+            id: id.into(),
+            label: id.to_uppercase(),
+            color: [255, 255, 255, 255],
+            points,
+            line: true,
+        }
+    }
+
+    /// The label texts the chart draws, in series order.
+    fn drawn_labels(chart: &LogLogChart) -> Vec<String> {
+        chart
+            .visuals()
+            .into_iter()
+            .filter_map(|v| match v {
+                Visual::Scatter { path, labels, .. } if path.ends_with("/label") => {
+                    assert_eq!(labels.len(), 1, "{path}");
+                    Some(labels[0].clone())
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn labels_that_would_overlap_are_merged_and_distant_ones_kept() {
+        // cb and mc end in the same place (error against kept modes), gr far away; the chart
+        // spans three decades, so 0.06 of its height is 0.18 decades.
+        let chart = LogLogChart {
+            path: "c".into(),
+            x_unit: String::new(),
+            y_unit: String::new(),
+            series: vec![
+                series("cb", vec![(2.0, 0.5), (12.0, 0.0055)]),
+                series("gr", vec![(2.0, 0.4), (12.0, 0.3)]),
+                series("mc", vec![(2.0, 0.5), (12.0, 0.0055)]),
+                // 0.2 decades to the right of cb's end: clear of it.
+                series("mt", vec![(2.0, 0.9), (12.0 * 10f64.powf(0.2), 0.0055)]),
+            ],
+            x_linear: false,
+        };
+        assert_eq!(drawn_labels(&chart), ["CB, MC", "GR", "MT"]);
+        // Every series still draws its line and points.
+        let lines = chart
+            .visuals()
+            .into_iter()
+            .filter(|v| matches!(v, Visual::Polyline2D { path, .. } if path != "c/axes"))
+            .count();
+        assert_eq!(lines, 4);
+    }
+
+    #[test]
+    fn a_series_without_drawable_points_keeps_no_label() {
+        // Error 0 has no place on a log axis: no label, and nothing merged into it.
+        let chart = LogLogChart {
+            path: "c".into(),
+            x_unit: String::new(),
+            y_unit: String::new(),
+            series: vec![
+                series("nr", vec![(0.1, 0.0)]),
+                series("cb", vec![(0.1, 0.01), (0.2, 0.001)]),
+            ],
+            x_linear: false,
+        };
+        assert_eq!(drawn_labels(&chart), ["CB"]);
+    }
 }

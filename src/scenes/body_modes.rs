@@ -205,6 +205,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         bars.push(Layout::BarChart {
             name: m.id().into(),
             origin: format!("/metrics/reduced_hz/{}", m.id()),
+            legend: false,
         });
     }
 

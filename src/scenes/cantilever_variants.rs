@@ -634,6 +634,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 .map(|v| Layout::BarChart {
                     name: format!("{name} v{v}"),
                     origin: format!("/metrics/{what}/v{v}"),
+                    legend: true,
                 })
                 .collect(),
         )

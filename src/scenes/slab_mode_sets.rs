@@ -634,6 +634,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                     Layout::BarChart {
                         name: "rotor modes: log10 σ/σmax + 12 (blue kept)".into(),
                         origin: "/influence".into(),
+                        legend: true,
                     },
                 ],
                 vec![1.2, 1.2, 0.8],

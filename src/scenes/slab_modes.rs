@@ -95,6 +95,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     bars.push(Layout::BarChart {
         name: "nr".into(),
         origin: "/metrics/reduced_hz/nr".into(),
+        legend: false,
     });
     for &m in &methods {
         let params = ReductionParameters {
@@ -133,6 +134,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         bars.push(Layout::BarChart {
             name: m.id().into(),
             origin: format!("/metrics/reduced_hz/{}", m.id()),
+            legend: false,
         });
     }
 

@@ -120,6 +120,7 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
         bars.push(Layout::BarChart {
             name: m.id().into(),
             origin: format!("/metrics/reduced_hz/{}", m.id()),
+            legend: false,
         });
     }
     opts.progress.phase("free-free modes")?;
