@@ -99,25 +99,36 @@ impl Table {
     }
 
     /// The rows with the best (lowest) and worst (highest) value of a ranked column, among
-    /// the cells that carry a number; `None` when the column is not ranked or fewer than two
-    /// rows carry one.
-    pub fn best_and_worst(&self, column: usize) -> Option<(usize, usize)> {
+    /// the cells that carry a number, each with the rows that print the same text (ties as
+    /// the reader sees them: CB and MC whose errors agree to the printed digits are both
+    /// best); `None` when the column is not ranked, fewer than two rows carry a number or
+    /// they all print alike.
+    pub fn best_and_worst(&self, column: usize) -> Option<(Vec<usize>, Vec<usize>)> {
         if !self.lower_is_better.contains(&column) {
             return None;
         }
-        let vals: Vec<(usize, f64)> = self
+        let vals: Vec<(usize, f64, &str)> = self
             .rows
             .iter()
             .enumerate()
-            .filter_map(|(r, row)| Some((r, row.get(column)?.value?)))
-            .filter(|(_, v)| v.is_finite())
+            .filter_map(|(r, row)| {
+                let cell = row.get(column)?;
+                Some((r, cell.value?, cell.text.as_str()))
+            })
+            .filter(|(_, v, _)| v.is_finite())
             .collect();
         if vals.len() < 2 {
             return None;
         }
-        let best = vals.iter().min_by(|a, b| a.1.total_cmp(&b.1))?.0;
-        let worst = vals.iter().max_by(|a, b| a.1.total_cmp(&b.1))?.0;
-        (best != worst).then_some((best, worst))
+        let best = vals.iter().min_by(|a, b| a.1.total_cmp(&b.1))?.2;
+        let worst = vals.iter().max_by(|a, b| a.1.total_cmp(&b.1))?.2;
+        let printing = |text: &str| -> Vec<usize> {
+            vals.iter()
+                .filter(|(_, _, t)| *t == text)
+                .map(|&(r, _, _)| r)
+                .collect()
+        };
+        (best != worst).then(|| (printing(best), printing(worst)))
     }
 }
 
@@ -220,4 +231,33 @@ pub fn sig5(x: f64) -> f64 {
     let digits = 5 - x.abs().log10().ceil() as i32;
     let f = 10f64.powi(digits.clamp(-300, 300));
     (x * f).round() / f
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn error_table(errors: &[f64]) -> Table {
+        let mut t = Table::new(&["method", "error"]).rank_lower(&[1]);
+        for (k, &e) in errors.iter().enumerate() {
+            t.push(vec![
+                Cell::text(format!("m{k}")),
+                Cell::number(e, format!("{e:.4}")),
+            ]);
+        }
+        t
+    }
+
+    #[test]
+    fn rows_that_print_alike_rank_alike() {
+        // 0.023 61 and 0.023 59 both print 0.0236: both best, though the second is lower.
+        let t = error_table(&[0.5, 0.02361, 0.02359, 1.2]);
+        assert_eq!(t.best_and_worst(1), Some((vec![1, 2], vec![3])));
+        // A tie for worst as well.
+        let t = error_table(&[1.20001, 0.1, 1.2]);
+        assert_eq!(t.best_and_worst(1), Some((vec![1], vec![0, 2])));
+        // All alike: nothing to rank; the text column never is.
+        assert_eq!(error_table(&[0.1, 0.10001]).best_and_worst(1), None);
+        assert_eq!(error_table(&[0.1, 0.2]).best_and_worst(0), None);
+    }
 }

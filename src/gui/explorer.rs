@@ -570,8 +570,12 @@ fn grid_ui(ui: &mut egui::Ui, id: usize, table: &Table) {
         .filter(|&c| c < columns)
     {
         if let Some((best, worst)) = table.best_and_worst(c) {
-            marks[best][c] = Some(BEST);
-            marks[worst][c] = Some(WORST);
+            for r in best {
+                marks[r][c] = Some(BEST);
+            }
+            for r in worst {
+                marks[r][c] = Some(WORST);
+            }
         }
     }
     egui::Grid::new(("report", id))

@@ -661,14 +661,23 @@ pub fn run_scenario(
     let mut plot_views: Vec<Layout> = dirs
         .iter()
         .map(|dir| Layout::TimeSeries {
-            name: format!("node 8 δ_{dir}"),
+            // The direction first: in the explorer four plots share the viewer's width and
+            // the end of a title is cut.
+            name: format!(
+                "δ{} of node 8, m",
+                match *dir {
+                    "xi" => "ξ",
+                    "eta" => "η",
+                    _ => "ζ",
+                }
+            ),
             origin: format!("/plots/node8/delta_{dir}"),
         })
         .collect();
     let mut tabs = Vec::new();
     tabs.extend([
         Layout::TimeSeries {
-            name: "log₁₀ constraint violation (m)".into(),
+            name: "log₁₀ |Φ|, m (constraint violation)".into(),
             origin: "/plots/constraint_violation".into(),
         },
         Layout::TimeSeries {

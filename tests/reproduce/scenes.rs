@@ -198,11 +198,13 @@ fn result_tables_rank_errors_from_their_numbers() {
     let method = |r: usize| table.rows[r][0].text.clone();
     for column in [1, 2] {
         let (best, worst) = table.best_and_worst(column).unwrap();
-        // Profile errors of §7.1: MT 0.1569 the worst, CB = MC the best.
-        assert_eq!(method(worst), "MT");
-        assert!(["CB", "MC"].contains(&method(best).as_str()));
+        // Profile errors of §7.1: MT 0.1569 the worst, CB = MC the best: both, as they print
+        // alike.
+        let methods = |rows: &[usize]| rows.iter().map(|&r| method(r)).collect::<Vec<_>>();
+        assert_eq!(methods(&worst), ["MT"]);
+        assert_eq!(methods(&best), ["CB", "MC"]);
         let value = |r: usize| table.rows[r][column].value.unwrap();
-        assert!(value(worst) > 1.5 * value(best));
+        assert!(value(worst[0]) > 1.5 * value(best[0]));
     }
     // The method column is not ranked, and the markdown shows the same cells.
     assert!(table.best_and_worst(0).is_none());
