@@ -169,28 +169,62 @@ impl LogLogChart {
 }
 
 /// Each series' label at its last drawn point, with the labels of later series whose anchors
-/// lie within `clearance` (chart units, in both x and y) of a kept one appended to it
-/// (`CB, MC`) and their own emptied: series that end in one place (Craig–Bampton and mode
+/// lie within `clearance` (chart units, in both x and y) of a kept one joined to it (see
+/// [`joined`]) and their own emptied: series that end in one place (Craig–Bampton and mode
 /// condensation span one space) keep both names visible.
 fn merged_labels(series: &[LogLogSeries], drawn: &[Vec<[f64; 2]>], clearance: f64) -> Vec<String> {
-    let mut labels: Vec<String> = series.iter().map(|s| s.label.clone()).collect();
+    let mut groups: Vec<Vec<&str>> = series
+        .iter()
+        .map(|s| {
+            if s.label.is_empty() {
+                Vec::new()
+            } else {
+                vec![s.label.as_str()]
+            }
+        })
+        .collect();
     let anchors: Vec<Option<[f64; 2]>> = drawn.iter().map(|p| p.last().copied()).collect();
-    for later in 0..labels.len() {
-        let Some(b) = anchors[later].filter(|_| !labels[later].is_empty()) else {
+    for later in 0..groups.len() {
+        let Some(b) = anchors[later].filter(|_| !groups[later].is_empty()) else {
             continue;
         };
         let near = (0..later).find(|&k| {
-            !labels[k].is_empty()
+            !groups[k].is_empty()
                 && anchors[k].is_some_and(|a| {
                     (a[0] - b[0]).abs() < clearance && (a[1] - b[1]).abs() < clearance
                 })
         });
         if let Some(k) = near {
-            let name = std::mem::take(&mut labels[later]);
-            labels[k] = format!("{}, {name}", labels[k]);
+            let moved = std::mem::take(&mut groups[later]);
+            groups[k].extend(moved);
         }
     }
-    labels
+    groups.iter().map(|g| joined(g)).collect()
+}
+
+/// Labels drawn as one: `CB freq.` and `MC freq.` read `CB, MC freq.`; `MT freq.` and
+/// `MT static` read `MT freq., static`; others are listed, comma separated.
+fn joined(labels: &[&str]) -> String {
+    let parts: Vec<(&str, &str)> = labels
+        .iter()
+        .map(|l| l.split_once(' ').unwrap_or((l, "")))
+        .collect();
+    match parts.as_slice() {
+        [] => String::new(),
+        [(_, rest), ..] if parts.len() > 1 && parts.iter().all(|p| p.1 == *rest) => {
+            let names: Vec<&str> = parts.iter().map(|p| p.0).collect();
+            format!("{} {rest}", names.join(", "))
+                .trim_end()
+                .to_string()
+        }
+        [(name, _), ..]
+            if parts.len() > 1 && parts.iter().all(|p| p.0 == *name && !p.1.is_empty()) =>
+        {
+            let rests: Vec<&str> = parts.iter().map(|p| p.1).collect();
+            format!("{name} {}", rests.join(", "))
+        }
+        _ => labels.join(", "),
+    }
 }
 
 /// A tick spacing of 1, 2 or 5 times a power of ten, at least `raw`.
@@ -255,6 +289,11 @@ mod tests {
             x_linear: false,
         };
         assert_eq!(drawn_labels(&chart), ["CB, MC", "GR", "MT"]);
+        assert_eq!(joined(&["CB freq.", "MC freq."]), "CB, MC freq.");
+        assert_eq!(joined(&["MT freq.", "MT static"]), "MT freq., static");
+        assert_eq!(joined(&["CB", "MC", "Pareto"]), "CB, MC, Pareto");
+        assert_eq!(joined(&["NR", "Pareto front"]), "NR, Pareto front");
+        assert_eq!(joined(&["GR"]), "GR");
         // Every series still draws its line and points.
         let lines = chart
             .visuals()
