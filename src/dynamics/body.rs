@@ -141,6 +141,32 @@ impl ModalMassInverse {
 }
 
 impl FlexibleBody {
+    /// Bytes the body holds on the heap, estimated from its arrays: the model's $K$ and $M$
+    /// (16 bytes per stored entry: value and index), the basis Ψ and its per-node rows, the
+    /// dense modal blocks $M_{zz}$, $K_{zz}$ and $M_{zz}^{-1}$, the sparse $K_{zz}$ and the
+    /// inertia invariants. Names, edges and column descriptions are left out. Without
+    /// reduction on a refined slab the dense $k \times k$ blocks dominate: about 200 MB at
+    /// 2 295 DOF.
+    pub fn heap_bytes(&self) -> usize {
+        const F64: usize = std::mem::size_of::<f64>();
+        let model = 16 * self.model.k.nnz()
+            + match &self.model.m {
+                MassMatrix::Lumped(d) => F64 * d.len(),
+                MassMatrix::Consistent(m) => 16 * m.nnz(),
+            }
+            + 3 * F64 * (self.model.nodes.len() + self.s_bar.len())
+            + F64 * self.masses.len();
+        let basis = F64 * self.basis.psi.nrows() * self.basis.psi.ncols()
+            + self.psi_nodes.iter().map(|p| F64 * p.len()).sum::<usize>();
+        let modal = F64 * (self.m_zz.len() + self.k_zz.len())
+            + self.k_zz_sparse.as_ref().map_or(0, |k| 16 * k.nnz())
+            + match &self.m_zz_inverse {
+                ModalMassInverse::Diagonal(d) => F64 * d.len(),
+                ModalMassInverse::Dense(m) => F64 * m.len(),
+            };
+        model + basis + modal + self.invariants.heap_bytes()
+    }
+
     /// Builds the body on its floating frame from a model and a reduction basis (all of the
     /// basis' columns; nodal-fixed axes remove theirs here).
     pub fn new(model: FeModel, basis: Basis, axes: AxisType) -> Result<Self> {
@@ -287,6 +313,15 @@ impl Body {
         match self {
             Body::Rigid(r) => &r.name,
             Body::Flexible(f) => &f.model.name,
+        }
+    }
+
+    /// Bytes the body holds on the heap, estimated from its matrices (see
+    /// [`FlexibleBody::heap_bytes`]); a rigid body's few points count as nothing.
+    pub fn heap_bytes(&self) -> usize {
+        match self {
+            Body::Rigid(_) => 0,
+            Body::Flexible(f) => f.heap_bytes(),
         }
     }
 }

@@ -52,6 +52,14 @@ pub struct InertiaInvariants {
 }
 
 impl InertiaInvariants {
+    /// Bytes held on the heap: $P$, the $L_c$ and the stored $Q_{cd}$ with their indices.
+    pub fn heap_bytes(&self) -> usize {
+        let entry = std::mem::size_of::<(usize, Matrix3<f64>)>();
+        std::mem::size_of::<f64>() * self.p_sum.len()
+            + std::mem::size_of::<Matrix3<f64>>() * self.l.len()
+            + self.q.iter().map(|row| entry * row.len()).sum::<usize>()
+    }
+
     /// Computes the invariants from node masses (kg), undeformed positions in the body frame
     /// (m) and the per-node rows of Ψ.
     pub fn new(masses: &[f64], s_bar: &[Vector3<f64>], psi_nodes: &[Matrix3xX<f64>]) -> Self {

@@ -168,6 +168,20 @@ pub struct Simulation {
     pub wall_time_s: f64,
 }
 
+impl Simulation {
+    /// Bytes the samples hold on the heap: each sample's positions and velocities and its
+    /// own size.
+    pub fn heap_bytes(&self) -> usize {
+        self.samples
+            .iter()
+            .map(|s| {
+                std::mem::size_of::<Sample>()
+                    + std::mem::size_of::<f64>() * (s.state.q.len() + s.state.v.len())
+            })
+            .sum()
+    }
+}
+
 // Dormand–Prince 5(4) tableau.
 const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
 const A: [[f64; 6]; 7] = [

@@ -79,6 +79,12 @@ struct Frame<'a> {
 }
 
 impl System {
+    /// Bytes the bodies hold on the heap, estimated (see [`Body::heap_bytes`]); constraints
+    /// and forces are a few hundred bytes each and left out.
+    pub fn heap_bytes(&self) -> usize {
+        self.bodies.iter().map(Body::heap_bytes).sum()
+    }
+
     /// A system with gravity 9.80665 m/s² in −z.
     pub fn new(bodies: Vec<Body>, constraints: Vec<Constraint>) -> Self {
         let mut q_off = Vec::new();

@@ -23,4 +23,4 @@ pub use concurrent::run_concurrently;
 pub use mode_visuals::method_color;
 pub use options::{SceneOptions, SceneOutput};
 pub use registry::{Scene, SceneInfo, all, find, ids};
-pub use run_cache::RunCache;
+pub use run_cache::{CacheWeight, RunCache};

@@ -75,6 +75,16 @@ pub struct DrivenTables {
     pub rotation: Matrix3<f64>,
 }
 
+impl super::run_cache::CacheWeight for DrivenTables {
+    fn bytes(&self) -> usize {
+        self.values
+            .iter()
+            .flatten()
+            .map(|v| std::mem::size_of::<f64>() * v.len())
+            .sum()
+    }
+}
+
 pub const INFO_3: SceneInfo = SceneInfo {
     id: "slab-sim3",
     summary: "§7.2.4 slab driven at nodes 16, 18, 28, 30 by accelerations recorded from the \

@@ -591,6 +591,37 @@ fn a_kept_simulation_is_not_integrated_again() {
     assert_eq!(cache.len(), 4);
 }
 
+/// The cache weighs what it keeps: without reduction the body's dense k × k blocks ($K_{zz}$,
+/// $M_{zz}$ and Ψ = I) are at least 3·8·k² bytes; with Craig–Bampton only Ψ (n × 18) and
+/// small blocks.
+#[test]
+fn the_cache_weighs_an_unreduced_integration_by_its_dense_blocks() {
+    use flexmodes::scenes::{RunCache, SceneOptions, find};
+    let run = find("slab-sim1").unwrap().run;
+    let weigh = |m: Method| {
+        let cache = RunCache::new();
+        run(&SceneOptions {
+            methods: Some(vec![m]),
+            refine: Some([8, 4, 2]),
+            end_time: Some(0.05),
+            cache: cache.clone(),
+            ..Default::default()
+        })
+        .unwrap();
+        assert_eq!(cache.len(), 1);
+        cache.bytes()
+    };
+    // 9 × 5 × 3 nodes.
+    let n = 3 * 9 * 5 * 3;
+    let k = n - 6;
+    let nr = weigh(Method::NoReduction);
+    assert!(nr >= 3 * 8 * k * k, "{nr} bytes for {n} DOF");
+    assert!(nr <= 6 * 8 * n * n + (1 << 20), "{nr} bytes for {n} DOF");
+    let cb = weigh(Method::CraigBampton);
+    assert!(cb >= 8 * n * 12, "{cb}");
+    assert!(cb < nr / 10, "{cb} against {nr}");
+}
+
 #[test]
 fn the_drawn_deflection_is_automatic_or_as_asked() {
     let scene = flexmodes::scenes::find("slab-sim1").unwrap();
