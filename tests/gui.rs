@@ -242,6 +242,11 @@ fn the_integrator_of_a_simulation_is_a_control() {
     settle(&mut h);
     let report = &h.state().current.as_ref().unwrap().report;
     assert_eq!(report.parameters["integrator"], "dp5");
+    // Both integrations are kept, and the panel says so with their weight (the count may
+    // grow meanwhile: the explorer anticipates the next click).
+    let kept = h.state().anticipation_counts().1;
+    assert!(kept >= 2, "{kept}");
+    h.get_by_label_contains(" integration(s) kept, ");
     // A scene without a simulation offers no integrator.
     let h = harness("slab-modes");
     assert!(h.query_by_label("gen-alpha").is_none());

@@ -509,9 +509,18 @@ impl Explorer {
             }
         }
         if let Some(l) = self.latencies.last() {
-            ui.label(
-                egui::RichText::new(format!("last update took {:.2} s", l.as_secs_f64())).small(),
-            );
+            // What the kept integrations weigh: a refined slab's unreduced run is ~200 MB.
+            let kept = self.worker.cached();
+            let text = if kept > 0 {
+                format!(
+                    "last update took {:.2} s · {kept} integration(s) kept, {:.1} MB",
+                    l.as_secs_f64(),
+                    self.worker.cached_bytes() as f64 / 1e6
+                )
+            } else {
+                format!("last update took {:.2} s", l.as_secs_f64())
+            };
+            ui.label(egui::RichText::new(text).small());
         }
         if let Some(c) = &self.current {
             ui.separator();

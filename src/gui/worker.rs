@@ -233,6 +233,11 @@ impl Worker {
         self.cache.len()
     }
 
+    /// Bytes those entries weigh (an estimate: see `CacheWeight`).
+    pub fn cached_bytes(&self) -> usize {
+        self.cache.bytes()
+    }
+
     /// Repaints `ctx` whenever a result is ready.
     pub fn wake(&self, ctx: &egui::Context) {
         if let Ok(mut guard) = self.waker.lock()
