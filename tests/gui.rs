@@ -41,18 +41,36 @@ fn paths(h: &Harness<'static, Explorer>) -> Vec<String> {
     h.state().current.as_ref().unwrap().entity_paths.clone()
 }
 
+/// `poll()`'s first `Some`, polled every millisecond until `limit_s` seconds after `start`;
+/// fails naming `what` it waited for.
+fn wait_for<T>(what: &str, start: Instant, limit_s: u64, mut poll: impl FnMut() -> Option<T>) -> T {
+    loop {
+        if let Some(v) = poll() {
+            return v;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(limit_s),
+            "waited {limit_s} s for {what}"
+        );
+        std::thread::sleep(Duration::from_millis(1));
+    }
+}
+
 /// The worker's next finished request, polled until `limit_s` seconds after `start`.
 fn next_result(
     w: &flexmodes::gui::Worker,
     start: Instant,
     limit_s: u64,
 ) -> flexmodes::gui::Finished {
-    loop {
-        if let Some(f) = w.poll() {
-            return f;
-        }
-        assert!(start.elapsed() < Duration::from_secs(limit_s), "no result");
-        std::thread::sleep(Duration::from_millis(1));
+    wait_for("a result", start, limit_s, || w.poll())
+}
+
+/// slab-sim1 with the full model alone over `end_time` s: slow enough to be caught running.
+fn full_model_sim1(end_time: f64) -> flexmodes::scenes::SceneOptions {
+    flexmodes::scenes::SceneOptions {
+        methods: Some(vec![flexmodes::reduction::Method::NoReduction]),
+        end_time: Some(end_time),
+        ..Default::default()
     }
 }
 
@@ -121,13 +139,7 @@ fn a_newer_request_abandons_a_running_reduction_at_its_next_phase() {
     };
     let first = w.submit(1, "slab-modes", slow, false);
     let start = Instant::now();
-    let at_cancel = loop {
-        if let Some(p) = first.phase_reading() {
-            break p;
-        }
-        assert!(start.elapsed() < Duration::from_secs(120), "no phase");
-        std::thread::sleep(Duration::from_millis(1));
-    };
+    let at_cancel = wait_for("a phase", start, 120, || first.phase_reading());
     let second = w.submit(2, "beam-modes", SceneOptions::default(), false);
     assert!(first.is_cancelled() && !second.is_cancelled());
     let finished = next_result(&w, start, 300);
@@ -254,19 +266,13 @@ fn the_integrator_of_a_simulation_is_a_control() {
 
 #[test]
 fn a_newer_request_cancels_a_running_simulation() {
-    use flexmodes::{gui::Worker, reduction::Method, scenes::SceneOptions};
+    use flexmodes::{gui::Worker, scenes::SceneOptions};
     let mut w = Worker::new();
-    let slow = SceneOptions {
-        methods: Some(vec![Method::NoReduction]),
-        end_time: Some(1.0),
-        ..Default::default()
-    };
-    let first = w.submit(1, "slab-sim1", slow, false);
+    let first = w.submit(1, "slab-sim1", full_model_sim1(1.0), false);
     let start = Instant::now();
-    while first.reading().is_none_or(|r| r.time <= 0.0) {
-        assert!(start.elapsed() < Duration::from_secs(120), "no progress");
-        std::thread::sleep(Duration::from_millis(1));
-    }
+    wait_for("progress", start, 120, || {
+        first.reading().filter(|r| r.time > 0.0)
+    });
     let second = w.submit(2, "beam-modes", SceneOptions::default(), false);
     assert!(first.is_cancelled() && !second.is_cancelled());
     let finished = next_result(&w, start, 120);
@@ -412,57 +418,41 @@ fn an_anticipated_request_is_served_from_the_cache() {
     };
     w.anticipate("slab-sim1", vec![options.clone()]);
     let start = Instant::now();
-    while w.anticipated() < 1 {
-        assert!(
-            start.elapsed() < Duration::from_secs(120),
-            "not anticipated"
-        );
-        std::thread::sleep(Duration::from_millis(5));
-    }
+    wait_for("the anticipation", start, 120, || {
+        (w.anticipated() >= 1).then_some(())
+    });
     let cached = w.cached();
     assert!(cached > 0, "the anticipation kept its integration");
-    w.submit(1, "slab-sim1", options, false);
+    let request = w.submit(1, "slab-sim1", options, false);
     let finished = next_result(&w, Instant::now(), 120);
     assert!(finished.result.is_ok());
-    assert_eq!(w.cached(), cached, "the request integrated nothing anew");
+    assert_eq!(w.cached(), cached, "no new cache entry");
+    // The request's own progress saw no integration start: CB came from the cache.
+    let started = request.reading().map_or(0, |r| r.simulations);
+    assert_eq!(started, 0, "the request integrated anew");
 }
 
 #[test]
 fn a_request_stops_a_running_anticipation() {
-    use flexmodes::{gui::Worker, reduction::Method, scenes::SceneOptions};
+    use flexmodes::{gui::Worker, scenes::SceneOptions};
     let mut w = Worker::new();
-    let slow = SceneOptions {
-        methods: Some(vec![Method::NoReduction]),
-        end_time: Some(20.0),
-        ..Default::default()
-    };
-    w.anticipate("slab-sim1", vec![slow.clone(), slow]);
+    w.anticipate(
+        "slab-sim1",
+        vec![full_model_sim1(20.0), full_model_sim1(20.0)],
+    );
     let start = Instant::now();
-    let running = loop {
-        if let Some(p) = w.anticipation()
-            && p.reading().is_some_and(|r| r.time > 0.0)
-        {
-            break p;
-        }
-        assert!(
-            start.elapsed() < Duration::from_secs(120),
-            "no anticipation ran"
-        );
-        std::thread::sleep(Duration::from_millis(1));
-    };
+    let running = wait_for("a running anticipation", start, 120, || {
+        w.anticipation()
+            .filter(|p| p.reading().is_some_and(|r| r.time > 0.0))
+    });
     w.submit(1, "beam-modes", SceneOptions::default(), false);
     assert!(running.is_cancelled());
     assert!(next_result(&w, start, 120).result.is_ok());
     // The anticipating thread stops at the cancelled integration's next output step and
     // starts nothing else: neither request ran to its end.
-    let stopped = Instant::now();
-    while w.anticipation().is_some() {
-        assert!(
-            stopped.elapsed() < Duration::from_secs(30),
-            "still anticipating"
-        );
-        std::thread::sleep(Duration::from_millis(5));
-    }
+    wait_for("the anticipation to stop", Instant::now(), 30, || {
+        w.anticipation().is_none().then_some(())
+    });
     assert_eq!(w.anticipated(), 0);
     assert!(running.reading().unwrap().time < 20.0);
 }

@@ -224,7 +224,7 @@ impl FlexmodesApp {
                     .map(|(c, e)| format!("{c:.3}/{e:.3}"))
                     .collect();
                 eprintln!(
-                    "  of which running the scene / building and encoding the recording, s: {}",
+                    "  of which running the scene / building the recording's messages, s: {}",
                     phases.join(", ")
                 );
                 // The first is the scene's opening; the rest are switches.

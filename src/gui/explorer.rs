@@ -29,7 +29,7 @@ pub struct Explorer {
     /// From request to result on the UI thread, per finished request (switch latency), newest
     /// last.
     pub latencies: Vec<Duration>,
-    /// Per successful request: running the scene and building/encoding its recording, s.
+    /// Per successful request: running the scene and building its recording's messages, s.
     pub phase_times: Vec<(f64, f64)>,
     /// A one-line status (saved file, ...).
     pub status: String,
@@ -140,7 +140,7 @@ impl Explorer {
             match f.result {
                 Ok(c) => {
                     self.anticipate();
-                    self.phase_times.push((c.compute_s, c.encode_s));
+                    self.phase_times.push((c.compute_s, c.messages_s));
                     self.shown_scenes.insert(c.scene.clone());
                     self.current = Some(c);
                     self.error = None;

@@ -35,7 +35,7 @@ pub struct Computed {
     /// Running the scene, s.
     pub compute_s: f64,
     /// Building the recording's messages, s.
-    pub encode_s: f64,
+    pub messages_s: f64,
 }
 
 impl Computed {
@@ -331,13 +331,13 @@ fn compute(job: &Job, keep_user_layout: bool) -> Result<Computed, String> {
     };
     let start = Instant::now();
     let messages = recorder.messages(&out).map_err(chain)?;
-    let encode_s = start.elapsed().as_secs_f64();
+    let messages_s = start.elapsed().as_secs_f64();
     Ok(Computed {
         scene: scene.clone(),
         entity_paths: out.visuals.iter().map(|v| v.path().to_string()).collect(),
         report: out.report,
         messages,
         compute_s,
-        encode_s,
+        messages_s,
     })
 }
