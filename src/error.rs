@@ -137,6 +137,26 @@ pub enum Error {
         residual: f64,
     },
 
+    /// A dense eigen-decomposition whose pairs failed their residual or orthonormality check
+    /// with every kernel tried.
+    #[error(
+        "the {what} eigenproblem failed its check: worst residual {residual:.1e} against a \
+         tolerance of {tolerance:.1e} (faer and nalgebra both tried)"
+    )]
+    EigenCheckFailed {
+        what: String,
+        residual: f64,
+        tolerance: f64,
+    },
+
+    /// A NaN or infinite entry in a matrix handed to a decomposition.
+    #[error("the {what} has a non-finite entry at row {row}, column {col} (0-based)")]
+    NotFinite {
+        what: String,
+        row: usize,
+        col: usize,
+    },
+
     /// More normal modes were requested than the interior eigenproblem has.
     #[error("{requested} normal modes requested but only {available} exist for this interior set")]
     TooManyModes { requested: usize, available: usize },

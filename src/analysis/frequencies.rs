@@ -92,11 +92,7 @@ pub fn count_zero_energy_modes(model: &FeModel, elastic: usize) -> Result<ZeroEn
     let rigid = model.dofs.rigid_body_count();
     let wanted = (rigid + 1 + elastic).min(n);
     let modes = if n <= DENSE_INTERIOR_LIMIT {
-        let all = free_free_modes(model)?;
-        GeneralizedEigen {
-            values: all.values[..wanted].to_vec(),
-            vectors: all.vectors.subcols(0, wanted).to_owned(),
-        }
+        free_free_modes(model)?.first(wanted)
     } else {
         let sigma = negative_shift(&model.k, &model.m);
         let shifted = model.k.shifted(&model.m, sigma);

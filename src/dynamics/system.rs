@@ -802,10 +802,10 @@ fn pinv_solve(a: &DMatrix<f64>, b: &DVector<f64>, drop_below: f64) -> DVector<f6
         return DVector::zeros(0);
     }
     let a = faer::MatRef::from_column_major_slice(a.as_slice(), n, n);
-    let Ok(eig) = a.self_adjoint_eigen(faer::Side::Lower) else {
+    let Ok(eig) = crate::linalg::symmetric_eigen(a, "pseudo-inverse") else {
         return DVector::from_element(n, f64::NAN);
     };
-    let (values, vectors) = (eig.S(), eig.U());
+    let (values, vectors) = (&eig.values, &eig.vectors);
     let top = (0..n).map(|i| values[i].abs()).fold(0.0, f64::max);
     let mut x = DVector::zeros(n);
     for i in 0..n {

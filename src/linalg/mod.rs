@@ -10,13 +10,17 @@ mod memory;
 mod nested_dissection;
 mod partial_eigen;
 mod sparse_symmetric;
+mod symmetric_eigen;
 mod symmetric_factor;
 
 pub use dense::{
     frobenius, identity, max_abs, max_abs_diff, null_space, numerical_rank, principal_angles,
     select, select_cols, select_rows, symmetry_defect,
 };
-pub use generalized_eigen::{GeneralizedEigen, fix_sign, generalized_eigen, hz_from_eigenvalue};
+pub use generalized_eigen::{
+    GeneralizedEigen, MASS_ORTHONORMALITY, PENCIL_BACKWARD_ERROR, PencilCheck, ZERO_ENERGY_RATIO,
+    check_pencil, eigenvalue_scale, fix_sign, generalized_eigen, hz_from_eigenvalue,
+};
 pub use lyapunov::{solve_block_diagonal_lyapunov, solve_lyapunov};
 pub use mass_matrix::MassMatrix;
 pub use memory::{
@@ -27,6 +31,10 @@ pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,
 };
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
+pub use symmetric_eigen::{
+    SymmetricEigen, SymmetricEigenKernel, dense_eigen_tolerance, symmetric_eigen,
+    symmetric_eigen_with,
+};
 pub use symmetric_factor::{SymbolicFactor, SymmetricFactor};
 
 /// Runs faer's kernels on the calling thread. On the 2-core machines flexmodes is measured on,

@@ -11,9 +11,12 @@
 //! block, whose span holds every Ritz residual (thick restart). Every returned pair is checked
 //! by its residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
 
-use faer::{Mat, MatRef, Side};
+use faer::{Mat, MatRef};
 
-use super::{GeneralizedEigen, MassMatrix, SparseSymmetric, SymmetricFactor, fix_sign};
+use super::{
+    GeneralizedEigen, MassMatrix, SparseSymmetric, SymmetricFactor, ZERO_ENERGY_RATIO,
+    eigenvalue_scale, fix_sign, symmetric_eigen,
+};
 use crate::{Error, Result};
 
 /// Settings of [`lowest_modes`].
@@ -92,6 +95,8 @@ pub fn lowest_modes(
             GeneralizedEigen {
                 values: vec![],
                 vectors: Mat::zeros(n, 0),
+                residuals: vec![],
+                zero_energy: 0,
             },
             PartialEigenStatistics::default(),
         ));
@@ -153,15 +158,11 @@ pub fn lowest_modes(
         let vb = v.subcols(0, with_a);
         let t = mv.subcols(0, with_a).transpose() * av.subcols(0, with_a);
         let t = Mat::from_fn(with_a, with_a, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
-        let evd = t
-            .self_adjoint_eigen(Side::Lower)
-            .map_err(|_| Error::DecompositionFailed {
-                what: "Lanczos Rayleigh quotient eigen".into(),
-            })?;
+        let evd = symmetric_eigen(t.as_ref(), "Lanczos Rayleigh quotient")?;
         // Descending θ.
         let order: Vec<usize> = (0..with_a).rev().collect();
-        theta = order.iter().map(|&i| evd.S()[i]).collect();
-        let y = Mat::from_fn(with_a, with_a, |r, c| evd.U()[(r, order[c])]);
+        theta = order.iter().map(|&i| evd.values[i]).collect();
+        let y = Mat::from_fn(with_a, with_a, |r, c| evd.vectors[(r, order[c])]);
         ritz = vb * &y;
         let a_ritz = av.subcols(0, with_a) * &y;
         let residual = Mat::from_fn(n, wanted, |r, c| a_ritz[(r, c)] - theta[c] * ritz[(r, c)]);
@@ -338,12 +339,20 @@ fn checked_pairs(
     }
     let kv = k.mul(vectors.as_ref());
     let mvv = m.mul(vectors.as_ref());
-    // The known null vectors (the lowest pairs) have Kφ ≈ 0: measured against ‖K‖‖φ‖.
+    // The known null vectors and the zero-energy pairs (the lowest) have Kφ ≈ 0: measured
+    // against ‖K‖‖φ‖.
     let k_scale = k.max_abs();
+    let scale = eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
+    let zero_energy = values
+        .iter()
+        .take_while(|&&l| l.abs() <= ZERO_ENERGY_RATIO * scale)
+        .count()
+        .max(known);
     let mut converged = 0;
+    let mut residuals = Vec::with_capacity(wanted);
     for c in 0..wanted {
         let r = Mat::from_fn(n, 1, |i, _| kv[(i, c)] - values[c] * mvv[(i, c)]);
-        let denom = if c < known {
+        let denom = if c < zero_energy {
             k_scale * vectors.col(c).norm_l2()
         } else {
             kv.col(c).norm_l2()
@@ -353,6 +362,7 @@ fn checked_pairs(
             converged += 1;
         }
         max_residual = max_residual.max(rel);
+        residuals.push(if rel.is_nan() { f64::INFINITY } else { rel });
     }
     if max_residual.is_nan() {
         return Err(Error::EigenNotConverged {
@@ -362,7 +372,12 @@ fn checked_pairs(
         });
     }
     Ok(CheckedPairs {
-        eigen: GeneralizedEigen { values, vectors },
+        eigen: GeneralizedEigen {
+            values,
+            vectors,
+            residuals,
+            zero_energy,
+        },
         converged,
         max_residual,
     })

@@ -3,7 +3,7 @@
 //! and Witteveen's second-order use (§3.3, §4.3.3), which takes trial vectors for a Ritz
 //! basis from the position block of the controllability gramian of the damped full model.
 
-use faer::{Mat, MatRef, Side, c64};
+use faer::{Mat, MatRef, c64};
 
 use super::{Basis, Column, ColumnKind, Method, ModalModel, ReductionStatistics, StateSpace};
 use crate::{
@@ -118,14 +118,10 @@ pub fn balanced_truncation(model: &ModalModel, states: usize) -> Result<Balanced
 fn psd_factor(g: MatRef<'_, f64>, what: &str) -> Result<Mat<f64>> {
     let n = g.nrows();
     let sym = Mat::from_fn(n, n, |i, j| 0.5 * (g[(i, j)] + g[(j, i)]));
-    let evd = sym
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|_| Error::DecompositionFailed {
-            what: what.to_string(),
-        })?;
-    let s = evd.S().column_vector();
+    let evd = crate::linalg::symmetric_eigen(sym.as_ref(), what)?;
+    let s = &evd.values;
     Ok(Mat::from_fn(n, n, |i, j| {
-        evd.U()[(i, j)] * s[j].max(0.0).sqrt()
+        evd.vectors[(i, j)] * s[j].max(0.0).sqrt()
     }))
 }
 
@@ -222,20 +218,16 @@ pub fn balanced_basis(model: &FeModel, p: &BalancedBasisParameters) -> Result<Ba
     let w_xi = Mat::from_fn(np, np, |i, j| w[(2 * i, 2 * j)]);
     let w_x = &eig.vectors * &w_xi * eig.vectors.transpose();
     let w_x = Mat::from_fn(nf, nf, |i, j| 0.5 * (w_x[(i, j)] + w_x[(j, i)]));
-    let evd = w_x
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|_| Error::DecompositionFailed {
-            what: "position gramian eigen".into(),
-        })?;
+    let evd = crate::linalg::symmetric_eigen(w_x.as_ref(), "position gramian")?;
     statistics.constraint_modes_s = started.elapsed().as_secs_f64();
-    let s = evd.S().column_vector();
+    let s = &evd.values;
     let mut psi = Mat::<f64>::zeros(model.dof_count(), p.vectors);
     let mut columns = Vec::with_capacity(p.vectors);
     for c in 0..p.vectors {
         // Descending: the self-adjoint solver sorts ascending.
         let src = nf - 1 - c;
         for (r, &d) in free.iter().enumerate() {
-            psi[(d, c)] = evd.U()[(r, src)];
+            psi[(d, c)] = evd.vectors[(r, src)];
         }
         crate::linalg::fix_sign(psi.as_mut().col_mut(c));
         columns.push(Column {

@@ -119,6 +119,8 @@ pub fn restrained_modes(
     Ok(GeneralizedEigen {
         values: eig.values[..kept].to_vec(),
         vectors,
+        residuals: eig.residuals[..kept].to_vec(),
+        zero_energy: eig.zero_energy.min(kept),
     })
 }
 
@@ -154,8 +156,5 @@ pub(crate) fn orthonormalise_in(x: MatRef<'_, f64>, mx: MatRef<'_, f64>) -> Resu
 }
 
 fn first(all: &GeneralizedEigen, kept: usize) -> GeneralizedEigen {
-    GeneralizedEigen {
-        values: all.values[..kept].to_vec(),
-        vectors: all.vectors.subcols(0, kept).to_owned(),
-    }
+    all.first(kept)
 }

@@ -396,10 +396,7 @@ impl<'a> InteriorProblem<'a> {
 }
 
 fn first_modes(all: &GeneralizedEigen, kept: usize) -> GeneralizedEigen {
-    GeneralizedEigen {
-        values: all.values[..kept].to_vec(),
-        vectors: all.vectors.subcols(0, kept).to_owned(),
-    }
+    all.first(kept)
 }
 
 /// The rigid-body motions the boundary DOF leave free (none when the rigid motions restricted
@@ -434,17 +431,13 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
     });
     // Null space of R_b from the eigenvectors of R_bᵀR_b (6 × 6).
     let gram = r_b.transpose() * &r_b;
-    let evd =
-        gram.self_adjoint_eigen(faer::Side::Lower)
-            .map_err(|_| Error::DecompositionFailed {
-                what: "boundary rigid-motion rank".into(),
-            })?;
-    let largest = evd.S()[rigid - 1].max(f64::MIN_POSITIVE);
+    let evd = crate::linalg::symmetric_eigen(gram.as_ref(), "boundary rigid-motion rank")?;
+    let largest = evd.values[rigid - 1].max(f64::MIN_POSITIVE);
     let free: Vec<usize> = (0..rigid)
-        .filter(|&k| evd.S()[k] <= 1e-12 * largest)
+        .filter(|&k| evd.values[k] <= 1e-12 * largest)
         .collect();
     let describe = |k: usize| -> String {
-        let v = evd.U().col(k);
+        let v = evd.vectors.col(k);
         if model.spatial_dim() == 2 {
             let w = v[2] / size;
             let t = [v[0] - (-w * c[1]), v[1] - (w * c[0])];

@@ -100,7 +100,7 @@ impl RestrainedRitzModel {
         let eig = generalized_eigen(self.k.as_ref(), self.m.as_ref(), "restrained reduced")?;
         Ok(GeneralizedEigen {
             vectors: &self.basis * &eig.vectors,
-            values: eig.values,
+            ..eig
         })
     }
 }

@@ -112,6 +112,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             .vectors
             .subcols(full.zero_modes, full_hz.len())
             .to_owned(),
+        residuals: full.modes.residuals[full.zero_modes..].to_vec(),
+        zero_energy: 0,
     };
 
     let started = Instant::now();

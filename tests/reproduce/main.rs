@@ -4,6 +4,7 @@
 mod body_file;
 mod common;
 mod companion;
+mod dense_eigen;
 mod errors;
 mod failures;
 mod floating_frame;
