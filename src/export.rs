@@ -217,28 +217,11 @@ fn inertia_invariants(body: &ImportedBody, basis: &Basis) -> serde_json::Value {
     };
     let count = r.ncols();
     let translations = model.spatial_dim();
-    let mass = rmr[(0, 0)];
-    // Mass centre c_d = t_d^T M p_d / m with p_d the coordinate field on the d translations
-    // (exact for a consistent mass as well as a lumped one).
-    let per = model.dofs.per_node();
-    let mut centre = [0.0; 3];
-    for (dir, offset) in model.dofs.translations() {
-        let d = dir.index();
-        let p = Mat::from_fn(model.dof_count(), 1, |i, _| {
-            if i % per == offset {
-                model.nodes[i / per][d]
-            } else {
-                0.0
-            }
-        });
-        let t = Mat::from_fn(model.dof_count(), 1, |i, _| {
-            if i % per == offset { 1.0 } else { 0.0 }
-        });
-        centre[d] = (t.transpose() * model.m.mul(p.as_ref()))[(0, 0)] / mass;
-    }
+    let properties = model.mass_properties();
     json!({
-        "mass": mass,
-        "mass_centre": centre,
+        "mass": properties.mass,
+        "mass_centre": properties.centre,
+        "inertia_about_centre": properties.inertia,
         "mass_matrix": rows(&rmr, 0, count),
         "translation_coupling": rows(&coupling, 0, translations),
         "rotation_coupling": rows(&coupling, translations, count),

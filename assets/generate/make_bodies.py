@@ -358,10 +358,10 @@ def main():
     ap.add_argument("--large", metavar="DIR", help="write only the 30 k+ DOF link into DIR")
     args = ap.parse_args()
     if args.large:
-        make(args.large, h=0.0042, **{**LINK, "name": "steel_link_large"})
+        make(args.large, h=0.0032, **{**LINK, "name": "steel_link_large"})
         return
-    make(os.path.join(args.out, "steel-link"), h=0.0085, **LINK)
-    make(os.path.join(args.out, "flange-hub"), h=13.0, **FLANGE)
+    make(os.path.join(args.out, "steel-link"), h=0.0095, **LINK)
+    make(os.path.join(args.out, "flange-hub"), h=16.0, **FLANGE)
 
 
 if __name__ == "__main__":

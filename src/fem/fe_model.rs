@@ -2,7 +2,7 @@
 
 use faer::Mat;
 
-use super::{DofMap, NodeDof};
+use super::{DofMap, MassProperties, NodeDof};
 use crate::{
     Error, Result,
     linalg::{MassMatrix, SparseSymmetric},
@@ -189,23 +189,14 @@ impl FeModel {
         (t.transpose() * &mt)[(0, 0)]
     }
 
-    /// Mass centre (m) of the lumped masses (the diagonal of M on each node's x translation).
+    /// Mass centre (m) from the complete mass matrix (see [`MassProperties`]).
     pub fn mass_centre(&self) -> [f64; 3] {
-        let mut c = [0.0; 3];
-        let mut m = 0.0;
-        let x = self
-            .dofs
-            .offset(NodeDof::Translation(Direction::X))
-            .unwrap_or(0);
-        let per = self.dofs.per_node();
-        for (j, p) in self.nodes.iter().enumerate() {
-            let mj = self.m.get(per * j + x, per * j + x);
-            for (ca, pa) in c.iter_mut().zip(p) {
-                *ca += mj * pa;
-            }
-            m += mj;
-        }
-        c.map(|x| x / m)
+        self.mass_properties().centre
+    }
+
+    /// Mass, mass centre and inertia tensor from the complete mass matrix.
+    pub fn mass_properties(&self) -> MassProperties {
+        MassProperties::of(self)
     }
 
     /// Rigid-body motions as columns: translations, then small rotations about the origin

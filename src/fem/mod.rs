@@ -9,6 +9,7 @@ mod fe_model;
 mod frame3d;
 mod hex8;
 mod l_bracket;
+mod mass_properties;
 mod overhang_frame;
 mod triplets;
 
@@ -22,6 +23,7 @@ pub use hex8::{
     EDGES as HEX8_EDGES, LOCAL_NODES as HEX8_LOCAL_NODES, hex8_consistent_mass, hex8_stiffness,
 };
 pub use l_bracket::{LBracketParameters, l_bracket};
+pub use mass_properties::MassProperties;
 pub use overhang_frame::{
     OverhangDirection, OverhangFrame, OverhangFrameParameters, overhang_frame,
 };

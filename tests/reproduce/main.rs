@@ -6,6 +6,7 @@ mod common;
 mod companion;
 mod dense_eigen;
 mod errors;
+mod external_bodies;
 mod failures;
 mod floating_frame;
 mod frame;
