@@ -195,6 +195,29 @@ pub fn sig_vec(v: &[f64]) -> Vec<f64> {
     v.iter().map(|&x| sig(x)).collect()
 }
 
+/// Relative eigen-residual above which a printed frequency is flagged in text reports.
+pub const RESIDUAL_FLAG: f64 = 1e-6;
+
+/// What a text report says of the residuals of the frequencies it prints: the largest, or
+/// each frequency whose residual is above [`RESIDUAL_FLAG`], flagged.
+pub fn residual_note(hz: &[f64], residuals: &[f64]) -> String {
+    let worst = residuals.iter().copied().fold(0.0f64, f64::max);
+    let flagged: Vec<String> = hz
+        .iter()
+        .zip(residuals)
+        .filter(|(_, r)| **r > RESIDUAL_FLAG || r.is_nan())
+        .map(|(f, r)| format!("{} Hz ({r:.1e})", sig6(*f)))
+        .collect();
+    if flagged.is_empty() {
+        format!("relative residuals ≤ {worst:.1e}")
+    } else {
+        format!(
+            "**residual above {RESIDUAL_FLAG:.0e}, not to be trusted:** {}",
+            flagged.join(", ")
+        )
+    }
+}
+
 /// A markdown table with a header row.
 pub fn markdown_table(header: &[&str], rows: &[Vec<String>]) -> String {
     let mut s = format!(

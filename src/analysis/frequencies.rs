@@ -42,7 +42,7 @@ pub fn lowest_free_free_modes(model: &FeModel, elastic: usize) -> Result<General
 
 /// Elastic (non-rigid) frequencies of an eigen-solution, Hz, ascending.
 pub fn elastic_hz(e: &GeneralizedEigen) -> Vec<f64> {
-    e.hz().into_iter().filter(|&f| f >= RIGID_BODY_HZ).collect()
+    e.elastic_hz()
 }
 
 /// Free-free modes of a reduced model, $\mathrm{eig}(\Psi^TK\Psi, \Psi^TM\Psi)$.
@@ -80,6 +80,20 @@ impl ZeroEnergyCount {
     /// Elastic frequencies, Hz: the modes after the zero-energy ones.
     pub fn elastic_hz(&self) -> Vec<f64> {
         self.modes.hz()[self.zero_modes..].to_vec()
+    }
+
+    /// Relative residuals of the elastic pairs, in the order of [`Self::elastic_hz`].
+    pub fn elastic_residuals(&self) -> Vec<f64> {
+        self.modes.residuals[self.zero_modes..].to_vec()
+    }
+
+    /// How many of `e`'s leading pairs (a model reduced from this body) lie below this body's
+    /// zero-energy threshold.
+    pub fn zero_energy_in(&self, e: &GeneralizedEigen) -> usize {
+        e.hz()
+            .iter()
+            .take_while(|&&f| f < self.threshold_hz)
+            .count()
     }
 }
 

@@ -18,7 +18,7 @@ use crate::{
         InteriorProblem, Method, ModeCondensationRoute, ModeSelection, SolverPath,
         craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
     },
-    report::{Cell, Report, Table, fmt_hz, sig, sig_vec},
+    report::{Cell, Report, Table, fmt_hz, residual_note, sig, sig_vec, sig6},
 };
 
 /// The body shown when no `--body` is given.
@@ -127,6 +127,18 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut errors = Map::new();
     let mut angles = Map::new();
     let mut rigid_max = Map::new();
+    let mut reduced_residuals = Map::new();
+    let mut reduced_zero = Map::new();
+    let mut residual_lines = vec![
+        format!(
+            "full body: {}",
+            residual_note(&full_hz, &full.elastic_residuals())
+        ),
+        format!(
+            "fixed-interface: {}",
+            residual_note(&fi.hz(), &fi.residuals)
+        ),
+    ];
     let mut sizes = Map::new();
     let mut table = Table::new(&[
         "model",
@@ -170,14 +182,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         let eig = reduced_modes(model, &basis)?;
         // GR, CB and MC contain the rigid motions (their constraint modes reproduce them);
         // modal truncation's boundary movements do not, so it has no zero-energy modes.
+        // Zero energy is judged against the body's own scale, never by position.
         let all_hz = eig.hz();
-        let skip = if m == Method::ModalTruncation {
-            all_hz.iter().filter(|&&f| f < full.threshold_hz).count()
-        } else {
-            full.zero_modes.min(all_hz.len())
-        };
+        let skip = full.zero_energy_in(&eig);
         let rigid_hz = all_hz[..skip].iter().fold(0.0f64, |a, &f| a.max(f));
         let hz: Vec<f64> = all_hz[skip..].to_vec();
+        let hz_residuals: Vec<f64> = eig.residuals[skip..].to_vec();
         let rel: Vec<f64> = full_hz.iter().zip(&hz).map(|(f, r)| (r - f) / f).collect();
         let worst = rel
             .iter()
@@ -187,6 +197,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             .into_iter()
             .fold(0.0f64, f64::max);
         reduced.insert(m.id().into(), json!(sig_vec(&hz)));
+        reduced_residuals.insert(m.id().into(), json!(sig_vec(&hz_residuals)));
+        reduced_zero.insert(m.id().into(), json!(skip));
+        residual_lines.push(format!(
+            "{}: {}",
+            m.id().to_uppercase(),
+            residual_note(&hz, &hz_residuals)
+        ));
         errors.insert(m.id().into(), json!(sig_vec(&rel)));
         angles.insert(m.id().into(), json!(sig(angle)));
         rigid_max.insert(m.id().into(), json!(sig(rigid_hz)));
@@ -227,6 +244,19 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     r.insert("free_free_hz".into(), json!(sig_vec(&full_hz)));
     r.insert("fixed_interface_hz".into(), json!(sig_vec(&fi.hz())));
     r.insert("reduced_hz".into(), Value::Object(reduced));
+    r.insert(
+        "free_free_residuals".into(),
+        json!(sig_vec(&full.elastic_residuals())),
+    );
+    r.insert(
+        "fixed_interface_residuals".into(),
+        json!(sig_vec(&fi.residuals)),
+    );
+    r.insert("reduced_residuals".into(), Value::Object(reduced_residuals));
+    r.insert(
+        "reduced_zero_energy_modes".into(),
+        Value::Object(reduced_zero),
+    );
     r.insert("rel_error".into(), Value::Object(errors));
     r.insert("max_principal_angle_rad".into(), Value::Object(angles));
     r.insert("basis_size".into(), Value::Object(sizes));
@@ -238,7 +268,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report.table = format!(
         "Body `{}` ({}): {dofs} DOF, {} stiffness entries, {} zero-energy mode(s); units {}, \
          {}, {}. Interface {} node(s) {boundary:?}, {kept} kept modes.\n\n{summary}\nFull body, \
-         lowest elastic: {}\n\nFixed-interface: {}\n",
+         lowest elastic: {}\n\nFixed-interface: {}\n\nEigen residuals \
+         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n",
         model.name,
         body.location.display(),
         model.stiffness_nnz(),
@@ -249,6 +280,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         boundary.len(),
         fmt_hz(&full_hz),
         fmt_hz(&fi.hz()[..fi.hz().len().min(8)]),
+        residual_lines.join("; "),
     );
     let markdown = format!(
         "# modes: {}\n\n{}\n\nEvery method reduces the same body on the same interface: \
@@ -317,7 +349,8 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
     let full = count_zero_energy_modes(model, FULL_MODES)?;
     refuse_mechanism(model, &full)?;
     let hz = full.elastic_hz();
-    let mass = model.total_mass();
+    let properties = model.mass_properties();
+    let mass = properties.mass;
     let (mass_kind, mass_nnz) = match &model.m {
         crate::linalg::MassMatrix::Lumped(d) => ("lumped", d.len()),
         crate::linalg::MassMatrix::Consistent(m) => ("consistent", m.nnz()),
@@ -347,6 +380,9 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         "zero_energy_modes": full.zero_modes,
         "zero_energy_threshold_hz": sig(full.threshold_hz),
         "lowest_elastic_hz": sig_vec(&hz),
+        "lowest_elastic_residuals": sig_vec(&full.elastic_residuals()),
+        "mass_centre": properties.centre.map(sig),
+        "inertia_about_mass_centre": properties.inertia.map(|row| row.map(sig)),
         "node_sets": sets,
     });
     let set_text: Vec<String> = body
@@ -358,7 +394,8 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         "# {} ({})\n\n{}\n\n- {} nodes × {} DOF ({}) = {} DOF, node-major\n- K: {} stored \
          entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
          coordinates: {}\n- zero-energy modes: {} (below {:.2e} Hz; a free {} body has {}){}\n\
-         - lowest elastic frequencies, Hz: {}\n- node sets: {}\n- units: {}, {}, {}",
+         - lowest elastic frequencies, Hz: {} ({})\n- mass centre: {}; inertia about it: {}\n\
+         - node sets: {}\n- units: {}, {}, {}",
         model.name,
         body.location.display(),
         body.description,
@@ -394,6 +431,31 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
             String::new()
         },
         fmt_hz(&hz),
+        residual_note(&hz, &full.elastic_residuals()),
+        if body.has_coordinates {
+            format!(
+                "({}) {}",
+                properties.centre.map(sig6).join(", "),
+                body.units.length
+            )
+        } else {
+            "unknown (no coordinates)".into()
+        },
+        if body.has_coordinates {
+            format!(
+                "[{}] {}·{}²",
+                properties
+                    .inertia
+                    .iter()
+                    .map(|row| format!("[{}]", row.map(sig6).join(", ")))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                body.units.mass,
+                body.units.length
+            )
+        } else {
+            "unknown".into()
+        },
         if set_text.is_empty() {
             "none".into()
         } else {
