@@ -2,17 +2,13 @@
 
 use crate::{
     Error, Result,
-    fem::{FeModel, RigidMotions},
+    fem::FeModel,
     linalg::{
-        GeneralizedEigen, PartialEigenParameters, SymbolicFactor, SymmetricFactor,
-        generalized_eigen, lowest_modes, negative_shift, nested_dissection,
+        GeneralizedEigen, ZERO_ENERGY_RATIO, eigenvalue_scale, generalized_eigen,
+        hz_from_eigenvalue,
     },
     reduction::{Basis, COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT},
 };
-
-/// Frequencies below this (Hz) count as rigid-body modes and are left out of every `*_hz`
-/// result. Rigid-body eigenvalues come out at round-off level, ≲ 1e-5 Hz here.
-pub const RIGID_BODY_HZ: f64 = 1e-3;
 
 /// Free-free modes of the full body, $[V, \Lambda] = \mathrm{eig}(K, M)$ (§6.2.1): every mode,
 /// by a complete dense eigenproblem (bodies up to [`COMPLETE_EIGEN_LIMIT`] DOF; above it
@@ -69,10 +65,8 @@ pub struct ZeroEnergyCount {
     pub modes: GeneralizedEigen,
     /// Modes below [`Self::threshold_hz`]: rigid-body motions and mechanisms.
     pub zero_modes: usize,
-    /// Frequency below which a mode counts as zero-energy, Hz: the larger of
-    /// [`RIGID_BODY_HZ`] and $10^{-5}$ of the body's highest diagonal frequency
-    /// $\max_i \sqrt{K_{ii}/M_{ii}}/2\pi$ (round-off lifts a rigid mode to about
-    /// $\sqrt{\varepsilon}$ of it).
+    /// Frequency below which a mode counts as zero-energy, Hz (see
+    /// [`zero_energy_threshold_hz`]).
     pub threshold_hz: f64,
 }
 
@@ -108,31 +102,7 @@ pub fn count_zero_energy_modes(model: &FeModel, elastic: usize) -> Result<ZeroEn
     let modes = if n <= DENSE_INTERIOR_LIMIT {
         free_free_modes(model)?.first(wanted)
     } else {
-        let sigma = negative_shift(&model.k, &model.m);
-        let shifted = model.k.shifted(&model.m, sigma);
-        let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
-        let order = nested_dissection(shifted.as_faer(), &coords);
-        let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
-        let factor =
-            SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
-        // A free body's rigid motions, when the coordinates give them, enter exact; otherwise
-        // up to six zero eigenvalues coincide, and a block at least that wide finds them all.
-        let rigid_modes =
-            (model.rigid_motions == RigidMotions::FromGeometry).then(|| model.rigid_body_modes());
-        let parameters = PartialEigenParameters {
-            block_size: if rigid_modes.is_some() { 4 } else { 8 },
-            ..Default::default()
-        };
-        lowest_modes(
-            &model.k,
-            &model.m,
-            &factor,
-            sigma,
-            wanted,
-            rigid_modes.as_ref().map(|r| r.as_ref()),
-            &parameters,
-        )?
-        .0
+        crate::reduction::lowest_free_body_pairs(model, wanted)?
     };
     let threshold_hz = zero_energy_threshold_hz(model);
     let zero_modes = modes.hz().iter().filter(|&&f| f < threshold_hz).count();
@@ -144,11 +114,10 @@ pub fn count_zero_energy_modes(model: &FeModel, elastic: usize) -> Result<ZeroEn
 }
 
 /// Frequency (Hz) below which a mode of `model` (or of a model reduced from it) counts as
-/// zero-energy: the larger of [`RIGID_BODY_HZ`] and $10^{-5}\max_i\sqrt{K_{ii}/M_{ii}}/2\pi$.
+/// zero-energy: $\sqrt{r\,s}/2\pi$ with $r$ = [`ZERO_ENERGY_RATIO`] and $s$ the body's
+/// [`eigenvalue_scale`].
 pub fn zero_energy_threshold_hz(model: &FeModel) -> f64 {
-    let top = (0..model.dof_count())
-        .map(|j| model.k.get(j, j) / model.m.get(j, j))
-        .filter(|r| r.is_finite())
-        .fold(0.0f64, f64::max);
-    RIGID_BODY_HZ.max(1e-5 * top.sqrt() / (2.0 * std::f64::consts::PI))
+    let n = model.dof_count();
+    let scale = eigenvalue_scale((0..n).map(|j| (model.k.get(j, j), model.m.get(j, j))));
+    hz_from_eigenvalue(ZERO_ENERGY_RATIO * scale)
 }

@@ -140,9 +140,7 @@ pub fn evaluate_with_mean_axes(
             matrix: "constrained mean-axis mass".into(),
         })?;
     let e = generalized_eigen(kn.as_ref(), mn.as_ref(), "mean-axis normal")?;
-    let keep: Vec<usize> = (0..e.values.len())
-        .filter(|&i| hz_from_eigenvalue(e.values[i]) >= super::RIGID_BODY_HZ)
-        .collect();
+    let keep: Vec<usize> = (e.zero_energy..e.values.len()).collect();
     let normal_hz = keep
         .iter()
         .map(|&i| hz_from_eigenvalue(e.values[i]))

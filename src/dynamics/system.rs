@@ -808,10 +808,9 @@ fn pinv_solve(a: &DMatrix<f64>, b: &DVector<f64>, drop_below: f64) -> DVector<f6
         return DVector::from_element(n, f64::NAN);
     };
     let (values, vectors) = (&eig.values, &eig.vectors);
-    let top = (0..n).map(|i| values[i].abs()).fold(0.0, f64::max);
+    let top = values.iter().map(|l| l.abs()).fold(0.0, f64::max);
     let mut x = DVector::zeros(n);
-    for i in 0..n {
-        let l = values[i];
+    for (i, &l) in values.iter().enumerate() {
         if l.abs() > drop_below * top {
             let u = vectors.col(i);
             let coefficient = (0..n).map(|r| u[r] * b[r]).sum::<f64>() / l;
@@ -821,28 +820,6 @@ fn pinv_solve(a: &DMatrix<f64>, b: &DVector<f64>, drop_below: f64) -> DVector<f6
         }
     }
     x
-}
-
-/// $x = A^{-1}b$ for a small symmetric positive semi-definite $A$ ($CC^T$ of the position
-/// projection): a Cholesky factorisation of the Jacobi-scaled $A$ when its squared pivots stay
-/// above [`RANGE_SPACE_PIVOT`] of the largest, the pseudo-inverse of [`pinv_solve`] otherwise
-/// (redundant constraints).
-fn psd_solve(a: &DMatrix<f64>, b: &DVector<f64>) -> DVector<f64> {
-    let n = a.nrows();
-    let scale = DVector::from_fn(n, |i, _| {
-        let d = a[(i, i)];
-        if d > 0.0 { 1.0 / d.sqrt() } else { 1.0 }
-    });
-    let scaled = DMatrix::from_fn(n, n, |i, j| scale[i] * a[(i, j)] * scale[j]);
-    if let Some(chol) = scaled.cholesky() {
-        let d = chol.l_dirty().diagonal().map(|x| x * x);
-        if n == 0 || d.min() > RANGE_SPACE_PIVOT * d.max() {
-            let mut x = b.component_mul(&scale);
-            chol.solve_mut(&mut x);
-            return x.component_mul(&scale);
-        }
-    }
-    pinv_solve(a, b, REDUNDANT_PSD)
 }
 
 /// Pivot ratio below which [`range_space_solve`] hands the system to the indefinite solver:

@@ -186,6 +186,23 @@ impl SparseSymmetric {
         y
     }
 
+    /// $|A|\,|x|$ for a dense block $x$ (entrywise absolute values): the scale of the
+    /// round-off in $Ax$.
+    pub fn abs_mul(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        let a = self.inner.as_ref();
+        let (col_ptr, row_idx, val) = (a.col_ptr(), a.row_idx(), a.val());
+        let mut y = Mat::zeros(self.dim(), x.ncols());
+        for c in 0..x.ncols() {
+            for j in 0..self.dim() {
+                let xj = x[(j, c)].abs();
+                for p in col_ptr[j]..col_ptr[j + 1] {
+                    y[(row_idx[p], c)] += val[p].abs() * xj;
+                }
+            }
+        }
+        y
+    }
+
     /// Largest absolute entry.
     pub fn max_abs(&self) -> f64 {
         self.inner.val().iter().fold(0.0f64, |a, v| a.max(v.abs()))

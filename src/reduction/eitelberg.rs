@@ -209,14 +209,17 @@ pub fn eitelberg(
         a_r = &a_r + &b_r * &l * &c_r;
     }
     let minv_k = Mat::from_fn(nb, nb, |i, j| -a_r[(nb + i, j)]);
-    let mut hz: Vec<f64> = minv_k
+    let eigenvalues = minv_k
         .eigenvalues()
         .map_err(|_| Error::DecompositionFailed {
             what: "reduced M^-1 K eigenvalue".into(),
-        })?
+        })?;
+    // Zero energy against the matrix' own scale, as for the symmetric solves.
+    let scale = eigenvalues.iter().fold(0.0f64, |a, l| a.max(l.re.abs()));
+    let mut hz: Vec<f64> = eigenvalues
         .iter()
+        .filter(|l| l.re.abs() > crate::linalg::ZERO_ENERGY_RATIO * scale)
         .map(|l| hz_from_eigenvalue(l.re))
-        .filter(|&f| f >= crate::analysis::RIGID_BODY_HZ)
         .collect();
     hz.sort_by(f64::total_cmp);
     // Zero singular values: those at or below 1e-9 of the largest.

@@ -29,23 +29,36 @@ pub fn lowest_free_modes(model: &FeModel, elastic: usize) -> Result<GeneralizedE
         )?;
         return Ok(first(&all, wanted));
     }
+    lowest_free_body_pairs(model, wanted)
+}
+
+/// The `wanted` lowest pairs of an unrestrained (or possibly restrained) body by shift-invert
+/// Lanczos on $K - \sigma M$ with the shift of [`negative_shift`]: its rigid motions, when
+/// the coordinates give them, enter exact and count among the pairs; otherwise up to six zero
+/// eigenvalues coincide and a block of eight finds them all. Every pair is checked by its
+/// residual ([`lowest_modes`]).
+pub fn lowest_free_body_pairs(model: &FeModel, wanted: usize) -> Result<GeneralizedEigen> {
+    let n = model.dof_count();
     let sigma = negative_shift(&model.k, &model.m);
     let shifted = model.k.shifted(&model.m, sigma);
     let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
     let order = nested_dissection(shifted.as_faer(), &coords);
     let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
     let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
+    let rigid_modes =
+        (model.rigid_motions == RigidMotions::FromGeometry).then(|| model.rigid_body_modes());
+    let parameters = PartialEigenParameters {
+        block_size: if rigid_modes.is_some() { 4 } else { 8 },
+        ..Default::default()
+    };
     let (eig, _) = lowest_modes(
         &model.k,
         &model.m,
         &factor,
         sigma,
         wanted,
-        (model.rigid_motions == RigidMotions::FromGeometry)
-            .then(|| model.rigid_body_modes())
-            .as_ref()
-            .map(|r| r.as_ref()),
-        &PartialEigenParameters::default(),
+        rigid_modes.as_ref().map(|r| r.as_ref()),
+        &parameters,
     )?;
     Ok(eig)
 }

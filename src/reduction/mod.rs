@@ -34,7 +34,8 @@ pub use eitelberg::{
     eitelberg_state_space,
 };
 pub use free_modes::{
-    lowest_free_modes, mass_normalised_rigid_modes, restrained_modes, selected_free_modes,
+    lowest_free_body_pairs, lowest_free_modes, mass_normalised_rigid_modes, restrained_modes,
+    selected_free_modes,
 };
 pub use full::no_reduction;
 pub use guyan::{guyan, guyan_on};

@@ -130,7 +130,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         columns(&full)
             .into_iter()
             .zip(e.hz())
-            .filter(|(_, f)| *f >= crate::analysis::RIGID_BODY_HZ)
+            .skip(e.zero_energy)
             .enumerate()
             .map(|(k, (u, f))| (u, format!("Guyan {}: {f:.6} Hz", k + 1)))
             .collect::<Vec<_>>()
@@ -192,14 +192,16 @@ fn eitelberg_modes(eit: &EitelbergReduction) -> Result<Vec<(Vec<f64>, String)>> 
             what: "restored M^-1 K eigen".into(),
         })?;
     let nb = eit.minv_k.nrows();
+    // Zero energy against the restored matrix' own scale, as for the symmetric solves.
+    let scale = (0..nb).fold(0.0f64, |a, j| a.max(evd.S()[j].re.abs()));
     let mut modes: Vec<(f64, Vec<f64>)> = (0..nb)
+        .filter(|&j| evd.S()[j].re.abs() > crate::linalg::ZERO_ENERGY_RATIO * scale)
         .map(|j| {
             let hz = crate::linalg::hz_from_eigenvalue(evd.S()[j].re);
             let v = faer::Mat::from_fn(nb, 1, |i, _| evd.U()[(i, j)].re);
             let u = &eit.basis.psi * &v;
             (hz, (0..u.nrows()).map(|i| u[(i, 0)]).collect())
         })
-        .filter(|(hz, _)| *hz >= crate::analysis::RIGID_BODY_HZ)
         .collect();
     modes.sort_by(|a, b| a.0.total_cmp(&b.0));
     Ok(modes

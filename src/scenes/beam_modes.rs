@@ -56,7 +56,7 @@ fn expanded_modes(model: &FeModel, basis: &Basis, prefix: &str) -> Result<Vec<(V
     Ok(columns(&full)
         .into_iter()
         .zip(hz)
-        .filter(|(_, f)| *f >= crate::analysis::RIGID_BODY_HZ)
+        .skip(e.zero_energy)
         .enumerate()
         .map(|(k, (u, f))| (u, format!("{prefix} {}: {f:.6} Hz", k + 1)))
         .collect())
@@ -193,7 +193,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let ff_modes: Vec<(Vec<f64>, String)> = columns(&ff.vectors)
         .into_iter()
         .zip(ff.hz())
-        .filter(|(_, f)| *f >= crate::analysis::RIGID_BODY_HZ)
+        .skip(ff.zero_energy)
         .enumerate()
         .map(|(k, (u, f))| (u, format!("free-free {}: {f:.6} Hz", k + 1)))
         .collect();

@@ -26,8 +26,7 @@ use super::{
 use crate::{
     Error, Result,
     analysis::{
-        RIGID_BODY_HZ, StaticLoadCase, full_static_response, reduced_modes, relative_error,
-        ritz_static_response,
+        StaticLoadCase, full_static_response, reduced_modes, relative_error, ritz_static_response,
     },
     dynamics::{AxisType, IntegratorParameters, critical_step, simulate},
     fem::{BeamParameters, FeModel, SlabParameters, beam, slab},
@@ -411,10 +410,7 @@ fn guyan_mass_with_mean_axes(model: &FeModel) -> Result<Failure> {
     let anisotropy_lumped = block_anisotropy(&m_full);
     // Two elastic modes of the Guyan model, in master coordinates.
     let e = reduced_modes(model, &g)?;
-    let elastic: Vec<usize> = (0..e.values.len())
-        .filter(|&j| e.hz()[j] >= RIGID_BODY_HZ)
-        .take(2)
-        .collect();
+    let elastic: Vec<usize> = (e.zero_energy..e.values.len()).take(2).collect();
     if elastic.len() < 2 {
         return Err(Error::TooManyModes {
             requested: 2,
@@ -711,8 +707,8 @@ fn mirror_defect(u: &[f64]) -> f64 {
 fn first_elastic_mode(model: &FeModel, basis: &Basis) -> Result<(Vec<f64>, f64)> {
     let e = reduced_modes(model, basis)?;
     let hz = e.hz();
-    let j = (0..hz.len())
-        .find(|&j| hz[j] >= RIGID_BODY_HZ)
+    let j = (e.zero_energy < hz.len())
+        .then_some(e.zero_energy)
         .ok_or(Error::TooManyModes {
             requested: 1,
             available: 0,

@@ -10,7 +10,7 @@ use super::{
 };
 use crate::{
     Result,
-    analysis::{RIGID_BODY_HZ, elastic_hz, free_free_modes, reduced_hz, reduced_modes},
+    analysis::{elastic_hz, free_free_modes, reduced_hz, reduced_modes},
     fem::{FeModel, SlabParameters, slab},
     linalg::GeneralizedEigen,
     record::{Layout, Visual},
@@ -108,17 +108,17 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             ..Default::default()
         };
         let basis = reduce(&model, m, &params)?;
-        let all_hz = reduced_modes(&model, &basis)?.hz();
-        let rigid = all_hz.iter().filter(|&&f| f < RIGID_BODY_HZ).count();
-        rigid_counts.insert(m.id().into(), json!(rigid));
-        let hz: Vec<f64> = all_hz.into_iter().filter(|&f| f >= RIGID_BODY_HZ).collect();
+        let eig = reduced_modes(&model, &basis)?;
+        rigid_counts.insert(m.id().into(), json!(eig.zero_energy));
+        let hz = eig.elastic_hz();
         reduced.insert(m.id().into(), json!(sig_vec(&hz)));
         sizes.insert(m.id().into(), json!([basis.psi.nrows(), basis.psi.ncols()]));
         rows.push(vec![
             format!(
-                "{} (90 × {}, {rigid} rigid)",
+                "{} (90 × {}, {} rigid)",
                 m.id().to_uppercase(),
-                basis.size()
+                basis.size(),
+                eig.zero_energy
             ),
             fmt_hz(&hz[..hz.len().min(8)]),
         ]);
@@ -227,7 +227,7 @@ pub(super) fn slab_mode_views(
     let ff_modes: Vec<(Vec<f64>, String)> = columns(&free_free.vectors)
         .into_iter()
         .zip(free_free.hz())
-        .filter(|(_, f)| *f >= RIGID_BODY_HZ)
+        .skip(free_free.zero_energy)
         .take(shown_free_free)
         .enumerate()
         .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))

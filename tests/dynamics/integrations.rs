@@ -91,8 +91,8 @@ fn generalized_alpha_gives_craig_bampton_and_mode_condensation_one_history() {
     };
     for scenario in &scenarios {
         for axes in [nodal(), AxisType::Mean, AxisType::Principal] {
-            let (sc, cb) = run_slab(scenario, Method::CraigBampton, axes.clone(), &p);
-            let (sm, mc) = run_slab(scenario, Method::ModeCondensation, axes.clone(), &p);
+            let (sc, cb) = run_slab(scenario, Method::CraigBampton, axes, &p);
+            let (sm, mc) = run_slab(scenario, Method::ModeCondensation, axes, &p);
             let a = probe_history(&sc, &cb, PROBE_NODE);
             let b = probe_history(&sm, &mc, PROBE_NODE);
             let scale = a.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
