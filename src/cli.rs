@@ -107,7 +107,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Reduce a body and write Ψ, K_r, M_r (Matrix Market) and model.json to a folder.
+    /// Reduce a body and write Ψ (psi.npy), K_r, M_r (Matrix Market) and model.json to a
+    /// folder.
     Export {
         /// The body file (TOML), or `builtin:NAME`.
         #[arg(long)]
@@ -125,6 +126,12 @@ enum Command {
         /// Destination folder (replaced as a whole once everything is written).
         #[arg(long)]
         out: PathBuf,
+        /// The format of Ψ: `npy` (binary, numpy.load) or `mtx` (Matrix Market array text).
+        #[arg(long, default_value = "npy", value_parser = parse_psi_format)]
+        psi_format: crate::export::PsiFormat,
+        /// Print the wall time of each phase on stderr.
+        #[arg(long)]
+        timings: bool,
     },
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {
@@ -258,6 +265,14 @@ fn parse_integrator(s: &str) -> std::result::Result<IntegrationScheme, String> {
             IntegrationScheme::IDS.join(", ")
         )
     })
+}
+
+fn parse_psi_format(s: &str) -> std::result::Result<crate::export::PsiFormat, String> {
+    match s {
+        "npy" => Ok(crate::export::PsiFormat::Npy),
+        "mtx" => Ok(crate::export::PsiFormat::MatrixMarket),
+        other => Err(format!("unknown Ψ format `{other}` (npy, mtx)")),
+    }
 }
 
 fn parse_method(s: &str) -> std::result::Result<Method, String> {
@@ -500,16 +515,29 @@ fn run(cli: Cli) -> Result<()> {
             boundary,
             modes,
             out,
+            psi_format,
+            timings,
         } => {
+            let started = std::time::Instant::now();
             let body = ImportedBody::load(&body)?;
             let boundary = match boundary {
                 Some(items) => body.boundary(&items)?,
                 None => scenes::body_modes::default_boundary(&body)?,
             };
-            let summary = crate::export::export(&body, method, &boundary, modes, &out)?;
+            let loaded_s = started.elapsed().as_secs_f64();
+            let parameters = crate::export::ExportParameters { psi_format };
+            let summary =
+                crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
+            if timings {
+                eprintln!("read the body: {loaded_s:.3} s");
+                for (phase, s) in &summary.timings {
+                    eprintln!("{phase}: {s:.3} s");
+                }
+                eprintln!("total: {:.3} s", started.elapsed().as_secs_f64());
+            }
             println!(
-                "{}: {} of `{}` on {} interface node(s), Ψ {} × {}; wrote {} in {}\nreduced \
-                 elastic Hz: {}",
+                "{}: {} of `{}` on {} interface node(s), Ψ {} × {}; wrote {} in {}\n{} \
+                 zero-energy mode(s); reduced elastic Hz: {} ({})",
                 method.id(),
                 method.name(),
                 body.model.name,
@@ -518,7 +546,12 @@ fn run(cli: Cli) -> Result<()> {
                 summary.shape[1],
                 summary.files.join(", "),
                 summary.dir.display(),
+                summary.zero_energy,
                 crate::report::fmt_hz(&summary.hz[..summary.hz.len().min(8)]),
+                crate::report::residual_note(
+                    &summary.hz[..summary.hz.len().min(8)],
+                    &summary.residuals[..summary.residuals.len().min(8)]
+                ),
             );
             Ok(())
         }

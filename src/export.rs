@@ -1,9 +1,10 @@
 //! `flexmodes export`: a reduced model written for another code. The folder holds
 //!
-//! - `psi.mtx`: Ψ (n × r, `array real general`), the full DOF in the body file's node-major
-//!   order; `k_r.mtx` and `m_r.mtx`: $\Psi^TK\Psi$ and $\Psi^TM\Psi$ (`array real
-//!   symmetric`), all readable by `scipy.io.mmread`, Julia's `MatrixMarket.mmread` and
-//!   MATLAB's `mmread`;
+//! - `psi.npy`: Ψ (n × r, `float64`, column-major), the full DOF in the body file's
+//!   node-major order, for `numpy.load` (or `psi.mtx`, `array real general`, with
+//!   [`PsiFormat::MatrixMarket`]); `k_r.mtx` and `m_r.mtx`: $\Psi^TK\Psi$ and $\Psi^TM\Psi$
+//!   (`array real symmetric`), readable by `scipy.io.mmread`, Julia's `MatrixMarket.mmread`
+//!   and MATLAB's `mmread`;
 //! - `model.json`: the body, method, interface and kept modes, one label per column, the
 //!   reduced model's frequencies, and for floating-frame use the inertia invariants of the
 //!   reduced body about the body frame's origin: the rigid-body mass matrix $R^TMR$ (6 × 6:
@@ -13,7 +14,10 @@
 //! Everything is written to a temporary folder beside the destination and renamed into place,
 //! so an interrupted export leaves the previous folder (or none) as it was.
 
-use std::path::{Path, PathBuf};
+use std::{
+    path::{Path, PathBuf},
+    time::Instant,
+};
 
 use faer::Mat;
 use serde_json::json;
@@ -21,13 +25,41 @@ use serde_json::json;
 use crate::{
     Error, Result,
     analysis::zero_energy_threshold_hz,
-    body_file::{ImportedBody, write_array, write_atomically},
+    body_file::{ImportedBody, write_array, write_atomically, write_npy},
     linalg::generalized_eigen,
     reduction::{
-        Basis, ColumnKind, Method, ModeSelection, ReductionParameters, SolverPath, reduce,
+        Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, Method, ModeSelection, ReducedMatrices,
+        ReductionParameters, SolverPath, reduce,
     },
     report::sig_vec,
 };
+
+/// How Ψ is written.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum PsiFormat {
+    /// `psi.npy`: binary, for `numpy.load` (8 bytes a value, written at disk speed).
+    #[default]
+    Npy,
+    /// `psi.mtx`: Matrix Market `array real general` text (~25 bytes a value).
+    MatrixMarket,
+}
+
+impl PsiFormat {
+    /// The file name Ψ is written to.
+    pub fn file_name(self) -> &'static str {
+        match self {
+            Self::Npy => "psi.npy",
+            Self::MatrixMarket => "psi.mtx",
+        }
+    }
+}
+
+/// Settings of [`export`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ExportParameters {
+    /// The format of Ψ.
+    pub psi_format: PsiFormat,
+}
 
 /// What [`export`] wrote.
 #[derive(Debug, Clone)]
@@ -40,6 +72,12 @@ pub struct ExportSummary {
     pub shape: [usize; 2],
     /// Elastic frequencies of the reduced model, Hz.
     pub hz: Vec<f64>,
+    /// The relative residual of each of [`Self::hz`].
+    pub residuals: Vec<f64>,
+    /// Zero-energy modes of the reduced model (judged against the body's own scale).
+    pub zero_energy: usize,
+    /// Wall time of each phase, s, in order.
+    pub timings: Vec<(&'static str, f64)>,
 }
 
 /// Reduces `body` by `method` on `boundary` (1-based nodes) keeping `modes` normal modes and
@@ -50,8 +88,11 @@ pub fn export(
     boundary: &[usize],
     modes: usize,
     dir: &Path,
+    parameters: &ExportParameters,
 ) -> Result<ExportSummary> {
     let model = &body.model;
+    let mut timings: Vec<(&'static str, f64)> = Vec::new();
+    let started = Instant::now();
     let basis = reduce(
         model,
         method,
@@ -61,11 +102,39 @@ pub fn export(
             solver: SolverPath::Auto,
         },
     )?;
-    let k_r = basis.reduced_stiffness(model);
-    let m_r = basis.reduced_mass(model);
+    let total = started.elapsed().as_secs_f64();
+    let s = &basis.statistics;
+    timings.push(("factorisation", s.factorization_s));
+    timings.push(("constraint modes", s.constraint_modes_s));
+    timings.push(("fixed-interface modes", s.eigen_s));
+    timings.push((
+        "rest of the reduction",
+        (total - s.factorization_s - s.constraint_modes_s - s.eigen_s).max(0.0),
+    ));
+    let mut phase = Instant::now();
+    let mut lap = |name: &'static str, timings: &mut Vec<(&'static str, f64)>| {
+        timings.push((name, phase.elapsed().as_secs_f64()));
+        phase = Instant::now();
+    };
+    let reduced = ReducedMatrices::of(model, &basis);
+    if reduced.structured && reduced.constraint_coupling > CONSTRAINT_COUPLING_TOLERANCE {
+        return Err(Error::DecompositionFailed {
+            what: format!(
+                "Craig-Bampton structure check: the constraint modes couple to the normal \
+                 modes through K_r at {:.1e} of its largest entry (tolerance {:.0e})",
+                reduced.constraint_coupling, CONSTRAINT_COUPLING_TOLERANCE
+            ),
+        });
+    }
+    let (k_r, m_r) = (reduced.k, reduced.m);
+    lap("reduced matrices", &mut timings);
     let eig = generalized_eigen(k_r.as_ref(), m_r.as_ref(), "reduced model")?;
     let threshold = zero_energy_threshold_hz(model);
-    let hz: Vec<f64> = eig.hz().into_iter().filter(|&f| f >= threshold).collect();
+    let all_hz = eig.hz();
+    let zero_energy = all_hz.iter().take_while(|&&f| f < threshold).count();
+    let hz: Vec<f64> = all_hz[zero_energy..].to_vec();
+    let residuals: Vec<f64> = eig.residuals[zero_energy..].to_vec();
+    lap("reduced eigenproblem", &mut timings);
 
     let columns: Vec<serde_json::Value> = basis
         .columns
@@ -107,7 +176,14 @@ pub fn export(
         "size": basis.size(),
         "columns": columns,
         "reduced_elastic_hz": sig_vec(&hz),
-        "files": { "psi": "psi.mtx", "stiffness": "k_r.mtx", "mass": "m_r.mtx" },
+        "reduced_elastic_residuals": sig_vec(&residuals),
+        "reduced_zero_energy_modes": zero_energy,
+        "zero_energy_threshold_hz": threshold,
+        "files": {
+            "psi": parameters.psi_format.file_name(),
+            "stiffness": "k_r.mtx",
+            "mass": "m_r.mtx",
+        },
         "inertia": inertia,
         "inertia_note": if inertia.is_none() {
             "the body file gives no node coordinates, so the rigid-body motions and the inertia \
@@ -145,13 +221,21 @@ pub fn export(
             boundary,
             modes
         );
-        write_array(&tmp.join("psi.mtx"), basis.psi.as_ref(), false, &comment)?;
+        let psi_name = parameters.psi_format.file_name();
+        match parameters.psi_format {
+            PsiFormat::Npy => write_npy(&tmp.join(psi_name), basis.psi.as_ref())?,
+            PsiFormat::MatrixMarket => {
+                write_array(&tmp.join(psi_name), basis.psi.as_ref(), false, &comment)?
+            }
+        }
+        lap("write Ψ", &mut timings);
         write_array(&tmp.join("k_r.mtx"), k_r.as_ref(), true, &comment)?;
         write_array(&tmp.join("m_r.mtx"), m_r.as_ref(), true, &comment)?;
         let text = serde_json::to_string_pretty(&doc).expect("JSON of plain values");
         write_atomically(&tmp.join("model.json"), |w| w.write_all(text.as_bytes()))?;
+        lap("write K_r, M_r, model.json", &mut timings);
         Ok(vec![
-            "psi.mtx".into(),
+            psi_name.into(),
             "k_r.mtx".into(),
             "m_r.mtx".into(),
             "model.json".into(),
@@ -184,6 +268,9 @@ pub fn export(
         files,
         shape: [basis.psi.nrows(), basis.psi.ncols()],
         hz,
+        residuals,
+        zero_energy,
+        timings,
     })
 }
 

@@ -604,15 +604,28 @@ fn import_report_and_export_a_body_file() {
         "6",
         "--out",
         out_dir.to_str().unwrap(),
+        "--timings",
     ]);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    for f in ["psi.mtx", "k_r.mtx", "m_r.mtx", "model.json"] {
+    for f in ["psi.npy", "k_r.mtx", "m_r.mtx", "model.json"] {
         assert!(out_dir.join(f).is_file(), "{f}");
     }
+    // --timings names every phase on stderr; stdout says how many zero-energy modes.
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    for phase in [
+        "factorisation",
+        "constraint modes",
+        "reduced matrices",
+        "write Ψ",
+        "total",
+    ] {
+        assert!(stderr.contains(phase), "{phase} missing from {stderr}");
+    }
+    assert!(String::from_utf8_lossy(&out.stdout).contains("zero-energy mode(s)"));
     let model: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out_dir.join("model.json")).unwrap()).unwrap();
     assert_eq!(model["size"], 18);

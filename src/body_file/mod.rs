@@ -6,6 +6,7 @@ mod body_spec;
 mod body_writer;
 mod imported_body;
 mod matrix_market;
+mod npy;
 
 pub use body_spec::{BodySpec, DofOrder, GeometrySpec, MatrixFiles, TableOrFile, Units};
 pub use body_writer::{BodyFiles, example_bodies, write_body, write_files};
@@ -14,3 +15,4 @@ pub use matrix_market::{
     MatrixMarket, MatrixMarketFormat, parse_matrix_market, read_matrix_market, write_array,
     write_atomically, write_coordinate_symmetric, write_coordinate_symmetric_to,
 };
+pub use npy::{npy_header, read_npy, write_npy};

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::{
-    Conj, Mat, MatRef, Side,
+    Conj, Mat, MatRef, Par, Side,
     linalg::solvers::{Llt as DenseLlt, LltError, Solve},
     perm::PermRef,
     sparse::{
@@ -20,6 +20,9 @@ use faer::{
 };
 
 use crate::{Error, Result};
+
+/// Right-hand sides from which a sparse solve runs on every core.
+const WIDE_SOLVE: usize = 64;
 
 /// The symbolic analysis of a sparse symmetric pattern: fill-reducing ordering, elimination
 /// tree and the structure of $L$. Computed once per pattern.
@@ -185,7 +188,14 @@ impl SymmetricFactor {
             Kind::Dense(llt) => llt.solve(rhs),
             Kind::Sparse { symbolic, values } => {
                 let mut x = rhs.to_owned();
-                let par = faer::get_global_parallelism();
+                // Many right-hand sides (constraint modes: one per interface DOF) give the
+                // supernodes' dense kernels enough work to share among the cores; the
+                // Lanczos blocks of four do not.
+                let par = if x.ncols() >= WIDE_SOLVE {
+                    Par::rayon(0)
+                } else {
+                    faer::get_global_parallelism()
+                };
                 let sym = &symbolic.inner;
                 let mut mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(x.ncols(), par));
                 LltRef::<'_, usize, f64>::new(sym, values).solve_in_place_with_conj(

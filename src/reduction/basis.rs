@@ -1,8 +1,8 @@
 //! A transformation matrix of reduction with labelled columns.
 
-use faer::{Mat, MatRef};
+use faer::Mat;
 
-use super::{Method, ReductionStatistics};
+use super::{Method, ReductionStatistics, reduced_matrices::symmetric_product};
 use crate::fem::FeModel;
 
 /// What a column of Ψ is.
@@ -111,11 +111,4 @@ impl Basis {
     pub fn column(&self, j: usize) -> Vec<f64> {
         (0..self.psi.nrows()).map(|i| self.psi[(i, j)]).collect()
     }
-}
-
-/// $\Psi^T (A\Psi)$ from a precomputed $A\Psi$, symmetrised.
-fn symmetric_product(psi: MatRef<'_, f64>, a_psi: MatRef<'_, f64>) -> Mat<f64> {
-    let r = psi.transpose() * a_psi;
-    let n = r.nrows();
-    Mat::from_fn(n, n, |i, j| 0.5 * (r[(i, j)] + r[(j, i)]))
 }

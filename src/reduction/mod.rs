@@ -19,6 +19,7 @@ mod mode_condensation;
 mod moment_matching;
 mod nodal_fixed;
 mod partition;
+mod reduced_matrices;
 mod restrained_ritz;
 
 pub use balanced_truncation::{
@@ -54,4 +55,5 @@ pub use partition::{
     COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, InteriorProblem, Partition, ReductionStatistics,
     constraint_modes, fixed_interface_modes,
 };
+pub use reduced_matrices::{CONSTRAINT_COUPLING_TOLERANCE, ReducedMatrices};
 pub use restrained_ritz::RestrainedRitzModel;

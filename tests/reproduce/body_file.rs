@@ -624,9 +624,19 @@ fn export_round_trip_gives_the_same_frequencies() {
     let body = ImportedBody::load("builtin:l-bracket").unwrap();
     let dir = scratch("export").join("cb");
     let boundary = body.boundary(&["bolt_hole".into()]).unwrap();
-    let summary =
-        flexmodes::export::export(&body, Method::CraigBampton, &boundary, 8, &dir).unwrap();
+    let summary = flexmodes::export::export(
+        &body,
+        Method::CraigBampton,
+        &boundary,
+        8,
+        &dir,
+        &Default::default(),
+    )
+    .unwrap();
     assert_eq!(summary.shape, [1314, 24 * 3 + 8]);
+    assert_eq!(summary.zero_energy, 6);
+    assert_eq!(summary.residuals.len(), summary.hz.len());
+    assert!(summary.residuals.iter().all(|&r| r < 1e-8));
     let read = |f: &str| {
         let mm = read_matrix_market(&dir.join(f)).unwrap();
         let mut a = Mat::<f64>::zeros(mm.rows, mm.cols);
@@ -635,7 +645,11 @@ fn export_round_trip_gives_the_same_frequencies() {
         }
         a
     };
-    let (k, m, psi) = (read("k_r.mtx"), read("m_r.mtx"), read("psi.mtx"));
+    let (k, m) = (read("k_r.mtx"), read("m_r.mtx"));
+    let (rows, cols, values) =
+        flexmodes::body_file::read_npy(&std::fs::read(dir.join("psi.npy")).unwrap()).unwrap();
+    assert_eq!(values.len(), rows * cols);
+    let psi = Mat::from_fn(rows, cols, |i, j| values[j * rows + i]);
     // In memory, independently of the files.
     let basis = reduce(
         &body.model,
@@ -675,7 +689,14 @@ fn export_round_trip_gives_the_same_frequencies() {
     assert!((mass - body.model.total_mass()).abs() < 1e-12 * mass);
     // A second export replaces the folder as a whole; no temporary folder is left.
     let base_end = body.boundary(&["base_end".into()]).unwrap();
-    flexmodes::export::export(&body, Method::Guyan, &base_end, 0, &dir).unwrap();
+    let text = flexmodes::export::ExportParameters {
+        psi_format: flexmodes::export::PsiFormat::MatrixMarket,
+    };
+    flexmodes::export::export(&body, Method::Guyan, &base_end, 0, &dir, &text).unwrap();
+    // Ψ as Matrix Market text when asked, the same numbers.
+    let guyan_psi = read("psi.mtx");
+    assert_eq!(guyan_psi.ncols(), base_end.len() * 3);
+    assert!(!dir.join("psi.npy").exists());
     let leftovers: Vec<_> = std::fs::read_dir(dir.parent().unwrap())
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
