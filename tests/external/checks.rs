@@ -1,0 +1,182 @@
+//! Checks of a body no flexmodes code made against the reference values SciPy computed when
+//! it was written (`assets/generate/make_bodies.py`): shared by the committed bodies' tests
+//! (`tests/reproduce`) and the 30 k+-DOF body's slow test (`tests/slow_bodies.rs`).
+
+use std::path::Path;
+
+use flexmodes::{
+    analysis::{count_zero_energy_modes, reduced_modes},
+    body_file::ImportedBody,
+    reduction::{ColumnKind, Method, ModeSelection, ReductionParameters, SolverPath, reduce},
+};
+use serde_json::Value;
+
+/// The body in `dir` (its `body.toml`) and its `reference.json`.
+pub fn load(dir: &Path) -> (ImportedBody, Value) {
+    let body = ImportedBody::load(dir.join("body.toml").to_str().unwrap())
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+    let reference: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("reference.json")).unwrap())
+            .unwrap();
+    (body, reference)
+}
+
+pub fn floats(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap_or_else(|| panic!("not an array: {v}"))
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+pub fn assert_relative(what: &str, computed: &[f64], reference: &[f64], tol: f64) {
+    assert_eq!(
+        computed.len(),
+        reference.len(),
+        "{what}: {computed:?} against {reference:?}"
+    );
+    for (j, (c, r)) in computed.iter().zip(reference).enumerate() {
+        let e = (c - r).abs() / r.abs();
+        assert!(
+            e <= tol,
+            "{what} [{j}]: {c} against {r} (relative {e:.1e} > {tol:.0e})"
+        );
+    }
+}
+
+/// Six zero-energy modes and the twelve lowest elastic free-free frequencies to 1e-6, every
+/// pair with its residual below the flag.
+pub fn check_free_free(name: &str, body: &ImportedBody, reference: &Value) {
+    assert_eq!(
+        body.model.dof_count() as u64,
+        reference["dofs"].as_u64().unwrap()
+    );
+    let full = count_zero_energy_modes(&body.model, 12).unwrap();
+    assert_eq!(full.zero_modes, 6, "{name}: zero-energy modes");
+    assert_eq!(
+        full.zero_modes as u64,
+        reference["zero_energy_modes"].as_u64().unwrap()
+    );
+    let expected = floats(&reference["free_free_hz"]);
+    let elastic = full.elastic_hz();
+    assert!(elastic.len() >= 12, "{name}: {elastic:?}");
+    assert_relative(
+        &format!("{name} free-free Hz"),
+        &elastic[..12],
+        &expected[6..18],
+        1e-6,
+    );
+    // Every printed pair carries its residual, and none is above the flag.
+    assert_eq!(full.modes.residuals.len(), full.modes.values.len());
+    assert!(
+        full.modes.max_residual() < 1e-6,
+        "{name}: {:.1e}",
+        full.modes.max_residual()
+    );
+}
+
+/// Mass, mass centre and inertia about it from the consistent mass matrix.
+pub fn check_mass_properties(name: &str, body: &ImportedBody, reference: &Value) {
+    let p = body.model.mass_properties();
+    let mass = reference["mass"].as_f64().unwrap();
+    assert!(
+        (p.mass - mass).abs() <= 1e-10 * mass,
+        "{name}: mass {} vs {mass}",
+        p.mass
+    );
+    let size = body.model.size();
+    let centre = floats(&reference["centre_of_mass"]);
+    for d in 0..3 {
+        assert!(
+            (p.centre[d] - centre[d]).abs() <= 1e-10 * size,
+            "{name}: centre {:?} vs {centre:?}",
+            p.centre
+        );
+    }
+    let inertia: Vec<Vec<f64>> = reference["inertia_about_centre"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(floats)
+        .collect();
+    let top = inertia.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+    assert_eq!(inertia.len(), 3);
+    for (k, row) in inertia.iter().enumerate() {
+        assert_eq!(row.len(), 3);
+        for (l, expected) in row.iter().enumerate() {
+            assert!(
+                (p.inertia[k][l] - expected).abs() <= 1e-9 * top,
+                "{name}: J[{k}][{l}] {} vs {expected}",
+                p.inertia[k][l],
+            );
+        }
+    }
+    // The mass centre of the model is the consistent mass', not its diagonal's.
+    assert_eq!(body.model.mass_centre(), p.centre);
+}
+
+/// For each reference case (a bore's node set, a mode count): fixed-interface, CB and GR
+/// frequencies to 1e-8 of SciPy/LAPACK's, six zero-energy modes each, MC = CB to 1e-6.
+pub fn check_reductions(name: &str, body: &ImportedBody, reference: &Value) {
+    let model = &body.model;
+    for case in reference["cases"].as_array().unwrap() {
+        let set = case["boundary"].as_str().unwrap();
+        let modes = case["modes"].as_u64().unwrap() as usize;
+        let boundary = body.node_sets[set].clone();
+        let parameters = ReductionParameters {
+            boundary_nodes: boundary,
+            modes: ModeSelection::Count(modes),
+            solver: SolverPath::Auto,
+        };
+        let what = format!("{name} on {set}");
+        let cb = reduce(model, Method::CraigBampton, &parameters).unwrap();
+        // Fixed-interface frequencies, from the basis' own columns.
+        let fixed: Vec<f64> = cb
+            .columns
+            .iter()
+            .filter_map(|c| match c.kind {
+                ColumnKind::Normal { hz } => Some(hz),
+                _ => None,
+            })
+            .collect();
+        assert_relative(
+            &format!("{what}: fixed-interface Hz"),
+            &fixed,
+            &floats(&case["fixed_interface_hz"]),
+            1e-8,
+        );
+        let expected_cb = floats(&case["cb_hz"]);
+        let cb_eig = reduced_modes(model, &cb).unwrap();
+        assert_eq!(cb_eig.zero_energy, 6, "{what}: CB zero-energy modes");
+        let cb_hz = cb_eig.elastic_hz();
+        let count = (expected_cb.len() - 6).min(cb_hz.len()).min(20);
+        assert_relative(
+            &format!("{what}: CB Hz"),
+            &cb_hz[..count],
+            &expected_cb[6..6 + count],
+            1e-8,
+        );
+        let gr = reduce(model, Method::Guyan, &parameters).unwrap();
+        let gr_eig = reduced_modes(model, &gr).unwrap();
+        assert_eq!(gr_eig.zero_energy, 6, "{what}: GR zero-energy modes");
+        let expected_gr = floats(&case["guyan_hz"]);
+        let count = (expected_gr.len() - 6).min(20);
+        assert_relative(
+            &format!("{what}: GR Hz"),
+            &gr_eig.elastic_hz()[..count],
+            &expected_gr[6..6 + count],
+            1e-8,
+        );
+        // Mode condensation spans Craig–Bampton's space.
+        let mc = reduce(model, Method::ModeCondensation, &parameters).unwrap();
+        let mc_eig = reduced_modes(model, &mc).unwrap();
+        assert_eq!(mc_eig.zero_energy, 6, "{what}: MC zero-energy modes");
+        let n = cb_hz.len().min(20);
+        assert_relative(
+            &format!("{what}: MC against CB"),
+            &mc_eig.elastic_hz()[..n],
+            &cb_hz[..n],
+            1e-6,
+        );
+    }
+}
