@@ -78,6 +78,23 @@ enum Command {
         /// Simulations on the slab meshed with NX × NY × NZ bricks (App. B is 4,2,1).
         #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
         refine: Option<[usize; 3]>,
+        /// Time `export --method cb` of this body file as a whole process against SciPy's
+        /// CHOLMOD route (the peer script) in the same run.
+        #[arg(long, conflicts_with_all = ["scenes", "all", "sizes", "save", "refine"])]
+        body: Option<PathBuf>,
+        /// With --body: the interface node set.
+        #[arg(long, value_delimiter = ',', requires = "body")]
+        boundary: Option<Vec<String>>,
+        /// With --body: kept fixed-interface modes.
+        #[arg(long, default_value_t = 10, requires = "body")]
+        modes: usize,
+        /// With --body: the SciPy peer script.
+        #[arg(
+            long,
+            default_value = "../shared/bench/peers_body_cb.py",
+            requires = "body"
+        )]
+        peer: PathBuf,
     },
     /// The desktop explorer: the Rerun viewer beside live controls.
     #[cfg(feature = "gui")]
@@ -400,6 +417,48 @@ fn run(cli: Cli) -> Result<()> {
         #[cfg(feature = "gui")]
         Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),
         Command::Bench {
+            body: Some(body),
+            boundary,
+            modes,
+            peer,
+            repeats,
+            json,
+            ..
+        } => {
+            let boundary = match boundary {
+                Some(b) => b,
+                None => {
+                    let loaded = ImportedBody::load(&body.display().to_string())?;
+                    let nodes = scenes::body_modes::default_boundary(&loaded)?;
+                    // The peer takes a set name: the body's default interface.
+                    let name = loaded
+                        .node_sets
+                        .iter()
+                        .find(|(_, v)| **v == nodes)
+                        .map(|(k, _)| k.clone())
+                        .ok_or_else(|| Error::InvalidOption {
+                            scene: "bench".into(),
+                            reason: "name the interface node set with --boundary".into(),
+                        })?;
+                    vec![name]
+                }
+            };
+            let (value, text) =
+                crate::bench_export::run(&crate::bench_export::ExportBenchParameters {
+                    body,
+                    boundary,
+                    modes,
+                    repeats: repeats as usize,
+                    peer,
+                })?;
+            if json {
+                println!("{value}");
+            } else {
+                println!("{text}");
+            }
+            Ok(())
+        }
+        Command::Bench {
             scenes: ids,
             json,
             sizes: Some(sizes),
@@ -449,6 +508,7 @@ fn run(cli: Cli) -> Result<()> {
             integrator,
             refine,
             repeats,
+            ..
         } => {
             let ids = if all {
                 BENCH_ALL.iter().map(|s| s.to_string()).collect()

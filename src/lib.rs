@@ -13,6 +13,7 @@
 pub mod analysis;
 pub mod assets;
 pub mod bench;
+pub mod bench_export;
 pub mod bench_modes;
 pub mod bench_sim_sizes;
 pub mod bench_sizes;

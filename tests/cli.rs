@@ -757,3 +757,44 @@ fn bench_simulation_sizes_reports_online_cost_against_dof() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--sizes times"));
 }
+
+#[test]
+fn export_bench_times_the_whole_process_and_says_when_the_peer_cannot_run() {
+    let v = json(&[
+        "bench",
+        "--body",
+        "builtin:l-bracket",
+        "--boundary",
+        "bolt_hole",
+        "--modes",
+        "6",
+        "--repeats",
+        "2",
+        "--peer",
+        "/nonexistent/peers_body_cb.py",
+        "--json",
+    ]);
+    assert_eq!(v["bench"], "export");
+    let runs = v["flexmodes_s"].as_array().unwrap();
+    assert_eq!(runs.len(), 2);
+    assert!(runs.iter().all(|s| s.as_f64().unwrap() > 0.0));
+    // The frequencies the timed export wrote: ten elastic ones, ascending.
+    let hz: Vec<f64> = v["flexmodes_hz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_f64().unwrap())
+        .collect();
+    assert_eq!(hz.len(), 10);
+    assert!(
+        hz.windows(2).all(|w| w[0] <= w[1]) && hz[0] > 1000.0,
+        "{hz:?}"
+    );
+    assert!(v["peer"].is_null());
+    assert!(
+        v["peer_skipped"]
+            .as_str()
+            .unwrap()
+            .contains("/nonexistent/peers_body_cb.py")
+    );
+}

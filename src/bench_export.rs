@@ -1,0 +1,200 @@
+//! `flexmodes bench --body FILE --boundary SET --modes N`: Craig–Bampton export of a body as a
+//! whole process against SciPy's CHOLMOD route on the same body, measured in the same run.
+//!
+//! Both run as separate processes, one after the other, `repeats` times; the medians of their
+//! wall times give the ratio. The peer is `../shared/bench/peers_body_cb.py --cholmod` (or the
+//! script `--peer` names), which also prints its Craig–Bampton frequencies: they are compared
+//! with the ones flexmodes wrote, so the two did the same work. Timings are reported, never
+//! asserted.
+
+use std::{
+    path::{Path, PathBuf},
+    process::Command,
+    time::Instant,
+};
+
+use serde_json::{Value, json};
+
+use crate::{Error, Result, report::sig};
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct ExportBenchParameters {
+    /// The body file.
+    pub body: PathBuf,
+    /// The interface: node-set names (the peer takes one set, or `rbe2:SET`).
+    pub boundary: Vec<String>,
+    /// Kept fixed-interface modes.
+    pub modes: usize,
+    /// Runs of each process; their median is reported.
+    pub repeats: usize,
+    /// The peer script (run with `python3 SCRIPT BODY SET MODES --cholmod`).
+    pub peer: PathBuf,
+}
+
+/// One process's wall times and what it printed.
+#[derive(Debug, Clone)]
+struct Runs {
+    seconds: Vec<f64>,
+    stdout: String,
+}
+
+fn run_timed(mut command: Command, repeats: usize, what: &str) -> Result<Runs> {
+    let mut seconds = Vec::with_capacity(repeats);
+    let mut stdout = String::new();
+    for _ in 0..repeats {
+        let started = Instant::now();
+        let out = command.output().map_err(|source| Error::Io {
+            path: what.to_string(),
+            source,
+        })?;
+        seconds.push(started.elapsed().as_secs_f64());
+        if !out.status.success() {
+            return Err(Error::InvalidOption {
+                scene: "bench".into(),
+                reason: format!(
+                    "{what} failed: {}",
+                    String::from_utf8_lossy(&out.stderr)
+                        .lines()
+                        .last()
+                        .unwrap_or("")
+                ),
+            });
+        }
+        stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    }
+    seconds.sort_by(f64::total_cmp);
+    Ok(Runs { seconds, stdout })
+}
+
+fn median(sorted: &[f64]) -> f64 {
+    sorted[sorted.len() / 2]
+}
+
+/// Runs the bench and returns its JSON and its text table.
+pub fn run(p: &ExportBenchParameters) -> Result<(Value, String)> {
+    let out_dir =
+        std::env::temp_dir().join(format!("flexmodes-bench-export-{}", std::process::id()));
+    let exe = std::env::current_exe().map_err(|source| Error::Io {
+        path: "the flexmodes executable".into(),
+        source,
+    })?;
+    let mut own = Command::new(&exe);
+    own.args(["export", "--method", "cb", "--body"])
+        .arg(&p.body)
+        .arg("--boundary")
+        .arg(p.boundary.join(","))
+        .arg("--modes")
+        .arg(p.modes.to_string())
+        .arg("--out")
+        .arg(&out_dir);
+    let ours = run_timed(own, p.repeats, "flexmodes export")?;
+    let model: Value = serde_json::from_slice(&std::fs::read(out_dir.join("model.json")).map_err(
+        |source| Error::Io {
+            path: out_dir.join("model.json").display().to_string(),
+            source,
+        },
+    )?)
+    .map_err(|e| Error::InvalidOption {
+        scene: "bench".into(),
+        reason: format!("model.json: {e}"),
+    })?;
+    let _ = std::fs::remove_dir_all(&out_dir);
+    let our_hz: Vec<f64> = model["reduced_elastic_hz"]
+        .as_array()
+        .map(|a| a.iter().filter_map(Value::as_f64).collect())
+        .unwrap_or_default();
+    let peer = peer_runs(p);
+    let ours_s = median(&ours.seconds);
+    let mut value = json!({
+        "bench": "export",
+        "body": p.body.display().to_string(),
+        "boundary": p.boundary,
+        "modes": p.modes,
+        "repeats": p.repeats,
+        "flexmodes_s": ours.seconds.iter().map(|&s| sig(s)).collect::<Vec<_>>(),
+        "flexmodes_median_s": sig(ours_s),
+        "flexmodes_hz": our_hz.iter().take(10).map(|&f| sig(f)).collect::<Vec<_>>(),
+    });
+    let mut text = format!(
+        "# export bench: Craig–Bampton of {} on {} with {} modes, {} run(s) each\n\n\
+         | process | median s | runs s |\n|---|---|---|\n| flexmodes export | {:.2} | {} |\n",
+        p.body.display(),
+        p.boundary.join(","),
+        p.modes,
+        p.repeats,
+        ours_s,
+        fmt_runs(&ours.seconds)
+    );
+    match peer {
+        Ok((runs, peer_json)) => {
+            let peer_s = median(&runs.seconds);
+            // The peer prints every eigenvalue of its reduced model; its rigid ones first.
+            let peer_hz: Vec<f64> = peer_json["cb_hz"]
+                .as_array()
+                .map(|a| a.iter().filter_map(Value::as_f64).collect())
+                .unwrap_or_default();
+            let threshold = model["zero_energy_threshold_hz"].as_f64().unwrap_or(0.0);
+            let rigid = peer_hz.iter().take_while(|&&f| f < threshold).count();
+            let compared = our_hz
+                .len()
+                .min(peer_hz.len().saturating_sub(rigid))
+                .min(10);
+            let agreement = (0..compared)
+                .map(|j| (our_hz[j] - peer_hz[rigid + j]).abs() / peer_hz[rigid + j])
+                .fold(0.0f64, f64::max);
+            let cb_s = peer_json["cb_seconds"].as_f64().unwrap_or(f64::NAN);
+            value["peer"] = json!("scipy-cholmod");
+            value["peer_s"] = json!(runs.seconds.iter().map(|&s| sig(s)).collect::<Vec<_>>());
+            value["peer_median_s"] = json!(sig(peer_s));
+            value["peer_cb_only_s"] = json!(sig(cb_s));
+            value["ratio_to_peer_process"] = json!(sig(ours_s / peer_s));
+            value["ratio_to_peer_cb_only"] = json!(sig(ours_s / cb_s));
+            value["max_rel_hz_difference"] = json!(sig(agreement));
+            text.push_str(&format!(
+                "| SciPy + CHOLMOD (peers_body_cb.py --cholmod) | {peer_s:.2} | {} |\n\n\
+                 flexmodes / SciPy: {:.2}× of its whole process, {:.2}× of its CB alone \
+                 ({cb_s:.2} s; the process also reads the body, imports SciPy and solves the \
+                 free-free problem). The {compared} lowest elastic frequencies agree to \
+                 {agreement:.1e}.\n",
+                fmt_runs(&runs.seconds),
+                ours_s / peer_s,
+                ours_s / cb_s,
+            ));
+        }
+        Err(reason) => {
+            value["peer"] = Value::Null;
+            value["peer_skipped"] = json!(reason);
+            text.push_str(&format!("\nSciPy peer not run: {reason}\n"));
+        }
+    }
+    Ok((value, text))
+}
+
+fn fmt_runs(s: &[f64]) -> String {
+    s.iter()
+        .map(|x| format!("{x:.2}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The peer's runs and its last JSON line, or why it could not run.
+fn peer_runs(p: &ExportBenchParameters) -> std::result::Result<(Runs, Value), String> {
+    if !Path::new(&p.peer).is_file() {
+        return Err(format!("no peer script at {}", p.peer.display()));
+    }
+    let [set] = p.boundary.as_slice() else {
+        return Err("the peer takes one node set as interface".into());
+    };
+    let mut command = Command::new("python3");
+    command
+        .arg(&p.peer)
+        .arg(&p.body)
+        .arg(set)
+        .arg(p.modes.to_string())
+        .arg("--cholmod");
+    let runs = run_timed(command, p.repeats, "the SciPy peer").map_err(|e| e.to_string())?;
+    let line = runs.stdout.lines().last().unwrap_or("").to_string();
+    let json: Value = serde_json::from_str(&line).map_err(|e| format!("peer output: {e}"))?;
+    Ok((runs, json))
+}
