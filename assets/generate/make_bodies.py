@@ -385,9 +385,16 @@ def main():
     ap.add_argument("--out", default=os.path.join(REPO, "tests", "bodies"))
     ap.add_argument("--large", metavar="DIR", help="write only the 30 k+ DOF link into DIR")
     ap.add_argument("--only", help="write only this body (steel-link, flange-hub, steel-rod)")
+    ap.add_argument("--h", type=float, default=0.003,
+                    help="with --large: the mesh size, m (0.003: 32 k DOF, 0.002: ~100 k)")
+    ap.add_argument("--no-cases", action="store_true",
+                    help="with --large: free-free references only (no Craig-Bampton cases)")
     args = ap.parse_args()
     if args.large:
-        make(args.large, h=0.003, **{**LINK, "name": "steel_link_large"})
+        spec = {**LINK, "name": "steel_link_large"}
+        if args.no_cases:
+            spec["cases"] = []
+        make(args.large, h=args.h, **spec)
         return
     bodies = {"steel-link": (0.0095, LINK), "flange-hub": (16.0, FLANGE),
               "steel-rod": (0.012, ROD)}
