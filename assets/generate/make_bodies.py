@@ -8,7 +8,13 @@ reduced ones). Nothing here imports or mirrors flexmodes' own assembly.
 
     pip install -r assets/generate/requirements.txt
     python3 assets/generate/make_bodies.py                 # the committed bodies (tests/bodies/)
-    python3 assets/generate/make_bodies.py --large DIR     # the 30 k+ DOF part for the slow tests
+    python3 assets/generate/make_bodies.py --only steel-rod
+    python3 assets/generate/make_bodies.py --large DIR     # the 32 k-DOF link for the slow tests
+    python3 assets/generate/make_bodies.py --large DIR --h 0.002 --no-cases   # 92 k DOF
+
+The committed bodies: a steel link in m-kg-s (two bores), a flanged hub in mm-t-s (a bore and
+four bolt holes) and a slender rod with a cross hole at each end (its coarse mesh has one badly
+shaped element, so its largest eigenvalue is 3e10 times its lowest elastic one).
 
 Each body is a folder with body.toml, k.mtx.gz, m.mtx.gz (node-major x, y, z; full
 precision), nodes.csv, edges.csv (surface triangles) and reference.json:
