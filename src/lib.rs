@@ -13,10 +13,6 @@
 pub mod analysis;
 pub mod assets;
 pub mod bench;
-pub mod bench_export;
-pub mod bench_modes;
-pub mod bench_sim_sizes;
-pub mod bench_sizes;
 pub mod body_file;
 pub mod cli;
 pub mod dynamics;
@@ -32,6 +28,7 @@ pub mod reduction;
 pub mod report;
 pub mod scenes;
 mod terminal_progress;
+pub mod work_pool;
 
 pub use error::{Error, Result};
 pub use progress::{PhaseReading, Progress, ProgressReading};

@@ -31,7 +31,7 @@ use faer::{
 };
 use nalgebra::DVector;
 
-use super::{IntegratorParameters, Simulation, State, System, integrator::sample};
+use super::{IntegratorParameters, Simulation, State, System, simulation::sample};
 use crate::{Error, Progress, Result};
 
 /// Newton iterations per step before the iteration matrix is rebuilt (and, with a fresh one,

@@ -6,22 +6,27 @@
 mod axes;
 mod body;
 mod constraint;
+mod dormand_prince;
 mod generalized_alpha;
 mod inertia_invariants;
 mod integrator;
+mod integrator_parameters;
 mod prescribed;
 mod rotation;
+mod simulation;
 mod system;
 
 pub use axes::AxisType;
 pub use body::{Body, FlexibleBody, ModalMassInverse, RigidBody};
 pub use constraint::{Attachment, Constraint};
+pub use dormand_prince::{critical_step, imaginary_stability_limit, stability_polynomial};
 pub use generalized_alpha::GeneralizedAlphaCoefficients;
 pub use inertia_invariants::InertiaInvariants;
-pub use integrator::{
+pub use integrator::simulate;
+pub use integrator_parameters::{
     DEFAULT_IMPLICIT_STEP, DEFAULT_SPECTRAL_RADIUS, IntegrationScheme, IntegratorParameters,
-    Sample, Simulation, critical_step, imaginary_stability_limit, simulate, stability_polynomial,
 };
 pub use prescribed::Motion;
 pub use rotation::{euler_parameters_from_matrix, rotation_matrix, skew};
+pub use simulation::{Sample, Simulation};
 pub use system::{STANDARD_GRAVITY, State, System};

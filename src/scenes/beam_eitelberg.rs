@@ -21,7 +21,7 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "§6.6 Eitelberg's method on the beam (masters 1, 3, 5) with the L = [I I] \
               output-feedback trick; the restored M^-1 K equals Guyan's",
     sections: "§6.6, App. C",
-    controls: super::registry::SceneControls {
+    controls: super::scene_info::SceneControls {
         methods: &[Method::Eitelberg, Method::Guyan],
         boundary: &[1, 3, 5],
         modes: None,

@@ -24,7 +24,7 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "§8.4-8.5 mode condensation with mean axes: constraint and normal modes of the \
               reduced beam against the full model",
     sections: "§8.4, §8.5",
-    controls: super::registry::SceneControls {
+    controls: super::scene_info::SceneControls {
         methods: &[
             Method::ModeCondensation,
             Method::CraigBampton,

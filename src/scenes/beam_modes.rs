@@ -24,7 +24,7 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "App. A beam: free-free, Guyan (a)(b)(c), boundary, fixed-interface, Craig-Bampton \
               and mode-condensation mode shapes (Figs. 6-1 to 6-9)",
     sections: "§6.2-6.5, App. A",
-    controls: super::registry::SceneControls {
+    controls: super::scene_info::SceneControls {
         methods: &[
             Method::Guyan,
             Method::ModalTruncation,

@@ -20,7 +20,7 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "§7.1 deformed profiles of the beam: the same z* (profile 1) and a least-squares \
               fit (profile 2) by MT, CB and MC against the reference deflection",
     sections: "§7.1",
-    controls: super::registry::SceneControls {
+    controls: super::scene_info::SceneControls {
         methods: &[
             Method::ModalTruncation,
             Method::CraigBampton,

@@ -29,7 +29,7 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "any body from a body file (--body FILE; the L-bracket by default): GR, MT, CB and \
               MC on one interface against the full body's frequencies",
     sections: "§6.2–6.5 on a body of your own",
-    controls: super::registry::SceneControls {
+    controls: super::scene_info::SceneControls {
         methods: &AVAILABLE,
         boundary: &[],
         modes: Some(10),
@@ -295,7 +295,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         model.name, body.description, report.table
     );
     let layout = if body.has_coordinates {
-        let (mode_visuals, l) = super::slab_modes::slab_mode_views(
+        let (mode_visuals, l) = super::slab_mode_views::slab_mode_views(
             model,
             &problem.partition,
             &psi_s,

@@ -31,7 +31,7 @@ pub const INFO: SceneInfo = SceneInfo {
               built once on a clamped beam structure, then with A clamped (variant 2) and A \
               sliding with 250 kg (variant 3): static deflections, frequency errors and MAC",
     sections: "Witteveen 2012 §4",
-    controls: super::registry::SceneControls::methods_only(&AVAILABLE),
+    controls: super::scene_info::SceneControls::methods_only(&AVAILABLE),
 };
 
 const AVAILABLE: [Method; 3] = [

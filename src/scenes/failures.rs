@@ -47,7 +47,7 @@ pub const INFO: SceneInfo = SceneInfo {
               Guyan mass, an explicit step above critical, Guyan (b)'s symmetry, modal \
               truncation and boundary motion",
     sections: "§3.2, §4.2, §6.2–6.6, §7.1–7.2",
-    controls: super::registry::SceneControls::methods_only(&[]),
+    controls: super::scene_info::SceneControls::methods_only(&[]),
 };
 
 /// Kept normal modes wherever a failure needs them (the §7.2 count).

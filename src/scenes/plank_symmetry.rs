@@ -30,7 +30,7 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "§5.3.3 plank hung under four rigid links: nodal-fixed axes lose the mirror \
               symmetry after the chains snap taut, mean axes keep it",
     sections: "§5.3.3, ch. 8",
-    controls: super::registry::SceneControls {
+    controls: super::scene_info::SceneControls {
         methods: &[Method::NoReduction, Method::CraigBampton],
         boundary: &[],
         modes: Some(6),

@@ -1,56 +1,12 @@
 //! The list of scenes.
 
+use super::scene_info::SceneInfo;
 use super::{
     SceneOptions, SceneOutput, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
     body_modes, cantilever_variants, failures, plank_symmetry, slab_mode_sets, slab_modes,
     slab_sims,
 };
-use crate::{Error, Result, reduction::Method};
-
-/// Static description of a scene.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SceneInfo {
-    /// Stable id (`beam-modes`).
-    pub id: &'static str,
-    /// One line for `flexmodes list`.
-    pub summary: &'static str,
-    /// Thesis sections it reproduces.
-    pub sections: &'static str,
-    /// What the scene's options can be set to (for the desktop panel).
-    pub controls: SceneControls,
-}
-
-/// The options a scene offers and their defaults.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SceneControls {
-    /// Methods that can be shown.
-    pub methods: &'static [Method],
-    /// Default boundary/master nodes (empty: the scene has no boundary choice).
-    pub boundary: &'static [usize],
-    /// Default kept normal modes (`None`: the scene keeps none).
-    pub modes: Option<usize>,
-    /// Axis types offered (empty: no floating frame).
-    pub axes: &'static [&'static str],
-    /// Default simulated interval, s (`None`: not a simulation).
-    pub end_time: Option<f64>,
-    /// Default mesh as bricks along x, y, z (`None`: the scene's body cannot be refined).
-    pub refine: Option<[usize; 3]>,
-}
-
-impl SceneControls {
-    /// A scene whose only choice is which of `methods` to show (no boundary, kept modes, axes,
-    /// interval or mesh): the companion papers' fixed experiments, the failures catalogue.
-    pub const fn methods_only(methods: &'static [Method]) -> Self {
-        Self {
-            methods,
-            boundary: &[],
-            modes: None,
-            axes: &[],
-            end_time: None,
-            refine: None,
-        }
-    }
-}
+use crate::{Error, Result};
 
 /// A scene: computes its results and visuals for given options.
 pub struct Scene {

@@ -33,7 +33,7 @@ pub const INFO: SceneInfo = SceneInfo {
               synthesis, motor-to-platform FRF against the full model over 0–10 Hz; influence \
               ranking against the lowest modes",
     sections: "Spanos–Tsuha §2–4",
-    controls: super::registry::SceneControls::methods_only(&AVAILABLE),
+    controls: super::scene_info::SceneControls::methods_only(&AVAILABLE),
 };
 
 const AVAILABLE: [Method; 3] = [

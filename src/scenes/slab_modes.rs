@@ -1,18 +1,16 @@
 //! `slab-modes`: the App. B slab's free-free, constraint and fixed-interface modes and the
 //! frequencies of each reduced model (§7.2.1).
 
-use faer::Mat;
 use serde_json::{Map, Value, json};
 
 use super::{
-    SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE, columns, method_color, mode_set, undeformed},
+    SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed,
+    slab_mode_views::slab_mode_views,
 };
 use crate::{
     Result,
     analysis::{elastic_hz, free_free_modes, reduced_hz, reduced_modes},
-    fem::{FeModel, SlabParameters, slab},
-    linalg::GeneralizedEigen,
+    fem::{SlabParameters, slab},
     record::{Layout, Visual},
     reduction::{
         Method, ModeSelection, NodalFixedAxes, Partition, ReductionParameters, constraint_modes,
@@ -26,7 +24,7 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "App. B slab: free-free, constraint and fixed-interface modes for boundary nodes \
               16, 18, 28, 30, and the frequencies of the MT, CB, MC and GR models",
     sections: "§7.2.1, App. B",
-    controls: super::registry::SceneControls {
+    controls: super::scene_info::SceneControls {
         methods: &[
             Method::ModalTruncation,
             Method::CraigBampton,
@@ -45,8 +43,6 @@ pub const INFO: SceneInfo = SceneInfo {
 pub const APP_B_BRICKS: [usize; 3] = [4, 2, 1];
 /// §7.2.1: Guyan adds two masters so it has as many coordinates as the others (18).
 const EXTRA_GUYAN_MASTERS: [usize; 2] = [5, 11];
-/// Constraint modes drawn at most (all are computed).
-const MAX_DRAWN_CONSTRAINT_MODES: usize = 24;
 /// Free-free modes drawn (all frequencies are reported).
 const SHOWN_FREE_FREE: usize = 12;
 const AVAILABLE: [Method; 4] = [
@@ -60,7 +56,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     if let Some(bricks) = opts.refine
         && bricks != APP_B_BRICKS
     {
-        return super::slab_refined::run(opts, bricks);
+        return super::slab_refined::run(opts, &INFO, bricks);
     }
     opts.check_axes(INFO.id, &["nodal_fixed"])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
@@ -205,86 +201,4 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         timeline: Some("phase".into()),
         y_up: false,
     })
-}
-
-/// The slab's mode views: free-free elastic modes (at most `shown_free_free`), the constraint
-/// modes $[I; \Psi_s]$ of the boundary DOF and the first `kept` fixed-interface modes, each
-/// set under `modes/<set>/<k>`, and the layout with those tabs (`first_tab` in front) above the
-/// reduced-frequency bar charts, beside the scene text.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn slab_mode_views(
-    model: &FeModel,
-    part: &Partition,
-    psi_s: &Mat<f64>,
-    fixed_interface: &GeneralizedEigen,
-    free_free: &GeneralizedEigen,
-    shown_free_free: usize,
-    kept: usize,
-    first_tab: &str,
-    bars: Vec<Layout>,
-) -> (Vec<Visual>, Layout) {
-    let mut visuals = Vec::new();
-    let ff_modes: Vec<(Vec<f64>, String)> = columns(&free_free.vectors)
-        .into_iter()
-        .zip(free_free.hz())
-        .skip(free_free.zero_energy)
-        .take(shown_free_free)
-        .enumerate()
-        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
-        .collect();
-    visuals.extend(mode_set(model, "free_free", &ff_modes, REFERENCE));
-    let nb = part.b.len();
-    let constraint = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
-    // Bodies with large interfaces (an imported body's bolt hole) show the first few.
-    let c_modes: Vec<(Vec<f64>, String)> = columns(&constraint)
-        .into_iter()
-        .take(MAX_DRAWN_CONSTRAINT_MODES)
-        .zip(&part.b)
-        .map(|(u, &dof)| (u, model.dof_label(dof)))
-        .collect();
-    visuals.extend(mode_set(
-        model,
-        "guyan_c",
-        &c_modes,
-        method_color(Method::Guyan),
-    ));
-    let shown = kept.min(fixed_interface.vectors.ncols());
-    let fi_full = part.assemble(
-        Mat::<f64>::zeros(nb, shown).as_ref(),
-        fixed_interface.vectors.subcols(0, shown),
-    );
-    let fi_modes: Vec<(Vec<f64>, String)> = columns(&fi_full)
-        .into_iter()
-        .zip(fixed_interface.hz())
-        .enumerate()
-        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
-        .collect();
-    visuals.extend(mode_set(
-        model,
-        "fixed_interface",
-        &fi_modes,
-        method_color(Method::CraigBampton),
-    ));
-    let mut tabs: Vec<Layout> = ["free_free", "guyan_c", "fixed_interface"]
-        .into_iter()
-        .map(|set| Layout::view3d(set, &format!("/modes/{set}")))
-        .collect();
-    if let Some(i) = ["free_free", "guyan_c", "fixed_interface"]
-        .iter()
-        .position(|s| *s == first_tab)
-    {
-        let front = tabs.remove(i);
-        tabs.insert(0, front);
-    }
-    let layout = Layout::Horizontal(
-        vec![
-            Layout::Vertical(
-                vec![Layout::Tabs(tabs), Layout::Horizontal(bars, vec![])],
-                vec![3.0, 1.0],
-            ),
-            Layout::scene_text(),
-        ],
-        vec![3.0, 2.0],
-    );
-    (visuals, layout)
 }

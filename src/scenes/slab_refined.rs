@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use serde_json::{Map, Value, json};
 
-use super::{SceneOptions, SceneOutput, mode_visuals::undeformed, slab_modes::INFO};
+use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed};
 use crate::{
     Error, Result,
     analysis::{elastic_hz, lowest_free_free_modes, reduced_modes},
@@ -33,10 +33,11 @@ const FREE_FREE: usize = 6;
 /// §7.2.1's extra Guyan masters, nodes 5 and 11 of App. B, as positions (m) on the top face.
 const EXTRA_GUYAN_MASTER_POSITIONS: [[f64; 3]; 2] = [[1.0, 1.0, 1.0], [3.0, 1.0, 1.0]];
 
-pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
+/// Runs `slab-modes` (described by `info`) on a mesh of `bricks`.
+pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<SceneOutput> {
     if opts.axes.is_some() {
         return Err(Error::InvalidOption {
-            scene: INFO.id.into(),
+            scene: info.id.into(),
             reason: "--axes is offered on the App. B slab only (its nodal-fixed nodes 16, 28, \
                      18 are not defined on a refined mesh)"
                 .into(),
@@ -46,12 +47,12 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
     let dofs = params.dof_count();
     // Refuse before allocating anything a mesh the machine cannot hold.
     let needed = check_reduction_memory(dofs)?;
-    let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
+    let methods = opts.methods_or(info.id, &AVAILABLE, &AVAILABLE)?;
     let boundary = opts
         .boundary
         .clone()
         .unwrap_or_else(|| params.bottom_corners().to_vec());
-    let kept = opts.modes_or_default(&super::slab_modes::INFO);
+    let kept = opts.modes_or_default(info);
     let mut gr_masters = boundary.clone();
     for p in EXTRA_GUYAN_MASTER_POSITIONS {
         let node = params.nearest_node(p);
@@ -128,7 +129,7 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
     let free_free_hz = elastic_hz(&ff);
     let peak = peak_resident_bytes();
 
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(info.id);
     let p = &mut report.parameters;
     p.insert("refine".into(), json!(bricks));
     p.insert("boundary".into(), json!(boundary));
@@ -211,7 +212,7 @@ pub fn run(opts: &SceneOptions, bricks: [usize; 3]) -> Result<SceneOutput> {
         report.table
     );
 
-    let (mode_visuals, layout) = super::slab_modes::slab_mode_views(
+    let (mode_visuals, layout) = super::slab_mode_views::slab_mode_views(
         &model,
         &problem.partition,
         &psi_s,

@@ -25,8 +25,8 @@ use crate::{
 };
 
 /// The options of the three slab simulations; `end` is the default interval, s.
-const fn sim_controls(end: f64) -> super::registry::SceneControls {
-    super::registry::SceneControls {
+const fn sim_controls(end: f64) -> super::scene_info::SceneControls {
+    super::scene_info::SceneControls {
         methods: &METHODS,
         boundary: &BOUNDARY,
         modes: Some(6),
@@ -505,7 +505,7 @@ pub fn run_scenario(
             Ok((system, sim))
         })
     };
-    let integrated = super::run_concurrently(
+    let integrated = crate::work_pool::run_concurrently(
         &methods,
         opts.concurrent_integrations,
         &opts.progress,

@@ -13,7 +13,7 @@ use serde_json::{Map, Value, json};
 use crate::{
     Progress, Result,
     analysis::relative_rms,
-    bench_sizes::{SizeBench, growth_exponent},
+    bench::{SizeBench, growth_exponent},
     dynamics::{AxisType, IntegratorParameters, simulate},
     fem::{SlabParameters, slab},
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
@@ -58,7 +58,7 @@ pub fn bench_sim_sizes(
     sizes: &[[usize; 3]],
     progress: &Progress,
 ) -> Result<SizeBench> {
-    let scenario = crate::bench::bench_scenario(scene)?;
+    let scenario = super::bench_scenario(scene)?;
     let axes = AxisType::NodalFixed(NodalFixedAxes::slab_default());
     let params = IntegratorParameters {
         end_time: SIZES_RUN_S,

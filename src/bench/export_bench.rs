@@ -72,7 +72,7 @@ fn median(sorted: &[f64]) -> f64 {
 }
 
 /// Runs the bench and returns its JSON and its text table.
-pub fn run(p: &ExportBenchParameters) -> Result<(Value, String)> {
+pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
     let out_dir =
         std::env::temp_dir().join(format!("flexmodes-bench-export-{}", std::process::id()));
     let exe = std::env::current_exe().map_err(|source| Error::Io {

@@ -1,7 +1,13 @@
-//! Several independent computations of a scene (time integrations of its methods) on a few
-//! threads at once.
+//! The one work pool of flexmodes: independent computations (a scene's integrations, the
+//! scenes `record` writes, a bench's runs) on a few threads at once, used by the CLI, the
+//! benches and the GUI alike.
 
-use crate::Progress;
+use std::sync::{
+    atomic::{AtomicBool, AtomicUsize, Ordering},
+    mpsc,
+};
+
+use crate::{Progress, Result};
 
 /// `run(item, progress)` for every item, in order of the output, on up to `threads` threads
 /// at once (0 and 1: one after the other on the calling thread). The first thread reports to
@@ -56,10 +62,101 @@ pub fn run_concurrently<T: Copy + Sync, R: Send>(
         .collect()
 }
 
+/// `run(k, item)` for every item on up to `threads` threads, handing each result to `done`
+/// on the calling thread **in the order of the items** as soon as it and those before it are
+/// finished. The first error stops new items from starting; it is returned once the running
+/// ones have finished (the error of the earliest item when several fail).
+pub fn run_in_order<T: Sync, R: Send>(
+    items: &[T],
+    threads: usize,
+    run: impl Fn(usize, &T) -> Result<R> + Sync,
+    mut done: impl FnMut(usize, R),
+) -> Result<()> {
+    let count = items.len();
+    let threads = threads.clamp(1, count.max(1));
+    let next = AtomicUsize::new(0);
+    let failed = AtomicBool::new(false);
+    let (sender, receiver) = mpsc::channel::<(usize, Result<R>)>();
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            let sender = sender.clone();
+            let (next, failed, run) = (&next, &failed, &run);
+            scope.spawn(move || {
+                loop {
+                    let k = next.fetch_add(1, Ordering::SeqCst);
+                    if k >= count || failed.load(Ordering::SeqCst) {
+                        break;
+                    }
+                    let result = run(k, &items[k]);
+                    if result.is_err() {
+                        failed.store(true, Ordering::SeqCst);
+                    }
+                    if sender.send((k, result)).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(sender);
+        // Hold what finishes early until those before it are handed on.
+        let mut pending: Vec<Option<R>> = (0..count).map(|_| None).collect();
+        let mut handed = 0;
+        let mut first_error: Option<(usize, crate::Error)> = None;
+        for (k, result) in receiver {
+            match result {
+                Ok(r) => pending[k] = Some(r),
+                Err(e) => {
+                    if first_error.as_ref().is_none_or(|(j, _)| k < *j) {
+                        first_error = Some((k, e));
+                    }
+                }
+            }
+            while handed < count {
+                let Some(r) = pending[handed].take() else {
+                    break;
+                };
+                done(handed, r);
+                handed += 1;
+            }
+        }
+        match first_error {
+            Some((_, e)) => Err(e),
+            None => Ok(()),
+        }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Error, Result};
+    use crate::Error;
+
+    #[test]
+    fn results_are_handed_on_in_order_and_the_first_error_stops_the_rest() {
+        for threads in 1..4 {
+            let input: Vec<usize> = (0..9).collect();
+            let mut seen = Vec::new();
+            run_in_order(
+                &input,
+                threads,
+                |_, &i| Ok(i * 10),
+                |k, r| seen.push((k, r)),
+            )
+            .unwrap();
+            assert_eq!(seen, input.iter().map(|&i| (i, i * 10)).collect::<Vec<_>>());
+
+            let mut handed = Vec::new();
+            let result = run_in_order(
+                &input,
+                threads,
+                |k, _| if k == 2 { Err(Error::Cancelled) } else { Ok(k) },
+                |k, _| handed.push(k),
+            );
+            assert!(matches!(result, Err(Error::Cancelled)), "{threads} threads");
+            // Nothing after the failed item is handed on; items before it all are.
+            assert_eq!(handed, vec![0, 1], "{threads} threads");
+        }
+    }
 
     #[test]
     fn every_item_runs_once_and_results_keep_their_order() {

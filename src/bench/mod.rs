@@ -1,0 +1,17 @@
+//! `flexmodes bench`: speed against accuracy, measured in one run on this machine against
+//! peers measured in the same run. Timings are reported, never asserted.
+
+mod export_bench;
+mod mode_bench;
+mod pareto;
+mod simulation_bench;
+mod simulation_size_bench;
+mod size_bench;
+
+pub use export_bench::{ExportBenchParameters, bench_export};
+pub use mode_bench::{COMPARED_MODES, ModeBenchPoint, bench_modes};
+pub use pareto::{mark_pareto, pareto_flags, three_digits};
+pub use simulation_bench::{BENCH_SCHEMES, BenchPoint, LOOSE_ATOL, LOOSE_RTOL, bench_simulation};
+pub(crate) use simulation_bench::{MODE_SWEEP, bench_scenario};
+pub use simulation_size_bench::{SIZES_RUN_S, bench_sim_sizes};
+pub use size_bench::{BENCH_MODES, SizeBench, bench_sizes, growth_exponent, parse_sizes};

@@ -1,0 +1,361 @@
+//! The command line's arguments, as clap parses them.
+
+use std::{path::PathBuf, sync::Arc};
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::{
+    Result,
+    body_file::{BodyHandle, ImportedBody},
+    dynamics::IntegrationScheme,
+    reduction::Method,
+    scenes::SceneOptions,
+};
+
+/// Explorer of model order reduction for restrained deformable bodies.
+#[derive(Debug, Parser)]
+#[command(name = "flexmodes", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub(super) command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub(super) enum Command {
+    /// List the scenes, one line each.
+    List,
+    /// Record scenes to Rerun `.rrd` files.
+    Record {
+        /// Scene ids (see `flexmodes list`).
+        scenes: Vec<String>,
+        /// Record every scene.
+        #[arg(long, conflicts_with = "scenes")]
+        all: bool,
+        /// Folder to write `<scene>.rrd` into.
+        #[arg(long, default_value = "recordings", conflicts_with = "save")]
+        out: PathBuf,
+        /// Write a single scene to this file.
+        #[arg(long)]
+        save: Option<PathBuf>,
+        #[command(flatten)]
+        options: OptionArgs,
+    },
+    /// Speed against accuracy of every method and kept-mode count: slab-modes (offline cost
+    /// against frequency and static error) and the slab simulations (online cost against
+    /// node 8's error, stability).
+    Bench {
+        /// Scenes: slab-modes, slab-sim1, slab-sim2 (default: slab-sim1).
+        scenes: Vec<String>,
+        /// Every scene bench measures: slab-modes, slab-sim1, slab-sim2.
+        #[arg(long, conflicts_with = "scenes")]
+        all: bool,
+        /// Print one JSON object per scene.
+        #[arg(long)]
+        json: bool,
+        /// Refined meshes to time, `1k,7k,28k,74k,150k` or `NXxNYxNZ,...`: slab-modes'
+        /// offline cost, or one simulation's online cost, against DOF.
+        #[arg(long)]
+        sizes: Option<String>,
+        /// Also write the charts to this `.rrd`: with --sizes time against DOF, else error
+        /// against cost and against kept modes of one simulation bench.
+        #[arg(long)]
+        save: Option<PathBuf>,
+        /// Integrators to compare, comma separated (default: dp5,gen-alpha).
+        #[arg(long, value_delimiter = ',', value_parser = parse_integrator)]
+        integrator: Vec<IntegrationScheme>,
+        /// Runs of each simulation; the online cost is their median.
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=100))]
+        repeats: u64,
+        /// Simulations on the slab meshed with NX × NY × NZ bricks (App. B is 4,2,1).
+        #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
+        refine: Option<[usize; 3]>,
+        /// Time `export --method cb` of this body file as a whole process against SciPy's
+        /// CHOLMOD route (the peer script) in the same run.
+        #[arg(long, conflicts_with_all = ["scenes", "all", "sizes", "save", "refine"])]
+        body: Option<PathBuf>,
+        /// With --body: the interface node set.
+        #[arg(long, value_delimiter = ',', requires = "body")]
+        boundary: Option<Vec<String>>,
+        /// With --body: kept fixed-interface modes.
+        #[arg(long, default_value_t = 10, requires = "body")]
+        modes: usize,
+        /// With --body: the SciPy peer script.
+        #[arg(
+            long,
+            default_value = "../shared/bench/peers_body_cb.py",
+            requires = "body"
+        )]
+        peer: PathBuf,
+    },
+    /// The desktop explorer: the Rerun viewer beside live controls.
+    #[cfg(feature = "gui")]
+    Gui {
+        /// Scene to open (default: the last session's, else beam-modes).
+        scene: Option<String>,
+        /// Open the `modes` scene on this body file (TOML) or `builtin:NAME`.
+        #[arg(long, conflicts_with = "scene")]
+        body: Option<String>,
+        #[command(flatten)]
+        window: WindowArgs,
+    },
+    /// Open a saved recording in the embedded viewer.
+    #[cfg(feature = "gui")]
+    View {
+        /// The `.rrd` file.
+        file: PathBuf,
+        #[command(flatten)]
+        window: WindowArgs,
+    },
+    /// Check a body file and print what it holds (DOF, entries, mass, rigid-body modes, lowest
+    /// frequencies, node sets).
+    Import {
+        /// The body file (TOML), or `builtin:NAME` (app-b-slab, l-bracket).
+        body: String,
+        /// Print the summary as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Reduce a body and write Ψ (psi.npy), K_r, M_r (Matrix Market) and model.json to a
+    /// folder.
+    Export {
+        /// The body file (TOML), or `builtin:NAME`.
+        #[arg(long)]
+        body: String,
+        /// The reduction: gr, mt, cb, mc.
+        #[arg(long, value_parser = parse_method)]
+        method: Method,
+        /// Interface: node set names or 1-based nodes, comma separated (default: the set
+        /// `interface`, else the body's first set).
+        #[arg(long, value_delimiter = ',')]
+        boundary: Option<Vec<String>>,
+        /// Kept fixed-interface normal modes (mt, cb, mc).
+        #[arg(long, default_value_t = 10)]
+        modes: usize,
+        /// Destination folder (replaced as a whole once everything is written).
+        #[arg(long)]
+        out: PathBuf,
+        /// The format of Ψ: `npy` (binary, numpy.load) or `mtx` (Matrix Market array text).
+        #[arg(long, default_value = "npy", value_parser = parse_psi_format)]
+        psi_format: crate::export::PsiFormat,
+        /// Print the wall time of each phase on stderr.
+        #[arg(long)]
+        timings: bool,
+    },
+    /// Print a scene's numeric results (a table, or JSON on stdout).
+    Report {
+        /// Scene id.
+        scene: String,
+        /// Print `{"scene", "parameters", "results"}` as JSON.
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        options: OptionArgs,
+    },
+}
+
+/// Window options of `gui` and `view`.
+#[cfg(feature = "gui")]
+#[derive(Debug, Args, Clone, Default)]
+pub(super) struct WindowArgs {
+    /// Save a screenshot to this PNG once the first recording shows, then quit.
+    #[arg(long)]
+    pub(super) screenshot: Option<PathBuf>,
+    /// Window size in points, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size)]
+    pub(super) window_size: Option<[f32; 2]>,
+    /// With --screenshot: toggle this method once the first recording shows, and capture
+    /// the recomputed one; `more-modes` or `fewer-modes` presses that button instead.
+    #[arg(long, requires = "screenshot")]
+    pub(super) toggle: Option<String>,
+    /// With --toggle: toggle that many times (one recomputation each) and print the median
+    /// switch latency.
+    #[arg(long, requires = "toggle", default_value_t = 1)]
+    pub(super) repeat: u32,
+    /// With --toggle: seconds to look at each recording before the next toggle (as a user
+    /// would; the explorer anticipates likely requests meanwhile).
+    #[arg(long, requires = "toggle", default_value_t = 0.0)]
+    pub(super) pause: f64,
+}
+
+#[cfg(feature = "gui")]
+fn parse_size(s: &str) -> std::result::Result<[f32; 2], String> {
+    let (w, h) = s.split_once('x').ok_or("expected WIDTHxHEIGHT")?;
+    Ok([
+        w.parse().map_err(|_| "bad width")?,
+        h.parse().map_err(|_| "bad height")?,
+    ])
+}
+
+#[cfg(feature = "gui")]
+impl From<WindowArgs> for crate::gui::ViewerOptions {
+    fn from(w: WindowArgs) -> Self {
+        Self {
+            screenshot: w.screenshot,
+            window_size: w.window_size,
+            toggle: w.toggle,
+            repeat: w.repeat,
+            pause: std::time::Duration::from_secs_f64(w.pause.max(0.0)),
+        }
+    }
+}
+
+/// Scene options shared by `record` and `report`.
+#[derive(Debug, Args, Clone, Default)]
+pub(super) struct OptionArgs {
+    /// Reduction methods, comma separated: nr, gr, mt, cb, mc, eit.
+    #[arg(long, value_delimiter = ',', value_parser = parse_method)]
+    pub(super) method: Option<Vec<Method>>,
+    /// Kept normal modes.
+    #[arg(long)]
+    pub(super) modes: Option<usize>,
+    /// Boundary (master, interface) nodes, 1-based, comma separated; with --body also the
+    /// names of the body's node sets.
+    #[arg(long, value_delimiter = ',')]
+    pub(super) boundary: Option<Vec<String>>,
+    /// Factor on the drawn elastic deflections of the simulations (default: automatic, the
+    /// largest at ~10 % of the body).
+    #[arg(long, value_name = "FACTOR")]
+    pub(super) deformation_scale: Option<f64>,
+    /// A body file (TOML) or `builtin:NAME`, for the `modes` scene.
+    #[arg(long)]
+    pub(super) body: Option<String>,
+    /// Axis type: nodal_fixed, mean, principal.
+    #[arg(long)]
+    pub(super) axes: Option<String>,
+    /// Simulated interval of the dynamic scenes, s.
+    #[arg(long)]
+    pub(super) end_time: Option<f64>,
+    /// Time-integration scheme of the simulations: dp5 (explicit Dormand–Prince 5(4), adaptive
+    /// steps) or gen-alpha (implicit generalized-α, fixed steps).
+    #[arg(long, value_parser = parse_integrator)]
+    pub(super) integrator: Option<IntegrationScheme>,
+    /// Fixed step of the simulations, s: dp5 then runs without error control (how a critical
+    /// step is checked); gen-alpha's default is 0.001.
+    #[arg(long, value_name = "SECONDS")]
+    pub(super) dt: Option<f64>,
+    /// Spectral radius ρ∞ of gen-alpha at infinite frequency, in [0, 1] (default 0.8; 1 adds
+    /// no numerical damping).
+    #[arg(long, value_name = "RHO")]
+    pub(super) rho_inf: Option<f64>,
+    /// Bricks of the slab mesh along x, y, z (slab-modes; App. B is 4,2,1).
+    #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
+    pub(super) refine: Option<[usize; 3]>,
+}
+
+/// `NX,NY,NZ`: three positive brick counts.
+fn parse_refine(s: &str) -> std::result::Result<[usize; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!(
+            "expected three brick counts NX,NY,NZ, got {} value(s)",
+            parts.len()
+        ));
+    }
+    let mut out = [0; 3];
+    for (d, p) in parts.iter().enumerate() {
+        let axis = ["x", "y", "z"][d];
+        out[d] = p
+            .parse::<usize>()
+            .map_err(|_| format!("brick count along {axis} `{p}` is not a positive integer"))?;
+        if out[d] == 0 {
+            return Err(format!(
+                "brick count along {axis} must be at least 1, got 0"
+            ));
+        }
+    }
+    Ok(out)
+}
+
+fn parse_integrator(s: &str) -> std::result::Result<IntegrationScheme, String> {
+    IntegrationScheme::from_id(s.trim()).ok_or_else(|| {
+        format!(
+            "unknown integrator `{s}` (known: {})",
+            IntegrationScheme::IDS.join(", ")
+        )
+    })
+}
+
+fn parse_psi_format(s: &str) -> std::result::Result<crate::export::PsiFormat, String> {
+    match s {
+        "npy" => Ok(crate::export::PsiFormat::Npy),
+        "mtx" => Ok(crate::export::PsiFormat::MatrixMarket),
+        other => Err(format!("unknown Ψ format `{other}` (npy, mtx)")),
+    }
+}
+
+fn parse_method(s: &str) -> std::result::Result<Method, String> {
+    Method::from_id(s.trim()).ok_or_else(|| {
+        format!(
+            "unknown method `{s}` (known: {})",
+            Method::ALL.map(|m| m.id()).join(", ")
+        )
+    })
+}
+
+impl OptionArgs {
+    /// The scene options: the body file loaded and checked, set names resolved to nodes.
+    pub(super) fn into_scene_options(self) -> Result<SceneOptions> {
+        let body = match &self.body {
+            Some(b) => Some(BodyHandle(Arc::new(ImportedBody::load(b)?))),
+            None => None,
+        };
+        let boundary = match (&self.boundary, &body) {
+            (None, _) => None,
+            (Some(items), Some(body)) => Some(body.boundary(items)?),
+            (Some(items), None) => Some(parse_nodes(items)?),
+        };
+        let integrator = match (self.integrator, self.rho_inf) {
+            (Some(IntegrationScheme::GeneralizedAlpha { .. }) | None, Some(rho)) => {
+                Some(IntegrationScheme::GeneralizedAlpha {
+                    spectral_radius: rho,
+                })
+            }
+            (Some(IntegrationScheme::DormandPrince), Some(_)) => {
+                use clap::CommandFactory;
+                Cli::command()
+                    .error(
+                        clap::error::ErrorKind::ArgumentConflict,
+                        "--rho-inf is a parameter of --integrator gen-alpha, not of dp5",
+                    )
+                    .exit()
+            }
+            (scheme, None) => scheme,
+        };
+        Ok(SceneOptions {
+            methods: self.method,
+            modes: self.modes,
+            boundary,
+            axes: self.axes,
+            end_time: self.end_time,
+            integrator,
+            dt: self.dt,
+            refine: self.refine,
+            deformation_scale: self.deformation_scale,
+            body,
+            ..Default::default()
+        })
+    }
+}
+
+/// 1-based node numbers; a name is a node set, which needs a body file: without one, a usage
+/// error (exit 2) as any other malformed option.
+pub(super) fn parse_nodes(items: &[String]) -> Result<Vec<usize>> {
+    let mut nodes = Vec::with_capacity(items.len());
+    for s in items {
+        match s.trim().parse::<usize>() {
+            Ok(n) => nodes.push(n),
+            Err(_) => {
+                use clap::CommandFactory;
+                Cli::command()
+                    .error(
+                        clap::error::ErrorKind::ValueValidation,
+                        format!(
+                            "--boundary `{s}` is not a node number (node set names need --body)"
+                        ),
+                    )
+                    .exit()
+            }
+        }
+    }
+    Ok(nodes)
+}

@@ -1,0 +1,366 @@
+//! What each command does: parse, run, map errors to the exit code.
+
+use std::{io::IsTerminal, path::PathBuf, process::ExitCode};
+
+use clap::Parser;
+
+use super::arguments::{Cli, Command};
+use crate::{
+    Error, Progress, Result, TerminalProgress, body_file::ImportedBody, record::Recorder, scenes,
+};
+
+/// Scenes `record` runs side by side at most (the machines here have two cores).
+const RECORD_WORKERS: usize = 2;
+
+/// What `bench --all` measures, in this order.
+const BENCH_ALL: [&str; 3] = ["slab-modes", "slab-sim1", "slab-sim2"];
+
+/// Parses the arguments (exit 2 on a usage error), runs, and maps errors to exit code 1 with
+/// the cause chain on stderr.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let mut msg = format!("error: {e}");
+            let mut src = std::error::Error::source(&e);
+            while let Some(s) = src {
+                msg.push_str(&format!(": {s}"));
+                src = s.source();
+            }
+            eprintln!("{msg}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn progress(msg: &str) {
+    if std::io::stderr().is_terminal() {
+        eprintln!("{msg}");
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    crate::linalg::use_sequential_kernels();
+    match cli.command {
+        Command::List => {
+            for s in scenes::all() {
+                println!("{:<16} {}", s.info.id, s.info.summary);
+            }
+            Ok(())
+        }
+        #[cfg(feature = "gui")]
+        Command::Gui {
+            scene,
+            body,
+            window,
+        } => {
+            if let Some(s) = &scene {
+                scenes::find(s)?;
+            }
+            crate::gui::run_with_body(scene.as_deref(), body.as_deref(), None, window.into())
+        }
+        #[cfg(feature = "gui")]
+        Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),
+        Command::Bench {
+            body: Some(body),
+            boundary,
+            modes,
+            peer,
+            repeats,
+            json,
+            ..
+        } => {
+            let boundary = match boundary {
+                Some(b) => b,
+                None => {
+                    let loaded = ImportedBody::load(&body.display().to_string())?;
+                    let nodes = scenes::body_modes::default_boundary(&loaded)?;
+                    // The peer takes a set name: the body's default interface.
+                    let name = loaded
+                        .node_sets
+                        .iter()
+                        .find(|(_, v)| **v == nodes)
+                        .map(|(k, _)| k.clone())
+                        .ok_or_else(|| Error::InvalidOption {
+                            scene: "bench".into(),
+                            reason: "name the interface node set with --boundary".into(),
+                        })?;
+                    vec![name]
+                }
+            };
+            let (value, text) = crate::bench::bench_export(&crate::bench::ExportBenchParameters {
+                body,
+                boundary,
+                modes,
+                repeats: repeats as usize,
+                peer,
+            })?;
+            if json {
+                println!("{value}");
+            } else {
+                println!("{text}");
+            }
+            Ok(())
+        }
+        Command::Bench {
+            scenes: ids,
+            json,
+            sizes: Some(sizes),
+            save,
+            ..
+        } => {
+            let simulation = match ids.as_slice() {
+                [id] if id == "slab-sim1" || id == "slab-sim2" => Some(id.clone()),
+                _ if ids.iter().all(|id| id == "slab-modes") => None,
+                _ => {
+                    return Err(Error::InvalidOption {
+                        scene: ids.join(","),
+                        reason: "--sizes times slab-modes, or one of slab-sim1 and slab-sim2"
+                            .into(),
+                    });
+                }
+            };
+            let meshes = crate::bench::parse_sizes(&sizes)?;
+            let bench = match &simulation {
+                Some(id) => {
+                    let handle = Progress::new();
+                    let bar = TerminalProgress::start(&handle, &format!("bench {id} --sizes"));
+                    let bench = crate::bench::bench_sim_sizes(id, &meshes, &handle)?;
+                    drop(bar);
+                    bench
+                }
+                None => crate::bench::bench_sizes(&meshes, &|s| progress(s))?,
+            };
+            let title = simulation.as_deref().unwrap_or("slab-modes");
+            if let Some(path) = &save {
+                Recorder::default().save(&bench.recording, path)?;
+                progress(&format!("wrote {}", path.display()));
+            }
+            if json {
+                println!("{}", bench.value);
+            } else {
+                println!("# bench {title} --sizes {sizes}\n\n{}", bench.table);
+            }
+            Ok(())
+        }
+        Command::Bench {
+            scenes: ids,
+            all,
+            json,
+            sizes: None,
+            save,
+            integrator,
+            refine,
+            repeats,
+            ..
+        } => {
+            let ids = if all {
+                BENCH_ALL.iter().map(|s| s.to_string()).collect()
+            } else {
+                ids
+            };
+            if !integrator.is_empty() && !ids.is_empty() && ids.iter().all(|id| id == "slab-modes")
+            {
+                return Err(Error::InvalidOption {
+                    scene: "slab-modes".into(),
+                    reason: "--integrator applies to the simulation benches only".into(),
+                });
+            }
+            if save.is_some() && ids.len() > 1 {
+                return Err(Error::InvalidOption {
+                    scene: ids.join(","),
+                    reason: "--save writes the charts of one simulation bench: name one scene"
+                        .into(),
+                });
+            }
+            let ids = if ids.is_empty() {
+                vec!["slab-sim1".to_string()]
+            } else {
+                ids
+            };
+            for id in &ids {
+                scenes::find(id)?;
+            }
+            let count = ids.len();
+            for (k, id) in ids.into_iter().enumerate() {
+                let handle = Progress::new();
+                let bar =
+                    TerminalProgress::start(&handle, &format!("bench {id} ({} of {count})", k + 1));
+                let (value, table, recording) = if id == "slab-modes" {
+                    crate::bench::bench_modes(refine, &handle)?
+                } else {
+                    crate::bench::bench_simulation(
+                        &id,
+                        &integrator,
+                        refine,
+                        repeats as usize,
+                        &handle,
+                    )?
+                };
+                drop(bar);
+                if let Some(path) = &save {
+                    Recorder::default().save(&recording, path)?;
+                }
+                if json {
+                    println!("{value}");
+                } else {
+                    println!("# bench {id}\n\n{table}");
+                }
+            }
+            Ok(())
+        }
+        Command::Import { body, json } => {
+            let body = ImportedBody::load(&body)?;
+            let (value, text) = scenes::body_modes::import_summary(&body)?;
+            if json {
+                println!("{value}");
+            } else {
+                println!("{text}");
+            }
+            Ok(())
+        }
+        Command::Export {
+            body,
+            method,
+            boundary,
+            modes,
+            out,
+            psi_format,
+            timings,
+        } => {
+            let started = std::time::Instant::now();
+            let body = ImportedBody::load(&body)?;
+            let boundary = match boundary {
+                Some(items) => body.boundary(&items)?,
+                None => scenes::body_modes::default_boundary(&body)?,
+            };
+            let loaded_s = started.elapsed().as_secs_f64();
+            let parameters = crate::export::ExportParameters { psi_format };
+            let summary =
+                crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
+            if timings {
+                eprintln!("read the body: {loaded_s:.3} s");
+                for (phase, s) in &summary.timings {
+                    eprintln!("{phase}: {s:.3} s");
+                }
+                eprintln!("total: {:.3} s", started.elapsed().as_secs_f64());
+            }
+            println!(
+                "{}: {} of `{}` on {} interface node(s), Ψ {} × {}; wrote {} in {}\n{} \
+                 zero-energy mode(s); reduced elastic Hz: {} ({})",
+                method.id(),
+                method.name(),
+                body.model.name,
+                boundary.len(),
+                summary.shape[0],
+                summary.shape[1],
+                summary.files.join(", "),
+                summary.dir.display(),
+                summary.zero_energy,
+                crate::report::fmt_hz(&summary.hz[..summary.hz.len().min(8)]),
+                crate::report::residual_note(
+                    &summary.hz[..summary.hz.len().min(8)],
+                    &summary.residuals[..summary.residuals.len().min(8)]
+                ),
+            );
+            Ok(())
+        }
+        Command::Report {
+            scene,
+            json,
+            options,
+        } => {
+            let s = scenes::find(&scene)?;
+            let mut opts = options.into_scene_options()?;
+            opts.progress = Progress::new();
+            let bar = TerminalProgress::start(&opts.progress, s.info.id);
+            let out = s.execute(&opts)?;
+            drop(bar);
+            if json {
+                println!("{}", out.report.to_json());
+            } else {
+                println!("# {}\n\n{}", out.report.scene, out.report.table);
+            }
+            Ok(())
+        }
+        Command::Record {
+            scenes: ids,
+            all,
+            out,
+            save,
+            options,
+        } => {
+            let ids: Vec<String> = if all {
+                scenes::all()
+                    .iter()
+                    .map(|s| s.info.id.to_string())
+                    .collect()
+            } else {
+                ids
+            };
+            if ids.is_empty() {
+                return Err(Error::InvalidOption {
+                    scene: "-".into(),
+                    reason: "name at least one scene or pass --all".into(),
+                });
+            }
+            if save.is_some() && ids.len() != 1 {
+                return Err(Error::InvalidOption {
+                    scene: ids.join(","),
+                    reason: "--save takes exactly one scene; use --out DIR for several".into(),
+                });
+            }
+            // Resolve every id first, so a typo fails before anything is written.
+            let found = ids
+                .iter()
+                .map(|id| scenes::find(id))
+                .collect::<Result<Vec<_>>>()?;
+            let opts = options.into_scene_options()?;
+            if let Some(body) = &opts.body {
+                body.require_coordinates()?;
+            }
+            record_scenes(found, &opts, &out, save.as_deref())
+        }
+    }
+}
+
+/// Records `scenes` side by side on the work pool (at most [`RECORD_WORKERS`] at once), each
+/// to `save` or `out/<id>.rrd`, and prints each result table in the order given as soon as
+/// it and those before it are done. The first error stops new scenes from starting and is
+/// returned once the running ones finish.
+fn record_scenes(
+    scenes: Vec<scenes::Scene>,
+    opts: &scenes::SceneOptions,
+    out: &std::path::Path,
+    save: Option<&std::path::Path>,
+) -> Result<()> {
+    let count = scenes.len();
+    let workers = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .clamp(1, RECORD_WORKERS);
+    let group = TerminalProgress::group();
+    let recorder = Recorder::default();
+    crate::work_pool::run_in_order(
+        &scenes,
+        workers,
+        |k, s| {
+            let mut opts = opts.clone();
+            opts.progress = Progress::new();
+            let _bar = TerminalProgress::start_in(
+                Some(&group),
+                &opts.progress,
+                &format!("recording {} ({} of {count})", s.info.id, k + 1),
+            );
+            let output = s.execute(&opts)?;
+            let path = save
+                .map(std::path::Path::to_path_buf)
+                .unwrap_or_else(|| out.join(format!("{}.rrd", s.info.id)));
+            recorder.save(&output, &path)?;
+            Ok((path, output.report.table))
+        },
+        |k, (path, table): (PathBuf, String)| {
+            println!("# {} -> {}\n\n{}", scenes[k].info.id, path.display(), table);
+        },
+    )
+}

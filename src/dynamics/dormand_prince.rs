@@ -1,0 +1,303 @@
+//! The explicit Dormand–Prince 5(4) scheme with adaptive steps (or fixed ones, to verify a
+//! critical step), and where its stability region ends.
+
+use std::time::Instant;
+
+use nalgebra::DVector;
+
+use super::{IntegratorParameters, Simulation, State, System, simulation::sample};
+use crate::{Error, Progress, Result};
+
+// Dormand–Prince 5(4) tableau.
+const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+const A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+const B5: [f64; 7] = [
+    35.0 / 384.0,
+    0.0,
+    500.0 / 1113.0,
+    125.0 / 192.0,
+    -2187.0 / 6784.0,
+    11.0 / 84.0,
+    0.0,
+];
+const B4: [f64; 7] = [
+    5179.0 / 57600.0,
+    0.0,
+    7571.0 / 16695.0,
+    393.0 / 640.0,
+    -92097.0 / 339200.0,
+    187.0 / 2100.0,
+    1.0 / 40.0,
+];
+
+/// Largest RMS of the projection's correction after a step, in units of the error tolerance
+/// ($a_{tol} + r_{tol}|y_i|$ per component), for which the step's last stage (the derivative
+/// at the unprojected $y_5$) is kept as the next step's first: its error is then a thousandth
+/// of what the error control accepts per step.
+const FSAL_CORRECTION: f64 = 1e-3;
+
+/// Coefficients $c_k$ of the stability polynomial $R(z) = \sum_k c_k z^k$ of the 5th-order
+/// solution: $c_0 = 1$, $c_k = b^T A^{k-1} \mathbb 1$ (the tableau is explicit, so the series
+/// $1 + z b^T (I - zA)^{-1} \mathbb 1$ ends at $z^7$).
+pub fn stability_polynomial() -> Vec<f64> {
+    let mut out = vec![1.0];
+    let mut v = [1.0; 7]; // A^{k-1} 1
+    for _ in 1..=7 {
+        out.push((0..7).map(|i| B5[i] * v[i]).sum());
+        let mut next = [0.0; 7];
+        for (i, n) in next.iter_mut().enumerate() {
+            *n = (0..6).map(|j| A[i][j] * v[j]).sum();
+        }
+        v = next;
+    }
+    out
+}
+
+fn derivative(sys: &System, t: f64, y: &DVector<f64>) -> Result<DVector<f64>> {
+    let nq = sys.nq();
+    let s = State {
+        q: y.rows(0, nq).into_owned(),
+        v: y.rows(nq, y.len() - nq).into_owned(),
+    };
+    let qd = sys.qdot(&s);
+    let vd = sys.accelerations(t, &s)?;
+    let mut out = DVector::zeros(y.len());
+    out.rows_mut(0, nq).copy_from(&qd);
+    out.rows_mut(nq, vd.len()).copy_from(&vd);
+    Ok(out)
+}
+
+/// Where the stability region of the 5th-order solution ends on the imaginary axis: the first
+/// $y > 0$ with $|R(iy)| > 1$ ($y \approx 0.997$; beyond it the growth per step is slow at
+/// first, $|R(1.5i)| \approx 1.003$, and $|R(3i)| \approx 1.44$).
+pub fn imaginary_stability_limit() -> f64 {
+    let c = stability_polynomial();
+    let modulus = |y: f64| {
+        let (mut re, mut im) = (0.0, 0.0);
+        for (k, ck) in c.iter().enumerate() {
+            // i^k y^k
+            let v = ck * y.powi(k as i32);
+            match k % 4 {
+                0 => re += v,
+                1 => im += v,
+                2 => re -= v,
+                _ => im -= v,
+            }
+        }
+        (re * re + im * im).sqrt()
+    };
+    // Scan for the first crossing, then bisect.
+    let (mut lo, mut hi) = (1e-3, 1e-3);
+    while modulus(hi) <= 1.0 + 1e-14 && hi < 10.0 {
+        lo = hi;
+        hi += 1e-3;
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if modulus(mid) <= 1.0 + 1e-14 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+/// The critical fixed step of the explicit scheme for an undamped system whose highest
+/// circular frequency is `omega_max` (rad/s): [`imaginary_stability_limit`] / ω, s.
+pub fn critical_step(omega_max: f64) -> f64 {
+    imaginary_stability_limit() / omega_max
+}
+
+/// Integrates `sys` from `initial` with Dormand–Prince 5(4) (see [`super::simulate`]).
+pub(super) fn integrate(
+    sys: &System,
+    initial: &State,
+    p: &IntegratorParameters,
+    progress: &Progress,
+) -> Result<Simulation> {
+    let start = Instant::now();
+    let nq = sys.nq();
+    let mut state = initial.clone();
+    sys.project(0.0, &mut state)?;
+    let mut samples = vec![sample(sys, 0.0, &state)];
+    let mut y = DVector::zeros(nq + sys.nv());
+    y.rows_mut(0, nq).copy_from(&state.q);
+    y.rows_mut(nq, sys.nv()).copy_from(&state.v);
+    if let Some(dt) = p.fixed_step
+        && !(dt > 0.0 && dt.is_finite())
+    {
+        return Err(Error::InvalidOption {
+            scene: "integrator".into(),
+            reason: format!("the fixed step must be a positive number of seconds, not {dt}"),
+        });
+    }
+    let (mut t, mut h) = (0.0f64, p.output_interval.min(1e-3));
+    let (mut steps, mut rejected) = (0usize, 0usize);
+    let mut next_output = p.output_interval;
+    let mut k1 = derivative(sys, t, &y)?;
+    while t < p.end_time - 1e-12 {
+        if !y.iter().all(|v| v.abs() <= p.divergence_bound) {
+            return Err(Error::Diverged {
+                time: t,
+                reason: format!("the state grew beyond {:e}", p.divergence_bound),
+            });
+        }
+        if steps + rejected > p.max_steps {
+            return Err(Error::Diverged {
+                time: t,
+                reason: format!("more than {} steps", p.max_steps),
+            });
+        }
+        let target = next_output.min(p.end_time);
+        if let Some(dt) = p.fixed_step {
+            h = dt;
+        }
+        h = h.min(target - t);
+        let within = |v: &DVector<f64>| v.iter().all(|x| x.abs() <= p.divergence_bound);
+        let mut k = vec![k1.clone()];
+        for stage in 1..7 {
+            let mut ys = y.clone();
+            for (j, kj) in k.iter().enumerate() {
+                if A[stage][j] != 0.0 {
+                    ys += kj * (h * A[stage][j]);
+                }
+            }
+            // A stage far outside the bound is the step blowing up, not a state to evaluate.
+            if !within(&ys) {
+                break;
+            }
+            match derivative(sys, t + C[stage] * h, &ys) {
+                Ok(d) => k.push(d),
+                // Without error control a blown-up step reaches states whose mass matrix has
+                // lost definiteness in floating point: that is the divergence.
+                Err(Error::SingularMatrix { matrix, .. }) if p.fixed_step.is_some() => {
+                    return Err(Error::Diverged {
+                        time: t,
+                        reason: format!(
+                            "with the fixed step {h:.4e} s the {matrix} became singular"
+                        ),
+                    });
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        // The 5th-order solution and the error norm, unless a stage or the result blew up
+        // (beyond the bound, or not finite).
+        let step = (k.len() == 7).then(|| {
+            let mut y5 = y.clone();
+            let mut err = DVector::zeros(y.len());
+            for (j, kj) in k.iter().enumerate() {
+                y5 += kj * (h * B5[j]);
+                err += kj * (h * (B5[j] - B4[j]));
+            }
+            let mut norm = 0.0;
+            for i in 0..y.len() {
+                let sc = p.atol + p.rtol * y[i].abs().max(y5[i].abs());
+                norm += (err[i] / sc).powi(2);
+            }
+            (y5, (norm / y.len() as f64).sqrt())
+        });
+        let Some((y5, norm)) = step.filter(|(y5, norm)| norm.is_finite() && within(y5)) else {
+            let what = format!(
+                "the state grew beyond {:e} or became non-finite",
+                p.divergence_bound
+            );
+            if p.fixed_step.is_some() {
+                return Err(Error::Diverged {
+                    time: t,
+                    reason: format!("with the fixed step {h:.4e} s {what}"),
+                });
+            }
+            h *= 0.2;
+            rejected += 1;
+            if h < p.min_step {
+                return Err(Error::Diverged {
+                    time: t,
+                    reason: what,
+                });
+            }
+            continue;
+        };
+        if norm <= 1.0 || p.fixed_step.is_some() {
+            t += h;
+            steps += 1;
+            let mut s = State {
+                q: y5.rows(0, nq).into_owned(),
+                v: y5.rows(nq, sys.nv()).into_owned(),
+            };
+            sys.project(t, &mut s)?;
+            // First same as last: the last stage is the derivative at y5. The projection
+            // moves y5 by round-off after every step; only a correction within
+            // FSAL_CORRECTION of the error tolerance keeps it, a larger one is re-evaluated.
+            let mut correction = 0.0;
+            for (i, (&before, &after)) in y5.iter().zip(s.q.iter().chain(s.v.iter())).enumerate() {
+                let sc = p.atol + p.rtol * y5[i].abs();
+                correction += ((after - before) / sc).powi(2);
+            }
+            let reuse = (correction / y.len() as f64).sqrt() <= FSAL_CORRECTION;
+            y.rows_mut(0, nq).copy_from(&s.q);
+            y.rows_mut(nq, sys.nv()).copy_from(&s.v);
+            k1 = match k.pop() {
+                Some(last) if reuse => last,
+                _ => derivative(sys, t, &y)?,
+            };
+            if (t - target).abs() < 1e-12 {
+                samples.push(sample(sys, target, &s));
+                progress.advance(t)?;
+                next_output += p.output_interval;
+            }
+        } else {
+            rejected += 1;
+        }
+        let factor = if norm == 0.0 {
+            5.0
+        } else {
+            0.9 * norm.powf(-0.2)
+        };
+        h *= factor.clamp(0.2, 5.0);
+        h = h.min(p.output_interval);
+        if p.fixed_step.is_none() && h < p.min_step {
+            return Err(Error::Diverged {
+                time: t,
+                reason: format!("step size fell below {:e} s", p.min_step),
+            });
+        }
+    }
+    Ok(Simulation {
+        samples,
+        steps,
+        rejected,
+        newton_iterations: 0,
+        wall_time_s: start.elapsed().as_secs_f64(),
+    })
+}

@@ -1,0 +1,97 @@
+//! The mode views of a solid body: free-free, constraint and fixed-interface modes in tabs
+//! above the reduced-frequency bar charts (the slab's, a refined slab's, an imported body's).
+
+use faer::Mat;
+
+use super::mode_visuals::{REFERENCE, columns, method_color, mode_set};
+use crate::{
+    fem::FeModel,
+    linalg::GeneralizedEigen,
+    record::{Layout, Visual},
+    reduction::{Method, Partition},
+};
+
+/// Constraint modes drawn at most (all are computed).
+const MAX_DRAWN_CONSTRAINT_MODES: usize = 24;
+
+/// The slab's mode views: free-free elastic modes (at most `shown_free_free`), the constraint
+/// modes $[I; \Psi_s]$ of the boundary DOF and the first `kept` fixed-interface modes, each
+/// set under `modes/<set>/<k>`, and the layout with those tabs (`first_tab` in front) above the
+/// reduced-frequency bar charts, beside the scene text.
+#[allow(clippy::too_many_arguments)]
+pub fn slab_mode_views(
+    model: &FeModel,
+    part: &Partition,
+    psi_s: &Mat<f64>,
+    fixed_interface: &GeneralizedEigen,
+    free_free: &GeneralizedEigen,
+    shown_free_free: usize,
+    kept: usize,
+    first_tab: &str,
+    bars: Vec<Layout>,
+) -> (Vec<Visual>, Layout) {
+    let mut visuals = Vec::new();
+    let ff_modes: Vec<(Vec<f64>, String)> = columns(&free_free.vectors)
+        .into_iter()
+        .zip(free_free.hz())
+        .skip(free_free.zero_energy)
+        .take(shown_free_free)
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
+        .collect();
+    visuals.extend(mode_set(model, "free_free", &ff_modes, REFERENCE));
+    let nb = part.b.len();
+    let constraint = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
+    // Bodies with large interfaces (an imported body's bolt hole) show the first few.
+    let c_modes: Vec<(Vec<f64>, String)> = columns(&constraint)
+        .into_iter()
+        .take(MAX_DRAWN_CONSTRAINT_MODES)
+        .zip(&part.b)
+        .map(|(u, &dof)| (u, model.dof_label(dof)))
+        .collect();
+    visuals.extend(mode_set(
+        model,
+        "guyan_c",
+        &c_modes,
+        method_color(Method::Guyan),
+    ));
+    let shown = kept.min(fixed_interface.vectors.ncols());
+    let fi_full = part.assemble(
+        Mat::<f64>::zeros(nb, shown).as_ref(),
+        fixed_interface.vectors.subcols(0, shown),
+    );
+    let fi_modes: Vec<(Vec<f64>, String)> = columns(&fi_full)
+        .into_iter()
+        .zip(fixed_interface.hz())
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
+        .collect();
+    visuals.extend(mode_set(
+        model,
+        "fixed_interface",
+        &fi_modes,
+        method_color(Method::CraigBampton),
+    ));
+    let mut tabs: Vec<Layout> = ["free_free", "guyan_c", "fixed_interface"]
+        .into_iter()
+        .map(|set| Layout::view3d(set, &format!("/modes/{set}")))
+        .collect();
+    if let Some(i) = ["free_free", "guyan_c", "fixed_interface"]
+        .iter()
+        .position(|s| *s == first_tab)
+    {
+        let front = tabs.remove(i);
+        tabs.insert(0, front);
+    }
+    let layout = Layout::Horizontal(
+        vec![
+            Layout::Vertical(
+                vec![Layout::Tabs(tabs), Layout::Horizontal(bars, vec![])],
+                vec![3.0, 1.0],
+            ),
+            Layout::scene_text(),
+        ],
+        vec![3.0, 2.0],
+    );
+    (visuals, layout)
+}
