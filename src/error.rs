@@ -169,9 +169,14 @@ pub enum Error {
     #[error("the {matrix} matrix is not positive definite")]
     NotPositiveDefinite { matrix: String },
 
-    /// A square matrix that must be inverted is singular.
-    #[error("the {matrix} matrix is singular (reciprocal condition estimate {rcond:.1e})")]
-    SingularMatrix { matrix: String, rcond: f64 },
+    /// A square matrix that must be inverted is singular: its factorisation failed, or gave
+    /// a non-finite solution. `rcond` is the reciprocal condition estimate where one was
+    /// computed.
+    #[error(
+        "the {matrix} matrix is singular{}",
+        rcond.map(|r| format!(" (reciprocal condition estimate {r:.1e})")).unwrap_or_default()
+    )]
+    SingularMatrix { matrix: String, rcond: Option<f64> },
 
     /// An eigen- or singular-value decomposition did not converge.
     #[error("the {what} decomposition did not converge")]
@@ -294,7 +299,8 @@ pub enum Error {
 
     /// A stiffness or consistent mass that is not symmetric.
     #[error(
-        "{path}: the {what} is not symmetric: entry ({row}, {col}) differs from ({col}, {row})          by {asymmetry:.3e} relative to the largest entry (tolerance {tolerance:.0e})"
+        "{path}: the {what} is not symmetric: entry ({row}, {col}) differs from ({col}, {row}) \
+         by {asymmetry:.3e} relative to the largest entry (tolerance {tolerance:.0e})"
     )]
     NotSymmetric {
         path: String,

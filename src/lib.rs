@@ -22,6 +22,7 @@ pub mod fem;
 #[cfg(feature = "gui")]
 pub mod gui;
 pub mod linalg;
+pub mod models;
 mod progress;
 pub mod record;
 pub mod reduction;

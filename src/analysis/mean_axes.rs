@@ -88,7 +88,7 @@ pub fn evaluate_with_mean_axes(
     if res.is_nan() || res >= 1e-8 * max_abs(a.as_ref()).max(1.0) {
         return Err(Error::SingularMatrix {
             matrix: "mean-axis static problem (Eq. 8.44)".into(),
-            rcond: 0.0,
+            rcond: None,
         });
     }
     let constraint_solution = x.subrows(0, nr + k).to_owned();

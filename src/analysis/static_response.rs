@@ -123,7 +123,7 @@ pub fn ritz_static_response(
     if z.iter().any(|v| !v.is_finite()) || (scale > 1e-300 && held_error > 1e-8 * scale) {
         return Err(Error::SingularMatrix {
             matrix: format!("{} static saddle-point system", basis.method.id()),
-            rcond: 0.0,
+            rcond: None,
         });
     }
     Ok((0..psi.nrows())

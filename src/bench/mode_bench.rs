@@ -19,13 +19,11 @@ use crate::{
     bench::{MODE_SWEEP, pareto_flags, three_digits},
     dynamics::STANDARD_GRAVITY,
     fem::{SlabParameters, slab},
+    models::{default_boundary, held_at_six, reduction_nodes},
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::{Method, ModeSelection, ReductionParameters, reduce},
     report::{markdown_table, sig},
-    scenes::{
-        method_color,
-        slab_sims::{default_boundary, held_at_six, reduction_nodes},
-    },
+    scenes::method_color,
 };
 
 /// Elastic free-free frequencies compared with the full model's.

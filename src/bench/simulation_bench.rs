@@ -18,14 +18,13 @@ use crate::{
         imaginary_stability_limit, simulate,
     },
     fem::{SlabParameters, slab},
+    models::{
+        PROBE_NODE, Scenario, default_boundary, probe_history, slab_body, slab_node, slab_system,
+    },
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::{Method, NodalFixedAxes},
     report::{markdown_table, sig},
     scenes::method_color,
-    scenes::slab_sims::{
-        PROBE_NODE, Scenario, default_boundary, end_time, probe_history, slab_body, slab_node,
-        slab_system,
-    },
 };
 
 /// Simulated interval of the fixed-step run below the critical step, s (the run above it
@@ -133,7 +132,7 @@ pub fn bench_simulation(
     let boundary = default_boundary(&model);
     let probe = slab_node(&model, PROBE_NODE);
     let axes = AxisType::NodalFixed(NodalFixedAxes::slab_default());
-    let t_end = end_time(&scenario);
+    let t_end = scenario.end_time();
     let mut cases = vec![(Method::NoReduction, 0), (Method::Guyan, 0)];
     for m in [
         Method::ModalTruncation,

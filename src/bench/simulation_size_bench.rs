@@ -16,15 +16,11 @@ use crate::{
     bench::{SizeBench, growth_exponent},
     dynamics::{AxisType, IntegratorParameters, simulate},
     fem::{SlabParameters, slab},
+    models::{PROBE_NODE, default_boundary, probe_history, slab_body, slab_node, slab_system},
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::{Method, NodalFixedAxes},
     report::{Report, markdown_table, sig},
-    scenes::{
-        method_color,
-        slab_sims::{
-            PROBE_NODE, default_boundary, probe_history, slab_body, slab_node, slab_system,
-        },
-    },
+    scenes::method_color,
 };
 
 /// Simulated interval of each run, s (the online cost is per simulated second).

@@ -102,25 +102,25 @@ impl ModalMassInverse {
     pub fn new(m_zz: &DMatrix<f64>, body: &str) -> Result<Self> {
         let n = m_zz.nrows();
         let off_diagonal = (0..n).any(|i| (0..n).any(|j| i != j && m_zz[(i, j)] != 0.0));
-        let singular = |rcond: f64| Error::SingularMatrix {
+        let singular = |rcond: Option<f64>| Error::SingularMatrix {
             matrix: format!("modal mass ΨᵀMΨ of {body}"),
             rcond,
         };
         if !off_diagonal {
             let d = m_zz.diagonal();
             if d.iter().any(|&x| x <= 0.0) {
-                return Err(singular(0.0));
+                return Err(singular(None));
             }
             return Ok(Self::Diagonal(d.map(|x| 1.0 / x)));
         }
         let inverse = m_zz
             .clone()
             .cholesky()
-            .ok_or_else(|| singular(0.0))?
+            .ok_or_else(|| singular(None))?
             .inverse();
         let residual = (m_zz * &inverse - DMatrix::<f64>::identity(n, n)).amax();
         if residual.is_nan() || residual > 1e-8 {
-            return Err(singular(1.0 / (m_zz.amax() * inverse.amax())));
+            return Err(singular(Some(1.0 / (m_zz.amax() * inverse.amax()))));
         }
         Ok(Self::Dense(inverse))
     }

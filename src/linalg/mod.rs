@@ -9,6 +9,7 @@ mod mass_matrix;
 mod memory;
 mod nested_dissection;
 mod partial_eigen;
+mod saddle_point;
 mod sparse_symmetric;
 mod symmetric_eigen;
 mod symmetric_factor;
@@ -29,6 +30,9 @@ pub use memory::{
 pub use nested_dissection::nested_dissection;
 pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,
+};
+pub use saddle_point::{
+    REDUNDANT_PSD, REDUNDANT_SADDLE, pinv_solve, range_space_solve, saddle_point_solve,
 };
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
 pub use symmetric_eigen::{

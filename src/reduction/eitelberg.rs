@@ -78,7 +78,7 @@ pub fn eitelberg_state_space(
     let rr_t = r * r.transpose();
     let rr_llt = rr_t.llt(Side::Lower).map_err(|_| Error::SingularMatrix {
         matrix: "R R^T".into(),
-        rcond: 0.0,
+        rcond: None,
     })?;
     let r_pinv = r.transpose() * rr_llt.inverse_sym();
     let c_r = c * &r_pinv;
@@ -88,7 +88,7 @@ pub fn eitelberg_state_space(
     let rsr = r * &s * r.transpose();
     let rsr_llt = rsr.llt(Side::Lower).map_err(|_| Error::SingularMatrix {
         matrix: "R S R^T".into(),
-        rcond: 0.0,
+        rcond: None,
     })?;
     // T = S R^T (R S R^T)^{-1}; R S R^T is symmetric, so T^T = (RSR^T)^{-1} R S.
     let t = rsr_llt.solve(r * &s).transpose().to_owned();

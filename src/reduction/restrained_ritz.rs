@@ -55,7 +55,7 @@ impl RestrainedRitzModel {
         if null.ncols() == 0 {
             return Err(Error::SingularMatrix {
                 matrix: "restrained Ritz model (the supports hold every coordinate)".into(),
-                rcond: 0.0,
+                rcond: None,
             });
         }
         let v = basis * &null;

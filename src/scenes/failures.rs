@@ -18,10 +18,9 @@ use serde_json::{Value, json};
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
     mode_visuals::{REFERENCE, method_color},
-    slab_sims::{
-        PROBE_NODE, Scenario, default_boundary, end_time, probe_history, reduction_nodes,
-        slab_body, slab_system,
-    },
+};
+use crate::models::{
+    PROBE_NODE, Scenario, default_boundary, probe_history, reduction_nodes, slab_body, slab_system,
 };
 use crate::{
     Error, Result,
@@ -558,7 +557,7 @@ fn explicit_step(model: &FeModel, opts: &SceneOptions) -> Result<Failure> {
     if let Err(Error::Cancelled) = below {
         return Err(Error::Cancelled);
     }
-    let above = fixed(ABOVE_CRITICAL, end_time(&scenario));
+    let above = fixed(ABOVE_CRITICAL, scenario.end_time());
     if let Err(Error::Cancelled) = above {
         return Err(Error::Cancelled);
     }

@@ -9,10 +9,11 @@ use flexmodes::{
         State, System, simulate,
     },
     fem::{SlabParameters, slab},
-    reduction::{Method, NodalFixedAxes},
-    scenes::slab_sims::{
-        BOUNDARY, PROBE_NODE, Scenario, fixed, probe_history, slab_body, slab_system,
+    models::{
+        PROBE_NODE, SLAB_BOUNDARY as BOUNDARY, Scenario, fixed, probe_history, slab_body,
+        slab_system,
     },
+    reduction::{Method, NodalFixedAxes},
 };
 
 fn alpha(spectral_radius: f64) -> IntegrationScheme {
@@ -277,7 +278,7 @@ fn a_bad_spectral_radius_or_step_is_a_named_error() {
 #[test]
 fn newton_failing_on_a_step_too_long_for_the_swinging_plank_is_a_named_error() {
     use flexmodes::dynamics::AxisType;
-    use flexmodes::scenes::plank_symmetry::{Variant, plank_body, plank_system};
+    use flexmodes::models::{PlankVariant as Variant, plank_body, plank_system};
     let model = flexmodes::fem::plank(&SlabParameters::default());
     let variant = Variant {
         method: Method::CraigBampton,
@@ -314,7 +315,7 @@ fn a_rebuilt_iteration_matrix_lets_newton_converge_on_long_steps() {
     // built around the unprojected accelerations made Newton fail there.
     let model = slab(&SlabParameters::refined([12, 6, 3]).unwrap());
     let axes = flexmodes::dynamics::AxisType::NodalFixed(NodalFixedAxes::slab_default());
-    let boundary = flexmodes::scenes::slab_sims::default_boundary(&model);
+    let boundary = flexmodes::models::default_boundary(&model);
     let body = slab_body(&model, Method::Guyan, axes, &boundary, 0).unwrap();
     let (system, state) = slab_system(&Scenario::HeldAtSix, body).unwrap();
     let sim = simulate(

@@ -9,11 +9,11 @@ use flexmodes::{
         simulate,
     },
     fem::{SlabParameters, plank, slab},
-    reduction::{Method, NodalFixedAxes},
-    scenes::{
-        plank_symmetry::{Variant, plank_body, plank_nodal_fixed, plank_system, symmetry_history},
-        slab_sims::{PROBE_NODE, Scenario, probe_history, slab_body, slab_system},
+    models::{
+        PROBE_NODE, PlankVariant as Variant, Scenario, plank_body, plank_nodal_fixed, plank_system,
+        probe_history, slab_body, slab_system, symmetry_history,
     },
+    reduction::{Method, NodalFixedAxes},
 };
 
 const BOUNDARY: [usize; 4] = [16, 18, 28, 30];
@@ -79,8 +79,7 @@ fn craig_bampton_and_mode_condensation_give_one_history() {
 #[test]
 fn generalized_alpha_gives_craig_bampton_and_mode_condensation_one_history() {
     let tables =
-        flexmodes::scenes::slab_sims::record_driving_tables(nodal(), 0.3, &Progress::default())
-            .unwrap();
+        flexmodes::models::record_driving_tables(nodal(), 0.3, &Progress::default()).unwrap();
     let scenarios = [
         Scenario::HeldAtSix,
         Scenario::Orbit,
@@ -189,14 +188,13 @@ fn the_reference_integration_error_is_a_hundred_times_below_the_reduction_errors
         ..Default::default()
     };
     let tables =
-        flexmodes::scenes::slab_sims::record_driving_tables(nodal(), 1.0, &Progress::default())
-            .unwrap();
+        flexmodes::models::record_driving_tables(nodal(), 1.0, &Progress::default()).unwrap();
     for (name, scenario) in [
         ("simulation 1", Scenario::HeldAtSix),
         ("simulation 2", Scenario::Orbit),
         ("simulation 3", Scenario::Driven(tables)),
     ] {
-        let end = flexmodes::scenes::slab_sims::end_time(&scenario);
+        let end = scenario.end_time();
         let histories = |method: Method, p: &IntegratorParameters| {
             let (system, sim) = run_slab(&scenario, method, nodal(), p);
             probe_history(&system, &sim, PROBE_NODE)

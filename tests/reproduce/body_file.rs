@@ -714,7 +714,7 @@ fn the_app_b_bricks_and_the_plank_set_up_are_read_from_the_assets() {
         let one_based: Vec<f64> = b.iter().map(|&n| (n + 1) as f64).collect();
         assert_eq!(&one_based, row);
     }
-    let setup = flexmodes::scenes::plank_symmetry::plank_setup();
+    let setup = flexmodes::models::plank_setup();
     assert_eq!(setup.hanging_nodes, [3, 15]);
     assert_eq!((setup.force_node, setup.force), (22, 250.0));
     assert_eq!((setup.link_length, setup.link_mass), (2.0, 1.0));

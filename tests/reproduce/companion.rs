@@ -15,15 +15,14 @@ use flexmodes::{
         OverhangFrameParameters, beam, dual_spin, frame, overhang_frame,
     },
     linalg::{generalized_eigen, identity, max_abs, solve_lyapunov},
+    models::{
+        CantileverIo, DualSpinSets, assemble, full_synthesis, mode_set_bases, witteveen_bases,
+    },
     reduction::{
         BalancedBasisParameters, InterfaceLoading, IoMap, LoadedInterface, MacNealRubinParameters,
         ModalModel, ModeSelection, MomentMatchingParameters, Partition, RestrainedRitzModel,
         balanced_basis, balanced_truncation, benfield_hruda, craig_bampton, fixed_interface_modes,
         macneal_rubin, modal_gramians, modal_influence, moment_matching,
-    },
-    scenes::{
-        cantilever_variants::{CantileverIo, witteveen_bases},
-        slab_mode_sets::{DualSpinSets, assemble, full_synthesis, mode_set_bases},
     },
 };
 

@@ -218,7 +218,7 @@ fn stirred(
 #[test]
 fn block_eliminated_accelerations_equal_the_dense_regularised_solve() {
     use flexmodes::dynamics::{Attachment, Constraint};
-    use flexmodes::scenes::{plank_symmetry, slab_sims};
+    use flexmodes::models;
     let mut rng = Rng::new(41);
     let slab_model = slab(&SlabParameters::default());
     let plank_model = flexmodes::fem::plank(&SlabParameters::default());
@@ -230,9 +230,9 @@ fn block_eliminated_accelerations_equal_the_dense_regularised_solve() {
             AxisType::NodalFixed(NodalFixedAxes::slab_default()),
         ] {
             let body =
-                slab_sims::slab_body(&slab_model, method, axes, &slab_sims::BOUNDARY, 6).unwrap();
-            for scenario in [slab_sims::Scenario::HeldAtSix, slab_sims::Scenario::Orbit] {
-                systems.push(slab_sims::slab_system(&scenario, body.clone()).unwrap());
+                models::slab_body(&slab_model, method, axes, &models::SLAB_BOUNDARY, 6).unwrap();
+            for scenario in [models::Scenario::HeldAtSix, models::Scenario::Orbit] {
+                systems.push(models::slab_system(&scenario, body.clone()).unwrap());
             }
         }
     }
@@ -241,12 +241,12 @@ fn block_eliminated_accelerations_equal_the_dense_regularised_solve() {
         (Method::CraigBampton, AxisType::Mean),
         (
             Method::NoReduction,
-            AxisType::NodalFixed(plank_symmetry::plank_nodal_fixed()),
+            AxisType::NodalFixed(models::plank_nodal_fixed()),
         ),
     ] {
-        let variant = plank_symmetry::Variant { method, axes };
-        let body = plank_symmetry::plank_body(&plank_model, variant, 6).unwrap();
-        systems.push(plank_symmetry::plank_system(body).unwrap());
+        let variant = models::PlankVariant { method, axes };
+        let body = models::plank_body(&plank_model, variant, 6).unwrap();
+        systems.push(models::plank_system(body).unwrap());
     }
     // Redundant constraints: the plank's first joint twice (the saddle-point system is then
     // singular and its pseudo-inverse is taken).
@@ -276,7 +276,7 @@ fn block_eliminated_accelerations_equal_the_dense_regularised_solve() {
 
 #[test]
 fn a_refined_slab_keeps_the_scenario_nodes_at_their_app_b_places() {
-    use flexmodes::scenes::slab_sims::{default_boundary, slab_node};
+    use flexmodes::models::{default_boundary, slab_node};
     let app_b = slab(&SlabParameters::default());
     for bricks in [[4, 2, 1], [8, 4, 2], [12, 6, 3]] {
         let refined = slab(&SlabParameters::refined(bricks).unwrap());

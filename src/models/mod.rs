@@ -1,0 +1,29 @@
+//! Models: the physical set-ups of the scenes and their measures, computed and returned as
+//! typed results. Scenes wire them to visuals and tables; tests and benches use them for
+//! numbers. A model never imports a scene or the recorder.
+
+mod cantilever_study;
+mod dual_spin_study;
+mod plank_simulation;
+mod slab_simulation;
+
+pub use cantilever_study::{
+    BAND_HZ, BT_ALPHA, CANTILEVER_METHODS, CantileverIo, CantileverStudy,
+    INTEREST_HZ as WITTEVEEN_INTEREST_HZ, POINT_MASS_T, PRINTED_HZ, Printed, StaticCase,
+    VariantModes, bottom_line_error, cantilever_study, witteveen_bases,
+};
+pub use dual_spin_study::{
+    ARTICULATION_DEG, AssembledSet, DUAL_SPIN_METHODS, DualSpinSets, DualSpinStudy,
+    INFLUENCE_FRACTION, INTEREST_HZ as SPANOS_INTEREST_HZ, RotorRanking, RotorSelection,
+    TRUNCATION_HZ, ZETA, assemble, benfield_hruda_bases, dual_spin_study, full_synthesis, io_model,
+    mode_set_bases, rank_rotor,
+};
+pub use plank_simulation::{
+    MID_X as PLANK_MID_X, PLANK_BOUNDARY, PlankSetup, Variant as PlankVariant, plank_body,
+    plank_nodal_fixed, plank_setup, plank_system, symmetry_history,
+};
+pub use slab_simulation::{
+    BOUNDARY as SLAB_BOUNDARY, DRIVEN_NODES, DrivenTables, PROBE_NODE, SIM1_END, SIM2_END,
+    SIM3_END, Scenario, default_boundary, fixed, held_at_six, probe_history, record_driving_tables,
+    reduction_nodes, sim3_rotation, slab_body, slab_node, slab_system,
+};
