@@ -4,6 +4,7 @@
 
 mod cantilever_study;
 mod dual_spin_study;
+mod failure_studies;
 mod plank_simulation;
 mod slab_simulation;
 
@@ -17,6 +18,13 @@ pub use dual_spin_study::{
     INFLUENCE_FRACTION, INTEREST_HZ as SPANOS_INTEREST_HZ, RotorRanking, RotorSelection,
     TRUNCATION_HZ, ZETA, assemble, benfield_hruda_bases, dual_spin_study, full_synthesis, io_model,
     mode_set_bases, rank_rotor,
+};
+pub use failure_studies::{
+    ABOVE_CRITICAL, BELOW_CRITICAL, BELOW_RUN_S, BoundaryCase, BoundaryMotion, COST_MESHES,
+    CondensationCost, CriticalStep, EitelbergFeedback, ExplicitStep, GUYAN_A, GUYAN_B,
+    GuyanMeanAxes, KEPT_MODES, MOVED_NODE, SymmetryCase, TOO_FEW_BOUNDARIES, boundary_motion,
+    condensation_cost, eitelberg_feedback, explicit_step, guyan_mean_axes, guyan_symmetry,
+    mirror_defect, too_few_boundary,
 };
 pub use plank_simulation::{
     MID_X as PLANK_MID_X, PLANK_BOUNDARY, PlankSetup, Variant as PlankVariant, plank_body,
