@@ -4,6 +4,7 @@
 
 mod body_spec;
 mod body_writer;
+mod csv_table;
 mod imported_body;
 mod matrix_market;
 mod npy;

@@ -15,6 +15,8 @@ mod prescribed;
 mod rotation;
 mod simulation;
 mod system;
+mod system_constraints;
+mod system_kinematics;
 
 pub use axes::AxisType;
 pub use body::{Body, FlexibleBody, ModalMassInverse, RigidBody};

@@ -1,10 +1,10 @@
 //! The assembled multibody system: $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
 
-use nalgebra::{DMatrix, DVector, DVectorView, Matrix3, Matrix6, Vector3, Vector4};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector4};
 
 use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
-    rotation::{l_matrix, rotate_body, rotation_matrix, skew},
+    rotation::{l_matrix, rotate_body, skew},
 };
 use crate::{
     Error, Result,
@@ -33,8 +33,8 @@ pub struct System {
     pub gravity: Vector3<f64>,
     /// Constant global forces on nodes: (body, node, force in N).
     pub nodal_forces: Vec<(usize, usize, Vector3<f64>)>,
-    q_off: Vec<usize>,
-    v_off: Vec<usize>,
+    pub(super) q_off: Vec<usize>,
+    pub(super) v_off: Vec<usize>,
 }
 
 /// One body's rows of the mass matrix and forces (see [`System::accelerations`]).
@@ -45,40 +45,6 @@ struct BodyBlocks {
     m_fz: DMatrix<f64>,
     /// Generalised forces $Q$, frame then modal.
     q: DVector<f64>,
-}
-
-/// Kinematics of one point: its position and the velocity-dependent part of its
-/// acceleration; the partial velocities (3 × nv) are written by [`System::point`] into the
-/// rows the caller gives.
-struct PointKin {
-    d: Vector3<f64>,
-    aq: Vector3<f64>,
-}
-
-/// Constraint rows at one instant.
-pub(crate) struct Rows {
-    /// Jacobian, rows × nv.
-    pub c: DMatrix<f64>,
-    /// Acceleration right-hand side.
-    pub gamma: DVector<f64>,
-    /// Velocity right-hand side.
-    pub target: DVector<f64>,
-    /// Position residual (0 for non-holonomic rows).
-    pub phi: DVector<f64>,
-    /// Whether each row is holonomic.
-    pub holonomic: Vec<bool>,
-}
-
-/// One body's frame and deformation at an instant; the modal coordinates are views into the
-/// state, so reading a frame allocates nothing.
-struct Frame<'a> {
-    r: Vector3<f64>,
-    p: Vector4<f64>,
-    a: Matrix3<f64>,
-    z: DVectorView<'a, f64>,
-    rd: Vector3<f64>,
-    w: Vector3<f64>,
-    zd: DVectorView<'a, f64>,
 }
 
 impl System {
@@ -128,7 +94,7 @@ impl System {
     }
 
     /// The deformable bodies whose frame is held by axis conditions (mean or principal axes).
-    fn axis_condition_bodies(&self) -> impl Iterator<Item = (usize, &FlexibleBody)> {
+    pub(super) fn axis_condition_bodies(&self) -> impl Iterator<Item = (usize, &FlexibleBody)> {
         self.bodies
             .iter()
             .enumerate()
@@ -158,161 +124,6 @@ impl System {
     /// Offsets of body `b` in q and v.
     pub fn offsets(&self, b: usize) -> (usize, usize) {
         (self.q_off[b], self.v_off[b])
-    }
-
-    fn frame<'a>(&self, b: usize, s: &'a State) -> Frame<'a> {
-        let (qo, vo) = (self.q_off[b], self.v_off[b]);
-        let k = self.bodies[b].position_count() - 7;
-        let p = Vector4::new(s.q[qo + 3], s.q[qo + 4], s.q[qo + 5], s.q[qo + 6]);
-        Frame {
-            r: Vector3::new(s.q[qo], s.q[qo + 1], s.q[qo + 2]),
-            a: rotation_matrix(&p),
-            p,
-            z: s.q.rows(qo + 7, k),
-            rd: Vector3::new(s.v[vo], s.v[vo + 1], s.v[vo + 2]),
-            w: Vector3::new(s.v[vo + 3], s.v[vo + 4], s.v[vo + 5]),
-            zd: s.v.rows(vo + 6, k),
-        }
-    }
-
-    /// Absolute acceleration of a node, $\ddot d_j = L_j\dot v + a_q$ (Eq. 3.17), from the
-    /// accelerations `vdot` of [`System::accelerations`].
-    pub fn node_acceleration(
-        &self,
-        b: usize,
-        node: usize,
-        s: &State,
-        vdot: &DVector<f64>,
-    ) -> Vector3<f64> {
-        let mut l = DMatrix::zeros(3, self.nv());
-        let p = self.point(&Attachment::Node { body: b, node }, s, 1.0, &mut l, 0, None);
-        l * vdot + p.aq
-    }
-
-    /// Global position of a node of a deformable body.
-    pub fn node_position(&self, b: usize, node: usize, s: &State) -> Vector3<f64> {
-        let f = self.frame(b, s);
-        match &self.bodies[b] {
-            Body::Flexible(fb) => f.r + f.a * fb.b(node, &f.z),
-            Body::Rigid(_) => f.r,
-        }
-    }
-
-    /// Position of `node` of body `b` with its elastic deflection (relative to the body frame)
-    /// multiplied by `scale`: 1 is [`Self::node_position`], 0 the rigidly moved undeformed
-    /// node (for drawing deflections too small to see, and the ghost beside them).
-    pub fn node_position_scaled(
-        &self,
-        b: usize,
-        node: usize,
-        s: &State,
-        scale: f64,
-    ) -> Vector3<f64> {
-        let f = self.frame(b, s);
-        match &self.bodies[b] {
-            Body::Flexible(fb) => f.r + f.a * (fb.s_bar[node] + fb.deflection(node, &f.z) * scale),
-            Body::Rigid(_) => f.r,
-        }
-    }
-
-    /// Positions of every node of deformable body `b`, their elastic deflections multiplied
-    /// by `scale` as in [`Self::node_position_scaled`]: the frame is read once for all nodes.
-    /// Empty for a rigid body.
-    pub fn node_positions_scaled(&self, b: usize, s: &State, scale: f64) -> Vec<Vector3<f64>> {
-        let f = self.frame(b, s);
-        match &self.bodies[b] {
-            Body::Flexible(fb) => (0..fb.s_bar.len())
-                .map(|j| f.r + f.a * (fb.s_bar[j] + fb.deflection(j, &f.z) * scale))
-                .collect(),
-            Body::Rigid(_) => Vec::new(),
-        }
-    }
-
-    /// The largest elastic deflection $\max_j |\Psi_j z|$ of deformable body `b`'s nodes, m
-    /// (0 for a rigid body).
-    pub fn largest_deflection(&self, b: usize, s: &State) -> f64 {
-        let f = self.frame(b, s);
-        match &self.bodies[b] {
-            Body::Flexible(fb) => (0..fb.s_bar.len())
-                .map(|j| fb.deflection(j, &f.z).norm())
-                .fold(0.0, f64::max),
-            Body::Rigid(_) => 0.0,
-        }
-    }
-
-    /// Frame position and orientation of body `b`.
-    pub fn placement(&self, b: usize, s: &State) -> (Vector3<f64>, Matrix3<f64>) {
-        let f = self.frame(b, s);
-        (f.r, f.a)
-    }
-
-    /// Modal coordinates of body `b`.
-    pub fn modal(&self, b: usize, s: &State) -> DVector<f64> {
-        self.frame(b, s).z.into_owned()
-    }
-
-    /// The kinematics of a point, adding `sign` times its partial velocities $L$ (Eq. 3.17)
-    /// to `c`: all three rows of $L$ from row `r` on, or only the row of `axis` at row `r`.
-    /// Only the point's own body's columns are touched.
-    fn point(
-        &self,
-        att: &Attachment,
-        s: &State,
-        sign: f64,
-        c: &mut DMatrix<f64>,
-        r: usize,
-        axis: Option<usize>,
-    ) -> PointKin {
-        let axes = axis.map_or(0..3, |a| a..a + 1);
-        let row = |i: usize| r + i - axes.start;
-        match *att {
-            Attachment::Ground(x) => PointKin {
-                d: x,
-                aq: Vector3::zeros(),
-            },
-            Attachment::Point { body, local } => {
-                let f = self.frame(body, s);
-                let vo = self.v_off[body];
-                let arm = -f.a * skew(&local);
-                for i in axes.clone() {
-                    c[(row(i), vo + i)] += sign;
-                    for k in 0..3 {
-                        c[(row(i), vo + 3 + k)] += sign * arm[(i, k)];
-                    }
-                }
-                PointKin {
-                    d: f.r + f.a * local,
-                    aq: f.a * (f.w.cross(&f.w.cross(&local))),
-                }
-            }
-            Attachment::Node { body, node } => {
-                let f = self.frame(body, s);
-                let vo = self.v_off[body];
-                let Body::Flexible(fb) = &self.bodies[body] else {
-                    unreachable!("node attachments are checked to name deformable bodies")
-                };
-                let psi = &fb.psi_nodes[node];
-                let bj = fb.b(node, &f.z);
-                let arm = -f.a * skew(&bj);
-                for i in axes.clone() {
-                    c[(row(i), vo + i)] += sign;
-                    for k in 0..3 {
-                        c[(row(i), vo + 3 + k)] += sign * arm[(i, k)];
-                    }
-                    // Row i of A Ψ_j.
-                    let a_row = f.a.row(i);
-                    for k in 0..fb.modes() {
-                        let column = psi.column(k);
-                        c[(row(i), vo + 6 + k)] += sign * a_row.dot(&column.transpose());
-                    }
-                }
-                let u = psi * f.zd;
-                PointKin {
-                    d: f.r + f.a * bj,
-                    aq: f.a * (f.w.cross(&f.w.cross(&bj)) + 2.0 * f.w.cross(&u)),
-                }
-            }
-        }
     }
 
     /// Checks indices of constraints and loads.
@@ -456,97 +267,6 @@ impl System {
         (m, q)
     }
 
-    /// Constraint rows at time `t`.
-    pub(crate) fn rows(&self, t: f64, s: &State) -> Rows {
-        let nv = self.nv();
-        let nr = self.constraint_rows();
-        let mut out = Rows {
-            c: DMatrix::zeros(nr, nv),
-            gamma: DVector::zeros(nr),
-            target: DVector::zeros(nr),
-            phi: DVector::zeros(nr),
-            holonomic: vec![true; nr],
-        };
-        let mut r = 0;
-        for c in &self.constraints {
-            match c {
-                Constraint::Spherical(a, b) => {
-                    let pa = self.point(a, s, 1.0, &mut out.c, r, None);
-                    let pb = self.point(b, s, -1.0, &mut out.c, r, None);
-                    out.gamma.rows_mut(r, 3).copy_from(&(pb.aq - pa.aq));
-                    out.phi.rows_mut(r, 3).copy_from(&(pa.d - pb.d));
-                }
-                Constraint::PrescribedNode {
-                    body,
-                    node,
-                    axis,
-                    motion,
-                    x0,
-                    v0,
-                } => {
-                    let p = self.point(
-                        &Attachment::Node {
-                            body: *body,
-                            node: *node,
-                        },
-                        s,
-                        1.0,
-                        &mut out.c,
-                        r,
-                        Some(*axis),
-                    );
-                    let (x, v, acc) = motion.at(t, *x0, *v0);
-                    out.gamma[r] = acc - p.aq[*axis];
-                    out.target[r] = v;
-                    out.phi[r] = p.d[*axis] - x;
-                }
-            }
-            r += c.rows();
-        }
-        for (body, fb) in self.axis_condition_bodies() {
-            self.axis_rows(body, fb, s, r, &mut out);
-            r += 6;
-        }
-        out
-    }
-
-    /// The six rows of mean axes (Table 4-2) or principal axes (§4.3) of body `body` from row
-    /// `r` on.
-    fn axis_rows(&self, body: usize, fb: &FlexibleBody, s: &State, r: usize, out: &mut Rows) {
-        let f = self.frame(body, s);
-        let o = self.v_off[body] + 6;
-        let k = fb.modes();
-        let inv = &fb.invariants;
-        let h = inv.h(&f.z);
-        // Translational: sum m_j Psi_j z = 0 (Eq. 4.20), holonomic.
-        out.c.view_mut((r, o), (3, k)).copy_from(&inv.p_sum);
-        out.phi.rows_mut(r, 3).copy_from(&(&inv.p_sum * f.z));
-        if matches!(fb.axes, AxisType::Mean) {
-            // Rotational: sum m_j b_j x (Psi_j zdot) = 0 (Eq. 4.15); its acceleration form has
-            // no quadratic term for a lumped M (Eq. 4.17).
-            out.c
-                .view_mut((r + 3, o), (3, k))
-                .copy_from(&inv.rotation_coupling(&h));
-            for i in 3..6 {
-                out.holonomic[r + i] = false;
-            }
-        } else {
-            // Products of inertia J_xy, J_yz, J_zx = -sum m b_a b_b, held at their undeformed
-            // values -S_ab: gradient -(H_c[a,b] + H_c[b,a]), quadratic term
-            // -2 sum m (Psi zd)_a (Psi zd)_b.
-            let pairs = [(0, 1), (1, 2), (2, 0)];
-            let b_z = inv.second_moment(&f.z, &h);
-            let udot = inv.modal_outer(&f.zd, &f.zd);
-            for (i, &(a, b)) in pairs.iter().enumerate() {
-                for (c, hc) in h.iter().enumerate() {
-                    out.c[(r + 3 + i, o + c)] = -(hc[(a, b)] + hc[(b, a)]);
-                }
-                out.gamma[r + 3 + i] = 2.0 * udot[(a, b)];
-                out.phi[r + 3 + i] = inv.s_outer[(a, b)] - b_z[(a, b)];
-            }
-        }
-    }
-
     /// Accelerations $\dot v$ from $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
     ///
     /// Each deformable body's modal block $M_{zz}$ is constant and factored once, so its
@@ -572,7 +292,7 @@ impl System {
     /// with $f = Q$ when `forces` (the accelerations) or $f = 0$ (the mass-weighted
     /// correction of [`Self::project`]), by the block elimination of
     /// [`Self::accelerations`].
-    fn saddle_point(
+    pub(super) fn saddle_point(
         &self,
         s: &State,
         c: &DMatrix<f64>,
@@ -729,50 +449,6 @@ impl System {
             e -= force.dot(&self.node_position(b, n, s));
         }
         e
-    }
-
-    /// Largest position-level and velocity-level constraint violations.
-    pub fn violation(&self, t: f64, s: &State) -> (f64, f64) {
-        let rows = self.rows(t, s);
-        let pos = rows.phi.amax();
-        let vel = (&rows.c * &s.v - &rows.target).amax();
-        (pos, vel)
-    }
-
-    /// Normalises Euler parameters and projects positions, then velocities, onto the
-    /// constraint manifold, both in the mass metric. Positions take Gauss–Newton corrections
-    /// of least kinetic-energy norm, $\min \tfrac12\Delta q^T M\Delta q$ subject to
-    /// $C\Delta q = -\Phi$ (drift). Velocities take the correction of least kinetic energy,
-    /// $\min \tfrac12\Delta v^T M\Delta v$ subject to $C(v - \Delta v) = $ target: the
-    /// velocity jump constraint impulses cause. Both are the same for every basis of one
-    /// space; a Euclidean minimum norm in modal coordinates is not, and made generalized-α's
-    /// fixed-step histories of Craig–Bampton and mode condensation differ by 1e-3 where
-    /// their models are one (slab-sim3), and Simulation 2's orbit start with velocities the
-    /// constraints do not allow.
-    pub(crate) fn project(&self, t: f64, s: &mut State) -> Result<()> {
-        for b in 0..self.bodies.len() {
-            let qo = self.q_off[b];
-            let n = s.q.rows(qo + 3, 4).norm();
-            s.q.rows_mut(qo + 3, 4).scale_mut(1.0 / n);
-        }
-        // The rows at the current positions, for the next correction and the velocities.
-        let mut rows = self.rows(t, s);
-        for _ in 0..3 {
-            let idx: Vec<usize> = (0..rows.phi.len()).filter(|&i| rows.holonomic[i]).collect();
-            if idx.is_empty() || rows.phi.amax() < 1e-13 {
-                break;
-            }
-            let c = rows.c.select_rows(idx.iter());
-            let phi = rows.phi.select_rows(idx.iter());
-            let dq = -self.saddle_point(s, &c, &phi, false)?;
-            self.apply_increment(s, &dq);
-            rows = self.rows(t, s);
-        }
-        if rows.c.nrows() > 0 {
-            let r = &rows.c * &s.v - &rows.target;
-            s.v -= self.saddle_point(s, &rows.c, &r, false)?;
-        }
-        Ok(())
     }
 
     /// Moves positions by an increment `dx` in velocity coordinates: translations and modal

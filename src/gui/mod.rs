@@ -7,6 +7,7 @@
 mod app;
 mod controls;
 mod explorer;
+mod report_view;
 mod worker;
 
 pub use app::{FEWER_MODES, MORE_MODES, ViewerOptions, run, run_with_body};
