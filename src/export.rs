@@ -25,7 +25,8 @@ use serde_json::json;
 use crate::{
     Error, Result,
     analysis::zero_energy_threshold_hz,
-    body_file::{ImportedBody, write_array, write_atomically, write_npy},
+    atomic_file::write_atomically,
+    body_file::{ImportedBody, write_array, write_npy},
     linalg::generalized_eigen,
     reduction::{
         Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, Method, ModeSelection, ReducedMatrices,

@@ -12,6 +12,7 @@
 
 pub mod analysis;
 pub mod assets;
+pub mod atomic_file;
 pub mod bench;
 pub mod body_file;
 pub mod cli;

@@ -4,7 +4,8 @@ use std::{collections::BTreeMap, fmt::Write as _, io::Write, path::Path};
 
 use crate::{Error, Result, fem::FeModel, linalg::MassMatrix};
 
-use super::matrix_market::{write_atomically, write_coordinate_symmetric_to};
+use super::matrix_market::write_coordinate_symmetric_to;
+use crate::atomic_file::write_atomically;
 
 /// The files of a body, by name, as bytes (what [`write_body`] puts in the folder).
 pub type BodyFiles = BTreeMap<String, Vec<u8>>;

@@ -17,6 +17,7 @@ use std::{
 
 use faer::MatRef;
 
+use crate::atomic_file::write_atomically;
 use crate::{Error, Result};
 
 /// How the entries of a Matrix Market file are stored.
@@ -313,34 +314,6 @@ fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
         symmetric,
         entries,
     })
-}
-
-/// Writes `text` to `path` through a temporary file in the same folder and a rename, so a
-/// failed write never leaves a half-written file behind.
-pub fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
-) -> Result<()> {
-    let io = |source| Error::Io {
-        path: path.display().to_string(),
-        source,
-    };
-    let file_name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp = path.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
-    let result = (|| {
-        let mut out = std::io::BufWriter::new(fs::File::create(&tmp)?);
-        write(&mut out)?;
-        out.flush()?;
-        out.into_inner().map_err(|e| e.into_error())?.sync_all()?;
-        fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
-    result.map_err(io)
 }
 
 /// Writes a dense matrix as `array real general` (column-major), or `array real symmetric`

@@ -14,6 +14,6 @@ pub use body_writer::{BodyFiles, example_bodies, write_body, write_files};
 pub use imported_body::{BodyHandle, BodyLocation, ImportedBody, SYMMETRY_TOLERANCE};
 pub use matrix_market::{
     MatrixMarket, MatrixMarketFormat, parse_matrix_market, read_matrix_market, write_array,
-    write_atomically, write_coordinate_symmetric, write_coordinate_symmetric_to,
+    write_coordinate_symmetric, write_coordinate_symmetric_to,
 };
 pub use npy::{npy_header, read_npy, write_npy};

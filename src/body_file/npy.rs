@@ -5,8 +5,8 @@ use std::path::Path;
 
 use faer::MatRef;
 
-use super::write_atomically;
 use crate::Result;
+use crate::atomic_file::write_atomically;
 
 /// Writes `a` as a little-endian `float64` `.npy` array of shape `(rows, cols)`, Fortran
 /// (column-major) order, atomically (see [`write_atomically`]).

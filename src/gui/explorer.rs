@@ -228,7 +228,7 @@ impl Explorer {
                 Command::Save(path) => match &self.current {
                     Some(c) => match c
                         .rrd()
-                        .and_then(|bytes| crate::record::write_atomically(&path, &bytes))
+                        .and_then(|bytes| crate::atomic_file::write_bytes_atomically(&path, &bytes))
                     {
                         Ok(()) => self.status = format!("saved {}", path.display()),
                         Err(e) => self.error = Some(e.to_string()),

@@ -13,6 +13,6 @@ mod visual;
 pub use eye::{Bounds, Eye};
 pub use layout::Layout;
 pub use log_log_chart::{LogLogChart, LogLogSeries};
-pub use recorder::{Recorder, encode_messages, write_atomically};
+pub use recorder::{Recorder, encode_messages};
 pub use recording_content::RecordingContent;
 pub use visual::{Color, Geometry, PHASE_STEPS, Visual};

@@ -65,7 +65,7 @@ impl Recorder {
     /// Encodes and writes to `path` atomically (temporary file, then rename).
     pub fn save(&self, out: &RecordingContent, path: &Path) -> Result<()> {
         let bytes = self.encode(out)?;
-        write_atomically(path, &bytes)
+        crate::atomic_file::write_bytes_atomically(path, &bytes)
     }
 
     /// Logs everything of `out` to `rec`: the text panel, the visuals, the blueprint.
@@ -466,35 +466,6 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
         Visual::Bars { path, values } => {
             rec.log_static(path.as_str(), &rerun::BarChart::new(values.clone()))?;
         }
-    }
-    Ok(())
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
-/// failure never leaves a half-written file behind.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    let io = |source: std::io::Error| Error::Io {
-        path: path.display().to_string(),
-        source,
-    };
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(io)?;
-    let name = path
-        .file_name()
-        .ok_or_else(|| Error::RecordingWrite {
-            path: path.display().to_string(),
-            reason: "not a file path".into(),
-        })?
-        .to_string_lossy()
-        .to_string();
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(io(e));
     }
     Ok(())
 }
