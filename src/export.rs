@@ -14,6 +14,7 @@
 //! Everything is written to a temporary folder beside the destination and renamed into place,
 //! so an interrupted export leaves the previous folder (or none) as it was.
 
+use crate::linalg::LinalgError;
 use std::{
     path::{Path, PathBuf},
     time::Instant,
@@ -119,13 +120,13 @@ pub fn export(
     };
     let reduced = ReducedMatrices::of(model, &basis);
     if reduced.structured && reduced.constraint_coupling > CONSTRAINT_COUPLING_TOLERANCE {
-        return Err(Error::DecompositionFailed {
+        return Err(Error::Linalg(LinalgError::DecompositionFailed {
             what: format!(
                 "Craig-Bampton structure check: the constraint modes couple to the normal \
                  modes through K_r at {:.1e} of its largest entry (tolerance {:.0e})",
                 reduced.constraint_coupling, CONSTRAINT_COUPLING_TOLERANCE
             ),
-        });
+        }));
     }
     let (k_r, m_r) = (reduced.k, reduced.m);
     lap("reduced matrices", &mut timings);

@@ -1,5 +1,6 @@
 //! Actuator-to-sensor frequency responses over a band and their relative magnitude error.
 
+use crate::reduction::ReductionError;
 use faer::{Mat, c64};
 
 use crate::{Error, Result};
@@ -23,7 +24,7 @@ pub fn band_frequencies(low_hz: f64, high_hz: f64, points: usize, natural_hz: &[
 }
 
 /// The natural frequencies of `natural_hz` inside [`low_hz`, `high_hz`]: at least one, else
-/// [`Error::EmptyBand`] naming `what`.
+/// `ReductionError::EmptyBand` naming `what`.
 pub fn modes_in_band(
     natural_hz: &[f64],
     low_hz: f64,
@@ -34,11 +35,11 @@ pub fn modes_in_band(
         .filter(|&i| natural_hz[i] >= low_hz && natural_hz[i] <= high_hz)
         .collect();
     if inside.is_empty() {
-        return Err(Error::EmptyBand {
+        return Err(Error::Reduction(ReductionError::EmptyBand {
             low_hz,
             high_hz,
             what: what.into(),
-        });
+        }));
     }
     Ok(inside)
 }

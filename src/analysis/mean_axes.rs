@@ -2,6 +2,7 @@
 //! constraint modes from a static problem and normal modes from a constrained eigenproblem,
 //! both with the mean-axis conditions as Lagrange multipliers.
 
+use crate::linalg::LinalgError;
 use faer::{Mat, Side, linalg::solvers::Solve};
 
 use crate::{
@@ -86,10 +87,10 @@ pub fn evaluate_with_mean_axes(
     let residual = &a * &x - &rhs;
     let res = max_abs(residual.as_ref());
     if res.is_nan() || res >= 1e-8 * max_abs(a.as_ref()).max(1.0) {
-        return Err(Error::SingularMatrix {
+        return Err(Error::Linalg(LinalgError::SingularMatrix {
             matrix: "mean-axis static problem (Eq. 8.44)".into(),
             rcond: None,
-        });
+        }));
     }
     let constraint_solution = x.subrows(0, nr + k).to_owned();
     let constraint_modes = &q * &constraint_solution;
@@ -107,12 +108,11 @@ pub fn evaluate_with_mean_axes(
             gm[(nr + r, c)] = q_b[(r, c)];
         }
     }
-    let svd = gm
-        .transpose()
-        .svd()
-        .map_err(|_| Error::DecompositionFailed {
+    let svd = gm.transpose().svd().map_err(|_| {
+        Error::Linalg(LinalgError::DecompositionFailed {
             what: "mean-axis constraint SVD".into(),
-        })?;
+        })
+    })?;
     let s = svd.S().column_vector();
     let tol = 1e-10 * s.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
     let rank = s.iter().filter(|v| v.abs() > tol).count();
@@ -135,10 +135,11 @@ pub fn evaluate_with_mean_axes(
             normal_modes: Mat::zeros(psi.nrows(), 0),
         });
     }
-    mn.llt(Side::Lower)
-        .map_err(|_| Error::NotPositiveDefinite {
+    mn.llt(Side::Lower).map_err(|_| {
+        Error::Linalg(LinalgError::NotPositiveDefinite {
             matrix: "constrained mean-axis mass".into(),
-        })?;
+        })
+    })?;
     let e = generalized_eigen(kn.as_ref(), mn.as_ref(), "mean-axis normal")?;
     let keep: Vec<usize> = (e.zero_energy..e.values.len()).collect();
     let normal_hz = keep

@@ -2,6 +2,7 @@
 //! Cholesky of the free block) and of a reduced basis (a Ritz solution), so reduction methods
 //! can be compared in statics.
 
+use crate::linalg::LinalgError;
 use faer::{Mat, linalg::solvers::Solve};
 
 use crate::{
@@ -58,7 +59,7 @@ impl StaticLoadCase {
 }
 
 /// The full model's response: $K_{ff} u_f = f_f - K_{fh} u_h$ by a sparse Cholesky of the free
-/// block ([`Error::NonPositivePivot`] when the held DOF leave a rigid motion free).
+/// block (`LinalgError::NonPositivePivot` when the held DOF leave a rigid motion free).
 pub fn full_static_response(model: &FeModel, case: &StaticLoadCase) -> Result<Vec<f64>> {
     case.check(model)?;
     let n = model.dof_count();
@@ -86,7 +87,7 @@ pub fn full_static_response(model: &FeModel, case: &StaticLoadCase) -> Result<Ve
 
 /// The Ritz response in `basis`: $\delta = \Psi z$ of least potential energy
 /// $\tfrac12 z^T\Psi^TK\Psi z - z^T\Psi^Tf$ with the held rows $\Psi_h z = u_h$ (Lagrange
-/// multipliers). The basis must reach every held value ([`Error::SingularMatrix`] otherwise).
+/// multipliers). The basis must reach every held value (`LinalgError::SingularMatrix` otherwise).
 pub fn ritz_static_response(
     model: &FeModel,
     basis: &Basis,
@@ -121,10 +122,10 @@ pub fn ritz_static_response(
         .map(|&(dof, v)| ((0..n).map(|c| psi[(dof, c)] * z[c]).sum::<f64>() - v).abs())
         .fold(0.0f64, f64::max);
     if z.iter().any(|v| !v.is_finite()) || (scale > 1e-300 && held_error > 1e-8 * scale) {
-        return Err(Error::SingularMatrix {
+        return Err(Error::Linalg(LinalgError::SingularMatrix {
             matrix: format!("{} static saddle-point system", basis.method.id()),
             rcond: None,
-        });
+        }));
     }
     Ok((0..psi.nrows())
         .map(|d| (0..n).map(|c| psi[(d, c)] * z[c]).sum())

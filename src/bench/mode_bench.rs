@@ -6,6 +6,7 @@
 //! Timings are wall-clock medians measured in one run on this machine; they are reported,
 //! never asserted.
 
+use crate::reduction::ReductionError;
 use std::time::Instant;
 
 use serde_json::{Value, json};
@@ -75,10 +76,10 @@ pub fn bench_modes(
     let full_hz = elastic_hz(&lowest_free_free_modes(&model, COMPARED_MODES)?);
     let reference_eigen_s = start.elapsed().as_secs_f64();
     if full_hz.len() < COMPARED_MODES {
-        return Err(Error::TooManyModes {
+        return Err(Error::Reduction(ReductionError::TooManyModes {
             requested: COMPARED_MODES,
             available: full_hz.len(),
-        });
+        }));
     }
     let case = StaticLoadCase::weight(&model, &held_at_six(&model)?, 2, -STANDARD_GRAVITY);
     let start = Instant::now();

@@ -4,6 +4,7 @@
 //! Timings are wall-clock ratios measured in one run on this machine; they are reported, never
 //! asserted.
 
+use crate::dynamics::DynamicsError;
 use std::time::Instant;
 
 use serde_json::{Map, Value, json};
@@ -245,7 +246,10 @@ pub fn bench_simulation(
             if let Err(Error::Cancelled) = above {
                 return Err(Error::Cancelled);
             }
-            (below.is_ok(), matches!(above, Err(Error::Diverged { .. })))
+            (
+                below.is_ok(),
+                matches!(above, Err(Error::Dynamics(DynamicsError::Diverged { .. }))),
+            )
         } else {
             (true, false)
         };

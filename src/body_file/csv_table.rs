@@ -1,6 +1,7 @@
 //! The tables of a body file: node coordinates and wireframe edges, inline or in CSV files,
 //! each value traced to its file and line.
 
+use super::BodyFileError;
 use super::{BodyLocation, TableOrFile};
 use crate::{Error, Result};
 
@@ -43,11 +44,11 @@ pub(super) fn read_table<T: std::str::FromStr + Copy>(
                     Ok(v) => rows.push((k + 1, v)),
                     Err(_) if rows.is_empty() && k == 0 => {} // a header
                     Err(_) => {
-                        return Err(Error::MatrixMarketLine {
+                        return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
                             path: name,
                             line: k + 1,
                             reason: format!("`{line}` is not a row of numbers"),
-                        });
+                        }));
                     }
                 }
             }
@@ -67,18 +68,18 @@ pub(super) fn edges(
     let mut out = Vec::new();
     for (line, row) in rows {
         if row.len() < 2 {
-            return Err(Error::MatrixMarketLine {
+            return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
                 path: name,
                 line,
                 reason: "an edge needs two nodes (a face three or more)".into(),
-            });
+            }));
         }
         if let Some(&bad) = row.iter().find(|&&x| x == 0 || x > node_count) {
-            return Err(Error::MatrixMarketLine {
+            return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
                 path: name,
                 line,
                 reason: format!("node {bad} is out of range: the body has nodes 1 to {node_count}"),
-            });
+            }));
         }
         let cycle = row.len() > 2;
         for w in row.windows(2) {

@@ -1,5 +1,7 @@
 //! A body read from a body file: its [`FeModel`], named node sets and units, checked.
 
+use super::BodyFileError;
+use crate::linalg::LinalgError;
 use std::{
     collections::BTreeMap,
     path::{Path, PathBuf},
@@ -65,13 +67,15 @@ impl BodyLocation {
             Self::Builtin(name) => {
                 let file = relative.unwrap_or("body.toml");
                 let asset = format!("bodies/{name}/{file}");
-                let bytes = crate::assets::get(&asset).ok_or_else(|| Error::BodyFile {
-                    path: format!("builtin:{name}"),
-                    line: None,
-                    reason: format!(
-                        "no embedded file `{asset}` (built-in bodies: {})",
-                        crate::assets::builtin_bodies().join(", ")
-                    ),
+                let bytes = crate::assets::get(&asset).ok_or_else(|| {
+                    Error::BodyFile(BodyFileError::BodyFile {
+                        path: format!("builtin:{name}"),
+                        line: None,
+                        reason: format!(
+                            "no embedded file `{asset}` (built-in bodies: {})",
+                            crate::assets::builtin_bodies().join(", ")
+                        ),
+                    })
                 })?;
                 Ok((bytes.to_vec(), format!("assets/{asset}")))
             }
@@ -142,10 +146,12 @@ impl ImportedBody {
     /// Reads and checks the body file at `location`.
     pub fn load_from(location: BodyLocation) -> Result<Self> {
         let (bytes, name) = location.read(None)?;
-        let body_error = |line: Option<usize>, reason: String| Error::BodyFile {
-            path: name.clone(),
-            line,
-            reason,
+        let body_error = |line: Option<usize>, reason: String| {
+            Error::BodyFile(BodyFileError::BodyFile {
+                path: name.clone(),
+                line,
+                reason,
+            })
         };
         let text = String::from_utf8(bytes)
             .map_err(|e| body_error(None, format!("not UTF-8 text: {e}")))?;
@@ -190,13 +196,13 @@ impl ImportedBody {
         let m_file = parse_matrix_market(&m_bytes, &m_name)?;
         drop(m_bytes);
         if k_file.rows != k_file.cols {
-            return Err(Error::MatrixSizeMismatch {
+            return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
                 path: k_name,
                 what: "stiffness".into(),
                 rows: k_file.rows,
                 cols: k_file.cols,
                 expected: "a stiffness must be square".into(),
-            });
+            }));
         }
         let n = k_file.rows;
 
@@ -209,7 +215,7 @@ impl ImportedBody {
             Some((rows, _)) => rows.len(),
             None => {
                 if n % per != 0 {
-                    return Err(Error::MatrixSizeMismatch {
+                    return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
                         path: k_name,
                         what: "stiffness".into(),
                         rows: n,
@@ -217,13 +223,13 @@ impl ImportedBody {
                         expected: format!(
                             "{n} DOF do not divide into nodes of {per} DOF (`dofs` in {name})"
                         ),
-                    });
+                    }));
                 }
                 n / per
             }
         };
         if node_count * per != n {
-            return Err(Error::MatrixSizeMismatch {
+            return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
                 path: k_name,
                 what: "stiffness".into(),
                 rows: n,
@@ -232,7 +238,7 @@ impl ImportedBody {
                     "{node_count} nodes with {per} DOF each make {} DOF",
                     node_count * per
                 ),
-            });
+            }));
         }
         let nodes = match coordinates {
             None => vec![[0.0; 3]; node_count],
@@ -243,7 +249,7 @@ impl ImportedBody {
                         2 | 3 => &row,
                         4 if row[0] == (k + 1) as f64 => &row[1..],
                         4 => {
-                            return Err(Error::MatrixMarketLine {
+                            return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
                                 path: table_name,
                                 line,
                                 reason: format!(
@@ -252,17 +258,17 @@ impl ImportedBody {
                                     k + 1,
                                     row[0]
                                 ),
-                            });
+                            }));
                         }
                         c => {
-                            return Err(Error::MatrixMarketLine {
+                            return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
                                 path: table_name,
                                 line,
                                 reason: format!(
                                     "a node needs 2 or 3 coordinates (optionally after its \
                                      number), got {c} values"
                                 ),
-                            });
+                            }));
                         }
                     };
                     out.push([xyz[0], xyz[1], xyz.get(2).copied().unwrap_or(0.0)]);
@@ -310,12 +316,12 @@ impl ImportedBody {
         }
         for (set, members) in &spec.node_sets {
             if let Some(&node) = members.iter().find(|&&x| x == 0 || x > node_count) {
-                return Err(Error::NodeSetOutOfRange {
+                return Err(Error::BodyFile(BodyFileError::NodeSetOutOfRange {
                     path: name.clone(),
                     set: set.clone(),
                     node,
                     count: node_count,
-                });
+                }));
             }
         }
         Ok(Self {
@@ -341,10 +347,8 @@ impl ImportedBody {
                     nodes.push(node);
                 }
                 Err(_) => {
-                    let set = self
-                        .node_sets
-                        .get(item)
-                        .ok_or_else(|| Error::UnknownNodeSet {
+                    let set = self.node_sets.get(item).ok_or_else(|| {
+                        Error::BodyFile(BodyFileError::UnknownNodeSet {
                             name: item.into(),
                             known: if self.node_sets.is_empty() {
                                 "no node sets".into()
@@ -355,7 +359,8 @@ impl ImportedBody {
                                     .collect::<Vec<_>>()
                                     .join(", ")
                             },
-                        })?;
+                        })
+                    })?;
                     for &n in set {
                         if !nodes.contains(&n) {
                             nodes.push(n);
@@ -367,14 +372,14 @@ impl ImportedBody {
         Ok(nodes)
     }
 
-    /// Fails with [`Error::NoCoordinates`] when the body cannot be drawn.
+    /// Fails with `BodyFileError::NoCoordinates` when the body cannot be drawn.
     pub fn require_coordinates(&self) -> Result<()> {
         if self.has_coordinates {
             Ok(())
         } else {
-            Err(Error::NoCoordinates {
+            Err(Error::BodyFile(BodyFileError::NoCoordinates {
                 body: self.model.name.clone(),
-            })
+            }))
         }
     }
 }
@@ -413,14 +418,14 @@ fn symmetric_matrix(
         }
     }
     if scale > 0.0 && worst.0 > SYMMETRY_TOLERANCE * scale {
-        return Err(Error::NotSymmetric {
+        return Err(Error::BodyFile(BodyFileError::NotSymmetric {
             path: name.into(),
             what: what.into(),
             row: worst.1 + 1,
             col: worst.2 + 1,
             asymmetry: worst.0 / scale,
             tolerance: SYMMETRY_TOLERANCE,
-        });
+        }));
     }
     for &(i, j, v) in &file.entries {
         let (i, j) = (to_node_major(i), to_node_major(j));
@@ -447,13 +452,13 @@ fn mass_matrix(
         return Ok(MassMatrix::Lumped(d));
     }
     if file.rows != n || file.cols != n {
-        return Err(Error::MatrixSizeMismatch {
+        return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
             path: name.into(),
             what: "mass".into(),
             rows: file.rows,
             cols: file.cols,
             expected: format!("the stiffness is {n} × {n} (or give an {n} × 1 lumped vector)"),
-        });
+        }));
     }
     if file.entries.iter().all(|&(i, j, _)| i == j) {
         let mut d = vec![0.0; n];
@@ -472,11 +477,13 @@ fn mass_matrix(
 
 /// M must be positive definite: every lumped entry positive, a consistent M factorisable.
 fn check_mass(model: &FeModel, name: &str) -> Result<()> {
-    let fail = |dof: usize, reason: String| Error::MassNotPositive {
-        path: name.into(),
-        dof: dof + 1,
-        label: model.dof_label(dof),
-        reason,
+    let fail = |dof: usize, reason: String| {
+        Error::BodyFile(BodyFileError::MassNotPositive {
+            path: name.into(),
+            dof: dof + 1,
+            label: model.dof_label(dof),
+            reason,
+        })
     };
     match &model.m {
         MassMatrix::Lumped(d) => {
@@ -494,7 +501,7 @@ fn check_mass(model: &FeModel, name: &str) -> Result<()> {
                 return Err(fail(dof, format!("its diagonal entry is {v:e}")));
             }
             let symbolic = SymbolicFactor::analyse(m.as_faer())?;
-            if let Err(Error::NonPositivePivot { index, .. }) =
+            if let Err(Error::Linalg(LinalgError::NonPositivePivot { index, .. })) =
                 SymmetricFactor::sparse(m.as_faer(), &symbolic, "mass")
             {
                 return Err(fail(

@@ -9,6 +9,7 @@
 //! `integer` and `double` fields, duplicate coordinate entries summed) and strict where a
 //! mistake would change the body: every error names the file and the line.
 
+use super::BodyFileError;
 use std::{
     fs,
     io::{BufRead, BufReader, Read, Write},
@@ -75,10 +76,12 @@ pub fn parse_matrix_market(bytes: &[u8], name: &str) -> Result<MatrixMarket> {
         let mut text = Vec::new();
         flate2::read::MultiGzDecoder::new(bytes)
             .read_to_end(&mut text)
-            .map_err(|e| Error::MatrixMarketLine {
-                path: name.into(),
-                line: 0,
-                reason: format!("the gzip stream is damaged: {e}"),
+            .map_err(|e| {
+                Error::BodyFile(BodyFileError::MatrixMarketLine {
+                    path: name.into(),
+                    line: 0,
+                    reason: format!("the gzip stream is damaged: {e}"),
+                })
             })?;
         parse_text(BufReader::new(text.as_slice()), name)
     } else {
@@ -87,11 +90,11 @@ pub fn parse_matrix_market(bytes: &[u8], name: &str) -> Result<MatrixMarket> {
 }
 
 fn line_error(name: &str, line: usize, reason: impl Into<String>) -> Error {
-    Error::MatrixMarketLine {
+    Error::BodyFile(BodyFileError::MatrixMarketLine {
         path: name.into(),
         line,
         reason: reason.into(),
-    }
+    })
 }
 
 /// A real number; Fortran writers' `1.0D+03` is accepted.
@@ -121,21 +124,23 @@ fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
         Some((no, Ok(l))) => (no, l),
         Some((no, Err(e))) => return Err(line_error(name, no, format!("unreadable: {e}"))),
         None => {
-            return Err(Error::MatrixMarketHeader {
+            return Err(Error::BodyFile(BodyFileError::MatrixMarketHeader {
                 path: name.into(),
                 line: 1,
                 found: "an empty file".into(),
-            });
+            }));
         }
     };
     let words: Vec<String> = header
         .split_whitespace()
         .map(|w| w.to_ascii_lowercase())
         .collect();
-    let bad_header = |what: &str| Error::MatrixMarketHeader {
-        path: name.into(),
-        line: header_no,
-        found: format!("{what} in `{}`", header.trim()),
+    let bad_header = |what: &str| {
+        Error::BodyFile(BodyFileError::MatrixMarketHeader {
+            path: name.into(),
+            line: header_no,
+            found: format!("{what} in `{}`", header.trim()),
+        })
     };
     if words.len() != 5 || words[0] != "%%matrixmarket" || words[1] != "matrix" {
         return Err(bad_header(
@@ -213,11 +218,11 @@ fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
         if v.is_finite() {
             Ok(v)
         } else {
-            Err(Error::NonFiniteEntry {
+            Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
                 path: name.into(),
                 line: no,
                 value: token.into(),
-            })
+            }))
         }
     };
     match format {
@@ -248,14 +253,14 @@ fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
                 };
                 let (i, j) = (index(t[0])?, index(t[1])?);
                 if i == 0 || j == 0 || i > rows || j > cols {
-                    return Err(Error::MatrixIndexOutOfRange {
+                    return Err(Error::BodyFile(BodyFileError::MatrixIndexOutOfRange {
                         path: name.into(),
                         line: no,
                         row: i,
                         col: j,
                         rows,
                         cols,
-                    });
+                    }));
                 }
                 let v = parse_value(t[2]).ok_or_else(|| {
                     line_error(name, no, format!("value `{}` is not a number", t[2]))

@@ -1,5 +1,6 @@
 //! Rigid and deformable bodies with their mass matrices and generalised forces.
 
+use crate::linalg::LinalgError;
 use faer::Mat;
 use nalgebra::{DMatrix, DVector, Dyn, Matrix3, Matrix3xX, Storage, Vector3};
 
@@ -102,9 +103,11 @@ impl ModalMassInverse {
     pub fn new(m_zz: &DMatrix<f64>, body: &str) -> Result<Self> {
         let n = m_zz.nrows();
         let off_diagonal = (0..n).any(|i| (0..n).any(|j| i != j && m_zz[(i, j)] != 0.0));
-        let singular = |rcond: Option<f64>| Error::SingularMatrix {
-            matrix: format!("modal mass ΨᵀMΨ of {body}"),
-            rcond,
+        let singular = |rcond: Option<f64>| {
+            Error::Linalg(LinalgError::SingularMatrix {
+                matrix: format!("modal mass ΨᵀMΨ of {body}"),
+                rcond,
+            })
         };
         if !off_diagonal {
             let d = m_zz.diagonal();

@@ -1,6 +1,8 @@
 //! The explicit Dormand–Prince 5(4) scheme with adaptive steps (or fixed ones, to verify a
 //! critical step), and where its stability region ends.
 
+use super::DynamicsError;
+use crate::linalg::LinalgError;
 use std::time::Instant;
 
 use nalgebra::DVector;
@@ -167,16 +169,16 @@ pub(super) fn integrate(
     let mut k1 = derivative(sys, t, &y)?;
     while t < p.end_time - 1e-12 {
         if !y.iter().all(|v| v.abs() <= p.divergence_bound) {
-            return Err(Error::Diverged {
+            return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t,
                 reason: format!("the state grew beyond {:e}", p.divergence_bound),
-            });
+            }));
         }
         if steps + rejected > p.max_steps {
-            return Err(Error::Diverged {
+            return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t,
                 reason: format!("more than {} steps", p.max_steps),
-            });
+            }));
         }
         let target = next_output.min(p.end_time);
         if let Some(dt) = p.fixed_step {
@@ -200,13 +202,15 @@ pub(super) fn integrate(
                 Ok(d) => k.push(d),
                 // Without error control a blown-up step reaches states whose mass matrix has
                 // lost definiteness in floating point: that is the divergence.
-                Err(Error::SingularMatrix { matrix, .. }) if p.fixed_step.is_some() => {
-                    return Err(Error::Diverged {
+                Err(Error::Linalg(LinalgError::SingularMatrix { matrix, .. }))
+                    if p.fixed_step.is_some() =>
+                {
+                    return Err(Error::Dynamics(DynamicsError::Diverged {
                         time: t,
                         reason: format!(
                             "with the fixed step {h:.4e} s the {matrix} became singular"
                         ),
-                    });
+                    }));
                 }
                 Err(e) => return Err(e),
             }
@@ -233,18 +237,18 @@ pub(super) fn integrate(
                 p.divergence_bound
             );
             if p.fixed_step.is_some() {
-                return Err(Error::Diverged {
+                return Err(Error::Dynamics(DynamicsError::Diverged {
                     time: t,
                     reason: format!("with the fixed step {h:.4e} s {what}"),
-                });
+                }));
             }
             h *= 0.2;
             rejected += 1;
             if h < p.min_step {
-                return Err(Error::Diverged {
+                return Err(Error::Dynamics(DynamicsError::Diverged {
                     time: t,
                     reason: what,
-                });
+                }));
             }
             continue;
         };
@@ -287,10 +291,10 @@ pub(super) fn integrate(
         h *= factor.clamp(0.2, 5.0);
         h = h.min(p.output_interval);
         if p.fixed_step.is_none() && h < p.min_step {
-            return Err(Error::Diverged {
+            return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t,
                 reason: format!("step size fell below {:e} s", p.min_step),
-            });
+            }));
         }
     }
     Ok(Simulation {

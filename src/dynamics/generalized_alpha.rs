@@ -11,7 +11,8 @@
 //! with $q_{n+1} = q_n \oplus \Delta_n$ (translations and modal coordinates added, each body
 //! turned by the body-axis rotation vector, so Euler parameters stay unit). For a spectral
 //! radius $\rho_\infty \in [0, 1]$ at infinite frequency,
-//! $\alpha_m = \frac{2\rho_\infty-1}{\rho_\infty+1}$, $\alpha_f = \frac{\rho_\infty}{\rho_\infty+1}$,
+//! $\alpha_m = \frac{2\rho_\infty-1}{\rho_\infty+1}$, $\alpha_f =
+//! \frac{\rho_\infty}{\rho_\infty+1}$,
 //! $\gamma = \tfrac12-\alpha_m+\alpha_f$, $\beta = \tfrac14(\gamma+\tfrac12)^2$: second order,
 //! unconditionally stable for linear systems; $\rho_\infty = 1$ is the trapezoidal rule, which
 //! keeps the energy of an undamped linear system.
@@ -23,6 +24,7 @@
 //! rebuilt only when the iterations stall; positions and velocities are projected onto the
 //! constraints after every step as with the explicit scheme.
 
+use super::DynamicsError;
 use std::time::Instant;
 
 use faer::{
@@ -189,10 +191,10 @@ pub(crate) fn integrate(
     let mut next_output = p.output_interval;
     while t < p.end_time - 1e-12 {
         if steps > p.max_steps {
-            return Err(Error::Diverged {
+            return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t,
                 reason: format!("more than {} steps", p.max_steps),
-            });
+            }));
         }
         let target = next_output.min(p.end_time);
         let h = step.min(target - t);
@@ -214,11 +216,11 @@ pub(crate) fn integrate(
                     fresh = true;
                 }
                 Err(residual) => {
-                    return Err(Error::NewtonFailed {
+                    return Err(Error::Dynamics(DynamicsError::NewtonFailed {
                         time: t1,
                         iterations: MAX_NEWTON_ITERATIONS,
                         residual,
-                    });
+                    }));
                 }
             }
         };
@@ -229,10 +231,10 @@ pub(crate) fn integrate(
         } = end;
         if !(s1.q.iter().chain(s1.v.iter())).all(|v| v.is_finite() && v.abs() <= p.divergence_bound)
         {
-            return Err(Error::Diverged {
+            return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t1,
                 reason: format!("the state grew beyond {:e}", p.divergence_bound),
-            });
+            }));
         }
         sys.project(t1, &mut s1)?;
         t = t1;

@@ -13,7 +13,7 @@ use crate::{Progress, Result};
 ///
 /// The initial state is first projected onto the constraints. A non-finite state, one with a
 /// component beyond `divergence_bound`, a step below `min_step` or more than `max_steps`
-/// steps is [`Error::Diverged`] with the time it happened, never NaN output. With
+/// steps is `DynamicsError::Diverged` with the time it happened, never NaN output. With
 /// `fixed_step` every step has that length (shortened only to land on output times) and is
 /// accepted without error control. `progress` receives the time after each output and stops the
 /// integration with [`Error::Cancelled`] once cancelled.

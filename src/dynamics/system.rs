@@ -1,5 +1,6 @@
 //! The assembled multibody system: $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
 
+use crate::linalg::LinalgError;
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector4};
 
 use super::{
@@ -362,10 +363,10 @@ impl System {
         if vdot.iter().all(|v| v.is_finite()) {
             Ok(vdot)
         } else {
-            Err(Error::SingularMatrix {
+            Err(Error::Linalg(LinalgError::SingularMatrix {
                 matrix: "system mass and constraints".into(),
                 rcond: None,
-            })
+            }))
         }
     }
 
@@ -381,9 +382,11 @@ impl System {
         let rho = scale / (cn * cn);
         let mt = &m + rows.c.transpose() * &rows.c * rho;
         let rhs = &q + rows.c.transpose() * &rows.gamma * rho;
-        let chol = mt.cholesky().ok_or_else(|| Error::SingularMatrix {
-            matrix: "regularised system mass".into(),
-            rcond: None,
+        let chol = mt.cholesky().ok_or_else(|| {
+            Error::Linalg(LinalgError::SingularMatrix {
+                matrix: "regularised system mass".into(),
+                rcond: None,
+            })
         })?;
         let v0 = chol.solve(&rhs);
         if rows.c.nrows() == 0 {

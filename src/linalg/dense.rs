@@ -1,5 +1,6 @@
 //! Small dense helpers: index selection, norms and comparisons.
 
+use super::LinalgError;
 use faer::{Mat, MatRef};
 
 /// The `n`×`n` identity.
@@ -72,8 +73,10 @@ pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> crate::Result
         (qb, qa)
     };
     let c = qa.transpose() * &qb;
-    let svd_err = |_| crate::Error::DecompositionFailed {
-        what: "principal-angle SVD".into(),
+    let svd_err = |_| {
+        crate::Error::Linalg(LinalgError::DecompositionFailed {
+            what: "principal-angle SVD".into(),
+        })
     };
     let cosines = c.singular_values().map_err(svd_err)?;
     let mut from_cos: Vec<f64> = cosines.iter().map(|&c| c.clamp(-1.0, 1.0).acos()).collect();
@@ -102,11 +105,11 @@ pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> crate::Result
 }
 
 fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::Result<Mat<f64>> {
-    let svd = a
-        .thin_svd()
-        .map_err(|_| crate::Error::DecompositionFailed {
+    let svd = a.thin_svd().map_err(|_| {
+        crate::Error::Linalg(LinalgError::DecompositionFailed {
             what: "orthonormalisation SVD".into(),
-        })?;
+        })
+    })?;
     let s = svd.S().column_vector();
     let smax = if s.nrows() > 0 { s[0] } else { 0.0 };
     let tol = smax * 1e-10 * (a.nrows().max(a.ncols()) as f64);
@@ -117,11 +120,11 @@ fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::Result<Mat<f64>> {
 /// The numerical rank of `a`: its singular values above `relative` times the largest (0 for
 /// an empty or zero matrix).
 pub fn numerical_rank(a: MatRef<'_, f64>, relative: f64) -> crate::Result<usize> {
-    let s = a
-        .singular_values()
-        .map_err(|_| crate::Error::DecompositionFailed {
+    let s = a.singular_values().map_err(|_| {
+        crate::Error::Linalg(LinalgError::DecompositionFailed {
             what: "rank singular values".into(),
-        })?;
+        })
+    })?;
     let largest = s.first().copied().unwrap_or(0.0);
     Ok(s.iter()
         .filter(|&&v| largest > 0.0 && v > relative * largest)
@@ -135,8 +138,10 @@ pub fn null_space(a: MatRef<'_, f64>, tolerance: f64) -> crate::Result<Mat<f64>>
     if a.nrows() == 0 {
         return Ok(identity(r));
     }
-    let svd = a.svd().map_err(|_| crate::Error::DecompositionFailed {
-        what: "null-space SVD".into(),
+    let svd = a.svd().map_err(|_| {
+        crate::Error::Linalg(LinalgError::DecompositionFailed {
+            what: "null-space SVD".into(),
+        })
     })?;
     let s = svd.S().column_vector();
     let rank = (0..s.nrows()).filter(|&i| s[i] > tolerance).count();

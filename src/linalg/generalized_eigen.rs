@@ -16,7 +16,7 @@
 //!
 //! and the vectors by $\max|\Psi^TM\Psi - I| \le 10^{-8}$; a result that fails falls back to
 //! the next kernel, and when none passes the solve fails with
-//! [`Error::EigenCheckFailed`](crate::Error::EigenCheckFailed).
+//! `LinalgError::EigenCheckFailed`.
 //!
 //! Pairs with $|\lambda| \le 10^{-12}\lambda_{max}$ count as zero-energy (rigid-body motions or
 //! mechanisms): a dense solve's rigid eigenvalues are round-off of $\varepsilon\lambda_{max}$,
@@ -24,6 +24,7 @@
 //! change when a coordinate is scaled (a reduced model's mass-normalised modal coordinates
 //! beside its constraint modes).
 
+use super::LinalgError;
 use faer::{Mat, MatRef, Side};
 
 use super::{SymmetricEigenKernel, symmetric_eigen::symmetric_eigen_with};
@@ -133,11 +134,11 @@ pub fn generalized_eigen(
         for j in 0..n {
             for i in 0..n {
                 if !a[(i, j)].is_finite() {
-                    return Err(Error::NotFinite {
+                    return Err(Error::Linalg(LinalgError::NotFinite {
                         what: format!("{what} {name} matrix"),
                         row: i,
                         col: j,
-                    });
+                    }));
                 }
             }
         }
@@ -147,10 +148,10 @@ pub fn generalized_eigen(
     for (i, di) in d.iter_mut().enumerate() {
         let mii = m[(i, i)];
         if mii <= 0.0 {
-            return Err(Error::NonPositivePivot {
+            return Err(Error::Linalg(LinalgError::NonPositivePivot {
                 matrix: format!("{what} mass"),
                 index: i,
-            });
+            }));
         }
         *di = 1.0 / mii.sqrt();
     }
@@ -161,11 +162,11 @@ pub fn generalized_eigen(
     let s = if s > 0.0 { s } else { 1.0 };
     let k_tilde = Mat::from_fn(n, n, |i, j| kb[(i, j)] / s);
     let m_tilde = Mat::from_fn(n, n, |i, j| 0.5 * (m[(i, j)] + m[(j, i)]) * d[i] * d[j]);
-    let llt = m_tilde
-        .llt(Side::Lower)
-        .map_err(|_| Error::NotPositiveDefinite {
+    let llt = m_tilde.llt(Side::Lower).map_err(|_| {
+        Error::Linalg(LinalgError::NotPositiveDefinite {
             matrix: format!("{what} mass"),
-        })?;
+        })
+    })?;
     let l = llt.L();
     // C = L^{-1} K̃ L^{-T}: two triangular solves.
     let mut x = k_tilde;
@@ -179,7 +180,7 @@ pub fn generalized_eigen(
     for kernel in [SymmetricEigenKernel::Faer, SymmetricEigenKernel::Nalgebra] {
         let standard = match symmetric_eigen_with(c.as_ref(), what, &[kernel]) {
             Ok(e) => e,
-            Err(Error::EigenCheckFailed { residual, .. }) => {
+            Err(Error::Linalg(LinalgError::EigenCheckFailed { residual, .. })) => {
                 worst = worst.min(residual);
                 continue;
             }
@@ -213,11 +214,11 @@ pub fn generalized_eigen(
                 * PENCIL_BACKWARD_ERROR,
         );
     }
-    Err(Error::EigenCheckFailed {
+    Err(Error::Linalg(LinalgError::EigenCheckFailed {
         what: what.to_string(),
         residual: worst,
         tolerance: PENCIL_BACKWARD_ERROR,
-    })
+    }))
 }
 
 /// $\|A\|_1$, the largest absolute column sum.

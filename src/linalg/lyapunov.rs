@@ -1,5 +1,6 @@
 //! The continuous Lyapunov equation $AS + SA^T = -Q$.
 
+use super::LinalgError;
 use faer::{Mat, MatRef, c64, linalg::solvers::DenseSolveCore};
 
 use crate::{Error, Result};
@@ -12,11 +13,13 @@ const RESIDUAL_TOLERANCE: f64 = 1e-8;
 /// With $A = V\Lambda V^{-1}$ the equation decouples: $X = V^{-1} S V^{-H}$ has entries
 /// $X_{ij} = -\tilde Q_{ij} / (\lambda_i + \bar\lambda_j)$ with $\tilde Q = V^{-1} Q V^{-H}$.
 /// The residual is checked, so a badly conditioned eigenvector matrix surfaces as
-/// [`Error::LyapunovInaccurate`] instead of a wrong answer.
+/// `LinalgError::LyapunovInaccurate` instead of a wrong answer.
 pub fn solve_lyapunov(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>> {
     let n = a.nrows();
-    let evd = a.eigen().map_err(|_| Error::DecompositionFailed {
-        what: "Lyapunov eigen".into(),
+    let evd = a.eigen().map_err(|_| {
+        Error::Linalg(LinalgError::DecompositionFailed {
+            what: "Lyapunov eigen".into(),
+        })
     })?;
     let v = evd.U().to_owned();
     let lambda: Vec<c64> = (0..n).map(|i| evd.S()[i]).collect();
@@ -46,7 +49,9 @@ pub fn solve_lyapunov(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>
     let scale = q.norm_l2().max(f64::MIN_POSITIVE);
     let rel = residual.norm_l2() / scale;
     if !rel.is_finite() || rel > RESIDUAL_TOLERANCE {
-        return Err(Error::LyapunovInaccurate { residual: rel });
+        return Err(Error::Linalg(LinalgError::LyapunovInaccurate {
+            residual: rel,
+        }));
     }
     Ok(s)
 }
@@ -59,7 +64,7 @@ pub fn solve_lyapunov(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>
 /// \mathrm{vec} X_{ij} = -\mathrm{vec} Q_{ij}$, which is regular whenever no eigenvalue of
 /// $A_i$ is the negative of one of $A_j$ (every stable $A$), defective blocks (critically
 /// damped modes) included, where an eigenvector method loses its accuracy. The residual is
-/// checked ([`Error::LyapunovInaccurate`]). For the observability equation
+/// checked (`LinalgError::LyapunovInaccurate`). For the observability equation
 /// $A^TY + YA + C^TC = 0$ pass the transposed blocks.
 pub fn solve_block_diagonal_lyapunov(
     blocks: &[[[f64; 2]; 2]],
@@ -86,9 +91,12 @@ pub fn solve_block_diagonal_lyapunov(
                 }
             }
             let rhs = nalgebra::Vector4::from_fn(|row, _| -q[(2 * i + row % 2, 2 * j + row / 2)]);
-            let sol = lhs.lu().solve(&rhs).ok_or(Error::LyapunovInaccurate {
-                residual: f64::INFINITY,
-            })?;
+            let sol =
+                lhs.lu()
+                    .solve(&rhs)
+                    .ok_or(Error::Linalg(LinalgError::LyapunovInaccurate {
+                        residual: f64::INFINITY,
+                    }))?;
             for row in 0..4 {
                 let (r, c) = (row % 2, row / 2);
                 x[(2 * i + r, 2 * j + c)] = sol[row];
@@ -107,7 +115,9 @@ pub fn solve_block_diagonal_lyapunov(
     let scale = q.norm_l2().max(f64::MIN_POSITIVE);
     let rel = residual.norm_l2() / scale;
     if !rel.is_finite() || rel > RESIDUAL_TOLERANCE {
-        return Err(Error::LyapunovInaccurate { residual: rel });
+        return Err(Error::Linalg(LinalgError::LyapunovInaccurate {
+            residual: rel,
+        }));
     }
     Ok(x)
 }

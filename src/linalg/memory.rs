@@ -1,5 +1,6 @@
 //! Memory: what a sparse reduction will need, what the machine has, what the process used.
 
+use super::LinalgError;
 /// Bytes a sparse Craig–Bampton reduction of a trilinear-brick solid with `dofs` DOF needs,
 /// estimated before anything is allocated: $K$ and $K_{ii}$ (~81 entries per row, 16 bytes
 /// each), the Cholesky factor and the Lanczos basis (three n × 64 blocks).
@@ -18,17 +19,17 @@ pub fn estimated_reduction_bytes(dofs: usize) -> u64 {
 
 /// Refuses, before anything is allocated, a `dofs`-DOF sparse reduction whose
 /// [estimate](estimated_reduction_bytes) exceeds the memory the machine has free
-/// ([`Error::MeshTooLarge`](crate::Error::MeshTooLarge)); returns the estimate otherwise.
+/// (`LinalgError::MeshTooLarge`); returns the estimate otherwise.
 pub fn check_reduction_memory(dofs: usize) -> crate::Result<u64> {
     let needed = estimated_reduction_bytes(dofs);
     if let Some(available) = available_bytes()
         && needed > available
     {
-        return Err(crate::Error::MeshTooLarge {
+        return Err(crate::Error::Linalg(LinalgError::MeshTooLarge {
             dofs,
             estimated_gb: needed as f64 / 1e9,
             available_gb: available as f64 / 1e9,
-        });
+        }));
     }
     Ok(needed)
 }

@@ -11,6 +11,8 @@
 //! block, whose span holds every Ritz residual (thick restart). Every returned pair is checked
 //! by its residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
 
+use super::LinalgError;
+use crate::reduction::ReductionError;
 use faer::{Mat, MatRef};
 
 use super::{
@@ -75,7 +77,7 @@ pub struct PartialEigenStatistics {
 /// ($\sigma = 0$ for a positive definite $K$), given `factor` $= \mathrm{chol}(K - \sigma M)$.
 ///
 /// Eigenvalues are ascending in (rad/s)², vectors mass-normalised with the sign rule of
-/// [`fix_sign`]. Fails with [`Error::EigenNotConverged`] (how many pairs converged, at what
+/// [`fix_sign`]. Fails with `LinalgError::EigenNotConverged` (how many pairs converged, at what
 /// residual) when the restarts run out or a returned pair's residual is too large.
 ///
 /// `null_space`, when given, spans known eigenvectors of eigenvalue 0 (a free body's rigid
@@ -110,12 +112,12 @@ pub fn lowest_modes(
         ));
     }
     if max_basis + b > n {
-        return Err(Error::InvalidModeSelection {
+        return Err(Error::Reduction(ReductionError::InvalidModeSelection {
             reason: format!(
                 "{wanted} modes of a {n}-DOF problem: too many for the partial eigensolver, \
                  use the dense path"
             ),
-        });
+        }));
     }
     let mut stats = PartialEigenStatistics {
         basis_size: max_basis,
@@ -230,11 +232,11 @@ pub fn lowest_modes(
                 break;
             }
             if ritz_tolerance <= 1e-14 || stats.restarts == params.max_restarts {
-                return Err(Error::EigenNotConverged {
+                return Err(Error::Linalg(LinalgError::EigenNotConverged {
                     converged: checked.converged,
                     wanted,
                     residual: checked.max_residual,
-                });
+                }));
             }
             ritz_tolerance *= 0.1;
         }
@@ -242,11 +244,11 @@ pub fn lowest_modes(
             // The error names the residual users know, ‖Kφ − λMφ‖/‖Kφ‖ of the pairs as they
             // stand, and how many of them meet the tolerance.
             let checked = checked_pairs(k, m, sigma, wanted, known, &theta, &ritz, params)?;
-            return Err(Error::EigenNotConverged {
+            return Err(Error::Linalg(LinalgError::EigenNotConverged {
                 converged: checked.converged,
                 wanted,
                 residual: checked.max_residual,
-            });
+            }));
         }
         stats.restarts += 1;
         // Thick restart: keep the best Ritz vectors and their images, then the pending block.
@@ -419,11 +421,11 @@ fn checked_pairs(
         residuals.push(if rel.is_nan() { f64::INFINITY } else { rel });
     }
     if max_residual.is_nan() {
-        return Err(Error::EigenNotConverged {
+        return Err(Error::Linalg(LinalgError::EigenNotConverged {
             converged,
             wanted,
             residual: max_residual,
-        });
+        }));
     }
     Ok(CheckedPairs {
         eigen: GeneralizedEigen {

@@ -11,8 +11,9 @@
 //! 3. checks every pair's residual $\|Cu_j - \theta_j u_j\|_2$ against $\|C\|_1$ and the
 //!    orthonormality $\max|U^TU - I|$, both against $c\,n\,\varepsilon$,
 //! 4. falls back to nalgebra's implicit QL (`SymmetricEigen`) when the check fails,
-//! 5. and returns [`Error::EigenCheckFailed`] with the worst residual when neither passes.
+//! 5. and returns `LinalgError::EigenCheckFailed` with the worst residual when neither passes.
 
+use super::LinalgError;
 use faer::{Mat, MatRef, Side};
 
 use crate::{Error, Result};
@@ -80,11 +81,11 @@ pub fn symmetric_eigen_with(
         for i in 0..n {
             let v = c[(i, j)];
             if !v.is_finite() {
-                return Err(Error::NotFinite {
+                return Err(Error::Linalg(LinalgError::NotFinite {
                     what: format!("{what} matrix"),
                     row: i,
                     col: j,
-                });
+                }));
             }
             scale = scale.max(v.abs());
         }
@@ -117,11 +118,11 @@ pub fn symmetric_eigen_with(
         }
         worst = worst.min(residual.max(orthonormality));
     }
-    Err(Error::EigenCheckFailed {
+    Err(Error::Linalg(LinalgError::EigenCheckFailed {
         what: what.to_string(),
         residual: worst,
         tolerance,
-    })
+    }))
 }
 
 /// One kernel's ascending eigenpairs of the (scaled, symmetric) `c`; `None` when it failed.

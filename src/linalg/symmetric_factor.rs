@@ -1,8 +1,10 @@
 //! Cholesky factorisation $A = LL^T$ of a symmetric positive definite matrix on either path:
 //! faer's dense LLᵀ for small matrices, faer's sparse (simplicial or supernodal) LLᵀ with an
-//! AMD or a caller's (nested-dissection) fill-reducing ordering for large ones. The sparse symbolic analysis is kept apart from
+//! AMD or a caller's (nested-dissection) fill-reducing ordering for large ones. The sparse
+//! symbolic analysis is kept apart from
 //! the numeric factorisation so a shifted matrix with the same pattern reuses it.
 
+use super::LinalgError;
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -55,8 +57,10 @@ impl SymbolicFactor {
         };
         let inner =
             factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ordering, Default::default())
-                .map_err(|_| Error::OutOfMemory {
-                    what: "symbolic Cholesky analysis".into(),
+                .map_err(|_| {
+                    Error::Linalg(LinalgError::OutOfMemory {
+                        what: "symbolic Cholesky analysis".into(),
+                    })
                 })?;
         Ok(Self {
             inner: Arc::new(inner),
@@ -97,10 +101,10 @@ impl SymmetricFactor {
     pub fn dense(a: MatRef<'_, f64>, what: &str) -> Result<Self> {
         let llt = a.llt(Side::Lower).map_err(|e| {
             let LltError::NonPositivePivot { index } = e;
-            Error::NonPositivePivot {
+            Error::Linalg(LinalgError::NonPositivePivot {
                 matrix: what.into(),
                 index,
-            }
+            })
         })?;
         Ok(Self {
             kind: Kind::Dense(llt),
@@ -118,17 +122,19 @@ impl SymmetricFactor {
     ) -> Result<Self> {
         let sym = &symbolic.inner;
         let mut values = Vec::new();
-        values
-            .try_reserve_exact(sym.len_val())
-            .map_err(|_| Error::OutOfMemory {
+        values.try_reserve_exact(sym.len_val()).map_err(|_| {
+            Error::Linalg(LinalgError::OutOfMemory {
                 what: format!("Cholesky factor of {what} ({} entries)", sym.len_val()),
-            })?;
+            })
+        })?;
         values.resize(sym.len_val(), 0.0);
         let par = faer::get_global_parallelism();
         let mut mem =
             MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
-                .map_err(|_| Error::OutOfMemory {
-                what: format!("Cholesky workspace of {what}"),
+                .map_err(|_| {
+                Error::Linalg(LinalgError::OutOfMemory {
+                    what: format!("Cholesky workspace of {what}"),
+                })
             })?;
         let result = sym.factorize_numeric_llt(
             &mut values,
@@ -150,10 +156,10 @@ impl SymmetricFactor {
                 Some(p) => p.arrays().0[index],
                 None => index,
             };
-            return Err(Error::NonPositivePivot {
+            return Err(Error::Linalg(LinalgError::NonPositivePivot {
                 matrix: what.into(),
                 index: original,
-            });
+            }));
         }
         Ok(Self {
             kind: Kind::Sparse {

@@ -4,6 +4,8 @@
 //! 4.17), an explicit step above the critical one (§7.2), Guyan (b)'s broken symmetry
 //! (§6.2.1) and modal truncation under boundary motion (§6.3, §7.1).
 
+use crate::dynamics::DynamicsError;
+use crate::reduction::ReductionError;
 use std::time::Instant;
 
 use faer::Mat;
@@ -51,7 +53,7 @@ pub const GUYAN_B: [usize; 3] = [1, 2, 5];
 pub struct BoundaryCase {
     /// The boundary nodes.
     pub nodes: &'static [usize],
-    /// The basis, or the error it gave (expected: [`Error::SingularInterior`]).
+    /// The basis, or the error it gave (expected: `ReductionError::SingularInterior`).
     pub outcome: Result<Basis>,
 }
 
@@ -71,7 +73,7 @@ pub fn too_few_boundary(model: &FeModel) -> Vec<BoundaryCase> {
 #[derive(Debug)]
 pub struct EitelbergFeedback {
     /// Without the feedback: the frequencies, or the error (expected:
-    /// [`Error::UnstableSystem`]).
+    /// `ReductionError::UnstableSystem`).
     pub without: Result<Vec<f64>>,
     /// With it: the frequencies, Hz.
     pub with_hz: Vec<f64>,
@@ -175,9 +177,9 @@ pub fn guyan_mean_axes(model: &FeModel) -> Result<GuyanMeanAxes> {
     for (c, col) in g.columns.iter().enumerate() {
         let expected = model.dofs_of_nodes(&[masters[c / 3]])?[c % 3];
         if col.dof != Some(expected) {
-            return Err(Error::InvalidModeSelection {
+            return Err(Error::Reduction(ReductionError::InvalidModeSelection {
                 reason: format!("Guyan column {c} is not DOF {expected}"),
-            });
+            }));
         }
     }
     let m_g = g.reduced_mass(model);
@@ -186,10 +188,10 @@ pub fn guyan_mean_axes(model: &FeModel) -> Result<GuyanMeanAxes> {
     let e = reduced_modes(model, &g)?;
     let elastic: Vec<usize> = (e.zero_energy..e.values.len()).take(2).collect();
     if elastic.len() < 2 {
-        return Err(Error::TooManyModes {
+        return Err(Error::Reduction(ReductionError::TooManyModes {
             requested: 2,
             available: elastic.len(),
-        });
+        }));
     }
     let col = |j: usize| (0..e.vectors.nrows()).map(|i| e.vectors[(i, j)]).collect();
     let (a, b): (Vec<f64>, Vec<f64>) = (col(elastic[0]), col(elastic[1]));
@@ -285,7 +287,8 @@ pub struct ExplicitStep {
     pub critical: f64,
     /// The run at [`BELOW_CRITICAL`]: node 8's largest |ζ|, m, or its error.
     pub below: Result<f64>,
-    /// The run at [`ABOVE_CRITICAL`]: its error (expected [`Error::Diverged`]), `None` when it
+    /// The run at [`ABOVE_CRITICAL`]: its error (expected `DynamicsError::Diverged`), `None` when
+    /// it
     /// did not diverge.
     pub above: Option<Error>,
     /// Node 8's |ζ| against time, m, below the critical step.
@@ -352,7 +355,7 @@ pub fn explicit_step(model: &FeModel, progress: &Progress) -> Result<ExplicitSte
     // The diverging run again, stopped a few steps before the state leaves the bound, so its
     // growth can be drawn.
     let mut above_history = None;
-    if let Err(Error::Diverged { time, .. }) = &above {
+    if let Err(Error::Dynamics(DynamicsError::Diverged { time, .. })) = &above {
         let h = ABOVE_CRITICAL * critical;
         let steps = ((time / h).floor() - 3.0).max(1.0);
         let run = simulate(
@@ -455,10 +458,10 @@ fn first_elastic_mode(model: &FeModel, basis: &Basis) -> Result<(Vec<f64>, f64)>
     let hz = e.hz();
     let j = (e.zero_energy < hz.len())
         .then_some(e.zero_energy)
-        .ok_or(Error::TooManyModes {
+        .ok_or(Error::Reduction(ReductionError::TooManyModes {
             requested: 1,
             available: 0,
-        })?;
+        }))?;
     let u = (0..basis.psi.nrows())
         .map(|i| {
             (0..basis.size())

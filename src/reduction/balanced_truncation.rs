@@ -3,6 +3,8 @@
 //! and Witteveen's second-order use (§3.3, §4.3.3), which takes trial vectors for a Ritz
 //! basis from the position block of the controllability gramian of the damped full model.
 
+use super::ReductionError;
+use crate::linalg::LinalgError;
 use faer::{Mat, MatRef, c64};
 
 use super::{Basis, Column, ColumnKind, Method, ModalModel, ReductionStatistics, StateSpace};
@@ -40,13 +42,13 @@ impl BalancedTruncation {
 /// the interleaved state order of [`ModalModel::elastic_state_space`].
 pub fn modal_gramians(model: &ModalModel) -> Result<(Mat<f64>, Mat<f64>, StateSpace)> {
     if model.zeta <= 0.0 || !model.zeta.is_finite() {
-        return Err(Error::UndampedSystem {
+        return Err(Error::Reduction(ReductionError::UndampedSystem {
             reason: format!(
                 "the gramians of Eq. (39) exist only for a stable system; modal damping ζ = {} \
                  leaves the modes on the imaginary axis",
                 model.zeta
             ),
-        });
+        }));
     }
     let ss = model.elastic_state_space();
     let blocks = ss.blocks.clone().unwrap_or_default();
@@ -67,22 +69,24 @@ pub fn modal_gramians(model: &ModalModel) -> Result<(Mat<f64>, Mat<f64>, StateSp
 /// $T_r = L_cY_k\Sigma_k^{-1/2}$, $T_l = L_oU_k\Sigma_k^{-1/2}$ give
 /// $A_k = T_l^TAT_r$, $\mathcal B_k = T_l^T\mathcal B$, $\mathcal C_k = \mathcal CT_r$.
 ///
-/// An undamped model (ζ ≤ 0) is [`Error::UndampedSystem`]; `states` above the number of
-/// elastic states is [`Error::TooManyModes`].
+/// An undamped model (ζ ≤ 0) is `ReductionError::UndampedSystem`; `states` above the number of
+/// elastic states is `ReductionError::TooManyModes`.
 pub fn balanced_truncation(model: &ModalModel, states: usize) -> Result<BalancedTruncation> {
     let (w, v, ss) = modal_gramians(model)?;
     let n = ss.order();
     if states > n {
-        return Err(Error::TooManyModes {
+        return Err(Error::Reduction(ReductionError::TooManyModes {
             requested: states,
             available: n,
-        });
+        }));
     }
     let lc = psd_factor(w.as_ref(), "controllability gramian")?;
     let lo = psd_factor(v.as_ref(), "observability gramian")?;
     let h = lo.transpose() * &lc;
-    let svd = h.svd().map_err(|_| Error::DecompositionFailed {
-        what: "balancing SVD".into(),
+    let svd = h.svd().map_err(|_| {
+        Error::Linalg(LinalgError::DecompositionFailed {
+            what: "balancing SVD".into(),
+        })
     })?;
     let s = svd.S().column_vector();
     let hsv: Vec<f64> = (0..s.nrows()).map(|i| s[i]).collect();
@@ -164,23 +168,23 @@ impl Default for BalancedBasisParameters {
 /// thousand DOF. Columns are labelled with their eigenvalue of $W_x$.
 pub fn balanced_basis(model: &FeModel, p: &BalancedBasisParameters) -> Result<Basis> {
     if p.alpha <= 0.0 || !p.alpha.is_finite() {
-        return Err(Error::UndampedSystem {
+        return Err(Error::Reduction(ReductionError::UndampedSystem {
             reason: format!(
                 "balanced truncation needs viscous damping (Witteveen uses D = 1e-4·K); \
                  α = {} was given",
                 p.alpha
             ),
-        });
+        }));
     }
     let partition = super::Partition::from_dofs(model, &p.inputs, &p.held)?;
     let mut free: Vec<usize> = partition.b.iter().chain(&partition.i).copied().collect();
     free.sort_unstable();
     let nf = free.len();
     if p.vectors > nf {
-        return Err(Error::TooManyModes {
+        return Err(Error::Reduction(ReductionError::TooManyModes {
             requested: p.vectors,
             available: nf,
-        });
+        }));
     }
     let mut statistics = ReductionStatistics::default();
     let started = std::time::Instant::now();

@@ -1,6 +1,7 @@
 //! Benfield–Hruda reduction (Spanos–Tsuha Eqs. 18–22): normal modes of a component whose
 //! interface carries the constraint-mode mass and stiffness of the components attached to it.
 
+use super::ReductionError;
 use faer::Mat;
 
 use super::{
@@ -119,14 +120,14 @@ pub fn benfield_hruda(
     for (c, face) in interfaces.iter().enumerate() {
         let ni = face.dofs.len();
         if face.loading.mass.nrows() != ni || face.loading.stiffness.nrows() != ni {
-            return Err(Error::InvalidDofSet {
+            return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: format!("interface {}", c + 1),
                 reason: format!(
                     "{ni} DOF but a {} × {} loading",
                     face.loading.mass.nrows(),
                     face.loading.mass.ncols()
                 ),
-            });
+            }));
         }
         let mut taken = vec![0u8; n];
         super::partition::check_dof_set(

@@ -1,6 +1,7 @@
 //! Component mode synthesis (Craig 1981, the "standard CMS procedure" of Spanos–Tsuha): each
 //! component in its own Ritz coordinates, joined by equal displacements at shared nodes.
 
+use super::ReductionError;
 use faer::Mat;
 
 use crate::{Error, Result, fem::FeModel};
@@ -58,7 +59,7 @@ impl Synthesis {
                 || c.nodes.len() != c.model.node_count()
                 || c.basis.nrows() != c.model.dof_count()
             {
-                return Err(Error::InvalidDofSet {
+                return Err(Error::Reduction(ReductionError::InvalidDofSet {
                     set: format!("component {}", ci + 1),
                     reason: format!(
                         "{} nodes mapped for {} body nodes, basis of {} rows for {} DOF, {} DOF \
@@ -69,7 +70,7 @@ impl Synthesis {
                         c.model.dof_count(),
                         c.model.dofs.per_node()
                     ),
-                });
+                }));
             }
             offsets.push(total);
             total += c.basis.ncols();

@@ -1,5 +1,7 @@
 //! Eitelberg's method (§6.6, App. C) applied to a structure in state-space form.
 
+use super::ReductionError;
+use crate::linalg::LinalgError;
 use faer::{Mat, MatRef, Side, prelude::Solve};
 
 use super::{
@@ -66,19 +68,25 @@ pub fn eitelberg_state_space(
     c: MatRef<'_, f64>,
     r: MatRef<'_, f64>,
 ) -> Result<StateSpaceReduction> {
-    let eig = a.eigenvalues().map_err(|_| Error::DecompositionFailed {
-        what: "Eitelberg A eigenvalue".into(),
+    let eig = a.eigenvalues().map_err(|_| {
+        Error::Linalg(LinalgError::DecompositionFailed {
+            what: "Eitelberg A eigenvalue".into(),
+        })
     })?;
     let scale = eig.iter().fold(0.0f64, |m, l| m.max(l.norm()));
     let max_real_part = eig.iter().fold(f64::NEG_INFINITY, |m, l| m.max(l.re));
     // Purely imaginary poles come out with real parts at round-off level of either sign.
     if max_real_part >= -1e-9 * scale {
-        return Err(Error::UnstableSystem { max_real_part });
+        return Err(Error::Reduction(ReductionError::UnstableSystem {
+            max_real_part,
+        }));
     }
     let rr_t = r * r.transpose();
-    let rr_llt = rr_t.llt(Side::Lower).map_err(|_| Error::SingularMatrix {
-        matrix: "R R^T".into(),
-        rcond: None,
+    let rr_llt = rr_t.llt(Side::Lower).map_err(|_| {
+        Error::Linalg(LinalgError::SingularMatrix {
+            matrix: "R R^T".into(),
+            rcond: None,
+        })
     })?;
     let r_pinv = r.transpose() * rr_llt.inverse_sym();
     let c_r = c * &r_pinv;
@@ -86,19 +94,21 @@ pub fn eitelberg_state_space(
     let q = &p * p.transpose();
     let s = solve_lyapunov(a, q.as_ref())?;
     let rsr = r * &s * r.transpose();
-    let rsr_llt = rsr.llt(Side::Lower).map_err(|_| Error::SingularMatrix {
-        matrix: "R S R^T".into(),
-        rcond: None,
+    let rsr_llt = rsr.llt(Side::Lower).map_err(|_| {
+        Error::Linalg(LinalgError::SingularMatrix {
+            matrix: "R S R^T".into(),
+            rcond: None,
+        })
     })?;
     // T = S R^T (R S R^T)^{-1}; R S R^T is symmetric, so T^T = (RSR^T)^{-1} R S.
     let t = rsr_llt.solve(r * &s).transpose().to_owned();
     let a_r = r * a * &t;
     let b_r = &a_r * r * &p;
-    let sv = rsr
-        .singular_values()
-        .map_err(|_| Error::DecompositionFailed {
+    let sv = rsr.singular_values().map_err(|_| {
+        Error::Linalg(LinalgError::DecompositionFailed {
             what: "R S R^T singular value".into(),
-        })?;
+        })
+    })?;
     let gramian_condition = sv[0] / sv[sv.len() - 1];
     Ok(StateSpaceReduction {
         a_r,
@@ -161,12 +171,11 @@ pub fn eitelberg(
     }
     let part = Partition::new(model, boundary)?;
     let nb = part.b.len();
-    let m_llt = model
-        .m_dense()
-        .llt(Side::Lower)
-        .map_err(|_| Error::NotPositiveDefinite {
+    let m_llt = model.m_dense().llt(Side::Lower).map_err(|_| {
+        Error::Linalg(LinalgError::NotPositiveDefinite {
             matrix: "mass".into(),
-        })?;
+        })
+    })?;
     let minv_k_full = m_llt.solve(model.k_dense());
     let minv = m_llt.inverse_sym();
     let mut a = Mat::<f64>::zeros(2 * n, 2 * n);
@@ -209,11 +218,11 @@ pub fn eitelberg(
         a_r = &a_r + &b_r * &l * &c_r;
     }
     let minv_k = Mat::from_fn(nb, nb, |i, j| -a_r[(nb + i, j)]);
-    let eigenvalues = minv_k
-        .eigenvalues()
-        .map_err(|_| Error::DecompositionFailed {
+    let eigenvalues = minv_k.eigenvalues().map_err(|_| {
+        Error::Linalg(LinalgError::DecompositionFailed {
             what: "reduced M^-1 K eigenvalue".into(),
-        })?;
+        })
+    })?;
     // Zero energy against the matrix' own scale, as for the symmetric solves.
     let scale = eigenvalues.iter().fold(0.0f64, |a, l| a.max(l.re.abs()));
     let mut hz: Vec<f64> = eigenvalues

@@ -1,6 +1,8 @@
 //! Free-interface (free-free) modes of a component: the rigid-body modes, mass-normalised from
 //! the geometry, and the lowest elastic modes (Spanos–Tsuha Eqs. 8–10).
 
+use super::ReductionError;
+use crate::linalg::LinalgError;
 use faer::{Mat, MatRef, Side};
 
 use super::{COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, ModeSelection};
@@ -72,10 +74,10 @@ pub fn selected_free_modes(model: &FeModel, selection: ModeSelection) -> Result<
     match selection {
         ModeSelection::Count(k) => {
             if rigid + k > n {
-                return Err(Error::TooManyModes {
+                return Err(Error::Reduction(ReductionError::TooManyModes {
                     requested: k,
                     available: n - rigid,
-                });
+                }));
             }
             lowest_free_modes(model, k)
         }
@@ -91,10 +93,10 @@ pub fn selected_free_modes(model: &FeModel, selection: ModeSelection) -> Result<
                     return Ok(first(&eig, kept));
                 }
                 if n > COMPLETE_EIGEN_LIMIT && 2 * wanted > n / 4 {
-                    return Err(Error::TooManyModes {
+                    return Err(Error::Reduction(ReductionError::TooManyModes {
                         requested: 2 * wanted,
                         available: n / 4,
-                    });
+                    }));
                 }
                 wanted *= 2;
             }
@@ -141,13 +143,13 @@ pub fn restrained_modes(
 /// $\Phi_{nr}$ of Spanos–Tsuha Eq. 10, exact rather than from an eigensolver).
 pub fn mass_normalised_rigid_modes(model: &FeModel) -> Result<Mat<f64>> {
     if model.rigid_motions != RigidMotions::FromGeometry {
-        return Err(Error::InvalidRSet {
+        return Err(Error::Reduction(ReductionError::InvalidRSet {
             dofs: String::new(),
             reason: format!(
                 "the rigid motions of the {} are not known from its geometry",
                 model.name
             ),
-        });
+        }));
     }
     let r = model.rigid_body_modes();
     orthonormalise_in(r.as_ref(), model.m.mul(r.as_ref()).as_ref())
@@ -157,11 +159,11 @@ pub fn mass_normalised_rigid_modes(model: &FeModel) -> Result<Mat<f64>> {
 /// whose products with them are `mx`.
 pub(crate) fn orthonormalise_in(x: MatRef<'_, f64>, mx: MatRef<'_, f64>) -> Result<Mat<f64>> {
     let gram = x.transpose() * mx;
-    let llt = gram
-        .llt(Side::Lower)
-        .map_err(|_| Error::NotPositiveDefinite {
+    let llt = gram.llt(Side::Lower).map_err(|_| {
+        Error::Linalg(LinalgError::NotPositiveDefinite {
             matrix: "Gram matrix of the rigid-body modes".into(),
-        })?;
+        })
+    })?;
     // Φ = X L^{-T}: solve L Φᵀ = Xᵀ.
     let mut t = x.transpose().to_owned();
     llt.L().solve_lower_triangular_in_place(t.as_mut());

@@ -1,6 +1,7 @@
 //! MacNeal–Rubin reduction in Craig–Chang's form (Spanos–Tsuha Eqs. 8–17): free-interface
 //! modes plus one residual-flexibility mode per interface DOF.
 
+use super::ReductionError;
 use faer::Mat;
 
 use super::{
@@ -41,7 +42,7 @@ pub struct MacNealRubinParameters {
 /// restrained at the r-set and one solve per interface DOF.
 ///
 /// A body whose r-set does not restrain every rigid motion, or holds more DOF than there are
-/// rigid motions (statically indeterminate), is [`Error::InvalidRSet`].
+/// rigid motions (statically indeterminate), is `ReductionError::InvalidRSet`.
 pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basis> {
     let n = model.dof_count();
     let mut taken = vec![0u8; n];
@@ -53,12 +54,12 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
         phi_r
     } else {
         if !p.r_set.is_empty() {
-            return Err(Error::InvalidRSet {
+            return Err(Error::Reduction(ReductionError::InvalidRSet {
                 dofs: format!("{} DOF", p.r_set.len()),
                 reason: "the component is held, so it has no rigid-body motions to restrain; \
                          leave the r-set empty"
                     .into(),
-            });
+            }));
         }
         check_dof_set(model, "held", &p.held, &mut taken, 2)?;
         Mat::zeros(n, 0)
@@ -177,23 +178,23 @@ fn check_r_set(model: &FeModel, r_set: &[usize], phi_r: faer::MatRef<'_, f64>) -
     let rows = Mat::from_fn(r_set.len(), rigid, |r, c| phi_r[(r_set[r], c)]);
     let rank = crate::linalg::numerical_rank(rows.as_ref(), 1e-9)?;
     if rank < rigid {
-        return Err(Error::InvalidRSet {
+        return Err(Error::Reduction(ReductionError::InvalidRSet {
             dofs: format!("[{}]", labels()),
             reason: format!(
                 "it restrains only {rank} of the {rigid} rigid-body motions, so the restrained \
                  stiffness of Eq. (13) is singular"
             ),
-        });
+        }));
     }
     if r_set.len() > rigid {
-        return Err(Error::InvalidRSet {
+        return Err(Error::Reduction(ReductionError::InvalidRSet {
             dofs: format!("[{}]", labels()),
             reason: format!(
                 "it is redundant: {} DOF for {rigid} rigid-body motions (statically \
                  indeterminate); Eq. (13) needs a statically determinate set",
                 r_set.len()
             ),
-        });
+        }));
     }
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! Method ids, reduction parameters and the one entry point [`reduce`].
 
+use super::ReductionError;
 use super::{
     Basis, craig_bampton, eitelberg::eitelberg, guyan, modal_truncation, mode_condensation,
     no_reduction,
@@ -105,14 +106,18 @@ impl ModeSelection {
     /// How many of the ascending frequencies `hz` to keep.
     pub fn count(&self, hz: &[f64]) -> Result<usize> {
         match *self {
-            ModeSelection::Count(n) if n > hz.len() => Err(Error::TooManyModes {
-                requested: n,
-                available: hz.len(),
-            }),
+            ModeSelection::Count(n) if n > hz.len() => {
+                Err(Error::Reduction(ReductionError::TooManyModes {
+                    requested: n,
+                    available: hz.len(),
+                }))
+            }
             ModeSelection::Count(n) => Ok(n),
-            ModeSelection::UpToHz(f) if f.is_nan() || f < 0.0 => Err(Error::InvalidModeSelection {
-                reason: format!("frequency cut-off {f} Hz must be a non-negative number"),
-            }),
+            ModeSelection::UpToHz(f) if f.is_nan() || f < 0.0 => {
+                Err(Error::Reduction(ReductionError::InvalidModeSelection {
+                    reason: format!("frequency cut-off {f} Hz must be a non-negative number"),
+                }))
+            }
             ModeSelection::UpToHz(f) => Ok(hz.iter().take_while(|&&h| h <= f).count()),
         }
     }
@@ -167,21 +172,21 @@ pub fn reduce(model: &FeModel, method: Method, p: &ReductionParameters) -> Resul
             mode_condensation::mode_condensation_on(model, &p.boundary_nodes, p.modes, p.solver)
         }
         Method::Eitelberg => Ok(eitelberg(model, &p.boundary_nodes, &Default::default())?.basis),
-        Method::MacNealRubin => Err(Error::MethodNeedsContext {
+        Method::MacNealRubin => Err(Error::Reduction(ReductionError::MethodNeedsContext {
             method: method.name().into(),
             needs: "an r-set besides the interface (use `macneal_rubin`)".into(),
-        }),
-        Method::BenfieldHruda => Err(Error::MethodNeedsContext {
+        })),
+        Method::BenfieldHruda => Err(Error::Reduction(ReductionError::MethodNeedsContext {
             method: method.name().into(),
             needs: "the interface loading of the adjacent components (use `benfield_hruda`)".into(),
-        }),
-        Method::MomentMatching => Err(Error::MethodNeedsContext {
+        })),
+        Method::MomentMatching => Err(Error::Reduction(ReductionError::MethodNeedsContext {
             method: method.name().into(),
             needs: "input DOF and a block count (use `moment_matching`)".into(),
-        }),
-        Method::BalancedTruncation => Err(Error::MethodNeedsContext {
+        })),
+        Method::BalancedTruncation => Err(Error::Reduction(ReductionError::MethodNeedsContext {
             method: method.name().into(),
             needs: "inputs, outputs and damping (use `balanced_truncation_basis`)".into(),
-        }),
+        })),
     }
 }

@@ -20,6 +20,7 @@ mod moment_matching;
 mod nodal_fixed;
 mod partition;
 mod reduced_matrices;
+mod reduction_error;
 mod restrained_ritz;
 
 pub use balanced_truncation::{
@@ -56,4 +57,5 @@ pub use partition::{
     constraint_modes, fixed_interface_modes,
 };
 pub use reduced_matrices::{CONSTRAINT_COUPLING_TOLERANCE, ReducedMatrices};
+pub use reduction_error::ReductionError;
 pub use restrained_ritz::RestrainedRitzModel;

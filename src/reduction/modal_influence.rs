@@ -3,6 +3,7 @@
 //! modes by how much they carry from the actuators to the sensors.
 
 use super::ModalModel;
+use super::ReductionError;
 use crate::{Error, Result};
 
 /// The influence coefficient of every mode of a [`ModalModel`] and the closeness check of
@@ -41,15 +42,15 @@ impl ModalInfluence {
 /// $G_i(0) = c_{1i}b_i/\omega_i^2$ the mode's static contribution. Gregory derives it for a
 /// lightly damped mode well separated from the others; Eq. (45) measures how far that holds.
 ///
-/// A model without damping has no finite Hankel singular values: [`Error::UndampedSystem`].
+/// A model without damping has no finite Hankel singular values: `ReductionError::UndampedSystem`.
 pub fn modal_influence(model: &ModalModel) -> Result<ModalInfluence> {
     if model.zeta <= 0.0 || !model.zeta.is_finite() {
-        return Err(Error::UndampedSystem {
+        return Err(Error::Reduction(ReductionError::UndampedSystem {
             reason: format!(
                 "modal influence coefficients divide by the damping ratio, here ζ = {}",
                 model.zeta
             ),
-        });
+        }));
     }
     let p = model.mode_count();
     let sq = |v: f64| v * v;

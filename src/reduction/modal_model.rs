@@ -1,6 +1,7 @@
 //! Diagonalisation of a Ritz-reduced model with modal damping (Spanos–Tsuha Eqs. 28–34) and
 //! its actuator-to-sensor frequency response.
 
+use super::ReductionError;
 use faer::{Mat, MatRef, c64, linalg::solvers::Solve};
 
 use crate::{Error, Result, linalg::generalized_eigen};
@@ -28,10 +29,10 @@ impl IoMap {
     /// Checks every DOF against a body of `dofs` DOF.
     pub fn check(&self, dofs: usize) -> Result<()> {
         if self.inputs.is_empty() || self.output_count() == 0 {
-            return Err(Error::InvalidDofSet {
+            return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: "input/output".into(),
                 reason: "a frequency response needs at least one input and one output".into(),
-            });
+            }));
         }
         for (set, list) in [
             ("input", &self.inputs),
@@ -39,10 +40,10 @@ impl IoMap {
             ("velocity output", &self.velocity_outputs),
         ] {
             if let Some(&d) = list.iter().find(|&&d| d >= dofs) {
-                return Err(Error::InvalidDofSet {
+                return Err(Error::Reduction(ReductionError::InvalidDofSet {
                     set: set.into(),
                     reason: format!("DOF {d} does not exist (the body has {dofs} DOF)"),
-                });
+                }));
             }
         }
         Ok(())

@@ -1,5 +1,6 @@
 //! Nodal-fixed axes by column removal (§4.1, §5.4.1, Table 4-1).
 
+use super::ReductionError;
 use super::{Basis, ColumnKind};
 use crate::{Error, Result, fem::Direction, fem::FeModel, linalg::select_cols};
 
@@ -112,11 +113,11 @@ impl NodalFixedAxes {
             match col {
                 Some(j) => remove.push(j),
                 None => {
-                    return Err(Error::AnchorNotInBasis {
+                    return Err(Error::Reduction(ReductionError::AnchorNotInBasis {
                         node,
                         direction: dir.name(),
                         method: basis.method.name().into(),
-                    });
+                    }));
                 }
             }
         }
@@ -127,11 +128,11 @@ impl NodalFixedAxes {
         for &(node, dir, dof) in &anchored {
             let row_max = (0..psi.ncols()).fold(0.0f64, |m, j| m.max(psi[(dof, j)].abs()));
             if row_max > 1e-9 * scale {
-                return Err(Error::AnchorNotInBasis {
+                return Err(Error::Reduction(ReductionError::AnchorNotInBasis {
                     node,
                     direction: dir.name(),
                     method: basis.method.name().into(),
-                });
+                }));
             }
         }
         Ok(Basis {

@@ -1,6 +1,7 @@
 //! The boundary/interior split of Eq. (6.1) and the modes every CMS method builds on, on the
 //! dense path (small bodies) or the sparse one (refined meshes).
 
+use super::ReductionError;
 use std::time::Instant;
 
 use faer::{Mat, MatRef};
@@ -34,10 +35,10 @@ impl Partition {
     /// Splits `model`'s DOF by the 1-based `boundary_nodes`.
     pub fn new(model: &FeModel, boundary_nodes: &[usize]) -> Result<Self> {
         if boundary_nodes.is_empty() {
-            return Err(Error::InvalidBoundary {
+            return Err(Error::Reduction(ReductionError::InvalidBoundary {
                 nodes: vec![],
                 reason: "at least one boundary node is needed".into(),
-            });
+            }));
         }
         let b = model.dofs_of_nodes(boundary_nodes)?;
         let mut is_boundary = vec![false; model.dof_count()];
@@ -48,10 +49,10 @@ impl Partition {
             .filter(|&d| !is_boundary[d])
             .collect();
         if i.is_empty() {
-            return Err(Error::InvalidBoundary {
+            return Err(Error::Reduction(ReductionError::InvalidBoundary {
                 nodes: boundary_nodes.to_vec(),
                 reason: "every node is a boundary node, nothing is left to reduce".into(),
-            });
+            }));
         }
         Ok(Self {
             boundary_nodes: boundary_nodes.to_vec(),
@@ -63,7 +64,7 @@ impl Partition {
 
     /// Splits `model`'s DOF into the boundary DOF `b` (in the order given, e.g. Witteveen's
     /// seven input/output DOF), the DOF `held` at zero (a clamp) and the interior: the rest.
-    /// A DOF out of range or listed twice is [`Error::InvalidDofSet`].
+    /// A DOF out of range or listed twice is `ReductionError::InvalidDofSet`.
     pub fn from_dofs(model: &FeModel, b: &[usize], held: &[usize]) -> Result<Self> {
         let n = model.dof_count();
         let mut role = vec![0u8; n];
@@ -73,10 +74,10 @@ impl Partition {
         }
         let i: Vec<usize> = (0..n).filter(|&d| role[d] == 0).collect();
         if i.is_empty() {
-            return Err(Error::InvalidDofSet {
+            return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: "boundary".into(),
                 reason: "every DOF is a boundary or held DOF, nothing is left to reduce".into(),
-            });
+            }));
         }
         let mut boundary_nodes: Vec<usize> = Vec::new();
         for &d in b {
@@ -226,7 +227,7 @@ impl<'a> InteriorProblem<'a> {
     }
 
     /// Whether the boundary restrains every rigid-body motion, i.e. $K_{ii}$ is invertible;
-    /// otherwise [`Error::SingularInterior`] naming the free motions. Decided from the rigid
+    /// otherwise `ReductionError::SingularInterior` naming the free motions. Decided from the rigid
     /// motions restricted to the boundary DOF (rank of a b × 6 matrix), no eigenproblem.
     /// A body whose rigid motions are [`RigidMotions::Unknown`] passes; its factorisation
     /// decides.
@@ -241,12 +242,12 @@ impl<'a> InteriorProblem<'a> {
         if free.is_empty() {
             return Ok(());
         }
-        Err(Error::SingularInterior {
+        Err(Error::Reduction(ReductionError::SingularInterior {
             boundary_nodes: self.partition.boundary_nodes.clone(),
             rank_deficiency: free.len(),
             free_motions: free.join("; "),
             needed: self.model.dofs.rigid_body_count(),
-        })
+        }))
     }
 
     /// The factor of $K_{ii} - \sigma M_{ii}$: $\sigma = 0$ when the boundary restrains the
@@ -337,10 +338,10 @@ impl<'a> InteriorProblem<'a> {
         match selection {
             ModeSelection::Count(k) => {
                 if k > n {
-                    return Err(Error::TooManyModes {
+                    return Err(Error::Reduction(ReductionError::TooManyModes {
                         requested: k,
                         available: n,
-                    });
+                    }));
                 }
                 self.partial(k)
             }
@@ -356,10 +357,10 @@ impl<'a> InteriorProblem<'a> {
                         return Ok(first_modes(&eig, kept));
                     }
                     if 2 * wanted > n / 4 {
-                        return Err(Error::TooManyModes {
+                        return Err(Error::Reduction(ReductionError::TooManyModes {
                             requested: 2 * wanted,
                             available: n / 4,
-                        });
+                        }));
                     }
                     wanted *= 2;
                 }
@@ -511,29 +512,29 @@ pub(crate) fn check_dof_set(
 ) -> Result<()> {
     let n = model.dof_count();
     if dofs.is_empty() {
-        return Err(Error::InvalidDofSet {
+        return Err(Error::Reduction(ReductionError::InvalidDofSet {
             set: set.into(),
             reason: "it is empty".into(),
-        });
+        }));
     }
     for &d in dofs {
         if d >= n {
-            return Err(Error::InvalidDofSet {
+            return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: set.into(),
                 reason: format!("DOF {d} is out of range: the {} has {n} DOF", model.name),
-            });
+            }));
         }
         if taken[d] == mark {
-            return Err(Error::InvalidDofSet {
+            return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: set.into(),
                 reason: format!("{} is listed twice", model.dof_label(d)),
-            });
+            }));
         }
         if taken[d] != 0 {
-            return Err(Error::InvalidDofSet {
+            return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: set.into(),
                 reason: format!("{} already belongs to another set", model.dof_label(d)),
-            });
+            }));
         }
         taken[d] = mark;
     }

@@ -1,6 +1,8 @@
 //! Boundary conditions changed after reduction (Witteveen §4.1, variants 2 and 3): DOF held at
 //! zero and point masses applied to a Ritz-reduced model only, its basis left as it was.
 
+use super::ReductionError;
+use crate::linalg::LinalgError;
 use faer::{Mat, MatRef, linalg::solvers::Solve};
 
 use crate::{
@@ -29,8 +31,8 @@ pub struct RestrainedRitzModel {
 
 impl RestrainedRitzModel {
     /// Restrains the Ritz model of `basis` (n × r) on `model`: `held` DOF at zero, and
-    /// `point_masses` (DOF, mass) added. [`Error::InvalidDofSet`] for a DOF out of range;
-    /// [`Error::SingularMatrix`] when the supports leave no coordinate.
+    /// `point_masses` (DOF, mass) added. `ReductionError::InvalidDofSet` for a DOF out of range;
+    /// `LinalgError::SingularMatrix` when the supports leave no coordinate.
     pub fn new(
         model: &FeModel,
         basis: MatRef<'_, f64>,
@@ -43,20 +45,20 @@ impl RestrainedRitzModel {
             .chain(point_masses.iter().map(|(d, _)| d))
             .find(|&&d| d >= n)
         {
-            return Err(Error::InvalidDofSet {
+            return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: "restrained".into(),
                 reason: format!("DOF {d} does not exist (the body has {n} DOF)"),
-            });
+            }));
         }
         let r = basis.ncols();
         let scale = crate::linalg::max_abs(basis).max(f64::MIN_POSITIVE);
         let vh = Mat::from_fn(held.len(), r, |i, j| basis[(held[i], j)]);
         let null = crate::linalg::null_space(vh.as_ref(), 1e-10 * scale)?;
         if null.ncols() == 0 {
-            return Err(Error::SingularMatrix {
+            return Err(Error::Linalg(LinalgError::SingularMatrix {
                 matrix: "restrained Ritz model (the supports hold every coordinate)".into(),
                 rcond: None,
-            });
+            }));
         }
         let v = basis * &null;
         let k = symmetric(v.transpose() * model.k.mul(v.as_ref()));
@@ -83,12 +85,11 @@ impl RestrainedRitzModel {
         let rhs = Mat::from_fn(v.ncols(), 1, |i, _| {
             (0..v.nrows()).map(|d| v[(d, i)] * load[d]).sum::<f64>()
         });
-        let llt = self
-            .k
-            .llt(faer::Side::Lower)
-            .map_err(|_| Error::NotPositiveDefinite {
+        let llt = self.k.llt(faer::Side::Lower).map_err(|_| {
+            Error::Linalg(LinalgError::NotPositiveDefinite {
                 matrix: "restrained reduced stiffness".into(),
-            })?;
+            })
+        })?;
         let z = llt.solve(&rhs);
         Ok((0..v.nrows())
             .map(|d| (0..v.ncols()).map(|i| v[(d, i)] * z[(i, 0)]).sum())

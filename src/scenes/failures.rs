@@ -10,6 +10,8 @@
 //! - Guyan (b)'s master choice breaks the beam's symmetry (§6.2.1).
 //! - Modal truncation cannot carry boundary motion into the body (§6.3, §7.1).
 
+use crate::dynamics::DynamicsError;
+use crate::reduction::ReductionError;
 use serde_json::{Value, json};
 
 use super::{
@@ -183,9 +185,9 @@ fn too_few_boundary_failure(model: &FeModel) -> Failure {
         let nodes = case.nodes;
         match case.outcome {
             Err(
-                e @ Error::SingularInterior {
+                e @ Error::Reduction(ReductionError::SingularInterior {
                     rank_deficiency, ..
-                },
+                }),
             ) => {
                 said.push(format!(
                     "nodes {nodes:?} ({} DOF): `SingularInterior`, {rank_deficiency} rigid \
@@ -229,7 +231,7 @@ fn eitelberg_failure(model: &FeModel) -> Result<Failure> {
     let study = eitelberg_feedback(model)?;
     let with = &study.with_hz;
     let (json, what) = match study.without {
-        Err(e @ Error::UnstableSystem { max_real_part }) => (
+        Err(e @ Error::Reduction(ReductionError::UnstableSystem { max_real_part })) => (
             json!({
                 "error": "UnstableSystem",
                 "max_real_part": max_real_part,
@@ -358,7 +360,7 @@ fn explicit_step_failure(model: &FeModel, opts: &SceneOptions) -> Result<Failure
     let critical = study.critical;
     let below_ok = study.below.is_ok();
     let (above_diverged, above_text) = match &study.above {
-        Some(e @ Error::Diverged { .. }) => (true, e.to_string()),
+        Some(e @ Error::Dynamics(DynamicsError::Diverged { .. })) => (true, e.to_string()),
         Some(e) => (false, e.to_string()),
         None => (false, "no divergence".into()),
     };

@@ -1,6 +1,7 @@
 //! The implicit generalized-α scheme: order, energy, constraints, agreement with the explicit
 //! scheme, stability above the explicit critical step, and its named error.
 
+use flexmodes::dynamics::DynamicsError;
 use flexmodes::{
     Error, Progress,
     analysis::relative_rms,
@@ -233,7 +234,10 @@ fn the_implicit_scheme_stays_bounded_where_the_explicit_one_diverges() {
         &Progress::default(),
     );
     assert!(
-        matches!(explicit, Err(Error::Diverged { .. })),
+        matches!(
+            explicit,
+            Err(Error::Dynamics(DynamicsError::Diverged { .. }))
+        ),
         "{explicit:?}"
     );
     let generalized = simulate(&system, &state, &p(alpha(0.8)), &Progress::default()).unwrap();
@@ -298,9 +302,9 @@ fn newton_failing_on_a_step_too_long_for_the_swinging_plank_is_a_named_error() {
         &Progress::default(),
     );
     match r {
-        Err(Error::NewtonFailed {
+        Err(Error::Dynamics(DynamicsError::NewtonFailed {
             time, iterations, ..
-        }) => {
+        })) => {
             assert!(time > 0.0 && time <= 2.0);
             assert!(iterations > 1);
         }

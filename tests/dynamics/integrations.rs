@@ -1,6 +1,7 @@
 //! Floating-frame dynamics (§7.2, §5.3.3): accuracy ordering of the methods, invariants of the
 //! integration, the symmetry study and errors.
 
+use flexmodes::dynamics::DynamicsError;
 use flexmodes::{
     Error, Progress,
     analysis::relative_rms,
@@ -470,7 +471,7 @@ fn fixed_steps_diverge_above_the_critical_step_and_not_below() {
         .iter()
         .fold(0.0f64, |m, e| m.max((e - energy[0]).abs()));
     match run(3.0) {
-        Err(Error::Diverged { time, reason }) => {
+        Err(Error::Dynamics(DynamicsError::Diverged { time, reason })) => {
             assert!(time < 4.0 && time > 0.0, "{time}: {reason}");
             assert!(reason.contains("fixed step"), "{reason}");
         }
@@ -499,7 +500,7 @@ fn an_impossible_step_size_is_a_named_error() {
         ..Default::default()
     };
     match simulate(&system, &state, &p, &Progress::default()) {
-        Err(Error::Diverged { time, reason }) => {
+        Err(Error::Dynamics(DynamicsError::Diverged { time, reason })) => {
             assert!(time < 0.5);
             assert!(reason.contains("fell below"), "{reason}");
         }

@@ -2,6 +2,7 @@
 //! one, the variety of Matrix Market files exporters write, every malformed input's named
 //! error, and the export round trip.
 
+use flexmodes::body_file::BodyFileError;
 use std::{
     collections::BTreeMap,
     path::{Path, PathBuf},
@@ -309,7 +310,10 @@ fn malformed_files_give_named_errors_with_file_and_line() {
     let (_, r) = bar("hdr", BAR_BODY, &BAR_K.replace("real", "complex"), BAR_M);
     let e = r.unwrap_err();
     assert!(
-        matches!(e, Error::MatrixMarketHeader { line: 1, .. }),
+        matches!(
+            e,
+            Error::BodyFile(BodyFileError::MatrixMarketHeader { line: 1, .. })
+        ),
         "{e}"
     );
     assert!(e.to_string().contains("k.mtx:1"), "{e}");
@@ -319,12 +323,21 @@ fn malformed_files_give_named_errors_with_file_and_line() {
         &BAR_K.replace("real", "pattern"),
         BAR_M,
     );
-    assert!(matches!(r.unwrap_err(), Error::MatrixMarketHeader { .. }));
+    assert!(matches!(
+        r.unwrap_err(),
+        Error::BodyFile(BodyFileError::MatrixMarketHeader { .. })
+    ));
 
     // A line that does not parse.
     let (_, r) = bar("line", BAR_BODY, &BAR_K.replace("2 1 -4", "2 1 -4x"), BAR_M);
     let e = r.unwrap_err();
-    assert!(matches!(e, Error::MatrixMarketLine { line: 4, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            Error::BodyFile(BodyFileError::MatrixMarketLine { line: 4, .. })
+        ),
+        "{e}"
+    );
     assert!(e.to_string().contains("k.mtx:4"), "{e}");
 
     // An index out of range.
@@ -338,13 +351,13 @@ fn malformed_files_give_named_errors_with_file_and_line() {
     assert!(
         matches!(
             e,
-            Error::MatrixIndexOutOfRange {
+            Error::BodyFile(BodyFileError::MatrixIndexOutOfRange {
                 line: 5,
                 row: 3,
                 col: 2,
                 rows: 2,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -353,22 +366,28 @@ fn malformed_files_give_named_errors_with_file_and_line() {
     let (_, r) = bar("short", BAR_BODY, &BAR_K.replace("2 2 3", "2 2 4"), BAR_M);
     assert!(matches!(
         r.unwrap_err(),
-        Error::MatrixMarketLine { line: 2, .. }
+        Error::BodyFile(BodyFileError::MatrixMarketLine { line: 2, .. })
     ));
     let (_, r) = bar("long", BAR_BODY, &format!("{BAR_K}1 1 1\n"), BAR_M);
     assert!(matches!(
         r.unwrap_err(),
-        Error::MatrixMarketLine { line: 6, .. }
+        Error::BodyFile(BodyFileError::MatrixMarketLine { line: 6, .. })
     ));
 
     // NaN and Inf.
     let (_, r) = bar("nan", BAR_BODY, &BAR_K.replace("2 2 4", "2 2 NaN"), BAR_M);
     let e = r.unwrap_err();
-    assert!(matches!(e, Error::NonFiniteEntry { line: 5, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            Error::BodyFile(BodyFileError::NonFiniteEntry { line: 5, .. })
+        ),
+        "{e}"
+    );
     let (_, r) = bar("inf", BAR_BODY, &BAR_K.replace("1 1 4", "1 1 inf"), BAR_M);
     assert!(matches!(
         r.unwrap_err(),
-        Error::NonFiniteEntry { line: 3, .. }
+        Error::BodyFile(BodyFileError::NonFiniteEntry { line: 3, .. })
     ));
 
     // K and M of different sizes.
@@ -378,11 +397,11 @@ fn malformed_files_give_named_errors_with_file_and_line() {
     assert!(
         matches!(
             e,
-            Error::MatrixSizeMismatch {
+            Error::BodyFile(BodyFileError::MatrixSizeMismatch {
                 rows: 3,
                 cols: 1,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -393,7 +412,10 @@ fn malformed_files_give_named_errors_with_file_and_line() {
         BAR_K,
         BAR_M,
     );
-    assert!(matches!(r.unwrap_err(), Error::MatrixSizeMismatch { .. }));
+    assert!(matches!(
+        r.unwrap_err(),
+        Error::BodyFile(BodyFileError::MatrixSizeMismatch { .. })
+    ));
 
     // K not symmetric: the largest asymmetry, where.
     let asym =
@@ -401,12 +423,12 @@ fn malformed_files_give_named_errors_with_file_and_line() {
     let (_, r) = bar("asym", BAR_BODY, asym, BAR_M);
     let e = r.unwrap_err();
     match &e {
-        Error::NotSymmetric {
+        Error::BodyFile(BodyFileError::NotSymmetric {
             asymmetry,
             row,
             col,
             ..
-        } => {
+        }) => {
             assert!((asymmetry - 0.25).abs() < 1e-12, "{e}");
             assert_eq!((row.min(col), row.max(col)), (&1, &2));
         }
@@ -422,14 +444,26 @@ fn malformed_files_give_named_errors_with_file_and_line() {
     let zero_second = "%%MatrixMarket matrix array real general\n2 1\n1\n0\n";
     let (_, r) = bar("mass", BAR_BODY, BAR_K, zero_second);
     let e = r.unwrap_err();
-    assert!(matches!(e, Error::MassNotPositive { dof: 2, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            Error::BodyFile(BodyFileError::MassNotPositive { dof: 2, .. })
+        ),
+        "{e}"
+    );
     assert!(e.to_string().contains("node 2 x"), "{e}");
     let indefinite =
         "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n1 1 1\n2 1 2\n2 2 1\n";
     let (_, r) = bar("indef", BAR_BODY, BAR_K, indefinite);
     // The second pivot, 1 - 2²/1 < 0 (faer's 1-based simplicial index mapped to the DOF).
     let e = r.unwrap_err();
-    assert!(matches!(e, Error::MassNotPositive { dof: 2, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            Error::BodyFile(BodyFileError::MassNotPositive { dof: 2, .. })
+        ),
+        "{e}"
+    );
 
     // A node set naming a missing node.
     let (_, r) = bar(
@@ -442,11 +476,11 @@ fn malformed_files_give_named_errors_with_file_and_line() {
     assert!(
         matches!(
             e,
-            Error::NodeSetOutOfRange {
+            Error::BodyFile(BodyFileError::NodeSetOutOfRange {
                 node: 3,
                 count: 2,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -470,22 +504,37 @@ fn malformed_files_give_named_errors_with_file_and_line() {
         BAR_M,
     );
     let e = r.unwrap_err();
-    assert!(matches!(e, Error::BodyFile { line: Some(4), .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            Error::BodyFile(BodyFileError::BodyFile { line: Some(4), .. })
+        ),
+        "{e}"
+    );
     let (_, r) = bar("dof", &BAR_BODY.replace("[\"x\"]", "[\"q\"]"), BAR_K, BAR_M);
-    assert!(matches!(r.unwrap_err(), Error::BodyFile { .. }));
+    assert!(matches!(
+        r.unwrap_err(),
+        Error::BodyFile(BodyFileError::BodyFile { .. })
+    ));
     let (_, r) = bar(
         "unknown-key",
         &format!("{BAR_BODY}\n[extra]\na = 1\n"),
         BAR_K,
         BAR_M,
     );
-    assert!(matches!(r.unwrap_err(), Error::BodyFile { .. }));
+    assert!(matches!(
+        r.unwrap_err(),
+        Error::BodyFile(BodyFileError::BodyFile { .. })
+    ));
 
     // A set name that is not defined, given as boundary.
     let (_, r) = bar("ok", BAR_BODY, BAR_K, BAR_M);
     let body = r.unwrap();
     let e = body.boundary(&["right".into()]).unwrap_err();
-    assert!(matches!(e, Error::UnknownNodeSet { .. }), "{e}");
+    assert!(
+        matches!(e, Error::BodyFile(BodyFileError::UnknownNodeSet { .. })),
+        "{e}"
+    );
     assert_eq!(
         body.boundary(&["left".into(), "2".into()]).unwrap(),
         vec![1, 2]
@@ -507,7 +556,7 @@ fn a_body_without_coordinates_reduces_but_does_not_draw() {
     assert_eq!(body.model.rigid_motions, RigidMotions::Unknown);
     assert!(matches!(
         body.require_coordinates().unwrap_err(),
-        Error::NoCoordinates { .. }
+        Error::BodyFile(BodyFileError::NoCoordinates { .. })
     ));
     // A free bar along x: one zero-energy mode among its three, counted without coordinates.
     let count = count_zero_energy_modes(&body.model, 2).unwrap();

@@ -7,6 +7,7 @@ use faer::{
     Mat, MatRef, Side,
     linalg::solvers::{DenseSolveCore, Solve},
 };
+use flexmodes::reduction::ReductionError;
 use flexmodes::{
     Error,
     analysis::{StaticLoadCase, full_static_response, modes_in_band, pair_modes},
@@ -193,20 +194,22 @@ fn a_bad_r_set_is_a_named_error() {
     };
     // Translations of one node only: the rotations stay free.
     match run(vec![0, 1, 2]) {
-        Err(Error::InvalidRSet { reason, .. }) => {
+        Err(Error::Reduction(ReductionError::InvalidRSet { reason, .. })) => {
             assert!(reason.contains("restrains only"), "{reason}")
         }
         other => panic!("{other:?}"),
     }
     // Two full nodes: statically indeterminate.
     match run((0..12).collect()) {
-        Err(Error::InvalidRSet { reason, .. }) => assert!(reason.contains("redundant"), "{reason}"),
+        Err(Error::Reduction(ReductionError::InvalidRSet { reason, .. })) => {
+            assert!(reason.contains("redundant"), "{reason}")
+        }
         other => panic!("{other:?}"),
     }
     // Overlapping the interface.
     assert!(matches!(
         run((30..36).collect()),
-        Err(Error::InvalidDofSet { .. })
+        Err(Error::Reduction(ReductionError::InvalidDofSet { .. }))
     ));
 }
 
@@ -485,11 +488,11 @@ fn balanced_truncation_error_bound_holds_on_the_computed_frf() {
     let undamped = clamped_modal(0.0, &io, 4);
     assert!(matches!(
         balanced_truncation(&undamped, 2),
-        Err(Error::UndampedSystem { .. })
+        Err(Error::Reduction(ReductionError::UndampedSystem { .. }))
     ));
     assert!(matches!(
         modal_influence(&undamped),
-        Err(Error::UndampedSystem { .. })
+        Err(Error::Reduction(ReductionError::UndampedSystem { .. }))
     ));
 }
 
@@ -579,7 +582,7 @@ fn cb_reproduces_the_full_modes_in_band_when_a_is_clamped_after_reduction() {
     // A band above every mode is a named error.
     assert!(matches!(
         modes_in_band(&hz, 1e7, 2e7, "variant 2"),
-        Err(Error::EmptyBand { .. })
+        Err(Error::Reduction(ReductionError::EmptyBand { .. }))
     ));
 }
 
@@ -595,7 +598,7 @@ fn balanced_basis_needs_damping_and_existing_dofs() {
     };
     assert!(matches!(
         balanced_basis(model, &p),
-        Err(Error::UndampedSystem { .. })
+        Err(Error::Reduction(ReductionError::UndampedSystem { .. }))
     ));
     let bad = BalancedBasisParameters {
         inputs: vec![model.dof_count() + 3],
@@ -604,7 +607,7 @@ fn balanced_basis_needs_damping_and_existing_dofs() {
     };
     assert!(matches!(
         balanced_basis(model, &bad),
-        Err(Error::InvalidDofSet { .. })
+        Err(Error::Reduction(ReductionError::InvalidDofSet { .. }))
     ));
     // A node without the DOF asked for: the plane beam has no z.
     let beam = beam(&BeamParameters::default());

@@ -3,6 +3,7 @@
 //! zero modes, and one body in two unit systems.
 
 use faer::{Mat, Side};
+use flexmodes::linalg::LinalgError;
 use flexmodes::linalg::{
     PENCIL_BACKWARD_ERROR, SymmetricEigenKernel, dense_eigen_tolerance, generalized_eigen,
     symmetric_eigen,
@@ -139,8 +140,13 @@ fn symmetric_eigen_falls_back_when_faer_fails() {
     bad[(5, 3)] = f64::NAN;
     let err = symmetric_eigen(bad.as_ref(), "poisoned").unwrap_err();
     assert!(
-        matches!(err, flexmodes::Error::NotFinite { row: 3, col: 5, .. })
-            || matches!(err, flexmodes::Error::NotFinite { row: 5, col: 3, .. }),
+        matches!(
+            err,
+            flexmodes::Error::Linalg(LinalgError::NotFinite { row: 3, col: 5, .. })
+        ) || matches!(
+            err,
+            flexmodes::Error::Linalg(LinalgError::NotFinite { row: 5, col: 3, .. })
+        ),
         "{err}"
     );
 }

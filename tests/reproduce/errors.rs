@@ -1,5 +1,6 @@
 //! Bad input gives a named error with its cause, never a panic.
 
+use flexmodes::reduction::ReductionError;
 use flexmodes::{
     Error,
     fem::{BeamParameters, SlabParameters, beam, slab},
@@ -42,11 +43,11 @@ fn node_out_of_range_and_duplicates() {
     let all: Vec<usize> = (1..=5).collect();
     assert!(matches!(
         guyan(&model, &all).unwrap_err(),
-        Error::InvalidBoundary { .. }
+        Error::Reduction(ReductionError::InvalidBoundary { .. })
     ));
     assert!(matches!(
         guyan(&model, &[]).unwrap_err(),
-        Error::InvalidBoundary { .. }
+        Error::Reduction(ReductionError::InvalidBoundary { .. })
     ));
 }
 
@@ -64,11 +65,11 @@ fn singular_interior_for_too_few_boundary_dofs() {
             ..Default::default()
         };
         match reduce(&model, method, &p).unwrap_err() {
-            Error::SingularInterior {
+            Error::Reduction(ReductionError::SingularInterior {
                 boundary_nodes,
                 rank_deficiency,
                 ..
-            } => {
+            }) => {
                 assert_eq!(boundary_nodes, vec![16]);
                 assert_eq!(
                     rank_deficiency, 3,
@@ -83,10 +84,10 @@ fn singular_interior_for_too_few_boundary_dofs() {
     assert!(
         matches!(
             e,
-            Error::SingularInterior {
+            Error::Reduction(ReductionError::SingularInterior {
                 rank_deficiency: 1,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -112,15 +113,21 @@ fn too_many_modes() {
     assert!(
         matches!(
             e,
-            Error::TooManyModes {
+            Error::Reduction(ReductionError::TooManyModes {
                 requested: 7,
                 available: 6
-            }
+            })
         ),
         "{e}"
     );
     let e = craig_bampton(&model, &[1, 5], ModeSelection::UpToHz(f64::NAN)).unwrap_err();
-    assert!(matches!(e, Error::InvalidModeSelection { .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            Error::Reduction(ReductionError::InvalidModeSelection { .. })
+        ),
+        "{e}"
+    );
 }
 
 #[test]
@@ -135,7 +142,9 @@ fn eitelberg_refuses_an_unstable_a() {
     )
     .unwrap_err();
     match e {
-        Error::UnstableSystem { max_real_part } => assert!(max_real_part.abs() < 1e-6),
+        Error::Reduction(ReductionError::UnstableSystem { max_real_part }) => {
+            assert!(max_real_part.abs() < 1e-6)
+        }
         e => panic!("{e}"),
     }
 }
@@ -148,7 +157,13 @@ fn nodal_fixed_anchor_must_be_a_boundary_column() {
     let e = NodalFixedAxes::slab_default()
         .apply(&model, &cb)
         .unwrap_err();
-    assert!(matches!(e, Error::AnchorNotInBasis { node: 28, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            Error::Reduction(ReductionError::AnchorNotInBasis { node: 28, .. })
+        ),
+        "{e}"
+    );
 }
 
 #[test]
@@ -170,5 +185,8 @@ fn scene_options_are_checked() {
         ..Default::default()
     };
     let e = (scenes::find("slab-modes").unwrap().run)(&singular).unwrap_err();
-    assert!(matches!(e, Error::SingularInterior { .. }), "{e}");
+    assert!(
+        matches!(e, Error::Reduction(ReductionError::SingularInterior { .. })),
+        "{e}"
+    );
 }

@@ -2,6 +2,8 @@
 //! condensation's two routes, the refined slab and how the factor's fill grows.
 
 use faer::Mat;
+use flexmodes::linalg::LinalgError;
+use flexmodes::reduction::ReductionError;
 use flexmodes::{
     Error,
     analysis::{elastic_hz, free_free_modes, lowest_free_free_modes},
@@ -128,11 +130,11 @@ fn partial_eigensolver_reports_how_far_it_got() {
         ..Default::default()
     };
     match lowest_modes(&k_ii, &m_ii, &factor, 0.0, 10, None, &params).unwrap_err() {
-        Error::EigenNotConverged {
+        Error::Linalg(LinalgError::EigenNotConverged {
             converged,
             wanted,
             residual,
-        } => {
+        }) => {
             assert_eq!(wanted, 10);
             assert!(converged < 10);
             assert!(residual > 0.0 && residual.is_finite());
@@ -341,11 +343,11 @@ fn singular_interior_names_the_free_motions_without_an_eigenproblem() {
     let e =
         craig_bampton_on(&model, &[16], ModeSelection::Count(2), SolverPath::Sparse).unwrap_err();
     match e {
-        Error::SingularInterior {
+        Error::Reduction(ReductionError::SingularInterior {
             rank_deficiency,
             ref free_motions,
             ..
-        } => {
+        }) => {
             assert_eq!(rank_deficiency, 3);
             // Three rotations, each about an axis through node 16 at the origin.
             assert_eq!(free_motions.matches("rotation about").count(), 3, "{e}");
@@ -370,10 +372,10 @@ fn singular_interior_names_the_free_motions_without_an_eigenproblem() {
     assert!(
         matches!(
             e,
-            Error::SingularInterior {
+            Error::Reduction(ReductionError::SingularInterior {
                 rank_deficiency: 1,
                 ..
-            }
+            })
         ),
         "{e}"
     );

@@ -1,0 +1,103 @@
+//! Errors of reading a body: the file, the line and what is wrong there.
+
+use thiserror::Error;
+
+/// Errors of reading a body: the file, the line and what is wrong there.
+#[derive(Debug, Error)]
+pub enum BodyFileError {
+    /// A Matrix Market file whose first line is not a real `coordinate` or `array` header.
+    #[error("{path}:{line}: not a real Matrix Market matrix: {found}")]
+    MatrixMarketHeader {
+        path: String,
+        line: usize,
+        found: String,
+    },
+
+    /// A line of a Matrix Market file (or a CSV file of a body) that does not parse.
+    #[error("{path}:{line}: {reason}")]
+    MatrixMarketLine {
+        path: String,
+        line: usize,
+        reason: String,
+    },
+
+    /// A Matrix Market entry whose 1-based index lies outside the size line's dimensions.
+    #[error("{path}:{line}: entry ({row}, {col}) lies outside the {rows} × {cols} matrix")]
+    MatrixIndexOutOfRange {
+        path: String,
+        line: usize,
+        row: usize,
+        col: usize,
+        rows: usize,
+        cols: usize,
+    },
+
+    /// A NaN or infinite value in a matrix file.
+    #[error("{path}:{line}: the value `{value}` is not finite")]
+    NonFiniteEntry {
+        path: String,
+        line: usize,
+        value: String,
+    },
+
+    /// A body file (TOML) that does not parse or names something inconsistent.
+    #[error("{path}{}: {reason}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+    BodyFile {
+        path: String,
+        line: Option<usize>,
+        reason: String,
+    },
+
+    /// A matrix whose size does not match the body's DOF map or the other matrix.
+    #[error("{path}: the {what} is {rows} × {cols}, but {expected}")]
+    MatrixSizeMismatch {
+        path: String,
+        what: String,
+        rows: usize,
+        cols: usize,
+        expected: String,
+    },
+
+    /// A stiffness or consistent mass that is not symmetric.
+    #[error(
+        "{path}: the {what} is not symmetric: entry ({row}, {col}) differs from ({col}, {row}) \
+         by {asymmetry:.3e} relative to the largest entry (tolerance {tolerance:.0e})"
+    )]
+    NotSymmetric {
+        path: String,
+        what: String,
+        row: usize,
+        col: usize,
+        asymmetry: f64,
+        tolerance: f64,
+    },
+
+    /// A mass matrix that is not positive definite, located at a DOF.
+    #[error("{path}: the mass matrix is not positive definite at DOF {dof} ({label}): {reason}")]
+    MassNotPositive {
+        path: String,
+        dof: usize,
+        label: String,
+        reason: String,
+    },
+
+    /// A node set that names a node the body does not have.
+    #[error("{path}: node set `{set}` names node {node}, but the body has nodes 1 to {count}")]
+    NodeSetOutOfRange {
+        path: String,
+        set: String,
+        node: usize,
+        count: usize,
+    },
+
+    /// A boundary given by a set name that the body file does not define.
+    #[error("unknown node set `{name}` (the body defines: {known})")]
+    UnknownNodeSet { name: String, known: String },
+
+    /// Drawing asked of a body that has no node coordinates.
+    #[error(
+        "the body `{body}` has no node coordinates, so it cannot be drawn (add `nodes` under \
+         [geometry] in its body file; `report` and `export` work without them)"
+    )]
+    NoCoordinates { body: String },
+}

@@ -1,0 +1,81 @@
+//! Errors of the linear algebra: factorisations, eigensolvers and their checks, memory.
+
+use thiserror::Error;
+
+/// Errors of the linear algebra: factorisations, eigensolvers and their checks, memory.
+#[derive(Debug, Error)]
+pub enum LinalgError {
+    /// A Cholesky factorisation met a pivot that is not positive.
+    #[error(
+        "the {matrix} matrix is not positive definite: the pivot of its row {index} (0-based) \
+         is not positive"
+    )]
+    NonPositivePivot { matrix: String, index: usize },
+
+    /// An allocation the computation needs could not be made.
+    #[error("out of memory: {what}")]
+    OutOfMemory { what: String },
+
+    /// A mesh whose estimated memory exceeds what the machine has.
+    #[error(
+        "a {dofs}-DOF mesh needs about {estimated_gb:.1} GB, more than the {available_gb:.1} GB \
+         this machine has free"
+    )]
+    MeshTooLarge {
+        dofs: usize,
+        estimated_gb: f64,
+        available_gb: f64,
+    },
+
+    /// The partial eigensolver stopped before every wanted pair was accurate.
+    #[error(
+        "the partial eigensolver did not converge: {converged} of {wanted} pairs converged, \
+         worst relative residual {residual:.1e}"
+    )]
+    EigenNotConverged {
+        converged: usize,
+        wanted: usize,
+        residual: f64,
+    },
+
+    /// A dense eigen-decomposition whose pairs failed their residual or orthonormality check
+    /// with every kernel tried.
+    #[error(
+        "the {what} eigenproblem failed its check: worst residual {residual:.1e} against a \
+         tolerance of {tolerance:.1e} (faer and nalgebra both tried)"
+    )]
+    EigenCheckFailed {
+        what: String,
+        residual: f64,
+        tolerance: f64,
+    },
+
+    /// A NaN or infinite entry in a matrix handed to a decomposition.
+    #[error("the {what} has a non-finite entry at row {row}, column {col} (0-based)")]
+    NotFinite {
+        what: String,
+        row: usize,
+        col: usize,
+    },
+
+    /// A matrix that should be symmetric positive definite is not.
+    #[error("the {matrix} matrix is not positive definite")]
+    NotPositiveDefinite { matrix: String },
+
+    /// A square matrix that must be inverted is singular: its factorisation failed, or gave
+    /// a non-finite solution. `rcond` is the reciprocal condition estimate where one was
+    /// computed.
+    #[error(
+        "the {matrix} matrix is singular{}",
+        rcond.map(|r| format!(" (reciprocal condition estimate {r:.1e})")).unwrap_or_default()
+    )]
+    SingularMatrix { matrix: String, rcond: Option<f64> },
+
+    /// An eigen- or singular-value decomposition did not converge.
+    #[error("the {what} decomposition did not converge")]
+    DecompositionFailed { what: String },
+
+    /// The Lyapunov equation solve left a residual larger than its tolerance.
+    #[error("the Lyapunov equation was solved with relative residual {residual:.1e}")]
+    LyapunovInaccurate { residual: f64 },
+}

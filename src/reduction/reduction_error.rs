@@ -1,0 +1,81 @@
+//! Errors of a reduction: which boundary, DOF set, mode selection or system does not fit the method.
+
+use thiserror::Error;
+
+/// Errors of a reduction: which boundary, DOF set, mode selection or system does not fit the method.
+#[derive(Debug, Error)]
+pub enum ReductionError {
+    /// A boundary set that is empty or leaves no interior DOF.
+    #[error("invalid boundary set {nodes:?}: {reason}")]
+    InvalidBoundary { nodes: Vec<usize>, reason: String },
+
+    /// A DOF set (boundary, held, interface, r-set, inputs, outputs) naming a DOF that does
+    /// not exist or naming one twice.
+    #[error("invalid {set} DOF set: {reason}")]
+    InvalidDofSet { set: String, reason: String },
+
+    /// A method asked of the generic [`reduce`](crate::reduction::reduce) entry point that
+    /// needs more than a boundary set and a mode count.
+    #[error("{method} needs {needs}")]
+    MethodNeedsContext { method: String, needs: String },
+
+    /// MacNeal–Rubin's r-set (Spanos–Tsuha Eq. 11) must restrain every rigid motion with
+    /// exactly as many DOF as there are rigid motions (statically determinate).
+    #[error("invalid MacNeal-Rubin r-set {dofs}: {reason}")]
+    InvalidRSet { dofs: String, reason: String },
+
+    /// Balanced truncation of a system whose poles are not all strictly stable.
+    #[error(
+        "balanced truncation needs an asymptotically stable (damped) system: {reason}; add \
+         modal damping or a damping matrix"
+    )]
+    UndampedSystem { reason: String },
+
+    /// A frequency band that contains none of the model's modes.
+    #[error("the band {low_hz} to {high_hz} Hz contains no mode of the {what}")]
+    EmptyBand {
+        low_hz: f64,
+        high_hz: f64,
+        what: String,
+    },
+
+    /// $K_{ii}$ is singular: the boundary DOF do not restrain every rigid-body motion.
+    #[error(
+        "K_ii is singular for boundary nodes {boundary_nodes:?}: {rank_deficiency} rigid-body \
+         motion(s) of the interior stay unrestrained ({free_motions}); Craig-Bampton, Guyan and \
+         mode condensation need at least {needed} properly chosen boundary DOF"
+    )]
+    SingularInterior {
+        boundary_nodes: Vec<usize>,
+        rank_deficiency: usize,
+        /// The unrestrained motions in words, e.g. `rotation about (1, 0, 0) through (0, 0, 0) m`.
+        free_motions: String,
+        needed: usize,
+    },
+
+    /// More normal modes were requested than the interior eigenproblem has.
+    #[error("{requested} normal modes requested but only {available} exist for this interior set")]
+    TooManyModes { requested: usize, available: usize },
+
+    /// A frequency cut-off that keeps no mode where at least one is required.
+    #[error("invalid mode selection: {reason}")]
+    InvalidModeSelection { reason: String },
+
+    /// Eitelberg's method needs every pole of A in the open left half-plane.
+    #[error(
+        "Eitelberg's method needs a stable A, but its largest real eigenvalue part is \
+         {max_real_part:.3e} >= 0 (use the output-feedback trick A - B L C)"
+    )]
+    UnstableSystem { max_real_part: f64 },
+
+    /// A nodal-fixed anchor coordinate that is not a boundary (identity) column of Ψ.
+    #[error(
+        "nodal-fixed axes anchor node {node} {direction}, but that coordinate is not a boundary \
+         column of the {method} basis (add node {node} to the boundary set)"
+    )]
+    AnchorNotInBasis {
+        node: usize,
+        direction: &'static str,
+        method: String,
+    },
+}
