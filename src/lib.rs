@@ -17,7 +17,7 @@ pub mod bench;
 pub mod body_file;
 pub mod cli;
 pub mod dynamics;
-mod error;
+pub mod error;
 pub mod export;
 pub mod fem;
 #[cfg(feature = "gui")]

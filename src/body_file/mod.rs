@@ -2,7 +2,6 @@
 //! files, node coordinates, wireframe and node sets; and the files a reduced model is
 //! exported to.
 
-mod body_file_error;
 mod body_spec;
 mod body_writer;
 mod csv_table;
@@ -10,7 +9,7 @@ mod imported_body;
 mod matrix_market;
 mod npy;
 
-pub use body_file_error::BodyFileError;
+pub use crate::error::BodyFileError;
 pub use body_spec::{BodySpec, DofOrder, GeometrySpec, MatrixFiles, TableOrFile, Units};
 pub use body_writer::{BodyFiles, example_bodies, write_body, write_files};
 pub use imported_body::{BodyHandle, BodyLocation, ImportedBody, SYMMETRY_TOLERANCE};

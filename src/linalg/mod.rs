@@ -4,7 +4,6 @@
 
 mod dense;
 mod generalized_eigen;
-mod linalg_error;
 mod lyapunov;
 mod mass_matrix;
 mod memory;
@@ -15,6 +14,7 @@ mod sparse_symmetric;
 mod symmetric_eigen;
 mod symmetric_factor;
 
+pub use crate::error::LinalgError;
 pub use dense::{
     frobenius, identity, max_abs, max_abs_diff, null_space, numerical_rank, principal_angles,
     select, select_cols, select_rows, symmetry_defect,
@@ -23,7 +23,6 @@ pub use generalized_eigen::{
     GeneralizedEigen, MASS_ORTHONORMALITY, PENCIL_BACKWARD_ERROR, PencilCheck, ZERO_ENERGY_RATIO,
     check_pencil, eigenvalue_scale, fix_sign, generalized_eigen, hz_from_eigenvalue,
 };
-pub use linalg_error::LinalgError;
 pub use lyapunov::{solve_block_diagonal_lyapunov, solve_lyapunov};
 pub use mass_matrix::MassMatrix;
 pub use memory::{

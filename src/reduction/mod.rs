@@ -20,9 +20,9 @@ mod moment_matching;
 mod nodal_fixed;
 mod partition;
 mod reduced_matrices;
-mod reduction_error;
 mod restrained_ritz;
 
+pub use crate::error::ReductionError;
 pub use balanced_truncation::{
     BalancedBasisParameters, BalancedTruncation, balanced_basis, balanced_truncation,
     modal_gramians,
@@ -57,5 +57,4 @@ pub use partition::{
     constraint_modes, fixed_interface_modes,
 };
 pub use reduced_matrices::{CONSTRAINT_COUPLING_TOLERANCE, ReducedMatrices};
-pub use reduction_error::ReductionError;
 pub use restrained_ritz::RestrainedRitzModel;

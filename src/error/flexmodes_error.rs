@@ -103,20 +103,20 @@ pub enum Error {
 
     /// Errors of the linear algebra: factorisations, eigensolvers and their checks, memory.
     #[error(transparent)]
-    Linalg(#[from] crate::linalg::LinalgError),
+    Linalg(#[from] super::LinalgError),
 
     /// Errors of reading a body: the file, the line and what is wrong there.
     #[error(transparent)]
-    BodyFile(#[from] crate::body_file::BodyFileError),
+    BodyFile(#[from] super::BodyFileError),
 
     /// Errors of a time integration: where and when it stopped.
     #[error(transparent)]
-    Dynamics(#[from] crate::dynamics::DynamicsError),
+    Dynamics(#[from] super::DynamicsError),
 
     /// Errors of a reduction: which boundary, DOF set, mode selection or system does not fit
     /// the method.
     #[error(transparent)]
-    Reduction(#[from] crate::reduction::ReductionError),
+    Reduction(#[from] super::ReductionError),
 }
 
 /// Result alias used across the crate.

@@ -1,0 +1,16 @@
+//! Typed errors, one small enum per layer (linear algebra, body files, reductions, time
+//! integration), each variant carrying its data (which node, DOF, file and line, residual),
+//! wrapped by the crate's [`Error`]. They live at the ground floor so every layer can name
+//! its own and the top-level one without importing upwards.
+
+mod body_file_error;
+mod dynamics_error;
+mod flexmodes_error;
+mod linalg_error;
+mod reduction_error;
+
+pub use body_file_error::BodyFileError;
+pub use dynamics_error::DynamicsError;
+pub use flexmodes_error::{Error, Result};
+pub use linalg_error::LinalgError;
+pub use reduction_error::ReductionError;
