@@ -186,6 +186,8 @@ fn generalized_eigen_known_spectra() {
         );
         let mut sorted = lambda.clone();
         sorted.sort_by(f64::total_cmp);
+        assert_eq!(e.values.len(), sorted.len(), "n {n}");
+        assert_eq!(e.residuals.len(), e.values.len(), "n {n}");
         for (j, (a, b)) in e.values.iter().zip(&sorted).enumerate() {
             // Absolute in the pencil's scale; relative 1e-10 where the value is large enough.
             let tol = 1e-9 * 1e14 * 1e-3 + 1e-10 * b.abs();
