@@ -36,6 +36,24 @@ use crate::{
     report::sig_vec,
 };
 
+impl std::fmt::Display for PsiFormat {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.id())
+    }
+}
+
+impl std::str::FromStr for PsiFormat {
+    type Err = crate::error::UnknownId;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim() {
+            "npy" => Ok(Self::Npy),
+            "mtx" => Ok(Self::MatrixMarket),
+            other => Err(crate::error::UnknownId::new("Ψ format", other, &Self::IDS)),
+        }
+    }
+}
+
 /// How Ψ is written.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum PsiFormat {
@@ -47,6 +65,17 @@ pub enum PsiFormat {
 }
 
 impl PsiFormat {
+    /// The ids `--psi-format` takes.
+    pub const IDS: [&'static str; 2] = ["npy", "mtx"];
+
+    /// `npy` or `mtx`.
+    pub fn id(self) -> &'static str {
+        match self {
+            Self::Npy => "npy",
+            Self::MatrixMarket => "mtx",
+        }
+    }
+
     /// The file name Ψ is written to.
     pub fn file_name(self) -> &'static str {
         match self {

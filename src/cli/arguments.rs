@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand};
 use crate::{
     Result,
     body_file::{BodyHandle, ImportedBody},
-    dynamics::IntegrationScheme,
+    dynamics::{AxisKind, IntegrationScheme},
     reduction::Method,
     scenes::SceneOptions,
 };
@@ -61,7 +61,7 @@ pub(super) enum Command {
         #[arg(long)]
         save: Option<PathBuf>,
         /// Integrators to compare, comma separated (default: dp5,gen-alpha).
-        #[arg(long, value_delimiter = ',', value_parser = parse_integrator)]
+        #[arg(long, value_delimiter = ',')]
         integrator: Vec<IntegrationScheme>,
         /// Runs of each simulation; the online cost is their median.
         #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=100))]
@@ -122,7 +122,7 @@ pub(super) enum Command {
         #[arg(long)]
         body: String,
         /// The reduction: gr, mt, cb, mc.
-        #[arg(long, value_parser = parse_method)]
+        #[arg(long)]
         method: Method,
         /// Interface: node set names or 1-based nodes, comma separated (default: the set
         /// `interface`, else the body's first set).
@@ -135,7 +135,7 @@ pub(super) enum Command {
         #[arg(long)]
         out: PathBuf,
         /// The format of Ψ: `npy` (binary, numpy.load) or `mtx` (Matrix Market array text).
-        #[arg(long, default_value = "npy", value_parser = parse_psi_format)]
+        #[arg(long, default_value = "npy")]
         psi_format: crate::export::PsiFormat,
         /// Print the wall time of each phase on stderr.
         #[arg(long)]
@@ -203,7 +203,7 @@ impl From<WindowArgs> for crate::gui::ViewerOptions {
 #[derive(Debug, Args, Clone, Default)]
 pub(super) struct OptionArgs {
     /// Reduction methods, comma separated: nr, gr, mt, cb, mc, eit.
-    #[arg(long, value_delimiter = ',', value_parser = parse_method)]
+    #[arg(long, value_delimiter = ',')]
     pub(super) method: Option<Vec<Method>>,
     /// Kept normal modes.
     #[arg(long)]
@@ -221,13 +221,13 @@ pub(super) struct OptionArgs {
     pub(super) body: Option<String>,
     /// Axis type: nodal_fixed, mean, principal.
     #[arg(long)]
-    pub(super) axes: Option<String>,
+    pub(super) axes: Option<AxisKind>,
     /// Simulated interval of the dynamic scenes, s.
     #[arg(long)]
     pub(super) end_time: Option<f64>,
     /// Time-integration scheme of the simulations: dp5 (explicit Dormand–Prince 5(4), adaptive
     /// steps) or gen-alpha (implicit generalized-α, fixed steps).
-    #[arg(long, value_parser = parse_integrator)]
+    #[arg(long)]
     pub(super) integrator: Option<IntegrationScheme>,
     /// Fixed step of the simulations, s: dp5 then runs without error control (how a critical
     /// step is checked); gen-alpha's default is 0.001.
@@ -264,32 +264,6 @@ fn parse_refine(s: &str) -> std::result::Result<[usize; 3], String> {
         }
     }
     Ok(out)
-}
-
-fn parse_integrator(s: &str) -> std::result::Result<IntegrationScheme, String> {
-    IntegrationScheme::from_id(s.trim()).ok_or_else(|| {
-        format!(
-            "unknown integrator `{s}` (known: {})",
-            IntegrationScheme::IDS.join(", ")
-        )
-    })
-}
-
-fn parse_psi_format(s: &str) -> std::result::Result<crate::export::PsiFormat, String> {
-    match s {
-        "npy" => Ok(crate::export::PsiFormat::Npy),
-        "mtx" => Ok(crate::export::PsiFormat::MatrixMarket),
-        other => Err(format!("unknown Ψ format `{other}` (npy, mtx)")),
-    }
-}
-
-fn parse_method(s: &str) -> std::result::Result<Method, String> {
-    Method::from_id(s.trim()).ok_or_else(|| {
-        format!(
-            "unknown method `{s}` (known: {})",
-            Method::ALL.map(|m| m.id()).join(", ")
-        )
-    })
 }
 
 impl OptionArgs {

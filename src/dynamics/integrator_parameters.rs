@@ -128,3 +128,20 @@ impl IntegratorParameters {
         }
     }
 }
+
+impl std::fmt::Display for IntegrationScheme {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.id())
+    }
+}
+
+impl std::str::FromStr for IntegrationScheme {
+    type Err = crate::error::UnknownId;
+
+    /// `dp5`, or `gen-alpha` with the default spectral radius.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        IntegrationScheme::from_id(s.trim()).ok_or_else(|| {
+            crate::error::UnknownId::new("integrator", s.trim(), &IntegrationScheme::IDS)
+        })
+    }
+}

@@ -19,7 +19,7 @@ mod system_constraints;
 mod system_kinematics;
 
 pub use crate::error::DynamicsError;
-pub use axes::AxisType;
+pub use axes::{AxisKind, AxisType};
 pub use body::{Body, FlexibleBody, ModalMassInverse, RigidBody};
 pub use constraint::{Attachment, Constraint};
 pub use dormand_prince::{critical_step, imaginary_stability_limit, stability_polynomial};

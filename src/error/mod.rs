@@ -8,9 +8,11 @@ mod dynamics_error;
 mod flexmodes_error;
 mod linalg_error;
 mod reduction_error;
+mod unknown_id;
 
 pub use body_file_error::BodyFileError;
 pub use dynamics_error::DynamicsError;
 pub use flexmodes_error::{Error, Result};
 pub use linalg_error::LinalgError;
 pub use reduction_error::ReductionError;
+pub use unknown_id::UnknownId;

@@ -1,5 +1,6 @@
 //! The panel's persisted state and the commands its UI returns.
 
+use crate::dynamics::AxisKind;
 use serde::{Deserialize, Serialize};
 
 use crate::{
@@ -21,8 +22,8 @@ pub struct Controls {
     pub modes: usize,
     /// Boundary nodes as typed, 1-based, comma separated.
     pub boundary: String,
-    /// Axis type id (empty: the scene's default).
-    pub axes: String,
+    /// Axis type (`None`: the scene's default).
+    pub axes: Option<AxisKind>,
     /// Simulated interval, s (simulations only).
     #[serde(default)]
     pub end_time: f64,
@@ -59,7 +60,7 @@ impl Controls {
             modes: c.modes.unwrap_or(0),
             boundary: join(c.boundary),
             // Empty: the scene's own choice (plank-symmetry compares both frames).
-            axes: String::new(),
+            axes: None,
             end_time: c.end_time.unwrap_or(0.0),
             refine: c.refine.map(|r| r.to_vec()).unwrap_or_default(),
             body: String::new(),
@@ -153,11 +154,7 @@ impl Controls {
             methods: (!c.methods.is_empty()).then_some(methods),
             modes: c.modes.map(|_| self.modes),
             boundary,
-            axes: if self.axes.is_empty() {
-                None
-            } else {
-                Some(self.axes.clone())
-            },
+            axes: self.axes,
             end_time: c.end_time.map(|_| self.end_time),
             deformation_scale: (c.end_time.is_some() && self.deformation_scale > 0.0)
                 .then_some(self.deformation_scale),
@@ -187,4 +184,6 @@ pub enum Command {
     ResetBoundary,
     /// Write the current recording to this file.
     Save(std::path::PathBuf),
+    /// Take these axes (`None`: the scene's default) and recompute.
+    SetAxes(Option<AxisKind>),
 }

@@ -1,5 +1,6 @@
 //! The explorer's state and side panel, without the viewer (so tests can drive it).
 
+use crate::dynamics::AxisKind;
 use std::time::{Duration, Instant};
 
 use rerun::external::egui;
@@ -221,6 +222,10 @@ impl Explorer {
                     }
                 }
                 Command::Recompute => self.request(),
+                Command::SetAxes(axes) => {
+                    self.controls.axes = axes;
+                    self.request();
+                }
                 Command::ResetBoundary => {
                     self.controls.boundary = self.controls.default_boundary();
                     self.request();
@@ -379,14 +384,14 @@ impl Explorer {
         if !info.controls.axes.is_empty() {
             ui.horizontal_wrapped(|ui| {
                 ui.label("axes");
-                for a in std::iter::once(&"default").chain(info.controls.axes) {
-                    let text: &str = a;
-                    let a = if text == "default" { "" } else { text };
+                let choices =
+                    std::iter::once(None).chain(info.controls.axes.iter().copied().map(Some));
+                for a in choices {
+                    let text = a.map_or("default", AxisKind::id);
                     if ui.selectable_label(self.controls.axes == a, text).clicked()
                         && self.controls.axes != a
                     {
-                        self.controls.axes = a.to_string();
-                        out.push(Command::Recompute);
+                        out.push(Command::SetAxes(a));
                     }
                 }
             });

@@ -190,3 +190,19 @@ pub fn reduce(model: &FeModel, method: Method, p: &ReductionParameters) -> Resul
         })),
     }
 }
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.id())
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = crate::error::UnknownId;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Method::from_id(s.trim()).ok_or_else(|| {
+            crate::error::UnknownId::new("method", s.trim(), &Method::ALL.map(Method::id))
+        })
+    }
+}

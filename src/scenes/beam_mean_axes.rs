@@ -6,6 +6,7 @@ use super::{
     SceneInfo, SceneOptions, SceneOutput,
     mode_visuals::{REFERENCE, columns, method_color, mode_set, undeformed},
 };
+use crate::dynamics::AxisKind;
 use crate::{
     Result,
     analysis::evaluate_with_mean_axes,
@@ -33,7 +34,7 @@ pub const INFO: SceneInfo = SceneInfo {
         ],
         boundary: &[1, 5],
         modes: Some(2),
-        axes: &["mean"],
+        axes: &[AxisKind::Mean],
         end_time: None,
         refine: None,
     },
@@ -47,7 +48,7 @@ const AVAILABLE: [Method; 4] = [
 ];
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.check_axes(INFO.id, &["mean"])?;
+    opts.check_axes(INFO.id, &[AxisKind::Mean])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &[Method::ModeCondensation])?;
     let boundary = opts.boundary_or_default(&INFO);
     let kept = opts.modes_or_default(&INFO);

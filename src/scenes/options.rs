@@ -1,5 +1,6 @@
 //! Options a scene is run with and what it returns.
 
+use crate::dynamics::AxisKind;
 use crate::{
     Error, Progress, Result,
     dynamics::{IntegrationScheme, IntegratorParameters},
@@ -21,7 +22,7 @@ pub struct SceneOptions {
     /// `--boundary`: boundary/master nodes, 1-based.
     pub boundary: Option<Vec<usize>>,
     /// `--axes`: axis type id.
-    pub axes: Option<String>,
+    pub axes: Option<AxisKind>,
     /// `--end-time`: simulated interval of the dynamic scenes, s.
     pub end_time: Option<f64>,
     /// `--integrator` (with `--rho-inf`): the time-integration scheme of the simulations
@@ -173,15 +174,19 @@ impl SceneOptions {
     }
 
     /// Rejects `--axes` for scenes that have no axis choice (beyond `allowed`).
-    pub fn check_axes(&self, scene: &str, allowed: &[&str]) -> Result<()> {
-        match &self.axes {
-            Some(a) if !allowed.contains(&a.as_str()) => Err(Error::UnknownAxes {
-                id: a.clone(),
+    pub fn check_axes(&self, scene: &str, allowed: &[AxisKind]) -> Result<()> {
+        match self.axes {
+            Some(a) if !allowed.contains(&a) => Err(Error::UnknownAxes {
+                id: a.id().into(),
                 scene: scene.into(),
                 available: if allowed.is_empty() {
                     "none: this scene has no floating frame".into()
                 } else {
-                    allowed.join(", ")
+                    allowed
+                        .iter()
+                        .map(|a| a.id())
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 },
             }),
             _ => Ok(()),

@@ -9,6 +9,7 @@ use super::{
     sim_visuals::{body_trajectory, frame_axes, health_series, simulation_layout, times},
     slab_sims::run_key,
 };
+use crate::dynamics::AxisKind;
 use crate::models::{
     PLANK_BOUNDARY, PlankVariant as Variant, plank_body, plank_nodal_fixed, plank_setup,
     plank_system, symmetry_history,
@@ -32,7 +33,7 @@ pub const INFO: SceneInfo = SceneInfo {
         methods: &[Method::NoReduction, Method::CraigBampton],
         boundary: &[],
         modes: Some(6),
-        axes: &["nodal_fixed", "mean"],
+        axes: &[AxisKind::NodalFixed, AxisKind::Mean],
         end_time: Some(END_TIME),
         refine: None,
     },
@@ -61,8 +62,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     if let Some(ms) = &opts.methods {
         variants.retain(|v| ms.contains(&v.method));
     }
-    if let Some(a) = &opts.axes {
-        variants.retain(|v| v.axes.id() == a);
+    if let Some(a) = opts.axes {
+        variants.retain(|v| v.axes.kind() == a);
     }
     if variants.is_empty() {
         return Err(crate::Error::InvalidOption {

@@ -1,7 +1,7 @@
 //! What a scene is and which options it offers, as `flexmodes list` and the explorer's panel
 //! show them.
 
-use crate::reduction::Method;
+use crate::{dynamics::AxisKind, reduction::Method};
 
 /// Static description of a scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,7 +26,7 @@ pub struct SceneControls {
     /// Default kept normal modes (`None`: the scene keeps none).
     pub modes: Option<usize>,
     /// Axis types offered (empty: no floating frame).
-    pub axes: &'static [&'static str],
+    pub axes: &'static [AxisKind],
     /// Default simulated interval, s (`None`: not a simulation).
     pub end_time: Option<f64>,
     /// Default mesh as bricks along x, y, z (`None`: the scene's body cannot be refined).

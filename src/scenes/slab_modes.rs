@@ -7,6 +7,7 @@ use super::{
     SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed,
     slab_mode_views::slab_mode_views,
 };
+use crate::dynamics::AxisKind;
 use crate::{
     Result,
     analysis::{elastic_hz, free_free_modes, reduced_hz, reduced_modes},
@@ -33,7 +34,7 @@ pub const INFO: SceneInfo = SceneInfo {
         ],
         boundary: &[16, 18, 28, 30],
         modes: Some(6),
-        axes: &["nodal_fixed"],
+        axes: &[AxisKind::NodalFixed],
         end_time: None,
         refine: Some(APP_B_BRICKS),
     },
@@ -58,7 +59,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     {
         return super::slab_refined::run(opts, &INFO, bricks);
     }
-    opts.check_axes(INFO.id, &["nodal_fixed"])?;
+    opts.check_axes(INFO.id, &[AxisKind::NodalFixed])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
     let boundary = opts.boundary_or_default(&INFO);
     let kept = opts.modes_or_default(&INFO);
@@ -71,7 +72,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let free_free_hz = elastic_hz(&ff);
     let mut gr_masters = boundary.clone();
     gr_masters.extend(EXTRA_GUYAN_MASTERS.iter().filter(|n| !boundary.contains(n)));
-    let nodal_fixed = opts.axes.as_deref() == Some("nodal_fixed");
+    let nodal_fixed = opts.axes == Some(AxisKind::NodalFixed);
     let axes = NodalFixedAxes::slab_default();
 
     let mut reduced = Map::new();

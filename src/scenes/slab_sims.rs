@@ -10,12 +10,13 @@ use super::{
         simulation_layout, times,
     },
 };
+use crate::dynamics::AxisKind;
 use crate::models::{
     DrivenTables, PROBE_NODE, SIM1_END, SIM2_END, SIM3_END, SLAB_BOUNDARY, Scenario,
     default_boundary, probe_history, record_driving_tables, slab_body, slab_node, slab_system,
 };
 use crate::{
-    Error, Progress, Result,
+    Progress, Result,
     analysis::{max_position_violation, relative_rms},
     dynamics::{AxisType, IntegrationScheme, IntegratorParameters, Simulation, System, simulate},
     fem::{SlabParameters, slab},
@@ -30,7 +31,7 @@ const fn sim_controls(end: f64) -> super::scene_info::SceneControls {
         methods: &METHODS,
         boundary: &SLAB_BOUNDARY,
         modes: Some(6),
-        axes: &["nodal_fixed", "mean", "principal"],
+        axes: &AxisKind::ALL,
         end_time: Some(end),
         refine: Some(super::slab_modes::APP_B_BRICKS),
     }
@@ -79,16 +80,11 @@ const METHODS: [Method; 5] = [
 ];
 
 /// Parses `--axes` for the dynamic scenes.
-pub fn axis_type(id: Option<&str>, scene: &str) -> Result<AxisType> {
-    match id.unwrap_or("nodal_fixed") {
-        "nodal_fixed" => Ok(AxisType::NodalFixed(NodalFixedAxes::slab_default())),
-        "mean" => Ok(AxisType::Mean),
-        "principal" => Ok(AxisType::Principal),
-        other => Err(Error::UnknownAxes {
-            id: other.into(),
-            scene: scene.into(),
-            available: "nodal_fixed, mean, principal".into(),
-        }),
+pub fn axis_type(kind: Option<AxisKind>) -> AxisType {
+    match kind.unwrap_or(AxisKind::NodalFixed) {
+        AxisKind::NodalFixed => AxisType::NodalFixed(NodalFixedAxes::slab_default()),
+        AxisKind::Mean => AxisType::Mean,
+        AxisKind::Principal => AxisType::Principal,
     }
 }
 
@@ -144,7 +140,7 @@ pub fn run_scenario(
     opts: &SceneOptions,
 ) -> Result<SceneOutput> {
     let methods = opts.methods_or(info.id, &METHODS, &METHODS)?;
-    let axes = axis_type(opts.axes.as_deref(), info.id)?;
+    let axes = axis_type(opts.axes);
     let modes = opts.modes_or_default(info);
     let bricks = opts.refine.unwrap_or(super::slab_modes::APP_B_BRICKS);
     let model = slab(&SlabParameters::refined(bricks)?);
@@ -473,7 +469,7 @@ pub fn run_sim2(opts: &SceneOptions) -> Result<SceneOutput> {
 }
 
 pub fn run_sim3(opts: &SceneOptions) -> Result<SceneOutput> {
-    let axes = axis_type(opts.axes.as_deref(), INFO_3.id)?;
+    let axes = axis_type(opts.axes);
     let end = opts.end_time_or_default(&INFO_3)?;
     let tables = opts.cache.get_or_run(
         format!("{}/tables/{axes:?}/{:x}", INFO_3.id, end.to_bits()),

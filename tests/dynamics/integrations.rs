@@ -131,7 +131,7 @@ fn reported_errors(
             Method::CraigBampton,
             Method::ModeCondensation,
         ]),
-        axes: Some(axes.into()),
+        axes: Some(axes.parse().unwrap()),
         integrator: Some(integrator),
         ..Default::default()
     };

@@ -169,7 +169,7 @@ fn nodal_fixed_anchor_must_be_a_boundary_column() {
 #[test]
 fn scene_options_are_checked() {
     let bad_axes = SceneOptions {
-        axes: Some("mean".into()),
+        axes: Some(flexmodes::dynamics::AxisKind::Mean),
         ..Default::default()
     };
     let e = (scenes::find("beam-modes").unwrap().run)(&bad_axes).unwrap_err();
