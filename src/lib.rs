@@ -3,12 +3,21 @@
 //! An explorer of model order reduction for restrained deformable bodies in flexible multibody
 //! dynamics, after Y. Lin, *Model Reduction for a Restrained Deformable Body* (2005).
 //!
-//! - [`fem`]: the App. A beam, the App. B slab and the standing plank;
-//! - [`reduction`]: Guyan, modal truncation, Craig–Bampton, mode condensation, Eitelberg and
-//!   nodal-fixed column removal, each returning a labelled Ψ;
-//! - [`analysis`]: frequencies, deformed profiles, principal angles;
-//! - [`scenes`]: the scene registry behind `flexmodes list/record/report`;
-//! - [`record`]: the one Rerun recorder used by the CLI (and later the GUI).
+//! Data flows one way, layer by layer (see `ARCHITECTURE.md`):
+//!
+//! - [`error`]: one error enum per layer, wrapped by [`Error`];
+//! - [`linalg`]: checked dense kernels, sparse Cholesky, the partial eigensolver, saddle-point
+//!   solvers;
+//! - [`fem`] and [`body_file`]: the thesis' bodies and bodies from other FE codes;
+//! - [`reduction`]: one file per method (Guyan, modal truncation, Craig–Bampton, mode
+//!   condensation, Eitelberg, MacNeal–Rubin, Benfield–Hruda, moment matching, balanced
+//!   truncation), each returning a labelled Ψ;
+//! - [`dynamics`]: floating-frame bodies, constraints and the two integrators;
+//! - [`analysis`]: frequencies, deformed profiles, mean-axis evaluation, FRF and MAC;
+//! - [`models`]: the scenes' physical set-ups and their measures, as typed results;
+//! - [`record`] and [`export`]: the one Rerun recorder, reduced models written out;
+//! - [`scenes`]: the registry behind `flexmodes list/record/report`, wiring models to visuals;
+//! - [`bench`], [`cli`] and (feature `gui`) the desktop explorer: the doors.
 
 pub mod analysis;
 pub mod assets;

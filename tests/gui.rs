@@ -111,7 +111,7 @@ fn a_singular_boundary_is_shown_and_the_last_recording_kept() {
     let mut h = harness("slab-modes");
     settle(&mut h);
     let before = h.state().current.as_ref().unwrap().report.clone();
-    h.state_mut().controls.boundary = "16".into();
+    h.state_mut().edits.boundary = "16".into();
     h.get_by_label("apply boundary").click();
     settle(&mut h);
     let err = h.state().error.clone().expect("an error is shown");

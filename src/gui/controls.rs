@@ -184,6 +184,54 @@ pub enum Command {
     ResetBoundary,
     /// Write the current recording to this file.
     Save(std::path::PathBuf),
-    /// Take these axes (`None`: the scene's default) and recompute.
-    SetAxes(Option<AxisKind>),
+    /// Change one control and recompute.
+    Set(Change),
+}
+
+/// One change of the controls, as the panel asks for it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Change {
+    /// Show (`true`) or hide a method.
+    Method(Method, bool),
+    /// Keep this many normal modes.
+    Modes(usize),
+    /// Load this body file (a path or `builtin:NAME`); the boundary goes back to its default.
+    Body(String),
+    /// Take this boundary (node numbers or a node-set name, as typed).
+    Boundary(String),
+    /// Take these axes (`None`: the scene's default).
+    Axes(Option<AxisKind>),
+    /// Mesh the slab with these bricks along x, y, z.
+    Refine(Vec<usize>),
+    /// Integrate with this scheme.
+    Integrator(IntegrationScheme),
+    /// Draw deflections with this factor (0: automatic).
+    DeformationScale(f64),
+    /// Simulate this interval, s.
+    EndTime(f64),
+}
+
+impl Controls {
+    /// Applies one change.
+    pub fn change(&mut self, change: Change) {
+        match change {
+            Change::Method(m, on) => {
+                self.methods.retain(|id| id != m.id());
+                if on {
+                    self.methods.push(m.id().into());
+                }
+            }
+            Change::Modes(n) => self.modes = n,
+            Change::Body(body) => {
+                self.body = body;
+                self.boundary.clear();
+            }
+            Change::Boundary(boundary) => self.boundary = boundary,
+            Change::Axes(axes) => self.axes = axes,
+            Change::Refine(bricks) => self.refine = bricks,
+            Change::Integrator(scheme) => self.integrator = scheme.id().into(),
+            Change::DeformationScale(f) => self.deformation_scale = f,
+            Change::EndTime(t) => self.end_time = t,
+        }
+    }
 }

@@ -7,7 +7,7 @@ use rerun::external::egui;
 
 use crate::{dynamics::IntegrationScheme, fem::SlabParameters, scenes};
 
-use super::{Command, Computed, Controls, Worker, report_view::table_ui};
+use super::{Change, Command, Computed, Controls, Worker, report_view::table_ui};
 use crate::body_file::{BodyHandle, ImportedBody};
 
 /// Controls, the worker, the last good recording and what went wrong.
@@ -35,6 +35,27 @@ pub struct Explorer {
     shown_scenes: std::collections::HashSet<String>,
     /// The body file of the `modes` scene as loaded, with the text it was loaded from.
     body: Option<(String, BodyHandle)>,
+    /// Text being typed into the panel, not yet applied (transient).
+    pub edits: Edits,
+}
+
+/// Text fields as typed, applied to the controls by a command when the user presses Enter or a
+/// button; set back to the controls after every applied command.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Edits {
+    /// The body file field.
+    pub body: String,
+    /// The boundary field.
+    pub boundary: String,
+}
+
+impl Edits {
+    fn of(controls: &Controls) -> Self {
+        Self {
+            body: controls.body.clone(),
+            boundary: controls.boundary.clone(),
+        }
+    }
 }
 
 impl Explorer {
@@ -42,6 +63,7 @@ impl Explorer {
     pub fn new(controls: Controls) -> Self {
         let save_path = format!("{}.rrd", controls.scene);
         let mut e = Self {
+            edits: Edits::of(&controls),
             controls,
             worker: Worker::new(),
             generation: 0,
@@ -212,6 +234,7 @@ impl Explorer {
 
     /// Applies the panel's commands.
     pub fn apply(&mut self, commands: Vec<Command>) {
+        let any = !commands.is_empty();
         for c in commands {
             match c {
                 Command::SelectScene(id) => {
@@ -222,8 +245,8 @@ impl Explorer {
                     }
                 }
                 Command::Recompute => self.request(),
-                Command::SetAxes(axes) => {
-                    self.controls.axes = axes;
+                Command::Set(change) => {
+                    self.controls.change(change);
                     self.request();
                 }
                 Command::ResetBoundary => {
@@ -241,6 +264,9 @@ impl Explorer {
                     None => self.status = "nothing to save yet".into(),
                 },
             }
+        }
+        if any {
+            self.edits = Edits::of(&self.controls);
         }
     }
 
@@ -281,12 +307,7 @@ impl Explorer {
                     .on_hover_text(m.name())
                     .changed()
                 {
-                    if on {
-                        self.controls.methods.push(m.id().into());
-                    } else {
-                        self.controls.methods.retain(|id| id != m.id());
-                    }
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::Method(*m, on)));
                 }
             }
         });
@@ -294,12 +315,10 @@ impl Explorer {
             ui.horizontal(|ui| {
                 ui.label(format!("kept modes: {}", self.controls.modes));
                 if ui.button("fewer modes").clicked() && self.controls.modes > 0 {
-                    self.controls.modes -= 1;
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::Modes(self.controls.modes - 1)));
                 }
                 if ui.button("more modes").clicked() {
-                    self.controls.modes += 1;
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::Modes(self.controls.modes + 1)));
                 }
             });
         }
@@ -307,13 +326,12 @@ impl Explorer {
             ui.horizontal(|ui| {
                 ui.label("body file");
                 let r = ui.add(
-                    egui::TextEdit::singleline(&mut self.controls.body)
+                    egui::TextEdit::singleline(&mut self.edits.body)
                         .hint_text(scenes::body_modes::DEFAULT_BODY)
                         .desired_width(170.0),
                 );
                 if r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
-                    self.controls.boundary.clear();
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::Body(self.edits.body.clone())));
                 }
             });
             ui.horizontal_wrapped(|ui| {
@@ -324,9 +342,7 @@ impl Explorer {
                         .selectable_label(self.controls.body == id, name)
                         .clicked()
                     {
-                        self.controls.body = id;
-                        self.controls.boundary.clear();
-                        out.push(Command::Recompute);
+                        out.push(Command::Set(Change::Body(id)));
                     }
                 }
             });
@@ -355,8 +371,7 @@ impl Explorer {
                             .on_hover_text(format!("node set, {count} nodes"))
                             .clicked()
                         {
-                            self.controls.boundary = name;
-                            out.push(Command::Recompute);
+                            out.push(Command::Set(Change::Boundary(name)));
                         }
                     }
                 });
@@ -365,16 +380,15 @@ impl Explorer {
         if !info.controls.boundary.is_empty() || self.controls.takes_body() {
             ui.horizontal(|ui| {
                 ui.label("boundary nodes");
-                let r = ui.add(
-                    egui::TextEdit::singleline(&mut self.controls.boundary).desired_width(110.0),
-                );
+                let r = ui
+                    .add(egui::TextEdit::singleline(&mut self.edits.boundary).desired_width(110.0));
                 if r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::Boundary(self.edits.boundary.clone())));
                 }
             });
             ui.horizontal(|ui| {
                 if ui.button("apply boundary").clicked() {
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::Boundary(self.edits.boundary.clone())));
                 }
                 if ui.button("reset boundary").clicked() {
                     out.push(Command::ResetBoundary);
@@ -391,7 +405,7 @@ impl Explorer {
                     if ui.selectable_label(self.controls.axes == a, text).clicked()
                         && self.controls.axes != a
                     {
-                        out.push(Command::SetAxes(a));
+                        out.push(Command::Set(Change::Axes(a)));
                     }
                 }
             });
@@ -419,8 +433,7 @@ impl Explorer {
                     }
                 });
             if mesh != self.controls.refine {
-                self.controls.refine = mesh;
-                out.push(Command::Recompute);
+                out.push(Command::Set(Change::Refine(mesh)));
             }
         }
         if info.controls.end_time.is_some() {
@@ -432,9 +445,11 @@ impl Explorer {
                     } else {
                         self.controls.integrator == id
                     };
-                    if ui.selectable_label(chosen, id).clicked() && !chosen {
-                        self.controls.integrator = id.to_string();
-                        out.push(Command::Recompute);
+                    if ui.selectable_label(chosen, id).clicked()
+                        && !chosen
+                        && let Some(scheme) = IntegrationScheme::from_id(id)
+                    {
+                        out.push(Command::Set(Change::Integrator(scheme)));
                     }
                 }
             });
@@ -458,27 +473,23 @@ impl Explorer {
                     shown.unwrap_or(1.0)
                 };
                 if ui.button("×½").clicked() {
-                    self.controls.deformation_scale = base / 2.0;
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::DeformationScale(base / 2.0)));
                 }
                 if ui.button("×2").clicked() {
-                    self.controls.deformation_scale = base * 2.0;
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::DeformationScale(base * 2.0)));
                 }
                 if ui.button("auto").clicked() && self.controls.deformation_scale != 0.0 {
-                    self.controls.deformation_scale = 0.0;
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::DeformationScale(0.0)));
                 }
             });
             ui.horizontal(|ui| {
                 ui.label(format!("end time: {:.2} s", self.controls.end_time));
                 if ui.button("shorter").clicked() && self.controls.end_time > 0.25 {
-                    self.controls.end_time = (self.controls.end_time - 0.25).max(0.25);
-                    out.push(Command::Recompute);
+                    let t = (self.controls.end_time - 0.25).max(0.25);
+                    out.push(Command::Set(Change::EndTime(t)));
                 }
                 if ui.button("longer").clicked() && self.controls.end_time < 60.0 {
-                    self.controls.end_time += 0.25;
-                    out.push(Command::Recompute);
+                    out.push(Command::Set(Change::EndTime(self.controls.end_time + 0.25)));
                 }
             });
         }

@@ -11,6 +11,6 @@ mod report_view;
 mod worker;
 
 pub use app::{FEWER_MODES, MORE_MODES, ViewerOptions, run, run_with_body};
-pub use controls::{Command, Controls, MESH_PRESETS};
+pub use controls::{Change, Command, Controls, MESH_PRESETS};
 pub use explorer::Explorer;
 pub use worker::{Computed, Finished, Worker};
