@@ -18,6 +18,15 @@ pub struct Report {
     pub tables: Vec<Table>,
 }
 
+/// A piece of a report's text: prose (markdown) or one of its tables with its numbers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Block<'a> {
+    /// Text between tables.
+    Text(&'a str),
+    /// A table.
+    Table(&'a Table),
+}
+
 /// One cell of a result table: its text and, where it stands for a number, the number.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cell {
@@ -151,6 +160,29 @@ impl Report {
         md
     }
 
+    /// The report's text as typed blocks, in order: the text between tables, and each of
+    /// [`Self::tables`] where its markdown (as [`Self::add_table`] rendered it) stands in
+    /// [`Self::table`]. A table the text does not show is not a block.
+    pub fn blocks(&self) -> Vec<Block<'_>> {
+        let mut blocks = Vec::new();
+        let mut rest = self.table.as_str();
+        for table in &self.tables {
+            let md = table.markdown();
+            let Some(at) = rest.find(md.trim_end()) else {
+                continue;
+            };
+            if !rest[..at].trim().is_empty() {
+                blocks.push(Block::Text(rest[..at].trim()));
+            }
+            blocks.push(Block::Table(table));
+            rest = &rest[at + md.trim_end().len()..];
+        }
+        if !rest.trim().is_empty() {
+            blocks.push(Block::Text(rest.trim()));
+        }
+        blocks
+    }
+
     /// The JSON object of `report --json`.
     pub fn to_json(&self) -> Value {
         json!({
@@ -282,5 +314,35 @@ mod tests {
         // All alike: nothing to rank; the text column never is.
         assert_eq!(error_table(&[0.1, 0.10001]).best_and_worst(1), None);
         assert_eq!(error_table(&[0.1, 0.2]).best_and_worst(0), None);
+    }
+}
+
+#[cfg(test)]
+mod block_tests {
+    use super::*;
+
+    #[test]
+    fn blocks_follow_the_text_and_its_tables_in_order() {
+        let mut report = Report::new("test");
+        let a = report.add_table(Table::from_text(&["x"], &[vec!["1".into()]]));
+        let b = report.add_table(Table::from_text(
+            &["y", "z"],
+            &[vec!["2".into(), "3".into()]],
+        ));
+        report.table = format!("## First\n\n{a}\nbetween\n\n{b}\nafter");
+        let blocks = report.blocks();
+        assert_eq!(blocks.len(), 5, "{blocks:?}");
+        assert_eq!(blocks[0], Block::Text("## First"));
+        assert_eq!(blocks[1], Block::Table(&report.tables[0]));
+        assert_eq!(blocks[2], Block::Text("between"));
+        assert_eq!(blocks[3], Block::Table(&report.tables[1]));
+        assert_eq!(blocks[4], Block::Text("after"));
+        // A table the text does not show is left out; the text stays whole.
+        report.table = format!("only {b}");
+        let blocks = report.blocks();
+        assert_eq!(
+            blocks,
+            vec![Block::Text("only"), Block::Table(&report.tables[1])]
+        );
     }
 }

@@ -3,30 +3,19 @@
 
 use rerun::external::egui;
 
-use crate::report::{Report, Table};
+use crate::report::{Block, Report, Table};
 
-/// Draws a report's text with its tables as grids: the k-th table block of the markdown is the
-/// report's k-th [`Table`], drawn from its cells, with the best and worst value of each ranked
-/// column highlighted (green, red) from the cells' numbers. Other lines are shown as text.
+/// Draws a report's text and its tables as grids (the report's own [`Block`]s), with the best
+/// and worst value of each ranked column highlighted (green, red) from the cells' numbers.
 pub(super) fn table_ui(ui: &mut egui::Ui, report: &Report) {
-    let mut tables = report.tables.iter().enumerate();
-    let mut in_block = false;
-    for line in report.table.lines() {
-        let t = line.trim();
-        let is_row = t.starts_with('|') && t.ends_with('|') && t.len() > 1;
-        if is_row && in_block {
-            continue;
-        }
-        in_block = is_row;
-        if is_row {
-            match tables.next() {
-                Some((id, table)) => grid_ui(ui, id, table),
-                None => {
-                    ui.label(egui::RichText::new(t).small().monospace());
+    for (id, block) in report.blocks().into_iter().enumerate() {
+        match block {
+            Block::Table(table) => grid_ui(ui, id, table),
+            Block::Text(text) => {
+                for line in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+                    ui.label(egui::RichText::new(line).small());
                 }
             }
-        } else if !t.is_empty() {
-            ui.label(egui::RichText::new(t).small());
         }
     }
 }
