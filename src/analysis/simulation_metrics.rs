@@ -2,22 +2,25 @@
 //! error against a reference history, energy drift and constraint violation, and the mirror
 //! symmetry defect of §5.3.3.
 
-use crate::dynamics::{Body, Simulation, System};
+use crate::{
+    dynamics::{Body, Simulation, System},
+    fem::NodeIndex,
+};
 
-/// Local deflections (ξ, η, ζ) of node `node` (1-based) of deformable body `body` at every
+/// Local deflections (ξ, η, ζ) of `node` of deformable body `body` at every
 /// sample, $\Psi_j z$ in the body frame, m.
 pub fn node_deflection_history(
     system: &System,
     sim: &Simulation,
     body: usize,
-    node: usize,
+    node: NodeIndex,
 ) -> [Vec<f64>; 3] {
     let mut out = [Vec::new(), Vec::new(), Vec::new()];
     let Some(Body::Flexible(fb)) = system.bodies.get(body) else {
         return out;
     };
     for s in &sim.samples {
-        let d = fb.deflection(node - 1, &system.modal(body, &s.state));
+        let d = fb.deflection(node.get(), &system.modal(body, &s.state));
         for a in 0..3 {
             out[a].push(d[a]);
         }
@@ -68,13 +71,13 @@ pub fn max_position_violation(sim: &Simulation) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Global x of two nodes (0-based) of body `body` that mirror each other about the plane
+/// Global x of two nodes of body `body` that mirror each other about the plane
 /// $x = x_{mid}$, and the symmetry defect $|x_a + x_b - 2x_{mid}|$, per sample (m).
 pub fn mirror_defect_history(
     system: &System,
     sim: &Simulation,
     body: usize,
-    nodes: (usize, usize),
+    nodes: (NodeIndex, NodeIndex),
     mid_x: f64,
 ) -> [Vec<f64>; 3] {
     let mut out = [Vec::new(), Vec::new(), Vec::new()];

@@ -201,7 +201,7 @@ impl FlexibleBody {
         }
         let (basis, origin) = match axes {
             AxisType::NodalFixed(nf) => {
-                let o = model.nodes[model.node_index(nf.origin)?];
+                let o = model.position(model.node_index(nf.origin)?);
                 (nf.apply(&model, &basis)?, Vector3::new(o[0], o[1], o[2]))
             }
             AxisType::Mean | AxisType::Principal => (basis, Vector3::from(model.mass_centre())),

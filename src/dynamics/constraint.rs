@@ -5,6 +5,7 @@
 use nalgebra::Vector3;
 
 use super::Motion;
+use crate::fem::NodeIndex;
 
 /// A point a joint holds.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -18,12 +19,12 @@ pub enum Attachment {
         /// Position in the body frame, m.
         local: Vector3<f64>,
     },
-    /// A node of a deformable body (0-based index).
+    /// A node of a deformable body.
     Node {
         /// Body index.
         body: usize,
-        /// Node index, 0-based.
-        node: usize,
+        /// The node.
+        node: NodeIndex,
     },
 }
 
@@ -37,8 +38,8 @@ pub enum Constraint {
     PrescribedNode {
         /// Deformable body index.
         body: usize,
-        /// Node index, 0-based.
-        node: usize,
+        /// The node.
+        node: NodeIndex,
         /// Global axis 0, 1, 2 (x, y, z).
         axis: usize,
         /// The time function of the absolute coordinate.

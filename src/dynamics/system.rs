@@ -7,6 +7,7 @@ use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
     rotation::{l_matrix, rotate_body, skew},
 };
+use crate::fem::NodeIndex;
 use crate::{
     Error, Result,
     linalg::{REDUNDANT_PSD, pinv_solve, range_space_solve, saddle_point_solve},
@@ -33,7 +34,7 @@ pub struct System {
     /// Gravity, m/s² (standard gravity 9.80665 in −z, §7.2).
     pub gravity: Vector3<f64>,
     /// Constant global forces on nodes: (body, node, force in N).
-    pub nodal_forces: Vec<(usize, usize, Vector3<f64>)>,
+    pub nodal_forces: Vec<(usize, NodeIndex, Vector3<f64>)>,
     pub(super) q_off: Vec<usize>,
     pub(super) v_off: Vec<usize>,
 }
@@ -135,8 +136,8 @@ impl System {
                 reason,
             })
         };
-        let node_ok = |b: usize, n: usize| match self.bodies.get(b) {
-            Some(Body::Flexible(f)) => n < f.s_bar.len(),
+        let node_ok = |b: usize, n: NodeIndex| match self.bodies.get(b) {
+            Some(Body::Flexible(f)) => n.get() < f.s_bar.len(),
             _ => false,
         };
         for c in &self.constraints {
@@ -145,7 +146,7 @@ impl System {
                     for att in [a, b] {
                         match *att {
                             Attachment::Node { body, node } if !node_ok(body, node) => {
-                                return bad(format!("joint on missing node {node} of body {body}"));
+                                return bad(format!("joint on missing {node} of body {body}"));
                             }
                             Attachment::Point { body, .. }
                                 if !matches!(self.bodies.get(body), Some(Body::Rigid(_))) =>
@@ -160,7 +161,7 @@ impl System {
                     body, node, axis, ..
                 } => {
                     if !node_ok(*body, *node) || *axis > 2 {
-                        return bad(format!("prescribed motion of missing node {node}"));
+                        return bad(format!("prescribed motion of missing {node}"));
                     }
                 }
             }
@@ -229,8 +230,8 @@ impl System {
                         if bb == b {
                             let local = at * force;
                             q_r += local;
-                            q_w += fb.b(n, &f.z).cross(&local);
-                            q_z += fb.psi_nodes[n].transpose() * local;
+                            q_w += fb.b(n.get(), &f.z).cross(&local);
+                            q_z += fb.psi_nodes[n.get()].transpose() * local;
                         }
                     }
                     let (ar, aw, az) = inv.velocity_forces(&f.w, &f.z, &f.zd, &h, &j_bar);

@@ -7,6 +7,7 @@ use super::{
     Attachment, Body, State, System,
     rotation::{rotation_matrix, skew},
 };
+use crate::fem::NodeIndex;
 
 /// One body's frame and deformation at an instant; the modal coordinates are views into the
 /// state, so reading a frame allocates nothing.
@@ -49,7 +50,7 @@ impl System {
     pub fn node_acceleration(
         &self,
         b: usize,
-        node: usize,
+        node: NodeIndex,
         s: &State,
         vdot: &DVector<f64>,
     ) -> Vector3<f64> {
@@ -59,10 +60,10 @@ impl System {
     }
 
     /// Global position of a node of a deformable body.
-    pub fn node_position(&self, b: usize, node: usize, s: &State) -> Vector3<f64> {
+    pub fn node_position(&self, b: usize, node: NodeIndex, s: &State) -> Vector3<f64> {
         let f = self.frame(b, s);
         match &self.bodies[b] {
-            Body::Flexible(fb) => f.r + f.a * fb.b(node, &f.z),
+            Body::Flexible(fb) => f.r + f.a * fb.b(node.get(), &f.z),
             Body::Rigid(_) => f.r,
         }
     }
@@ -73,13 +74,15 @@ impl System {
     pub fn node_position_scaled(
         &self,
         b: usize,
-        node: usize,
+        node: NodeIndex,
         s: &State,
         scale: f64,
     ) -> Vector3<f64> {
         let f = self.frame(b, s);
         match &self.bodies[b] {
-            Body::Flexible(fb) => f.r + f.a * (fb.s_bar[node] + fb.deflection(node, &f.z) * scale),
+            Body::Flexible(fb) => {
+                f.r + f.a * (fb.s_bar[node.get()] + fb.deflection(node.get(), &f.z) * scale)
+            }
             Body::Rigid(_) => f.r,
         }
     }
@@ -160,8 +163,8 @@ impl System {
                 let Body::Flexible(fb) = &self.bodies[body] else {
                     unreachable!("node attachments are checked to name deformable bodies")
                 };
-                let psi = &fb.psi_nodes[node];
-                let bj = fb.b(node, &f.z);
+                let psi = &fb.psi_nodes[node.get()];
+                let bj = fb.b(node.get(), &f.z);
                 let arm = -f.a * skew(&bj);
                 for i in axes.clone() {
                     c[(row(i), vo + i)] += sign;

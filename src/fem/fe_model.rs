@@ -2,6 +2,7 @@
 
 use faer::Mat;
 
+use super::NodeIndex;
 use super::{DofMap, MassProperties, NodeDof};
 use crate::{
     Error, Result,
@@ -90,8 +91,9 @@ impl FeModel {
         self.dofs.spatial_dim()
     }
 
-    /// Checks a 1-based node number and returns its 0-based index.
-    pub fn node_index(&self, node: usize) -> Result<usize> {
+    /// Checks a 1-based node number and returns its 0-based index: the one place a user's
+    /// node number becomes an index.
+    pub fn node_index(&self, node: usize) -> Result<NodeIndex> {
         if node == 0 || node > self.node_count() {
             return Err(Error::NodeOutOfRange {
                 node,
@@ -99,12 +101,21 @@ impl FeModel {
                 body: self.name.clone(),
             });
         }
-        Ok(node - 1)
+        NodeIndex::of_number(node).ok_or(Error::NodeOutOfRange {
+            node,
+            count: self.node_count(),
+            body: self.name.clone(),
+        })
+    }
+
+    /// The undeformed position of a node, m.
+    pub fn position(&self, node: NodeIndex) -> [f64; 3] {
+        self.nodes[node.get()]
     }
 
     /// The DOF index of a 1-based node's translation in a direction.
     pub fn dof(&self, node: usize, dir: Direction) -> Result<usize> {
-        let i = self.node_index(node)?;
+        let i = self.node_index(node)?.get();
         self.dofs
             .index(i, NodeDof::Translation(dir))
             .ok_or_else(|| Error::InvalidAxes {
@@ -115,7 +126,7 @@ impl FeModel {
     /// The DOF index of a 1-based node's DOF (translation or rotation); a node without it is
     /// [`Error::NoSuchDof`].
     pub fn node_dof(&self, node: usize, dof: super::NodeDof) -> Result<usize> {
-        let i = self.node_index(node)?;
+        let i = self.node_index(node)?.get();
         self.dofs.index(i, dof).ok_or_else(|| Error::NoSuchDof {
             node,
             dof: dof.name(),
@@ -138,7 +149,7 @@ impl FeModel {
             if nodes[..n].contains(&node) {
                 return Err(Error::DuplicateNode { node });
             }
-            let i = self.node_index(node)?;
+            let i = self.node_index(node)?.get();
             out.extend((0..per).map(|d| i * per + d));
         }
         Ok(out)

@@ -10,6 +10,7 @@ mod frame3d;
 mod hex8;
 mod l_bracket;
 mod mass_properties;
+mod node_index;
 mod overhang_frame;
 mod triplets;
 
@@ -24,6 +25,7 @@ pub use hex8::{
 };
 pub use l_bracket::{LBracketParameters, l_bracket};
 pub use mass_properties::MassProperties;
+pub use node_index::NodeIndex;
 pub use overhang_frame::{
     OverhangDirection, OverhangFrame, OverhangFrameParameters, overhang_frame,
 };

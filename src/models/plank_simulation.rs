@@ -9,7 +9,7 @@ use crate::{
     dynamics::{
         Attachment, AxisType, Body, Constraint, FlexibleBody, RigidBody, Simulation, State, System,
     },
-    fem::{Direction, FeModel},
+    fem::{Direction, FeModel, NodeIndex},
     reduction::{
         Method, ModeSelection, NodalFixedAxes, ReductionParameters, TableConfiguration, reduce,
     },
@@ -84,13 +84,13 @@ pub fn plank_body(model: &FeModel, v: Variant, modes: usize) -> Result<FlexibleB
 pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
     let model = body.model.clone();
     let origin = body.origin;
-    let top = |node: usize| {
-        let p = model.nodes[node - 1];
-        Vector3::new(p[0], p[1], p[2])
+    let top = |node: usize| -> Result<Vector3<f64>> {
+        let p = model.position(model.node_index(node)?);
+        Ok(Vector3::new(p[0], p[1], p[2]))
     };
     let setup = plank_setup();
     let [left, right] = setup.hanging_nodes;
-    let (c, f) = (top(left), top(right));
+    let (c, f) = (top(left)?, top(right)?);
     // Anchors above the top corners, the chain's elbow pushed outward (mirror images).
     let length = setup.link_length;
     let height = 2.0 * length - setup.drop;
@@ -124,18 +124,24 @@ pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
     joints.push(Constraint::Spherical(link(1, 1.0), link(2, -1.0)));
     joints.push(Constraint::Spherical(
         link(2, 1.0),
-        Attachment::Node { body: 0, node: 2 },
+        Attachment::Node {
+            body: 0,
+            node: model.node_index(left)?,
+        },
     ));
     joints.push(Constraint::Spherical(Attachment::Ground(d), link(3, -1.0)));
     joints.push(Constraint::Spherical(link(3, 1.0), link(4, -1.0)));
     joints.push(Constraint::Spherical(
         link(4, 1.0),
-        Attachment::Node { body: 0, node: 14 },
+        Attachment::Node {
+            body: 0,
+            node: model.node_index(right)?,
+        },
     ));
     let mut system = System::new(bodies, joints);
     system.nodal_forces.push((
         0,
-        setup.force_node - 1,
+        model.node_index(setup.force_node)?,
         Vector3::new(0.0, 0.0, -setup.force),
     ));
     let state = system.state_at(&placements);
@@ -144,5 +150,9 @@ pub fn plank_system(body: FlexibleBody) -> Result<(System, State)> {
 
 /// x of nodes 3 and 15 and the symmetry defect $|x_3 + x_{15} - 2x_{mid}|$ per sample.
 pub fn symmetry_history(system: &System, sim: &Simulation) -> [Vec<f64>; 3] {
-    mirror_defect_history(system, sim, 0, (2, 14), MID_X)
+    let [left, right] = plank_setup().hanging_nodes.map(NodeIndex::of_number);
+    match (left, right) {
+        (Some(a), Some(b)) => mirror_defect_history(system, sim, 0, (a, b), MID_X),
+        _ => Default::default(),
+    }
 }

@@ -12,7 +12,7 @@ use crate::{
         AxisType, Body, Constraint, FlexibleBody, IntegratorParameters, Motion, Simulation, System,
         simulate,
     },
-    fem::{FeModel, SlabParameters, slab},
+    fem::{FeModel, NodeIndex, SlabParameters, slab},
     reduction::{Method, ModeSelection, NodalFixedAxes, ReductionParameters, reduce},
 };
 
@@ -83,13 +83,14 @@ pub fn record_driving_tables(
     let rot = sim3_rotation();
     let pivot = Vector3::new(0.0, 2.0, 0.0);
     let placed = |p: Vector3<f64>| pivot + rot * (p - pivot);
-    let node = |n: usize| {
-        let p = model.nodes[n - 1];
-        placed(Vector3::new(p[0], p[1], p[2]))
+    let index = |n: usize| model.node_index(n);
+    let node = |n: usize| -> Result<Vector3<f64>> {
+        let p = model.position(index(n)?);
+        Ok(placed(Vector3::new(p[0], p[1], p[2])))
     };
     let origin = placed(body.origin);
     let mut constraints: Vec<Constraint> = Vec::new();
-    let (n18, n30) = (node(18), node(30));
+    let (n18, n30) = (node(18)?, node(30)?);
     let far18 = n18 - Vector3::new(2.0, 0.0, 0.0);
     let far30 = n30 + Vector3::new(3.0, 0.0, 0.0);
     let short = RigidBody::rod("link18", 2.0, 1.0);
@@ -106,10 +107,16 @@ pub fn record_driving_tables(
             body: 1,
             local: Vector3::new(1.0, 0.0, 0.0),
         },
-        Attachment::Node { body: 0, node: 17 },
+        Attachment::Node {
+            body: 0,
+            node: index(18)?,
+        },
     ));
     constraints.push(Constraint::Spherical(
-        Attachment::Node { body: 0, node: 29 },
+        Attachment::Node {
+            body: 0,
+            node: index(30)?,
+        },
         Attachment::Point {
             body: 2,
             local: Vector3::new(-1.5, 0.0, 0.0),
@@ -132,10 +139,10 @@ pub fn record_driving_tables(
     );
     system
         .nodal_forces
-        .push((0, 15, Vector3::new(-40.0, 160.0, -20.0)));
+        .push((0, index(16)?, Vector3::new(-40.0, 160.0, -20.0)));
     system
         .nodal_forces
-        .push((0, 27, Vector3::new(60.0, -240.0, -30.0)));
+        .push((0, index(28)?, Vector3::new(60.0, -240.0, -30.0)));
     let state = system.state_at(&[
         (origin, rot),
         ((far18 + n18) / 2.0, Matrix3::identity()),
@@ -152,7 +159,7 @@ pub fn record_driving_tables(
     for s in &sim.samples {
         let vdot = system.accelerations(s.t, &s.state)?;
         for (i, &n) in DRIVEN_NODES.iter().enumerate() {
-            let a = system.node_acceleration(0, n - 1, &s.state, &vdot);
+            let a = system.node_acceleration(0, index(n)?, &s.state, &vdot);
             for ax in 0..3 {
                 values[i][ax].push(a[ax]);
             }
@@ -260,15 +267,16 @@ pub fn default_boundary(model: &FeModel) -> Vec<usize> {
 }
 
 /// Node `node` (1-based) of the slab (body 0) held at its undeformed coordinate `axis`.
-pub fn fixed(model: &FeModel, node: usize, axis: usize) -> Constraint {
-    Constraint::PrescribedNode {
+pub fn fixed(model: &FeModel, node: usize, axis: usize) -> Result<Constraint> {
+    let node = model.node_index(node)?;
+    Ok(Constraint::PrescribedNode {
         body: 0,
-        node: node - 1,
+        node,
         axis,
         motion: Motion::Fixed,
-        x0: model.nodes[node - 1][axis],
+        x0: model.position(node)[axis],
         v0: 0.0,
-    }
+    })
 }
 
 /// Builds the system and its initial state for a scenario.
@@ -278,6 +286,7 @@ pub fn slab_system(
 ) -> Result<(System, crate::dynamics::State)> {
     let model = body.model.clone();
     let n = |app_b: usize| slab_node(&model, app_b);
+    let index = |app_b: usize| model.node_index(slab_node(&model, app_b));
     let mut origin = body.origin;
     let mut rotation = Matrix3::identity();
     let mut constraints: Vec<Constraint> = Vec::new();
@@ -285,22 +294,23 @@ pub fn slab_system(
     match scenario {
         Scenario::HeldAtSix => {
             for a in 0..3 {
-                constraints.push(fixed(&model, n(16), a));
+                constraints.push(fixed(&model, n(16), a)?);
             }
-            constraints.push(fixed(&model, n(18), 0));
-            constraints.push(fixed(&model, n(28), 2));
-            constraints.push(fixed(&model, n(30), 2));
+            constraints.push(fixed(&model, n(18), 0)?);
+            constraints.push(fixed(&model, n(28), 2)?);
+            constraints.push(fixed(&model, n(30), 2)?);
         }
         Scenario::Orbit => {
             for a in 0..3 {
-                constraints.push(fixed(&model, n(16), a));
-                constraints.push(fixed(&model, n(18), a));
+                constraints.push(fixed(&model, n(16), a)?);
+                constraints.push(fixed(&model, n(18), a)?);
             }
             let a = ORBIT_R * omega * omega;
-            let p30 = model.nodes[n(30) - 1];
+            let node30 = index(30)?;
+            let p30 = model.position(node30);
             constraints.push(Constraint::PrescribedNode {
                 body: 0,
-                node: n(30) - 1,
+                node: node30,
                 axis: 0,
                 motion: Motion::Harmonic {
                     a,
@@ -311,11 +321,11 @@ pub fn slab_system(
                 x0: p30[0],
                 v0: 0.0,
             });
-            constraints.push(fixed(&model, n(30), 1));
+            constraints.push(fixed(&model, n(30), 1)?);
             // z velocity of the closed orbit, R Ω (1 + 1/16); see the scene text.
             constraints.push(Constraint::PrescribedNode {
                 body: 0,
-                node: n(30) - 1,
+                node: node30,
                 axis: 2,
                 motion: Motion::Harmonic {
                     a,
@@ -332,13 +342,13 @@ pub fn slab_system(
             let pivot = Vector3::new(0.0, 2.0, 0.0);
             origin = pivot + rotation * (origin - pivot);
             for (i, &app_b) in DRIVEN_NODES.iter().enumerate() {
-                let node = n(app_b);
-                let p = model.nodes[node - 1];
+                let node = index(app_b)?;
+                let p = model.position(node);
                 let x = pivot + rotation * (Vector3::new(p[0], p[1], p[2]) - pivot);
                 for axis in 0..3 {
                     constraints.push(Constraint::PrescribedNode {
                         body: 0,
-                        node: node - 1,
+                        node,
                         axis,
                         motion: Motion::table(tables.dt, tables.values[i][axis].clone()),
                         x0: x[axis],
@@ -362,7 +372,10 @@ pub fn slab_system(
     Ok((system, state))
 }
 
-/// Node `node`'s (1-based) local deflections (ξ, η, ζ) of the slab at every sample.
+/// Node `node`'s (1-based) local deflections (ξ, η, ζ) of the slab at every sample (none
+/// for node 0).
 pub fn probe_history(system: &System, sim: &Simulation, node: usize) -> [Vec<f64>; 3] {
-    node_deflection_history(system, sim, 0, node)
+    NodeIndex::of_number(node).map_or_else(Default::default, |node| {
+        node_deflection_history(system, sim, 0, node)
+    })
 }

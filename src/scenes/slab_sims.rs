@@ -11,6 +11,7 @@ use super::{
     },
 };
 use crate::dynamics::AxisKind;
+use crate::fem::NodeIndex;
 use crate::models::{
     DrivenTables, PROBE_NODE, SIM1_END, SIM2_END, SIM3_END, SLAB_BOUNDARY, Scenario,
     default_boundary, probe_history, record_driving_tables, slab_body, slab_node, slab_system,
@@ -369,7 +370,7 @@ pub fn run_scenario(
         let ys = geometry.nodes.iter().map(|p| p[1]);
         ys.clone().fold(f64::MIN, f64::max) - ys.fold(f64::MAX, f64::min)
     };
-    let label_node = slab_node(&model, 16) - 1;
+    let label_node = model.node_index(slab_node(&model, 16))?;
     for (k, (m, system, sim, _)) in runs.iter().enumerate() {
         let lane = format!("world/slab/{}", m.id());
         visuals.push(Visual::Offset {
@@ -388,7 +389,7 @@ pub fn run_scenario(
             // Above the body's highest point at the start, over node 16's corner.
             let p = system.node_position(0, label_node, &first.state);
             let top = (0..geometry.nodes.len())
-                .map(|j| system.node_position(0, j, &first.state).z)
+                .map(|j| system.node_position(0, NodeIndex(j), &first.state).z)
                 .fold(f64::MIN, f64::max);
             visuals.push(Visual::Label3D {
                 path: format!("{lane}/label"),

@@ -39,7 +39,7 @@ fn held_slab() -> (System, State) {
     let model = slab(&SlabParameters::default());
     let axes = flexmodes::dynamics::AxisType::NodalFixed(NodalFixedAxes::slab_default());
     let body = slab_body(&model, Method::CraigBampton, axes, &BOUNDARY, 6).unwrap();
-    let hold = |node: usize, axis: usize| fixed(&model, node, axis);
+    let hold = |node: usize, axis: usize| fixed(&model, node, axis).unwrap();
     let constraints = vec![
         hold(16, 0),
         hold(16, 1),

@@ -300,7 +300,8 @@ fn constraints_hold_and_the_frame_turns_with_the_orbit() {
     assert!(axis[1].abs() > 0.999, "axis {axis:?}");
     let turn = |node: usize| {
         let chord = |s: &flexmodes::dynamics::State| {
-            let d = system.node_position(0, node - 1, s) - system.node_position(0, 15, s);
+            let d = system.node_position(0, flexmodes::fem::NodeIndex(node - 1), s)
+                - system.node_position(0, flexmodes::fem::NodeIndex(15), s);
             d.z.atan2(d.x)
         };
         let t = (chord(last_state) - chord(&sim.samples[0].state)).abs();
@@ -315,7 +316,9 @@ fn constraints_hold_and_the_frame_turns_with_the_orbit() {
     // Node 30 follows Eq. (7.10): back near its start after one period T = 1 s would need
     // 1 s; at 0.5 s it is on the far side of the orbit, x = R cos(π) + R/16 cos(2π) - R/16.
     let last = sim.samples.last().unwrap();
-    let x30 = system.node_position(0, 29, &last.state).x;
+    let x30 = system
+        .node_position(0, flexmodes::fem::NodeIndex(29), &last.state)
+        .x;
     assert!((x30 - (-4.0)).abs() < 1e-8, "x30 = {x30}");
 }
 
@@ -346,9 +349,15 @@ fn energy_is_conserved_without_damping_or_driving() {
         );
     }
     // The plank did fall: energy moved from potential to kinetic.
-    let z0 = system.node_position(0, 7, &sim.samples[0].state).z;
+    let z0 = system
+        .node_position(0, flexmodes::fem::NodeIndex(7), &sim.samples[0].state)
+        .z;
     let z1 = system
-        .node_position(0, 7, &sim.samples.last().unwrap().state)
+        .node_position(
+            0,
+            flexmodes::fem::NodeIndex(7),
+            &sim.samples.last().unwrap().state,
+        )
         .z;
     assert!(z0 - z1 > 0.5, "fell {} m", z0 - z1);
 }
@@ -387,7 +396,8 @@ fn mean_axes_keep_the_plank_symmetric_and_nodal_fixed_axes_do_not() {
             .iter()
             .filter(|s| s.t <= 0.45)
             .flat_map(|s| {
-                (0..model.node_count()).map(move |j| system.node_position(0, j, &s.state))
+                (0..model.node_count())
+                    .map(move |j| system.node_position(0, flexmodes::fem::NodeIndex(j), &s.state))
             })
             .collect();
         early_positions.push(positions);
@@ -437,7 +447,9 @@ fn a_frame_change_leaves_absolute_positions_unchanged_to_second_order() {
         assert_eq!(sim0.samples.len(), sim.samples.len());
         for (a, b) in sim0.samples.iter().zip(&sim.samples) {
             for j in 0..model.node_count() {
-                let d = (s0.node_position(0, j, &a.state) - s.node_position(0, j, &b.state)).norm();
+                let d = (s0.node_position(0, flexmodes::fem::NodeIndex(j), &a.state)
+                    - s.node_position(0, flexmodes::fem::NodeIndex(j), &b.state))
+                .norm();
                 diff = diff.max(d);
             }
         }

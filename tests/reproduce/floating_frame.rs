@@ -149,8 +149,8 @@ fn magnified_deflections_scale_only_the_elastic_part() {
         state.q[k] = 0.01 * rng.unit();
     }
     for node in [0, 7, 29] {
-        let full = system.node_position(0, node, &state);
-        let s = |f: f64| system.node_position_scaled(0, node, &state, f);
+        let full = system.node_position(0, flexmodes::fem::NodeIndex(node), &state);
+        let s = |f: f64| system.node_position_scaled(0, flexmodes::fem::NodeIndex(node), &state, f);
         assert!(
             (s(1.0) - full).norm() < 1e-14,
             "scale 1 is the true position"
@@ -158,7 +158,7 @@ fn magnified_deflections_scale_only_the_elastic_part() {
         // Linear in the factor, and 0 is the undeformed node carried by the frame.
         assert!((s(20.0) - (s(0.0) + 20.0 * (full - s(0.0)))).norm() < 1e-12);
         let (r, a) = system.placement(0, &state);
-        let zero = system.node_position_scaled(0, node, &state, 0.0);
+        let zero = system.node_position_scaled(0, flexmodes::fem::NodeIndex(node), &state, 0.0);
         let local = a.transpose() * (zero - r);
         let Body::Flexible(fb) = &system.bodies[0] else {
             unreachable!()
@@ -181,14 +181,15 @@ fn magnified_deflections_scale_only_the_elastic_part() {
         let all = system.node_positions_scaled(0, &state, scale);
         assert_eq!(all.len(), nodes);
         for (j, p) in all.iter().enumerate() {
-            let one = system.node_position_scaled(0, j, &state, scale);
+            let one = system.node_position_scaled(0, flexmodes::fem::NodeIndex(j), &state, scale);
             assert!((p - one).norm() < 1e-12, "node {j} at scale {scale}");
         }
     }
     let largest = (0..nodes)
         .map(|j| {
-            (system.node_position(0, j, &state) - system.node_position_scaled(0, j, &state, 0.0))
-                .norm()
+            (system.node_position(0, flexmodes::fem::NodeIndex(j), &state)
+                - system.node_position_scaled(0, flexmodes::fem::NodeIndex(j), &state, 0.0))
+            .norm()
         })
         .fold(0.0, f64::max);
     let reported = system.largest_deflection(0, &state);
@@ -253,7 +254,13 @@ fn block_eliminated_accelerations_equal_the_dense_regularised_solve() {
     let (mut redundant, state) = systems.last().unwrap().clone();
     assert!(matches!(
         redundant.constraints[2],
-        Constraint::Spherical(_, Attachment::Node { body: 0, node: 2 })
+        Constraint::Spherical(
+            _,
+            Attachment::Node {
+                body: 0,
+                node: flexmodes::fem::NodeIndex(2)
+            }
+        )
     ));
     redundant.constraints.push(redundant.constraints[2].clone());
     systems.push((redundant, state));
