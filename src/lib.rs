@@ -17,7 +17,7 @@
 //! - [`models`]: the scenes' physical set-ups and their measures, as typed results;
 //! - [`record`] and [`export`]: the one Rerun recorder, reduced models written out;
 //! - [`scenes`]: the registry behind `flexmodes list/record/report`, wiring models to visuals;
-//! - [`bench`], [`cli`] and (feature `gui`) the desktop explorer: the doors.
+//! - [`bench`](mod@bench), [`cli`] and (feature `gui`) the desktop explorer: the doors.
 
 pub mod analysis;
 pub mod assets;

@@ -16,7 +16,7 @@ use crate::{Progress, Result};
 /// steps is `DynamicsError::Diverged` with the time it happened, never NaN output. With
 /// `fixed_step` every step has that length (shortened only to land on output times) and is
 /// accepted without error control. `progress` receives the time after each output and stops the
-/// integration with [`Error::Cancelled`] once cancelled.
+/// integration with [`Error::Cancelled`](crate::Error::Cancelled) once cancelled.
 pub fn simulate(
     sys: &System,
     initial: &State,

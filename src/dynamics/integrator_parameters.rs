@@ -6,7 +6,7 @@ pub const DEFAULT_IMPLICIT_STEP: f64 = 1e-3;
 /// The implicit scheme's spectral radius at infinite frequency when none is given.
 pub const DEFAULT_SPECTRAL_RADIUS: f64 = 0.8;
 
-/// Which time-integration scheme [`simulate`] runs.
+/// Which time-integration scheme [`simulate`](super::simulate) runs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum IntegrationScheme {
     /// Dormand–Prince 5(4): explicit, adaptive steps unless
@@ -55,7 +55,7 @@ impl IntegrationScheme {
     }
 }
 
-/// Settings of [`simulate`].
+/// Settings of [`simulate`](super::simulate).
 #[derive(Debug, Clone, PartialEq)]
 pub struct IntegratorParameters {
     /// The scheme.
