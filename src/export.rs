@@ -30,8 +30,9 @@ use crate::{
     body_file::{ImportedBody, write_array, write_npy},
     linalg::generalized_eigen,
     reduction::{
-        Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, Method, ModeSelection, ReducedMatrices,
-        ReductionParameters, SolverPath, reduce,
+        Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, MASTER_DOF_NAMES, Method, ModeSelection,
+        ReducedMatrices, ReductionParameters, RigidInterface, SolverPath, reduce,
+        tie_rigid_interfaces,
     },
     report::sig_vec,
 };
@@ -90,6 +91,9 @@ impl PsiFormat {
 pub struct ExportParameters {
     /// The format of Ψ.
     pub psi_format: PsiFormat,
+    /// Node sets of the boundary tied rigidly to a master node each (RBE2): the reduced model
+    /// sees each as its master's six DOF.
+    pub rigid_interfaces: Vec<RigidInterface>,
 }
 
 /// What [`export`] wrote.
@@ -133,6 +137,7 @@ pub fn export(
             solver: SolverPath::Auto,
         },
     )?;
+    let basis = tie_rigid_interfaces(model, basis, &parameters.rigid_interfaces)?;
     let total = started.elapsed().as_secs_f64();
     let s = &basis.statistics;
     timings.push(("factorisation", s.factorization_s));
@@ -206,6 +211,20 @@ pub fn export(
         "dofs_per_node": model.dofs.node_dofs().iter().map(|d| d.name()).collect::<Vec<_>>(),
         "size": basis.size(),
         "columns": columns,
+        "interfaces": parameters.rigid_interfaces.iter().map(|i| {
+            let first = basis.columns.iter().position(|c| matches!(
+                &c.kind,
+                ColumnKind::RigidInterface { interface, .. } if *interface == i.name
+            ));
+            json!({
+                "name": i.name,
+                "kind": "rbe2",
+                "master": i.master,
+                "master_dofs": MASTER_DOF_NAMES,
+                "columns": first.map(|f| (f + 1..=f + 6).collect::<Vec<_>>()),
+                "tied_nodes": i.nodes,
+            })
+        }).collect::<Vec<_>>(),
         "reduced_elastic_hz": sig_vec(&hz),
         "reduced_elastic_residuals": sig_vec(&residuals),
         "reduced_zero_energy_modes": zero_energy,
@@ -318,6 +337,7 @@ fn kind_name(k: &ColumnKind) -> &'static str {
         ColumnKind::Loaded { .. } => "loaded",
         ColumnKind::Krylov { .. } => "krylov",
         ColumnKind::Balanced { .. } => "balanced",
+        ColumnKind::RigidInterface { .. } => "rigid_interface",
     }
 }
 

@@ -19,6 +19,9 @@ use crate::{
     linalg::{MassMatrix, SparseSymmetric, SymbolicFactor, SymmetricFactor},
 };
 
+/// A node set with its name: 1-based nodes.
+pub type NamedSet = (String, Vec<usize>);
+
 /// Largest accepted $|a_{ij} - a_{ji}|$ relative to the largest entry of K or M: exporters
 /// that print 7 significant digits stay below it, a wrong matrix does not.
 pub const SYMMETRY_TOLERANCE: f64 = 1e-6;
@@ -333,6 +336,33 @@ impl ImportedBody {
             default_interface: spec.default_interface,
             location,
         })
+    }
+
+    /// The boundary of `spec` with rigid interfaces: items `rbe2:SET` tie the node set `SET`
+    /// to one master node (their nodes join the boundary and the set is returned by name with
+    /// its nodes); other items are read by [`Self::boundary`]. A node in two items is an error.
+    pub fn boundary_with_interfaces(&self, spec: &[String]) -> Result<(Vec<usize>, Vec<NamedSet>)> {
+        let mut plain = Vec::new();
+        let mut rigid: Vec<(String, Vec<usize>)> = Vec::new();
+        for item in spec {
+            match item.trim().strip_prefix("rbe2:") {
+                Some(name) => {
+                    let nodes = self.boundary(&[name.to_string()])?;
+                    rigid.push((name.to_string(), nodes));
+                }
+                None => plain.push(item.clone()),
+            }
+        }
+        let mut nodes = self.boundary(&plain)?;
+        for (_, set) in &rigid {
+            for &n in set {
+                if nodes.contains(&n) {
+                    return Err(Error::DuplicateNode { node: n });
+                }
+                nodes.push(n);
+            }
+        }
+        Ok((nodes, rigid))
     }
 
     /// The boundary nodes of `spec`: a node set's name, or 1-based node numbers

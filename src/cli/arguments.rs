@@ -124,8 +124,9 @@ pub(super) enum Command {
         /// The reduction: gr, mt, cb, mc.
         #[arg(long)]
         method: Method,
-        /// Interface: node set names or 1-based nodes, comma separated (default: the set
-        /// `interface`, else the body's first set).
+        /// Interface: node set names or 1-based nodes, comma separated; `rbe2:SET` ties the
+        /// set rigidly to one 6-DOF master node at its centroid (default: the body's default
+        /// interface).
         #[arg(long, value_delimiter = ',')]
         boundary: Option<Vec<String>>,
         /// Kept fixed-interface normal modes (mt, cb, mc).

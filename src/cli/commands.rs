@@ -5,6 +5,7 @@ use std::{io::IsTerminal, path::PathBuf, process::ExitCode};
 use clap::Parser;
 
 use super::arguments::{Cli, Command};
+use crate::reduction::RigidInterface;
 use crate::{
     Error, Progress, Result, TerminalProgress, body_file::ImportedBody, record::Recorder, scenes,
 };
@@ -231,12 +232,19 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let started = std::time::Instant::now();
             let body = ImportedBody::load(&body)?;
-            let boundary = match boundary {
-                Some(items) => body.boundary(&items)?,
-                None => scenes::body_modes::default_boundary(&body)?,
+            let (boundary, rigid) = match boundary {
+                Some(items) => body.boundary_with_interfaces(&items)?,
+                None => (scenes::body_modes::default_boundary(&body)?, Vec::new()),
             };
+            let rigid_interfaces = rigid
+                .iter()
+                .map(|(name, nodes)| RigidInterface::at_centroid(&body.model, name, nodes))
+                .collect::<Result<Vec<_>>>()?;
             let loaded_s = started.elapsed().as_secs_f64();
-            let parameters = crate::export::ExportParameters { psi_format };
+            let parameters = crate::export::ExportParameters {
+                psi_format,
+                rigid_interfaces,
+            };
             let summary =
                 crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
             if timings {
@@ -245,6 +253,18 @@ fn run(cli: Cli) -> Result<()> {
                     eprintln!("{phase}: {s:.3} s");
                 }
                 eprintln!("total: {:.3} s", started.elapsed().as_secs_f64());
+            }
+            for i in &parameters.rigid_interfaces {
+                println!(
+                    "rbe2 `{}`: {} nodes tied to a master at ({}) {}",
+                    i.name,
+                    i.nodes.len(),
+                    i.master
+                        .map(crate::report::sig)
+                        .map(|x| x.to_string())
+                        .join(", "),
+                    body.units.length
+                );
             }
             println!(
                 "{}: {} of `{}` on {} interface node(s), Ψ {} × {}; wrote {} in {}\n{} \

@@ -42,6 +42,14 @@ pub enum ColumnKind {
         /// Block index j of $P^j R$.
         block: usize,
     },
+    /// The static response to one rigid motion of a rigid (RBE2) interface: its master's DOF
+    /// `dof` (0–2 translations x, y, z; 3–5 rotations about x, y, z).
+    RigidInterface {
+        /// The interface's name.
+        interface: String,
+        /// The master DOF, 0..6.
+        dof: usize,
+    },
     /// A balanced-truncation vector with its (position) gramian value.
     Balanced {
         /// The eigenvalue of the gramian block the vector belongs to.

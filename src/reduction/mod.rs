@@ -21,6 +21,7 @@ mod nodal_fixed;
 mod partition;
 mod reduced_matrices;
 mod restrained_ritz;
+mod rigid_interface;
 
 pub use crate::error::ReductionError;
 pub use balanced_truncation::{
@@ -58,3 +59,4 @@ pub use partition::{
 };
 pub use reduced_matrices::{CONSTRAINT_COUPLING_TOLERANCE, ReducedMatrices};
 pub use restrained_ritz::RestrainedRitzModel;
+pub use rigid_interface::{MASTER_DOF_NAMES, RigidInterface, tie_rigid_interfaces};

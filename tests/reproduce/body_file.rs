@@ -740,6 +740,7 @@ fn export_round_trip_gives_the_same_frequencies() {
     let base_end = body.boundary(&["base_end".into()]).unwrap();
     let text = flexmodes::export::ExportParameters {
         psi_format: flexmodes::export::PsiFormat::MatrixMarket,
+        ..Default::default()
     };
     flexmodes::export::export(&body, Method::Guyan, &base_end, 0, &dir, &text).unwrap();
     // Ψ as Matrix Market text when asked, the same numbers.

@@ -117,3 +117,157 @@ fn npy_files_read_back_exactly() {
     assert!(read_npy(&bytes[..bytes.len() - 8]).is_none());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Rigid (RBE2) interfaces on bores of external bodies, against SciPy's Craig–Bampton of the
+/// body transformed by hand, u_s = u_m + θ_m × (x_s − x_m)
+/// (`assets/generate/rbe2_reference.py`, written to `rbe2_reference.json`): one bore and two
+/// interfaces at once, in m–kg–s and mm–t–s.
+#[test]
+fn rigid_interfaces_match_scipys_transformed_body() {
+    use flexmodes::{
+        analysis::reduced_modes,
+        reduction::{ColumnKind, RigidInterface, tie_rigid_interfaces},
+    };
+    for name in ["steel-link", "flange-hub"] {
+        let (body, _) = body(name);
+        let model = &body.model;
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/bodies")
+            .join(name)
+            .join("rbe2_reference.json");
+        let reference: Value =
+            serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        for case in reference["cases"].as_array().unwrap() {
+            let names: Vec<String> = case["interfaces"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_str().unwrap().to_string())
+                .collect();
+            let modes = case["modes"].as_u64().unwrap() as usize;
+            let what = format!("{name} rbe2:{}", names.join(",rbe2:"));
+            let spec: Vec<String> = names.iter().map(|n| format!("rbe2:{n}")).collect();
+            let (boundary, sets) = body.boundary_with_interfaces(&spec).unwrap();
+            let interfaces: Vec<RigidInterface> = sets
+                .iter()
+                .map(|(n, nodes)| RigidInterface::at_centroid(model, n, nodes).unwrap())
+                .collect();
+            // The master points are the sets' centroids, as SciPy placed them.
+            let masters = case["master_points"].as_array().unwrap();
+            assert_eq!(masters.len(), interfaces.len());
+            for (i, m) in interfaces.iter().zip(masters) {
+                assert_eq!(checks::floats(m).len(), 3);
+                for (a, b) in i.master.iter().zip(checks::floats(m)) {
+                    assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{what}");
+                }
+            }
+            for (method, key) in [(Method::CraigBampton, "cb_hz"), (Method::Guyan, "guyan_hz")] {
+                let parameters = ReductionParameters {
+                    boundary_nodes: boundary.clone(),
+                    modes: ModeSelection::Count(modes),
+                    solver: SolverPath::Auto,
+                };
+                let basis = reduce(model, method, &parameters).unwrap();
+                let basis = tie_rigid_interfaces(model, basis, &interfaces).unwrap();
+                let masters = basis.columns_of(|k| matches!(k, ColumnKind::RigidInterface { .. }));
+                assert_eq!(masters.len(), 6 * interfaces.len(), "{what}");
+                let expected_size = 6 * interfaces.len()
+                    + if method == Method::CraigBampton {
+                        modes
+                    } else {
+                        0
+                    };
+                assert_eq!(basis.size(), expected_size, "{what}");
+                // Zero energy judged against the body's own scale, as `export` does (Guyan on
+                // one rigid interface is a rigid body: six zero-energy modes and nothing else).
+                let eig = reduced_modes(model, &basis).unwrap();
+                let threshold = flexmodes::analysis::zero_energy_threshold_hz(model);
+                let all = eig.hz();
+                let zero = all.iter().take_while(|&&f| f < threshold).count();
+                assert_eq!(zero, 6, "{what} {method}: zero-energy modes");
+                let expected = checks::floats(&case[key]);
+                let hz = &all[zero..];
+                assert_eq!(hz.len(), expected.len() - 6, "{what} {method}");
+                let count = hz.len().min(20);
+                checks::assert_relative(
+                    &format!("{what} {method}"),
+                    &hz[..count],
+                    &expected[6..6 + count],
+                    1e-8,
+                );
+                // The ring moves rigidly: on every tied node each master column is the rigid
+                // motion of its DOF about the master point, to round-off.
+                for (k, interface) in interfaces.iter().enumerate() {
+                    let cols = &masters[6 * k..6 * k + 6];
+                    for (q, &c) in cols.iter().enumerate() {
+                        let (mut t, mut w) = ([0.0; 3], [0.0; 3]);
+                        if q < 3 {
+                            t[q] = 1.0
+                        } else {
+                            w[q - 3] = 1.0
+                        }
+                        for &node in &interface.nodes {
+                            let x = model.position(model.node_index(node).unwrap());
+                            let r: [f64; 3] = std::array::from_fn(|d| x[d] - interface.master[d]);
+                            let dofs = model.dofs_of_nodes(&[node]).unwrap();
+                            let expected: [f64; 3] = std::array::from_fn(|a| {
+                                t[a] + [
+                                    w[1] * r[2] - w[2] * r[1],
+                                    w[2] * r[0] - w[0] * r[2],
+                                    w[0] * r[1] - w[1] * r[0],
+                                ][a]
+                            });
+                            for a in 0..3 {
+                                let got = basis.psi[(dofs[a], c)];
+                                assert!(
+                                    (got - expected[a]).abs() <= 1e-12,
+                                    "{what}: node {node} column {q}: {got} vs {}",
+                                    expected[a]
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_rigid_interface_needs_boundary_columns() {
+    use flexmodes::{
+        Error,
+        error::ReductionError,
+        reduction::{RigidInterface, tie_rigid_interfaces},
+    };
+    let (body, _) = body("steel-link");
+    let model = &body.model;
+    let bore = body.node_sets["bore_a"].clone();
+    let interface = RigidInterface::at_centroid(model, "bore_a", &bore).unwrap();
+    // The bore is not in the boundary of this basis (bore_b is).
+    let basis = reduce(
+        model,
+        Method::CraigBampton,
+        &ReductionParameters {
+            boundary_nodes: body.node_sets["bore_b"].clone(),
+            modes: ModeSelection::Count(4),
+            solver: SolverPath::Auto,
+        },
+    )
+    .unwrap();
+    let e = tie_rigid_interfaces(model, basis, &[interface]).unwrap_err();
+    assert!(
+        matches!(&e, Error::Reduction(ReductionError::InvalidDofSet { set, .. }) if set.contains("bore_a")),
+        "{e}"
+    );
+    // A node in two interfaces, and an unknown set, are named.
+    let spec = ["rbe2:bore_a".to_string(), "rbe2:bore_a".to_string()];
+    assert!(matches!(
+        body.boundary_with_interfaces(&spec),
+        Err(Error::DuplicateNode { .. })
+    ));
+    assert!(
+        body.boundary_with_interfaces(&["rbe2:nope".to_string()])
+            .is_err()
+    );
+}

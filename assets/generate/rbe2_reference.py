@@ -1,0 +1,134 @@
+#!/usr/bin/env python3
+"""SciPy reference values for rigid (RBE2) interfaces, computed from a body's own files.
+
+For each case (a list of node sets, each tied rigidly to a 6-DOF master at the centroid of its
+nodes, and a mode count) the body is transformed by hand, u_s = u_m + theta_m x (x_s - x_m)
+for every node s of a set, K' = T^T K T and M' = T^T M T; then Craig-Bampton is computed on
+the transformed body with the masters' 6 DOF as the boundary (SuperLU solves, ARPACK for the
+fixed-interface modes) and the reduced matrices are solved by LAPACK. Nothing here imports or
+mirrors flexmodes.
+
+    python3 assets/generate/rbe2_reference.py tests/bodies/steel-link "bore_a" "bore_a,bore_b"
+
+writes rbe2_reference.json beside the body file.
+"""
+import csv
+import gzip
+import json
+import os
+import sys
+import tomllib
+
+import numpy as np
+import scipy.io
+import scipy.linalg as sl
+import scipy.sparse as sp
+import scipy.sparse.linalg as sla
+
+MODES = 10
+
+
+def read_matrix(path):
+    with gzip.open(path, "rb") as f:
+        return sp.csr_matrix(scipy.io.mmread(f))
+
+
+def read_nodes(path):
+    rows = []
+    with open(path) as f:
+        for row in csv.reader(f):
+            if not row or row[0].startswith("#"):
+                continue
+            rows.append([float(v) for v in row[1:4]])
+    return np.array(rows)
+
+
+def transformation(n_nodes, nodes, sets):
+    """T (3 n_nodes x n') and the master DOF (last 6 per set, in order)."""
+    slave = {}
+    masters = []
+    for k, s in enumerate(sets):
+        xm = nodes[np.array(s) - 1].mean(axis=0)
+        masters.append(xm.tolist())
+        for nd in s:
+            if nd in slave:
+                raise ValueError(f"node {nd} is in two rigid interfaces")
+            slave[nd] = (k, nodes[nd - 1] - xm)
+    free = [nd for nd in range(1, n_nodes + 1) if nd not in slave]
+    n_free = 3 * len(free)
+    ncols = n_free + 6 * len(sets)
+    rows, cols, vals = [], [], []
+    for j, nd in enumerate(free):
+        for a in range(3):
+            rows.append(3 * (nd - 1) + a)
+            cols.append(3 * j + a)
+            vals.append(1.0)
+    for nd, (k, r) in slave.items():
+        base = n_free + 6 * k
+        for a in range(3):
+            row = 3 * (nd - 1) + a
+            rows.append(row); cols.append(base + a); vals.append(1.0)
+            # (theta x r)_a = eps_abc theta_b r_c
+            for b in range(3):
+                c = 3 - a - b
+                if a == b or c < 0 or c > 2 or c == a or c == b:
+                    continue
+                sign = 1.0 if (a, b, c) in [(0, 1, 2), (1, 2, 0), (2, 0, 1)] else -1.0
+                rows.append(row); cols.append(base + 3 + b); vals.append(sign * r[c])
+    T = sp.csr_matrix((vals, (rows, cols)), shape=(3 * n_nodes, ncols))
+    boundary = np.arange(n_free, ncols)
+    return T, boundary, masters
+
+
+def lapack_hz(k, m):
+    k, m = (k + k.T) / 2, (m + m.T) / 2
+    s = 1.0 / np.abs(k).max()
+    w = sl.eigh(k * s, m, eigvals_only=True, driver="gvd") / s
+    return (np.sqrt(np.clip(w, 0.0, None)) / (2 * np.pi)).tolist()
+
+
+def craig_bampton(K, M, b, modes):
+    n = K.shape[0]
+    i = np.setdiff1d(np.arange(n), b)
+    K, M = K.tocsr(), M.tocsr()
+    Kii, Kib = K[i][:, i].tocsc(), K[i][:, b].toarray()
+    Mii = M[i][:, i].tocsc()
+    lu = sla.splu(Kii, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                  options={"SymmetricMode": True})
+    op = sla.LinearOperator(Kii.shape, matvec=lu.solve, dtype=float)
+    lam, Phi = sla.eigsh(Kii, k=modes, M=Mii, sigma=0.0, OPinv=op, which="LM", tol=1e-14)
+    Phi = Phi[:, np.argsort(lam)]
+    nb = len(b)
+    Psi = np.zeros((n, nb + modes))
+    Psi[b, :nb] = np.eye(nb)
+    Psi[i, :nb] = -lu.solve(Kib)
+    Psi[i, nb:] = Phi
+    Kr, Mr = Psi.T @ (K @ Psi), Psi.T @ (M @ Psi)
+    Kg, Mg = Kr[:nb, :nb], Mr[:nb, :nb]
+    return {"cb_hz": lapack_hz(Kr, Mr), "guyan_hz": lapack_hz(Kg, Mg),
+            "fixed_interface_hz": (np.sqrt(np.sort(lam)) / (2 * np.pi)).tolist()}
+
+
+def main():
+    folder, cases = sys.argv[1], sys.argv[2:]
+    spec = tomllib.load(open(os.path.join(folder, "body.toml"), "rb"))
+    K = read_matrix(os.path.join(folder, spec["matrices"]["stiffness"]))
+    M = read_matrix(os.path.join(folder, spec["matrices"]["mass"]))
+    nodes = read_nodes(os.path.join(folder, spec["geometry"]["nodes"]))
+    out = {"generator": "assets/generate/rbe2_reference.py (SciPy %s)" % scipy.__version__,
+           "master": "centroid of the set's nodes", "cases": []}
+    for case in cases:
+        names = case.split(",")
+        sets = [spec["node_sets"][name] for name in names]
+        T, b, masters = transformation(len(nodes), nodes, sets)
+        Kt, Mt = (T.T @ K @ T).tocsr(), (T.T @ M @ T).tocsr()
+        result = craig_bampton(Kt, Mt, b, MODES)
+        result.update({"interfaces": names, "modes": MODES, "master_points": masters})
+        out["cases"].append(result)
+        print(names, "CB", ["%.6g" % f for f in result["cb_hz"][:10]], file=sys.stderr)
+    with open(os.path.join(folder, "rbe2_reference.json"), "w") as f:
+        json.dump(out, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
