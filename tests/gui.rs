@@ -349,6 +349,25 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
     let report = &h.state().current.as_ref().unwrap().report;
     assert_eq!(report.results["dofs"], 1314);
     assert!(h.query_by_label("bolt_hole").is_some());
+    // The bolt hole tied to one master node (RBE2): each boundary-based model sees it as six
+    // coordinates, Craig–Bampton six plus its kept modes.
+    let kept = h.state().controls.modes;
+    h.get_by_label("rbe2:bolt_hole").click();
+    settle(&mut h);
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert_eq!(h.state().controls.boundary, "rbe2:bolt_hole");
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(
+        report.results["basis_size"]["cb"],
+        6 + kept,
+        "{}",
+        report.results
+    );
+    assert_eq!(report.results["basis_size"]["gr"], 6);
+    assert_eq!(
+        report.parameters["rigid_interfaces"][0]["name"],
+        "bolt_hole"
+    );
     h.state_mut().controls.body = "/nonexistent/body.toml".into();
     h.state_mut().request();
     h.step();

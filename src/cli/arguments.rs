@@ -274,10 +274,13 @@ impl OptionArgs {
             Some(b) => Some(BodyHandle(Arc::new(ImportedBody::load(b)?))),
             None => None,
         };
-        let boundary = match (&self.boundary, &body) {
-            (None, _) => None,
-            (Some(items), Some(body)) => Some(body.boundary(items)?),
-            (Some(items), None) => Some(parse_nodes(items)?),
+        let (boundary, rigid_interfaces) = match (&self.boundary, &body) {
+            (None, _) => (None, Vec::new()),
+            (Some(items), Some(body)) => {
+                let (nodes, rigid) = crate::scenes::body_modes::body_boundary(body, items)?;
+                (Some(nodes), rigid)
+            }
+            (Some(items), None) => (Some(parse_nodes(items)?), Vec::new()),
         };
         let integrator = match (self.integrator, self.rho_inf) {
             (Some(IntegrationScheme::GeneralizedAlpha { .. }) | None, Some(rho)) => {
@@ -300,6 +303,7 @@ impl OptionArgs {
             methods: self.method,
             modes: self.modes,
             boundary,
+            rigid_interfaces,
             axes: self.axes,
             end_time: self.end_time,
             integrator,

@@ -5,7 +5,6 @@ use std::{io::IsTerminal, path::PathBuf, process::ExitCode};
 use clap::Parser;
 
 use super::arguments::{Cli, Command};
-use crate::reduction::RigidInterface;
 use crate::{
     Error, Progress, Result, TerminalProgress, body_file::ImportedBody, record::Recorder, scenes,
 };
@@ -232,14 +231,10 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let started = std::time::Instant::now();
             let body = ImportedBody::load(&body)?;
-            let (boundary, rigid) = match boundary {
-                Some(items) => body.boundary_with_interfaces(&items)?,
+            let (boundary, rigid_interfaces) = match boundary {
+                Some(items) => scenes::body_modes::body_boundary(&body, &items)?,
                 None => (scenes::body_modes::default_boundary(&body)?, Vec::new()),
             };
-            let rigid_interfaces = rigid
-                .iter()
-                .map(|(name, nodes)| RigidInterface::at_centroid(&body.model, name, nodes))
-                .collect::<Result<Vec<_>>>()?;
             let loaded_s = started.elapsed().as_secs_f64();
             let parameters = crate::export::ExportParameters {
                 psi_format,

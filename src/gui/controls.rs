@@ -99,12 +99,16 @@ impl Controls {
                 .filter(|t| !t.trim().is_empty())
                 .map(|t| t.trim().to_string())
                 .collect();
-            let boundary = match body {
-                Some(b) if !items.is_empty() => Some(b.boundary(&items)?),
-                _ => None,
+            let (boundary, rigid) = match body {
+                Some(b) if !items.is_empty() => {
+                    let (nodes, rigid) = scenes::body_modes::body_boundary(b, &items)?;
+                    (Some(nodes), rigid)
+                }
+                _ => (None, Vec::new()),
             };
             let mut options = self.options()?;
             options.boundary = boundary;
+            options.rigid_interfaces = rigid;
             options.body = body.cloned();
             return Ok(options);
         }

@@ -375,6 +375,22 @@ impl Explorer {
                         }
                     }
                 });
+                // The same sets tied rigidly to a 6-DOF master node (RBE2).
+                ui.horizontal_wrapped(|ui| {
+                    ui.label("rigid:");
+                    for (name, count) in self.node_sets() {
+                        let rigid = format!("rbe2:{name}");
+                        if ui
+                            .selectable_label(in_use == rigid, &rigid)
+                            .on_hover_text(format!(
+                                "{count} nodes tied to one 6-DOF master at their centroid"
+                            ))
+                            .clicked()
+                        {
+                            out.push(Command::Set(Change::Boundary(rigid)));
+                        }
+                    }
+                });
             }
         }
         if !info.controls.boundary.is_empty() || self.controls.takes_body() {

@@ -8,6 +8,7 @@ use std::time::Instant;
 use serde_json::{Map, Value, json};
 
 use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed};
+use crate::reduction::{RigidInterface, tie_rigid_interfaces};
 use crate::{
     Error, Result,
     analysis::{count_zero_energy_modes, reduced_modes},
@@ -59,6 +60,20 @@ pub fn body_of(opts: &SceneOptions) -> Result<BodyHandle> {
             DEFAULT_BODY,
         )?))),
     }
+}
+
+/// The boundary `items` name on `body` (set names, node numbers, `rbe2:SET`): its nodes and
+/// the rigid interfaces, each with its master at the set's centroid.
+pub fn body_boundary(
+    body: &ImportedBody,
+    items: &[String],
+) -> Result<(Vec<usize>, Vec<RigidInterface>)> {
+    let (nodes, rigid) = body.boundary_with_interfaces(items)?;
+    let interfaces = rigid
+        .iter()
+        .map(|(name, set)| RigidInterface::at_centroid(&body.model, name, set))
+        .collect::<Result<Vec<_>>>()?;
+    Ok((nodes, interfaces))
 }
 
 /// The interface when `--boundary` is not given: the body file's `default_interface` set,
@@ -179,6 +194,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         };
         let elapsed =
             started.elapsed().as_secs_f64() + if m == Method::Guyan { 0.0 } else { shared_s };
+        let basis = tie_rigid_interfaces(model, basis, &opts.rigid_interfaces)?;
         let eig = reduced_modes(model, &basis)?;
         // GR, CB and MC contain the rigid motions (their constraint modes reproduce them);
         // modal truncation's boundary movements do not, so it has no zero-energy modes.
@@ -189,10 +205,16 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         let hz: Vec<f64> = all_hz[skip..].to_vec();
         let hz_residuals: Vec<f64> = eig.residuals[skip..].to_vec();
         let rel: Vec<f64> = full_hz.iter().zip(&hz).map(|(f, r)| (r - f) / f).collect();
-        let worst = rel
-            .iter()
-            .take(COMPARED_MODES)
-            .fold(0.0f64, |a, e| a.max(e.abs()));
+        // A model with fewer elastic modes than compared has no error over them: said, not
+        // ranked (a rigid interface under Guyan is a rigid body).
+        let compared_modes = COMPARED_MODES.min(full_hz.len());
+        let worst = if rel.len() >= compared_modes {
+            rel.iter()
+                .take(COMPARED_MODES)
+                .fold(0.0f64, |a, e| a.max(e.abs()))
+        } else {
+            f64::NAN
+        };
         let angle = principal_angles(basis.psi.as_ref(), target)?
             .into_iter()
             .fold(0.0f64, f64::max);
@@ -212,7 +234,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             Cell::text(m.id().to_uppercase()),
             Cell::number(basis.size() as f64, format!("{dofs} × {}", basis.size())),
             Cell::text(fmt_hz(&hz[..hz.len().min(5)])),
-            Cell::number(worst, format!("{worst:.2e}")),
+            if worst.is_nan() {
+                Cell::text(format!("{} elastic mode(s) only", hz.len()))
+            } else {
+                Cell::number(worst, format!("{worst:.2e}"))
+            },
             Cell::number(angle, format!("{angle:.2e}")),
             Cell::number(rigid_hz, format!("{rigid_hz:.2e}")),
             Cell::number(elapsed, format!("{elapsed:.3}")),
@@ -232,6 +258,15 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let p = &mut report.parameters;
     p.insert("body".into(), json!(body.location.display()));
     p.insert("boundary".into(), json!(boundary));
+    p.insert(
+        "rigid_interfaces".into(),
+        json!(
+            opts.rigid_interfaces
+                .iter()
+                .map(|i| json!({"name": i.name, "kind": "rbe2", "master": i.master, "nodes": i.nodes.len()}))
+                .collect::<Vec<_>>()
+        ),
+    );
     p.insert("modes".into(), json!(kept));
     p.insert(
         "methods".into(),
@@ -267,7 +302,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let units = &body.units;
     report.table = format!(
         "Body `{}` ({}): {dofs} DOF, {} stiffness entries, {} zero-energy mode(s); units {}, \
-         {}, {}. Interface {} node(s) {boundary:?}, {kept} kept modes.\n\n{summary}\nFull body, \
+         {}, {}. Interface {} node(s) {}{}, {kept} kept modes.\n\n{summary}\nFull body, \
          lowest elastic: {}\n\nFixed-interface: {}\n\nEigen residuals \
          (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n",
         model.name,
@@ -278,6 +313,24 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         units.mass,
         units.force,
         boundary.len(),
+        if boundary.len() <= 12 {
+            format!("{boundary:?}")
+        } else {
+            format!(
+                "{:?} … {:?}",
+                &boundary[..6],
+                &boundary[boundary.len() - 3..]
+            )
+        },
+        opts.rigid_interfaces
+            .iter()
+            .map(|i| format!(
+                "; rbe2 `{}`: {} nodes tied to a master at ({})",
+                i.name,
+                i.nodes.len(),
+                i.master.map(|x| format!("{}", sig(x))).join(", ")
+            ))
+            .collect::<String>(),
         fmt_hz(&full_hz),
         fmt_hz(&fi.hz()[..fi.hz().len().min(8)]),
         residual_lines.join("; "),

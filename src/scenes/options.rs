@@ -21,6 +21,9 @@ pub struct SceneOptions {
     pub modes: Option<usize>,
     /// `--boundary`: boundary/master nodes, 1-based.
     pub boundary: Option<Vec<usize>>,
+    /// `--boundary rbe2:SET`: node sets of the boundary tied rigidly to a master node each
+    /// (a body file's scene only).
+    pub rigid_interfaces: Vec<crate::reduction::RigidInterface>,
     /// `--axes`: axis type id.
     pub axes: Option<AxisKind>,
     /// `--end-time`: simulated interval of the dynamic scenes, s.
