@@ -31,7 +31,7 @@ use crate::{
     linalg::generalized_eigen,
     reduction::{
         Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, MASTER_DOF_NAMES, Method, ModeSelection,
-        ReducedMatrices, ReductionParameters, RigidInterface, SolverPath, reduce,
+        ReducedMatrices, ReductionParameters, RigidInterface, SolverPath, reduce, reduce_interface,
         tie_rigid_interfaces,
     },
     report::sig_vec,
@@ -94,6 +94,8 @@ pub struct ExportParameters {
     /// Node sets of the boundary tied rigidly to a master node each (RBE2): the reduced model
     /// sees each as its master's six DOF.
     pub rigid_interfaces: Vec<RigidInterface>,
+    /// Reduce the remaining constraint modes to this many characteristic constraint modes.
+    pub interface_modes: Option<usize>,
 }
 
 /// What [`export`] wrote.
@@ -138,6 +140,10 @@ pub fn export(
         },
     )?;
     let basis = tie_rigid_interfaces(model, basis, &parameters.rigid_interfaces)?;
+    let basis = match parameters.interface_modes {
+        Some(count) => reduce_interface(model, basis, count)?,
+        None => basis,
+    };
     let total = started.elapsed().as_secs_f64();
     let s = &basis.statistics;
     timings.push(("factorisation", s.factorization_s));
@@ -338,6 +344,7 @@ fn kind_name(k: &ColumnKind) -> &'static str {
         ColumnKind::Krylov { .. } => "krylov",
         ColumnKind::Balanced { .. } => "balanced",
         ColumnKind::RigidInterface { .. } => "rigid_interface",
+        ColumnKind::CharacteristicConstraint { .. } => "characteristic_constraint",
     }
 }
 

@@ -360,7 +360,7 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
     assert_eq!(
         report.results["basis_size"]["cb"],
         6 + kept,
-        "{}",
+        "{:?}",
         report.results
     );
     assert_eq!(report.results["basis_size"]["gr"], 6);

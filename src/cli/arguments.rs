@@ -138,6 +138,10 @@ pub(super) enum Command {
         /// The format of Ψ: `npy` (binary, numpy.load) or `mtx` (Matrix Market array text).
         #[arg(long, default_value = "npy")]
         psi_format: crate::export::PsiFormat,
+        /// Reduce the interface to this many characteristic constraint modes (Castanier–Tan–
+        /// Pierre; CB and GR on plain node sets).
+        #[arg(long, value_name = "N")]
+        interface_modes: Option<usize>,
         /// Print the wall time of each phase on stderr.
         #[arg(long)]
         timings: bool,

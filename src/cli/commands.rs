@@ -227,6 +227,7 @@ fn run(cli: Cli) -> Result<()> {
             modes,
             out,
             psi_format,
+            interface_modes,
             timings,
         } => {
             let started = std::time::Instant::now();
@@ -239,6 +240,7 @@ fn run(cli: Cli) -> Result<()> {
             let parameters = crate::export::ExportParameters {
                 psi_format,
                 rigid_interfaces,
+                interface_modes,
             };
             let summary =
                 crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;

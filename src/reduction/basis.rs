@@ -50,6 +50,12 @@ pub enum ColumnKind {
         /// The master DOF, 0..6.
         dof: usize,
     },
+    /// A characteristic constraint mode (Castanier–Tan–Pierre): a combination of the
+    /// constraint modes, an eigenvector of the boundary's Guyan-reduced pencil.
+    CharacteristicConstraint {
+        /// Its frequency in the Guyan-reduced boundary pencil, Hz.
+        hz: f64,
+    },
     /// A balanced-truncation vector with its (position) gramian value.
     Balanced {
         /// The eigenvalue of the gramian block the vector belongs to.

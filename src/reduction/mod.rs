@@ -4,6 +4,7 @@
 mod balanced_truncation;
 mod basis;
 mod benfield_hruda;
+mod characteristic_constraint_modes;
 mod component_synthesis;
 mod craig_bampton;
 mod eitelberg;
@@ -30,6 +31,7 @@ pub use balanced_truncation::{
 };
 pub use basis::{Basis, Column, ColumnKind};
 pub use benfield_hruda::{InterfaceLoading, LoadedInterface, benfield_hruda};
+pub use characteristic_constraint_modes::reduce_interface;
 pub use component_synthesis::{Component, Synthesis};
 pub use craig_bampton::{craig_bampton, craig_bampton_from, craig_bampton_on};
 pub use eitelberg::{

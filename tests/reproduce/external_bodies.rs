@@ -271,3 +271,74 @@ fn a_rigid_interface_needs_boundary_columns() {
             .is_err()
     );
 }
+
+/// Characteristic constraint modes (Castanier–Tan–Pierre) on the link's bore against SciPy's
+/// (`rbe2_reference.py --ccm`, written to `ccm_reference.json`): CB with the bore's 660
+/// boundary DOF reduced to n_c shapes, for several n_c; six shapes span the bore's rigid
+/// motions, so they give what a rigid interface gives; the frequencies fall towards plain
+/// CB's as n_c grows.
+#[test]
+fn characteristic_constraint_modes_match_scipy() {
+    use flexmodes::{
+        analysis::reduced_modes,
+        reduction::{RigidInterface, reduce_interface, tie_rigid_interfaces},
+    };
+    let (body, _) = body("steel-link");
+    let model = &body.model;
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/bodies/steel-link/ccm_reference.json");
+    let reference: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let set = reference["interface"].as_str().unwrap();
+    let bore = body.node_sets[set].clone();
+    let cases = reference["cases"].as_array().unwrap();
+    let modes = cases[0]["modes"].as_u64().unwrap() as usize;
+    let parameters = ReductionParameters {
+        boundary_nodes: bore.clone(),
+        modes: ModeSelection::Count(modes),
+        solver: SolverPath::Auto,
+    };
+    let cb = reduce(model, Method::CraigBampton, &parameters).unwrap();
+    assert_eq!(
+        3 * bore.len(),
+        reference["boundary_dofs"].as_u64().unwrap() as usize
+    );
+    let plain = reduced_modes(model, &cb).unwrap().elastic_hz();
+    let mut previous: Option<Vec<f64>> = None;
+    for case in cases {
+        let nc = case["interface_modes"].as_u64().unwrap() as usize;
+        let reduced = reduce_interface(model, cb.clone(), nc).unwrap();
+        assert_eq!(reduced.size(), nc + modes);
+        let eig = reduced_modes(model, &reduced).unwrap();
+        assert_eq!(eig.zero_energy, 6, "n_c {nc}");
+        let hz = eig.elastic_hz();
+        let expected = checks::floats(&case["hz"]);
+        assert_eq!(hz.len(), expected.len() - 6, "n_c {nc}");
+        let count = hz.len().min(20);
+        checks::assert_relative(
+            &format!("CCM n_c {nc}"),
+            &hz[..count],
+            &expected[6..6 + count],
+            1e-8,
+        );
+        // Rayleigh–Ritz on nested spaces: more shapes, lower frequencies, never below plain CB.
+        assert!(plain.len() >= 6);
+        for k in 0..6 {
+            assert!(hz[k] >= plain[k] * (1.0 - 1e-10), "n_c {nc} mode {k}");
+            if let Some(p) = &previous {
+                assert!(hz[k] <= p[k] * (1.0 + 1e-10), "n_c {nc} mode {k}");
+            }
+        }
+        previous = Some(hz.to_vec());
+        if nc == 6 {
+            let rigid = RigidInterface::at_centroid(model, set, &bore).unwrap();
+            let tied = tie_rigid_interfaces(model, cb.clone(), &[rigid]).unwrap();
+            let rbe2 = reduced_modes(model, &tied).unwrap().elastic_hz();
+            assert_eq!(rbe2.len(), hz.len());
+            checks::assert_relative("CCM 6 = RBE2", &hz[..count], &rbe2[..count], 1e-8);
+        }
+    }
+    // A basis without constraint modes, and more shapes than boundary DOF, are named errors.
+    let mt = reduce(model, Method::ModalTruncation, &parameters).unwrap();
+    assert!(reduce_interface(model, mt, 6).is_err());
+    assert!(reduce_interface(model, cb, 3 * bore.len() + 1).is_err());
+}
