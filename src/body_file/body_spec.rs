@@ -59,6 +59,34 @@ pub struct BodySpec {
     /// first set).
     #[serde(default)]
     pub default_interface: Option<String>,
+    /// Multipoint interfaces: `[interfaces.NAME]` with `kind`, `node_set` and an optional
+    /// `master` point; `--boundary NAME` then means the interface.
+    #[serde(default)]
+    pub interfaces: BTreeMap<String, InterfaceSpec>,
+}
+
+/// A multipoint interface of a body file.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceSpec {
+    /// How the set is tied to its master node.
+    pub kind: InterfaceKind,
+    /// The node set (of `[node_sets]`) it ties.
+    pub node_set: String,
+    /// The master point in the body's length unit (default: the set's centroid).
+    #[serde(default)]
+    pub master: Option<[f64; 3]>,
+}
+
+/// How an interface ties its nodes to the master node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum InterfaceKind {
+    /// Rigid: every node follows the master's rigid motion.
+    Rbe2,
+    /// Interpolating: the master moves as the nodes' weighted average (not supported yet: a
+    /// body file that declares one is refused with that reason).
+    Rbe3,
 }
 
 /// Order of the DOF in the matrices.

@@ -9,7 +9,7 @@ use std::{
 };
 
 use super::{
-    BodySpec, DofOrder, MatrixMarket, Units,
+    BodySpec, DofOrder, InterfaceKind, MatrixMarket, Units,
     csv_table::{edges, read_table},
     parse_matrix_market,
 };
@@ -19,8 +19,16 @@ use crate::{
     linalg::{MassMatrix, SparseSymmetric, SymbolicFactor, SymmetricFactor},
 };
 
-/// A node set with its name: 1-based nodes.
-pub type NamedSet = (String, Vec<usize>);
+/// A node set tied rigidly to a master node, as a boundary names it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigidSet {
+    /// The interface's name (the set's, or the body file's interface's).
+    pub name: String,
+    /// The tied nodes, 1-based.
+    pub nodes: Vec<usize>,
+    /// The master point the body file gives (`None`: the set's centroid).
+    pub master: Option<[f64; 3]>,
+}
 
 /// Largest accepted $|a_{ij} - a_{ji}|$ relative to the largest entry of K or M: exporters
 /// that print 7 significant digits stay below it, a wrong matrix does not.
@@ -102,6 +110,9 @@ pub struct ImportedBody {
     pub description: String,
     /// The node set used as interface unless another is given.
     pub default_interface: Option<String>,
+    /// Rigid interfaces declared in the body file: name, node set, master point (`None`: the
+    /// set's centroid).
+    pub interfaces: BTreeMap<String, (String, Option<[f64; 3]>)>,
     /// Where it came from.
     pub location: BodyLocation,
 }
@@ -327,9 +338,36 @@ impl ImportedBody {
                 }));
             }
         }
+        let mut interfaces = BTreeMap::new();
+        for (iname, interface) in &spec.interfaces {
+            if !spec.node_sets.contains_key(&interface.node_set) {
+                return Err(body_error(
+                    key_line(iname),
+                    format!(
+                        "interface `{iname}` names the node set `{}`, which [node_sets] does not \
+                         define",
+                        interface.node_set
+                    ),
+                ));
+            }
+            if interface.kind == InterfaceKind::Rbe3 {
+                return Err(body_error(
+                    key_line(iname),
+                    format!(
+                        "interface `{iname}`: kind \"rbe3\" (interpolating) is not supported yet; \
+                         \"rbe2\" (rigid) is"
+                    ),
+                ));
+            }
+            interfaces.insert(
+                iname.clone(),
+                (interface.node_set.clone(), interface.master),
+            );
+        }
         Ok(Self {
             model,
             node_sets: spec.node_sets,
+            interfaces,
             has_coordinates,
             units: spec.units,
             description: spec.description,
@@ -338,24 +376,36 @@ impl ImportedBody {
         })
     }
 
-    /// The boundary of `spec` with rigid interfaces: items `rbe2:SET` tie the node set `SET`
-    /// to one master node (their nodes join the boundary and the set is returned by name with
-    /// its nodes); other items are read by [`Self::boundary`]. A node in two items is an error.
-    pub fn boundary_with_interfaces(&self, spec: &[String]) -> Result<(Vec<usize>, Vec<NamedSet>)> {
+    /// The boundary of `spec` with rigid interfaces: an item `rbe2:SET` ties the node set
+    /// `SET` to one master node at its centroid, an item naming an interface of the body file
+    /// ties its set to its master; their nodes join the boundary and each is returned as a
+    /// [`RigidSet`]. Other items are read by [`Self::boundary`]. A node in two items is an
+    /// error.
+    pub fn boundary_with_interfaces(&self, spec: &[String]) -> Result<(Vec<usize>, Vec<RigidSet>)> {
         let mut plain = Vec::new();
-        let mut rigid: Vec<(String, Vec<usize>)> = Vec::new();
+        let mut rigid: Vec<RigidSet> = Vec::new();
         for item in spec {
-            match item.trim().strip_prefix("rbe2:") {
-                Some(name) => {
-                    let nodes = self.boundary(&[name.to_string()])?;
-                    rigid.push((name.to_string(), nodes));
-                }
-                None => plain.push(item.clone()),
+            let item = item.trim();
+            if let Some(name) = item.strip_prefix("rbe2:") {
+                let nodes = self.boundary(&[name.to_string()])?;
+                rigid.push(RigidSet {
+                    name: name.to_string(),
+                    nodes,
+                    master: None,
+                });
+            } else if let Some((set, master)) = self.interfaces.get(item) {
+                rigid.push(RigidSet {
+                    name: item.to_string(),
+                    nodes: self.boundary(std::slice::from_ref(set))?,
+                    master: *master,
+                });
+            } else {
+                plain.push(item.to_string());
             }
         }
         let mut nodes = self.boundary(&plain)?;
-        for (_, set) in &rigid {
-            for &n in set {
+        for set in &rigid {
+            for &n in &set.nodes {
                 if nodes.contains(&n) {
                     return Err(Error::DuplicateNode { node: n });
                 }

@@ -10,9 +10,11 @@ mod matrix_market;
 mod npy;
 
 pub use crate::error::BodyFileError;
-pub use body_spec::{BodySpec, DofOrder, GeometrySpec, MatrixFiles, TableOrFile, Units};
+pub use body_spec::{
+    BodySpec, DofOrder, GeometrySpec, InterfaceKind, InterfaceSpec, MatrixFiles, TableOrFile, Units,
+};
 pub use body_writer::{BodyFiles, example_bodies, write_body, write_files};
-pub use imported_body::{BodyHandle, BodyLocation, ImportedBody, NamedSet, SYMMETRY_TOLERANCE};
+pub use imported_body::{BodyHandle, BodyLocation, ImportedBody, RigidSet, SYMMETRY_TOLERANCE};
 pub use matrix_market::{
     MatrixMarket, MatrixMarketFormat, parse_matrix_market, read_matrix_market, write_array,
     write_coordinate_symmetric, write_coordinate_symmetric_to,

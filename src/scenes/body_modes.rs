@@ -71,7 +71,13 @@ pub fn body_boundary(
     let (nodes, rigid) = body.boundary_with_interfaces(items)?;
     let interfaces = rigid
         .iter()
-        .map(|(name, set)| RigidInterface::at_centroid(&body.model, name, set))
+        .map(|set| {
+            let mut i = RigidInterface::at_centroid(&body.model, &set.name, &set.nodes)?;
+            if let Some(master) = set.master {
+                i.master = master;
+            }
+            Ok(i)
+        })
         .collect::<Result<Vec<_>>>()?;
     Ok((nodes, interfaces))
 }

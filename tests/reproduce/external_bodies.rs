@@ -150,7 +150,7 @@ fn rigid_interfaces_match_scipys_transformed_body() {
             let (boundary, sets) = body.boundary_with_interfaces(&spec).unwrap();
             let interfaces: Vec<RigidInterface> = sets
                 .iter()
-                .map(|(n, nodes)| RigidInterface::at_centroid(model, n, nodes).unwrap())
+                .map(|set| RigidInterface::at_centroid(model, &set.name, &set.nodes).unwrap())
                 .collect();
             // The master points are the sets' centroids, as SciPy placed them.
             let masters = case["master_points"].as_array().unwrap();
@@ -341,4 +341,63 @@ fn characteristic_constraint_modes_match_scipy() {
     let mt = reduce(model, Method::ModalTruncation, &parameters).unwrap();
     assert!(reduce_interface(model, mt, 6).is_err());
     assert!(reduce_interface(model, cb, 3 * bore.len() + 1).is_err());
+}
+
+/// An interface declared in the body file (`[interfaces.NAME]`, kind `rbe2`, a master point)
+/// is what `--boundary NAME` means. A rigid interface spans the ring's rigid motions whatever
+/// the master point, so the frequencies equal those with the master at the centroid; the
+/// master point itself is the file's. An `rbe3` interface and a missing node set are refused
+/// with the file, the line and the reason.
+#[test]
+fn interfaces_declared_in_the_body_file() {
+    use flexmodes::{Error, error::BodyFileError, scenes::body_modes::body_boundary};
+    let source = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/bodies/steel-link");
+    let dir = std::env::temp_dir().join(format!("flexmodes-interfaces-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in ["k.mtx.gz", "m.mtx.gz", "nodes.csv", "edges.csv"] {
+        std::fs::copy(source.join(f), dir.join(f)).unwrap();
+    }
+    let text = std::fs::read_to_string(source.join("body.toml")).unwrap();
+    let write = |extra: &str| {
+        std::fs::write(dir.join("body.toml"), format!("{text}\n{extra}")).unwrap();
+        ImportedBody::load(&dir.join("body.toml").display().to_string())
+    };
+    let body = write(
+        "[interfaces.pin]\nkind = \"rbe2\"\nnode_set = \"bore_a\"\nmaster = [-0.04, 0.0, 0.01]\n",
+    )
+    .unwrap();
+    let (nodes, interfaces) = body_boundary(&body, &["pin".into()]).unwrap();
+    assert_eq!(nodes, body.node_sets["bore_a"]);
+    assert_eq!(interfaces.len(), 1);
+    assert_eq!(interfaces[0].master, [-0.04, 0.0, 0.01]);
+    let (_, at_centroid) = body_boundary(&body, &["rbe2:bore_a".into()]).unwrap();
+    assert!(
+        (at_centroid[0].master[2] - 0.01).abs() > 1e-4,
+        "a different master point"
+    );
+    let model = &body.model;
+    let parameters = ReductionParameters {
+        boundary_nodes: nodes,
+        modes: ModeSelection::Count(8),
+        solver: SolverPath::Auto,
+    };
+    let cb = reduce(model, Method::CraigBampton, &parameters).unwrap();
+    let hz = |i: &[flexmodes::reduction::RigidInterface]| {
+        let basis = flexmodes::reduction::tie_rigid_interfaces(model, cb.clone(), i).unwrap();
+        flexmodes::analysis::reduced_modes(model, &basis)
+            .unwrap()
+            .elastic_hz()
+    };
+    let (given, centroid) = (hz(&interfaces), hz(&at_centroid));
+    assert_eq!(given.len(), centroid.len());
+    checks::assert_relative("master point", &given, &centroid, 1e-10);
+
+    let e = write("[interfaces.pin]\nkind = \"rbe3\"\nnode_set = \"bore_a\"\n").unwrap_err();
+    assert!(
+        matches!(&e, Error::BodyFile(BodyFileError::BodyFile { reason, .. }) if reason.contains("rbe3")),
+        "{e}"
+    );
+    let e = write("[interfaces.pin]\nkind = \"rbe2\"\nnode_set = \"nope\"\n").unwrap_err();
+    assert!(e.to_string().contains("nope"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }
