@@ -16,6 +16,14 @@ writes rbe2_reference.json beside the body file;
 
 writes ccm_reference.json: Craig-Bampton on the set with its interface reduced to n_c
 characteristic constraint modes (Castanier, Tan & Pierre 2001), for each n_c.
+
+The committed references were made by:
+
+    python3 assets/generate/rbe2_reference.py tests/bodies/steel-link bore_a bore_a,bore_b
+    python3 assets/generate/rbe2_reference.py tests/bodies/flange-hub bore bore,bolt_1
+    python3 assets/generate/rbe2_reference.py --ccm tests/bodies/steel-link bore_a 6,12,24,48
+
+Run them again whenever make_bodies.py rewrites the bodies.
 """
 import csv
 import gzip
