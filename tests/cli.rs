@@ -794,3 +794,62 @@ fn export_bench_times_the_whole_process_and_says_when_the_peer_cannot_run() {
             .contains("/nonexistent/peers_body_cb.py")
     );
 }
+
+#[test]
+fn report_modes_reduces_an_external_bodys_interface() {
+    // The steel link's 220-node bore (660 DOF) reduced to 12 characteristic constraint modes:
+    // CB has 12 + 10 coordinates and SciPy's frequencies (rbe2_reference.py --ccm); GR keeps
+    // 12 shapes; the sweep ends at plain CB, its error never rising as shapes are added.
+    let body = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/bodies/steel-link");
+    let v = json(&[
+        "report",
+        "modes",
+        "--body",
+        &format!("{body}/body.toml"),
+        "--boundary",
+        "bore_a",
+        "--modes",
+        "10",
+        "--interface-modes",
+        "12",
+        "--json",
+    ]);
+    let r = &v["results"];
+    assert_eq!(r["basis_size"]["cb"], 22);
+    assert_eq!(r["basis_size"]["gr"], 12);
+    let reference: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(format!("{body}/ccm_reference.json")).unwrap(),
+    )
+    .unwrap();
+    let case = reference["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["interface_modes"] == 12)
+        .unwrap();
+    let expected: Vec<f64> = case["hz"].as_array().unwrap()[6..]
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let cb: Vec<f64> = r["reduced_hz"]["cb"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(cb.len(), expected.len());
+    for (a, b) in cb.iter().zip(&expected) {
+        // The report prints nine significant digits.
+        assert!((a - b).abs() <= 1e-8 * b, "{a} vs {b}");
+    }
+    let sweep = r["interface_reduction"].as_array().unwrap();
+    assert_eq!(sweep.len(), 7, "6 … 192 shapes, then all 660");
+    assert_eq!(sweep.last().unwrap()["size"], 670);
+    let errors: Vec<f64> = sweep
+        .iter()
+        .map(|p| p["max_rel_error"].as_f64().unwrap())
+        .collect();
+    for w in errors.windows(2) {
+        assert!(w[1] <= w[0] * (1.0 + 1e-6), "{errors:?}");
+    }
+}

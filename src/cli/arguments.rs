@@ -227,6 +227,10 @@ pub(super) struct OptionArgs {
     /// Axis type: nodal_fixed, mean, principal.
     #[arg(long)]
     pub(super) axes: Option<AxisKind>,
+    /// Reduce the interface to N characteristic constraint modes (Castanier–Tan–Pierre;
+    /// `modes --body` only).
+    #[arg(long, value_name = "N")]
+    pub(super) interface_modes: Option<usize>,
     /// Simulated interval of the dynamic scenes, s.
     #[arg(long)]
     pub(super) end_time: Option<f64>,
@@ -308,6 +312,7 @@ impl OptionArgs {
             modes: self.modes,
             boundary,
             rigid_interfaces,
+            interface_modes: self.interface_modes,
             axes: self.axes,
             end_time: self.end_time,
             integrator,

@@ -5,6 +5,7 @@
 mod cantilever_study;
 mod dual_spin_study;
 mod failure_studies;
+mod interface_reduction_sweep;
 mod plank_simulation;
 mod slab_simulation;
 
@@ -25,6 +26,9 @@ pub use failure_studies::{
     GuyanMeanAxes, KEPT_MODES, MOVED_NODE, SymmetryCase, TOO_FEW_BOUNDARIES, boundary_motion,
     condensation_cost, eitelberg_feedback, explicit_step, guyan_mean_axes, guyan_symmetry,
     mirror_defect, too_few_boundary,
+};
+pub use interface_reduction_sweep::{
+    INTERFACE_MODE_SWEEP, InterfaceReductionPoint, interface_reduction_sweep,
 };
 pub use plank_simulation::{
     MID_X as PLANK_MID_X, PLANK_BOUNDARY, PlankSetup, Variant as PlankVariant, plank_body,

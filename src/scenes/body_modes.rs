@@ -8,7 +8,9 @@ use std::time::Instant;
 use serde_json::{Map, Value, json};
 
 use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed};
-use crate::reduction::{RigidInterface, tie_rigid_interfaces};
+use crate::models::{INTERFACE_MODE_SWEEP, interface_reduction_sweep};
+use crate::record::{LogLogChart, LogLogSeries};
+use crate::reduction::{Basis, ColumnKind, RigidInterface, reduce_interface, tie_rigid_interfaces};
 use crate::{
     Error, Result,
     analysis::{count_zero_energy_modes, reduced_modes},
@@ -180,6 +182,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let compared =
         (full.zero_modes + full_hz.len().min(COMPARED_MODES)).min(full.modes.vectors.ncols());
     let target = full.modes.vectors.subcols(0, compared);
+    let mut cb_basis: Option<Basis> = None;
     for &m in &methods {
         let started = Instant::now();
         let basis = match m {
@@ -201,6 +204,14 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         let elapsed =
             started.elapsed().as_secs_f64() + if m == Method::Guyan { 0.0 } else { shared_s };
         let basis = tie_rigid_interfaces(model, basis, &opts.rigid_interfaces)?;
+        if m == Method::CraigBampton {
+            cb_basis = Some(basis.clone());
+        }
+        let constraint_columns = basis.columns_of(|k| *k == ColumnKind::Constraint).len();
+        let basis = match opts.interface_modes {
+            Some(n) if constraint_columns > 0 => reduce_interface(model, basis, n)?,
+            _ => basis,
+        };
         let eig = reduced_modes(model, &basis)?;
         // GR, CB and MC contain the rigid motions (their constraint modes reproduce them);
         // modal truncation's boundary movements do not, so it has no zero-energy modes.
@@ -298,6 +309,78 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         "reduced_zero_energy_modes".into(),
         Value::Object(reduced_zero),
     );
+    // How many characteristic constraint modes the interface needs (Castanier–Tan–Pierre).
+    let mut sweep_md = String::new();
+    let mut sweep_table = None;
+    if let Some(cb) = &cb_basis
+        && cb.columns_of(|k| *k == ColumnKind::Constraint).len() > INTERFACE_MODE_SWEEP[0]
+    {
+        opts.progress.phase("interface reduction sweep")?;
+        let threshold = crate::analysis::zero_energy_threshold_hz(model);
+        let points = interface_reduction_sweep(model, cb, &full_hz, COMPARED_MODES, threshold)?;
+        let mut sweep = Table::new(&["interface shapes", "size", "max rel. error, first 6 modes"]);
+        let mut chart = Vec::new();
+        for p in &points {
+            let shapes = p
+                .interface_modes
+                .map_or("all (plain CB)".to_string(), |n| n.to_string());
+            sweep.push(vec![
+                Cell::text(shapes),
+                Cell::number(p.size as f64, format!("{}", p.size)),
+                Cell::number(p.worst_error, format!("{:.3e}", p.worst_error)),
+            ]);
+            if p.worst_error.is_finite() && p.worst_error > 0.0 {
+                chart.push((p.size as f64, p.worst_error));
+            }
+        }
+        r.insert(
+            "interface_reduction".into(),
+            json!(
+                points
+                    .iter()
+                    .map(|p| json!({
+                        "interface_modes": p.interface_modes,
+                        "size": p.size,
+                        "max_rel_error": sig(p.worst_error),
+                    }))
+                    .collect::<Vec<_>>()
+            ),
+        );
+        visuals.extend(
+            LogLogChart {
+                path: "charts/interface_reduction".into(),
+                x_unit: "coordinates".into(),
+                y_unit: "max rel. error".into(),
+                series: vec![LogLogSeries {
+                    id: "cb".into(),
+                    label: "CB, N characteristic constraint modes".into(),
+                    color: super::method_color(Method::CraigBampton),
+                    points: chart,
+                    line: true,
+                }],
+                x_linear: false,
+            }
+            .visuals(),
+        );
+        bars.push(Layout::Spatial2D {
+            name: "interface shapes: error against size".into(),
+            origin: "/charts/interface_reduction".into(),
+        });
+        sweep_md = format!(
+            "\nInterface reduction (Craig–Bampton with the interface's constraint modes \
+             replaced by N characteristic constraint modes, Castanier–Tan–Pierre; \
+             `--interface-modes N`{}):\n\n{}",
+            match opts.interface_modes {
+                Some(n) => format!(
+                    "; the models above use N = {n} where they have constraint modes (GR, CB), \
+                     MT and MC keep their boundary columns"
+                ),
+                None => String::new(),
+            },
+            sweep.markdown()
+        );
+        sweep_table = Some(sweep);
+    }
     r.insert("rel_error".into(), Value::Object(errors));
     r.insert("max_principal_angle_rad".into(), Value::Object(angles));
     r.insert("basis_size".into(), Value::Object(sizes));
@@ -305,12 +388,15 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     r.insert("full_modes_s".into(), json!(sig(full_s)));
     let summary = table.markdown();
     report.add_table(table);
+    if let Some(sweep) = sweep_table {
+        report.add_table(sweep);
+    }
     let units = &body.units;
     report.table = format!(
         "Body `{}` ({}): {dofs} DOF, {} stiffness entries, {} zero-energy mode(s); units {}, \
          {}, {}. Interface {} node(s) {}{}, {kept} kept modes.\n\n{summary}\nFull body, \
          lowest elastic: {}\n\nFixed-interface: {}\n\nEigen residuals \
-         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n",
+         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n{sweep_md}",
         model.name,
         body.location.display(),
         model.stiffness_nnz(),

@@ -24,6 +24,9 @@ pub struct SceneOptions {
     /// `--boundary rbe2:SET`: node sets of the boundary tied rigidly to a master node each
     /// (a body file's scene only).
     pub rigid_interfaces: Vec<crate::reduction::RigidInterface>,
+    /// `--interface-modes N`: the interface's constraint modes reduced to N characteristic
+    /// constraint modes (a body file's scene only).
+    pub interface_modes: Option<usize>,
     /// `--axes`: axis type id.
     pub axes: Option<AxisKind>,
     /// `--end-time`: simulated interval of the dynamic scenes, s.
