@@ -8,6 +8,7 @@ mod failure_studies;
 mod interface_reduction_sweep;
 mod plank_simulation;
 mod slab_simulation;
+mod statically_determinate_support;
 
 pub use cantilever_study::{
     BAND_HZ, BT_ALPHA, CANTILEVER_METHODS, CantileverIo, CantileverStudy,
@@ -39,3 +40,4 @@ pub use slab_simulation::{
     SIM3_END, Scenario, default_boundary, fixed, held_at_six, probe_history, record_driving_tables,
     reduction_nodes, sim3_rotation, slab_body, slab_node, slab_system,
 };
+pub use statically_determinate_support::three_two_one_support;

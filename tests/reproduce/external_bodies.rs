@@ -401,3 +401,49 @@ fn interfaces_declared_in_the_body_file() {
     assert!(e.to_string().contains("nope"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// MacNeal–Rubin on a body another code made, with the r-set chosen by
+/// `models::three_two_one_support`: free-interface modes (6 rigid + 10 elastic) and one
+/// residual-flexibility mode per interface DOF; its reduced model contains the kept free-free
+/// modes, so its lowest elastic frequencies equal SciPy's full-body ones.
+#[test]
+fn macneal_rubin_on_external_bodies_keeps_the_free_free_frequencies() {
+    use flexmodes::{
+        analysis::reduced_modes,
+        models::three_two_one_support,
+        reduction::{MacNealRubinParameters, macneal_rubin},
+    };
+    for name in ["steel-link", "flange-hub"] {
+        let (body, reference) = body(name);
+        let model = &body.model;
+        let set = reference["cases"][0]["boundary"].as_str().unwrap();
+        let interface = body.node_sets[set].clone();
+        let r_set = three_two_one_support(model, &interface).unwrap();
+        assert_eq!(r_set.len(), 6, "{name}");
+        let mr = macneal_rubin(
+            model,
+            &MacNealRubinParameters {
+                interface: model.dofs_of_nodes(&interface).unwrap(),
+                r_set,
+                modes: ModeSelection::Count(10),
+                held: Vec::new(),
+            },
+        )
+        .unwrap();
+        assert_eq!(mr.size(), 16 + 3 * interface.len(), "{name}");
+        let eig = reduced_modes(model, &mr).unwrap();
+        let threshold = flexmodes::analysis::zero_energy_threshold_hz(model);
+        let all = eig.hz();
+        let zero = all.iter().take_while(|&&f| f < threshold).count();
+        assert_eq!(zero, 6, "{name}");
+        let expected = checks::floats(&reference["free_free_hz"]);
+        // The reference holds 6 zero-energy and 12 elastic free-free frequencies.
+        assert_eq!(expected.len(), 18, "{name}");
+        checks::assert_relative(
+            &format!("{name} MR"),
+            &all[zero..zero + 10],
+            &expected[6..16],
+            1e-7,
+        );
+    }
+}
