@@ -30,9 +30,9 @@ use crate::{
     body_file::{ImportedBody, write_array, write_npy},
     linalg::generalized_eigen,
     reduction::{
-        Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, MASTER_DOF_NAMES, Method, ModeSelection,
-        ReducedMatrices, ReductionParameters, RigidInterface, SolverPath, reduce, reduce_interface,
-        tie_rigid_interfaces,
+        Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, MASTER_DOF_NAMES, MacNealRubinParameters,
+        Method, ModeSelection, ReducedMatrices, ReductionParameters, RigidInterface, SolverPath,
+        macneal_rubin, reduce, reduce_interface, tie_rigid_interfaces,
     },
     report::sig_vec,
 };
@@ -130,15 +130,28 @@ pub fn export(
     let model = &body.model;
     let mut timings: Vec<(&'static str, f64)> = Vec::new();
     let started = Instant::now();
-    let basis = reduce(
-        model,
-        method,
-        &ReductionParameters {
-            boundary_nodes: boundary.to_vec(),
-            modes: ModeSelection::Count(modes),
-            solver: SolverPath::Auto,
-        },
-    )?;
+    let basis = match method {
+        // Free-interface modes and residual flexibility; the r-set a 3-2-1 support of
+        // interior nodes.
+        Method::MacNealRubin => macneal_rubin(
+            model,
+            &MacNealRubinParameters {
+                interface: model.dofs_of_nodes(boundary)?,
+                r_set: crate::models::three_two_one_support(model, boundary)?,
+                modes: ModeSelection::Count(modes),
+                held: Vec::new(),
+            },
+        )?,
+        _ => reduce(
+            model,
+            method,
+            &ReductionParameters {
+                boundary_nodes: boundary.to_vec(),
+                modes: ModeSelection::Count(modes),
+                solver: SolverPath::Auto,
+            },
+        )?,
+    };
     let basis = tie_rigid_interfaces(model, basis, &parameters.rigid_interfaces)?;
     let basis = match parameters.interface_modes {
         Some(count) => reduce_interface(model, basis, count)?,

@@ -853,3 +853,43 @@ fn report_modes_reduces_an_external_bodys_interface() {
         assert!(w[1] <= w[0] * (1.0 + 1e-6), "{errors:?}");
     }
 }
+
+#[test]
+fn export_macneal_rubin_of_an_external_body() {
+    // Free-interface modes and residual flexibility: 6 + 10 + 660 columns; the reduced model
+    // holds the kept free-free modes, so its frequencies are SciPy's full-body ones.
+    let body = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/bodies/steel-link");
+    let out = std::env::temp_dir().join(format!("flexmodes-mr-{}", std::process::id()));
+    let run = flexmodes(&[
+        "export",
+        "--body",
+        &format!("{body}/body.toml"),
+        "--method",
+        "mr",
+        "--boundary",
+        "bore_a",
+        "--modes",
+        "10",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let model: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("model.json")).unwrap()).unwrap();
+    assert_eq!(model["size"], 676);
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(format!("{body}/reference.json")).unwrap())
+            .unwrap();
+    let full = reference["free_free_hz"].as_array().unwrap();
+    let got = model["reduced_elastic_hz"].as_array().unwrap();
+    assert!(got.len() >= 10 && full.len() >= 16);
+    for k in 0..10 {
+        let (a, b) = (got[k].as_f64().unwrap(), full[6 + k].as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-7 * b, "mode {k}: {a} vs {b}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
