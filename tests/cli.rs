@@ -893,3 +893,41 @@ fn export_macneal_rubin_of_an_external_body() {
     }
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+#[test]
+fn report_modes_pairs_the_full_bodys_modes_by_mac() {
+    // MacNeal–Rubin keeps the free-free modes themselves: MAC 1 to round-off. Craig–Bampton
+    // with ten fixed-interface modes on the bore represents them closely but not exactly.
+    let body = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/bodies/steel-link/body.toml"
+    );
+    let v = json(&[
+        "report",
+        "modes",
+        "--body",
+        body,
+        "--boundary",
+        "bore_a",
+        "--method",
+        "cb,mr",
+        "--json",
+    ]);
+    let mac = |m: &str| -> Vec<f64> {
+        v["results"]["mac"][m]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (mr, cb) = (mac("mr"), mac("cb"));
+    assert_eq!(mr.len(), 6);
+    assert_eq!(cb.len(), 6);
+    assert!(mr.iter().all(|&m| (1.0 - m).abs() < 1e-8), "{mr:?}");
+    assert!(cb.iter().all(|&m| m > 0.99 && m <= 1.0 + 1e-12), "{cb:?}");
+    assert!(
+        cb.iter().any(|&m| m < 1.0 - 1e-4),
+        "CB is not exact: {cb:?}"
+    );
+}

@@ -8,6 +8,7 @@ use std::time::Instant;
 use serde_json::{Map, Value, json};
 
 use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed};
+use crate::analysis::pair_modes;
 use crate::models::{INTERFACE_MODE_SWEEP, interface_reduction_sweep, three_two_one_support};
 use crate::record::{LogLogChart, LogLogSeries};
 use crate::reduction::{Basis, ColumnKind, RigidInterface, reduce_interface, tie_rigid_interfaces};
@@ -158,6 +159,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut reduced = Map::new();
     let mut errors = Map::new();
     let mut angles = Map::new();
+    let mut mac = Map::new();
     let mut rigid_max = Map::new();
     let mut reduced_residuals = Map::new();
     let mut reduced_zero = Map::new();
@@ -177,11 +179,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         "size",
         "lowest elastic Hz",
         "max rel. error, first 6 modes",
+        "min MAC, first 6 modes",
         "largest angle to full modes (rad)",
         "rigid modes at ≤ Hz",
         "s",
     ])
-    .rank_lower(&[3, 4, 5]);
+    .rank_lower(&[3, 5, 6]);
     let mut visuals = Vec::new();
     if body.has_coordinates {
         visuals.push(undeformed(model));
@@ -200,6 +203,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 Cell::text("MR"),
                 Cell::text("–"),
                 Cell::text("not with rbe2 interfaces (free-interface basis)"),
+                Cell::text("–"),
                 Cell::text("–"),
                 Cell::text("–"),
                 Cell::text("–"),
@@ -276,6 +280,25 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         let angle = principal_angles(basis.psi.as_ref(), target)?
             .into_iter()
             .fold(0.0f64, f64::max);
+        // MAC of the full body's first elastic modes against the reduced model's expanded
+        // ones (the lowest 2 × compared of them, paired by best MAC).
+        let candidates = hz.len().min(2 * COMPARED_MODES);
+        let expanded = basis.psi.as_ref() * eig.vectors.subcols(skip, candidates);
+        let compared_full: Vec<usize> = (0..full_hz.len().min(COMPARED_MODES)).collect();
+        let pairs = pair_modes(
+            elastic.vectors.as_ref(),
+            &full_hz,
+            &compared_full,
+            expanded.as_ref(),
+            &hz[..candidates],
+        );
+        let macs: Vec<f64> = pairs.iter().map(|p| p.mac).collect();
+        let min_mac = if candidates == 0 {
+            f64::NAN
+        } else {
+            macs.iter().copied().fold(1.0, f64::min)
+        };
+        mac.insert(m.id().into(), json!(sig_vec(&macs)));
         reduced.insert(m.id().into(), json!(sig_vec(&hz)));
         reduced_residuals.insert(m.id().into(), json!(sig_vec(&hz_residuals)));
         reduced_zero.insert(m.id().into(), json!(skip));
@@ -296,6 +319,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 Cell::text(format!("{} elastic mode(s) only", hz.len()))
             } else {
                 Cell::number(worst, format!("{worst:.2e}"))
+            },
+            if min_mac.is_nan() {
+                Cell::text("–")
+            } else {
+                Cell::number(min_mac, format!("{min_mac:.4}"))
             },
             Cell::number(angle, format!("{angle:.2e}")),
             Cell::number(rigid_hz, format!("{rigid_hz:.2e}")),
@@ -424,6 +452,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }
     r.insert("rel_error".into(), Value::Object(errors));
     r.insert("max_principal_angle_rad".into(), Value::Object(angles));
+    r.insert("mac".into(), Value::Object(mac));
     r.insert("basis_size".into(), Value::Object(sizes));
     r.insert("zero_energy_hz_max".into(), Value::Object(rigid_max));
     r.insert("full_modes_s".into(), json!(sig(full_s)));
