@@ -6,6 +6,7 @@ mod body_spec;
 mod body_writer;
 mod csv_table;
 mod imported_body;
+mod matrix_checks;
 mod matrix_market;
 mod npy;
 

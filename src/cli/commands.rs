@@ -212,7 +212,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Import { body, json } => {
             let body = ImportedBody::load(&body)?;
-            let (value, text) = scenes::body_modes::import_summary(&body)?;
+            let (value, text) = scenes::body_import::import_summary(&body)?;
             if json {
                 println!("{value}");
             } else {

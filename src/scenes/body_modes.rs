@@ -7,7 +7,9 @@ use std::time::Instant;
 
 use serde_json::{Map, Value, json};
 
-use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed};
+use super::{
+    SceneInfo, SceneOptions, SceneOutput, body_import::FULL_MODES, mode_visuals::undeformed,
+};
 use crate::analysis::pair_modes;
 use crate::models::{INTERFACE_MODE_SWEEP, interface_reduction_sweep, three_two_one_support};
 use crate::record::{LogLogChart, LogLogSeries};
@@ -23,7 +25,7 @@ use crate::{
         InteriorProblem, Method, ModeCondensationRoute, ModeSelection, SolverPath,
         craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
     },
-    report::{Cell, Report, Table, fmt_hz, residual_note, sig, sig_vec, sig6},
+    report::{Cell, Report, Table, fmt_hz, residual_note, sig, sig_vec},
 };
 
 /// The body shown when no `--body` is given.
@@ -58,8 +60,6 @@ const DEFAULT_METHODS: [Method; 4] = [
     Method::CraigBampton,
     Method::ModeCondensation,
 ];
-/// Elastic free-free modes of the full body computed and drawn.
-const FULL_MODES: usize = 10;
 /// The lowest elastic modes whose frequency error and subspace angle the table shows (every
 /// error is in the JSON, paired by order).
 const COMPARED_MODES: usize = 6;
@@ -136,7 +136,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let started = Instant::now();
     let full = count_zero_energy_modes(model, FULL_MODES)?;
     let full_s = started.elapsed().as_secs_f64();
-    refuse_mechanism(model, &full)?;
+    super::body_import::refuse_mechanism(model, &full)?;
     let full_hz = full.elastic_hz();
     let elastic = GeneralizedEigen {
         values: full.modes.values[full.zero_modes..].to_vec(),
@@ -537,148 +537,4 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         timeline: Some("phase".into()),
         y_up: false,
     })
-}
-
-/// [`Error::Mechanism`] when the body has more zero-energy modes than a free body's rigid
-/// motions.
-fn refuse_mechanism(
-    model: &crate::fem::FeModel,
-    full: &crate::analysis::ZeroEnergyCount,
-) -> Result<()> {
-    let rigid = model.dofs.rigid_body_count();
-    if full.zero_modes > rigid {
-        return Err(Error::Mechanism {
-            body: model.name.clone(),
-            zero_modes: full.zero_modes,
-            rigid,
-            threshold_hz: full.threshold_hz,
-        });
-    }
-    Ok(())
-}
-
-/// What `flexmodes import` prints: the body's size, mass, zero-energy modes and lowest
-/// frequencies, its node sets; JSON and text. A mechanism is [`Error::Mechanism`].
-pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
-    let model = &body.model;
-    let full = count_zero_energy_modes(model, FULL_MODES)?;
-    refuse_mechanism(model, &full)?;
-    let hz = full.elastic_hz();
-    let properties = model.mass_properties();
-    let mass = properties.mass;
-    let (mass_kind, mass_nnz) = match &model.m {
-        crate::linalg::MassMatrix::Lumped(d) => ("lumped", d.len()),
-        crate::linalg::MassMatrix::Consistent(m) => ("consistent", m.nnz()),
-    };
-    let dof_names: Vec<String> = model.dofs.node_dofs().iter().map(|d| d.name()).collect();
-    let sets: Map<String, Value> = body
-        .node_sets
-        .iter()
-        .map(|(k, v)| (k.clone(), json!(v.len())))
-        .collect();
-    let value = json!({
-        "body": body.location.display(),
-        "name": model.name,
-        "description": body.description,
-        "nodes": model.node_count(),
-        "dofs_per_node": dof_names,
-        "dofs": model.dof_count(),
-        "stiffness_nnz": model.stiffness_nnz(),
-        "mass": mass_kind,
-        "mass_nnz": mass_nnz,
-        "total_mass": sig(mass),
-        "units": { "length": body.units.length, "mass": body.units.mass, "force": body.units.force },
-        "coordinates": body.has_coordinates,
-        "size": if body.has_coordinates { Some(sig(model.size())) } else { None },
-        "rigid_motions_from_coordinates":
-            model.rigid_motions == crate::fem::RigidMotions::FromGeometry,
-        "zero_energy_modes": full.zero_modes,
-        "zero_energy_threshold_hz": sig(full.threshold_hz),
-        "lowest_elastic_hz": sig_vec(&hz),
-        "lowest_elastic_residuals": sig_vec(&full.elastic_residuals()),
-        "mass_centre": properties.centre.map(sig),
-        "inertia_about_mass_centre": properties.inertia.map(|row| row.map(sig)),
-        "node_sets": sets,
-    });
-    let set_text: Vec<String> = body
-        .node_sets
-        .iter()
-        .map(|(k, v)| format!("{k} ({} nodes)", v.len()))
-        .collect();
-    let text = format!(
-        "# {} ({})\n\n{}\n\n- {} nodes × {} DOF ({}) = {} DOF, node-major\n- K: {} stored \
-         entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
-         coordinates: {}\n- zero-energy modes: {} (below {:.2e} Hz; a free {} body has {}){}\n\
-         - lowest elastic frequencies, Hz: {} ({})\n- mass centre: {}; inertia about it: {}\n\
-         - node sets: {}\n- units: {}, {}, {}",
-        model.name,
-        body.location.display(),
-        body.description,
-        model.node_count(),
-        model.dofs.per_node(),
-        dof_names.join(" "),
-        model.dof_count(),
-        model.stiffness_nnz(),
-        crate::report::sig6(mass),
-        body.units.mass,
-        if body.has_coordinates {
-            format!(
-                "yes, largest extent {} {}",
-                crate::report::sig6(model.size()),
-                body.units.length
-            )
-        } else {
-            "none (report and export work; drawing does not)".into()
-        },
-        full.zero_modes,
-        full.threshold_hz,
-        if model.spatial_dim() == 2 {
-            "planar"
-        } else {
-            "spatial"
-        },
-        model.dofs.rigid_body_count(),
-        if full.zero_modes == 0 {
-            " — the body was restrained before export".to_string()
-        } else if model.rigid_motions == crate::fem::RigidMotions::FromGeometry {
-            "; they are the rigid motions of the node coordinates".to_string()
-        } else {
-            String::new()
-        },
-        fmt_hz(&hz),
-        residual_note(&hz, &full.elastic_residuals()),
-        if body.has_coordinates {
-            format!(
-                "({}) {}",
-                properties.centre.map(sig6).join(", "),
-                body.units.length
-            )
-        } else {
-            "unknown (no coordinates)".into()
-        },
-        if body.has_coordinates {
-            format!(
-                "[{}] {}·{}²",
-                properties
-                    .inertia
-                    .iter()
-                    .map(|row| format!("[{}]", row.map(sig6).join(", ")))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                body.units.mass,
-                body.units.length
-            )
-        } else {
-            "unknown".into()
-        },
-        if set_text.is_empty() {
-            "none".into()
-        } else {
-            set_text.join(", ")
-        },
-        body.units.length,
-        body.units.mass,
-        body.units.force,
-    );
-    Ok((value, text))
 }

@@ -4,6 +4,7 @@ mod beam_eitelberg;
 mod beam_mean_axes;
 mod beam_modes;
 mod beam_profiles;
+pub mod body_import;
 pub mod body_modes;
 pub mod cantilever_variants;
 mod failures;

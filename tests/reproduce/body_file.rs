@@ -617,7 +617,7 @@ fn a_mechanism_is_named_with_its_zero_energy_count() {
     let dir = scratch("mechanism");
     write_files(&dir, &files).unwrap();
     let body = ImportedBody::load(dir.join("body.toml").to_str().unwrap()).unwrap();
-    let e = scenes::body_modes::import_summary(&body).unwrap_err();
+    let e = scenes::body_import::import_summary(&body).unwrap_err();
     assert!(
         matches!(
             e,

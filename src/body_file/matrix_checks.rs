@@ -1,0 +1,159 @@
+//! The stiffness and mass of a body file made usable and checked: symmetric storage from a
+//! `symmetric` or `general` file, a lumped or consistent mass, positive definiteness located at
+//! a DOF, and the rigid motions found in the stiffness's null space.
+
+use super::{BodyFileError, MatrixMarket, SYMMETRY_TOLERANCE};
+use crate::linalg::LinalgError;
+use crate::{
+    Error, Result,
+    fem::FeModel,
+    linalg::{MassMatrix, SparseSymmetric, SymbolicFactor, SymmetricFactor},
+};
+
+/// A symmetric matrix from a file: a `symmetric` file mirrored, a `general` one checked for
+/// symmetry (largest defect reported) and symmetrised.
+pub(super) fn symmetric_matrix(
+    file: &MatrixMarket,
+    name: &str,
+    what: &str,
+    to_node_major: &dyn Fn(usize) -> usize,
+) -> Result<SparseSymmetric> {
+    let n = file.rows;
+    let mut entries = Vec::with_capacity(2 * file.entries.len());
+    if file.symmetric {
+        for &(i, j, v) in &file.entries {
+            let (i, j) = (to_node_major(i), to_node_major(j));
+            entries.push((i, j, v));
+            if i != j {
+                entries.push((j, i, v));
+            }
+        }
+        return Ok(SparseSymmetric::from_triplets(n, &entries));
+    }
+    let stored = SparseSymmetric::from_triplets(n, &file.entries);
+    let scale = stored.max_abs();
+    let mut worst = (0.0f64, 0, 0);
+    let a = stored.as_faer();
+    for j in 0..n {
+        let rows = a.symbolic().row_idx_of_col_raw(j);
+        for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
+            let d = (v - stored.get(j, i)).abs();
+            if d > worst.0 {
+                worst = (d, i, j);
+            }
+        }
+    }
+    if scale > 0.0 && worst.0 > SYMMETRY_TOLERANCE * scale {
+        return Err(Error::BodyFile(BodyFileError::NotSymmetric {
+            path: name.into(),
+            what: what.into(),
+            row: worst.1 + 1,
+            col: worst.2 + 1,
+            asymmetry: worst.0 / scale,
+            tolerance: SYMMETRY_TOLERANCE,
+        }));
+    }
+    for &(i, j, v) in &file.entries {
+        let (i, j) = (to_node_major(i), to_node_major(j));
+        entries.push((i, j, 0.5 * v));
+        entries.push((j, i, 0.5 * v));
+    }
+    Ok(SparseSymmetric::from_triplets(n, &entries))
+}
+
+/// The mass: a vector (n × 1 or 1 × n) or a diagonal square matrix becomes lumped, anything
+/// else a consistent sparse matrix.
+pub(super) fn mass_matrix(
+    file: &MatrixMarket,
+    name: &str,
+    n: usize,
+    to_node_major: &dyn Fn(usize) -> usize,
+) -> Result<MassMatrix> {
+    let vector = (file.rows == n && file.cols == 1) || (file.rows == 1 && file.cols == n);
+    if vector {
+        let mut d = vec![0.0; n];
+        for &(i, j, v) in &file.entries {
+            d[to_node_major(i.max(j))] += v;
+        }
+        return Ok(MassMatrix::Lumped(d));
+    }
+    if file.rows != n || file.cols != n {
+        return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+            path: name.into(),
+            what: "mass".into(),
+            rows: file.rows,
+            cols: file.cols,
+            expected: format!("the stiffness is {n} × {n} (or give an {n} × 1 lumped vector)"),
+        }));
+    }
+    if file.entries.iter().all(|&(i, j, _)| i == j) {
+        let mut d = vec![0.0; n];
+        for &(i, _, v) in &file.entries {
+            d[to_node_major(i)] += v;
+        }
+        return Ok(MassMatrix::Lumped(d));
+    }
+    Ok(MassMatrix::Consistent(symmetric_matrix(
+        file,
+        name,
+        "mass",
+        to_node_major,
+    )?))
+}
+
+/// M must be positive definite: every lumped entry positive, a consistent M factorisable.
+pub(super) fn check_mass(model: &FeModel, name: &str) -> Result<()> {
+    let fail = |dof: usize, reason: String| {
+        Error::BodyFile(BodyFileError::MassNotPositive {
+            path: name.into(),
+            dof: dof + 1,
+            label: model.dof_label(dof),
+            reason,
+        })
+    };
+    match &model.m {
+        MassMatrix::Lumped(d) => {
+            if let Some((dof, v)) = d.iter().enumerate().find(|(_, v)| **v <= 0.0) {
+                return Err(fail(dof, format!("its lumped mass is {v:e}")));
+            }
+        }
+        MassMatrix::Consistent(m) => {
+            if let Some((dof, v)) = m
+                .diagonal()
+                .into_iter()
+                .enumerate()
+                .find(|(_, v)| *v <= 0.0)
+            {
+                return Err(fail(dof, format!("its diagonal entry is {v:e}")));
+            }
+            let symbolic = SymbolicFactor::analyse(m.as_faer())?;
+            if let Err(Error::Linalg(LinalgError::NonPositivePivot { index, .. })) =
+                SymmetricFactor::sparse(m.as_faer(), &symbolic, "mass")
+            {
+                return Err(fail(
+                    index,
+                    "the Cholesky pivot of this DOF is not positive".into(),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Whether the rigid motions built from the coordinates are K's null space to round-off:
+/// $\max|KR| \le 10^{-9}\,\max|K|\,\max|R|$. True for a free body exported with full
+/// precision; false for one restrained before export.
+pub(super) fn rigid_motions_are_null_space(model: &FeModel) -> bool {
+    let r = model.rigid_body_modes();
+    let kr = model.k.mul(r.as_ref());
+    let max = |a: &faer::Mat<f64>| {
+        let mut m = 0.0f64;
+        for j in 0..a.ncols() {
+            for i in 0..a.nrows() {
+                m = m.max(a[(i, j)].abs());
+            }
+        }
+        m
+    };
+    max(&kr) <= 1e-9 * model.k.max_abs() * max(&r)
+}

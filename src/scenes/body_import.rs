@@ -1,0 +1,158 @@
+//! What `flexmodes import` says of a body file: its size, mass, zero-energy modes, lowest
+//! frequencies and node sets; and the refusal of a mechanism, shared with the `modes` scene.
+
+use serde_json::{Map, Value, json};
+
+use crate::{
+    Error, Result,
+    analysis::count_zero_energy_modes,
+    body_file::ImportedBody,
+    report::{fmt_hz, residual_note, sig, sig_vec, sig6},
+};
+
+/// Elastic free-free modes computed for the summary and the `modes` scene.
+pub(super) const FULL_MODES: usize = 10;
+
+/// [`Error::Mechanism`] when the body has more zero-energy modes than a free body's rigid
+/// motions.
+pub(super) fn refuse_mechanism(
+    model: &crate::fem::FeModel,
+    full: &crate::analysis::ZeroEnergyCount,
+) -> Result<()> {
+    let rigid = model.dofs.rigid_body_count();
+    if full.zero_modes > rigid {
+        return Err(Error::Mechanism {
+            body: model.name.clone(),
+            zero_modes: full.zero_modes,
+            rigid,
+            threshold_hz: full.threshold_hz,
+        });
+    }
+    Ok(())
+}
+
+/// What `flexmodes import` prints: the body's size, mass, zero-energy modes and lowest
+/// frequencies, its node sets; JSON and text. A mechanism is [`Error::Mechanism`].
+pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
+    let model = &body.model;
+    let full = count_zero_energy_modes(model, FULL_MODES)?;
+    refuse_mechanism(model, &full)?;
+    let hz = full.elastic_hz();
+    let properties = model.mass_properties();
+    let mass = properties.mass;
+    let (mass_kind, mass_nnz) = match &model.m {
+        crate::linalg::MassMatrix::Lumped(d) => ("lumped", d.len()),
+        crate::linalg::MassMatrix::Consistent(m) => ("consistent", m.nnz()),
+    };
+    let dof_names: Vec<String> = model.dofs.node_dofs().iter().map(|d| d.name()).collect();
+    let sets: Map<String, Value> = body
+        .node_sets
+        .iter()
+        .map(|(k, v)| (k.clone(), json!(v.len())))
+        .collect();
+    let value = json!({
+        "body": body.location.display(),
+        "name": model.name,
+        "description": body.description,
+        "nodes": model.node_count(),
+        "dofs_per_node": dof_names,
+        "dofs": model.dof_count(),
+        "stiffness_nnz": model.stiffness_nnz(),
+        "mass": mass_kind,
+        "mass_nnz": mass_nnz,
+        "total_mass": sig(mass),
+        "units": { "length": body.units.length, "mass": body.units.mass, "force": body.units.force },
+        "coordinates": body.has_coordinates,
+        "size": if body.has_coordinates { Some(sig(model.size())) } else { None },
+        "rigid_motions_from_coordinates":
+            model.rigid_motions == crate::fem::RigidMotions::FromGeometry,
+        "zero_energy_modes": full.zero_modes,
+        "zero_energy_threshold_hz": sig(full.threshold_hz),
+        "lowest_elastic_hz": sig_vec(&hz),
+        "lowest_elastic_residuals": sig_vec(&full.elastic_residuals()),
+        "mass_centre": properties.centre.map(sig),
+        "inertia_about_mass_centre": properties.inertia.map(|row| row.map(sig)),
+        "node_sets": sets,
+    });
+    let set_text: Vec<String> = body
+        .node_sets
+        .iter()
+        .map(|(k, v)| format!("{k} ({} nodes)", v.len()))
+        .collect();
+    let text = format!(
+        "# {} ({})\n\n{}\n\n- {} nodes × {} DOF ({}) = {} DOF, node-major\n- K: {} stored \
+         entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
+         coordinates: {}\n- zero-energy modes: {} (below {:.2e} Hz; a free {} body has {}){}\n\
+         - lowest elastic frequencies, Hz: {} ({})\n- mass centre: {}; inertia about it: {}\n\
+         - node sets: {}\n- units: {}, {}, {}",
+        model.name,
+        body.location.display(),
+        body.description,
+        model.node_count(),
+        model.dofs.per_node(),
+        dof_names.join(" "),
+        model.dof_count(),
+        model.stiffness_nnz(),
+        crate::report::sig6(mass),
+        body.units.mass,
+        if body.has_coordinates {
+            format!(
+                "yes, largest extent {} {}",
+                crate::report::sig6(model.size()),
+                body.units.length
+            )
+        } else {
+            "none (report and export work; drawing does not)".into()
+        },
+        full.zero_modes,
+        full.threshold_hz,
+        if model.spatial_dim() == 2 {
+            "planar"
+        } else {
+            "spatial"
+        },
+        model.dofs.rigid_body_count(),
+        if full.zero_modes == 0 {
+            " — the body was restrained before export".to_string()
+        } else if model.rigid_motions == crate::fem::RigidMotions::FromGeometry {
+            "; they are the rigid motions of the node coordinates".to_string()
+        } else {
+            String::new()
+        },
+        fmt_hz(&hz),
+        residual_note(&hz, &full.elastic_residuals()),
+        if body.has_coordinates {
+            format!(
+                "({}) {}",
+                properties.centre.map(sig6).join(", "),
+                body.units.length
+            )
+        } else {
+            "unknown (no coordinates)".into()
+        },
+        if body.has_coordinates {
+            format!(
+                "[{}] {}·{}²",
+                properties
+                    .inertia
+                    .iter()
+                    .map(|row| format!("[{}]", row.map(sig6).join(", ")))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                body.units.mass,
+                body.units.length
+            )
+        } else {
+            "unknown".into()
+        },
+        if set_text.is_empty() {
+            "none".into()
+        } else {
+            set_text.join(", ")
+        },
+        body.units.length,
+        body.units.mass,
+        body.units.force,
+    );
+    Ok((value, text))
+}
