@@ -25,7 +25,7 @@ use serde_json::json;
 
 use crate::{
     Error, Result,
-    analysis::zero_energy_threshold_hz,
+    analysis::{zero_energy_below, zero_energy_threshold_hz},
     atomic_file::write_atomically,
     body_file::{ImportedBody, write_array, write_npy},
     linalg::generalized_eigen,
@@ -186,7 +186,7 @@ pub fn export(
     let eig = generalized_eigen(k_r.as_ref(), m_r.as_ref(), "reduced model")?;
     let threshold = zero_energy_threshold_hz(model);
     let all_hz = eig.hz();
-    let zero_energy = all_hz.iter().take_while(|&&f| f < threshold).count();
+    let zero_energy = zero_energy_below(&all_hz, threshold);
     let hz: Vec<f64> = all_hz[zero_energy..].to_vec();
     let residuals: Vec<f64> = eig.residuals[zero_energy..].to_vec();
     lap("reduced eigenproblem", &mut timings);

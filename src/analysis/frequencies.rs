@@ -84,11 +84,14 @@ impl ZeroEnergyCount {
     /// How many of `e`'s leading pairs (a model reduced from this body) lie below this body's
     /// zero-energy threshold.
     pub fn zero_energy_in(&self, e: &GeneralizedEigen) -> usize {
-        e.hz()
-            .iter()
-            .take_while(|&&f| f < self.threshold_hz)
-            .count()
+        zero_energy_below(&e.hz(), self.threshold_hz)
     }
+}
+
+/// How many of the ascending frequencies `hz` lie below `threshold_hz` (a body's
+/// [`zero_energy_threshold_hz`]): the zero-energy modes of a model reduced from it.
+pub fn zero_energy_below(hz: &[f64], threshold_hz: f64) -> usize {
+    hz.iter().take_while(|&&f| f < threshold_hz).count()
 }
 
 /// The `rigid + 1 + elastic` lowest modes of $(K, M)$, handing the solver the rigid motions

@@ -135,7 +135,7 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
                 .map(|a| a.iter().filter_map(Value::as_f64).collect())
                 .unwrap_or_default();
             let threshold = model["zero_energy_threshold_hz"].as_f64().unwrap_or(0.0);
-            let rigid = peer_hz.iter().take_while(|&&f| f < threshold).count();
+            let rigid = crate::analysis::zero_energy_below(&peer_hz, threshold);
             let compared = our_hz
                 .len()
                 .min(peer_hz.len().saturating_sub(rigid))

@@ -182,8 +182,6 @@ fn join(nodes: &[usize]) -> String {
 pub enum Command {
     /// Switch to another scene (with its defaults).
     SelectScene(String),
-    /// The options changed: recompute.
-    Recompute,
     /// Put the scene's default boundary back and recompute.
     ResetBoundary,
     /// Write the current recording to this file.

@@ -244,7 +244,6 @@ impl Explorer {
                         self.request();
                     }
                 }
-                Command::Recompute => self.request(),
                 Command::Set(change) => {
                     self.controls.change(change);
                     self.request();

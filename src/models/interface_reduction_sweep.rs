@@ -4,9 +4,9 @@
 
 use crate::{
     Result,
-    analysis::reduced_modes,
+    analysis::{ZeroEnergyCount, reduced_modes},
     fem::FeModel,
-    reduction::{Basis, ColumnKind, reduce_interface},
+    reduction::{Basis, CharacteristicConstraintModes},
 };
 
 /// Interface shape counts tried (those below the interface's constraint modes).
@@ -27,31 +27,31 @@ pub struct InterfaceReductionPoint {
 }
 
 /// The sweep over [`INTERFACE_MODE_SWEEP`] (counts below the constraint columns of `cb`), then
-/// `cb` itself; `threshold_hz` separates zero-energy from elastic modes, `full_hz` are the full
-/// body's elastic frequencies, the first `compared` of them judged.
+/// `cb` itself, against `full`, the full body's lowest modes: zero energy judged by its
+/// threshold, the first `compared` elastic frequencies compared. The boundary pencil is solved
+/// once for the whole sweep.
 pub fn interface_reduction_sweep(
     model: &FeModel,
     cb: &Basis,
-    full_hz: &[f64],
+    full: &ZeroEnergyCount,
     compared: usize,
-    threshold_hz: f64,
 ) -> Result<Vec<InterfaceReductionPoint>> {
-    let boundary = cb.columns_of(|k| *k == ColumnKind::Constraint).len();
-    let counts = INTERFACE_MODE_SWEEP
+    let shapes = CharacteristicConstraintModes::of(model, cb)?;
+    let full_hz = full.elastic_hz();
+    let compared = compared.min(full_hz.len());
+    INTERFACE_MODE_SWEEP
         .iter()
         .copied()
-        .filter(|&n| n < boundary)
+        .filter(|&n| n < shapes.available())
         .map(Some)
-        .chain(std::iter::once(None));
-    let compared = compared.min(full_hz.len());
-    counts
+        .chain(std::iter::once(None))
         .map(|count| {
             let basis = match count {
-                Some(n) => reduce_interface(model, cb.clone(), n)?,
+                Some(n) => shapes.keep(cb, n)?,
                 None => cb.clone(),
             };
-            let all = reduced_modes(model, &basis)?.hz();
-            let hz: Vec<f64> = all.into_iter().filter(|&f| f >= threshold_hz).collect();
+            let eig = reduced_modes(model, &basis)?;
+            let hz = eig.hz().split_off(full.zero_energy_in(&eig));
             let worst_error = if hz.len() >= compared {
                 full_hz
                     .iter()

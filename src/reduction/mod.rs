@@ -31,7 +31,7 @@ pub use balanced_truncation::{
 };
 pub use basis::{Basis, Column, ColumnKind};
 pub use benfield_hruda::{InterfaceLoading, LoadedInterface, benfield_hruda};
-pub use characteristic_constraint_modes::reduce_interface;
+pub use characteristic_constraint_modes::{CharacteristicConstraintModes, reduce_interface};
 pub use component_synthesis::{Component, Synthesis};
 pub use craig_bampton::{craig_bampton, craig_bampton_from, craig_bampton_on};
 pub use eitelberg::{

@@ -385,8 +385,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         && cb.columns_of(|k| *k == ColumnKind::Constraint).len() > INTERFACE_MODE_SWEEP[0]
     {
         opts.progress.phase("interface reduction sweep")?;
-        let threshold = crate::analysis::zero_energy_threshold_hz(model);
-        let points = interface_reduction_sweep(model, cb, &full_hz, COMPARED_MODES, threshold)?;
+        let points = interface_reduction_sweep(model, cb, &full, COMPARED_MODES)?;
         let mut sweep = Table::new(&["interface shapes", "size", "max rel. error, first 6 modes"]);
         let mut chart = Vec::new();
         for p in &points {
