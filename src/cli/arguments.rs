@@ -69,16 +69,32 @@ pub(super) enum Command {
         /// Simulations on the slab meshed with NX × NY × NZ bricks (App. B is 4,2,1).
         #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
         refine: Option<[usize; 3]>,
-        /// Time `export --method cb` of this body file as a whole process against SciPy's
-        /// CHOLMOD route (the peer script) in the same run.
-        #[arg(long, conflicts_with_all = ["scenes", "all", "sizes", "save", "refine"])]
+        /// A body file: with no scene, time `export --method cb` of it as a whole process
+        /// against SciPy's CHOLMOD route (the peer script) in the same run; with the scene
+        /// `modes`, chart every method and kept-mode count on it (offline time, peak memory,
+        /// frequency error, Pareto front, mode-count advice).
+        #[arg(long, conflicts_with_all = ["all", "sizes", "refine"])]
         body: Option<PathBuf>,
-        /// With --body: the interface node set.
+        /// With --body: the interface (node set names, node numbers, `rbe2:SET`).
         #[arg(long, value_delimiter = ',', requires = "body")]
         boundary: Option<Vec<String>>,
-        /// With --body: kept fixed-interface modes.
-        #[arg(long, default_value_t = 10, requires = "body")]
-        modes: usize,
+        /// With --body: kept modes (export: one count, default 10; modes: the counts to
+        /// chart, default 4,8,16,32).
+        #[arg(long, value_delimiter = ',', requires = "body")]
+        modes: Vec<usize>,
+        /// With `modes --body`: methods to chart (default: all eight).
+        #[arg(long, value_delimiter = ',', requires = "body")]
+        method: Vec<Method>,
+        /// With `modes --body`: top of the frequency band, Hz; every full-body mode up to it
+        /// is compared (default: the lowest six elastic modes).
+        #[arg(long, value_name = "HZ", requires = "body")]
+        band: Option<f64>,
+        /// With `modes --body`: the relative frequency error the advice asks of a model.
+        #[arg(long, default_value_t = 0.01, requires = "body")]
+        tolerance: f64,
+        /// With `modes --body`: reduce the interface to N characteristic constraint modes.
+        #[arg(long, value_name = "N", requires = "body")]
+        interface_modes: Option<usize>,
         /// With --body: the SciPy peer script.
         #[arg(
             long,

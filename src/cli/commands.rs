@@ -63,14 +63,87 @@ fn run(cli: Cli) -> Result<()> {
         #[cfg(feature = "gui")]
         Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),
         Command::Bench {
+            scenes: ids,
+            body: Some(body),
+            boundary,
+            modes,
+            method,
+            band,
+            tolerance,
+            interface_modes,
+            save,
+            json,
+            ..
+        } if !ids.is_empty() => {
+            if ids.as_slice() != ["modes"] {
+                return Err(Error::InvalidOption {
+                    scene: ids.join(","),
+                    reason: "with --body, bench takes the scene `modes` (or none: the export \
+                             bench)"
+                        .into(),
+                });
+            }
+            let loaded = ImportedBody::load(&body.display().to_string())?;
+            let defaults = crate::bench::BodyBenchParameters::default();
+            let parameters = crate::bench::BodyBenchParameters {
+                boundary,
+                interface_modes,
+                methods: if method.is_empty() {
+                    defaults.methods
+                } else {
+                    method
+                },
+                modes: if modes.is_empty() {
+                    defaults.modes
+                } else {
+                    modes
+                },
+                band_hz: band,
+                tolerance,
+            };
+            let handle = Progress::new();
+            let bar = TerminalProgress::start(&handle, "bench modes --body");
+            let (value, text, recording) =
+                crate::bench::bench_body_modes(&loaded, &parameters, &handle)?;
+            drop(bar);
+            if let Some(path) = &save {
+                Recorder::default().save(&recording, path)?;
+                progress(&format!("wrote {}", path.display()));
+            }
+            if json {
+                println!("{value}");
+            } else {
+                println!("# bench modes --body {}\n\n{text}", body.display());
+            }
+            Ok(())
+        }
+        Command::Bench {
             body: Some(body),
             boundary,
             modes,
             peer,
             repeats,
             json,
+            save,
             ..
         } => {
+            if save.is_some() {
+                return Err(Error::InvalidOption {
+                    scene: "bench".into(),
+                    reason: "the export bench writes no recording: --save goes with `bench modes --body`"
+                        .into(),
+                });
+            }
+            let modes = match modes.as_slice() {
+                [] => 10,
+                [k] => *k,
+                _ => {
+                    return Err(Error::InvalidOption {
+                        scene: "bench".into(),
+                        reason: "the export bench takes one --modes count".into(),
+                    });
+                }
+            };
             let boundary = match boundary {
                 Some(b) => b,
                 None => {

@@ -55,3 +55,10 @@ fn proc_kib(file: &str, key: &str) -> Option<u64> {
         .ok()?;
     Some(kib * 1024)
 }
+
+/// Resets the process's peak resident set to its current size (writes `5` to
+/// `/proc/self/clear_refs`, Linux), so that [`peak_resident_bytes`] afterwards measures one
+/// phase; false where the kernel does not allow it (the peak then stays the process's).
+pub fn reset_peak_resident() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}

@@ -2,6 +2,7 @@
 //! typed results. Scenes wire them to visuals and tables; tests and benches use them for
 //! numbers. A model never imports a scene or the recorder.
 
+mod body_reduction;
 mod cantilever_study;
 mod dual_spin_study;
 mod failure_studies;
@@ -10,6 +11,10 @@ mod plank_simulation;
 mod slab_simulation;
 mod statically_determinate_support;
 
+pub use body_reduction::{
+    BALANCED_MODES_PER_VECTOR, BALANCED_ZETA, BODY_METHODS, BodyInterfaces, BodyReducer,
+    ReducedBody,
+};
 pub use cantilever_study::{
     BAND_HZ, BT_ALPHA, CANTILEVER_METHODS, CantileverIo, CantileverStudy,
     INTEREST_HZ as WITTEVEEN_INTEREST_HZ, POINT_MASS_T, PRINTED_HZ, Printed, StaticCase,

@@ -129,6 +129,34 @@ fn psd_factor(g: MatRef<'_, f64>, what: &str) -> Result<Mat<f64>> {
     }))
 }
 
+/// $W_{\xi\xi}$, the position block of the controllability gramian of the modal states of
+/// $\ddot\xi + \alpha\Omega^2\dot\xi + \Omega^2\xi = \Phi^TB_1u$ (mass-normalised modes,
+/// `omega2` their eigenvalues $\omega_i^2$ in (rad/s)², `phi_b` $= \Phi^TB_1$): the
+/// block-diagonal Lyapunov equation of the interleaved modal first-order form, solved and
+/// checked by [`solve_block_diagonal_lyapunov`]. Every mode must be elastic ($\omega_i > 0$):
+/// a rigid mode has no finite gramian.
+pub(crate) fn modal_position_gramian(
+    omega2: &[f64],
+    phi_b: MatRef<'_, f64>,
+    alpha: f64,
+) -> Result<Mat<f64>> {
+    let blocks: Vec<[[f64; 2]; 2]> = omega2
+        .iter()
+        .map(|&l| {
+            let w2 = l.max(0.0);
+            [[0.0, 1.0], [-w2, -alpha * w2]]
+        })
+        .collect();
+    let np = blocks.len();
+    // 𝓑 in interleaved modal states: the velocity rows carry Φᵀ B₁.
+    let bm = Mat::from_fn(2 * np, phi_b.ncols(), |r, s| {
+        if r % 2 == 1 { phi_b[(r / 2, s)] } else { 0.0 }
+    });
+    let q = &bm * bm.transpose();
+    let w = solve_block_diagonal_lyapunov(&blocks, q.as_ref())?;
+    Ok(Mat::from_fn(np, np, |i, j| w[(2 * i, 2 * j)]))
+}
+
 /// Settings of Witteveen's balanced-truncation trial vectors.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BalancedBasisParameters {
@@ -200,26 +228,11 @@ pub fn balanced_basis(model: &FeModel, p: &BalancedBasisParameters) -> Result<Ba
         }
         p.inputs.iter().map(|&d| map[d]).collect()
     };
-    let blocks: Vec<[[f64; 2]; 2]> = eig
-        .values
-        .iter()
-        .map(|&l| {
-            let w = l.max(0.0).sqrt();
-            [[0.0, 1.0], [-w * w, -p.alpha * w * w]]
-        })
-        .collect();
-    let np = blocks.len();
-    // 𝓑 in interleaved modal states: the velocity rows carry Φᵀ B₁.
-    let bm = Mat::from_fn(2 * np, p.inputs.len(), |r, s| {
-        if r % 2 == 1 {
-            eig.vectors[(row[s], r / 2)]
-        } else {
-            0.0
-        }
+    // Φᵀ B₁: the modal participation of each input.
+    let phi_b = Mat::from_fn(eig.values.len(), p.inputs.len(), |mode, s| {
+        eig.vectors[(row[s], mode)]
     });
-    let q = &bm * bm.transpose();
-    let w = solve_block_diagonal_lyapunov(&blocks, q.as_ref())?;
-    let w_xi = Mat::from_fn(np, np, |i, j| w[(2 * i, 2 * j)]);
+    let w_xi = modal_position_gramian(&eig.values, phi_b.as_ref(), p.alpha)?;
     let w_x = &eig.vectors * &w_xi * eig.vectors.transpose();
     let w_x = Mat::from_fn(nf, nf, |i, j| 0.5 * (w_x[(i, j)] + w_x[(j, i)]));
     let evd = crate::linalg::symmetric_eigen(w_x.as_ref(), "position gramian")?;

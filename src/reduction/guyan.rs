@@ -14,7 +14,11 @@ pub fn guyan(model: &FeModel, masters: &[usize]) -> Result<Basis> {
 
 /// [`guyan`] on a chosen linear-algebra path.
 pub fn guyan_on(model: &FeModel, masters: &[usize], path: SolverPath) -> Result<Basis> {
-    let mut problem = InteriorProblem::new(model, masters, path)?;
+    guyan_from(model, &mut InteriorProblem::new(model, masters, path)?)
+}
+
+/// [`guyan`] on an interior problem already split (and perhaps factored) for other methods.
+pub fn guyan_from(model: &FeModel, problem: &mut InteriorProblem<'_>) -> Result<Basis> {
     let psi_s = problem.constraint_modes()?;
     let p = &problem.partition;
     let psi = p.assemble(p.unit_top(0).as_ref(), psi_s.as_ref());

@@ -11,8 +11,10 @@ mod eitelberg;
 mod free_modes;
 mod full;
 mod guyan;
+mod interface_loads;
 mod macneal_rubin;
 mod method;
+mod modal_balanced_basis;
 mod modal_influence;
 mod modal_model;
 mod modal_truncation;
@@ -43,9 +45,11 @@ pub use free_modes::{
     selected_free_modes,
 };
 pub use full::no_reduction;
-pub use guyan::{guyan, guyan_on};
+pub use guyan::{guyan, guyan_from, guyan_on};
+pub use interface_loads::InterfaceLoads;
 pub use macneal_rubin::{MacNealRubinParameters, macneal_rubin};
 pub use method::{Method, ModeSelection, ReductionParameters, SolverPath, reduce};
+pub use modal_balanced_basis::{ModalBalancedParameters, modal_balanced_basis};
 pub use modal_influence::{ModalInfluence, modal_influence};
 pub use modal_model::{IoMap, ModalModel, StateSpace};
 pub use modal_truncation::{modal_truncation, modal_truncation_from, modal_truncation_on};

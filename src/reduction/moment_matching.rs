@@ -4,7 +4,8 @@
 use faer::Mat;
 
 use super::{
-    Basis, Column, ColumnKind, DENSE_INTERIOR_LIMIT, Method, Partition, ReductionStatistics,
+    Basis, Column, ColumnKind, DENSE_INTERIOR_LIMIT, Method, Partition, ReductionError,
+    ReductionStatistics,
 };
 use crate::{
     Result,
@@ -27,6 +28,14 @@ pub struct MomentMatchingParameters {
     /// A new column whose M-norm after orthogonalisation falls below this fraction of its
     /// norm before is deflated.
     pub deflation_tolerance: f64,
+    /// Load vectors over all DOF used as $B_1$ after the unit forces at `inputs`, each with
+    /// its label: an RBE2 master's six loads, say (N per unit master force or moment).
+    pub loads: Option<(Mat<f64>, Vec<String>)>,
+    /// Vectors over all DOF, $M$-orthonormal, put first in the basis; every Krylov vector is
+    /// kept $M$-orthogonal to them. A free body's zero-energy modes: with $s_0 > 0$ the loads
+    /// are then self-equilibrated (inertia relief) and the Krylov space holds its elastic
+    /// response, the rigid motions exactly beside it.
+    pub leading: Option<(Mat<f64>, Vec<String>)>,
 }
 
 impl Default for MomentMatchingParameters {
@@ -37,6 +46,8 @@ impl Default for MomentMatchingParameters {
             blocks: 2,
             s0: 0.0,
             deflation_tolerance: 1e-8,
+            loads: None,
+            leading: None,
         }
     }
 }
@@ -46,8 +57,8 @@ impl Default for MomentMatchingParameters {
 pub struct Deflation {
     /// Block index j (0 = the static block).
     pub block: usize,
-    /// The input DOF the column came from.
-    pub input: usize,
+    /// The input the column came from (a DOF's label, or a load's).
+    pub input: String,
     /// Its M-norm after orthogonalisation over its norm before.
     pub ratio: f64,
 }
@@ -72,10 +83,21 @@ pub struct MomentMatching {
 /// re-orthogonalisation) and then column by column; a column that loses all but
 /// `deflation_tolerance` of its norm is dropped and reported. One factorisation of
 /// $s_0^2 M + K$ restricted to the free DOF (dense below [`DENSE_INTERIOR_LIMIT`] DOF).
+///
+/// A free body (nothing held) needs $s_0 > 0$, $K$ being singular; with its zero-energy modes
+/// as `leading` vectors the basis is those modes and the Krylov space of its elastic response.
 pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<MomentMatching> {
-    let partition = Partition::from_dofs(model, &p.inputs, &p.held)?;
-    // Free DOF: inputs and interior, in the body's order.
-    let mut free: Vec<usize> = partition.b.iter().chain(&partition.i).copied().collect();
+    // Free DOF: inputs and interior, in the body's order. Loads alone need no input DOF.
+    let mut free: Vec<usize> = if p.inputs.is_empty() && p.loads.is_some() {
+        let mut role = vec![0u8; model.dof_count()];
+        if !p.held.is_empty() {
+            super::partition::check_dof_set(model, "held", &p.held, &mut role, 2)?;
+        }
+        (0..model.dof_count()).filter(|&d| role[d] == 0).collect()
+    } else {
+        let partition = Partition::from_dofs(model, &p.inputs, &p.held)?;
+        partition.b.iter().chain(&partition.i).copied().collect()
+    };
     free.sort_unstable();
     let nf = free.len();
     let mut statistics = ReductionStatistics::default();
@@ -100,88 +122,126 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
     statistics.sparse = nf > DENSE_INTERIOR_LIMIT;
     let started = std::time::Instant::now();
 
-    let position: Vec<usize> = {
+    let row_of: Vec<usize> = {
         let mut map = vec![usize::MAX; model.dof_count()];
         for (r, &d) in free.iter().enumerate() {
             map[d] = r;
         }
-        p.inputs.iter().map(|&d| map[d]).collect()
+        map
     };
-    let b1 = Mat::from_fn(
-        nf,
-        p.inputs.len(),
-        |r, c| {
-            if r == position[c] { 1.0 } else { 0.0 }
-        },
-    );
+    let extra = p.loads.as_ref().map_or(0, |(l, _)| l.ncols());
+    if let Some((l, labels)) = &p.loads
+        && (l.nrows() != model.dof_count() || labels.len() != l.ncols())
+    {
+        return Err(ReductionError::InvalidDofSet {
+            set: "moment-matching loads".into(),
+            reason: format!(
+                "{} × {} loads with {} labels for a body of {} DOF",
+                l.nrows(),
+                l.ncols(),
+                labels.len(),
+                model.dof_count()
+            ),
+        }
+        .into());
+    }
+    let b1 = Mat::from_fn(nf, p.inputs.len() + extra, |r, c| {
+        if c < p.inputs.len() {
+            if r == row_of[p.inputs[c]] { 1.0 } else { 0.0 }
+        } else {
+            p.loads
+                .as_ref()
+                .map_or(0.0, |(l, _)| l[(free[r], c - p.inputs.len())])
+        }
+    });
     let mut v = Mat::<f64>::zeros(nf, 0);
     let mut mv = Mat::<f64>::zeros(nf, 0);
     let mut columns = Vec::new();
+    if let Some((lead, labels)) = &p.leading {
+        if lead.nrows() != model.dof_count() || labels.len() != lead.ncols() {
+            return Err(ReductionError::InvalidDofSet {
+                set: "moment-matching leading vectors".into(),
+                reason: format!(
+                    "{} × {} vectors with {} labels for a body of {} DOF",
+                    lead.nrows(),
+                    lead.ncols(),
+                    labels.len(),
+                    model.dof_count()
+                ),
+            }
+            .into());
+        }
+        v = Mat::from_fn(nf, lead.ncols(), |r, c| lead[(free[r], c)]);
+        mv = m_ff.mul(v.as_ref());
+        columns.extend(labels.iter().map(|label| Column {
+            kind: ColumnKind::FreeInterface { hz: 0.0 },
+            dof: None,
+            label: label.clone(),
+        }));
+    }
     let mut deflated = Vec::new();
     // The block to orthogonalise next and the input each of its columns came from.
     let mut block = factor.solve(b1.as_ref());
-    let mut origin: Vec<usize> = p.inputs.clone();
+    let mut origin: Vec<String> = p
+        .inputs
+        .iter()
+        .map(|&d| model.dof_label(d))
+        .chain(
+            p.loads
+                .iter()
+                .flat_map(|(_, labels)| labels.iter().cloned()),
+        )
+        .collect();
     for j in 0..p.blocks {
-        let mut kept_cols: Vec<Vec<f64>> = Vec::new();
+        // This block's kept columns so far: the first `kept` columns of `this`.
+        let mut this = Mat::<f64>::zeros(nf, block.ncols());
+        let mut kept = 0;
         let mut kept_origin = Vec::new();
         for c in 0..block.ncols() {
-            let mut x: Vec<f64> = (0..nf).map(|r| block[(r, c)]).collect();
-            let before = m_norm(&m_ff, &x);
+            let mut x = block.col(c).to_owned();
+            let before = m_norm(&m_ff, x.as_ref());
             if before == 0.0 {
                 deflated.push(Deflation {
                     block: j,
-                    input: origin[c],
+                    input: origin[c].clone(),
                     ratio: 0.0,
                 });
                 continue;
             }
-            // Twice against every vector so far (earlier blocks and this block's kept ones).
+            // Twice against every vector so far (earlier blocks and this block's kept ones),
+            // classical Gram–Schmidt within each pass.
             for _ in 0..2 {
-                let mx = m_ff.mul(col_ref(&x).as_ref());
-                let coeffs: Vec<f64> = (0..v.ncols())
-                    .map(|q| (0..nf).map(|r| v[(r, q)] * mx[(r, 0)]).sum())
-                    .collect();
-                for (q, cq) in coeffs.iter().enumerate() {
-                    for r in 0..nf {
-                        x[r] -= cq * v[(r, q)];
-                    }
-                }
-                for kc in &kept_cols {
-                    let cq: f64 = (0..nf).map(|r| kc[r] * mx[(r, 0)]).sum();
-                    for r in 0..nf {
-                        x[r] -= cq * kc[r];
-                    }
-                }
+                let mx = m_ff.mul(x.as_mat());
+                let earlier = v.as_ref().transpose() * mx.col(0);
+                let own = this.subcols(0, kept).transpose() * mx.col(0);
+                x -= v.as_ref() * &earlier;
+                x -= this.subcols(0, kept) * &own;
             }
-            let after = m_norm(&m_ff, &x);
+            let after = m_norm(&m_ff, x.as_ref());
             if after <= p.deflation_tolerance * before {
                 deflated.push(Deflation {
                     block: j,
-                    input: origin[c],
+                    input: origin[c].clone(),
                     ratio: after / before,
                 });
                 continue;
             }
-            for xr in &mut x {
-                *xr /= after;
-            }
-            kept_cols.push(x);
-            kept_origin.push(origin[c]);
+            this.col_mut(kept).copy_from(&x * (1.0 / after));
+            kept += 1;
+            kept_origin.push(origin[c].clone());
         }
-        if kept_cols.is_empty() {
+        if kept == 0 {
             // The Krylov space is exhausted (an invariant subspace): no later block adds
             // anything. The deflations say so.
             break;
         }
-        let nk = kept_cols.len();
-        let new_block = Mat::from_fn(nf, nk, |r, c| kept_cols[c][r]);
-        for (c, &input) in kept_origin.iter().enumerate() {
+        let new_block = this.subcols(0, kept).to_owned();
+        for input in &kept_origin {
             columns.push(Column {
                 kind: ColumnKind::Krylov { block: j },
                 dof: None,
-                label: format!("krylov {} {}", j, model.dof_label(input)),
+                label: format!("krylov {j} {input}"),
             });
-            let _ = c;
         }
         let m_new = m_ff.mul(new_block.as_ref());
         v = concat(&v, &new_block);
@@ -209,17 +269,9 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
     })
 }
 
-fn col_ref(x: &[f64]) -> Mat<f64> {
-    Mat::from_fn(x.len(), 1, |r, _| x[r])
-}
-
-fn m_norm(m: &crate::linalg::MassMatrix, x: &[f64]) -> f64 {
-    let mx = m.mul(col_ref(x).as_ref());
-    (0..x.len())
-        .map(|r| x[r] * mx[(r, 0)])
-        .sum::<f64>()
-        .max(0.0)
-        .sqrt()
+fn m_norm(m: &crate::linalg::MassMatrix, x: faer::ColRef<'_, f64>) -> f64 {
+    let mx = m.mul(x.as_mat());
+    (x.transpose() * mx.col(0)).max(0.0).sqrt()
 }
 
 fn concat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {

@@ -55,6 +55,36 @@ impl RigidInterface {
             master: centre,
         })
     }
+
+    /// $R_S$ row by row: for every DOF of the tied nodes (0-based, in node order), its motion
+    /// under each of the master's six unit motions ($u_s = u_m + \theta_m \times r_s$).
+    pub fn rigid_motions(&self, model: &FeModel) -> Result<Vec<(usize, [f64; 6])>> {
+        let mut rows = Vec::with_capacity(3 * self.nodes.len());
+        for &node in &self.nodes {
+            let x = model.position(model.node_index(node)?);
+            let r = [
+                x[0] - self.master[0],
+                x[1] - self.master[1],
+                x[2] - self.master[2],
+            ];
+            for dof in model.dofs_of_nodes(&[node])? {
+                let (_, d) = model.dof_node(dof);
+                let mut row = [0.0; 6];
+                for (q, value) in row.iter_mut().enumerate() {
+                    let mut t = [0.0; 3];
+                    let mut omega = [0.0; 3];
+                    if q < 3 {
+                        t[q] = 1.0;
+                    } else {
+                        omega[q - 3] = 1.0;
+                    }
+                    *value = d.rigid_motion(r, t, omega);
+                }
+                rows.push((dof, row));
+            }
+        }
+        Ok(rows)
+    }
 }
 
 /// Ties each interface's boundary columns of `basis` to its master's six DOF (see the module
@@ -79,49 +109,28 @@ pub fn tie_rigid_interfaces(
     // For every column of Ψ: kept as is, or tied into interface k with rigid-motion row r.
     let mut tied: Vec<Option<(usize, [f64; 6])>> = vec![None; basis.size()];
     for (k, interface) in interfaces.iter().enumerate() {
-        for &node in &interface.nodes {
-            let i = model.node_index(node)?;
-            let x = model.position(i);
-            let r = [
-                x[0] - interface.master[0],
-                x[1] - interface.master[1],
-                x[2] - interface.master[2],
-            ];
-            for dof in model.dofs_of_nodes(&[node])? {
-                let j = basis
-                    .columns
-                    .iter()
-                    .position(|c| c.dof == Some(dof) && boundary_column(&c.kind))
-                    .ok_or_else(|| ReductionError::InvalidDofSet {
-                        set: format!("rbe2 interface `{}`", interface.name),
-                        reason: format!(
-                            "{} has no unit boundary column in the {} basis (a rigid \
-                             interface needs its nodes in the boundary of CB, GR, MT or MC)",
-                            model.dof_label(dof),
-                            basis.method.name()
-                        ),
-                    })?;
-                if tied[j].is_some() {
-                    return Err(ReductionError::InvalidDofSet {
-                        set: format!("rbe2 interface `{}`", interface.name),
-                        reason: format!("node {node} is tied to two interfaces"),
-                    }
-                    .into());
+        for (dof, row) in interface.rigid_motions(model)? {
+            let j = basis
+                .columns
+                .iter()
+                .position(|c| c.dof == Some(dof) && boundary_column(&c.kind))
+                .ok_or_else(|| ReductionError::InvalidDofSet {
+                    set: format!("rbe2 interface `{}`", interface.name),
+                    reason: format!(
+                        "{} has no unit boundary column in the {} basis (a rigid \
+                         interface needs its nodes in the boundary of CB, GR, MT or MC)",
+                        model.dof_label(dof),
+                        basis.method.name()
+                    ),
+                })?;
+            if tied[j].is_some() {
+                return Err(ReductionError::InvalidDofSet {
+                    set: format!("rbe2 interface `{}`", interface.name),
+                    reason: format!("node {} is tied to two interfaces", model.dof_node(dof).0),
                 }
-                let (_, d) = model.dof_node(dof);
-                let mut row = [0.0; 6];
-                for (q, value) in row.iter_mut().enumerate() {
-                    let mut t = [0.0; 3];
-                    let mut omega = [0.0; 3];
-                    if q < 3 {
-                        t[q] = 1.0;
-                    } else {
-                        omega[q - 3] = 1.0;
-                    }
-                    *value = d.rigid_motion(r, t, omega);
-                }
-                tied[j] = Some((k, row));
+                .into());
             }
+            tied[j] = Some((k, row));
         }
     }
     // The new columns: kept ones in order, each interface's six where its first column stood.

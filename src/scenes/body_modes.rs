@@ -11,20 +11,18 @@ use super::{
     SceneInfo, SceneOptions, SceneOutput, body_import::FULL_MODES, mode_visuals::undeformed,
 };
 use crate::analysis::pair_modes;
-use crate::models::{INTERFACE_MODE_SWEEP, interface_reduction_sweep, three_two_one_support};
+use crate::models::{
+    BODY_METHODS, BodyInterfaces, BodyReducer, INTERFACE_MODE_SWEEP, interface_reduction_sweep,
+};
 use crate::record::{LogLogChart, LogLogSeries};
-use crate::reduction::{Basis, ColumnKind, RigidInterface, reduce_interface, tie_rigid_interfaces};
-use crate::reduction::{MacNealRubinParameters, macneal_rubin};
+use crate::reduction::{Basis, ColumnKind, ReductionError, RigidInterface};
 use crate::{
     Error, Result,
-    analysis::{count_zero_energy_modes, reduced_modes},
+    analysis::count_zero_energy_modes,
     body_file::{BodyHandle, ImportedBody},
     linalg::{GeneralizedEigen, principal_angles},
     record::{Layout, Visual},
-    reduction::{
-        InteriorProblem, Method, ModeCondensationRoute, ModeSelection, SolverPath,
-        craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
-    },
+    reduction::{Method, ModeSelection},
     report::{Cell, Report, Table, fmt_hz, residual_note, sig, sig_vec},
 };
 
@@ -46,13 +44,7 @@ pub const INFO: SceneInfo = SceneInfo {
     },
 };
 
-const AVAILABLE: [Method; 5] = [
-    Method::Guyan,
-    Method::ModalTruncation,
-    Method::CraigBampton,
-    Method::ModeCondensation,
-    Method::MacNealRubin,
-];
+const AVAILABLE: [Method; 8] = BODY_METHODS;
 /// Computed unless `--method` says otherwise.
 const DEFAULT_METHODS: [Method; 4] = [
     Method::Guyan,
@@ -149,12 +141,19 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         zero_energy: 0,
     };
 
-    let started = Instant::now();
-    let mut problem = InteriorProblem::new(model, &boundary, SolverPath::Auto)?
-        .with_progress(opts.progress.clone());
-    let psi_s = problem.constraint_modes()?;
-    let fi = problem.kept_modes(ModeSelection::Count(kept))?;
-    let shared_s = started.elapsed().as_secs_f64();
+    let mut reducer = BodyReducer::new(
+        model,
+        BodyInterfaces {
+            boundary: boundary.clone(),
+            rigid: opts.rigid_interfaces.clone(),
+            interface_modes: opts.interface_modes,
+        },
+        &full,
+        full_s,
+        opts.progress.clone(),
+    )?;
+    let psi_s = reducer.problem().constraint_modes()?;
+    let fi = reducer.problem().kept_modes(ModeSelection::Count(kept))?;
 
     let mut reduced = Map::new();
     let mut errors = Map::new();
@@ -195,78 +194,37 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         (full.zero_modes + full_hz.len().min(COMPARED_MODES)).min(full.modes.vectors.ncols());
     let target = full.modes.vectors.subcols(0, compared);
     let mut cb_basis: Option<Basis> = None;
+    let mut notes = Vec::new();
     for &m in &methods {
-        if m == Method::MacNealRubin && !opts.rigid_interfaces.is_empty() {
-            // Its columns are free-interface and residual modes, not unit boundary motions a
-            // rigid interface could combine: said in the table, not computed.
-            table.push(vec![
-                Cell::text("MR"),
-                Cell::text("–"),
-                Cell::text("not with rbe2 interfaces (free-interface basis)"),
-                Cell::text("–"),
-                Cell::text("–"),
-                Cell::text("–"),
-                Cell::text("–"),
-                Cell::text("–"),
-            ]);
-            continue;
-        }
-        let started = Instant::now();
-        let basis = match m {
-            Method::CraigBampton => {
-                craig_bampton_from(model, &mut problem, ModeSelection::Count(kept))?
+        let model_of = match reducer.reduce(m, kept) {
+            Ok(r) => r,
+            Err(Error::Reduction(e @ ReductionError::MethodNeedsContext { .. })) => {
+                // A method that cannot apply to this body: said in its row, not computed.
+                let mut row = vec![Cell::text(m.id().to_uppercase()), Cell::text("–")];
+                row.push(Cell::text(format!("not computed: {e}")));
+                row.extend((0..5).map(|_| Cell::text("–")));
+                table.push(row);
+                notes.push(format!("{}: {e}", m.id().to_uppercase()));
+                continue;
             }
-            Method::ModalTruncation => {
-                modal_truncation_from(model, &mut problem, ModeSelection::Count(kept))?
-            }
-            Method::ModeCondensation => {
-                let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
-                mode_condensation_from(model, &mut problem, ModeSelection::Count(kept), route)?
-            }
-            Method::MacNealRubin => {
-                // Free-interface modes and residual flexibility, the rigid motions held for
-                // the flexibility by a 3-2-1 support of interior nodes (Spanos–Tsuha Eq. 11).
-                opts.progress.phase("MacNeal-Rubin reduction")?;
-                macneal_rubin(
-                    model,
-                    &MacNealRubinParameters {
-                        interface: model.dofs_of_nodes(&boundary)?,
-                        r_set: three_two_one_support(model, &boundary)?,
-                        modes: ModeSelection::Count(kept),
-                        held: Vec::new(),
-                    },
-                )?
-            }
-            _ => {
-                opts.progress.phase("Guyan reduction")?;
-                guyan_on(model, &boundary, SolverPath::Auto)?
-            }
+            Err(e) => return Err(e),
         };
-        let elapsed = started.elapsed().as_secs_f64()
-            + if matches!(m, Method::Guyan | Method::MacNealRubin) {
-                0.0
-            } else {
-                shared_s
-            };
-        let basis = tie_rigid_interfaces(model, basis, &opts.rigid_interfaces)?;
+        if let Some(note) = &model_of.note {
+            notes.push(format!("{}: {note}", m.id().to_uppercase()));
+        }
+        let elapsed = model_of.offline_s;
         if m == Method::CraigBampton {
-            cb_basis = Some(basis.clone());
+            cb_basis = Some(if opts.interface_modes.is_some() {
+                reducer.reduce_keeping_constraint_modes(m, kept)?.basis
+            } else {
+                model_of.basis.clone()
+            });
         }
-        let constraint_columns = basis.columns_of(|k| *k == ColumnKind::Constraint).len();
-        let basis = match opts.interface_modes {
-            Some(n) if constraint_columns > 0 => reduce_interface(model, basis, n)?,
-            _ => basis,
-        };
-        let eig = reduced_modes(model, &basis)?;
-        // GR, CB and MC contain the rigid motions (their constraint modes reproduce them);
-        // modal truncation's boundary movements do not, so it has no zero-energy modes.
-        // Zero energy is judged against the body's own scale, never by position.
-        let all_hz = eig.hz();
-        let skip = full.zero_energy_in(&eig);
-        let rigid_hz = all_hz[..skip].iter().fold(0.0f64, |a, &f| a.max(f));
-        let hz: Vec<f64> = all_hz[skip..].to_vec();
-        let hz_residuals: Vec<f64> = eig.residuals[skip..].to_vec();
-        let rel: Vec<f64> = full_hz.iter().zip(&hz).map(|(f, r)| (r - f) / f).collect();
+        let (basis, eig, skip) = (&model_of.basis, &model_of.modes, model_of.zero_modes);
+        let rigid_hz = model_of.rigid_hz_max();
+        let hz = model_of.elastic_hz();
+        let hz_residuals = model_of.elastic_residuals();
+        let rel = model_of.relative_errors(&full_hz);
         // A model with fewer elastic modes than compared has no error over them: said, not
         // ranked (a rigid interface under Guyan is a rigid body).
         let compared_modes = COMPARED_MODES.min(full_hz.len());
@@ -455,6 +413,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     r.insert("basis_size".into(), Value::Object(sizes));
     r.insert("zero_energy_hz_max".into(), Value::Object(rigid_max));
     r.insert("full_modes_s".into(), json!(sig(full_s)));
+    r.insert("method_notes".into(), json!(notes));
     let summary = table.markdown();
     report.add_table(table);
     if let Some(sweep) = sweep_table {
@@ -465,7 +424,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         "Body `{}` ({}): {dofs} DOF, {} stiffness entries, {} zero-energy mode(s); units {}, \
          {}, {}. Interface {} node(s) {}{}, {kept} kept modes.\n\n{summary}\nFull body, \
          lowest elastic: {}\n\nFixed-interface: {}\n\nEigen residuals \
-         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n{sweep_md}",
+         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n{}{sweep_md}",
         model.name,
         body.location.display(),
         model.stiffness_nnz(),
@@ -495,13 +454,18 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         fmt_hz(&full_hz),
         fmt_hz(&fi.hz()[..fi.hz().len().min(8)]),
         residual_lines.join("; "),
+        notes.iter().map(|n| format!("\n- {n}")).collect::<String>(),
     );
     let markdown = format!(
         "# modes: {}\n\n{}\n\nEvery method reduces the same body on the same interface: \
          Guyan keeps only the interface (static constraint modes), modal truncation the \
          interface movements and the {kept} lowest fixed-interface modes, Craig–Bampton the \
          constraint modes and those modes, mode condensation the same space in its own \
-         coordinates. \"max rel. error\" compares each model's six lowest elastic frequencies \
+         coordinates. MacNeal–Rubin keeps free-interface modes and the residual flexibility of the \
+         interface DOF; Benfield–Hruda the modes of the body with its interfaces loaded; moment \
+         matching Krylov vectors of the interface loads; balanced truncation the dominant \
+         vectors of the interface loads' position gramian (each says below what it took). \
+         \"max rel. error\" compares each model's six lowest elastic frequencies \
          with the full body's, paired by order; the angle is the largest principal angle between the basis \
          and the full body's zero-energy and six lowest elastic modes (0: contained). \"rigid \
          modes at\" is the highest frequency a reduced model gives its rigid-body motions, \
@@ -511,7 +475,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let layout = if body.has_coordinates {
         let (mode_visuals, l) = super::slab_mode_views::slab_mode_views(
             model,
-            &problem.partition,
+            &reducer.problem().partition,
             &psi_s,
             &fi,
             &elastic,

@@ -18,7 +18,7 @@ use flexmodes::{
 use serde_json::Value;
 
 #[path = "../external/checks.rs"]
-mod checks;
+pub(crate) mod checks;
 
 const BODIES: [&str; 3] = ["steel-link", "flange-hub", "steel-rod"];
 

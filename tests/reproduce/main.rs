@@ -2,6 +2,7 @@
 //! the physical and algebraic invariants of the bodies and reduction methods.
 
 mod body_file;
+mod body_methods;
 mod common;
 mod companion;
 mod dense_eigen;

@@ -1,0 +1,576 @@
+//! `flexmodes bench modes --body FILE`: the speed–accuracy chart of a user's own body. Every
+//! method and kept-mode count reduces the body on the user's interfaces; each model's offline
+//! time, the process's peak memory while it was built, and its frequency error and MAC
+//! against the full body's own modes (solved once, shared by every point); the Pareto front;
+//! and, for a band and tolerance, the smallest measured model of each method that meets it
+//! beside the rule of thumb (modes up to 1.5–2× the band's top).
+//!
+//! Timings are wall-clock, measured in one run on this machine; reported, never asserted.
+
+use std::time::Instant;
+
+use serde_json::{Value, json};
+
+use crate::{
+    Error, Progress, Result,
+    analysis::{ZeroEnergyCount, count_zero_energy_modes, pair_modes},
+    bench::{pareto_flags, three_digits},
+    body_file::ImportedBody,
+    linalg::{peak_resident_bytes, reset_peak_resident},
+    models::{BODY_METHODS, BodyInterfaces, BodyReducer},
+    record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
+    reduction::{Method, ModeSelection, ReductionError},
+    report::{Report, markdown_table, sig},
+    scenes::{
+        body_modes::{body_boundary, default_boundary},
+        method_color,
+    },
+};
+
+/// Kept-mode counts tried when none are given.
+pub const BODY_MODE_SWEEP: [usize; 4] = [4, 8, 16, 32];
+
+/// Elastic modes compared when no band is given.
+pub const BODY_COMPARED_MODES: usize = 6;
+
+/// What to measure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyBenchParameters {
+    /// Interface items as `--boundary` takes them (set names, node numbers, `rbe2:SET`).
+    pub boundary: Option<Vec<String>>,
+    /// Characteristic constraint modes kept (None: all).
+    pub interface_modes: Option<usize>,
+    /// Methods (default: all eight).
+    pub methods: Vec<Method>,
+    /// Kept-mode counts (default [`BODY_MODE_SWEEP`]).
+    pub modes: Vec<usize>,
+    /// Top of the frequency band, Hz: every full-body elastic mode up to it is compared
+    /// (default: the lowest [`BODY_COMPARED_MODES`]).
+    pub band_hz: Option<f64>,
+    /// Largest relative frequency error a model may make in the band to be advised.
+    pub tolerance: f64,
+}
+
+impl Default for BodyBenchParameters {
+    fn default() -> Self {
+        Self {
+            boundary: None,
+            interface_modes: None,
+            methods: BODY_METHODS.to_vec(),
+            modes: BODY_MODE_SWEEP.to_vec(),
+            band_hz: None,
+            tolerance: 0.01,
+        }
+    }
+}
+
+/// One method and kept-mode count on the body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyBenchPoint {
+    /// Method.
+    pub method: Method,
+    /// Kept modes (0 for Guyan).
+    pub modes: usize,
+    /// Reduced coordinates.
+    pub coordinates: usize,
+    /// Offline wall time, s (the shared interior factor charged once per method).
+    pub offline_s: f64,
+    /// Peak resident memory while the model was built, MB (None: not measurable here).
+    pub peak_mb: Option<f64>,
+    /// Largest relative error of the compared elastic frequencies (infinite when the model
+    /// has fewer elastic modes than compared).
+    pub freq_rel_error: f64,
+    /// Smallest MAC of the compared full modes against the model's (paired by best MAC).
+    pub min_mac: f64,
+    /// On the Pareto front of (offline s, frequency error).
+    pub pareto: bool,
+}
+
+/// The bench: JSON, the text table and the recording of the charts.
+pub fn bench_body_modes(
+    body: &ImportedBody,
+    p: &BodyBenchParameters,
+    progress: &Progress,
+) -> Result<(Value, String, RecordingContent)> {
+    let model = &body.model;
+    let items = match &p.boundary {
+        Some(b) => b.clone(),
+        None => default_boundary(body)?
+            .iter()
+            .map(|n| n.to_string())
+            .collect(),
+    };
+    let (boundary, rigid) = body_boundary(body, &items)?;
+    if p.modes.is_empty() || p.modes.contains(&0) {
+        return Err(Error::InvalidOption {
+            scene: "bench modes".into(),
+            reason: "--modes takes counts of at least 1".into(),
+        });
+    }
+    progress.phase("full body's modes")?;
+    let started = Instant::now();
+    let full = full_modes_in_band(body, p.band_hz, progress)?;
+    let reference_s = started.elapsed().as_secs_f64();
+    let full_hz = full.elastic_hz();
+    let compared = match p.band_hz {
+        Some(top) => full_hz.iter().take_while(|&&f| f <= top).count(),
+        None => BODY_COMPARED_MODES.min(full_hz.len()),
+    };
+    if compared == 0 {
+        return Err(ReductionError::EmptyBand {
+            low_hz: 0.0,
+            high_hz: p.band_hz.unwrap_or(0.0),
+            what: "full body's elastic modes".into(),
+        }
+        .into());
+    }
+    let elastic_vectors = full
+        .modes
+        .vectors
+        .subcols(full.zero_modes, compared)
+        .to_owned();
+    let mut modes = p.modes.clone();
+    modes.sort_unstable();
+    modes.dedup();
+    let mut points = Vec::new();
+    let mut refused = Vec::new();
+    for &method in &p.methods {
+        let mut reducer = BodyReducer::new(
+            model,
+            BodyInterfaces {
+                boundary: boundary.clone(),
+                rigid: rigid.clone(),
+                interface_modes: p.interface_modes,
+            },
+            &full,
+            reference_s,
+            progress.clone(),
+        )?;
+        // Largest count first: the partial eigensolvers then serve the smaller ones.
+        let counts: Vec<usize> = if method == Method::Guyan {
+            vec![0]
+        } else {
+            modes.iter().rev().copied().collect()
+        };
+        for k in counts {
+            progress.phase(&format!("{} with {k} modes", method.id()))?;
+            let reset = reset_peak_resident();
+            let reduced = match reducer.reduce(method, k) {
+                Ok(r) => r,
+                Err(Error::Reduction(e @ ReductionError::MethodNeedsContext { .. })) => {
+                    refused.push((method, e.to_string()));
+                    break;
+                }
+                Err(e) => return Err(e),
+            };
+            let peak_mb = if reset {
+                peak_resident_bytes().map(|b| b as f64 / 1e6)
+            } else {
+                None
+            };
+            let hz = reduced.elastic_hz();
+            let freq_rel_error = if hz.len() < compared {
+                f64::INFINITY
+            } else {
+                (0..compared)
+                    .map(|j| ((hz[j] - full_hz[j]) / full_hz[j]).abs())
+                    .fold(0.0, f64::max)
+            };
+            let candidates = hz.len().min(2 * compared);
+            let expanded = reduced.basis.psi.as_ref()
+                * reduced
+                    .modes
+                    .vectors
+                    .subcols(reduced.zero_modes, candidates);
+            let pairs = pair_modes(
+                elastic_vectors.as_ref(),
+                &full_hz[..compared],
+                &(0..compared).collect::<Vec<_>>(),
+                expanded.as_ref(),
+                &hz[..candidates],
+            );
+            let min_mac = if candidates == 0 {
+                0.0
+            } else {
+                pairs.iter().map(|q| q.mac).fold(1.0, f64::min)
+            };
+            points.push(BodyBenchPoint {
+                method,
+                modes: k,
+                coordinates: reduced.basis.size(),
+                offline_s: reduced.offline_s,
+                peak_mb,
+                freq_rel_error,
+                min_mac,
+                pareto: false,
+            });
+        }
+    }
+    // Listed by method, then by kept modes ascending.
+    points.sort_by_key(|q| (p.methods.iter().position(|&m| m == q.method), q.modes));
+    let flags = pareto_flags(
+        &points
+            .iter()
+            .map(|q| (q.offline_s, three_digits(q.freq_rel_error)))
+            .collect::<Vec<_>>(),
+    );
+    for (q, f) in points.iter_mut().zip(flags) {
+        q.pareto = f && q.freq_rel_error.is_finite();
+    }
+    let advice = advise(
+        &points,
+        p,
+        &full_hz[..compared],
+        &mut BodyReducer::new(
+            model,
+            BodyInterfaces {
+                boundary: boundary.clone(),
+                rigid: rigid.clone(),
+                interface_modes: None,
+            },
+            &full,
+            reference_s,
+            progress.clone(),
+        )?,
+    )?;
+    let text = table_text(
+        body,
+        &items,
+        &full_hz[..compared],
+        reference_s,
+        &points,
+        &refused,
+        &advice,
+    );
+    let json = json!({
+        "scene": "bench-modes",
+        "body": body.location.display().to_string(),
+        "dofs": model.dof_count(),
+        "boundary": items,
+        "reference": {
+            "zero_energy_modes": full.zero_modes,
+            "hz": full_hz[..compared].iter().map(|&f| sig(f)).collect::<Vec<_>>(),
+            "residuals": full.elastic_residuals()[..compared].iter().map(|&r| sig(r)).collect::<Vec<_>>(),
+            "s": sig(reference_s),
+        },
+        "points": points.iter().map(|q| json!({
+            "method": q.method.id(),
+            "modes": q.modes,
+            "coordinates": q.coordinates,
+            "offline_s": sig(q.offline_s),
+            "peak_mb": q.peak_mb.map(sig),
+            "freq_rel_error": if q.freq_rel_error.is_finite() { json!(sig(q.freq_rel_error)) } else { Value::Null },
+            "min_mac": sig(q.min_mac),
+            "pareto": q.pareto,
+        })).collect::<Vec<_>>(),
+        "not_applicable": refused.iter().map(|(m, why)| json!({"method": m.id(), "reason": why})).collect::<Vec<_>>(),
+        "advice": advice.json(),
+    });
+    let recording = charts(&points, &text);
+    Ok((json, text, recording))
+}
+
+/// The body's zero-energy modes and enough elastic ones: every one up to `band_hz` (doubling
+/// the count until one lies above it), or [`BODY_COMPARED_MODES`].
+fn full_modes_in_band(
+    body: &ImportedBody,
+    band_hz: Option<f64>,
+    progress: &Progress,
+) -> Result<ZeroEnergyCount> {
+    let Some(top) = band_hz else {
+        return count_zero_energy_modes(&body.model, BODY_COMPARED_MODES);
+    };
+    let mut wanted = 12;
+    loop {
+        progress.phase(&format!("full body: lowest {wanted} elastic modes"))?;
+        let full = count_zero_energy_modes(&body.model, wanted)?;
+        let hz = full.elastic_hz();
+        if hz.last().is_some_and(|&f| f > top) || hz.len() < wanted {
+            return Ok(full);
+        }
+        if wanted >= 400 {
+            return Err(ReductionError::TooManyModes {
+                requested: 2 * wanted,
+                available: 400,
+            }
+            .into());
+        }
+        wanted *= 2;
+    }
+}
+
+/// The mode-count advice for a band and tolerance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyAdvice {
+    /// Top of the band, Hz (the highest compared full-body frequency when none was given).
+    pub band_hz: f64,
+    /// Largest relative frequency error accepted in the band.
+    pub tolerance: f64,
+    /// Fixed-interface modes up to 1.5× and up to 2× the band's top (the rule of thumb for
+    /// CB and its kin; None when they could not be counted).
+    pub rule_of_thumb: Option<(usize, usize)>,
+    /// Per method: the smallest measured model meeting the tolerance, as (kept modes,
+    /// coordinates, error), or None when no measured count met it.
+    pub smallest: Vec<(Method, Option<(usize, usize, f64)>)>,
+}
+
+impl BodyAdvice {
+    fn json(&self) -> Value {
+        json!({
+            "band_hz": sig(self.band_hz),
+            "tolerance": self.tolerance,
+            "rule_of_thumb": self.rule_of_thumb.map(|(a, b)| json!({"up_to_1_5x": a, "up_to_2x": b})),
+            "smallest": self.smallest.iter().map(|(m, s)| json!({
+                "method": m.id(),
+                "modes": s.map(|x| x.0),
+                "coordinates": s.map(|x| x.1),
+                "freq_rel_error": s.map(|x| sig(x.2)),
+            })).collect::<Vec<_>>(),
+        })
+    }
+}
+
+fn advise(
+    points: &[BodyBenchPoint],
+    p: &BodyBenchParameters,
+    compared_hz: &[f64],
+    reducer: &mut BodyReducer<'_>,
+) -> Result<BodyAdvice> {
+    let band_hz = p
+        .band_hz
+        .unwrap_or_else(|| compared_hz.last().copied().unwrap_or(0.0));
+    let rule_of_thumb = reducer
+        .problem()
+        .kept_modes(ModeSelection::UpToHz(2.0 * band_hz))
+        .ok()
+        .map(|fi| {
+            let hz = fi.hz();
+            (hz.iter().filter(|&&f| f <= 1.5 * band_hz).count(), hz.len())
+        });
+    let mut methods: Vec<Method> = Vec::new();
+    for q in points {
+        if !methods.contains(&q.method) {
+            methods.push(q.method);
+        }
+    }
+    let smallest = methods
+        .into_iter()
+        .map(|m| {
+            let best = points
+                .iter()
+                .filter(|q| q.method == m && q.freq_rel_error <= p.tolerance)
+                .min_by_key(|q| (q.coordinates, q.modes))
+                .map(|q| (q.modes, q.coordinates, q.freq_rel_error));
+            (m, best)
+        })
+        .collect();
+    Ok(BodyAdvice {
+        band_hz,
+        tolerance: p.tolerance,
+        rule_of_thumb,
+        smallest,
+    })
+}
+
+fn table_text(
+    body: &ImportedBody,
+    items: &[String],
+    compared_hz: &[f64],
+    reference_s: f64,
+    points: &[BodyBenchPoint],
+    refused: &[(Method, String)],
+    advice: &BodyAdvice,
+) -> String {
+    let rows: Vec<Vec<String>> = points
+        .iter()
+        .map(|q| {
+            vec![
+                q.method.id().into(),
+                q.modes.to_string(),
+                q.coordinates.to_string(),
+                format!("{:.3}", q.offline_s),
+                q.peak_mb.map_or("–".into(), |m| format!("{m:.0}")),
+                if q.freq_rel_error.is_finite() {
+                    format!("{:.2e}", q.freq_rel_error)
+                } else {
+                    "too few modes".into()
+                },
+                format!("{:.4}", q.min_mac),
+                if q.pareto { "★" } else { "" }.to_string(),
+            ]
+        })
+        .collect();
+    let advice_rows: Vec<Vec<String>> = advice
+        .smallest
+        .iter()
+        .map(|(m, s)| match s {
+            Some((k, c, e)) => vec![
+                m.id().into(),
+                k.to_string(),
+                c.to_string(),
+                format!("{e:.2e}"),
+            ],
+            None => vec![
+                m.id().into(),
+                "none measured".into(),
+                "–".into(),
+                "–".into(),
+            ],
+        })
+        .collect();
+    let refused_text: String = refused
+        .iter()
+        .map(|(m, why)| format!("\n- {} not computed: {why}", m.id().to_uppercase()))
+        .collect();
+    format!(
+        "Body `{}` ({} DOF), interface {}. Reference: the full body's {} lowest elastic \
+         frequencies ({}; {reference_s:.2} s by the partial eigensolver, shared by every \
+         point). Frequency error: the largest relative error over them, paired by order; MAC: \
+         the smallest over them, each paired with the model's best-matching mode. Offline s: \
+         building the model (the interior factor charged once per method), one run; peak MB: \
+         the process's peak resident memory while it was built. ★: the Pareto front in \
+         (offline s, frequency error equal to three significant digits).{}{refused_text}\n\n{}\n\
+         Advice for 0 to {:.4} Hz at {:.0e} relative error: the smallest measured model of \
+         each method that meets it{}.\n\n{}",
+        body.model.name,
+        body.model.dof_count(),
+        items.join(","),
+        compared_hz.len(),
+        compared_hz
+            .iter()
+            .map(|f| format!("{f:.4}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        if items.iter().any(|i| i.starts_with("rbe2:")) {
+            " The reference is the free body: a rigid (rbe2) interface stiffens its ring, so \
+             the methods that tie it (GR, MT, CB, MC) converge to the tied body's frequencies, \
+             above the free body's; their error floor is the interface model's, not the \
+             reduction's. BH, MM and BT only load the interface and approach the free body."
+        } else {
+            ""
+        },
+        markdown_table(
+            &[
+                "method",
+                "modes",
+                "coordinates",
+                "offline s",
+                "peak MB",
+                "freq. error",
+                "min MAC",
+                "Pareto",
+            ],
+            &rows,
+        ),
+        advice.band_hz,
+        advice.tolerance,
+        match advice.rule_of_thumb {
+            Some((a, b)) => format!(
+                "; the rule of thumb (fixed-interface modes up to 1.5–2× the band's top) keeps \
+                 {a} to {b} modes"
+            ),
+            None => String::new(),
+        },
+        markdown_table(
+            &["method", "modes", "coordinates", "freq. error"],
+            &advice_rows,
+        ),
+    )
+}
+
+/// Frequency error against offline cost (log–log) per method with the Pareto front, and
+/// frequency error against reduced coordinates.
+fn charts(points: &[BodyBenchPoint], text: &str) -> RecordingContent {
+    let mut methods: Vec<Method> = Vec::new();
+    for q in points {
+        if !methods.contains(&q.method) {
+            methods.push(q.method);
+        }
+    }
+    let of = |m: Method| points.iter().filter(move |q| q.method == m);
+    let series = |x: fn(&BodyBenchPoint) -> f64| -> Vec<LogLogSeries> {
+        methods
+            .iter()
+            .map(|&m| {
+                let mut pts: Vec<(f64, f64)> = of(m).map(|q| (x(q), q.freq_rel_error)).collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                LogLogSeries {
+                    id: m.id().into(),
+                    label: m.id().to_uppercase(),
+                    color: method_color(m),
+                    points: pts,
+                    line: true,
+                }
+            })
+            .collect()
+    };
+    let mut cost = series(|q| q.offline_s);
+    let mut front: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|q| q.pareto)
+        .map(|q| (q.offline_s, q.freq_rel_error))
+        .collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    cost.push(LogLogSeries {
+        id: "pareto_front".into(),
+        label: "Pareto".into(),
+        color: [255, 255, 255, 255],
+        points: front,
+        line: true,
+    });
+    let mut visuals = LogLogChart {
+        path: "bench/error_vs_offline".into(),
+        x_unit: "offline s".into(),
+        y_unit: "freq. rel. error".into(),
+        series: cost,
+        x_linear: false,
+    }
+    .visuals();
+    visuals.extend(
+        LogLogChart {
+            path: "bench/error_vs_size".into(),
+            x_unit: "coordinates".into(),
+            y_unit: "freq. rel. error".into(),
+            series: series(|q| q.coordinates as f64),
+            x_linear: false,
+        }
+        .visuals(),
+    );
+    let mut report = Report::new("bench-modes");
+    report.table = text.to_string();
+    RecordingContent {
+        report,
+        markdown: format!(
+            "# bench modes\n\nLeft: each model's largest relative frequency error against the \
+             offline cost of building it (log–log), one line per method through its kept-mode \
+             counts, the Pareto front in white. Right: the same error against the reduced \
+             model's size. Points with zero error (exact to round-off) or too few modes have \
+             no place on a log axis and are in the table only.\n\n{text}"
+        ),
+        visuals,
+        layout: Layout::Horizontal(
+            vec![
+                Layout::Spatial2D {
+                    name: "frequency error against offline s (log–log)".into(),
+                    origin: "/bench/error_vs_offline".into(),
+                },
+                Layout::Vertical(
+                    vec![
+                        Layout::Spatial2D {
+                            name: "frequency error against coordinates (log–log)".into(),
+                            origin: "/bench/error_vs_size".into(),
+                        },
+                        Layout::Text {
+                            name: "table".into(),
+                            origin: "/scene".into(),
+                        },
+                    ],
+                    vec![1.0, 1.0],
+                ),
+            ],
+            vec![1.2, 1.0],
+        ),
+        timeline: None,
+        y_up: false,
+    }
+}

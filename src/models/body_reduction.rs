@@ -1,0 +1,420 @@
+//! Every reduction method on a body of the user's own, on the interfaces the user names: the
+//! pieces the methods share (the interior factor of $K_{ii}$, the fixed-interface modes, the
+//! body's free-free modes) computed once, each model's reduced modes checked by their
+//! residuals and its zero-energy modes told apart by the body's own scale.
+
+use std::time::Instant;
+
+use faer::Mat;
+
+use crate::{
+    Result,
+    analysis::{ZeroEnergyCount, reduced_modes},
+    fem::FeModel,
+    linalg::GeneralizedEigen,
+    progress::Progress,
+    reduction::{
+        Basis, ColumnKind, InterfaceLoads, InteriorProblem, MacNealRubinParameters, Method,
+        ModalBalancedParameters, ModeCondensationRoute, ModeSelection, MomentMatchingParameters,
+        ReductionError, RigidInterface, SolverPath, craig_bampton_from, guyan_from,
+        lowest_free_modes, macneal_rubin, modal_balanced_basis, modal_truncation_from,
+        mode_condensation_from, moment_matching, reduce_interface, tie_rigid_interfaces,
+    },
+};
+
+use super::three_two_one_support;
+
+/// Every method a body can be reduced by, in the order tables list them.
+pub const BODY_METHODS: [Method; 8] = [
+    Method::Guyan,
+    Method::ModalTruncation,
+    Method::CraigBampton,
+    Method::ModeCondensation,
+    Method::MacNealRubin,
+    Method::BenfieldHruda,
+    Method::MomentMatching,
+    Method::BalancedTruncation,
+];
+
+/// Damping ratio at the lowest elastic mode of the stiffness-proportional damping with which
+/// balanced truncation builds its vectors on a body ($\alpha = 2\zeta/\omega_1$): Witteveen's
+/// $\alpha = 10^{-4}$ s suits his cantilever's 10–100 Hz, not a part whose first mode is at
+/// kHz, so the damping is set by the body's own first frequency.
+pub const BALANCED_ZETA: f64 = 0.01;
+
+/// Free-free elastic modes whose gramian balanced truncation balances, per kept vector.
+pub const BALANCED_MODES_PER_VECTOR: usize = 3;
+
+/// The interfaces of a body's reduction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyInterfaces {
+    /// Boundary nodes, 1-based: plain ones and every rigid interface's.
+    pub boundary: Vec<usize>,
+    /// Node sets tied to a 6-DOF master (RBE2).
+    pub rigid: Vec<RigidInterface>,
+    /// Characteristic constraint modes kept in place of the constraint modes (`None`: all).
+    pub interface_modes: Option<usize>,
+}
+
+impl BodyInterfaces {
+    /// The boundary nodes that belong to no rigid interface.
+    pub fn plain_nodes(&self) -> Vec<usize> {
+        self.boundary
+            .iter()
+            .copied()
+            .filter(|n| !self.rigid.iter().any(|i| i.nodes.contains(n)))
+            .collect()
+    }
+}
+
+/// One reduced model of the body.
+#[derive(Debug, Clone)]
+pub struct ReducedBody {
+    /// The method.
+    pub method: Method,
+    /// Its basis, rigid interfaces tied and interface shapes reduced where asked.
+    pub basis: Basis,
+    /// $\mathrm{eig}(\Psi^TK\Psi, \Psi^TM\Psi)$, every pair's residual checked.
+    pub modes: GeneralizedEigen,
+    /// Leading pairs below the body's zero-energy threshold.
+    pub zero_modes: usize,
+    /// Offline wall time, s: the method's own work plus the shared interior factorisation
+    /// for the methods that use it.
+    pub offline_s: f64,
+    /// What the method took in place of what a single body lacks, said beside its numbers.
+    pub note: Option<String>,
+}
+
+impl ReducedBody {
+    /// Elastic frequencies, Hz, ascending.
+    pub fn elastic_hz(&self) -> Vec<f64> {
+        self.modes.hz().split_off(self.zero_modes)
+    }
+
+    /// Relative residuals of the elastic pairs.
+    pub fn elastic_residuals(&self) -> Vec<f64> {
+        self.modes.residuals[self.zero_modes..].to_vec()
+    }
+
+    /// The highest frequency given to a zero-energy mode, Hz (0 when there is none).
+    pub fn rigid_hz_max(&self) -> f64 {
+        self.modes.hz()[..self.zero_modes]
+            .iter()
+            .fold(0.0, |a: f64, &f| a.max(f))
+    }
+
+    /// Relative errors of the elastic frequencies against `full_hz`, paired by order, as many
+    /// as both have.
+    pub fn relative_errors(&self, full_hz: &[f64]) -> Vec<f64> {
+        full_hz
+            .iter()
+            .zip(self.elastic_hz())
+            .map(|(f, r)| (r - f) / f)
+            .collect()
+    }
+}
+
+/// Reduces one body by any method, sharing what methods have in common.
+pub struct BodyReducer<'a> {
+    model: &'a FeModel,
+    interfaces: BodyInterfaces,
+    full: &'a ZeroEnergyCount,
+    full_s: f64,
+    problem: InteriorProblem<'a>,
+    free_modes: Option<GeneralizedEigen>,
+    free_modes_s: f64,
+    progress: Progress,
+}
+
+impl<'a> BodyReducer<'a> {
+    /// The reducer of `model` on `interfaces`; `full` is the body's lowest modes (zero-energy
+    /// ones first), against which zero energy is judged, solved in `full_s` seconds (charged
+    /// to the methods built from them).
+    pub fn new(
+        model: &'a FeModel,
+        interfaces: BodyInterfaces,
+        full: &'a ZeroEnergyCount,
+        full_s: f64,
+        progress: Progress,
+    ) -> Result<Self> {
+        let problem = InteriorProblem::new(model, &interfaces.boundary, SolverPath::Auto)?
+            .with_progress(progress.clone());
+        Ok(Self {
+            model,
+            interfaces,
+            full,
+            full_s,
+            problem,
+            free_modes: None,
+            free_modes_s: 0.0,
+            progress,
+        })
+    }
+
+    /// The interior problem (its split, constraint and fixed-interface modes, for views).
+    pub fn problem(&mut self) -> &mut InteriorProblem<'a> {
+        &mut self.problem
+    }
+
+    /// The interfaces.
+    pub fn interfaces(&self) -> &BodyInterfaces {
+        &self.interfaces
+    }
+
+    /// The body's zero-energy modes and its `elastic` lowest elastic free-free modes (the
+    /// full body's own when it has enough, else solved once for the largest count asked).
+    fn free_modes(&mut self, elastic: usize) -> Result<(GeneralizedEigen, f64)> {
+        let z = self.full.zero_modes;
+        if self.full.modes.values.len() >= z + elastic {
+            return Ok((self.full.modes.first(z + elastic), self.full_s));
+        }
+        let enough = self
+            .free_modes
+            .as_ref()
+            .is_some_and(|f| f.values.len() >= z + elastic);
+        if !enough {
+            self.progress.phase("free-free modes")?;
+            let started = Instant::now();
+            self.free_modes = Some(lowest_free_modes(self.model, elastic)?);
+            self.free_modes_s = started.elapsed().as_secs_f64();
+        }
+        let modes = self.free_modes.as_ref().expect("solved above");
+        Ok((modes.first(z + elastic), self.free_modes_s))
+    }
+
+    /// The body's zero-energy modes, n × r, mass-normalised.
+    fn zero_energy_modes(&self) -> Mat<f64> {
+        self.full
+            .modes
+            .vectors
+            .subcols(0, self.full.zero_modes)
+            .to_owned()
+    }
+
+    /// The model of `method` keeping `kept` modes (for each method's meaning of "kept", see
+    /// the variants below), its interface reduced to the interfaces' characteristic
+    /// constraint modes when they say so.
+    pub fn reduce(&mut self, method: Method, kept: usize) -> Result<ReducedBody> {
+        self.reduce_with(method, kept, self.interfaces.interface_modes)
+    }
+
+    /// [`Self::reduce`] with every constraint mode kept (the start of an interface-reduction
+    /// sweep).
+    pub fn reduce_keeping_constraint_modes(
+        &mut self,
+        method: Method,
+        kept: usize,
+    ) -> Result<ReducedBody> {
+        self.reduce_with(method, kept, None)
+    }
+
+    fn reduce_with(
+        &mut self,
+        method: Method,
+        kept: usize,
+        interface_modes: Option<usize>,
+    ) -> Result<ReducedBody> {
+        let model = self.model;
+        let started = Instant::now();
+        let before = self.problem.statistics.factorization_s;
+        let mut note = None;
+        let mut shared_s = 0.0;
+        let basis = match method {
+            Method::Guyan => guyan_from(model, &mut self.problem)?,
+            Method::ModalTruncation => {
+                modal_truncation_from(model, &mut self.problem, ModeSelection::Count(kept))?
+            }
+            Method::CraigBampton => {
+                craig_bampton_from(model, &mut self.problem, ModeSelection::Count(kept))?
+            }
+            Method::ModeCondensation => {
+                let route = ModeCondensationRoute::for_interior(self.problem.interior_dofs());
+                mode_condensation_from(model, &mut self.problem, ModeSelection::Count(kept), route)?
+            }
+            Method::MacNealRubin => {
+                if !self.interfaces.rigid.is_empty() {
+                    return Err(ReductionError::MethodNeedsContext {
+                        method: "MacNeal-Rubin".into(),
+                        needs: "plain interface DOF: its free-interface and residual-flexibility \
+                                columns are no unit boundary motions an rbe2 master could \
+                                combine"
+                            .into(),
+                    }
+                    .into());
+                }
+                // Free-interface modes and residual flexibility, the rigid motions held for
+                // the flexibility by a 3-2-1 support of interior nodes (Spanos–Tsuha Eq. 11).
+                self.progress.phase("MacNeal-Rubin reduction")?;
+                macneal_rubin(
+                    model,
+                    &MacNealRubinParameters {
+                        interface: model.dofs_of_nodes(&self.interfaces.boundary)?,
+                        r_set: three_two_one_support(model, &self.interfaces.boundary)?,
+                        modes: ModeSelection::Count(kept),
+                        held: Vec::new(),
+                    },
+                )?
+            }
+            Method::BenfieldHruda => {
+                // Spanos–Tsuha Eq. (18) with the neighbours' loading (Eqs. 19–20): a body
+                // alone has no neighbour, so its loaded-interface modes are its free ones.
+                let (modes, solve_s) = self.free_modes(kept)?;
+                shared_s = solve_s;
+                note = Some(
+                    "no neighbour's interface loading is known for a body alone: its \
+                     loaded-interface modes are the free-interface ones (rigid and the lowest \
+                     elastic)"
+                        .to_string(),
+                );
+                loaded_modes_basis(modes)
+            }
+            Method::MomentMatching => {
+                let loads = self.loads()?;
+                let lowest = self.lowest_elastic_omega()?;
+                let blocks = kept.div_ceil(loads.count()).max(1);
+                note = Some(format!(
+                    "Krylov blocks about s0 = {:.4e} rad/s (the lowest elastic ω) of the {} \
+                     interface loads made self-equilibrated, {blocks} block(s), beside the \
+                     zero-energy modes",
+                    lowest,
+                    loads.count()
+                ));
+                self.progress.phase("moment matching")?;
+                let zero = self.zero_energy_modes();
+                let labels = (1..=zero.ncols())
+                    .map(|k| format!("zero-energy {k}"))
+                    .collect();
+                moment_matching(
+                    model,
+                    &MomentMatchingParameters {
+                        inputs: Vec::new(),
+                        held: Vec::new(),
+                        blocks,
+                        s0: lowest,
+                        loads: Some((loads.matrix, loads.labels)),
+                        leading: Some((zero, labels)),
+                        ..Default::default()
+                    },
+                )?
+                .basis
+            }
+            Method::BalancedTruncation => {
+                let loads = self.loads()?;
+                let count = (BALANCED_MODES_PER_VECTOR * kept).max(kept + 8);
+                let (modes, solve_s) = self.free_modes(count)?;
+                shared_s = solve_s;
+                let z = self.full.zero_modes;
+                let lowest = self.lowest_elastic_omega()?;
+                let elastic = GeneralizedEigen {
+                    values: modes.values[z..].to_vec(),
+                    vectors: modes.vectors.subcols(z, count).to_owned(),
+                    residuals: modes.residuals[z..].to_vec(),
+                    zero_energy: 0,
+                };
+                note = Some(format!(
+                    "position gramian of the {count} lowest elastic free-free modes driven by \
+                     the {} interface loads, damping ζ = {BALANCED_ZETA} at the lowest, beside \
+                     the zero-energy modes",
+                    loads.count()
+                ));
+                self.progress.phase("balanced truncation")?;
+                modal_balanced_basis(
+                    modes.vectors.subcols(0, z),
+                    &elastic,
+                    &loads,
+                    &ModalBalancedParameters {
+                        vectors: kept,
+                        alpha: 2.0 * BALANCED_ZETA / lowest,
+                    },
+                )?
+            }
+            other => {
+                return Err(ReductionError::MethodNeedsContext {
+                    method: other.name().into(),
+                    needs: "a set-up of its own (it is shown in its scenes, not on a body)".into(),
+                }
+                .into());
+            }
+        };
+        let uses_interior = matches!(
+            method,
+            Method::Guyan
+                | Method::ModalTruncation
+                | Method::CraigBampton
+                | Method::ModeCondensation
+        );
+        let basis = if uses_interior {
+            tie_rigid_interfaces(model, basis, &self.interfaces.rigid)?
+        } else {
+            basis
+        };
+        let constraint_columns = basis.columns_of(|k| *k == ColumnKind::Constraint).len();
+        let basis = match interface_modes {
+            Some(n) if constraint_columns > 0 => reduce_interface(model, basis, n)?,
+            _ => basis,
+        };
+        let modes = reduced_modes(model, &basis)?;
+        let zero_modes = self.full.zero_energy_in(&modes);
+        // The interior factor is shared: each model that uses it is charged with it once.
+        let factor_s = self.problem.statistics.factorization_s;
+        let offline_s = started.elapsed().as_secs_f64()
+            + shared_s
+            + if uses_interior && factor_s == before {
+                factor_s
+            } else {
+                0.0
+            };
+        Ok(ReducedBody {
+            method,
+            basis,
+            modes,
+            zero_modes,
+            offline_s,
+            note,
+        })
+    }
+
+    /// The interface loads: a unit force on every plain boundary DOF, six per rigid interface.
+    fn loads(&self) -> Result<InterfaceLoads> {
+        let plain = self.model.dofs_of_nodes(&self.interfaces.plain_nodes())?;
+        InterfaceLoads::of(self.model, &plain, &self.interfaces.rigid)
+    }
+
+    /// ω of the body's lowest elastic mode, rad/s.
+    fn lowest_elastic_omega(&self) -> Result<f64> {
+        self.full
+            .modes
+            .values
+            .get(self.full.zero_modes)
+            .map(|l| l.max(0.0).sqrt())
+            .filter(|w| *w > 0.0)
+            .ok_or_else(|| {
+                ReductionError::EmptyBand {
+                    low_hz: 0.0,
+                    high_hz: f64::INFINITY,
+                    what: "body's elastic modes (none was computed)".into(),
+                }
+                .into()
+            })
+    }
+}
+
+/// Benfield–Hruda's basis from loaded modes (here unloaded: the free-free ones).
+fn loaded_modes_basis(modes: GeneralizedEigen) -> Basis {
+    let columns = modes
+        .hz()
+        .iter()
+        .enumerate()
+        .map(|(k, &hz)| crate::reduction::Column {
+            kind: ColumnKind::Loaded { hz },
+            dof: None,
+            label: format!("loaded {} ({hz:.4} Hz)", k + 1),
+        })
+        .collect();
+    Basis {
+        method: Method::BenfieldHruda,
+        psi: modes.vectors,
+        columns,
+        statistics: Default::default(),
+    }
+}

@@ -1,0 +1,236 @@
+//! Every reduction method on bodies another FE code made (gmsh + scikit-fem P2 tetrahedra,
+//! consistent mass; the link in m–kg–s, the hub in mm–t–s), against SciPy's free-free
+//! frequencies written with the bodies and against what each method must satisfy whatever
+//! code computes it: Rayleigh–Ritz bounds, exact zero-energy counts, the shifted static
+//! response a moment-matching basis contains (checked by sparse products, no solve), and the
+//! span of the modes balanced truncation balances.
+
+use std::path::PathBuf;
+
+use faer::{Mat, linalg::solvers::Solve};
+use flexmodes::{
+    Error, Progress,
+    analysis::count_zero_energy_modes,
+    body_file::ImportedBody,
+    models::{BODY_METHODS, BodyInterfaces, BodyReducer},
+    reduction::{
+        InterfaceLoads, Method, ModalBalancedParameters, MomentMatchingParameters, ReductionError,
+        RigidInterface, lowest_free_modes, modal_balanced_basis, moment_matching,
+    },
+};
+use serde_json::Value;
+
+use super::external_bodies::checks;
+
+fn body(name: &str) -> (ImportedBody, Value) {
+    checks::load(
+        &PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/bodies")
+            .join(name),
+    )
+}
+
+/// The body's first reference boundary set tied rigidly to a master at its centroid.
+fn rbe2_interfaces(body: &ImportedBody, reference: &Value) -> BodyInterfaces {
+    let set = reference["cases"][0]["boundary"].as_str().unwrap();
+    let nodes = body.node_sets[set].clone();
+    BodyInterfaces {
+        boundary: nodes.clone(),
+        rigid: vec![RigidInterface::at_centroid(&body.model, set, &nodes).unwrap()],
+        interface_modes: None,
+    }
+}
+
+/// Each method, ten kept modes, a rigid interface: exact zero-energy counts, every printed
+/// pair's residual below 1e-8, every elastic frequency at or above SciPy's full-body one of
+/// the same order (a Ritz value never lies below), Benfield–Hruda (free-interface modes for a
+/// body alone) equal to SciPy's, CB and MC equal, and MacNeal–Rubin refused by name.
+#[test]
+fn every_method_reduces_an_external_body_with_checked_modes() {
+    for name in ["steel-link", "flange-hub"] {
+        let (body, reference) = body(name);
+        let model = &body.model;
+        let expected = checks::floats(&reference["free_free_hz"]);
+        assert_eq!(expected.len(), 18, "{name}: 6 zero-energy and 12 elastic");
+        let scipy_elastic = &expected[6..];
+        let full = count_zero_energy_modes(model, 10).unwrap();
+        assert_eq!(full.zero_modes, 6, "{name}");
+        let mut reducer = BodyReducer::new(
+            model,
+            rbe2_interfaces(&body, &reference),
+            &full,
+            0.0,
+            Progress::default(),
+        )
+        .unwrap();
+        let mut cb_hz = Vec::new();
+        for method in BODY_METHODS {
+            let what = format!("{name} {}", method.id());
+            let reduced = match reducer.reduce(method, 10) {
+                Err(Error::Reduction(ReductionError::MethodNeedsContext { .. }))
+                    if method == Method::MacNealRubin =>
+                {
+                    continue;
+                }
+                other => other.unwrap_or_else(|e| panic!("{what}: {e}")),
+            };
+            assert_ne!(method, Method::MacNealRubin, "{what}: refused with rbe2");
+            // Modal truncation's boundary columns move the ring with the rest at rest: no
+            // rigid-body motion of the whole body is in its space. Guyan on one rigid
+            // interface is the rigid body itself.
+            let (zero, size) = match method {
+                Method::ModalTruncation => (0, 16),
+                Method::Guyan => (6, 6),
+                Method::MomentMatching => (6, 18),
+                _ => (6, 16),
+            };
+            assert_eq!(reduced.zero_modes, zero, "{what}");
+            assert_eq!(reduced.basis.size(), size, "{what}");
+            assert_eq!(reduced.modes.values.len(), size, "{what}");
+            for (k, r) in reduced.modes.residuals.iter().enumerate() {
+                assert!(*r <= 1e-8, "{what}: pair {k} residual {r:e}");
+            }
+            // Ritz values: the k-th of the reduced pencil at or above the full body's k-th,
+            // zero-energy modes counted (SciPy's 6 of them, then its 12 elastic).
+            for (k, (r, f)) in reduced.modes.hz().iter().zip(&expected).enumerate().skip(6) {
+                assert!(
+                    *r >= f * (1.0 - 1e-9),
+                    "{what}: Ritz value {k} at {r} Hz below the full body's {f} Hz"
+                );
+            }
+            let hz = reduced.elastic_hz();
+            match method {
+                Method::BenfieldHruda => {
+                    checks::assert_relative(&what, &hz, &scipy_elastic[..10], 1e-7)
+                }
+                Method::CraigBampton => cb_hz = hz,
+                Method::ModeCondensation => checks::assert_relative(&what, &hz, &cb_hz, 1e-6),
+                _ => {}
+            }
+        }
+        assert_eq!(cb_hz.len(), 10, "{name}: CB ran before MC");
+    }
+}
+
+/// A free body's moment-matching basis about a real s0 > 0, led by its rigid-body modes,
+/// contains the exact response to the interface loads, $x = (K + s_0^2 M)^{-1} B$: the Galerkin
+/// solution in the basis satisfies the full equations, checked by sparse products alone.
+#[test]
+fn moment_matching_on_a_free_body_contains_the_shifted_static_response() {
+    for name in ["steel-link", "flange-hub"] {
+        let (body, reference) = body(name);
+        let model = &body.model;
+        let interfaces = rbe2_interfaces(&body, &reference);
+        let loads = InterfaceLoads::of(model, &[], &interfaces.rigid).unwrap();
+        assert_eq!(loads.count(), 6);
+        let free = lowest_free_modes(model, 1).unwrap();
+        let rigid = free.vectors.subcols(0, 6).to_owned();
+        let s0 = free.values[6].sqrt();
+        let labels = (1..=6).map(|k| format!("rigid {k}")).collect();
+        let mm = moment_matching(
+            model,
+            &MomentMatchingParameters {
+                blocks: 2,
+                s0,
+                loads: Some((loads.matrix.clone(), loads.labels.clone())),
+                leading: Some((rigid, labels)),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert!(mm.deflated.is_empty(), "{name}: {:?}", mm.deflated);
+        let psi = &mm.basis.psi;
+        assert_eq!(psi.ncols(), 18, "{name}: 6 rigid + 2 blocks of 6");
+        // A = K + s0² M applied by sparse products.
+        let apply = |x: &Mat<f64>| {
+            let kx = model.k.mul(x.as_ref());
+            let mx = model.m.mul(x.as_ref());
+            Mat::from_fn(x.nrows(), x.ncols(), |i, j| {
+                kx[(i, j)] + s0 * s0 * mx[(i, j)]
+            })
+        };
+        let a_psi = apply(psi);
+        let a_r = psi.transpose() * &a_psi;
+        let b_r = psi.transpose() * &loads.matrix;
+        let y = a_r.as_ref().partial_piv_lu().solve(b_r.as_ref());
+        let x = psi * &y;
+        let residual = &apply(&x) - &loads.matrix;
+        for c in 0..6 {
+            let r = (0..residual.nrows())
+                .map(|i| residual[(i, c)].powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let b = (0..residual.nrows())
+                .map(|i| loads.matrix[(i, c)].powi(2))
+                .sum::<f64>()
+                .sqrt();
+            assert!(r <= 1e-7 * b, "{name} load {c}: ‖Ax − b‖/‖b‖ = {:e}", r / b);
+        }
+    }
+}
+
+/// Balanced truncation built on N free-free modes and keeping all N vectors spans those modes:
+/// its reduced frequencies are SciPy's lowest N (and its vectors are Euclidean-orthonormal,
+/// as a symmetric gramian's eigenvectors are); keeping fewer, the gramian values descend.
+#[test]
+fn balanced_truncation_on_a_body_spans_the_modes_it_balances() {
+    let (body, reference) = body("flange-hub");
+    let model = &body.model;
+    let interfaces = rbe2_interfaces(&body, &reference);
+    let loads = InterfaceLoads::of(model, &[], &interfaces.rigid).unwrap();
+    let free = lowest_free_modes(model, 12).unwrap();
+    let elastic = flexmodes::linalg::GeneralizedEigen {
+        values: free.values[6..].to_vec(),
+        vectors: free.vectors.subcols(6, 12).to_owned(),
+        residuals: free.residuals[6..].to_vec(),
+        zero_energy: 0,
+    };
+    let omega1 = elastic.values[0].sqrt();
+    let parameters = |vectors| ModalBalancedParameters {
+        vectors,
+        alpha: 0.02 / omega1,
+    };
+    let all = modal_balanced_basis(
+        free.vectors.subcols(0, 6),
+        &elastic,
+        &loads,
+        &parameters(12),
+    )
+    .unwrap();
+    let eig = flexmodes::analysis::reduced_modes(model, &all).unwrap();
+    let expected = checks::floats(&reference["free_free_hz"]);
+    checks::assert_relative("BT(12 of 12) hub", &eig.hz()[6..], &expected[6..18], 1e-7);
+    // Euclidean-orthogonal (a symmetric gramian's eigenvectors), each scaled to unit M-norm.
+    let bt = all.psi.subcols(6, 12);
+    let gram = bt.transpose() * bt;
+    for i in 0..12 {
+        for j in 0..12 {
+            let cosine = gram[(i, j)] / (gram[(i, i)] * gram[(j, j)]).sqrt();
+            let e = if i == j { 1.0 } else { 0.0 };
+            assert!((cosine - e).abs() < 1e-10, "cos(v{i}, v{j}) = {cosine}");
+        }
+    }
+    let mass = all.reduced_mass(model);
+    for i in 6..18 {
+        assert!(
+            (mass[(i, i)] - 1.0).abs() < 1e-10,
+            "M-norm² of v{i}: {}",
+            mass[(i, i)]
+        );
+    }
+    let four =
+        modal_balanced_basis(free.vectors.subcols(0, 6), &elastic, &loads, &parameters(4)).unwrap();
+    let values: Vec<f64> = four
+        .columns
+        .iter()
+        .filter_map(|c| match c.kind {
+            flexmodes::reduction::ColumnKind::Balanced { value } => Some(value),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(values.len(), 4);
+    assert!(
+        values.windows(2).all(|w| w[0] >= w[1] && w[1] > 0.0),
+        "{values:?}"
+    );
+}
