@@ -24,11 +24,12 @@ use faer::Mat;
 use serde_json::json;
 
 use crate::{
-    Error, Result,
-    analysis::{zero_energy_below, zero_energy_threshold_hz},
+    Error, Progress, Result,
+    analysis::{count_zero_energy_modes, zero_energy_below, zero_energy_threshold_hz},
     atomic_file::write_atomically,
     body_file::{ImportedBody, write_array, write_npy},
     linalg::generalized_eigen,
+    models::{BodyInterfaces, BodyReducer},
     reduction::{
         Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, MASTER_DOF_NAMES, MacNealRubinParameters,
         Method, ModeSelection, ReducedMatrices, ReductionParameters, RigidInterface, SolverPath,
@@ -133,7 +134,7 @@ pub fn export(
     let basis = match method {
         // Free-interface modes and residual flexibility; the r-set a 3-2-1 support of
         // interior nodes.
-        Method::MacNealRubin => macneal_rubin(
+        Method::MacNealRubin => Some(macneal_rubin(
             model,
             &MacNealRubinParameters {
                 interface: model.dofs_of_nodes(boundary)?,
@@ -141,8 +142,9 @@ pub fn export(
                 modes: ModeSelection::Count(modes),
                 held: Vec::new(),
             },
-        )?,
-        _ => reduce(
+        )?),
+        Method::BenfieldHruda | Method::MomentMatching | Method::BalancedTruncation => None,
+        _ => Some(reduce(
             model,
             method,
             &ReductionParameters {
@@ -150,12 +152,34 @@ pub fn export(
                 modes: ModeSelection::Count(modes),
                 solver: SolverPath::Auto,
             },
-        )?,
+        )?),
     };
-    let basis = tie_rigid_interfaces(model, basis, &parameters.rigid_interfaces)?;
-    let basis = match parameters.interface_modes {
-        Some(count) => reduce_interface(model, basis, count)?,
-        None => basis,
+    let basis = match basis {
+        Some(b) => {
+            let b = tie_rigid_interfaces(model, b, &parameters.rigid_interfaces)?;
+            Some(match parameters.interface_modes {
+                Some(count) => reduce_interface(model, b, count)?,
+                None => b,
+            })
+        }
+        None => None,
+    };
+    let basis = match basis {
+        Some(b) => b,
+        None => {
+            // Built from the interface loads and the body's free-free modes (models'
+            // BodyReducer): rigid interfaces give their masters' six loads, nothing to tie.
+            let full = count_zero_energy_modes(model, 10)?;
+            let interfaces = BodyInterfaces {
+                boundary: boundary.to_vec(),
+                rigid: parameters.rigid_interfaces.clone(),
+                interface_modes: parameters.interface_modes,
+            };
+            let full_s = started.elapsed().as_secs_f64();
+            BodyReducer::new(model, interfaces, &full, full_s, Progress::default())?
+                .reduce(method, modes)?
+                .basis
+        }
     };
     let total = started.elapsed().as_secs_f64();
     let s = &basis.statistics;

@@ -931,3 +931,191 @@ fn report_modes_pairs_the_full_bodys_modes_by_mac() {
         "CB is not exact: {cb:?}"
     );
 }
+
+/// The reduced matrices in `dir`, solved by nalgebra (Cholesky of M_r, then the symmetric
+/// eigenproblem of L⁻¹K_rL⁻ᵀ): an eigen solver flexmodes' own path does not use. Hz, ascending.
+fn nalgebra_hz(dir: &std::path::Path) -> Vec<f64> {
+    use flexmodes::body_file::read_matrix_market;
+    let read = |name: &str| {
+        let mm = read_matrix_market(&dir.join(name)).unwrap();
+        let mut a = nalgebra::DMatrix::<f64>::zeros(mm.rows, mm.cols);
+        for (i, j, v) in mm.expanded() {
+            a[(i, j)] = v;
+        }
+        a
+    };
+    let (k, m) = (read("k_r.mtx"), read("m_r.mtx"));
+    let l = m.cholesky().expect("M_r positive definite").l();
+    let l_inv = l.try_inverse().unwrap();
+    let c = &l_inv * k * l_inv.transpose();
+    let c = (&c + c.transpose()) * 0.5;
+    let mut hz: Vec<f64> = c
+        .symmetric_eigenvalues()
+        .iter()
+        .map(|&l| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+        .collect();
+    hz.sort_by(f64::total_cmp);
+    hz
+}
+
+#[test]
+fn export_every_load_built_method_of_an_external_body() {
+    // Benfield–Hruda (a body alone: its free-interface modes), moment matching and balanced
+    // truncation on the hub's bore tied to a master (mm–t–s): each printed frequency equals
+    // nalgebra's on the written K_r, M_r to 1e-8, after exactly six zero-energy modes; BH's
+    // equal SciPy's free-free ones.
+    let body = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/bodies/flange-hub");
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(format!("{body}/reference.json")).unwrap())
+            .unwrap();
+    let scipy: Vec<f64> = reference["free_free_hz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    for (method, size) in [("bh", 16), ("mm", 18), ("bt", 16)] {
+        let out = temp_dir(&format!("export-{method}"));
+        let run = flexmodes(&[
+            "export",
+            "--body",
+            &format!("{body}/body.toml"),
+            "--method",
+            method,
+            "--boundary",
+            "rbe2:bore",
+            "--modes",
+            "10",
+            "--out",
+            out.join("model").to_str().unwrap(),
+        ]);
+        assert!(
+            run.status.success(),
+            "{method}: {}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let dir = out.join("model");
+        let model: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("model.json")).unwrap())
+                .unwrap();
+        assert_eq!(model["size"], size, "{method}");
+        assert_eq!(model["reduced_zero_energy_modes"], 6, "{method}");
+        let printed: Vec<f64> = model["reduced_elastic_hz"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert_eq!(printed.len(), size - 6, "{method}");
+        let lapack = nalgebra_hz(&dir);
+        assert_eq!(lapack.len(), size);
+        for (k, (a, b)) in printed.iter().zip(&lapack[6..]).enumerate() {
+            assert!((a - b).abs() <= 1e-8 * b, "{method} mode {k}: {a} vs {b}");
+        }
+        if method == "bh" {
+            for (k, (a, b)) in printed.iter().zip(&scipy[6..]).enumerate() {
+                assert!((a - b).abs() <= 1e-7 * b, "bh mode {k}: {a} vs SciPy {b}");
+            }
+        }
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+}
+
+#[test]
+fn bench_modes_charts_every_method_on_an_external_body() {
+    let body = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/bodies/steel-link");
+    let out = temp_dir("bench-body");
+    let rrd = out.join("bench.rrd");
+    let v = json(&[
+        "bench",
+        "modes",
+        "--body",
+        &format!("{body}/body.toml"),
+        "--boundary",
+        "rbe2:bore_a",
+        "--modes",
+        "4,8",
+        "--band",
+        "16000",
+        "--json",
+        "--save",
+        rrd.to_str().unwrap(),
+    ]);
+    // The full body's modes up to 16 kHz: SciPy's six lowest elastic ones (15.55 kHz is the
+    // sixth, 16.78 kHz the seventh).
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(format!("{body}/reference.json")).unwrap())
+            .unwrap();
+    let scipy = reference["free_free_hz"].as_array().unwrap();
+    let hz = v["reference"]["hz"].as_array().unwrap();
+    assert_eq!(hz.len(), 6);
+    for (a, b) in hz.iter().zip(&scipy[6..12]) {
+        let (a, b) = (a.as_f64().unwrap(), b.as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-8 * b, "{a} vs {b}");
+    }
+    // GR once, six methods at two counts; MacNeal–Rubin refused by name on a rigid interface.
+    let points = v["points"].as_array().unwrap();
+    assert_eq!(points.len(), 1 + 6 * 2);
+    let refused = v["not_applicable"].as_array().unwrap();
+    assert_eq!(refused.len(), 1);
+    assert_eq!(refused[0]["method"], "mr");
+    let point = |m: &str, k: u64| {
+        points
+            .iter()
+            .find(|p| p["method"] == m && p["modes"] == k)
+            .unwrap_or_else(|| panic!("{m} {k}"))
+    };
+    for (m, k, size) in [
+        ("gr", 0, 6),
+        ("cb", 4, 10),
+        ("cb", 8, 14),
+        ("bh", 8, 14),
+        ("mm", 4, 12),
+        ("mm", 8, 18),
+        ("bt", 8, 14),
+    ] {
+        assert_eq!(point(m, k)["coordinates"], size, "{m} {k}");
+    }
+    // A body alone: BH keeps its free-free modes, exact to round-off; CB with 4 modes has
+    // only 4 elastic modes for 6 compared: no error, not on the front.
+    assert!(point("bh", 8)["freq_rel_error"].as_f64().unwrap() < 1e-7);
+    assert!(point("bh", 8)["min_mac"].as_f64().unwrap() > 0.9999);
+    assert!(point("cb", 4)["freq_rel_error"].is_null());
+    assert_eq!(point("cb", 4)["pareto"], false);
+    // The front: no point both cheaper and more accurate than one on it.
+    let cost = |p: &serde_json::Value| p["offline_s"].as_f64().unwrap();
+    let error = |p: &serde_json::Value| p["freq_rel_error"].as_f64().unwrap_or(f64::INFINITY);
+    let front: Vec<_> = points.iter().filter(|p| p["pareto"] == true).collect();
+    assert!(!front.is_empty());
+    for f in &front {
+        assert!(
+            !points
+                .iter()
+                .any(|p| cost(p) < cost(f) && error(p) < error(f) * (1.0 - 1e-3)),
+            "{f} is dominated"
+        );
+    }
+    // The advice names, per method, the smallest measured model within the tolerance.
+    let advice = &v["advice"];
+    assert_eq!(advice["tolerance"], 0.01);
+    for a in advice["smallest"].as_array().unwrap() {
+        let m = a["method"].as_str().unwrap();
+        let within: Vec<_> = points
+            .iter()
+            .filter(|p| p["method"] == m && error(p) <= 0.01)
+            .collect();
+        match a["coordinates"].as_u64() {
+            Some(c) => {
+                let smallest = within
+                    .iter()
+                    .map(|p| p["coordinates"].as_u64().unwrap())
+                    .min()
+                    .unwrap();
+                assert_eq!(c, smallest, "{m}");
+            }
+            None => assert!(within.is_empty(), "{m}: {within:?}"),
+        }
+    }
+    assert_eq!(&std::fs::read(&rrd).unwrap()[..3], b"RRF");
+    std::fs::remove_dir_all(&out).unwrap();
+}
