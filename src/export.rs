@@ -31,9 +31,9 @@ use crate::{
     linalg::generalized_eigen,
     models::{BodyInterfaces, BodyReducer},
     reduction::{
-        Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, MASTER_DOF_NAMES, MacNealRubinParameters,
-        Method, ModeSelection, ReducedMatrices, ReductionParameters, RigidInterface, SolverPath,
-        macneal_rubin, reduce, reduce_interface, tie_rigid_interfaces,
+        AveragingInterface, Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, MASTER_DOF_NAMES,
+        MacNealRubinParameters, Method, ModeSelection, ReducedMatrices, ReductionParameters,
+        RigidInterface, SolverPath, macneal_rubin, reduce, reduce_interface, tie_rigid_interfaces,
     },
     report::sig_vec,
 };
@@ -95,6 +95,8 @@ pub struct ExportParameters {
     /// Node sets of the boundary tied rigidly to a master node each (RBE2): the reduced model
     /// sees each as its master's six DOF.
     pub rigid_interfaces: Vec<RigidInterface>,
+    /// Node sets averaged into a master node each (RBE3): loads for the load-built methods.
+    pub averaging_interfaces: Vec<AveragingInterface>,
     /// Reduce the remaining constraint modes to this many characteristic constraint modes.
     pub interface_modes: Option<usize>,
 }
@@ -144,6 +146,8 @@ pub fn export(
             },
         )?),
         Method::BenfieldHruda | Method::MomentMatching | Method::BalancedTruncation => None,
+        // An averaging interface: BodyReducer says which methods it takes.
+        _ if !parameters.averaging_interfaces.is_empty() => None,
         _ => Some(reduce(
             model,
             method,
@@ -173,6 +177,7 @@ pub fn export(
             let interfaces = BodyInterfaces {
                 boundary: boundary.to_vec(),
                 rigid: parameters.rigid_interfaces.clone(),
+                averaging: parameters.averaging_interfaces.clone(),
                 interface_modes: parameters.interface_modes,
             };
             let full_s = started.elapsed().as_secs_f64();
@@ -266,6 +271,23 @@ pub fn export(
                 "master_dofs": MASTER_DOF_NAMES,
                 "columns": first.map(|f| (f + 1..=f + 6).collect::<Vec<_>>()),
                 "tied_nodes": i.nodes,
+            })
+        }).collect::<Vec<_>>(),
+        // An averaging (RBE3) master is no coordinate of the reduced model: its motion is
+        // read as (A Ψ) z and a load on it enters as (A Ψ)ᵀ F (A: the weighted average).
+        "averaging_interfaces": parameters.averaging_interfaces.iter().map(|i| {
+            let a_psi = i
+                .averaging_matrix(model)
+                .map(|a| a * &basis.psi)
+                .map(|m| (0..6).map(|r| (0..m.ncols()).map(|c| m[(r, c)]).collect::<Vec<_>>()).collect::<Vec<_>>());
+            json!({
+                "name": i.name,
+                "kind": "rbe3",
+                "master": i.master,
+                "master_dofs": MASTER_DOF_NAMES,
+                "averaged_nodes": i.nodes,
+                "weights": i.weights,
+                "master_motion": a_psi.ok(),
             })
         }).collect::<Vec<_>>(),
         "reduced_elastic_hz": sig_vec(&hz),

@@ -100,7 +100,10 @@ pub fn bench_body_modes(
             .map(|n| n.to_string())
             .collect(),
     };
-    let (boundary, rigid) = body_boundary(body, &items)?;
+    let interfaces = BodyInterfaces {
+        interface_modes: p.interface_modes,
+        ..body_boundary(body, &items)?
+    };
     if p.modes.is_empty() || p.modes.contains(&0) {
         return Err(Error::InvalidOption {
             scene: "bench modes".into(),
@@ -137,11 +140,7 @@ pub fn bench_body_modes(
     for &method in &p.methods {
         let mut reducer = BodyReducer::new(
             model,
-            BodyInterfaces {
-                boundary: boundary.clone(),
-                rigid: rigid.clone(),
-                interface_modes: p.interface_modes,
-            },
+            interfaces.clone(),
             &full,
             reference_s,
             progress.clone(),
@@ -223,11 +222,7 @@ pub fn bench_body_modes(
         &full_hz[..compared],
         &mut BodyReducer::new(
             model,
-            BodyInterfaces {
-                boundary: boundary.clone(),
-                rigid: rigid.clone(),
-                interface_modes: None,
-            },
+            interfaces.clone(),
             &full,
             reference_s,
             progress.clone(),
@@ -341,7 +336,7 @@ fn advise(
         .unwrap_or_else(|| compared_hz.last().copied().unwrap_or(0.0));
     let rule_of_thumb = reducer
         .problem()
-        .kept_modes(ModeSelection::UpToHz(2.0 * band_hz))
+        .and_then(|problem| problem.kept_modes(ModeSelection::UpToHz(2.0 * band_hz)))
         .ok()
         .map(|fi| {
             let hz = fi.hz();

@@ -76,6 +76,9 @@ pub struct InterfaceSpec {
     /// The master point in the body's length unit (default: the set's centroid).
     #[serde(default)]
     pub master: Option<[f64; 3]>,
+    /// RBE3 only: one positive weight per node of the set, in its order (default: all 1).
+    #[serde(default)]
+    pub weights: Option<Vec<f64>>,
 }
 
 /// How an interface ties its nodes to the master node.
@@ -84,8 +87,7 @@ pub struct InterfaceSpec {
 pub enum InterfaceKind {
     /// Rigid: every node follows the master's rigid motion.
     Rbe2,
-    /// Interpolating: the master moves as the nodes' weighted average (not supported yet: a
-    /// body file that declares one is refused with that reason).
+    /// Interpolating: the master moves as the nodes' weighted average; adds no stiffness.
     Rbe3,
 }
 

@@ -8,7 +8,7 @@ use std::{
 };
 
 use super::{
-    BodySpec, DofOrder, InterfaceKind, Units,
+    BodySpec, DofOrder, InterfaceKind, InterfaceSpec, Units,
     csv_table::{edges, read_table},
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
     parse_matrix_market,
@@ -27,6 +27,10 @@ pub struct RigidSet {
     pub nodes: Vec<usize>,
     /// The master point the body file gives (`None`: the set's centroid).
     pub master: Option<[f64; 3]>,
+    /// Rigid (RBE2: its nodes join the boundary) or averaging (RBE3: they stay free).
+    pub kind: InterfaceKind,
+    /// RBE3 weights, one per node (`None`: all 1).
+    pub weights: Option<Vec<f64>>,
 }
 
 /// Largest accepted $|a_{ij} - a_{ji}|$ relative to the largest entry of K or M: exporters
@@ -111,7 +115,7 @@ pub struct ImportedBody {
     pub default_interface: Option<String>,
     /// Rigid interfaces declared in the body file: name, node set, master point (`None`: the
     /// set's centroid).
-    pub interfaces: BTreeMap<String, (String, Option<[f64; 3]>)>,
+    pub interfaces: BTreeMap<String, InterfaceSpec>,
     /// Where it came from.
     pub location: BodyLocation,
 }
@@ -349,19 +353,27 @@ impl ImportedBody {
                     ),
                 ));
             }
-            if interface.kind == InterfaceKind::Rbe3 {
-                return Err(body_error(
-                    key_line(iname),
-                    format!(
-                        "interface `{iname}`: kind \"rbe3\" (interpolating) is not supported yet; \
-                         \"rbe2\" (rigid) is"
-                    ),
-                ));
+            if let Some(w) = &interface.weights {
+                let count = spec.node_sets[&interface.node_set].len();
+                if interface.kind == InterfaceKind::Rbe2 {
+                    return Err(body_error(
+                        key_line(iname),
+                        format!("interface `{iname}`: weights belong to kind \"rbe3\" only"),
+                    ));
+                }
+                if w.len() != count || w.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
+                    return Err(body_error(
+                        key_line(iname),
+                        format!(
+                            "interface `{iname}`: {} weights for the {count} nodes of `{}`; \
+                             each must be positive",
+                            w.len(),
+                            interface.node_set
+                        ),
+                    ));
+                }
             }
-            interfaces.insert(
-                iname.clone(),
-                (interface.node_set.clone(), interface.master),
-            );
+            interfaces.insert(iname.clone(), interface.clone());
         }
         Ok(Self {
             model,
@@ -375,40 +387,54 @@ impl ImportedBody {
         })
     }
 
-    /// The boundary of `spec` with rigid interfaces: an item `rbe2:SET` ties the node set
-    /// `SET` to one master node at its centroid, an item naming an interface of the body file
-    /// ties its set to its master; their nodes join the boundary and each is returned as a
-    /// [`RigidSet`]. Other items are read by [`Self::boundary`]. A node in two items is an
+    /// The boundary of `spec` with interfaces: an item `rbe2:SET` ties the node set `SET` to
+    /// one master node at its centroid (its nodes join the boundary), `rbe3:SET` averages it
+    /// into one (its nodes stay free), an item naming an interface of the body file does what
+    /// the file says; each is returned as a [`RigidSet`]. Other items are read by [`Self::boundary`]. A node in two items is an
     /// error.
     pub fn boundary_with_interfaces(&self, spec: &[String]) -> Result<(Vec<usize>, Vec<RigidSet>)> {
         let mut plain = Vec::new();
         let mut rigid: Vec<RigidSet> = Vec::new();
         for item in spec {
             let item = item.trim();
-            if let Some(name) = item.strip_prefix("rbe2:") {
+            let prefixed = [
+                ("rbe2:", InterfaceKind::Rbe2),
+                ("rbe3:", InterfaceKind::Rbe3),
+            ]
+            .into_iter()
+            .find_map(|(p, kind)| item.strip_prefix(p).map(|name| (name, kind)));
+            if let Some((name, kind)) = prefixed {
                 let nodes = self.boundary(&[name.to_string()])?;
                 rigid.push(RigidSet {
                     name: name.to_string(),
                     nodes,
                     master: None,
+                    kind,
+                    weights: None,
                 });
-            } else if let Some((set, master)) = self.interfaces.get(item) {
+            } else if let Some(interface) = self.interfaces.get(item) {
                 rigid.push(RigidSet {
                     name: item.to_string(),
-                    nodes: self.boundary(std::slice::from_ref(set))?,
-                    master: *master,
+                    nodes: self.boundary(std::slice::from_ref(&interface.node_set))?,
+                    master: interface.master,
+                    kind: interface.kind,
+                    weights: interface.weights.clone(),
                 });
             } else {
                 plain.push(item.to_string());
             }
         }
         let mut nodes = self.boundary(&plain)?;
+        let mut averaged: Vec<usize> = Vec::new();
         for set in &rigid {
             for &n in &set.nodes {
-                if nodes.contains(&n) {
+                if nodes.contains(&n) || averaged.contains(&n) {
                     return Err(Error::DuplicateNode { node: n });
                 }
-                nodes.push(n);
+                match set.kind {
+                    InterfaceKind::Rbe2 => nodes.push(n),
+                    InterfaceKind::Rbe3 => averaged.push(n),
+                }
             }
         }
         Ok((nodes, rigid))

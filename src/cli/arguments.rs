@@ -298,13 +298,13 @@ impl OptionArgs {
             Some(b) => Some(BodyHandle(Arc::new(ImportedBody::load(b)?))),
             None => None,
         };
-        let (boundary, rigid_interfaces) = match (&self.boundary, &body) {
-            (None, _) => (None, Vec::new()),
+        let (boundary, rigid_interfaces, averaging_interfaces) = match (&self.boundary, &body) {
+            (None, _) => (None, Vec::new(), Vec::new()),
             (Some(items), Some(body)) => {
-                let (nodes, rigid) = crate::scenes::body_modes::body_boundary(body, items)?;
-                (Some(nodes), rigid)
+                let i = crate::scenes::body_modes::body_boundary(body, items)?;
+                (Some(i.boundary), i.rigid, i.averaging)
             }
-            (Some(items), None) => (Some(parse_nodes(items)?), Vec::new()),
+            (Some(items), None) => (Some(parse_nodes(items)?), Vec::new(), Vec::new()),
         };
         let integrator = match (self.integrator, self.rho_inf) {
             (Some(IntegrationScheme::GeneralizedAlpha { .. }) | None, Some(rho)) => {
@@ -328,6 +328,7 @@ impl OptionArgs {
             modes: self.modes,
             boundary,
             rigid_interfaces,
+            averaging_interfaces,
             interface_modes: self.interface_modes,
             axes: self.axes,
             end_time: self.end_time,

@@ -305,14 +305,21 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let started = std::time::Instant::now();
             let body = ImportedBody::load(&body)?;
-            let (boundary, rigid_interfaces) = match boundary {
+            let interfaces = match boundary {
                 Some(items) => scenes::body_modes::body_boundary(&body, &items)?,
-                None => (scenes::body_modes::default_boundary(&body)?, Vec::new()),
+                None => crate::models::BodyInterfaces {
+                    boundary: scenes::body_modes::default_boundary(&body)?,
+                    rigid: Vec::new(),
+                    averaging: Vec::new(),
+                    interface_modes: None,
+                },
             };
+            let boundary = interfaces.boundary;
             let loaded_s = started.elapsed().as_secs_f64();
             let parameters = crate::export::ExportParameters {
                 psi_format,
-                rigid_interfaces,
+                rigid_interfaces: interfaces.rigid,
+                averaging_interfaces: interfaces.averaging,
                 interface_modes,
             };
             let summary =

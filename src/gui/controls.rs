@@ -99,16 +99,17 @@ impl Controls {
                 .filter(|t| !t.trim().is_empty())
                 .map(|t| t.trim().to_string())
                 .collect();
-            let (boundary, rigid) = match body {
+            let (boundary, rigid, averaging) = match body {
                 Some(b) if !items.is_empty() => {
-                    let (nodes, rigid) = scenes::body_modes::body_boundary(b, &items)?;
-                    (Some(nodes), rigid)
+                    let i = scenes::body_modes::body_boundary(b, &items)?;
+                    (Some(i.boundary), i.rigid, i.averaging)
                 }
-                _ => (None, Vec::new()),
+                _ => (None, Vec::new(), Vec::new()),
             };
             let mut options = self.options()?;
             options.boundary = boundary;
             options.rigid_interfaces = rigid;
+            options.averaging_interfaces = averaging;
             options.body = body.cloned();
             return Ok(options);
         }

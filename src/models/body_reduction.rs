@@ -10,15 +10,17 @@ use faer::Mat;
 use crate::{
     Result,
     analysis::{ZeroEnergyCount, reduced_modes},
+    body_file::{ImportedBody, InterfaceKind},
     fem::FeModel,
     linalg::GeneralizedEigen,
     progress::Progress,
     reduction::{
-        Basis, ColumnKind, InterfaceLoads, InteriorProblem, MacNealRubinParameters, Method,
-        ModalBalancedParameters, ModeCondensationRoute, ModeSelection, MomentMatchingParameters,
-        ReductionError, RigidInterface, SolverPath, craig_bampton_from, guyan_from,
-        lowest_free_modes, macneal_rubin, modal_balanced_basis, modal_truncation_from,
-        mode_condensation_from, moment_matching, reduce_interface, tie_rigid_interfaces,
+        AveragingInterface, Basis, ColumnKind, InterfaceLoads, InteriorProblem,
+        MacNealRubinParameters, Method, ModalBalancedParameters, ModeCondensationRoute,
+        ModeSelection, MomentMatchingParameters, ReductionError, RigidInterface, SolverPath,
+        craig_bampton_from, guyan_from, lowest_free_modes, macneal_rubin, modal_balanced_basis,
+        modal_truncation_from, mode_condensation_from, moment_matching, reduce_interface,
+        tie_rigid_interfaces,
     },
 };
 
@@ -52,11 +54,56 @@ pub struct BodyInterfaces {
     pub boundary: Vec<usize>,
     /// Node sets tied to a 6-DOF master (RBE2).
     pub rigid: Vec<RigidInterface>,
+    /// Node sets averaged into a 6-DOF master (RBE3): loads and outputs, no restraint; their
+    /// nodes are not in `boundary`.
+    pub averaging: Vec<AveragingInterface>,
     /// Characteristic constraint modes kept in place of the constraint modes (`None`: all).
     pub interface_modes: Option<usize>,
 }
 
 impl BodyInterfaces {
+    /// The interfaces `items` name on `body` (set names, node numbers, `rbe2:SET`, `rbe3:SET`,
+    /// interfaces the body file declares), each master at its set's centroid unless the file
+    /// gives it.
+    pub fn of(
+        body: &ImportedBody,
+        items: &[String],
+        interface_modes: Option<usize>,
+    ) -> Result<Self> {
+        let (boundary, sets) = body.boundary_with_interfaces(items)?;
+        let mut rigid = Vec::new();
+        let mut averaging = Vec::new();
+        for set in sets {
+            match set.kind {
+                InterfaceKind::Rbe2 => {
+                    let mut i = RigidInterface::at_centroid(&body.model, &set.name, &set.nodes)?;
+                    if let Some(master) = set.master {
+                        i.master = master;
+                    }
+                    rigid.push(i);
+                }
+                InterfaceKind::Rbe3 => {
+                    let mut i = AveragingInterface::at_centroid(
+                        &body.model,
+                        &set.name,
+                        &set.nodes,
+                        set.weights,
+                    )?;
+                    if let Some(master) = set.master {
+                        i.master = master;
+                    }
+                    averaging.push(i);
+                }
+            }
+        }
+        Ok(Self {
+            boundary,
+            rigid,
+            averaging,
+            interface_modes,
+        })
+    }
+
     /// The boundary nodes that belong to no rigid interface.
     pub fn plain_nodes(&self) -> Vec<usize> {
         self.boundary
@@ -120,7 +167,7 @@ pub struct BodyReducer<'a> {
     interfaces: BodyInterfaces,
     full: &'a ZeroEnergyCount,
     full_s: f64,
-    problem: InteriorProblem<'a>,
+    problem: Option<InteriorProblem<'a>>,
     free_modes: Option<GeneralizedEigen>,
     free_modes_s: f64,
     progress: Progress,
@@ -137,8 +184,15 @@ impl<'a> BodyReducer<'a> {
         full_s: f64,
         progress: Progress,
     ) -> Result<Self> {
-        let problem = InteriorProblem::new(model, &interfaces.boundary, SolverPath::Auto)?
-            .with_progress(progress.clone());
+        // Split at once when there is a boundary, so a bad one is an error here.
+        let problem = if interfaces.boundary.is_empty() {
+            None
+        } else {
+            Some(
+                InteriorProblem::new(model, &interfaces.boundary, SolverPath::Auto)?
+                    .with_progress(progress.clone()),
+            )
+        };
         Ok(Self {
             model,
             interfaces,
@@ -151,9 +205,19 @@ impl<'a> BodyReducer<'a> {
         })
     }
 
-    /// The interior problem (its split, constraint and fixed-interface modes, for views).
-    pub fn problem(&mut self) -> &mut InteriorProblem<'a> {
-        &mut self.problem
+    /// The interior problem (its split, constraint and fixed-interface modes, for views):
+    /// a [`ReductionError::MethodNeedsContext`] when the body has no boundary (only averaging
+    /// interfaces, which hold nothing).
+    pub fn problem(&mut self) -> Result<&mut InteriorProblem<'a>> {
+        self.problem.as_mut().ok_or_else(|| {
+            ReductionError::MethodNeedsContext {
+                method: "a fixed-interface basis".into(),
+                needs: "a boundary that holds the body (node sets or rbe2 interfaces); rbe3 \
+                        interfaces only average and load it"
+                    .into(),
+            }
+            .into()
+        })
     }
 
     /// The interfaces.
@@ -216,20 +280,44 @@ impl<'a> BodyReducer<'a> {
     ) -> Result<ReducedBody> {
         let model = self.model;
         let started = Instant::now();
-        let before = self.problem.statistics.factorization_s;
+        let uses_interior = matches!(
+            method,
+            Method::Guyan
+                | Method::ModalTruncation
+                | Method::CraigBampton
+                | Method::ModeCondensation
+        );
+        if (uses_interior || method == Method::MacNealRubin)
+            && !self.interfaces.averaging.is_empty()
+        {
+            return Err(ReductionError::MethodNeedsContext {
+                method: method.name().into(),
+                needs: "interfaces that are boundary DOF: an rbe3 master is a dependent node \
+                        (the weighted average of its ring, which stays free), so it has no \
+                        constraint mode of its own; use rbe2 for a joint, or bh, mm, bt, which \
+                        load the master"
+                    .into(),
+            }
+            .into());
+        }
+        let before = match &self.problem {
+            Some(p) => p.statistics.factorization_s,
+            None => 0.0,
+        };
         let mut note = None;
         let mut shared_s = 0.0;
         let basis = match method {
-            Method::Guyan => guyan_from(model, &mut self.problem)?,
+            Method::Guyan => guyan_from(model, self.problem()?)?,
             Method::ModalTruncation => {
-                modal_truncation_from(model, &mut self.problem, ModeSelection::Count(kept))?
+                modal_truncation_from(model, self.problem()?, ModeSelection::Count(kept))?
             }
             Method::CraigBampton => {
-                craig_bampton_from(model, &mut self.problem, ModeSelection::Count(kept))?
+                craig_bampton_from(model, self.problem()?, ModeSelection::Count(kept))?
             }
             Method::ModeCondensation => {
-                let route = ModeCondensationRoute::for_interior(self.problem.interior_dofs());
-                mode_condensation_from(model, &mut self.problem, ModeSelection::Count(kept), route)?
+                let problem = self.problem()?;
+                let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
+                mode_condensation_from(model, problem, ModeSelection::Count(kept), route)?
             }
             Method::MacNealRubin => {
                 if !self.interfaces.rigid.is_empty() {
@@ -336,13 +424,6 @@ impl<'a> BodyReducer<'a> {
                 .into());
             }
         };
-        let uses_interior = matches!(
-            method,
-            Method::Guyan
-                | Method::ModalTruncation
-                | Method::CraigBampton
-                | Method::ModeCondensation
-        );
         let basis = if uses_interior {
             tie_rigid_interfaces(model, basis, &self.interfaces.rigid)?
         } else {
@@ -356,7 +437,10 @@ impl<'a> BodyReducer<'a> {
         let modes = reduced_modes(model, &basis)?;
         let zero_modes = self.full.zero_energy_in(&modes);
         // The interior factor is shared: each model that uses it is charged with it once.
-        let factor_s = self.problem.statistics.factorization_s;
+        let factor_s = self
+            .problem
+            .as_ref()
+            .map_or(0.0, |p| p.statistics.factorization_s);
         let offline_s = started.elapsed().as_secs_f64()
             + shared_s
             + if uses_interior && factor_s == before {
@@ -377,7 +461,12 @@ impl<'a> BodyReducer<'a> {
     /// The interface loads: a unit force on every plain boundary DOF, six per rigid interface.
     fn loads(&self) -> Result<InterfaceLoads> {
         let plain = self.model.dofs_of_nodes(&self.interfaces.plain_nodes())?;
-        InterfaceLoads::of(self.model, &plain, &self.interfaces.rigid)
+        InterfaceLoads::of(
+            self.model,
+            &plain,
+            &self.interfaces.rigid,
+            &self.interfaces.averaging,
+        )
     }
 
     /// ω of the body's lowest elastic mode, rad/s.

@@ -1,6 +1,7 @@
 //! Reduction methods: each builds a transformation $\delta = \Psi z$ with labelled columns, on
 //! dense linear algebra for small bodies and sparse for refined meshes.
 
+mod averaging_interface;
 mod balanced_truncation;
 mod basis;
 mod benfield_hruda;
@@ -27,6 +28,7 @@ mod restrained_ritz;
 mod rigid_interface;
 
 pub use crate::error::ReductionError;
+pub use averaging_interface::AveragingInterface;
 pub use balanced_truncation::{
     BalancedBasisParameters, BalancedTruncation, balanced_basis, balanced_truncation,
     modal_gramians,

@@ -59,32 +59,39 @@ impl RigidInterface {
     /// $R_S$ row by row: for every DOF of the tied nodes (0-based, in node order), its motion
     /// under each of the master's six unit motions ($u_s = u_m + \theta_m \times r_s$).
     pub fn rigid_motions(&self, model: &FeModel) -> Result<Vec<(usize, [f64; 6])>> {
-        let mut rows = Vec::with_capacity(3 * self.nodes.len());
-        for &node in &self.nodes {
-            let x = model.position(model.node_index(node)?);
-            let r = [
-                x[0] - self.master[0],
-                x[1] - self.master[1],
-                x[2] - self.master[2],
-            ];
-            for dof in model.dofs_of_nodes(&[node])? {
-                let (_, d) = model.dof_node(dof);
-                let mut row = [0.0; 6];
-                for (q, value) in row.iter_mut().enumerate() {
-                    let mut t = [0.0; 3];
-                    let mut omega = [0.0; 3];
-                    if q < 3 {
-                        t[q] = 1.0;
-                    } else {
-                        omega[q - 3] = 1.0;
-                    }
-                    *value = d.rigid_motion(r, t, omega);
-                }
-                rows.push((dof, row));
-            }
-        }
-        Ok(rows)
+        rigid_motion_rows(model, &self.nodes, self.master)
     }
+}
+
+/// The rigid-motion matrix of `nodes` (1-based) about `master`, row by row: for every DOF of
+/// the nodes (0-based, in node order), its motion under each of the master's six unit motions
+/// ($u_s = u_m + \theta_m \times r_s$; rotations of frame nodes: $\theta_s = \theta_m$).
+pub(crate) fn rigid_motion_rows(
+    model: &FeModel,
+    nodes: &[usize],
+    master: [f64; 3],
+) -> Result<Vec<(usize, [f64; 6])>> {
+    let mut rows = Vec::with_capacity(3 * nodes.len());
+    for &node in nodes {
+        let x = model.position(model.node_index(node)?);
+        let r = [x[0] - master[0], x[1] - master[1], x[2] - master[2]];
+        for dof in model.dofs_of_nodes(&[node])? {
+            let (_, d) = model.dof_node(dof);
+            let mut row = [0.0; 6];
+            for (q, value) in row.iter_mut().enumerate() {
+                let mut t = [0.0; 3];
+                let mut omega = [0.0; 3];
+                if q < 3 {
+                    t[q] = 1.0;
+                } else {
+                    omega[q - 3] = 1.0;
+                }
+                *value = d.rigid_motion(r, t, omega);
+            }
+            rows.push((dof, row));
+        }
+    }
+    Ok(rows)
 }
 
 /// Ties each interface's boundary columns of `basis` to its master's six DOF (see the module

@@ -15,7 +15,7 @@ use crate::models::{
     BODY_METHODS, BodyInterfaces, BodyReducer, INTERFACE_MODE_SWEEP, interface_reduction_sweep,
 };
 use crate::record::{LogLogChart, LogLogSeries};
-use crate::reduction::{Basis, ColumnKind, ReductionError, RigidInterface};
+use crate::reduction::{Basis, ColumnKind, ReductionError};
 use crate::{
     Error, Result,
     analysis::count_zero_energy_modes,
@@ -66,24 +66,10 @@ pub fn body_of(opts: &SceneOptions) -> Result<BodyHandle> {
     }
 }
 
-/// The boundary `items` name on `body` (set names, node numbers, `rbe2:SET`): its nodes and
-/// the rigid interfaces, each with its master at the set's centroid.
-pub fn body_boundary(
-    body: &ImportedBody,
-    items: &[String],
-) -> Result<(Vec<usize>, Vec<RigidInterface>)> {
-    let (nodes, rigid) = body.boundary_with_interfaces(items)?;
-    let interfaces = rigid
-        .iter()
-        .map(|set| {
-            let mut i = RigidInterface::at_centroid(&body.model, &set.name, &set.nodes)?;
-            if let Some(master) = set.master {
-                i.master = master;
-            }
-            Ok(i)
-        })
-        .collect::<Result<Vec<_>>>()?;
-    Ok((nodes, interfaces))
+/// The interfaces `items` name on `body` (set names, node numbers, `rbe2:SET`, `rbe3:SET`):
+/// see [`BodyInterfaces::of`].
+pub fn body_boundary(body: &ImportedBody, items: &[String]) -> Result<BodyInterfaces> {
+    BodyInterfaces::of(body, items, None)
 }
 
 /// The interface when `--boundary` is not given: the body file's `default_interface` set,
@@ -146,14 +132,28 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         BodyInterfaces {
             boundary: boundary.clone(),
             rigid: opts.rigid_interfaces.clone(),
+            averaging: opts.averaging_interfaces.clone(),
             interface_modes: opts.interface_modes,
         },
         &full,
         full_s,
         opts.progress.clone(),
     )?;
-    let psi_s = reducer.problem().constraint_modes()?;
-    let fi = reducer.problem().kept_modes(ModeSelection::Count(kept))?;
+    // The constraint and fixed-interface modes, when a boundary holds the body (rbe3
+    // interfaces alone hold nothing).
+    let held = if boundary.is_empty() {
+        None
+    } else {
+        let problem = reducer.problem()?;
+        Some((
+            problem.constraint_modes()?,
+            problem.kept_modes(ModeSelection::Count(kept))?,
+        ))
+    };
+    let fi_hz = held.as_ref().map_or(Vec::new(), |(_, fi)| fi.hz());
+    let fi_residuals = held
+        .as_ref()
+        .map_or(Vec::new(), |(_, fi)| fi.residuals.clone());
 
     let mut reduced = Map::new();
     let mut errors = Map::new();
@@ -167,10 +167,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             "full body: {}",
             residual_note(&full_hz, &full.elastic_residuals())
         ),
-        format!(
-            "fixed-interface: {}",
-            residual_note(&fi.hz(), &fi.residuals)
-        ),
+        format!("fixed-interface: {}", residual_note(&fi_hz, &fi_residuals)),
     ];
     let mut sizes = Map::new();
     let mut table = Table::new(&[
@@ -311,6 +308,15 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 .collect::<Vec<_>>()
         ),
     );
+    p.insert(
+        "averaging_interfaces".into(),
+        json!(
+            opts.averaging_interfaces
+                .iter()
+                .map(|i| json!({"name": i.name, "kind": "rbe3", "master": i.master, "nodes": i.nodes.len()}))
+                .collect::<Vec<_>>()
+        ),
+    );
     p.insert("modes".into(), json!(kept));
     p.insert(
         "methods".into(),
@@ -321,7 +327,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     r.insert("nnz".into(), json!(model.stiffness_nnz()));
     r.insert("zero_energy_modes".into(), json!(full.zero_modes));
     r.insert("free_free_hz".into(), json!(sig_vec(&full_hz)));
-    r.insert("fixed_interface_hz".into(), json!(sig_vec(&fi.hz())));
+    r.insert("fixed_interface_hz".into(), json!(sig_vec(&fi_hz)));
     r.insert("reduced_hz".into(), Value::Object(reduced));
     r.insert(
         "free_free_residuals".into(),
@@ -329,7 +335,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     );
     r.insert(
         "fixed_interface_residuals".into(),
-        json!(sig_vec(&fi.residuals)),
+        json!(sig_vec(&fi_residuals)),
     );
     r.insert("reduced_residuals".into(), Value::Object(reduced_residuals));
     r.insert(
@@ -450,9 +456,15 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 i.nodes.len(),
                 i.master.map(|x| format!("{}", sig(x))).join(", ")
             ))
+            .chain(opts.averaging_interfaces.iter().map(|i| format!(
+                "; rbe3 `{}`: {} nodes averaged into a master at ({}), loading it and free",
+                i.name,
+                i.nodes.len(),
+                i.master.map(|x| format!("{}", sig(x))).join(", ")
+            )))
             .collect::<String>(),
         fmt_hz(&full_hz),
-        fmt_hz(&fi.hz()[..fi.hz().len().min(8)]),
+        fmt_hz(&fi_hz[..fi_hz.len().min(8)]),
         residual_lines.join("; "),
         notes.iter().map(|n| format!("\n- {n}")).collect::<String>(),
     );
@@ -472,12 +484,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          which should be zero: round-off in the method's coordinates lifts it.\n\n{}",
         model.name, body.description, report.table
     );
-    let layout = if body.has_coordinates {
+    let layout = if let (true, Some((psi_s, fi))) = (body.has_coordinates, &held) {
         let (mode_visuals, l) = super::slab_mode_views::slab_mode_views(
             model,
-            &reducer.problem().partition,
-            &psi_s,
-            &fi,
+            &reducer.problem()?.partition,
+            psi_s,
+            fi,
             &elastic,
             FULL_MODES,
             kept,

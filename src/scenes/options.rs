@@ -24,6 +24,9 @@ pub struct SceneOptions {
     /// `--boundary rbe2:SET`: node sets of the boundary tied rigidly to a master node each
     /// (a body file's scene only).
     pub rigid_interfaces: Vec<crate::reduction::RigidInterface>,
+    /// `--boundary rbe3:SET`: node sets averaged into a master node each, not in `boundary`
+    /// (a body file's scene only).
+    pub averaging_interfaces: Vec<crate::reduction::AveragingInterface>,
     /// `--interface-modes N`: the interface's constraint modes reduced to N characteristic
     /// constraint modes (a body file's scene only).
     pub interface_modes: Option<usize>,

@@ -37,6 +37,7 @@ fn rbe2_interfaces(body: &ImportedBody, reference: &Value) -> BodyInterfaces {
     BodyInterfaces {
         boundary: nodes.clone(),
         rigid: vec![RigidInterface::at_centroid(&body.model, set, &nodes).unwrap()],
+        averaging: Vec::new(),
         interface_modes: None,
     }
 }
@@ -121,7 +122,7 @@ fn moment_matching_on_a_free_body_contains_the_shifted_static_response() {
         let (body, reference) = body(name);
         let model = &body.model;
         let interfaces = rbe2_interfaces(&body, &reference);
-        let loads = InterfaceLoads::of(model, &[], &interfaces.rigid).unwrap();
+        let loads = InterfaceLoads::of(model, &[], &interfaces.rigid, &[]).unwrap();
         assert_eq!(loads.count(), 6);
         let free = lowest_free_modes(model, 1).unwrap();
         let rigid = free.vectors.subcols(0, 6).to_owned();
@@ -177,7 +178,7 @@ fn balanced_truncation_on_a_body_spans_the_modes_it_balances() {
     let (body, reference) = body("flange-hub");
     let model = &body.model;
     let interfaces = rbe2_interfaces(&body, &reference);
-    let loads = InterfaceLoads::of(model, &[], &interfaces.rigid).unwrap();
+    let loads = InterfaceLoads::of(model, &[], &interfaces.rigid, &[]).unwrap();
     let free = lowest_free_modes(model, 12).unwrap();
     let elastic = flexmodes::linalg::GeneralizedEigen {
         values: free.values[6..].to_vec(),
@@ -232,5 +233,123 @@ fn balanced_truncation_on_a_body_spans_the_modes_it_balances() {
     assert!(
         values.windows(2).all(|w| w[0] >= w[1] && w[1] > 0.0),
         "{values:?}"
+    );
+}
+
+/// An averaging (RBE3) master reads the weighted least-squares rigid motion of its ring:
+/// exactly a rigid motion of the ring about the master, and for any field the fit an
+/// independent solve (nalgebra's SVD of the weighted rigid-motion matrix) gives.
+#[test]
+fn an_averaging_interface_reads_the_weighted_rigid_fit_of_its_ring() {
+    use flexmodes::reduction::AveragingInterface;
+    let (body, _) = body("steel-link");
+    let model = &body.model;
+    let nodes = body.node_sets["bore_a"].clone();
+    let weights: Vec<f64> = (0..nodes.len()).map(|k| 1.0 + (k % 3) as f64).collect();
+    let rbe3 =
+        AveragingInterface::at_centroid(model, "bore_a", &nodes, Some(weights.clone())).unwrap();
+    let a = rbe3.averaging_matrix(model).unwrap();
+    // The ring's rigid-motion matrix, written out here from the node positions.
+    let dofs = model.dofs_of_nodes(&nodes).unwrap();
+    let r = nalgebra::DMatrix::<f64>::from_fn(dofs.len(), 6, |row, q| {
+        let node = model.node_index(nodes[row / 3]).unwrap();
+        let x = model.position(node);
+        let d = [
+            x[0] - rbe3.master[0],
+            x[1] - rbe3.master[1],
+            x[2] - rbe3.master[2],
+        ];
+        let axis = row % 3;
+        if q < 3 {
+            if q == axis { 1.0 } else { 0.0 }
+        } else {
+            // (e_{q-3} × d)_axis
+            let w = q - 3;
+            let e = |i: usize| if i == w { 1.0 } else { 0.0 };
+            let cross = [
+                e(1) * d[2] - e(2) * d[1],
+                e(2) * d[0] - e(0) * d[2],
+                e(0) * d[1] - e(1) * d[0],
+            ];
+            cross[axis]
+        }
+    });
+    let a_ring = nalgebra::DMatrix::<f64>::from_fn(6, dofs.len(), |q, c| a[(q, dofs[c])]);
+    let ar = &a_ring * &r;
+    for i in 0..6 {
+        for j in 0..6 {
+            let e = if i == j { 1.0 } else { 0.0 };
+            assert!(
+                (ar[(i, j)] - e).abs() < 1e-9,
+                "AR [{i},{j}] = {}",
+                ar[(i, j)]
+            );
+        }
+    }
+    // A pseudo-random field on the ring against the weighted least-squares fit.
+    let mut rng = super::common::Rng::new(7);
+    let u = nalgebra::DVector::<f64>::from_fn(dofs.len(), |_, _| rng.unit() - 0.5);
+    let sqrt_w = nalgebra::DVector::<f64>::from_fn(dofs.len(), |row, _| weights[row / 3].sqrt());
+    let rw = nalgebra::DMatrix::<f64>::from_fn(dofs.len(), 6, |i, j| sqrt_w[i] * r[(i, j)]);
+    let uw = u.component_mul(&sqrt_w);
+    let fit = rw.svd(true, true).solve(&uw, 1e-14).unwrap();
+    let read = &a_ring * &u;
+    for q in 0..6 {
+        assert!(
+            (read[q] - fit[q]).abs() <= 1e-9 * fit.amax(),
+            "master DOF {q}: {} against the fit {}",
+            read[q],
+            fit[q]
+        );
+    }
+}
+
+/// An averaging interface adds no stiffness: moment matching loaded through it converges to
+/// the free body's frequencies (SciPy's, 1e-8 with six blocks), while the same ring tied
+/// rigidly (RBE2) keeps Craig–Bampton above them whatever the kept modes. A fixed-interface
+/// method on an averaging interface is refused by name.
+#[test]
+fn an_averaging_interface_adds_no_stiffness() {
+    use flexmodes::{Error, reduction::AveragingInterface};
+    let (body, reference) = body("steel-link");
+    let model = &body.model;
+    let scipy = checks::floats(&reference["free_free_hz"]);
+    let nodes = body.node_sets["bore_a"].clone();
+    let full = count_zero_energy_modes(model, 10).unwrap();
+    let averaging = BodyInterfaces {
+        boundary: Vec::new(),
+        rigid: Vec::new(),
+        averaging: vec![AveragingInterface::at_centroid(model, "bore_a", &nodes, None).unwrap()],
+        interface_modes: None,
+    };
+    let mut reducer = BodyReducer::new(model, averaging, &full, 0.0, Progress::default()).unwrap();
+    let mm = reducer.reduce(Method::MomentMatching, 36).unwrap();
+    assert_eq!(mm.zero_modes, 6);
+    assert_eq!(mm.basis.size(), 6 + 36);
+    checks::assert_relative(
+        "MM through rbe3",
+        &mm.elastic_hz()[..6],
+        &scipy[6..12],
+        1e-8,
+    );
+    for m in [Method::CraigBampton, Method::Guyan, Method::MacNealRubin] {
+        match reducer.reduce(m, 10) {
+            Err(Error::Reduction(ReductionError::MethodNeedsContext { needs, .. })) => {
+                assert!(needs.contains("rbe3"), "{needs}")
+            }
+            other => panic!(
+                "{m:?} on an rbe3 interface: {:?}",
+                other.map(|r| r.basis.size())
+            ),
+        }
+    }
+    let tied = rbe2_interfaces(&body, &reference);
+    let mut reducer = BodyReducer::new(model, tied, &full, 0.0, Progress::default()).unwrap();
+    let cb = reducer.reduce(Method::CraigBampton, 36).unwrap();
+    let first = cb.elastic_hz()[0];
+    assert!(
+        first > scipy[6] * (1.0 + 1e-3),
+        "the tied ring stiffens: {first} against the free {}",
+        scipy[6]
     );
 }

@@ -366,11 +366,12 @@ fn interfaces_declared_in_the_body_file() {
         "[interfaces.pin]\nkind = \"rbe2\"\nnode_set = \"bore_a\"\nmaster = [-0.04, 0.0, 0.01]\n",
     )
     .unwrap();
-    let (nodes, interfaces) = body_boundary(&body, &["pin".into()]).unwrap();
+    let pin = body_boundary(&body, &["pin".into()]).unwrap();
+    let (nodes, interfaces) = (pin.boundary, pin.rigid);
     assert_eq!(nodes, body.node_sets["bore_a"]);
     assert_eq!(interfaces.len(), 1);
     assert_eq!(interfaces[0].master, [-0.04, 0.0, 0.01]);
-    let (_, at_centroid) = body_boundary(&body, &["rbe2:bore_a".into()]).unwrap();
+    let at_centroid = body_boundary(&body, &["rbe2:bore_a".into()]).unwrap().rigid;
     assert!(
         (at_centroid[0].master[2] - 0.01).abs() > 1e-4,
         "a different master point"
@@ -392,9 +393,25 @@ fn interfaces_declared_in_the_body_file() {
     assert_eq!(given.len(), centroid.len());
     checks::assert_relative("master point", &given, &centroid, 1e-10);
 
-    let e = write("[interfaces.pin]\nkind = \"rbe3\"\nnode_set = \"bore_a\"\n").unwrap_err();
+    // An averaging interface: its nodes stay out of the boundary, its weights are read.
+    let count = body.node_sets["bore_a"].len();
+    let weights: Vec<String> = (0..count).map(|k| format!("{}", 1 + k % 3)).collect();
+    let body = write(&format!(
+        "[interfaces.load]\nkind = \"rbe3\"\nnode_set = \"bore_a\"\nweights = [{}]\n",
+        weights.join(", ")
+    ))
+    .unwrap();
+    let load = body_boundary(&body, &["load".into(), "rbe2:bore_b".into()]).unwrap();
+    assert_eq!(load.boundary, body.node_sets["bore_b"]);
+    assert_eq!(load.averaging.len(), 1);
+    assert_eq!(load.averaging[0].weights[..3], [1.0, 2.0, 3.0]);
+    let e = write(&format!(
+        "[interfaces.load]\nkind = \"rbe3\"\nnode_set = \"bore_a\"\nweights = [{}]\n",
+        weights[1..].join(", ")
+    ))
+    .unwrap_err();
     assert!(
-        matches!(&e, Error::BodyFile(BodyFileError::BodyFile { reason, .. }) if reason.contains("rbe3")),
+        matches!(&e, Error::BodyFile(BodyFileError::BodyFile { reason, .. }) if reason.contains("weights")),
         "{e}"
     );
     let e = write("[interfaces.pin]\nkind = \"rbe2\"\nnode_set = \"nope\"\n").unwrap_err();
