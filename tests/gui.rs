@@ -368,6 +368,41 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
         report.parameters["rigid_interfaces"][0]["name"],
         "bolt_hole"
     );
+    // Every method of a body is offered and ticked; the hole averaged into a master (RBE3)
+    // loads the body through it: moment matching computes, the fixed-interface methods say
+    // why not.
+    for m in ["GR", "MT", "CB", "MC", "MR", "BH", "MM", "BT"] {
+        assert!(
+            h.query_by_role_and_label(Role::CheckBox, m).is_some(),
+            "{m} offered"
+        );
+        assert!(
+            h.state().controls.methods.contains(&m.to_lowercase()),
+            "{m} ticked"
+        );
+    }
+    h.get_by_label("rbe3:bolt_hole").click();
+    settle(&mut h);
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(
+        report.parameters["averaging_interfaces"][0]["name"],
+        "bolt_hole"
+    );
+    assert!(
+        report.results["basis_size"]["mm"].as_u64().unwrap_or(0) > 6,
+        "{:?} {:?}",
+        h.state().controls.methods,
+        report.results
+    );
+    assert!(report.results["basis_size"].get("cb").is_none());
+    let notes = report.results["method_notes"].as_array().unwrap();
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.as_str().unwrap().starts_with("CB:") && n.as_str().unwrap().contains("rbe3")),
+        "{notes:?}"
+    );
     h.state_mut().controls.body = "/nonexistent/body.toml".into();
     h.state_mut().request();
     h.step();

@@ -390,6 +390,24 @@ impl Explorer {
                         }
                     }
                 });
+                // The same sets averaged into a 6-DOF master node (RBE3): a place to load the
+                // body that holds nothing (BH, MM and BT take it).
+                ui.horizontal_wrapped(|ui| {
+                    ui.label("averaged:");
+                    for (name, count) in self.node_sets() {
+                        let averaged = format!("rbe3:{name}");
+                        if ui
+                            .selectable_label(in_use == averaged, &averaged)
+                            .on_hover_text(format!(
+                                "{count} nodes averaged into one 6-DOF master at their \
+                                 centroid; adds no stiffness (BH, MM, BT)"
+                            ))
+                            .clicked()
+                        {
+                            out.push(Command::Set(Change::Boundary(averaged)));
+                        }
+                    }
+                });
             }
         }
         if !info.controls.boundary.is_empty() || self.controls.takes_body() {

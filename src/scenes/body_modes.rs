@@ -1,7 +1,8 @@
 //! `modes`: any body from a body file (`--body FILE` or `builtin:NAME`; the L-bracket by
-//! default) reduced by Guyan, modal truncation, Craig–Bampton and mode condensation on one
-//! interface, each model's frequencies against the full body's, and the principal angles
-//! between the bases and the full body's lowest modes.
+//! default) reduced on its interfaces by the methods of `models::BodyReducer` (Guyan, modal
+//! truncation, Craig–Bampton and mode condensation by default; MacNeal–Rubin, Benfield–Hruda,
+//! moment matching and balanced truncation on request), each model's frequencies and MAC
+//! against the full body's, and the principal angles between the bases and its lowest modes.
 
 use std::time::Instant;
 
@@ -31,8 +32,8 @@ pub const DEFAULT_BODY: &str = "builtin:l-bracket";
 
 pub const INFO: SceneInfo = SceneInfo {
     id: "modes",
-    summary: "any body from a body file (--body FILE; the L-bracket by default): GR, MT, CB and \
-              MC on one interface against the full body's frequencies",
+    summary: "any body from a body file (--body FILE; the L-bracket by default): every method \
+              on its interfaces (node sets, rbe2:, rbe3:) against the full body's frequencies",
     sections: "§6.2–6.5 on a body of your own",
     controls: super::scene_info::SceneControls {
         methods: &AVAILABLE,
