@@ -8,7 +8,7 @@ use std::{
     time::Instant,
 };
 
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 
 #[derive(Debug, Default)]
 struct Shared {

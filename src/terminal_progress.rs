@@ -15,7 +15,7 @@ use std::{
 
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::Progress;
+use crate::progress::Progress;
 
 /// Redraw interval of the bar.
 const TICK: Duration = Duration::from_millis(100);

@@ -30,6 +30,9 @@ use crate::{
 /// Kept-mode counts tried when none are given.
 pub const BODY_MODE_SWEEP: [usize; 4] = [4, 8, 16, 32];
 
+/// Frequency errors below this are round-off, equal for the Pareto front.
+pub const ROUND_OFF_ERROR: f64 = 1e-10;
+
 /// Elastic modes compared when no band is given.
 pub const BODY_COMPARED_MODES: usize = 6;
 
@@ -207,10 +210,17 @@ pub fn bench_body_modes(
     }
     // Listed by method, then by kept modes ascending.
     points.sort_by_key(|q| (p.methods.iter().position(|&m| m == q.method), q.modes));
+    // Errors below round-off are equal: a model exact to 1e-13 is not better than one exact
+    // to 2e-13.
     let flags = pareto_flags(
         &points
             .iter()
-            .map(|q| (q.offline_s, three_digits(q.freq_rel_error)))
+            .map(|q| {
+                (
+                    q.offline_s,
+                    three_digits(q.freq_rel_error.max(ROUND_OFF_ERROR)),
+                )
+            })
             .collect::<Vec<_>>(),
     );
     for (q, f) in points.iter_mut().zip(flags) {
@@ -424,7 +434,8 @@ fn table_text(
          the smallest over them, each paired with the model's best-matching mode. Offline s: \
          building the model (the interior factor charged once per method), one run; peak MB: \
          the process's peak resident memory while it was built. ★: the Pareto front in \
-         (offline s, frequency error equal to three significant digits).{}{refused_text}\n\n{}\n\
+         (offline s, frequency error equal to three significant digits, errors below 1e-10 \
+         equal).{}{refused_text}\n\n{}\n\
          Advice for 0 to {:.4} Hz at {:.0e} relative error: the smallest measured model of \
          each method that meets it{}.\n\n{}",
         body.model.name,

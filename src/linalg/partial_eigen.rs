@@ -12,7 +12,7 @@
 //! by its residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
 
 use super::LinalgError;
-use crate::reduction::ReductionError;
+use crate::error::ReductionError;
 use faer::{Mat, MatRef};
 
 use super::{
