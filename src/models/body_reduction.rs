@@ -16,11 +16,11 @@ use crate::{
     progress::Progress,
     reduction::{
         AveragingInterface, Basis, ColumnKind, InterfaceLoads, InteriorProblem,
-        MacNealRubinParameters, Method, ModalBalancedParameters, ModeCondensationRoute,
-        ModeSelection, MomentMatchingParameters, ReductionError, RigidInterface, SolverPath,
-        craig_bampton_from, guyan_from, lowest_free_modes, macneal_rubin, modal_balanced_basis,
-        modal_truncation_from, mode_condensation_from, moment_matching, reduce_interface,
-        tie_rigid_interfaces,
+        MacNealRubinParameters, Method, ModalBalancedParameters, ModalInfluence, ModalModel,
+        ModeCondensationRoute, ModeSelection, MomentMatchingParameters, ReductionError,
+        RigidInterface, SolverPath, craig_bampton_from, guyan_from, lowest_free_modes,
+        macneal_rubin, modal_balanced_basis, modal_influence, modal_truncation_from,
+        mode_condensation_from, moment_matching, reduce_interface, tie_rigid_interfaces,
     },
 };
 
@@ -456,6 +456,34 @@ impl<'a> BodyReducer<'a> {
             offline_s,
             note,
         })
+    }
+
+    /// Gregory's influence coefficient (Spanos–Tsuha Eq. 44) of each of the body's `count`
+    /// lowest elastic free-free modes from its interface loads to the work-conjugate
+    /// displacements, with modal damping ζ = `zeta`: $\sigma_i = \|L^T\varphi_i\|^2 /
+    /// (4\zeta\omega_i^2)$, how much mode i carries across the interface. Returns the modes'
+    /// frequencies (Hz) and the coefficients, in mode order.
+    pub fn interface_influence(
+        &mut self,
+        count: usize,
+        zeta: f64,
+    ) -> Result<(Vec<f64>, ModalInfluence)> {
+        let loads = self.loads()?;
+        let (modes, _) = self.free_modes(count)?;
+        let z = self.full.zero_modes;
+        let omega: Vec<f64> = modes.values[z..]
+            .iter()
+            .map(|l| l.max(0.0).sqrt())
+            .collect();
+        let hz = modes.hz()[z..].to_vec();
+        let model = ModalModel::from_loads(
+            modes.vectors.subcols(z, count).to_owned(),
+            omega,
+            0,
+            loads.matrix.as_ref(),
+            zeta,
+        );
+        Ok((hz, modal_influence(&model)?))
     }
 
     /// The interface loads: a unit force on every plain boundary DOF, six per rigid interface.

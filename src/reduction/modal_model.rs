@@ -105,6 +105,30 @@ impl ModalModel {
         Ok(Self::from_shapes(shapes, omega, rigid, io, zeta))
     }
 
+    /// A modal model driven by load vectors `loads` (n × inputs, over all DOF: an interface's
+    /// master loads, say) and observed at the same places, collocated: $B = \Phi^TL$,
+    /// $C_1 = L^T\Phi$ (the work-conjugate displacements), no velocity outputs.
+    pub fn from_loads(
+        shapes: Mat<f64>,
+        omega: Vec<f64>,
+        rigid: usize,
+        loads: MatRef<'_, f64>,
+        zeta: f64,
+    ) -> Self {
+        let b = shapes.transpose() * loads;
+        let c1 = b.transpose().to_owned();
+        let c2 = Mat::zeros(c1.nrows(), c1.ncols());
+        Self {
+            shapes,
+            omega,
+            zeta,
+            rigid,
+            b,
+            c1,
+            c2,
+        }
+    }
+
     /// A modal model from mass-normalised shapes and their frequencies (rad/s).
     pub fn from_shapes(
         shapes: Mat<f64>,

@@ -421,17 +421,24 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     r.insert("zero_energy_hz_max".into(), Value::Object(rigid_max));
     r.insert("full_modes_s".into(), json!(sig(full_s)));
     r.insert("method_notes".into(), json!(notes));
+    opts.progress
+        .phase("modal influence across the interfaces")?;
+    let (influence, influence_json, influence_text) =
+        super::body_influence::influence_table(&mut reducer, kept)?;
+    r.insert("interface_influence".into(), influence_json);
     let summary = table.markdown();
     report.add_table(table);
     if let Some(sweep) = sweep_table {
         report.add_table(sweep);
     }
+    let influence_md = format!("\n\n{influence_text}\n\n{}", influence.markdown());
+    report.add_table(influence);
     let units = &body.units;
     report.table = format!(
         "Body `{}` ({}): {dofs} DOF, {} stiffness entries, {} zero-energy mode(s); units {}, \
          {}, {}. Interface {} node(s) {}{}, {kept} kept modes.\n\n{summary}\nFull body, \
          lowest elastic: {}\n\nFixed-interface: {}\n\nEigen residuals \
-         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n{}{sweep_md}",
+         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n{}{sweep_md}{influence_md}",
         model.name,
         body.location.display(),
         model.stiffness_nnz(),

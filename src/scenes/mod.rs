@@ -5,6 +5,7 @@ mod beam_mean_axes;
 mod beam_modes;
 mod beam_profiles;
 pub mod body_import;
+mod body_influence;
 pub mod body_modes;
 pub mod cantilever_variants;
 mod failures;
