@@ -1116,6 +1116,11 @@ fn bench_modes_charts_every_method_on_an_external_body() {
             None => assert!(within.is_empty(), "{m}: {within:?}"),
         }
     }
+    // With a band every model's interface response is compared with the full body's.
+    for p in points {
+        let e = p["frf_rel_error"].as_f64().unwrap_or(f64::NAN);
+        assert!(e.is_finite() && e >= 0.0, "{p}");
+    }
     assert_eq!(&std::fs::read(&rrd).unwrap()[..3], b"RRF");
     std::fs::remove_dir_all(&out).unwrap();
 }

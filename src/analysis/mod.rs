@@ -1,6 +1,7 @@
 //! Analyses on bodies, bases and simulations: natural frequencies, deformed profiles (§7.1),
 //! mean-axis evaluation (§8.4), simulation measures (§7.2, §5.3.3), static responses.
 
+mod dynamic_compliance;
 mod frequencies;
 mod frequency_response;
 mod mean_axes;
@@ -9,6 +10,10 @@ mod profiles;
 mod simulation_metrics;
 mod static_response;
 
+pub use dynamic_compliance::{
+    RESONANCE_CLEARANCE, full_dynamic_compliance, off_resonance_frequencies,
+    reduced_dynamic_compliance,
+};
 pub use frequencies::{
     ZeroEnergyCount, count_zero_energy_modes, elastic_hz, free_free_modes, lowest_free_free_modes,
     reduced_hz, reduced_modes, zero_energy_below, zero_energy_threshold_hz,

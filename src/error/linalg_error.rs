@@ -76,6 +76,17 @@ pub enum LinalgError {
     DecompositionFailed { what: String },
 
     /// The Lyapunov equation solve left a residual larger than its tolerance.
+    /// A solve with a factor left a residual above its tolerance after refinement.
+    #[error(
+        "the solve with the {matrix} matrix left a relative residual {residual:.1e} after \
+         refinement (tolerance {tolerance:.0e})"
+    )]
+    SolveInaccurate {
+        matrix: String,
+        residual: f64,
+        tolerance: f64,
+    },
+
     #[error("the Lyapunov equation was solved with relative residual {residual:.1e}")]
     LyapunovInaccurate { residual: f64 },
 }

@@ -67,6 +67,11 @@ impl SymbolicFactor {
         })
     }
 
+    /// faer's analysis, for the other factorisations of the same pattern.
+    pub(super) fn inner(&self) -> &SymbolicCholesky<usize> {
+        &self.inner
+    }
+
     /// Entries of $L$ (the fill).
     pub fn factor_nnz(&self) -> usize {
         self.inner.len_val()

@@ -229,6 +229,8 @@ impl<'a> BodyReducer<'a> {
     /// full body's own when it has enough, else solved once for the largest count asked).
     fn free_modes(&mut self, elastic: usize) -> Result<(GeneralizedEigen, f64)> {
         let z = self.full.zero_modes;
+        // A small body has fewer modes than asked: all of them.
+        let elastic = elastic.min(self.model.dof_count().saturating_sub(z));
         if self.full.modes.values.len() >= z + elastic {
             return Ok((self.full.modes.first(z + elastic), self.full_s));
         }
@@ -392,6 +394,8 @@ impl<'a> BodyReducer<'a> {
                 let (modes, solve_s) = self.free_modes(count)?;
                 shared_s = solve_s;
                 let z = self.full.zero_modes;
+                // A small body has fewer modes than asked.
+                let count = count.min(modes.values.len().saturating_sub(z));
                 let lowest = self.lowest_elastic_omega()?;
                 let elastic = GeneralizedEigen {
                     values: modes.values[z..].to_vec(),
@@ -471,6 +475,8 @@ impl<'a> BodyReducer<'a> {
         let loads = self.loads()?;
         let (modes, _) = self.free_modes(count)?;
         let z = self.full.zero_modes;
+        // A small body has fewer modes than asked.
+        let count = count.min(modes.values.len().saturating_sub(z));
         let omega: Vec<f64> = modes.values[z..]
             .iter()
             .map(|l| l.max(0.0).sqrt())
@@ -486,8 +492,9 @@ impl<'a> BodyReducer<'a> {
         Ok((hz, modal_influence(&model)?))
     }
 
-    /// The interface loads: a unit force on every plain boundary DOF, six per rigid interface.
-    fn loads(&self) -> Result<InterfaceLoads> {
+    /// The interface loads: a unit force on every plain boundary DOF, six per rigid or
+    /// averaging interface's master.
+    pub fn loads(&self) -> Result<InterfaceLoads> {
         let plain = self.model.dofs_of_nodes(&self.interfaces.plain_nodes())?;
         InterfaceLoads::of(
             self.model,

@@ -105,7 +105,8 @@ impl AveragingInterface {
         let (lo, hi) = eig
             .iter()
             .fold((f64::INFINITY, 0.0f64), |(l, h), &e| (l.min(e), h.max(e)));
-        if !(lo > 1e-10 * hi) {
+        // Written so that NaN (a degenerate ring) fails too.
+        if lo.is_nan() || lo <= 1e-10 * hi {
             return Err(ReductionError::InvalidDofSet {
                 set: format!("rbe3 interface `{}`", self.name),
                 reason: format!(

@@ -197,13 +197,13 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
         let mut this = Mat::<f64>::zeros(nf, block.ncols());
         let mut kept = 0;
         let mut kept_origin = Vec::new();
-        for c in 0..block.ncols() {
+        for (c, input) in origin.iter().enumerate() {
             let mut x = block.col(c).to_owned();
             let before = m_norm(&m_ff, x.as_ref());
             if before == 0.0 {
                 deflated.push(Deflation {
                     block: j,
-                    input: origin[c].clone(),
+                    input: input.clone(),
                     ratio: 0.0,
                 });
                 continue;
@@ -221,14 +221,14 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
             if after <= p.deflation_tolerance * before {
                 deflated.push(Deflation {
                     block: j,
-                    input: origin[c].clone(),
+                    input: input.clone(),
                     ratio: after / before,
                 });
                 continue;
             }
             this.col_mut(kept).copy_from(&x * (1.0 / after));
             kept += 1;
-            kept_origin.push(origin[c].clone());
+            kept_origin.push(input.clone());
         }
         if kept == 0 {
             // The Krylov space is exhausted (an invariant subspace): no later block adds

@@ -1,0 +1,113 @@
+//! $A = LDL^T$ of a sparse symmetric indefinite matrix, a dynamic stiffness
+//! $K - \omega^2 M$ between natural frequencies, on the symbolic analysis of its pattern
+//! (shared by every frequency). faer's supernodal $LDL^T$ does not pivot, so every solve is
+//! refined against $A$ itself and its residual checked: a result that misses the tolerance is
+//! a named error, never an answer.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::{
+    Conj, Mat, MatRef, Par, Side, linalg::solvers::LdltError, sparse::linalg::cholesky::LdltRef,
+};
+
+use super::{LinalgError, SparseSymmetric, SymbolicFactor};
+use crate::{Error, Result};
+
+/// Relative residual $\|AX - B\|_F / \|B\|_F$ a solve must reach.
+pub const INDEFINITE_SOLVE_TOLERANCE: f64 = 1e-9;
+
+/// Refinement steps at most.
+const REFINEMENTS: usize = 4;
+
+/// $LDL^T$ of one sparse symmetric matrix, with the matrix kept for refinement.
+pub struct IndefiniteFactor {
+    a: SparseSymmetric,
+    symbolic: SymbolicFactor,
+    values: Vec<f64>,
+    what: String,
+}
+
+impl IndefiniteFactor {
+    /// Factors `a` (its pattern analysed by `symbolic`). A zero pivot (`a` singular, or a
+    /// frequency on a natural one) is [`LinalgError::SingularMatrix`].
+    pub fn factor(a: SparseSymmetric, symbolic: &SymbolicFactor, what: &str) -> Result<Self> {
+        let sym = symbolic.inner();
+        let mut values = Vec::new();
+        values.try_reserve_exact(sym.len_val()).map_err(|_| {
+            Error::Linalg(LinalgError::OutOfMemory {
+                what: format!("LDLᵀ factor of {what} ({} entries)", sym.len_val()),
+            })
+        })?;
+        values.resize(sym.len_val(), 0.0);
+        let par = faer::get_global_parallelism();
+        let mut mem =
+            MemBuffer::try_new(sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()))
+                .map_err(|_| {
+                    Error::Linalg(LinalgError::OutOfMemory {
+                        what: format!("LDLᵀ workspace of {what}"),
+                    })
+                })?;
+        let result = sym.factorize_numeric_ldlt(
+            &mut values,
+            a.as_faer().as_ref(),
+            Side::Lower,
+            Default::default(),
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+        if let Err(LdltError::ZeroPivot { .. }) = result {
+            return Err(Error::Linalg(LinalgError::SingularMatrix {
+                matrix: what.into(),
+                rcond: None,
+            }));
+        }
+        Ok(Self {
+            a,
+            symbolic: symbolic.clone(),
+            values,
+            what: what.into(),
+        })
+    }
+
+    fn solve_once(&self, rhs: MatRef<'_, f64>) -> Mat<f64> {
+        let mut x = rhs.to_owned();
+        let sym = self.symbolic.inner();
+        let par = faer::get_global_parallelism();
+        let mut mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(x.ncols(), par));
+        LdltRef::<'_, usize, f64>::new(sym, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            x.as_mut(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+        );
+        x
+    }
+
+    /// $A^{-1}B$, refined until $\|AX - B\|_F \le$ [`INDEFINITE_SOLVE_TOLERANCE`]
+    /// $\|B\|_F$ (else [`LinalgError::SolveInaccurate`] with the residual reached).
+    pub fn solve(&self, b: MatRef<'_, f64>) -> Result<Mat<f64>> {
+        let norm_b = b.norm_l2();
+        let mut x = self.solve_once(b);
+        let mut residual = f64::INFINITY;
+        for _ in 0..=REFINEMENTS {
+            let r = b - self.a.mul(x.as_ref());
+            residual = if norm_b > 0.0 {
+                r.norm_l2() / norm_b
+            } else {
+                r.norm_l2()
+            };
+            if residual <= INDEFINITE_SOLVE_TOLERANCE {
+                return Ok(x);
+            }
+            if !residual.is_finite() {
+                break;
+            }
+            x += self.solve_once(r.as_ref());
+        }
+        Err(Error::Linalg(LinalgError::SolveInaccurate {
+            matrix: self.what.clone(),
+            residual,
+            tolerance: INDEFINITE_SOLVE_TOLERANCE,
+        }))
+    }
+}
