@@ -607,27 +607,16 @@ fn charts(points: &[BodyBenchPoint], text: &str) -> RecordingContent {
              no place on a log axis and are in the table only.\n\n{text}"
         ),
         visuals,
-        layout: Layout::Horizontal(
-            vec![
-                Layout::Spatial2D {
-                    name: "frequency error against offline s (log–log)".into(),
-                    origin: "/bench/error_vs_offline".into(),
-                },
-                Layout::Vertical(
-                    vec![
-                        Layout::Spatial2D {
-                            name: "frequency error against coordinates (log–log)".into(),
-                            origin: "/bench/error_vs_size".into(),
-                        },
-                        Layout::Text {
-                            name: "table".into(),
-                            origin: "/scene".into(),
-                        },
-                    ],
-                    vec![1.0, 1.0],
-                ),
-            ],
-            vec![1.2, 1.0],
+        layout: Layout::bench_charts(
+            (
+                "frequency error against offline s (log–log)",
+                "/bench/error_vs_offline",
+            ),
+            (
+                "frequency error against coordinates (log–log)",
+                "/bench/error_vs_size",
+            ),
+            1.2,
         ),
         timeline: None,
         y_up: false,

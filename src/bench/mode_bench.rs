@@ -297,27 +297,16 @@ fn charts(points: &[ModeBenchPoint], table: &str) -> RecordingContent {
              `--refine` makes the costs differ. The table gives the numbers.\n\n{table}"
         ),
         visuals,
-        layout: Layout::Horizontal(
-            vec![
-                Layout::Spatial2D {
-                    name: "error against offline s (log–log)".into(),
-                    origin: "/bench/error_vs_offline".into(),
-                },
-                Layout::Vertical(
-                    vec![
-                        Layout::Spatial2D {
-                            name: "error against kept modes (log–log)".into(),
-                            origin: "/bench/error_vs_modes".into(),
-                        },
-                        Layout::Text {
-                            name: "table".into(),
-                            origin: "/scene".into(),
-                        },
-                    ],
-                    vec![1.0, 1.0],
-                ),
-            ],
-            vec![1.2, 1.0],
+        layout: Layout::bench_charts(
+            (
+                "error against offline s (log–log)",
+                "/bench/error_vs_offline",
+            ),
+            (
+                "error against kept modes (log–log)",
+                "/bench/error_vs_modes",
+            ),
+            1.2,
         ),
         timeline: None,
         y_up: false,

@@ -532,27 +532,16 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
              {table}"
         ),
         visuals,
-        layout: Layout::Horizontal(
-            vec![
-                Layout::Spatial2D {
-                    name: "error against online cost (log–log)".into(),
-                    origin: "/bench/error_vs_cost".into(),
-                },
-                Layout::Vertical(
-                    vec![
-                        Layout::Spatial2D {
-                            name: "error against kept modes 2–12 (log–log)".into(),
-                            origin: "/bench/error_vs_modes".into(),
-                        },
-                        Layout::Text {
-                            name: "table".into(),
-                            origin: "/scene".into(),
-                        },
-                    ],
-                    vec![1.0, 1.0],
-                ),
-            ],
-            vec![3.0, 2.0],
+        layout: Layout::bench_charts(
+            (
+                "error against online cost (log–log)",
+                "/bench/error_vs_cost",
+            ),
+            (
+                "error against kept modes 2–12 (log–log)",
+                "/bench/error_vs_modes",
+            ),
+            1.5,
         ),
         timeline: None,
         y_up: false,

@@ -69,6 +69,32 @@ impl Layout {
         }
     }
 
+    /// The benches' sheet: a large chart on the left (`main`: name and origin), a second
+    /// chart above the `scene` text as a table on the right; `left` is the left column's
+    /// share of the width against the right's 1.
+    pub fn bench_charts(main: (&str, &str), second: (&str, &str), left: f32) -> Self {
+        let chart = |(name, origin): (&str, &str)| Layout::Spatial2D {
+            name: name.into(),
+            origin: origin.into(),
+        };
+        Layout::Horizontal(
+            vec![
+                chart(main),
+                Layout::Vertical(
+                    vec![
+                        chart(second),
+                        Layout::Text {
+                            name: "table".into(),
+                            origin: "/scene".into(),
+                        },
+                    ],
+                    vec![1.0, 1.0],
+                ),
+            ],
+            vec![left, 1.0],
+        )
+    }
+
     /// Origins of the 3D views.
     pub fn spatial_origins(&self) -> Vec<String> {
         match self {
