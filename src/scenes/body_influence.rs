@@ -46,7 +46,7 @@ pub fn influence_table(
         "Modal influence across the interfaces (Gregory's coefficient, Spanos–Tsuha Eq. 44, \
          of the {count} lowest elastic free-free modes from the interface loads to their \
          work-conjugate displacements, ζ = {BALANCED_ZETA}; Eq. 45's closeness {:.2}, the \
-         approximation holding where ≪ 1): {lowest_in_top} of the {kept} most influential \
+         approximation holding where it is far below 1): {lowest_in_top} of the {kept} most influential \
          modes are among the {kept} lowest.",
         influence.closeness
     );
