@@ -1124,3 +1124,39 @@ fn bench_modes_charts_every_method_on_an_external_body() {
     assert_eq!(&std::fs::read(&rrd).unwrap()[..3], b"RRF");
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+#[test]
+fn report_modes_compares_interface_responses_over_a_band() {
+    // The link's bore tied to a master: moment matching with 36 columns reproduces the full
+    // body's interface response (sparse LDLᵀ per frequency) to 1e-6 over 0–16 kHz, BH's free
+    // modes alone do not; --band belongs to the body scene only.
+    let body = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/bodies/steel-link/body.toml"
+    );
+    let v = json(&[
+        "report",
+        "modes",
+        "--body",
+        body,
+        "--boundary",
+        "rbe2:bore_a",
+        "--method",
+        "mm,bh",
+        "--modes",
+        "36",
+        "--band",
+        "16000",
+        "--json",
+    ]);
+    let r = &v["results"]["interface_response"];
+    let hz = r["hz"].as_array().unwrap();
+    assert!(hz.len() >= 20 && hz.len() <= 24, "{hz:?}");
+    let mm = r["rel_error"]["mm"].as_f64().unwrap();
+    let bh = r["rel_error"]["bh"].as_f64().unwrap();
+    assert!(mm < 1e-6, "MM {mm:e}");
+    assert!(bh > 1e-3, "BH {bh:e}");
+    let out = flexmodes(&["report", "slab-modes", "--band", "100"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--band"));
+}

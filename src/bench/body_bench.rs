@@ -13,14 +13,11 @@ use serde_json::{Value, json};
 
 use crate::{
     Error, Progress, Result,
-    analysis::{
-        ZeroEnergyCount, count_zero_energy_modes, full_dynamic_compliance,
-        off_resonance_frequencies, pair_modes, reduced_dynamic_compliance,
-    },
+    analysis::pair_modes,
     bench::{pareto_flags, three_digits},
     body_file::ImportedBody,
     linalg::{peak_resident_bytes, reset_peak_resident},
-    models::{BODY_METHODS, BodyInterfaces, BodyReducer},
+    models::{BODY_METHODS, BodyInterfaces, BodyReducer, InterfaceResponse, modes_up_to},
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::{Method, ModeSelection, ReductionError},
     report::{Report, markdown_table, sig},
@@ -35,9 +32,6 @@ pub const BODY_MODE_SWEEP: [usize; 4] = [4, 8, 16, 32];
 
 /// Frequency errors below this are round-off, equal for the Pareto front.
 pub const ROUND_OFF_ERROR: f64 = 1e-10;
-
-/// Frequencies at which the interface response is compared over a band.
-pub const FRF_POINTS: usize = 24;
 
 /// Elastic modes compared when no band is given.
 pub const BODY_COMPARED_MODES: usize = 6;
@@ -125,7 +119,7 @@ pub fn bench_body_modes(
     }
     progress.phase("full body's modes")?;
     let started = Instant::now();
-    let full = full_modes_in_band(body, p.band_hz, progress)?;
+    let full = modes_up_to(&body.model, p.band_hz, BODY_COMPARED_MODES, progress)?;
     let reference_s = started.elapsed().as_secs_f64();
     let full_hz = full.elastic_hz();
     let compared = match p.band_hz {
@@ -146,10 +140,9 @@ pub fn bench_body_modes(
         Some(top) => {
             let loads = BodyReducer::new(model, interfaces.clone(), &full, 0.0, progress.clone())?
                 .loads()?;
-            let hz = off_resonance_frequencies(top, FRF_POINTS, &full_hz);
-            let started = Instant::now();
-            let reference = full_dynamic_compliance(model, loads.matrix.as_ref(), &hz, progress)?;
-            Some((loads, hz, reference, started.elapsed().as_secs_f64()))
+            Some(InterfaceResponse::of_full_body(
+                model, loads, top, &full_hz, progress,
+            )?)
         }
         None => None,
     };
@@ -220,10 +213,7 @@ pub fn bench_body_modes(
                 pairs.iter().map(|q| q.mac).fold(1.0, f64::min)
             };
             let frf_error = match &frf {
-                Some((loads, hz, reference, _)) => Some(
-                    reduced_dynamic_compliance(model, &reduced.basis, loads.matrix.as_ref(), hz)?
-                        .relative_magnitude_error(reference)?,
-                ),
+                Some(response) => Some(response.error_of(model, &reduced.basis)?),
                 None => None,
             };
             points.push(BodyBenchPoint {
@@ -269,24 +259,13 @@ pub fn bench_body_modes(
             progress.clone(),
         )?,
     )?;
-    let frf_note = frf.as_ref().map(|(loads, hz, _, s)| {
-        format!(
-            " FRF error: the interface response H = Lᵀ(K − ω²M)⁻¹L of the {} interface loads, \
-             undamped, at {} frequencies over (0, {:.4}] Hz at least {:.0} % from every \
-             full-body resonance (the full body by a sparse LDLᵀ per frequency, every solve \
-             refined to a residual of 1e-9: {s:.2} s); per channel the largest magnitude \
-             difference over the band relative to the channel's peak, the largest channel.",
-            loads.count(),
-            hz.len(),
-            hz.last().copied().unwrap_or(0.0),
-            100.0 * crate::analysis::RESONANCE_CLEARANCE
-        )
-    });
+    let frf_note = frf
+        .as_ref()
+        .map(|response| format!(" FRF error: {}.", response.describe()));
     let text = table_text(
         body,
         &items,
-        &full_hz[..compared],
-        reference_s,
+        (&full_hz[..compared], reference_s),
         &points,
         &refused,
         &advice,
@@ -319,35 +298,6 @@ pub fn bench_body_modes(
     });
     let recording = charts(&points, &text);
     Ok((json, text, recording))
-}
-
-/// The body's zero-energy modes and enough elastic ones: every one up to `band_hz` (doubling
-/// the count until one lies above it), or [`BODY_COMPARED_MODES`].
-fn full_modes_in_band(
-    body: &ImportedBody,
-    band_hz: Option<f64>,
-    progress: &Progress,
-) -> Result<ZeroEnergyCount> {
-    let Some(top) = band_hz else {
-        return count_zero_energy_modes(&body.model, BODY_COMPARED_MODES);
-    };
-    let mut wanted = 12;
-    loop {
-        progress.phase(&format!("full body: lowest {wanted} elastic modes"))?;
-        let full = count_zero_energy_modes(&body.model, wanted)?;
-        let hz = full.elastic_hz();
-        if hz.last().is_some_and(|&f| f > top) || hz.len() < wanted {
-            return Ok(full);
-        }
-        if wanted >= 400 {
-            return Err(ReductionError::TooManyModes {
-                requested: 2 * wanted,
-                available: 400,
-            }
-            .into());
-        }
-        wanted *= 2;
-    }
 }
 
 /// A model the advice names: (kept modes, reduced coordinates, frequency error).
@@ -429,8 +379,7 @@ fn advise(
 fn table_text(
     body: &ImportedBody,
     items: &[String],
-    compared_hz: &[f64],
-    reference_s: f64,
+    (compared_hz, reference_s): (&[f64], f64),
     points: &[BodyBenchPoint],
     refused: &[(Method, String)],
     advice: &BodyAdvice,

@@ -247,6 +247,10 @@ pub(super) struct OptionArgs {
     /// `modes --body` only).
     #[arg(long, value_name = "N")]
     pub(super) interface_modes: Option<usize>,
+    /// Compare each model's interface response with the full body's from 0 to this
+    /// frequency, Hz (`modes --body` only).
+    #[arg(long, value_name = "HZ")]
+    pub(super) band: Option<f64>,
     /// Simulated interval of the dynamic scenes, s.
     #[arg(long)]
     pub(super) end_time: Option<f64>,
@@ -330,6 +334,7 @@ impl OptionArgs {
             rigid_interfaces,
             averaging_interfaces,
             interface_modes: self.interface_modes,
+            band_hz: self.band,
             axes: self.axes,
             end_time: self.end_time,
             integrator,

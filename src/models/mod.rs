@@ -7,6 +7,7 @@ mod cantilever_study;
 mod dual_spin_study;
 mod failure_studies;
 mod interface_reduction_sweep;
+mod interface_response;
 mod plank_simulation;
 mod slab_simulation;
 mod statically_determinate_support;
@@ -36,6 +37,7 @@ pub use failure_studies::{
 pub use interface_reduction_sweep::{
     INTERFACE_MODE_SWEEP, InterfaceReductionPoint, interface_reduction_sweep,
 };
+pub use interface_response::{InterfaceResponse, MOST_BAND_MODES, RESPONSE_POINTS, modes_up_to};
 pub use plank_simulation::{
     MID_X as PLANK_MID_X, PLANK_BOUNDARY, PlankSetup, Variant as PlankVariant, plank_body,
     plank_nodal_fixed, plank_setup, plank_system, symmetry_history,

@@ -13,13 +13,13 @@ use super::{
 };
 use crate::analysis::pair_modes;
 use crate::models::{
-    BODY_METHODS, BodyInterfaces, BodyReducer, INTERFACE_MODE_SWEEP, interface_reduction_sweep,
+    BODY_METHODS, BodyInterfaces, BodyReducer, INTERFACE_MODE_SWEEP, InterfaceResponse,
+    interface_reduction_sweep, modes_up_to,
 };
 use crate::record::{LogLogChart, LogLogSeries};
 use crate::reduction::{Basis, ColumnKind, ReductionError};
 use crate::{
     Error, Result,
-    analysis::count_zero_energy_modes,
     body_file::{BodyHandle, ImportedBody},
     linalg::{GeneralizedEigen, principal_angles},
     record::{Layout, Visual},
@@ -113,7 +113,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
 
     opts.progress.phase("full body's lowest modes")?;
     let started = Instant::now();
-    let full = count_zero_energy_modes(model, FULL_MODES)?;
+    let full = modes_up_to(model, opts.band_hz, FULL_MODES, &opts.progress)?;
     let full_s = started.elapsed().as_secs_f64();
     super::body_import::refuse_mechanism(model, &full)?;
     let full_hz = full.elastic_hz();
@@ -140,6 +140,18 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         full_s,
         opts.progress.clone(),
     )?;
+    // The full body's interface response over --band, and each model's below.
+    let response = match opts.band_hz {
+        Some(top) => Some(InterfaceResponse::of_full_body(
+            model,
+            reducer.loads()?,
+            top,
+            &full.elastic_hz(),
+            &opts.progress,
+        )?),
+        None => None,
+    };
+    let mut responses = Vec::new();
     // The constraint and fixed-interface modes, when a boundary holds the body (rbe3
     // interfaces alone hold nothing).
     let held = if boundary.is_empty() {
@@ -209,6 +221,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         };
         if let Some(note) = &model_of.note {
             notes.push(format!("{}: {note}", m.id().to_uppercase()));
+        }
+        if let Some(r) = &response {
+            responses.push((m, r.of_model(model, &model_of.basis)?));
         }
         let elapsed = model_of.offline_s;
         if m == Method::CraigBampton {
@@ -433,12 +448,25 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }
     let influence_md = format!("\n\n{influence_text}\n\n{}", influence.markdown());
     report.add_table(influence);
+    let response_md = match &response {
+        Some(r) => {
+            let (table, json, chart, view, text) =
+                super::body_response::response_table(r, &responses)?;
+            report.results.insert("interface_response".into(), json);
+            visuals.extend(chart);
+            bars.push(view);
+            let md = format!("\n\n{text}\n\n{}", table.markdown());
+            report.add_table(table);
+            md
+        }
+        None => String::new(),
+    };
     let units = &body.units;
     report.table = format!(
         "Body `{}` ({}): {dofs} DOF, {} stiffness entries, {} zero-energy mode(s); units {}, \
          {}, {}. Interface {} node(s) {}{}, {kept} kept modes.\n\n{summary}\nFull body, \
          lowest elastic: {}\n\nFixed-interface: {}\n\nEigen residuals \
-         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n{}{sweep_md}{influence_md}",
+         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n{}{sweep_md}{influence_md}{response_md}",
         model.name,
         body.location.display(),
         model.stiffness_nnz(),

@@ -7,6 +7,7 @@ mod beam_profiles;
 pub mod body_import;
 mod body_influence;
 pub mod body_modes;
+mod body_response;
 pub mod cantilever_variants;
 mod failures;
 mod mode_visuals;

@@ -30,6 +30,9 @@ pub struct SceneOptions {
     /// `--interface-modes N`: the interface's constraint modes reduced to N characteristic
     /// constraint modes (a body file's scene only).
     pub interface_modes: Option<usize>,
+    /// `--band HZ`: compare each model's interface response with the full body's up to this
+    /// frequency (a body file's scene only).
+    pub band_hz: Option<f64>,
     /// `--axes`: axis type id.
     pub axes: Option<AxisKind>,
     /// `--end-time`: simulated interval of the dynamic scenes, s.

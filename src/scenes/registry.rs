@@ -26,6 +26,23 @@ impl Scene {
             });
         }
         opts.check_integrator(&self.info)?;
+        if opts.band_hz.is_some() && self.info.id != super::body_modes::INFO.id {
+            return Err(Error::InvalidOption {
+                scene: self.info.id.into(),
+                reason: format!(
+                    "--band compares interface responses in the `{}` scene only",
+                    super::body_modes::INFO.id
+                ),
+            });
+        }
+        if let Some(b) = opts.band_hz
+            && !(b.is_finite() && b > 0.0)
+        {
+            return Err(Error::InvalidOption {
+                scene: self.info.id.into(),
+                reason: format!("--band must be a positive frequency in Hz, not {b}"),
+            });
+        }
         if opts.body.is_some() && self.info.id != super::body_modes::INFO.id {
             return Err(Error::InvalidOption {
                 scene: self.info.id.into(),
