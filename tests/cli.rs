@@ -1118,8 +1118,10 @@ fn bench_modes_charts_every_method_on_an_external_body() {
     }
     // With a band every model's interface response is compared with the full body's.
     for p in points {
-        let e = p["frf_rel_error"].as_f64().unwrap_or(f64::NAN);
-        assert!(e.is_finite() && e >= 0.0, "{p}");
+        for key in ["frf_rel_error", "static_rel_error"] {
+            let e = p[key].as_f64().unwrap_or(f64::NAN);
+            assert!(e.is_finite() && e >= 0.0, "{key}: {p}");
+        }
     }
     assert_eq!(&std::fs::read(&rrd).unwrap()[..3], b"RRF");
     std::fs::remove_dir_all(&out).unwrap();

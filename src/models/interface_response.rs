@@ -5,6 +5,8 @@
 
 use std::time::Instant;
 
+use faer::{Mat, MatRef};
+
 use crate::{
     Progress, Result,
     analysis::{
@@ -12,6 +14,7 @@ use crate::{
         full_dynamic_compliance, off_resonance_frequencies, reduced_dynamic_compliance,
     },
     fem::FeModel,
+    linalg::{GeneralizedEigen, LinalgError, SymbolicFactor, SymmetricFactor, nested_dissection},
     reduction::{Basis, InterfaceLoads, ReductionError},
 };
 
@@ -111,5 +114,108 @@ pub fn modes_up_to(
             .into());
         }
         wanted *= 2;
+    }
+}
+
+/// Shift of $K + \sigma M$, as a fraction of the lowest elastic eigenvalue, used to reach
+/// $K^+$ by the fixed-point iteration of [`InterfaceStatics::of_full_body`].
+const STATIC_SHIFT: f64 = 1e-3;
+
+/// Largest iterations of that fixed point (each gains a factor $\sigma/(\omega_1^2+\sigma)$).
+const STATIC_ITERATIONS: usize = 12;
+
+/// A free body's elastic static compliance across its interfaces, $G = L^T K^+ L_e$: the
+/// loads made self-equilibrated by inertia relief, $L_e = (I - M\Phi_r\Phi_r^T)L$, the
+/// response taken $M$-orthogonal to the rigid motions $\Phi_r$ (its zero-energy modes).
+#[derive(Debug, Clone)]
+pub struct InterfaceStatics {
+    /// The loads.
+    pub loads: InterfaceLoads,
+    /// The full body's $G$, loads × loads.
+    pub full: Mat<f64>,
+    /// Wall time, s.
+    pub full_s: f64,
+}
+
+impl InterfaceStatics {
+    /// $G$ of the full body: $x = K^+ L_e$ by the fixed point
+    /// $x \leftarrow (K + \sigma M)^{-1}(L_e + \sigma M x)$ on one sparse Cholesky of
+    /// $K + \sigma M$ ($\sigma$ = [`STATIC_SHIFT`] of the lowest elastic eigenvalue
+    /// `lowest`), until the update is below 1e-12 of $x$; `zero` are the body's
+    /// mass-normalised zero-energy modes.
+    pub fn of_full_body(
+        model: &FeModel,
+        loads: InterfaceLoads,
+        zero: MatRef<'_, f64>,
+        lowest: f64,
+        progress: &Progress,
+    ) -> Result<Self> {
+        progress.phase("full body's static compliance")?;
+        let started = Instant::now();
+        let sigma = STATIC_SHIFT * lowest;
+        let shifted = model.k.shifted(&model.m, -sigma);
+        let coords: Vec<[f64; 3]> = (0..model.dof_count())
+            .map(|d| model.dof_position(d))
+            .collect();
+        let order = nested_dissection(shifted.as_faer(), &coords);
+        let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
+        let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "K + σM")?;
+        let project_loads = |b: Mat<f64>| {
+            // b − MΦ_r Φ_rᵀ b
+            let mz = model.m.mul(zero);
+            let c = zero.transpose() * &b;
+            b - &mz * &c
+        };
+        let project_motion = |x: Mat<f64>| {
+            // x − Φ_r Φ_rᵀ M x
+            let c = zero.transpose() * model.m.mul(x.as_ref());
+            x - zero * &c
+        };
+        let le = project_loads(loads.matrix.clone());
+        let mut x = project_motion(factor.solve(le.as_ref()));
+        let mut converged = false;
+        for _ in 0..STATIC_ITERATIONS {
+            let rhs = &le + model.m.mul(x.as_ref()) * sigma;
+            let next = project_motion(factor.solve(rhs.as_ref()));
+            let change = (&next - &x).norm_l2() / next.norm_l2().max(f64::MIN_POSITIVE);
+            x = next;
+            if change <= 1e-12 {
+                converged = true;
+                break;
+            }
+        }
+        // The check: K x = L_e, by a sparse product.
+        let residual = (model.k.mul(x.as_ref()) - &le).norm_l2() / le.norm_l2();
+        if !converged || !(residual <= 1e-8) {
+            return Err(LinalgError::SolveInaccurate {
+                matrix: "K (inertia-relief static compliance)".into(),
+                residual,
+                tolerance: 1e-8,
+            }
+            .into());
+        }
+        Ok(Self {
+            full: loads.matrix.transpose() * &x,
+            loads,
+            full_s: started.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// The same compliance of a reduced model from its own modes: the elastic ones
+    /// ($\lambda$ above the zero-energy count `zero_modes`), $G_r = \sum (L^T\Psi v)(v^T\Psi^T
+    /// L)/\lambda$, and its relative difference from the full body's (Frobenius).
+    pub fn error_of(&self, basis: &Basis, modes: &GeneralizedEigen, zero_modes: usize) -> f64 {
+        let lr = basis.psi.transpose() * &self.loads.matrix;
+        let p = lr.ncols();
+        let mut g = Mat::<f64>::zeros(p, p);
+        for (k, &lambda) in modes.values.iter().enumerate().skip(zero_modes) {
+            let a = lr.transpose() * modes.vectors.col(k);
+            for i in 0..p {
+                for j in 0..p {
+                    g[(i, j)] += a[i] * a[j] / lambda;
+                }
+            }
+        }
+        (&g - &self.full).norm_l2() / self.full.norm_l2()
     }
 }

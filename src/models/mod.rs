@@ -37,7 +37,9 @@ pub use failure_studies::{
 pub use interface_reduction_sweep::{
     INTERFACE_MODE_SWEEP, InterfaceReductionPoint, interface_reduction_sweep,
 };
-pub use interface_response::{InterfaceResponse, MOST_BAND_MODES, RESPONSE_POINTS, modes_up_to};
+pub use interface_response::{
+    InterfaceResponse, InterfaceStatics, MOST_BAND_MODES, RESPONSE_POINTS, modes_up_to,
+};
 pub use plank_simulation::{
     MID_X as PLANK_MID_X, PLANK_BOUNDARY, PlankSetup, Variant as PlankVariant, plank_body,
     plank_nodal_fixed, plank_setup, plank_system, symmetry_history,
