@@ -186,7 +186,7 @@ impl InterfaceStatics {
         }
         // The check: K x = L_e, by a sparse product.
         let residual = (model.k.mul(x.as_ref()) - &le).norm_l2() / le.norm_l2();
-        if !converged || !(residual <= 1e-8) {
+        if !converged || residual.is_nan() || residual > 1e-8 {
             return Err(LinalgError::SolveInaccurate {
                 matrix: "K (inertia-relief static compliance)".into(),
                 residual,
