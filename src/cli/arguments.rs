@@ -162,6 +162,68 @@ pub(super) enum Command {
         #[arg(long)]
         timings: bool,
     },
+    /// Simulate a body driven through a rigid interface: the full body (NR, sparse) and
+    /// reduced models (gr, mt, cb, mc) run the same spin-up; each model's history and reaction
+    /// against the full body's, its offline and online time.
+    Simulate {
+        /// The body file (TOML), or `builtin:NAME`.
+        #[arg(long)]
+        body: String,
+        /// The driven interface, `rbe2:SET` or an rbe2 interface of the body file: its master
+        /// follows the spin-up, its ring clamped in the turning frame.
+        #[arg(long)]
+        drive: String,
+        /// Other interfaces the reduced models keep (node sets, `rbe2:SET`), free in the
+        /// simulation.
+        #[arg(long, value_delimiter = ',')]
+        boundary: Vec<String>,
+        /// Node sets whose mean displacement is the history (default: every set but the
+        /// drive's).
+        #[arg(long, value_delimiter = ',')]
+        output: Vec<String>,
+        /// Models: nr (the full body) and gr, mt, cb, mc.
+        #[arg(long, value_delimiter = ',', default_value = "nr,cb,mc")]
+        method: Vec<Method>,
+        /// Kept fixed-interface modes, one model per count.
+        #[arg(long, value_delimiter = ',', default_value = "10")]
+        modes: Vec<usize>,
+        /// The motion; `spin-up` (about --axis through the drive's master).
+        #[arg(long, default_value = "spin-up")]
+        motion: String,
+        /// Spin axis in body axes, X,Y,Z.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            num_args = 3,
+            default_value = "0,0,1",
+            allow_hyphen_values = true
+        )]
+        axis: Vec<f64>,
+        /// Steady spin rate, rad/s.
+        #[arg(long, default_value_t = 100.0)]
+        rate: f64,
+        /// Ramp time of the spin-up, s.
+        #[arg(long, default_value_t = 0.5)]
+        ramp: f64,
+        /// End time, s.
+        #[arg(long, default_value_t = 1.0)]
+        end: f64,
+        /// Step of generalized-α, s.
+        #[arg(long, default_value_t = 1e-3)]
+        dt: f64,
+        /// Spectral radius at infinite frequency of generalized-α.
+        #[arg(long, default_value_t = 0.9)]
+        rho: f64,
+        /// Samples of the history (evenly spaced over the steps).
+        #[arg(long, default_value_t = 100)]
+        samples: usize,
+        /// Gravity in ground axes, m/s², X,Y,Z (default: off).
+        #[arg(long, value_delimiter = ',', num_args = 3, allow_hyphen_values = true)]
+        gravity: Option<Vec<f64>>,
+        /// Print the results as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {
         /// Scene id.

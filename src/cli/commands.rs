@@ -283,6 +283,71 @@ fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
+        Command::Simulate {
+            body,
+            drive,
+            boundary,
+            output,
+            method,
+            modes,
+            motion,
+            axis,
+            rate,
+            ramp,
+            end,
+            dt,
+            rho,
+            samples,
+            gravity,
+            json,
+        } => {
+            if motion != "spin-up" {
+                return Err(Error::InvalidOption {
+                    scene: "simulate".into(),
+                    reason: format!("unknown motion `{motion}` (known: spin-up)"),
+                });
+            }
+            let body = ImportedBody::load(&body)?;
+            let steps = (end / dt).round().max(1.0) as usize;
+            let parameters = crate::models::DrivenBodyParameters {
+                drive,
+                boundary,
+                outputs: output,
+                axis: [axis[0], axis[1], axis[2]],
+                rate,
+                ramp,
+                gravity: gravity.map(|g| [g[0], g[1], g[2]]),
+                integration: crate::dynamics::DrivenIntegration {
+                    step: dt,
+                    end,
+                    spectral_radius: rho,
+                    output_every: (steps / samples.max(1)).max(1),
+                },
+            };
+            let full = method.contains(&crate::reduction::Method::NoReduction);
+            let reduced: Vec<_> = method
+                .into_iter()
+                .filter(|m| *m != crate::reduction::Method::NoReduction)
+                .collect();
+            let handle = Progress::new();
+            let bar = TerminalProgress::start(&handle, "simulate");
+            let study = crate::models::driven_body_study(
+                &body,
+                &parameters,
+                &reduced,
+                &modes,
+                full,
+                &handle,
+            )?;
+            drop(bar);
+            let (value, text) = scenes::body_simulation::summary(&body, &parameters, &study);
+            if json {
+                println!("{value}");
+            } else {
+                println!("{text}");
+            }
+            Ok(())
+        }
         Command::Import { body, json } => {
             let body = ImportedBody::load(&body)?;
             let (value, text) = scenes::body_import::import_summary(&body)?;

@@ -7,6 +7,8 @@ mod axes;
 mod body;
 mod constraint;
 mod dormand_prince;
+mod driven_frame_body;
+mod driven_integration;
 mod generalized_alpha;
 mod inertia_invariants;
 mod integrator;
@@ -14,6 +16,7 @@ mod integrator_parameters;
 mod prescribed;
 mod rotation;
 mod simulation;
+mod spin_up;
 mod system;
 mod system_constraints;
 mod system_kinematics;
@@ -23,6 +26,11 @@ pub use axes::{AxisKind, AxisType};
 pub use body::{Body, FlexibleBody, ModalMassInverse, RigidBody};
 pub use constraint::{Attachment, Constraint};
 pub use dormand_prince::{critical_step, imaginary_stability_limit, stability_polynomial};
+pub use driven_frame_body::{
+    Combination, DRIVEN_SOLVE_TOLERANCE, DrivenFrameBody, ISOTROPIC_MASS_TOLERANCE, free_rows,
+    positions,
+};
+pub use driven_integration::{DrivenCost, DrivenIntegration, Driving, integrate_driven};
 pub use generalized_alpha::GeneralizedAlphaCoefficients;
 pub use inertia_invariants::InertiaInvariants;
 pub use integrator::simulate;
@@ -32,4 +40,5 @@ pub use integrator_parameters::{
 pub use prescribed::Motion;
 pub use rotation::{euler_parameters_from_matrix, rotation_matrix, skew};
 pub use simulation::{Sample, Simulation};
+pub use spin_up::SpinUp;
 pub use system::{STANDARD_GRAVITY, State, System};

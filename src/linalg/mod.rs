@@ -4,6 +4,7 @@
 
 mod dense;
 mod generalized_eigen;
+mod gmres;
 mod indefinite_factor;
 mod lyapunov;
 mod mass_matrix;
@@ -24,6 +25,7 @@ pub use generalized_eigen::{
     GeneralizedEigen, MASS_ORTHONORMALITY, PENCIL_BACKWARD_ERROR, PencilCheck, ZERO_ENERGY_RATIO,
     check_pencil, eigenvalue_scale, fix_sign, generalized_eigen, hz_from_eigenvalue,
 };
+pub use gmres::{GmresParameters, GmresStatistics, preconditioned_gmres};
 pub use indefinite_factor::{INDEFINITE_SOLVE_TOLERANCE, IndefiniteFactor};
 pub use lyapunov::{solve_block_diagonal_lyapunov, solve_lyapunov};
 pub use mass_matrix::MassMatrix;

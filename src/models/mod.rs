@@ -4,6 +4,7 @@
 
 mod body_reduction;
 mod cantilever_study;
+mod driven_body;
 mod dual_spin_study;
 mod failure_studies;
 mod interface_reduction_sweep;
@@ -20,6 +21,10 @@ pub use cantilever_study::{
     BAND_HZ, BT_ALPHA, CANTILEVER_METHODS, CantileverIo, CantileverStudy,
     INTEREST_HZ as WITTEVEEN_INTEREST_HZ, POINT_MASS_T, PRINTED_HZ, Printed, StaticCase,
     VariantModes, bottom_line_error, cantilever_study, witteveen_bases,
+};
+pub use driven_body::{
+    DRIVEN_METHODS, DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study, history_error,
+    metres_per,
 };
 pub use dual_spin_study::{
     ARTICULATION_DEG, AssembledSet, DUAL_SPIN_METHODS, DualSpinSets, DualSpinStudy,

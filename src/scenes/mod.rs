@@ -8,6 +8,7 @@ pub mod body_import;
 mod body_influence;
 pub mod body_modes;
 mod body_response;
+pub mod body_simulation;
 pub mod cantilever_variants;
 mod failures;
 mod mode_visuals;

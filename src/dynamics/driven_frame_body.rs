@@ -1,0 +1,505 @@
+//! A linear elastic body on a frame driven about a fixed axis through the frame's origin: the
+//! driven interface's master, its ring clamped in the frame (nodal-fixed axes, Table 4-1,
+//! at an interface instead of a node).
+//!
+//! With the frame turning by $\theta(t)$ about the unit axis $e$, the nodal displacements $u$
+//! in the frame and a mass matrix that is the same on each direction of a node,
+//! $M = M_s \otimes I_3$ (lumped, or consistent from one scalar shape function per node), the
+//! kinetic energy $\tfrac12 (\dot u + \dot\theta\,E(s+u))^T M (\dot u + \dot\theta\,E(s+u))$
+//! ($E = I \otimes \tilde e$, $s$ the undeformed positions about the origin; Eq. 3.14 with
+//! the frame's motion given) gives Lagrange's equations
+//! $$M\ddot u + 2\dot\theta\,G\dot u + (K + \ddot\theta\,G + \dot\theta^2 H)u
+//! = -\ddot\theta\,Gs - \dot\theta^2 Hs + M(1 \otimes A^T g),$$
+//! with $G = ME$ (skew: $M$ commutes with $E$) and $H = ME^2$ (symmetric), all restricted to
+//! the DOF outside the clamped ring, and $A$ the frame's orientation (gravity $g$ turns in the
+//! frame). They are exact for small strains in the frame, as the floating-frame equations
+//! are; they are linear with time-varying coefficients.
+//!
+//! The same equations hold in reduced coordinates $u = \Psi z$ with each operator projected,
+//! $\Psi^T X \Psi$. [`DrivenFrameBody`] holds either: the full body sparse (no reduction,
+//! NR) or a reduced body dense.
+
+use faer::{Mat, MatRef};
+use nalgebra::{DMatrix, DVector, Unit, Vector3};
+
+use crate::{
+    Error, Result,
+    error::LinalgError,
+    fem::{DofMap, FeModel},
+    linalg::{
+        GmresParameters, GmresStatistics, MassMatrix, SparseSymmetric, SymbolicFactor,
+        SymmetricFactor, preconditioned_gmres,
+    },
+};
+
+/// Backward error every solve of the effective matrix meets,
+/// $\|b - Ax\| \le \tau(\|b\| + \||A||x|\|)$.
+pub const DRIVEN_SOLVE_TOLERANCE: f64 = 1e-11;
+
+/// Largest relative difference between a node's three direction masses, and of a coupling
+/// between two directions, for the mass matrix to count as $M_s \otimes I_3$.
+pub const ISOTROPIC_MASS_TOLERANCE: f64 = 1e-9;
+
+/// The coefficients of a combination $c_m M + c_k K + c_g G + c_h H$.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Combination {
+    /// Of the mass matrix.
+    pub m: f64,
+    /// Of the stiffness matrix.
+    pub k: f64,
+    /// Of the gyroscopic matrix $G = ME$.
+    pub g: f64,
+    /// Of the centrifugal matrix $H = ME^2$.
+    pub h: f64,
+}
+
+/// The full body, sparse.
+#[derive(Debug)]
+pub struct SparseDriven {
+    /// Full DOF count.
+    n: usize,
+    /// The DOF outside the clamped ring, ascending.
+    free: Vec<usize>,
+    k_ff: SparseSymmetric,
+    m: MassMatrix,
+    m_ff: MassMatrix,
+    axis: Vector3<f64>,
+    symbolic: SymbolicFactor,
+    /// $(c_m, c_k)$ and the factor of $c_m M + c_k K$.
+    factor: Option<((f64, f64), SymmetricFactor)>,
+}
+
+/// A reduced body, dense: every operator projected on Ψ.
+#[derive(Debug, Clone)]
+pub struct DenseDriven {
+    m: DMatrix<f64>,
+    k: DMatrix<f64>,
+    g: DMatrix<f64>,
+    h: DMatrix<f64>,
+}
+
+/// The equations' operators.
+#[derive(Debug)]
+enum Operators {
+    Sparse(Box<SparseDriven>),
+    Dense(DenseDriven),
+}
+
+/// A body on a driven frame (see the module documentation): its operators and load vectors
+/// in its own coordinates (the free DOF, or the modal coordinates of a reduced body).
+#[derive(Debug)]
+pub struct DrivenFrameBody {
+    operators: Operators,
+    /// $Gs$ and $Hs$.
+    g_s: Vec<f64>,
+    h_s: Vec<f64>,
+    /// $M(1 \otimes e_a)$ for a = x, y, z: the load of a unit acceleration of gravity.
+    unit_gravity: [Vec<f64>; 3],
+    /// Solves and Krylov iterations so far.
+    pub solves: usize,
+    /// Krylov iterations so far (sparse body only).
+    pub iterations: usize,
+}
+
+/// Checks that `m` is $M_s \otimes I_3$ on a node-major solid DOF map.
+fn check_isotropic(model: &FeModel) -> Result<()> {
+    let bad = |reason: String| Error::InvalidOption {
+        scene: model.name.clone(),
+        reason,
+    };
+    if model.dofs != DofMap::solid() {
+        return Err(bad(
+            "a driven body needs x, y, z translations per node and no rotations".into(),
+        ));
+    }
+    match &model.m {
+        MassMatrix::Lumped(d) => {
+            for j in 0..d.len() / 3 {
+                let m = d[3 * j];
+                if (1..3).any(|a| (d[3 * j + a] - m).abs() > ISOTROPIC_MASS_TOLERANCE * m.abs()) {
+                    return Err(bad(format!(
+                        "node {} has different masses in x, y, z; the driven frame's equations \
+                         need the same mass on every direction of a node",
+                        j + 1
+                    )));
+                }
+            }
+        }
+        MassMatrix::Consistent(m) => {
+            let a = m.as_faer();
+            let scale = m.max_abs();
+            for j in 0..a.ncols() {
+                let rows = a.symbolic().row_idx_of_col_raw(j);
+                let vals = a.val_of_col(j);
+                for (&i, &v) in rows.iter().zip(vals) {
+                    let (pi, di) = (i / 3, i % 3);
+                    let (pj, dj) = (j / 3, j % 3);
+                    let twin = if di == dj {
+                        // The same entry for the other two directions of the node pair.
+                        (1..3)
+                            .map(|s| {
+                                let d = (di + s) % 3;
+                                m.get(3 * pi + d, 3 * pj + d)
+                            })
+                            .map(|w| (w - v).abs())
+                            .fold(0.0, f64::max)
+                    } else {
+                        v.abs()
+                    };
+                    if twin > ISOTROPIC_MASS_TOLERANCE * scale {
+                        return Err(bad(format!(
+                            "the mass matrix couples node {} and node {} unequally across \
+                             directions (entry {i}, {j}: {v:e}); the driven frame's equations \
+                             need M = Mₛ ⊗ I₃",
+                            pi + 1,
+                            pj + 1
+                        )));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// $y_j = e \times x_j$ per node (`twice`: $e \times (e \times x_j)$).
+fn cross_nodes(axis: &Vector3<f64>, x: &[f64], twice: bool) -> Vec<f64> {
+    let mut y = vec![0.0; x.len()];
+    for (xj, yj) in x.chunks_exact(3).zip(y.chunks_exact_mut(3)) {
+        let v = Vector3::new(xj[0], xj[1], xj[2]);
+        let mut w = axis.cross(&v);
+        if twice {
+            w = axis.cross(&w);
+        }
+        yj.copy_from_slice(w.as_slice());
+    }
+    y
+}
+
+fn mul_mass(m: &MassMatrix, x: &[f64]) -> Vec<f64> {
+    let y = m.mul(MatRef::from_column_major_slice(x, x.len(), 1));
+    (0..x.len()).map(|i| y[(i, 0)]).collect()
+}
+
+impl SparseDriven {
+    fn extend(&self, x: &[f64]) -> Vec<f64> {
+        let mut full = vec![0.0; self.n];
+        for (&d, &v) in self.free.iter().zip(x) {
+            full[d] = v;
+        }
+        full
+    }
+
+    fn restrict(&self, full: &[f64]) -> Vec<f64> {
+        self.free.iter().map(|&d| full[d]).collect()
+    }
+
+    /// $M E^p x$ on the free DOF (p = 1: G, p = 2: H) for a full-length `x`.
+    fn frame_full(&self, x_full: &[f64], twice: bool) -> Vec<f64> {
+        self.restrict(&mul_mass(&self.m, &cross_nodes(&self.axis, x_full, twice)))
+    }
+
+    fn mul(&self, c: Combination, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; x.len()];
+        let mut add = |z: Vec<f64>, s: f64| y.iter_mut().zip(z).for_each(|(y, z)| *y += s * z);
+        if c.m != 0.0 {
+            add(mul_mass(&self.m_ff, x), c.m);
+        }
+        if c.k != 0.0 {
+            let kx = self
+                .k_ff
+                .mul(MatRef::from_column_major_slice(x, x.len(), 1));
+            add((0..x.len()).map(|i| kx[(i, 0)]).collect(), c.k);
+        }
+        if c.g != 0.0 || c.h != 0.0 {
+            let full = self.extend(x);
+            if c.g != 0.0 {
+                add(self.frame_full(&full, false), c.g);
+            }
+            if c.h != 0.0 {
+                add(self.frame_full(&full, true), c.h);
+            }
+        }
+        y
+    }
+
+    /// $\|(|c_m||M| + |c_k||K|)|x|\|$, the scale of the round-off in a product with the
+    /// effective matrix (its small frame terms left out).
+    fn abs_norm(&self, c: Combination, x: &[f64]) -> f64 {
+        let n = x.len();
+        let ax: Vec<f64> = x.iter().map(|v| v.abs()).collect();
+        let col = MatRef::from_column_major_slice(&ax, n, 1);
+        let k = self.k_ff.abs_mul(col);
+        let m: Vec<f64> = match &self.m_ff {
+            MassMatrix::Lumped(d) => d.iter().zip(&ax).map(|(d, x)| d.abs() * x).collect(),
+            MassMatrix::Consistent(m) => {
+                let y = m.abs_mul(col);
+                (0..n).map(|i| y[(i, 0)]).collect()
+            }
+        };
+        (0..n)
+            .map(|i| (c.m.abs() * m[i] + c.k.abs() * k[(i, 0)]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
+
+    /// The factor of $c_m M + c_k K$, kept while the coefficients stay.
+    fn factor(&mut self, c_m: f64, c_k: f64) -> Result<&SymmetricFactor> {
+        let same = self.factor.as_ref().is_some_and(|(c, _)| *c == (c_m, c_k));
+        if !same {
+            self.factor = None;
+            let a = if c_k == 0.0 {
+                return Err(Error::InvalidOption {
+                    scene: "driven body".into(),
+                    reason: "the sparse effective matrix needs a stiffness part".into(),
+                });
+            } else {
+                self.k_ff.shifted(&self.m_ff, -c_m / c_k)
+            };
+            let f = SymmetricFactor::sparse(a.as_faer(), &self.symbolic, "K + c M (free DOF)")?;
+            self.factor = Some(((c_m, c_k), f));
+        }
+        Ok(&self.factor.as_ref().expect("set above").1)
+    }
+}
+
+impl DenseDriven {
+    fn combine(&self, c: Combination) -> DMatrix<f64> {
+        &self.m * c.m + &self.k * c.k + &self.g * c.g + &self.h * c.h
+    }
+}
+
+impl DrivenFrameBody {
+    /// The full body of `model` with the DOF of `ring` (0-based DOF indices) clamped, on a frame
+    /// with its origin at `origin` (model coordinates) turning about `axis`.
+    pub fn full(
+        model: &FeModel,
+        ring: &[usize],
+        origin: [f64; 3],
+        axis: Unit<Vector3<f64>>,
+    ) -> Result<Self> {
+        check_isotropic(model)?;
+        let n = model.dof_count();
+        let mut clamped = vec![false; n];
+        for &d in ring {
+            clamped[d] = true;
+        }
+        let free: Vec<usize> = (0..n).filter(|&d| !clamped[d]).collect();
+        let k_ff = model.k.principal_block(&free);
+        let m_ff = model.m.principal_block(&free);
+        let symbolic = SymbolicFactor::analyse(k_ff.as_faer())?;
+        let s = positions(model, origin);
+        let sparse = SparseDriven {
+            n,
+            free,
+            k_ff,
+            m: model.m.clone(),
+            m_ff,
+            axis: axis.into_inner(),
+            symbolic,
+            factor: None,
+        };
+        let g_s = sparse.frame_full(&s, false);
+        let h_s = sparse.frame_full(&s, true);
+        let unit_gravity = std::array::from_fn(|a| {
+            let mut t = vec![0.0; n];
+            t.iter_mut().skip(a).step_by(3).for_each(|x| *x = 1.0);
+            sparse.restrict(&mul_mass(&sparse.m, &t))
+        });
+        Ok(Self {
+            operators: Operators::Sparse(Box::new(sparse)),
+            g_s,
+            h_s,
+            unit_gravity,
+            solves: 0,
+            iterations: 0,
+        })
+    }
+
+    /// The body reduced by `psi` (rows: the free DOF of `full`, in its order; columns: the
+    /// modal coordinates): every operator and load projected, $\Psi^T X \Psi$, $\Psi^T f$.
+    pub fn reduced(full: &DrivenFrameBody, psi: MatRef<'_, f64>) -> Result<Self> {
+        let Operators::Sparse(sparse) = &full.operators else {
+            return Err(Error::InvalidOption {
+                scene: "driven body".into(),
+                reason: "a reduced body is projected from the full one".into(),
+            });
+        };
+        let (rows, k) = (psi.nrows(), psi.ncols());
+        assert_eq!(rows, sparse.free.len(), "Ψ has a row per free DOF");
+        let columns: Vec<Vec<f64>> = (0..k)
+            .map(|c| (0..rows).map(|i| psi[(i, c)]).collect())
+            .collect();
+        let project = |c: Combination| {
+            let images: Vec<Vec<f64>> = columns.iter().map(|x| sparse.mul(c, x)).collect();
+            let mut out = DMatrix::zeros(k, k);
+            for (i, xi) in columns.iter().enumerate() {
+                for (j, yj) in images.iter().enumerate() {
+                    out[(i, j)] = xi.iter().zip(yj).map(|(a, b)| a * b).sum();
+                }
+            }
+            out
+        };
+        let one = |m, kk, g, h| Combination { m, k: kk, g, h };
+        let mut m = project(one(1.0, 0.0, 0.0, 0.0));
+        let mut kk = project(one(0.0, 1.0, 0.0, 0.0));
+        let mut h = project(one(0.0, 0.0, 0.0, 1.0));
+        let mut g = project(one(0.0, 0.0, 1.0, 0.0));
+        // Exact symmetry (M, K, H) and skew symmetry (G), as the operators have.
+        for mat in [&mut m, &mut kk, &mut h] {
+            *mat = (&*mat + mat.transpose()) * 0.5;
+        }
+        g = (&g - g.transpose()) * 0.5;
+        let project_vector =
+            |v: &[f64]| -> Vec<f64> { columns.iter().map(|x| dot(x, v)).collect() };
+        Ok(Self {
+            operators: Operators::Dense(DenseDriven { m, k: kk, g, h }),
+            g_s: project_vector(&full.g_s),
+            h_s: project_vector(&full.h_s),
+            unit_gravity: std::array::from_fn(|a| project_vector(&full.unit_gravity[a])),
+            solves: 0,
+            iterations: 0,
+        })
+    }
+
+    /// Coordinates: free DOF or modal coordinates.
+    pub fn dim(&self) -> usize {
+        self.g_s.len()
+    }
+
+    /// The free DOF of the full body (empty for a reduced one).
+    pub fn free_dofs(&self) -> &[usize] {
+        match &self.operators {
+            Operators::Sparse(s) => &s.free,
+            Operators::Dense(_) => &[],
+        }
+    }
+
+    /// $(c_m M + c_k K + c_g G + c_h H)\,x$.
+    pub fn mul(&self, c: Combination, x: &[f64]) -> Vec<f64> {
+        match &self.operators {
+            Operators::Sparse(s) => s.mul(c, x),
+            Operators::Dense(d) => {
+                let y = d.combine(c) * DVector::from_column_slice(x);
+                y.as_slice().to_vec()
+            }
+        }
+    }
+
+    /// The load $-\ddot\theta Gs - \dot\theta^2 Hs + M(1\otimes g_b)$ for the frame's rate and
+    /// acceleration and gravity in frame axes `g_body` (the body's length unit per s²).
+    pub fn load(&self, rate: f64, acceleration: f64, g_body: Vector3<f64>) -> Vec<f64> {
+        let mut f: Vec<f64> = self
+            .g_s
+            .iter()
+            .zip(&self.h_s)
+            .map(|(g, h)| -acceleration * g - rate * rate * h)
+            .collect();
+        for a in 0..3 {
+            if g_body[a] != 0.0 {
+                f.iter_mut()
+                    .zip(&self.unit_gravity[a])
+                    .for_each(|(f, t)| *f += g_body[a] * t);
+            }
+        }
+        f
+    }
+
+    /// Solves $(c_m M + c_k K + c_g G + c_h H)\,x = b$ to [`DRIVEN_SOLVE_TOLERANCE`], from
+    /// the guess `x0`. Sparse: GMRES preconditioned by the factor of $c_m M + c_k K$, kept
+    /// while $c_m, c_k$ stay; dense: LU, checked by its residual.
+    pub fn solve(&mut self, c: Combination, b: &[f64], x0: Vec<f64>) -> Result<Vec<f64>> {
+        self.solves += 1;
+        match &mut self.operators {
+            Operators::Sparse(s) => {
+                s.factor(c.m, c.k)?;
+                let s = &**s;
+                let (_, f) = s.factor.as_ref().expect("factored above");
+                let n = b.len();
+                let (x, stats): (Vec<f64>, GmresStatistics) = preconditioned_gmres(
+                    "effective matrix of the driven body",
+                    |x| s.mul(c, x),
+                    |y| {
+                        let z = f.solve(MatRef::from_column_major_slice(y, n, 1));
+                        (0..n).map(|i| z[(i, 0)] / c.k).collect()
+                    },
+                    |x| s.abs_norm(c, x),
+                    b,
+                    x0,
+                    GmresParameters {
+                        tolerance: DRIVEN_SOLVE_TOLERANCE,
+                        max_iterations: 200,
+                    },
+                )?;
+                self.iterations += stats.iterations;
+                Ok(x)
+            }
+            Operators::Dense(d) => {
+                let a = d.combine(c);
+                let rhs = DVector::from_column_slice(b);
+                let x = a.clone().lu().solve(&rhs).ok_or_else(|| {
+                    Error::Linalg(LinalgError::SingularMatrix {
+                        matrix: "effective matrix of the reduced driven body".into(),
+                        rcond: None,
+                    })
+                })?;
+                let scale = rhs.norm() + (a.abs() * x.abs()).norm();
+                let residual = (&a * &x - &rhs).norm() / scale.max(f64::MIN_POSITIVE);
+                if residual.is_nan() || residual > DRIVEN_SOLVE_TOLERANCE {
+                    return Err(LinalgError::SolveInaccurate {
+                        matrix: "effective matrix of the reduced driven body".into(),
+                        residual,
+                        tolerance: DRIVEN_SOLVE_TOLERANCE,
+                    }
+                    .into());
+                }
+                Ok(x.as_slice().to_vec())
+            }
+        }
+    }
+}
+
+fn dot(x: &[f64], y: &[f64]) -> f64 {
+    x.iter().zip(y).map(|(a, b)| a * b).sum()
+}
+
+/// Node positions about `origin`, node-major (the body's length unit).
+pub fn positions(model: &FeModel, origin: [f64; 3]) -> Vec<f64> {
+    model
+        .nodes
+        .iter()
+        .flat_map(|p| (0..3).map(move |a| p[a] - origin[a]))
+        .collect()
+}
+
+/// Projects `psi` (full DOF rows) onto the free DOF of `full`, checking that it vanishes on
+/// the clamped ones: a basis that moves the clamped ring cannot be simulated on this frame.
+pub fn free_rows(full: &DrivenFrameBody, psi: MatRef<'_, f64>) -> Result<Mat<f64>> {
+    let free = full.free_dofs();
+    let mut is_free = vec![false; psi.nrows()];
+    for &d in free {
+        is_free[d] = true;
+    }
+    let scale = (0..psi.ncols())
+        .flat_map(|c| (0..psi.nrows()).map(move |i| (i, c)))
+        .map(|(i, c)| psi[(i, c)].abs())
+        .fold(0.0, f64::max);
+    for c in 0..psi.ncols() {
+        for i in 0..psi.nrows() {
+            if !is_free[i] && psi[(i, c)].abs() > 1e-12 * scale {
+                return Err(Error::InvalidOption {
+                    scene: "driven body".into(),
+                    reason: format!(
+                        "column {} of the basis moves the clamped DOF {i} (0-based) by {:.3e}: \
+                         on the driven frame the driven ring does not move",
+                        c + 1,
+                        psi[(i, c)]
+                    ),
+                });
+            }
+        }
+    }
+    Ok(Mat::from_fn(free.len(), psi.ncols(), |i, c| {
+        psi[(free[i], c)]
+    }))
+}

@@ -1,0 +1,148 @@
+//! `flexmodes simulate`: a driven body's runs (models::driven_body_study) as a table and as
+//! JSON.
+
+use serde_json::json;
+
+use crate::{
+    body_file::ImportedBody,
+    models::{DrivenBodyParameters, DrivenStudy},
+    report::{markdown_table, sig},
+};
+
+/// The JSON value and the text of a driven body's study.
+pub fn summary(
+    body: &ImportedBody,
+    parameters: &DrivenBodyParameters,
+    study: &DrivenStudy,
+) -> (serde_json::Value, String) {
+    let length = &body.units.length;
+    let force = &body.units.force;
+    let full_online = study
+        .runs
+        .iter()
+        .find(|r| r.method.is_none())
+        .map(|r| r.cost.online_s);
+    let opt = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or("–".to_string(), f);
+    let rows: Vec<Vec<String>> = study
+        .runs
+        .iter()
+        .map(|r| {
+            vec![
+                r.label(),
+                r.coordinates.to_string(),
+                opt(r.hz_range.map(|h| h.0), &|x| format!("{:.6}", sig(x))),
+                opt(r.hz_range.map(|h| h.1), &|x| format!("{:.6}", sig(x))),
+                format!("{:.3}", r.offline_s),
+                format!("{:.4}", r.cost.online_s),
+                opt(full_online, &|f| {
+                    format!("{:.0}", f / r.cost.online_s.max(1e-9))
+                }),
+                r.cost.iterations.to_string(),
+                opt(r.history_error, &|e| format!("{e:.2e}")),
+                opt(r.reaction_error, &|e| format!("{e:.2e}")),
+            ]
+        })
+        .collect();
+    let table = markdown_table(
+        &[
+            "model",
+            "coordinates",
+            "lowest Hz",
+            "highest Hz",
+            "offline s",
+            "online s",
+            "NR online / online",
+            "Krylov iterations",
+            "history error",
+            "reaction error",
+        ],
+        &rows,
+    );
+    let (drive, master, ring) = &study.drive;
+    let steps = study.runs.first().map_or(0, |r| r.cost.steps);
+    let mut text = format!(
+        "# simulate `{}` ({} DOF): `{drive}` ({ring} nodes, master at ({}) {length}) spun up \
+         about ({}) to {} rad/s over {} s, generalized-α ρ∞ = {}, {steps} steps of {} s\n\n\
+         {table}\n",
+        body.model.name,
+        study.dof,
+        master.map(sig).map(|x| x.to_string()).join(", "),
+        parameters.axis.map(|x| x.to_string()).join(", "),
+        parameters.rate,
+        parameters.ramp,
+        parameters.integration.spectral_radius,
+        parameters.integration.step,
+    );
+    text += &format!(
+        "\nHistory: the mean displacement of {} in the turning frame ({length}); history error = \
+         largest difference over the largest full-body value; reaction error = largest \
+         reaction-force difference over the largest elastic part of the full body's. Lowest \
+         and highest Hz: the reduced model on the frame at rest, ring clamped. Online: the \
+         integration alone (the outputs' reconstruction left out).\n",
+        study.output_names.join(", ")
+    );
+    if let Some(last) = study.times.last() {
+        for run in &study.runs {
+            let finals: Vec<String> = study
+                .output_names
+                .iter()
+                .zip(&run.outputs)
+                .map(|(name, h)| {
+                    let u = h.last().copied().unwrap_or([0.0; 3]);
+                    format!("{name} ({})", u.map(|x| format!("{x:.6e}")).join(", "))
+                })
+                .collect();
+            let r = run.reaction.last().copied().unwrap_or([0.0; 6]);
+            text += &format!(
+                "\n{} at t = {last} s: {}; reaction force ({}) {force}",
+                run.label(),
+                finals.join("; "),
+                r[..3]
+                    .iter()
+                    .map(|x| format!("{x:.6e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        }
+        text.push('\n');
+    }
+    let runs: Vec<serde_json::Value> = study
+        .runs
+        .iter()
+        .map(|r| {
+            json!({
+                "model": r.label(),
+                "method": r.method.map(|m| m.id()).unwrap_or("nr"),
+                "modes": r.modes,
+                "coordinates": r.coordinates,
+                "lowest_hz": r.hz_range.map(|h| h.0),
+                "highest_hz": r.hz_range.map(|h| h.1),
+                "offline_s": r.offline_s,
+                "online_s": r.cost.online_s,
+                "steps": r.cost.steps,
+                "solves": r.cost.solves,
+                "krylov_iterations": r.cost.iterations,
+                "history_error": r.history_error,
+                "reaction_error": r.reaction_error,
+                "outputs": r.outputs,
+                "reaction": r.reaction,
+            })
+        })
+        .collect();
+    let value = json!({
+        "body": body.model.name,
+        "dof": study.dof,
+        "units": {"length": length, "force": force},
+        "drive": {"interface": drive, "master": master, "nodes": ring},
+        "motion": {"kind": "spin-up", "axis": parameters.axis, "rate": parameters.rate,
+                   "ramp": parameters.ramp},
+        "gravity": parameters.gravity,
+        "integrator": {"scheme": "gen-alpha", "step": parameters.integration.step,
+                       "end": parameters.integration.end,
+                       "spectral_radius": parameters.integration.spectral_radius},
+        "outputs": study.output_names,
+        "times": study.times,
+        "runs": runs,
+    });
+    (value, text)
+}
