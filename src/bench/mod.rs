@@ -1,6 +1,7 @@
 //! `flexmodes bench`: speed against accuracy, measured in one run on this machine against
 //! peers measured in the same run. Timings are reported, never asserted.
 
+mod body_advice;
 mod body_bench;
 mod export_bench;
 mod mode_bench;
@@ -9,9 +10,9 @@ mod simulation_bench;
 mod simulation_size_bench;
 mod size_bench;
 
+pub use body_advice::{AdvisedModel, BodyAdvice};
 pub use body_bench::{
-    BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyAdvice, BodyBenchParameters, BodyBenchPoint,
-    bench_body_modes,
+    BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyBenchParameters, BodyBenchPoint, bench_body_modes,
 };
 pub use export_bench::{ExportBenchParameters, bench_export};
 pub use mode_bench::{COMPARED_MODES, ModeBenchPoint, bench_modes};
