@@ -188,7 +188,7 @@ pub(super) enum Command {
         #[arg(long, value_delimiter = ',', default_value = "10")]
         modes: Vec<usize>,
         /// The motion; `spin-up` (about --axis through the drive's master).
-        #[arg(long, default_value = "spin-up")]
+        #[arg(long, default_value = "spin-up", value_parser = ["spin-up"])]
         motion: String,
         /// Spin axis in body axes, X,Y,Z.
         #[arg(

@@ -301,12 +301,8 @@ fn run(cli: Cli) -> Result<()> {
             gravity,
             json,
         } => {
-            if motion != "spin-up" {
-                return Err(Error::InvalidOption {
-                    scene: "simulate".into(),
-                    reason: format!("unknown motion `{motion}` (known: spin-up)"),
-                });
-            }
+            // clap admits the known motions only.
+            debug_assert_eq!(motion, "spin-up");
             let body = ImportedBody::load(&body)?;
             let steps = (end / dt).round().max(1.0) as usize;
             let parameters = crate::models::DrivenBodyParameters {
