@@ -81,6 +81,14 @@ pub fn summary(
          integration alone (the outputs' reconstruction left out).\n",
         study.output_names.join(", ")
     );
+    if !parameters.boundary.is_empty() && study.runs.iter().any(|r| r.method.is_some()) {
+        text += &format!(
+            "\nThe reduced models keep {} as interfaces (an rbe2 set as a rigid ring) while the full \
+             body leaves them free: part of their history error is that ring's stiffening, \
+             not the reduction.\n",
+            parameters.boundary.join(", ")
+        );
+    }
     if let Some(last) = study.times.last() {
         for run in &study.runs {
             let finals: Vec<String> = study
