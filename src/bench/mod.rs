@@ -10,13 +10,14 @@ mod simulation_bench;
 mod simulation_size_bench;
 mod size_bench;
 
+pub use crate::analysis::{pareto_flags, three_digits};
 pub use body_advice::{AdvisedModel, BodyAdvice};
 pub use body_bench::{
     BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyBenchParameters, BodyBenchPoint, bench_body_modes,
 };
 pub use export_bench::{ExportBenchParameters, bench_export};
 pub use mode_bench::{COMPARED_MODES, ModeBenchPoint, bench_modes};
-pub use pareto::{mark_pareto, pareto_flags, three_digits};
+pub use pareto::mark_pareto;
 pub use simulation_bench::{BENCH_SCHEMES, BenchPoint, LOOSE_ATOL, LOOSE_RTOL, bench_simulation};
 pub(crate) use simulation_bench::{MODE_SWEEP, bench_scenario};
 pub use simulation_size_bench::{SIZES_RUN_S, bench_sim_sizes};

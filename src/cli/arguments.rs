@@ -223,6 +223,10 @@ pub(super) enum Command {
         /// Print the results as JSON.
         #[arg(long)]
         json: bool,
+        /// Also write the recording (the body deforming per model, the histories, the chart)
+        /// to this `.rrd`.
+        #[arg(long)]
+        save: Option<PathBuf>,
     },
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {

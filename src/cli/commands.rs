@@ -300,6 +300,7 @@ fn run(cli: Cli) -> Result<()> {
             samples,
             gravity,
             json,
+            save,
         } => {
             // clap admits the known motions only.
             debug_assert_eq!(motion, "spin-up");
@@ -337,6 +338,11 @@ fn run(cli: Cli) -> Result<()> {
             )?;
             drop(bar);
             let (value, text) = scenes::body_simulation::summary(&body, &parameters, &study);
+            if let Some(path) = &save {
+                let content = scenes::body_simulation::recording(&body.model, &study, &text);
+                Recorder::default().save(&content, path)?;
+                progress(&format!("wrote {}", path.display()));
+            }
             if json {
                 println!("{value}");
             } else {

@@ -6,7 +6,7 @@
 //! model's history (the mean displacement of chosen node sets in the frame, and the reaction
 //! at the drive) is compared with the full body's.
 
-use std::time::Instant;
+use std::{sync::Arc, time::Instant};
 
 use faer::Mat;
 use nalgebra::{Unit, Vector3};
@@ -79,6 +79,49 @@ impl Default for DrivenBodyParameters {
     }
 }
 
+/// How a run's coordinates give the full displacement field.
+#[derive(Debug, Clone)]
+pub enum FieldMap {
+    /// The full body's free DOF (the clamped ring at zero).
+    Free {
+        /// DOF of the body.
+        dofs: usize,
+        /// The free DOF, ascending.
+        free: Arc<Vec<usize>>,
+    },
+    /// A reduced body's basis Ψ (every DOF's row).
+    Basis(Arc<Mat<f64>>),
+}
+
+impl FieldMap {
+    /// The nodal displacements (node-major, every DOF) of coordinates `x`.
+    pub fn field(&self, x: &[f64]) -> Vec<f64> {
+        match self {
+            FieldMap::Free { dofs, free } => {
+                assert_eq!(x.len(), free.len(), "one coordinate per free DOF");
+                let mut y = vec![0.0; *dofs];
+                for (&d, &v) in free.iter().zip(x) {
+                    y[d] = v;
+                }
+                y
+            }
+            FieldMap::Basis(psi) => {
+                assert_eq!(x.len(), psi.ncols(), "one coordinate per column of Ψ");
+                let mut y = vec![0.0; psi.nrows()];
+                for (c, &xc) in x.iter().enumerate() {
+                    if xc != 0.0 {
+                        let col = psi.col(c);
+                        y.iter_mut()
+                            .enumerate()
+                            .for_each(|(i, y)| *y += col[i] * xc);
+                    }
+                }
+                y
+            }
+        }
+    }
+}
+
 /// One model's run.
 #[derive(Debug, Clone)]
 pub struct DrivenRun {
@@ -96,6 +139,10 @@ pub struct DrivenRun {
     pub offline_s: f64,
     /// The integration.
     pub cost: DrivenCost,
+    /// Per sample: the run's coordinates (free DOF or modal coordinates).
+    pub states: Vec<Vec<f64>>,
+    /// From coordinates to the full displacement field.
+    pub field_map: FieldMap,
     /// Per output set, per sample: the mean displacement in frame axes (length unit).
     pub outputs: Vec<Vec<[f64; 3]>>,
     /// Per sample: the reaction at the drive, force (force unit) and moment about the master
@@ -324,13 +371,9 @@ pub fn driven_body_study(
     let started = Instant::now();
     let mut full_body = DrivenFrameBody::full(model, &ring, drive.master, axis)?;
     let full_offline = started.elapsed().as_secs_f64();
-    let free = full_body.free_dofs().to_vec();
-    let extend = |x: &[f64]| {
-        let mut y = vec![0.0; model.dof_count()];
-        for (&d, &v) in free.iter().zip(x) {
-            y[d] = v;
-        }
-        y
+    let full_map = FieldMap::Free {
+        dofs: model.dof_count(),
+        free: Arc::new(full_body.free_dofs().to_vec()),
     };
 
     let mut times = Vec::new();
@@ -338,14 +381,15 @@ pub fn driven_body_study(
     if full {
         progress.phase("NR: the full body, sparse")?;
         let (mut outs, mut reaction) = (Vec::new(), Vec::new());
-        let mut t_samples = Vec::new();
+        let (mut t_samples, mut states) = (Vec::new(), Vec::new());
         let cost = integrate_driven(
             &mut full_body,
             &driving,
             &parameters.integration,
             progress,
-            |t, u, v, a| {
-                let (u, v, a) = (extend(u), extend(v), extend(a));
+            |t, x, v, a| {
+                let (u, v, a) = (full_map.field(x), full_map.field(v), full_map.field(a));
+                states.push(x.to_vec());
                 t_samples.push(t);
                 outs.push(measure.output(&u));
                 reaction.push(measure.reaction(t, &u, &v, &a));
@@ -360,6 +404,8 @@ pub fn driven_body_study(
             hz_range: None,
             offline_s: full_offline,
             cost,
+            states,
+            field_map: full_map.clone(),
             outputs: transpose(outs, measure.outputs.len()),
             reaction,
             history_error: None,
@@ -411,31 +457,24 @@ pub fn driven_body_study(
                     .into());
                 }
                 let psi_all = &reduced.basis.psi;
-                let psi = Mat::from_fn(psi_all.nrows(), keep.len(), |i, j| psi_all[(i, keep[j])]);
-                let psi_free = free_rows(&full_body, psi.as_ref())?;
+                let psi = Arc::new(Mat::from_fn(psi_all.nrows(), keep.len(), |i, j| {
+                    psi_all[(i, keep[j])]
+                }));
+                let map = FieldMap::Basis(psi.clone());
+                let psi_free = free_rows(&full_body, psi.as_ref().as_ref())?;
                 let mut reduced_body = DrivenFrameBody::reduced(&full_body, psi_free.as_ref())?;
                 let hz_range = frame_frequencies(&reduced_body)?;
                 let offline_s = reduced.offline_s + started.elapsed().as_secs_f64();
                 let (mut outs, mut reaction) = (Vec::new(), Vec::new());
-                let mut t_samples = Vec::new();
+                let (mut t_samples, mut states) = (Vec::new(), Vec::new());
                 let cost = integrate_driven(
                     &mut reduced_body,
                     &driving,
                     &parameters.integration,
                     progress,
                     |t, z, zd, zdd| {
-                        let field = |x: &[f64]| {
-                            let mut y = vec![0.0; model.dof_count()];
-                            for (c, &xc) in x.iter().enumerate() {
-                                if xc != 0.0 {
-                                    for i in 0..y.len() {
-                                        y[i] += psi[(i, c)] * xc;
-                                    }
-                                }
-                            }
-                            y
-                        };
-                        let (u, v, a) = (field(z), field(zd), field(zdd));
+                        let (u, v, a) = (map.field(z), map.field(zd), map.field(zdd));
+                        states.push(z.to_vec());
                         t_samples.push(t);
                         outs.push(measure.output(&u));
                         reaction.push(measure.reaction(t, &u, &v, &a));
@@ -452,6 +491,8 @@ pub fn driven_body_study(
                     hz_range,
                     offline_s,
                     cost,
+                    states,
+                    field_map: map,
                     outputs: transpose(outs, measure.outputs.len()),
                     reaction,
                     history_error: None,

@@ -23,8 +23,8 @@ pub use cantilever_study::{
     VariantModes, bottom_line_error, cantilever_study, witteveen_bases,
 };
 pub use driven_body::{
-    DRIVEN_METHODS, DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study, history_error,
-    metres_per,
+    DRIVEN_METHODS, DrivenBodyParameters, DrivenRun, DrivenStudy, FieldMap, driven_body_study,
+    history_error, metres_per,
 };
 pub use dual_spin_study::{
     ARTICULATION_DEG, AssembledSet, DUAL_SPIN_METHODS, DualSpinSets, DualSpinStudy,

@@ -1,8 +1,9 @@
-//! `flexmodes simulate`: a driven body's runs (models::driven_body_study) as a table and as
-//! JSON.
+//! `flexmodes simulate`: a driven body's runs (models::driven_body_study) as a table, as
+//! JSON and as a recording.
 
 use serde_json::json;
 
+pub use super::body_simulation_visuals::recording;
 use crate::{
     body_file::ImportedBody,
     models::{DrivenBodyParameters, DrivenStudy},

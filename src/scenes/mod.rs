@@ -9,6 +9,7 @@ mod body_influence;
 pub mod body_modes;
 mod body_response;
 pub mod body_simulation;
+mod body_simulation_visuals;
 pub mod cantilever_variants;
 mod failures;
 mod mode_visuals;

@@ -28,7 +28,13 @@ pub fn deformation_scale<'a>(
             largest = largest.max(system.largest_deflection(body, &s.state));
         }
     }
-    if largest <= 0.0 {
+    display_scale(largest, size)
+}
+
+/// The factor that draws a largest deflection `largest` at about [`VISIBLE_DEFLECTION`] of
+/// `size` (same unit), rounded down to 1, 2 or 5 × 10ⁿ; never below 1.
+pub fn display_scale(largest: f64, size: f64) -> f64 {
+    if largest <= 0.0 || !largest.is_finite() {
         return 1.0;
     }
     let wanted = VISIBLE_DEFLECTION * size / largest;

@@ -1,0 +1,246 @@
+//! The recording of `flexmodes simulate --save`: the body deforming in the turning frame, one
+//! lane per model; each output's history per model; online time against history error
+//! (log–log) with the Pareto front.
+
+use crate::{
+    analysis::{pareto_flags, three_digits},
+    fem::FeModel,
+    models::{DrivenRun, DrivenStudy},
+    record::{Color, Geometry, Layout, LogLogChart, LogLogSeries, RecordingContent, Visual},
+    reduction::Method,
+    report::Report,
+};
+
+use super::{method_color, sim_visuals::display_scale};
+
+/// Grey of the undeformed ghost in each lane.
+const GHOST: Color = [110, 110, 110, 255];
+
+/// Most samples drawn in the 3-D view (every sample is in the plots).
+const DRAWN_SAMPLES: usize = 60;
+
+fn color(run: &DrivenRun) -> Color {
+    method_color(run.method.unwrap_or(Method::NoReduction))
+}
+
+/// The runs drawn in 3-D: the full body and, per method, its largest model.
+fn drawn(study: &DrivenStudy) -> Vec<&DrivenRun> {
+    let mut out: Vec<&DrivenRun> = Vec::new();
+    for run in &study.runs {
+        match out.iter_mut().find(|r| r.method == run.method) {
+            Some(r) if run.modes > r.modes => *r = run,
+            Some(_) => {}
+            None => out.push(run),
+        }
+    }
+    out
+}
+
+/// The recording: `text` is the table the CLI prints.
+pub fn recording(model: &FeModel, study: &DrivenStudy, text: &str) -> RecordingContent {
+    let geometry = Geometry::of(model);
+    let lanes = drawn(study);
+    let largest = study
+        .runs
+        .iter()
+        .flat_map(|r| r.states.iter().map(move |x| (r, x)))
+        .map(|(r, x)| {
+            r.field_map
+                .field(x)
+                .chunks_exact(3)
+                .map(|u| (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt())
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max);
+    let scale = display_scale(largest, model.size());
+    let width = {
+        let ys = geometry.nodes.iter().map(|p| p[1]);
+        (ys.clone().fold(f64::MIN, f64::max) - ys.fold(f64::MAX, f64::min)).max(0.2 * model.size())
+    };
+    let top = geometry.nodes.iter().map(|p| p[2]).fold(f64::MIN, f64::max);
+    let every = study.times.len().div_ceil(DRAWN_SAMPLES).max(1);
+    let mut visuals = Vec::new();
+    for (k, run) in lanes.iter().enumerate() {
+        let lane = format!(
+            "world/body/{}",
+            run.label().to_lowercase().replace(' ', "_")
+        );
+        visuals.push(Visual::Offset {
+            path: lane.clone(),
+            translation: [0.0, -1.5 * width * k as f64, 0.0],
+        });
+        visuals.push(Visual::Wireframe {
+            path: format!("{lane}/undeformed"),
+            geometry: geometry.clone(),
+            color: GHOST,
+            label: None,
+        });
+        visuals.push(Visual::Label3D {
+            path: format!("{lane}/label"),
+            position: [geometry.nodes[0][0], 0.0, top + 0.3 * width],
+            text: run.label(),
+            color: color(run),
+        });
+        let (times, positions): (Vec<f64>, Vec<Vec<[f64; 3]>>) = study
+            .times
+            .iter()
+            .zip(&run.states)
+            .step_by(every)
+            .map(|(&t, x)| {
+                let u = run.field_map.field(x);
+                let nodes = geometry
+                    .nodes
+                    .iter()
+                    .enumerate()
+                    .map(|(j, p)| [0, 1, 2].map(|a| p[a] + scale * u[3 * j + a]))
+                    .collect();
+                (t, nodes)
+            })
+            .unzip();
+        visuals.push(Visual::Trajectory {
+            path: format!("{lane}/deformed"),
+            geometry: geometry.clone(),
+            times,
+            positions,
+            color: color(run),
+        });
+    }
+    // Each output's largest component (by the first run) over time, per model.
+    let mut plots = Vec::new();
+    for (o, name) in study.output_names.iter().enumerate() {
+        let Some(first) = study.runs.first() else {
+            break;
+        };
+        let axis = (0..3)
+            .max_by(|&a, &b| {
+                let amp = |a: usize| {
+                    first.outputs[o]
+                        .iter()
+                        .map(|u| u[a].abs())
+                        .fold(0.0, f64::max)
+                };
+                amp(a).total_cmp(&amp(b))
+            })
+            .unwrap_or(0);
+        let axis_name = ["x", "y", "z"][axis];
+        for run in &study.runs {
+            visuals.push(Visual::Series {
+                path: format!("plots/{name}_{axis_name}/{}", run.label().replace(' ', "_")),
+                times: study.times.clone(),
+                values: run.outputs[o].iter().map(|u| u[axis]).collect(),
+                name: run.label(),
+                color: color(run),
+            });
+        }
+        plots.push(Layout::TimeSeries {
+            name: format!("{axis_name} of {name} (mean, turning frame)"),
+            origin: format!("/plots/{name}_{axis_name}"),
+        });
+    }
+    visuals.extend(chart(study));
+    // The table's title line is a heading in a terminal, a paragraph in the panel.
+    let text = text.strip_prefix("# ").unwrap_or(text);
+    let mut report = Report::new("simulate");
+    report.table = text.to_string();
+    let view = if scale != 1.0 {
+        format!("turning frame, one lane per model (deflection ×{scale}; grey: undeformed)")
+    } else {
+        "turning frame, one lane per model (grey: undeformed)".to_string()
+    };
+    let right = Layout::Vertical(
+        vec![
+            Layout::Spatial2D {
+                name: "history error against online s (log–log)".into(),
+                origin: "/bench/error_vs_online".into(),
+            },
+            Layout::scene_text(),
+        ],
+        vec![1.0, 1.0],
+    );
+    let left = Layout::Vertical(
+        vec![
+            Layout::view3d(&view, "/world/body"),
+            Layout::Horizontal(plots, vec![]),
+        ],
+        vec![1.5, 1.0],
+    );
+    RecordingContent {
+        report,
+        markdown: format!(
+            "# simulate\n\nLeft: the body in the frame that turns with the drive, one lane per \
+             model (the full body and each method's largest model), its deflection magnified; \
+             below, each output's largest component over time per model. Right: each reduced \
+             model's history error against its online time (log–log), one line per method \
+             through its mode counts, the Pareto front in white.\n\n{text}"
+        ),
+        visuals,
+        layout: Layout::Horizontal(vec![left, right], vec![2.0, 1.0]),
+        timeline: Some("sim_time".into()),
+        y_up: false,
+    }
+}
+
+/// History error against online time per method, and the Pareto front.
+fn chart(study: &DrivenStudy) -> Vec<Visual> {
+    let reduced: Vec<&DrivenRun> = study
+        .runs
+        .iter()
+        .filter(|r| r.history_error.is_some())
+        .collect();
+    if reduced.is_empty() {
+        return Vec::new();
+    }
+    let point = |r: &DrivenRun| (r.cost.online_s, r.history_error.unwrap_or(f64::NAN));
+    let mut methods: Vec<Method> = Vec::new();
+    for r in &reduced {
+        if let Some(m) = r.method
+            && !methods.contains(&m)
+        {
+            methods.push(m);
+        }
+    }
+    let mut series: Vec<LogLogSeries> = methods
+        .iter()
+        .map(|&m| {
+            let mut points: Vec<(f64, f64)> = reduced
+                .iter()
+                .filter(|r| r.method == Some(m))
+                .map(|r| point(r))
+                .collect();
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            LogLogSeries {
+                id: m.id().into(),
+                label: m.id().to_uppercase(),
+                color: method_color(m),
+                points,
+                line: true,
+            }
+        })
+        .collect();
+    let cost_error: Vec<(f64, f64)> = reduced
+        .iter()
+        .map(|r| (r.cost.online_s, three_digits(point(r).1)))
+        .collect();
+    let mut front: Vec<(f64, f64)> = reduced
+        .iter()
+        .zip(pareto_flags(&cost_error))
+        .filter(|(_, on)| *on)
+        .map(|(r, _)| point(r))
+        .collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    series.push(LogLogSeries {
+        id: "pareto_front".into(),
+        label: "Pareto".into(),
+        color: [255, 255, 255, 255],
+        points: front,
+        line: true,
+    });
+    LogLogChart {
+        path: "bench/error_vs_online".into(),
+        x_unit: "online s".into(),
+        y_unit: "history error".into(),
+        series,
+        x_linear: false,
+    }
+    .visuals()
+}
