@@ -1225,3 +1225,36 @@ fn simulate_runs_the_full_body_and_its_reductions_alike() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("spin-up"));
 }
+
+/// `bench simulate` on the rod: one point with the factor's size, GMRES iterations per step
+/// and CB's history error against the full body; without --drive it is refused by name.
+#[test]
+fn bench_simulate_times_the_full_body_per_step() {
+    let body = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/bodies/steel-rod/body.toml"
+    );
+    let v = json(&[
+        "bench",
+        "simulate",
+        "--body",
+        body,
+        "--drive",
+        "rbe2:end_a",
+        "--json",
+    ]);
+    let points = v["points"].as_array().unwrap();
+    assert_eq!(points.len(), 1);
+    let p = &points[0];
+    assert_eq!(p["dof"], 3702);
+    assert_eq!(p["free"], 3702 - 3 * 76, "the ring's 76 nodes clamped");
+    assert!(p["factor_nnz"].as_u64().unwrap() > 3702);
+    let its = p["gmres_iterations_per_step"].as_f64().unwrap();
+    assert!((1.0..20.0).contains(&its), "{its}");
+    assert!(p["cb_history_error"].as_f64().unwrap() < 1e-2);
+    assert!(v["nr_time_exponent"].is_null(), "one size fits no exponent");
+
+    let out = flexmodes(&["bench", "simulate", "--body", body]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--drive"));
+}

@@ -72,7 +72,8 @@ pub(super) enum Command {
         /// A body file: with no scene, time `export --method cb` of it as a whole process
         /// against SciPy's CHOLMOD route (the peer script) in the same run; with the scene
         /// `modes`, chart every method and kept-mode count on it (offline time, peak memory,
-        /// frequency error, Pareto front, mode-count advice).
+        /// frequency error, Pareto front, mode-count advice); with `simulate` (and --drive),
+        /// time the full body's driven spin-up per step against CB's.
         #[arg(long, conflicts_with_all = ["all", "sizes", "refine"])]
         body: Option<PathBuf>,
         /// With --body: the interface (node set names, node numbers, `rbe2:SET`).
@@ -95,6 +96,13 @@ pub(super) enum Command {
         /// With `modes --body`: reduce the interface to N characteristic constraint modes.
         #[arg(long, value_name = "N", requires = "body")]
         interface_modes: Option<usize>,
+        /// With `simulate --body`: the driven interface (`rbe2:SET`).
+        #[arg(long, requires = "body")]
+        drive: Option<String>,
+        /// With `simulate --body`: the same part meshed finer, each timed like --body to chart
+        /// the full body's cost against DOF.
+        #[arg(long, value_delimiter = ',', requires = "drive")]
+        larger: Vec<PathBuf>,
         /// With --body: the SciPy peer script.
         #[arg(
             long,

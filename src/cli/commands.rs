@@ -65,6 +65,49 @@ fn run(cli: Cli) -> Result<()> {
         Command::Bench {
             scenes: ids,
             body: Some(body),
+            drive,
+            larger,
+            modes,
+            json,
+            ..
+        } if ids.as_slice() == ["simulate"] => {
+            let drive = drive.ok_or_else(|| Error::InvalidOption {
+                scene: "simulate".into(),
+                reason: "bench simulate needs --drive rbe2:SET".into(),
+            })?;
+            let mut files = vec![body.display().to_string()];
+            files.extend(larger.iter().map(|p| p.display().to_string()));
+            // A short spin-up: the cost per step, not the history, is what is measured.
+            let parameters = crate::models::DrivenBodyParameters {
+                drive,
+                ramp: 0.05,
+                integration: crate::dynamics::DrivenIntegration {
+                    step: 1e-3,
+                    end: 0.05,
+                    spectral_radius: 0.9,
+                    output_every: 5,
+                },
+                ..Default::default()
+            };
+            let handle = Progress::new();
+            let bar = TerminalProgress::start(&handle, "bench simulate");
+            let (value, text) = crate::bench::bench_driven_sizes(
+                &files,
+                &parameters,
+                modes.first().copied().unwrap_or(10),
+                &handle,
+            )?;
+            drop(bar);
+            if json {
+                println!("{value}");
+            } else {
+                println!("# bench simulate --body {}\n\n{text}", files.join(","));
+            }
+            Ok(())
+        }
+        Command::Bench {
+            scenes: ids,
+            body: Some(body),
             boundary,
             modes,
             method,
@@ -78,8 +121,8 @@ fn run(cli: Cli) -> Result<()> {
             if ids.as_slice() != ["modes"] {
                 return Err(Error::InvalidOption {
                     scene: ids.join(","),
-                    reason: "with --body, bench takes the scene `modes` (or none: the export \
-                             bench)"
+                    reason: "with --body, bench takes the scene `modes` or `simulate` (or \
+                             none: the export bench)"
                         .into(),
                 });
             }

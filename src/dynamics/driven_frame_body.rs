@@ -367,6 +367,15 @@ impl DrivenFrameBody {
         self.g_s.len()
     }
 
+    /// Entries of the sparse factor of the constant part (the last one made; 0 for a dense
+    /// body or before the first solve).
+    pub fn factor_nnz(&self) -> usize {
+        match &self.operators {
+            Operators::Sparse(s) => s.factor.as_ref().map_or(0, |(_, f)| f.factor_nnz()),
+            Operators::Dense(_) => 0,
+        }
+    }
+
     /// The free DOF of the full body (empty for a reduced one).
     pub fn free_dofs(&self) -> &[usize] {
         match &self.operators {

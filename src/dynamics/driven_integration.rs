@@ -71,6 +71,8 @@ pub struct DrivenCost {
     pub iterations: usize,
     /// Wall time of the integration alone (the observer's time left out), s.
     pub online_s: f64,
+    /// Entries of the sparse factor of the constant part (0 for a dense body).
+    pub factor_nnz: usize,
 }
 
 /// Integrates `body` under `driving` from static equilibrium at rest, calling `observe(t, u,
@@ -166,5 +168,6 @@ pub fn integrate_driven(
         solves: body.solves,
         iterations: body.iterations,
         online_s: started.elapsed().as_secs_f64() - observer_s,
+        factor_nnz: body.factor_nnz(),
     })
 }
