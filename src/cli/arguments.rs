@@ -235,6 +235,10 @@ pub(super) enum Command {
         /// to this `.rrd`.
         #[arg(long)]
         save: Option<PathBuf>,
+        /// Also run each reduced model with explicit Dormand–Prince steps below its critical
+        /// step (predicted from its highest frequency), and check that 3× that step diverges.
+        #[arg(long)]
+        explicit: bool,
     },
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {

@@ -344,6 +344,7 @@ fn run(cli: Cli) -> Result<()> {
             gravity,
             json,
             save,
+            explicit,
         } => {
             // clap admits the known motions only.
             debug_assert_eq!(motion, "spin-up");
@@ -363,6 +364,7 @@ fn run(cli: Cli) -> Result<()> {
                     spectral_radius: rho,
                     output_every: (steps / samples.max(1)).max(1),
                 },
+                explicit,
             };
             let full = method.contains(&crate::reduction::Method::NoReduction);
             let reduced: Vec<_> = method

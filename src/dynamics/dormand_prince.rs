@@ -11,8 +11,8 @@ use super::{IntegratorParameters, Simulation, State, System, simulation::sample}
 use crate::{Error, Progress, Result};
 
 // Dormand–Prince 5(4) tableau.
-const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
-const A: [[f64; 6]; 7] = [
+pub(super) const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+pub(super) const A: [[f64; 6]; 7] = [
     [0.0; 6],
     [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
     [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
@@ -42,7 +42,7 @@ const A: [[f64; 6]; 7] = [
         11.0 / 84.0,
     ],
 ];
-const B5: [f64; 7] = [
+pub(super) const B5: [f64; 7] = [
     35.0 / 384.0,
     0.0,
     500.0 / 1113.0,

@@ -7,6 +7,7 @@ mod axes;
 mod body;
 mod constraint;
 mod dormand_prince;
+mod driven_explicit;
 mod driven_frame_body;
 mod driven_integration;
 mod generalized_alpha;
@@ -26,6 +27,7 @@ pub use axes::{AxisKind, AxisType};
 pub use body::{Body, FlexibleBody, ModalMassInverse, RigidBody};
 pub use constraint::{Attachment, Constraint};
 pub use dormand_prince::{critical_step, imaginary_stability_limit, stability_polynomial};
+pub use driven_explicit::{DrivenExplicit, integrate_driven_explicit};
 pub use driven_frame_body::{
     Combination, DRIVEN_SOLVE_TOLERANCE, DrivenFrameBody, ISOTROPIC_MASS_TOLERANCE, free_rows,
     positions,

@@ -19,13 +19,16 @@ use crate::{
         DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, SpinUp, free_rows,
         integrate_driven, positions,
     },
-    fem::FeModel,
-    linalg::{GeneralizedEigen, MassMatrix, generalized_eigen},
+    linalg::{GeneralizedEigen, generalized_eigen},
     progress::Progress,
     reduction::{ColumnKind, Method, ReductionError},
 };
 
-use super::{BodyInterfaces, BodyReducer};
+use super::{
+    BodyInterfaces, BodyReducer,
+    driven_measure::{FieldMap, Measure, history_error, reaction_error, rigid_reaction, transpose},
+    driven_stability::{ExplicitCheck, explicit_runs},
+};
 
 /// The methods a driven body can be reduced by: those whose boundary columns are unit motions
 /// of the interfaces, so the driven ring can be held still.
@@ -57,6 +60,9 @@ pub struct DrivenBodyParameters {
     pub gravity: Option<[f64; 3]>,
     /// The integrator's steps.
     pub integration: DrivenIntegration,
+    /// Also run each reduced model with the explicit Dormand–Prince scheme below its critical
+    /// step, and check that it diverges above it.
+    pub explicit: bool,
 }
 
 impl Default for DrivenBodyParameters {
@@ -75,49 +81,7 @@ impl Default for DrivenBodyParameters {
                 spectral_radius: 0.9,
                 output_every: 10,
             },
-        }
-    }
-}
-
-/// How a run's coordinates give the full displacement field.
-#[derive(Debug, Clone)]
-pub enum FieldMap {
-    /// The full body's free DOF (the clamped ring at zero).
-    Free {
-        /// DOF of the body.
-        dofs: usize,
-        /// The free DOF, ascending.
-        free: Arc<Vec<usize>>,
-    },
-    /// A reduced body's basis Ψ (every DOF's row).
-    Basis(Arc<Mat<f64>>),
-}
-
-impl FieldMap {
-    /// The nodal displacements (node-major, every DOF) of coordinates `x`.
-    pub fn field(&self, x: &[f64]) -> Vec<f64> {
-        match self {
-            FieldMap::Free { dofs, free } => {
-                assert_eq!(x.len(), free.len(), "one coordinate per free DOF");
-                let mut y = vec![0.0; *dofs];
-                for (&d, &v) in free.iter().zip(x) {
-                    y[d] = v;
-                }
-                y
-            }
-            FieldMap::Basis(psi) => {
-                assert_eq!(x.len(), psi.ncols(), "one coordinate per column of Ψ");
-                let mut y = vec![0.0; psi.nrows()];
-                for (c, &xc) in x.iter().enumerate() {
-                    if xc != 0.0 {
-                        let col = psi.col(c);
-                        y.iter_mut()
-                            .enumerate()
-                            .for_each(|(i, y)| *y += col[i] * xc);
-                    }
-                }
-                y
-            }
+            explicit: false,
         }
     }
 }
@@ -139,6 +103,8 @@ pub struct DrivenRun {
     pub offline_s: f64,
     /// The integration.
     pub cost: DrivenCost,
+    /// The fixed step of an explicit (Dormand–Prince) run, s; `None`: generalized-α.
+    pub explicit_step: Option<f64>,
     /// Per sample: the run's coordinates (free DOF or modal coordinates).
     pub states: Vec<Vec<f64>>,
     /// From coordinates to the full displacement field.
@@ -156,12 +122,16 @@ pub struct DrivenRun {
 }
 
 impl DrivenRun {
-    /// `NR` or e.g. `CB 10`.
+    /// `NR`, e.g. `CB 10`, and `CB 10 DP5` for an explicit run.
     pub fn label(&self) -> String {
-        match self.method {
+        let model = match self.method {
             None => "NR".into(),
             Some(Method::Guyan) => "GR".into(),
             Some(m) => format!("{} {}", m.id().to_uppercase(), self.modes),
+        };
+        match self.explicit_step {
+            Some(_) => format!("{model} DP5"),
+            None => model,
         }
     }
 }
@@ -179,6 +149,8 @@ pub struct DrivenStudy {
     pub dof: usize,
     /// The runs, the full body first when it ran.
     pub runs: Vec<DrivenRun>,
+    /// The explicit scheme's critical step per reduced model, checked (with `explicit`).
+    pub stability: Vec<ExplicitCheck>,
 }
 
 /// Metres per length unit of the body files' units.
@@ -199,78 +171,6 @@ pub fn metres_per(unit: &str) -> Result<f64> {
             });
         }
     })
-}
-
-/// What each sample is measured with: the output sets' DOF and the full field's pieces.
-struct Measure<'a> {
-    model: &'a FeModel,
-    s: Vec<f64>,
-    axis: Vector3<f64>,
-    outputs: Vec<Vec<usize>>,
-    driving: Driving,
-}
-
-impl Measure<'_> {
-    fn output(&self, u_full: &[f64]) -> Vec<[f64; 3]> {
-        self.outputs
-            .iter()
-            .map(|dofs| {
-                let mut mean = [0.0; 3];
-                for triple in dofs.chunks_exact(3) {
-                    for a in 0..3 {
-                        mean[a] += u_full[triple[a]] / (dofs.len() / 3) as f64;
-                    }
-                }
-                mean
-            })
-            .collect()
-    }
-
-    /// The reaction at the drive: the rate of the body's momentum less gravity, force and
-    /// moment about the frame's origin, from the nodal accelerations in frame axes
-    /// $a = \ddot\theta\,e\times b + \dot\theta^2 e\times(e\times b) + 2\dot\theta\,e\times
-    /// \dot u + \ddot u$, $b = s + u$.
-    fn reaction(&self, t: f64, u: &[f64], v: &[f64], a: &[f64]) -> [f64; 6] {
-        let (rate, acceleration, g_body) = self.driving.at(t);
-        let n = u.len();
-        let mut acc = vec![0.0; n];
-        for j in 0..n / 3 {
-            let b = Vector3::new(
-                self.s[3 * j] + u[3 * j],
-                self.s[3 * j + 1] + u[3 * j + 1],
-                self.s[3 * j + 2] + u[3 * j + 2],
-            );
-            let ud = Vector3::new(v[3 * j], v[3 * j + 1], v[3 * j + 2]);
-            let e = self.axis;
-            let x = e.cross(&b) * acceleration
-                + e.cross(&e.cross(&b)) * (rate * rate)
-                + e.cross(&ud) * (2.0 * rate)
-                + Vector3::new(a[3 * j], a[3 * j + 1], a[3 * j + 2])
-                - g_body;
-            acc[3 * j..3 * j + 3].copy_from_slice(x.as_slice());
-        }
-        let w = mass_mul(&self.model.m, &acc);
-        let mut out = [0.0; 6];
-        for j in 0..n / 3 {
-            let wj = Vector3::new(w[3 * j], w[3 * j + 1], w[3 * j + 2]);
-            let b = Vector3::new(
-                self.s[3 * j] + u[3 * j],
-                self.s[3 * j + 1] + u[3 * j + 1],
-                self.s[3 * j + 2] + u[3 * j + 2],
-            );
-            let m = b.cross(&wj);
-            for q in 0..3 {
-                out[q] += wj[q];
-                out[3 + q] += m[q];
-            }
-        }
-        out
-    }
-}
-
-fn mass_mul(m: &MassMatrix, x: &[f64]) -> Vec<f64> {
-    let y = m.mul(faer::MatRef::from_column_major_slice(x, x.len(), 1));
-    (0..x.len()).map(|i| y[(i, 0)]).collect()
 }
 
 /// Runs the full body (when `full`) and each method × kept-mode count on `body` under
@@ -378,6 +278,7 @@ pub fn driven_body_study(
 
     let mut times = Vec::new();
     let mut runs = Vec::new();
+    let mut stability = Vec::new();
     if full {
         progress.phase("NR: the full body, sparse")?;
         let (mut outs, mut reaction) = (Vec::new(), Vec::new());
@@ -404,6 +305,7 @@ pub fn driven_body_study(
             hz_range: None,
             offline_s: full_offline,
             cost,
+            explicit_step: None,
             states,
             field_map: full_map.clone(),
             outputs: transpose(outs, measure.outputs.len()),
@@ -484,20 +386,56 @@ pub fn driven_body_study(
                 if times.is_empty() {
                     times = t_samples;
                 }
-                runs.push(DrivenRun {
+                let run = DrivenRun {
                     method: Some(method),
                     modes: if method == Method::Guyan { 0 } else { kept },
                     coordinates: keep.len(),
                     hz_range,
                     offline_s,
                     cost,
+                    explicit_step: None,
                     states,
-                    field_map: map,
+                    field_map: map.clone(),
                     outputs: transpose(outs, measure.outputs.len()),
                     reaction,
                     history_error: None,
                     reaction_error: None,
-                });
+                };
+                let label = run.label();
+                runs.push(run);
+                if let (true, Some((_, highest))) = (parameters.explicit, hz_range) {
+                    progress.phase(&format!("{label} explicit"))?;
+                    let integration = &parameters.integration;
+                    let (explicit, check) = explicit_runs(
+                        &mut reduced_body,
+                        &map,
+                        &measure,
+                        &driving,
+                        (label, highest),
+                        (
+                            integration.step * integration.output_every.max(1) as f64,
+                            integration.end,
+                        ),
+                        model.size(),
+                        progress,
+                    )?;
+                    stability.push(check);
+                    runs.push(DrivenRun {
+                        method: Some(method),
+                        modes: if method == Method::Guyan { 0 } else { kept },
+                        coordinates: keep.len(),
+                        hz_range,
+                        offline_s,
+                        cost: explicit.cost,
+                        explicit_step: Some(explicit.step),
+                        states: explicit.states,
+                        field_map: map,
+                        outputs: transpose(explicit.outputs, measure.outputs.len()),
+                        reaction: explicit.reaction,
+                        history_error: None,
+                        reaction_error: None,
+                    });
+                }
             }
         }
     }
@@ -505,6 +443,11 @@ pub fn driven_body_study(
         let (reference, rest) = runs.split_first_mut().expect("the full body ran first");
         let rigid_force = rigid_reaction(&measure, &times);
         for run in rest {
+            // An explicit run sampled otherwise (an end the samples do not divide) is not
+            // compared.
+            if run.reaction.len() != reference.reaction.len() {
+                continue;
+            }
             run.history_error = Some(history_error(&reference.outputs, &run.outputs));
             run.reaction_error = Some(reaction_error(
                 &reference.reaction,
@@ -519,67 +462,8 @@ pub fn driven_body_study(
         drive: (drive.name.clone(), drive.master, drive.nodes.len()),
         dof: model.dof_count(),
         runs,
+        stability,
     })
-}
-
-/// Per output, per sample.
-fn transpose(samples: Vec<Vec<[f64; 3]>>, outputs: usize) -> Vec<Vec<[f64; 3]>> {
-    (0..outputs)
-        .map(|o| samples.iter().map(|s| s[o]).collect())
-        .collect()
-}
-
-fn norm3(x: [f64; 3]) -> f64 {
-    (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
-}
-
-fn diff3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// $\max_{o,t} |y_o(t) - y^{ref}_o(t)| / \max_{o,t} |y^{ref}_o(t)|$; the histories must be
-/// sampled alike.
-pub fn history_error(reference: &[Vec<[f64; 3]>], run: &[Vec<[f64; 3]>]) -> f64 {
-    assert_eq!(reference.len(), run.len(), "outputs of the two runs");
-    let mut largest = 0.0f64;
-    let mut worst = 0.0f64;
-    for (r, y) in reference.iter().zip(run) {
-        assert_eq!(r.len(), y.len(), "samples of the two runs");
-        for (&a, &b) in r.iter().zip(y) {
-            largest = largest.max(norm3(a));
-            worst = worst.max(norm3(diff3(a, b)));
-        }
-    }
-    worst / largest.max(f64::MIN_POSITIVE)
-}
-
-/// The reaction force of the undeformed body on the frame at each sample.
-fn rigid_reaction(measure: &Measure<'_>, times: &[f64]) -> Vec<[f64; 3]> {
-    let zero = vec![0.0; measure.s.len()];
-    times
-        .iter()
-        .map(|&t| {
-            let r = measure.reaction(t, &zero, &zero, &zero);
-            [r[0], r[1], r[2]]
-        })
-        .collect()
-}
-
-fn reaction_error(reference: &[[f64; 6]], run: &[[f64; 6]], rigid: &[[f64; 3]]) -> f64 {
-    assert_eq!(reference.len(), run.len(), "samples of the two runs");
-    assert_eq!(
-        reference.len(),
-        rigid.len(),
-        "samples of the rigid reaction"
-    );
-    let force = |r: &[f64; 6]| [r[0], r[1], r[2]];
-    let mut largest = 0.0f64;
-    let mut worst = 0.0f64;
-    for ((a, b), g) in reference.iter().zip(run).zip(rigid) {
-        largest = largest.max(norm3(diff3(force(a), *g)));
-        worst = worst.max(norm3(diff3(force(a), force(b))));
-    }
-    worst / largest.max(f64::MIN_POSITIVE)
 }
 
 /// The lowest and highest natural frequencies of a reduced body on its frame at rest, Hz,

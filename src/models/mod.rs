@@ -5,6 +5,8 @@
 mod body_reduction;
 mod cantilever_study;
 mod driven_body;
+mod driven_measure;
+mod driven_stability;
 mod dual_spin_study;
 mod failure_studies;
 mod interface_reduction_sweep;
@@ -23,9 +25,10 @@ pub use cantilever_study::{
     VariantModes, bottom_line_error, cantilever_study, witteveen_bases,
 };
 pub use driven_body::{
-    DRIVEN_METHODS, DrivenBodyParameters, DrivenRun, DrivenStudy, FieldMap, driven_body_study,
-    history_error, metres_per,
+    DRIVEN_METHODS, DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study, metres_per,
 };
+pub use driven_measure::{FieldMap, history_error};
+pub use driven_stability::ExplicitCheck;
 pub use dual_spin_study::{
     ARTICULATION_DEG, AssembledSet, DUAL_SPIN_METHODS, DualSpinSets, DualSpinStudy,
     INFLUENCE_FRACTION, INTEREST_HZ as SPANOS_INTEREST_HZ, RotorRanking, RotorSelection,

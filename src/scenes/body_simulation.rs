@@ -82,6 +82,23 @@ pub fn summary(
          integration alone (the outputs' reconstruction left out).\n",
         study.output_names.join(", ")
     );
+    for c in &study.stability {
+        text += &format!(
+            "\nExplicit Dormand–Prince on {}: highest frequency {:.6} Hz, critical step \
+             {:.3e} s; the run below it ({} DP5) {}; at {:.3e} s ({:.0}× critical) {}.\n",
+            c.label,
+            sig(c.highest_hz),
+            c.critical_s,
+            c.label,
+            "is bounded (its row above)",
+            c.above_step_s,
+            c.above_step_s / c.critical_s,
+            match c.diverged_at {
+                Some(t) => format!("it diverged at t = {t:.4e} s, as predicted"),
+                None => "it did NOT diverge: the prediction is not confirmed".into(),
+            }
+        );
+    }
     if !parameters.boundary.is_empty() && study.runs.iter().any(|r| r.method.is_some()) {
         text += &format!(
             "\nThe reduced models keep {} as interfaces (an rbe2 set as a rigid ring) while the full \
@@ -129,6 +146,8 @@ pub fn summary(
                 "offline_s": r.offline_s,
                 "online_s": r.cost.online_s,
                 "steps": r.cost.steps,
+                "scheme": if r.explicit_step.is_some() { "dp5" } else { "gen-alpha" },
+                "explicit_step_s": r.explicit_step,
                 "solves": r.cost.solves,
                 "krylov_iterations": r.cost.iterations,
                 "history_error": r.history_error,
@@ -150,6 +169,13 @@ pub fn summary(
                        "end": parameters.integration.end,
                        "spectral_radius": parameters.integration.spectral_radius},
         "outputs": study.output_names,
+        "stability": study.stability.iter().map(|c| json!({
+            "model": c.label,
+            "highest_hz": c.highest_hz,
+            "critical_step_s": c.critical_s,
+            "above_step_s": c.above_step_s,
+            "diverged_at_s": c.diverged_at,
+        })).collect::<Vec<_>>(),
         "times": study.times,
         "runs": runs,
     });

@@ -191,26 +191,29 @@ fn chart(study: &DrivenStudy) -> Vec<Visual> {
         return Vec::new();
     }
     let point = |r: &DrivenRun| (r.cost.online_s, r.history_error.unwrap_or(f64::NAN));
-    let mut methods: Vec<Method> = Vec::new();
+    // One line per method and scheme through its mode counts.
+    let mut keys: Vec<(Method, bool)> = Vec::new();
     for r in &reduced {
-        if let Some(m) = r.method
-            && !methods.contains(&m)
-        {
-            methods.push(m);
+        if let Some(m) = r.method {
+            let key = (m, r.explicit_step.is_some());
+            if !keys.contains(&key) {
+                keys.push(key);
+            }
         }
     }
-    let mut series: Vec<LogLogSeries> = methods
+    let mut series: Vec<LogLogSeries> = keys
         .iter()
-        .map(|&m| {
+        .map(|&(m, explicit)| {
             let mut points: Vec<(f64, f64)> = reduced
                 .iter()
-                .filter(|r| r.method == Some(m))
+                .filter(|r| r.method == Some(m) && r.explicit_step.is_some() == explicit)
                 .map(|r| point(r))
                 .collect();
             points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let suffix = if explicit { " DP5" } else { "" };
             LogLogSeries {
-                id: m.id().into(),
-                label: m.id().to_uppercase(),
+                id: format!("{}{}", m.id(), suffix.replace(' ', "_").to_lowercase()),
+                label: format!("{}{suffix}", m.id().to_uppercase()),
                 color: method_color(m),
                 points,
                 line: true,
