@@ -14,7 +14,11 @@ w(t) the spin rate. This script builds G and H with scipy.sparse (Kronecker prod
 * `steady`: the steady state at the final rate, (K + W^2 H) u = -W^2 H s (spsolve), as the
   mean displacement of each output set;
 * `modal_history`: the equations projected on the `modes` lowest clamped modes, integrated by
-  DOP853 (rtol 1e-11) from rest, sampled at `times`: the mean displacement of each output set.
+  DOP853 (rtol 1e-11) from rest, sampled at `times`: the mean displacement of each output set;
+* `steady_orbit`: the steady state when the axis passes through `orbit_point` instead (the
+  positions s measured from that point);
+* `gravity_static`: the static deflection under gravity `gravity` (m/s^2, the body in m),
+  K u = M (1 (x) g).
 
 Usage: driven_reference.py BODY_DIR --drive SET --out FILE [--rate W --ramp T --end T_END
        --modes N --axis X Y Z]
@@ -105,6 +109,12 @@ def main():
 
     w = args.rate
     steady = spla_solve(kff + w * w * hff, -w * w * hs)
+    orbit_point = np.array([-0.2, 0.0, 0.0])
+    s_orbit = (xyz - orbit_point).reshape(-1)
+    steady_orbit = spla_solve(kff + w * w * hff, -w * w * (h @ s_orbit)[free])
+    gravity = np.array([0.0, 0.0, -9.81])
+    g_load = (m @ np.tile(gravity, n // 3))[free]
+    gravity_static = spla_solve(kff, g_load)
 
     # Modal equations, mass-normalised modes: q'' + 2w g q' + (L + w' g + w^2 h) q = f.
     gm = phi.T @ (gff @ phi)
@@ -137,6 +147,10 @@ def main():
         "outputs": outputs,
         "clamped_hz": hz[:10].tolist(),
         "steady": means(steady),
+        "orbit_point": orbit_point.tolist(),
+        "steady_orbit": means(steady_orbit),
+        "gravity": gravity.tolist(),
+        "gravity_static": means(gravity_static),
         "modal_modes": nm,
         "modal_times": times.tolist(),
         "modal_history": history,

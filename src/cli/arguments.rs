@@ -195,14 +195,32 @@ pub(super) enum Command {
         /// Kept fixed-interface modes, one model per count.
         #[arg(long, value_delimiter = ',', default_value = "10")]
         modes: Vec<usize>,
-        /// The motion; `spin-up` (about --axis through the drive's master).
-        #[arg(long, default_value = "spin-up", value_parser = ["spin-up"])]
+        /// The motion: `spin-up` (about --axis through --axis-point, default the drive's
+        /// master: elsewhere the drive orbits the axis) or `shake` (a harmonic translation of
+        /// the drive along --direction, no turning).
+        #[arg(long, default_value = "spin-up", value_parser = ["spin-up", "shake"])]
         motion: String,
+        /// With spin-up: a point of the spin axis, X,Y,Z in the body's length unit.
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        axis_point: Option<Vec<f64>>,
+        /// With shake: the direction in ground axes, X,Y,Z.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "1,0,0",
+            allow_hyphen_values = true
+        )]
+        direction: Vec<f64>,
+        /// With shake: the amplitude, m.
+        #[arg(long, default_value_t = 1e-3)]
+        amplitude: f64,
+        /// With shake: the frequency, Hz.
+        #[arg(long, default_value_t = 50.0)]
+        frequency: f64,
         /// Spin axis in body axes, X,Y,Z.
         #[arg(
             long,
             value_delimiter = ',',
-            num_args = 3,
             default_value = "0,0,1",
             allow_hyphen_values = true
         )]
@@ -226,7 +244,7 @@ pub(super) enum Command {
         #[arg(long, default_value_t = 100)]
         samples: usize,
         /// Gravity in ground axes, m/s², X,Y,Z (default: off).
-        #[arg(long, value_delimiter = ',', num_args = 3, allow_hyphen_values = true)]
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
         gravity: Option<Vec<f64>>,
         /// Print the results as JSON.
         #[arg(long)]

@@ -334,6 +334,10 @@ fn run(cli: Cli) -> Result<()> {
             method,
             modes,
             motion,
+            axis_point,
+            direction,
+            amplitude,
+            frequency,
             axis,
             rate,
             ramp,
@@ -346,18 +350,39 @@ fn run(cli: Cli) -> Result<()> {
             save,
             explicit,
         } => {
-            // clap admits the known motions only.
-            debug_assert_eq!(motion, "spin-up");
+            // clap admits the known motions only: spin-up, shake.
+            let shaking = motion == "shake";
+            let three = |name: &str, v: &[f64]| -> Result<[f64; 3]> {
+                match v {
+                    [x, y, z] => Ok([*x, *y, *z]),
+                    _ => Err(Error::InvalidOption {
+                        scene: "simulate".into(),
+                        reason: format!("--{name} takes three numbers X,Y,Z, not {}", v.len()),
+                    }),
+                }
+            };
+            let axis = three("axis", &axis)?;
+            let direction = three("direction", &direction)?;
+            let axis_point = axis_point.map(|p| three("axis-point", &p)).transpose()?;
+            let gravity = gravity.map(|g| three("gravity", &g)).transpose()?;
             let body = ImportedBody::load(&body)?;
             let steps = (end / dt).round().max(1.0) as usize;
             let parameters = crate::models::DrivenBodyParameters {
                 drive,
                 boundary,
                 outputs: output,
-                axis: [axis[0], axis[1], axis[2]],
-                rate,
+                axis,
+                rate: if shaking { 0.0 } else { rate },
                 ramp,
-                gravity: gravity.map(|g| [g[0], g[1], g[2]]),
+                axis_point: axis_point.map(|p| [p[0], p[1], p[2]]),
+                shake: shaking.then(|| {
+                    (
+                        [direction[0], direction[1], direction[2]],
+                        amplitude,
+                        frequency,
+                    )
+                }),
+                gravity,
                 integration: crate::dynamics::DrivenIntegration {
                     step: dt,
                     end,

@@ -19,7 +19,7 @@ use std::time::Instant;
 use nalgebra::Vector3;
 
 use super::{
-    GeneralizedAlphaCoefficients, SpinUp,
+    GeneralizedAlphaCoefficients, Shake, SpinUp,
     driven_frame_body::{Combination, DrivenFrameBody},
 };
 use crate::{Progress, Result};
@@ -37,24 +37,28 @@ pub struct DrivenIntegration {
     pub output_every: usize,
 }
 
-/// The driving: the frame's spin-up and gravity in ground axes (the body's length unit
-/// per s²).
+/// The driving: the frame's spin-up about an axis through its origin, a shaking of the origin,
+/// and gravity in ground axes (the body's length unit per s²).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Driving {
-    /// The frame's motion.
+    /// The frame's turning.
     pub spin: SpinUp,
+    /// The origin's translation, if any.
+    pub shake: Option<Shake>,
     /// Gravity in ground axes.
     pub gravity: Vector3<f64>,
 }
 
 impl Driving {
-    /// $(\dot\theta, \ddot\theta, A^T g)$ at `t`.
+    /// $(\dot\theta, \ddot\theta, A^T(g - \ddot r))$ at `t`: a translation of the frame loads
+    /// the body as gravity does, with the opposite sign.
     pub fn at(&self, t: f64) -> (f64, f64, Vector3<f64>) {
         let (_, rate, acceleration) = self.spin.at(t);
-        let g_body = if self.gravity == Vector3::zeros() {
-            self.gravity
+        let ground = self.gravity - self.shake.map_or(Vector3::zeros(), |s| s.acceleration(t));
+        let g_body = if ground == Vector3::zeros() {
+            ground
         } else {
-            self.spin.rotation(t).inverse() * self.gravity
+            self.spin.rotation(t).inverse() * ground
         };
         (rate, acceleration, g_body)
     }

@@ -16,6 +16,7 @@ mod integrator;
 mod integrator_parameters;
 mod prescribed;
 mod rotation;
+mod shake;
 mod simulation;
 mod spin_up;
 mod system;
@@ -41,6 +42,7 @@ pub use integrator_parameters::{
 };
 pub use prescribed::Motion;
 pub use rotation::{euler_parameters_from_matrix, rotation_matrix, skew};
+pub use shake::Shake;
 pub use simulation::{Sample, Simulation};
 pub use spin_up::SpinUp;
 pub use system::{STANDARD_GRAVITY, State, System};

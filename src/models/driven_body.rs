@@ -16,7 +16,7 @@ use crate::{
     analysis::count_zero_energy_modes,
     body_file::{ImportedBody, InterfaceKind},
     dynamics::{
-        DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, SpinUp, free_rows,
+        DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, Shake, SpinUp, free_rows,
         integrate_driven, positions,
     },
     linalg::{GeneralizedEigen, generalized_eigen},
@@ -56,6 +56,12 @@ pub struct DrivenBodyParameters {
     pub rate: f64,
     /// Ramp time, s.
     pub ramp: f64,
+    /// A point of the spin axis (the body's length unit); `None`: the drive's master. Away
+    /// from the master the drive orbits the axis.
+    pub axis_point: Option<[f64; 3]>,
+    /// A harmonic translation of the drive: direction (ground axes), amplitude (m) and
+    /// frequency (Hz).
+    pub shake: Option<([f64; 3], f64, f64)>,
     /// Gravity in ground axes, m/s² (converted to the body's length unit).
     pub gravity: Option<[f64; 3]>,
     /// The integrator's steps.
@@ -74,6 +80,8 @@ impl Default for DrivenBodyParameters {
             axis: [0.0, 0.0, 1.0],
             rate: 100.0,
             ramp: 0.5,
+            axis_point: None,
+            shake: None,
             gravity: None,
             integration: DrivenIntegration {
                 step: 1e-3,
@@ -223,14 +231,30 @@ pub fn driven_body_study(
         Some(g) => Vector3::from(g) / metres_per(&body.units.length)?,
         None => Vector3::zeros(),
     };
+    let shake = match parameters.shake {
+        Some((direction, amplitude, frequency)) => Some(Shake {
+            direction: Unit::try_new(Vector3::from(direction), 1e-12).ok_or_else(|| {
+                Error::InvalidOption {
+                    scene: "simulate".into(),
+                    reason: "the shaking direction is zero".into(),
+                }
+            })?,
+            amplitude: amplitude / metres_per(&body.units.length)?,
+            frequency,
+        }),
+        None => None,
+    };
     let driving = Driving {
         spin: SpinUp {
             axis,
             rate: parameters.rate,
             ramp: parameters.ramp,
         },
+        shake,
         gravity,
     };
+    // The frame turns about the axis point; the drive's ring is clamped in it wherever it is.
+    let origin = parameters.axis_point.unwrap_or(drive.master);
     let output_names: Vec<String> = if parameters.outputs.is_empty() {
         body.node_sets
             .keys()
@@ -260,7 +284,8 @@ pub fn driven_body_study(
     }
     let measure = Measure {
         model,
-        s: positions(model, drive.master),
+        s: positions(model, origin),
+        arm: Vector3::from(drive.master) - Vector3::from(origin),
         axis: axis.into_inner(),
         outputs,
         driving,
@@ -269,7 +294,7 @@ pub fn driven_body_study(
 
     progress.phase("full body on the driven frame")?;
     let started = Instant::now();
-    let mut full_body = DrivenFrameBody::full(model, &ring, drive.master, axis)?;
+    let mut full_body = DrivenFrameBody::full(model, &ring, origin, axis)?;
     let full_offline = started.elapsed().as_secs_f64();
     let full_map = FieldMap::Free {
         dofs: model.dof_count(),

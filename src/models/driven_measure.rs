@@ -56,6 +56,8 @@ impl FieldMap {
 pub(super) struct Measure<'a> {
     pub(super) model: &'a FeModel,
     pub(super) s: Vec<f64>,
+    /// The drive's master from the frame's origin (frame axes): moments are taken about it.
+    pub(super) arm: Vector3<f64>,
     pub(super) axis: Vector3<f64>,
     pub(super) outputs: Vec<Vec<usize>>,
     pub(super) driving: Driving,
@@ -78,7 +80,7 @@ impl Measure<'_> {
     }
 
     /// The reaction at the drive: the rate of the body's momentum less gravity, force and
-    /// moment about the frame's origin, from the nodal accelerations in frame axes
+    /// moment about the drive's master, from the nodal accelerations in frame axes
     /// $a = \ddot\theta\,e\times b + \dot\theta^2 e\times(e\times b) + 2\dot\theta\,e\times
     /// \dot u + \ddot u$, $b = s + u$.
     pub(super) fn reaction(&self, t: f64, u: &[f64], v: &[f64], a: &[f64]) -> [f64; 6] {
@@ -109,7 +111,7 @@ impl Measure<'_> {
                 self.s[3 * j + 1] + u[3 * j + 1],
                 self.s[3 * j + 2] + u[3 * j + 2],
             );
-            let m = b.cross(&wj);
+            let m = (b - self.arm).cross(&wj);
             for q in 0..3 {
                 out[q] += wj[q];
                 out[3 + q] += m[q];

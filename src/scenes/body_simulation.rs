@@ -61,16 +61,36 @@ pub fn summary(
     );
     let (drive, master, ring) = &study.drive;
     let steps = study.runs.first().map_or(0, |r| r.cost.steps);
+    let list = |v: [f64; 3]| v.map(|x| x.to_string()).join(", ");
+    let mut motion = Vec::new();
+    if parameters.rate != 0.0 {
+        motion.push(format!(
+            "spun up about ({}){} to {} rad/s over {} s",
+            list(parameters.axis),
+            parameters.axis_point.map_or(String::new(), |p| format!(
+                " through ({}) {length}",
+                list(p)
+            )),
+            parameters.rate,
+            parameters.ramp
+        ));
+    }
+    if let Some((d, a, f)) = parameters.shake {
+        motion.push(format!("shaken along ({}) by {a} m at {f} Hz", list(d)));
+    }
+    if let Some(g) = parameters.gravity {
+        motion.push(format!("gravity ({}) m/s²", list(g)));
+    }
+    if motion.is_empty() {
+        motion.push("held still".into());
+    }
     let mut text = format!(
-        "# simulate `{}` ({} DOF): `{drive}` ({ring} nodes, master at ({}) {length}) spun up \
-         about ({}) to {} rad/s over {} s, generalized-α ρ∞ = {}, {steps} steps of {} s\n\n\
-         {table}\n",
+        "# simulate `{}` ({} DOF): `{drive}` ({ring} nodes, master at ({}) {length}) {}, \
+         generalized-α ρ∞ = {}, {steps} steps of {} s\n\n{table}\n",
         body.model.name,
         study.dof,
         master.map(sig).map(|x| x.to_string()).join(", "),
-        parameters.axis.map(|x| x.to_string()).join(", "),
-        parameters.rate,
-        parameters.ramp,
+        motion.join("; "),
         parameters.integration.spectral_radius,
         parameters.integration.step,
     );
@@ -162,8 +182,10 @@ pub fn summary(
         "dof": study.dof,
         "units": {"length": length, "force": force},
         "drive": {"interface": drive, "master": master, "nodes": ring},
-        "motion": {"kind": "spin-up", "axis": parameters.axis, "rate": parameters.rate,
-                   "ramp": parameters.ramp},
+        "motion": {"axis": parameters.axis, "rate": parameters.rate, "ramp": parameters.ramp,
+                   "axis_point": parameters.axis_point,
+                   "shake": parameters.shake.map(|(d, a, f)| json!({
+                       "direction": d, "amplitude_m": a, "frequency_hz": f}))},
         "gravity": parameters.gravity,
         "integrator": {"scheme": "gen-alpha", "step": parameters.integration.step,
                        "end": parameters.integration.end,
