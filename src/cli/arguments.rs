@@ -173,91 +173,7 @@ pub(super) enum Command {
     /// Simulate a body driven through a rigid interface: the full body (NR, sparse) and
     /// reduced models (gr, mt, cb, mc) run the same spin-up; each model's history and reaction
     /// against the full body's, its offline and online time.
-    Simulate {
-        /// The body file (TOML), or `builtin:NAME`.
-        #[arg(long)]
-        body: String,
-        /// The driven interface, `rbe2:SET` or an rbe2 interface of the body file: its master
-        /// follows the spin-up, its ring clamped in the turning frame.
-        #[arg(long)]
-        drive: String,
-        /// Other interfaces the reduced models keep (node sets, `rbe2:SET`), free in the
-        /// simulation.
-        #[arg(long, value_delimiter = ',')]
-        boundary: Vec<String>,
-        /// Node sets whose mean displacement is the history (default: every set but the
-        /// drive's).
-        #[arg(long, value_delimiter = ',')]
-        output: Vec<String>,
-        /// Models: nr (the full body) and gr, mt, cb, mc.
-        #[arg(long, value_delimiter = ',', default_value = "nr,cb,mc")]
-        method: Vec<Method>,
-        /// Kept fixed-interface modes, one model per count.
-        #[arg(long, value_delimiter = ',', default_value = "10")]
-        modes: Vec<usize>,
-        /// The motion: `spin-up` (about --axis through --axis-point, default the drive's
-        /// master: elsewhere the drive orbits the axis) or `shake` (a harmonic translation of
-        /// the drive along --direction, no turning).
-        #[arg(long, default_value = "spin-up", value_parser = ["spin-up", "shake"])]
-        motion: String,
-        /// With spin-up: a point of the spin axis, X,Y,Z in the body's length unit.
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-        axis_point: Option<Vec<f64>>,
-        /// With shake: the direction in ground axes, X,Y,Z.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "1,0,0",
-            allow_hyphen_values = true
-        )]
-        direction: Vec<f64>,
-        /// With shake: the amplitude, m.
-        #[arg(long, default_value_t = 1e-3)]
-        amplitude: f64,
-        /// With shake: the frequency, Hz.
-        #[arg(long, default_value_t = 50.0)]
-        frequency: f64,
-        /// Spin axis in body axes, X,Y,Z.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "0,0,1",
-            allow_hyphen_values = true
-        )]
-        axis: Vec<f64>,
-        /// Steady spin rate, rad/s.
-        #[arg(long, default_value_t = 100.0)]
-        rate: f64,
-        /// Ramp time of the spin-up, s.
-        #[arg(long, default_value_t = 0.5)]
-        ramp: f64,
-        /// End time, s.
-        #[arg(long, default_value_t = 1.0)]
-        end: f64,
-        /// Step of generalized-α, s.
-        #[arg(long, default_value_t = 1e-3)]
-        dt: f64,
-        /// Spectral radius at infinite frequency of generalized-α.
-        #[arg(long, default_value_t = 0.9)]
-        rho: f64,
-        /// Samples of the history (evenly spaced over the steps).
-        #[arg(long, default_value_t = 100)]
-        samples: usize,
-        /// Gravity in ground axes, m/s², X,Y,Z (default: off).
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-        gravity: Option<Vec<f64>>,
-        /// Print the results as JSON.
-        #[arg(long)]
-        json: bool,
-        /// Also write the recording (the body deforming per model, the histories, the chart)
-        /// to this `.rrd`.
-        #[arg(long)]
-        save: Option<PathBuf>,
-        /// Also run each reduced model with explicit Dormand–Prince steps below its critical
-        /// step (predicted from its highest frequency), and check that 3× that step diverges.
-        #[arg(long)]
-        explicit: bool,
-    },
+    Simulate(SimulateArgs),
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {
         /// Scene id.
@@ -268,6 +184,94 @@ pub(super) enum Command {
         #[command(flatten)]
         options: OptionArgs,
     },
+}
+
+/// The arguments of `simulate`.
+#[derive(Debug, Args)]
+pub(super) struct SimulateArgs {
+    /// The body file (TOML), or `builtin:NAME`.
+    #[arg(long)]
+    pub(super) body: String,
+    /// The driven interface, `rbe2:SET` or an rbe2 interface of the body file: its master
+    /// follows the spin-up, its ring clamped in the turning frame.
+    #[arg(long)]
+    pub(super) drive: String,
+    /// Other interfaces the reduced models keep (node sets, `rbe2:SET`), free in the
+    /// simulation.
+    #[arg(long, value_delimiter = ',')]
+    pub(super) boundary: Vec<String>,
+    /// Node sets whose mean displacement is the history (default: every set but the
+    /// drive's).
+    #[arg(long, value_delimiter = ',')]
+    pub(super) output: Vec<String>,
+    /// Models: nr (the full body) and gr, mt, cb, mc.
+    #[arg(long, value_delimiter = ',', default_value = "nr,cb,mc")]
+    pub(super) method: Vec<Method>,
+    /// Kept fixed-interface modes, one model per count.
+    #[arg(long, value_delimiter = ',', default_value = "10")]
+    pub(super) modes: Vec<usize>,
+    /// The motion: `spin-up` (about --axis through --axis-point, default the drive's
+    /// master: elsewhere the drive orbits the axis) or `shake` (a harmonic translation of
+    /// the drive along --direction, no turning).
+    #[arg(long, default_value = "spin-up", value_parser = ["spin-up", "shake"])]
+    pub(super) motion: String,
+    /// With spin-up: a point of the spin axis, X,Y,Z in the body's length unit.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub(super) axis_point: Option<Vec<f64>>,
+    /// With shake: the direction in ground axes, X,Y,Z.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "1,0,0",
+        allow_hyphen_values = true
+    )]
+    pub(super) direction: Vec<f64>,
+    /// With shake: the amplitude, m.
+    #[arg(long, default_value_t = 1e-3)]
+    pub(super) amplitude: f64,
+    /// With shake: the frequency, Hz.
+    #[arg(long, default_value_t = 50.0)]
+    pub(super) frequency: f64,
+    /// Spin axis in body axes, X,Y,Z.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0,0,1",
+        allow_hyphen_values = true
+    )]
+    pub(super) axis: Vec<f64>,
+    /// Steady spin rate, rad/s.
+    #[arg(long, default_value_t = 100.0)]
+    pub(super) rate: f64,
+    /// Ramp time of the spin-up, s.
+    #[arg(long, default_value_t = 0.5)]
+    pub(super) ramp: f64,
+    /// End time, s.
+    #[arg(long, default_value_t = 1.0)]
+    pub(super) end: f64,
+    /// Step of generalized-α, s.
+    #[arg(long, default_value_t = 1e-3)]
+    pub(super) dt: f64,
+    /// Spectral radius at infinite frequency of generalized-α.
+    #[arg(long, default_value_t = 0.9)]
+    pub(super) rho: f64,
+    /// Samples of the history (evenly spaced over the steps).
+    #[arg(long, default_value_t = 100)]
+    pub(super) samples: usize,
+    /// Gravity in ground axes, m/s², X,Y,Z (default: off).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub(super) gravity: Option<Vec<f64>>,
+    /// Print the results as JSON.
+    #[arg(long)]
+    pub(super) json: bool,
+    /// Also write the recording (the body deforming per model, the histories, the chart)
+    /// to this `.rrd`.
+    #[arg(long)]
+    pub(super) save: Option<PathBuf>,
+    /// Also run each reduced model with explicit Dormand–Prince steps below its critical
+    /// step (predicted from its highest frequency), and check that 3× that step diverges.
+    #[arg(long)]
+    pub(super) explicit: bool,
 }
 
 /// Window options of `gui` and `view`.

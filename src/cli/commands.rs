@@ -34,7 +34,7 @@ pub fn main() -> ExitCode {
     }
 }
 
-fn progress(msg: &str) {
+pub(super) fn progress(msg: &str) {
     if std::io::stderr().is_terminal() {
         eprintln!("{msg}");
     }
@@ -326,100 +326,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
-        Command::Simulate {
-            body,
-            drive,
-            boundary,
-            output,
-            method,
-            modes,
-            motion,
-            axis_point,
-            direction,
-            amplitude,
-            frequency,
-            axis,
-            rate,
-            ramp,
-            end,
-            dt,
-            rho,
-            samples,
-            gravity,
-            json,
-            save,
-            explicit,
-        } => {
-            // clap admits the known motions only: spin-up, shake.
-            let shaking = motion == "shake";
-            let three = |name: &str, v: &[f64]| -> Result<[f64; 3]> {
-                match v {
-                    [x, y, z] => Ok([*x, *y, *z]),
-                    _ => Err(Error::InvalidOption {
-                        scene: "simulate".into(),
-                        reason: format!("--{name} takes three numbers X,Y,Z, not {}", v.len()),
-                    }),
-                }
-            };
-            let axis = three("axis", &axis)?;
-            let direction = three("direction", &direction)?;
-            let axis_point = axis_point.map(|p| three("axis-point", &p)).transpose()?;
-            let gravity = gravity.map(|g| three("gravity", &g)).transpose()?;
-            let body = ImportedBody::load(&body)?;
-            let steps = (end / dt).round().max(1.0) as usize;
-            let parameters = crate::models::DrivenBodyParameters {
-                drive,
-                boundary,
-                outputs: output,
-                axis,
-                rate: if shaking { 0.0 } else { rate },
-                ramp,
-                axis_point: axis_point.map(|p| [p[0], p[1], p[2]]),
-                shake: shaking.then(|| {
-                    (
-                        [direction[0], direction[1], direction[2]],
-                        amplitude,
-                        frequency,
-                    )
-                }),
-                gravity,
-                integration: crate::dynamics::DrivenIntegration {
-                    step: dt,
-                    end,
-                    spectral_radius: rho,
-                    output_every: (steps / samples.max(1)).max(1),
-                },
-                explicit,
-            };
-            let full = method.contains(&crate::reduction::Method::NoReduction);
-            let reduced: Vec<_> = method
-                .into_iter()
-                .filter(|m| *m != crate::reduction::Method::NoReduction)
-                .collect();
-            let handle = Progress::new();
-            let bar = TerminalProgress::start(&handle, "simulate");
-            let study = crate::models::driven_body_study(
-                &body,
-                &parameters,
-                &reduced,
-                &modes,
-                full,
-                &handle,
-            )?;
-            drop(bar);
-            let (value, text) = scenes::body_simulation::summary(&body, &parameters, &study);
-            if let Some(path) = &save {
-                let content = scenes::body_simulation::recording(&body.model, &study, &text);
-                Recorder::default().save(&content, path)?;
-                progress(&format!("wrote {}", path.display()));
-            }
-            if json {
-                println!("{value}");
-            } else {
-                println!("{text}");
-            }
-            Ok(())
-        }
+        Command::Simulate(arguments) => super::simulate::run(arguments),
         Command::Import { body, json } => {
             let body = ImportedBody::load(&body)?;
             let (value, text) = scenes::body_import::import_summary(&body)?;

@@ -2,6 +2,7 @@
 
 mod arguments;
 mod commands;
+mod simulate;
 
 pub use arguments::Cli;
 pub use commands::main;
