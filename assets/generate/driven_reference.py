@@ -17,6 +17,8 @@ w(t) the spin rate. This script builds G and H with scipy.sparse (Kronecker prod
   DOP853 (rtol 1e-11) from rest, sampled at `times`: the mean displacement of each output set;
 * `steady_orbit`: the steady state when the axis passes through `orbit_point` instead (the
   positions s measured from that point);
+* `steady_mean_axes`: the steady spin seen from the body's mean axes, u - P (P^T M P)^-1 P^T M u
+  with P the rigid-body modes;
 * `gravity_static`: the static deflection under gravity `gravity` (m/s^2, the body in m),
   K u = M (1 (x) g).
 
@@ -112,6 +114,18 @@ def main():
     orbit_point = np.array([-0.2, 0.0, 0.0])
     s_orbit = (xyz - orbit_point).reshape(-1)
     steady_orbit = spla_solve(kff + w * w * hff, -w * w * (h @ s_orbit)[free])
+    full = np.zeros(n)
+    full[free] = steady
+    centre = (xyz * np.asarray(m.sum(axis=1)).reshape(-1, 3)).sum(axis=0) / m.sum() * 3
+    rel = xyz - centre
+    p_rigid = np.zeros((n, 6))
+    for a in range(3):
+        p_rigid[a::3, a] = 1.0
+        axis_a = np.eye(3)[a]
+        p_rigid[:, 3 + a] = np.cross(axis_a, rel).reshape(-1)
+    mp = m @ p_rigid
+    q = np.linalg.solve(p_rigid.T @ mp, mp.T @ full)
+    steady_mean = (full - p_rigid @ q)[free]
     gravity = np.array([0.0, 0.0, -9.81])
     g_load = (m @ np.tile(gravity, n // 3))[free]
     gravity_static = spla_solve(kff, g_load)
@@ -149,6 +163,7 @@ def main():
         "steady": means(steady),
         "orbit_point": orbit_point.tolist(),
         "steady_orbit": means(steady_orbit),
+        "steady_mean_axes": means(steady_mean),
         "gravity": gravity.tolist(),
         "gravity_static": means(gravity_static),
         "modal_modes": nm,

@@ -5,6 +5,7 @@ mod dynamic_compliance;
 mod frequencies;
 mod frequency_response;
 mod mean_axes;
+mod mean_axis_view;
 mod mode_pairing;
 mod pareto;
 mod profiles;
@@ -21,6 +22,7 @@ pub use frequencies::{
 };
 pub use frequency_response::{FrequencyResponse, band_frequencies, modes_in_band};
 pub use mean_axes::{MeanAxesEvaluation, evaluate_with_mean_axes, rigid_modes_about_mass_centre};
+pub use mean_axis_view::MeanAxisView;
 pub use mode_pairing::{MAC_ACCURATE, ModePair, mac, mac_matrix, pair_modes};
 pub use pareto::{pareto_flags, three_digits};
 pub use profiles::{PROFILE_DELTA, ProfileFit, fit_given_modal_coordinates, fit_least_squares};

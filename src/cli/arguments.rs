@@ -268,6 +268,10 @@ pub(super) struct SimulateArgs {
     /// to this `.rrd`.
     #[arg(long)]
     pub(super) save: Option<PathBuf>,
+    /// The axes the histories are seen from: `nodal_fixed` (the drive's frame) or `mean`
+    /// (the body's mean axes: the same motion with its rigid part in the mass metric removed).
+    #[arg(long, default_value = "nodal_fixed")]
+    pub(super) axes: crate::dynamics::AxisKind,
     /// Also run each reduced model with explicit Dormand–Prince steps below its critical
     /// step (predicted from its highest frequency), and check that 3× that step diverges.
     #[arg(long)]

@@ -31,6 +31,7 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         json,
         save,
         explicit,
+        axes,
     } = arguments;
     // clap admits the known motions only: spin-up, shake.
     let shaking = motion == "shake";
@@ -72,6 +73,7 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
             output_every: (steps / samples.max(1)).max(1),
         },
         explicit,
+        axes,
     };
     let full = method.contains(&crate::reduction::Method::NoReduction);
     let reduced: Vec<_> = method

@@ -13,11 +13,11 @@ use nalgebra::{Unit, Vector3};
 
 use crate::{
     Error, Result,
-    analysis::count_zero_energy_modes,
+    analysis::{MeanAxisView, count_zero_energy_modes},
     body_file::{ImportedBody, InterfaceKind},
     dynamics::{
-        DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, Shake, SpinUp, free_rows,
-        integrate_driven, positions,
+        AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, Shake, SpinUp,
+        free_rows, integrate_driven, positions,
     },
     linalg::{GeneralizedEigen, generalized_eigen},
     progress::Progress,
@@ -69,6 +69,10 @@ pub struct DrivenBodyParameters {
     /// Also run each reduced model with the explicit Dormand–Prince scheme below its critical
     /// step, and check that it diverges above it.
     pub explicit: bool,
+    /// The axes the histories are seen from: the drive's frame (nodal-fixed at the
+    /// interface) or the body's mean axes (the same motion, its rigid part in the mass metric
+    /// taken out); principal axes are not offered.
+    pub axes: AxisKind,
 }
 
 impl Default for DrivenBodyParameters {
@@ -90,6 +94,7 @@ impl Default for DrivenBodyParameters {
                 output_every: 10,
             },
             explicit: false,
+            axes: AxisKind::NodalFixed,
         }
     }
 }
@@ -282,7 +287,24 @@ pub fn driven_body_study(
             })?;
         outputs.push(model.dofs_of_nodes(nodes)?);
     }
+    let mean_axes = match parameters.axes {
+        AxisKind::NodalFixed => None,
+        AxisKind::Mean => {
+            let view = MeanAxisView::of(model)?;
+            let rows = outputs.iter().map(|dofs| view.mean_rows(dofs)).collect();
+            Some((view, rows))
+        }
+        AxisKind::Principal => {
+            return Err(Error::InvalidOption {
+                scene: "simulate".into(),
+                reason: "a driven body's histories are seen from the drive's frame (nodal_fixed) \
+                         or from mean axes; principal axes are not offered"
+                    .into(),
+            });
+        }
+    };
     let measure = Measure {
+        mean_axes,
         model,
         s: positions(model, origin),
         arm: Vector3::from(drive.master) - Vector3::from(origin),

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use faer::Mat;
 use nalgebra::Vector3;
 
-use crate::{dynamics::Driving, fem::FeModel, linalg::MassMatrix};
+use crate::{analysis::MeanAxisView, dynamics::Driving, fem::FeModel, linalg::MassMatrix};
 
 /// How a run's coordinates give the full displacement field.
 #[derive(Debug, Clone)]
@@ -61,17 +61,29 @@ pub(super) struct Measure<'a> {
     pub(super) axis: Vector3<f64>,
     pub(super) outputs: Vec<Vec<usize>>,
     pub(super) driving: Driving,
+    /// Histories seen from mean axes: the view and, per output set, its rigid rows' mean.
+    pub(super) mean_axes: Option<(MeanAxisView, Vec<Vec<Vec<f64>>>)>,
 }
 
 impl Measure<'_> {
     pub(super) fn output(&self, u_full: &[f64]) -> Vec<[f64; 3]> {
+        let rigid = self
+            .mean_axes
+            .as_ref()
+            .map(|(view, _)| view.rigid_part(u_full));
         self.outputs
             .iter()
-            .map(|dofs| {
+            .enumerate()
+            .map(|(o, dofs)| {
                 let mut mean = [0.0; 3];
                 for triple in dofs.chunks_exact(3) {
                     for a in 0..3 {
                         mean[a] += u_full[triple[a]] / (dofs.len() / 3) as f64;
+                    }
+                }
+                if let (Some(q), Some((_, rows))) = (&rigid, &self.mean_axes) {
+                    for (a, m) in mean.iter_mut().enumerate() {
+                        *m -= rows[o][a].iter().zip(q).map(|(r, q)| r * q).sum::<f64>();
                     }
                 }
                 mean

@@ -95,12 +95,19 @@ pub fn summary(
         parameters.integration.step,
     );
     text += &format!(
-        "\nHistory: the mean displacement of {} in the turning frame ({length}); history error = \
+        "\nHistory: the mean displacement of {} {} ({length}); history error = \
          largest difference over the largest full-body value; reaction error = largest \
          reaction-force difference over the largest elastic part of the full body's. Lowest \
          and highest Hz: the reduced model on the frame at rest, ring clamped. Online: the \
          integration alone (the outputs' reconstruction left out).\n",
-        study.output_names.join(", ")
+        study.output_names.join(", "),
+        match parameters.axes {
+            crate::dynamics::AxisKind::Mean => {
+                "seen from the body's mean axes (the motion in the drive's frame less its rigid \
+                 part in the mass metric, §4.2 linearised)"
+            }
+            _ => "in the drive's turning frame",
+        }
     );
     for c in &study.stability {
         text += &format!(
@@ -191,6 +198,7 @@ pub fn summary(
                        "end": parameters.integration.end,
                        "spectral_radius": parameters.integration.spectral_radius},
         "outputs": study.output_names,
+        "axes": parameters.axes.id(),
         "stability": study.stability.iter().map(|c| json!({
             "model": c.label,
             "highest_hz": c.highest_hz,
