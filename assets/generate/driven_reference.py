@@ -19,6 +19,9 @@ w(t) the spin rate. This script builds G and H with scipy.sparse (Kronecker prod
   positions s measured from that point);
 * `steady_mean_axes`: the steady spin seen from the body's mean axes, u - P (P^T M P)^-1 P^T M u
   with P the rigid-body modes;
+* `steady_pinned`: the steady spin with the other output set pinned (its ring turns rigidly
+  about its centroid, which keeps its place in the frame), at the node farthest from the drive's
+  centroid (`pinned_output_node`, 1-based);
 * `gravity_static`: the static deflection under gravity `gravity` (m/s^2, the body in m),
   K u = M (1 (x) g).
 
@@ -126,6 +129,33 @@ def main():
     mp = m @ p_rigid
     q = np.linalg.solve(p_rigid.T @ mp, mp.T @ full)
     steady_mean = (full - p_rigid @ q)[free]
+    # Pinned: u = T x, x = (free DOF outside both rings, the pinned ring's three rotations).
+    pin_name = outputs[0]
+    pin = np.array(sets[pin_name]) - 1
+    pin_centre = xyz[pin].mean(axis=0)
+    pinned_dofs = np.concatenate([3 * pin + a for a in range(3)])
+    keep = np.ones(n, dtype=bool)
+    keep[clamped] = False
+    keep[pinned_dofs] = False
+    free_p = np.flatnonzero(keep)
+    t_rows, t_cols, t_vals = [], [], []
+    for i, d in enumerate(free_p):
+        t_rows.append(d)
+        t_cols.append(i)
+        t_vals.append(1.0)
+    base = len(free_p)
+    for j in pin:
+        r = xyz[j] - pin_centre
+        for q in range(3):
+            col = np.cross(np.eye(3)[q], r)
+            for a in range(3):
+                t_rows.append(3 * j + a)
+                t_cols.append(base + q)
+                t_vals.append(col[a])
+    tmat = sp.csc_matrix((t_vals, (t_rows, t_cols)), shape=(n, base + 3))
+    x_p = spla_solve(tmat.T @ (k + w * w * h) @ tmat, -w * w * (tmat.T @ (h @ s)))
+    u_p = tmat @ x_p
+    far = int(np.argmax(((xyz - master) ** 2).sum(axis=1)))
     gravity = np.array([0.0, 0.0, -9.81])
     g_load = (m @ np.tile(gravity, n // 3))[free]
     gravity_static = spla_solve(kff, g_load)
@@ -164,6 +194,9 @@ def main():
         "orbit_point": orbit_point.tolist(),
         "steady_orbit": means(steady_orbit),
         "steady_mean_axes": means(steady_mean),
+        "pinned": pin_name,
+        "pinned_output_node": far + 1,
+        "steady_pinned": [float(u_p[3 * far + a]) for a in range(3)],
         "gravity": gravity.tolist(),
         "gravity_static": means(gravity_static),
         "modal_modes": nm,

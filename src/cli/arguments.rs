@@ -200,8 +200,12 @@ pub(super) struct SimulateArgs {
     /// simulation.
     #[arg(long, value_delimiter = ',')]
     pub(super) boundary: Vec<String>,
-    /// Node sets whose mean displacement is the history (default: every set but the
-    /// drive's).
+    /// Node sets pinned to the carrier (rbe2 rings whose masters keep their place in the
+    /// turning frame and turn freely), comma separated.
+    #[arg(long, value_delimiter = ',')]
+    pub(super) pinned: Vec<String>,
+    /// Node sets whose mean displacement is the history, or `node:N` (default: every set but
+    /// the drive's and the pinned ones; without such sets, the node farthest from the drive).
     #[arg(long, value_delimiter = ',')]
     pub(super) output: Vec<String>,
     /// Models: nr (the full body) and gr, mt, cb, mc.

@@ -19,9 +19,10 @@
 //! $\Psi^T X \Psi$. [`DrivenFrameBody`] holds either: the full body sparse (no reduction,
 //! NR) or a reduced body dense.
 
-use faer::{Mat, MatRef};
+use faer::MatRef;
 use nalgebra::{DMatrix, DVector, Unit, Vector3};
 
+use super::frame_coordinates::{FrameCoordinates, PinnedRing};
 use crate::{
     Error, Result,
     error::LinalgError,
@@ -56,10 +57,8 @@ pub struct Combination {
 /// The full body, sparse.
 #[derive(Debug)]
 pub struct SparseDriven {
-    /// Full DOF count.
-    n: usize,
-    /// The DOF outside the clamped ring, ascending.
-    free: Vec<usize>,
+    /// Coordinates: the DOF outside the clamped ring, then the pinned rings' rotations.
+    coords: FrameCoordinates,
     k_ff: SparseSymmetric,
     m: MassMatrix,
     m_ff: MassMatrix,
@@ -183,15 +182,11 @@ fn mul_mass(m: &MassMatrix, x: &[f64]) -> Vec<f64> {
 
 impl SparseDriven {
     fn extend(&self, x: &[f64]) -> Vec<f64> {
-        let mut full = vec![0.0; self.n];
-        for (&d, &v) in self.free.iter().zip(x) {
-            full[d] = v;
-        }
-        full
+        self.coords.extend(x)
     }
 
     fn restrict(&self, full: &[f64]) -> Vec<f64> {
-        self.free.iter().map(|&d| full[d]).collect()
+        self.coords.restrict(full)
     }
 
     /// $M E^p x$ on the free DOF (p = 1: G, p = 2: H) for a full-length `x`.
@@ -270,28 +265,25 @@ impl DenseDriven {
 }
 
 impl DrivenFrameBody {
-    /// The full body of `model` with the DOF of `ring` (0-based DOF indices) clamped, on a frame
-    /// with its origin at `origin` (model coordinates) turning about `axis`.
+    /// The full body of `model` with the DOF of `ring` (0-based DOF indices) clamped and the
+    /// `pins` pinned, on a frame with its origin at `origin` (model coordinates) turning about
+    /// `axis`.
     pub fn full(
         model: &FeModel,
         ring: &[usize],
+        pins: Vec<PinnedRing>,
         origin: [f64; 3],
         axis: Unit<Vector3<f64>>,
     ) -> Result<Self> {
         check_isotropic(model)?;
         let n = model.dof_count();
-        let mut clamped = vec![false; n];
-        for &d in ring {
-            clamped[d] = true;
-        }
-        let free: Vec<usize> = (0..n).filter(|&d| !clamped[d]).collect();
-        let k_ff = model.k.principal_block(&free);
-        let m_ff = model.m.principal_block(&free);
+        let coords = FrameCoordinates::new(n, ring, pins)?;
+        let k_ff = coords.project(&model.k);
+        let m_ff = coords.project_mass(&model.m);
         let symbolic = SymbolicFactor::analyse(k_ff.as_faer())?;
         let s = positions(model, origin);
         let sparse = SparseDriven {
-            n,
-            free,
+            coords,
             k_ff,
             m: model.m.clone(),
             m_ff,
@@ -326,7 +318,7 @@ impl DrivenFrameBody {
             });
         };
         let (rows, k) = (psi.nrows(), psi.ncols());
-        assert_eq!(rows, sparse.free.len(), "Ψ has a row per free DOF");
+        assert_eq!(rows, sparse.coords.dim(), "Ψ has a row per coordinate");
         let columns: Vec<Vec<f64>> = (0..k)
             .map(|c| (0..rows).map(|i| psi[(i, c)]).collect())
             .collect();
@@ -403,11 +395,11 @@ impl DrivenFrameBody {
         }
     }
 
-    /// The free DOF of the full body (empty for a reduced one).
-    pub fn free_dofs(&self) -> &[usize] {
+    /// The coordinates of the full body (`None` for a reduced one).
+    pub fn coordinates(&self) -> Option<&FrameCoordinates> {
         match &self.operators {
-            Operators::Sparse(s) => &s.free,
-            Operators::Dense(_) => &[],
+            Operators::Sparse(s) => Some(&s.coords),
+            Operators::Dense(_) => None,
         }
     }
 
@@ -506,36 +498,4 @@ pub fn positions(model: &FeModel, origin: [f64; 3]) -> Vec<f64> {
         .iter()
         .flat_map(|p| (0..3).map(move |a| p[a] - origin[a]))
         .collect()
-}
-
-/// Projects `psi` (full DOF rows) onto the free DOF of `full`, checking that it vanishes on
-/// the clamped ones: a basis that moves the clamped ring cannot be simulated on this frame.
-pub fn free_rows(full: &DrivenFrameBody, psi: MatRef<'_, f64>) -> Result<Mat<f64>> {
-    let free = full.free_dofs();
-    let mut is_free = vec![false; psi.nrows()];
-    for &d in free {
-        is_free[d] = true;
-    }
-    let scale = (0..psi.ncols())
-        .flat_map(|c| (0..psi.nrows()).map(move |i| (i, c)))
-        .map(|(i, c)| psi[(i, c)].abs())
-        .fold(0.0, f64::max);
-    for c in 0..psi.ncols() {
-        for i in 0..psi.nrows() {
-            if !is_free[i] && psi[(i, c)].abs() > 1e-12 * scale {
-                return Err(Error::InvalidOption {
-                    scene: "driven body".into(),
-                    reason: format!(
-                        "column {} of the basis moves the clamped DOF {i} (0-based) by {:.3e}: \
-                         on the driven frame the driven ring does not move",
-                        c + 1,
-                        psi[(i, c)]
-                    ),
-                });
-            }
-        }
-    }
-    Ok(Mat::from_fn(free.len(), psi.ncols(), |i, c| {
-        psi[(free[i], c)]
-    }))
 }

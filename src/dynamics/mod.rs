@@ -10,6 +10,7 @@ mod dormand_prince;
 mod driven_explicit;
 mod driven_frame_body;
 mod driven_integration;
+mod frame_coordinates;
 mod generalized_alpha;
 mod inertia_invariants;
 mod integrator;
@@ -30,10 +31,10 @@ pub use constraint::{Attachment, Constraint};
 pub use dormand_prince::{critical_step, imaginary_stability_limit, stability_polynomial};
 pub use driven_explicit::{DrivenExplicit, integrate_driven_explicit};
 pub use driven_frame_body::{
-    Combination, DRIVEN_SOLVE_TOLERANCE, DrivenFrameBody, ISOTROPIC_MASS_TOLERANCE, free_rows,
-    positions,
+    Combination, DRIVEN_SOLVE_TOLERANCE, DrivenFrameBody, ISOTROPIC_MASS_TOLERANCE, positions,
 };
 pub use driven_integration::{DrivenCost, DrivenIntegration, Driving, integrate_driven};
+pub use frame_coordinates::{FrameCoordinates, PinnedRing};
 pub use generalized_alpha::GeneralizedAlphaCoefficients;
 pub use inertia_invariants::InertiaInvariants;
 pub use integrator::simulate;

@@ -16,8 +16,8 @@ use crate::{
     analysis::{MeanAxisView, count_zero_energy_modes},
     body_file::{ImportedBody, InterfaceKind},
     dynamics::{
-        AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, Shake, SpinUp,
-        free_rows, integrate_driven, positions,
+        AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, PinnedRing, Shake,
+        SpinUp, integrate_driven, positions,
     },
     linalg::{GeneralizedEigen, generalized_eigen},
     progress::Progress,
@@ -50,6 +50,9 @@ pub struct DrivenBodyParameters {
     /// Node sets whose mean displacement is the history (empty: every node set but the
     /// drive's).
     pub outputs: Vec<String>,
+    /// Node sets (rbe2) pinned to the frame: their masters' translations held, rotations
+    /// free; the reduced models keep their masters' rotations.
+    pub pinned: Vec<String>,
     /// The axis (body axes, normalised here), the steady rate (rad/s) and the ramp time (s).
     pub axis: [f64; 3],
     /// Steady rate Ω, rad/s.
@@ -81,6 +84,7 @@ impl Default for DrivenBodyParameters {
             drive: String::new(),
             boundary: Vec::new(),
             outputs: Vec::new(),
+            pinned: Vec::new(),
             axis: [0.0, 0.0, 1.0],
             rate: 100.0,
             ramp: 0.5,
@@ -198,8 +202,20 @@ pub fn driven_body_study(
 ) -> Result<DrivenStudy> {
     body.require_coordinates()?;
     let model = &body.model;
+    let pinned_items: Vec<String> = parameters
+        .pinned
+        .iter()
+        .map(|p| {
+            if p.contains(':') {
+                p.clone()
+            } else {
+                format!("rbe2:{p}")
+            }
+        })
+        .collect();
     let mut items = vec![parameters.drive.clone()];
     items.extend(parameters.boundary.iter().cloned());
+    items.extend(pinned_items.iter().cloned());
     let interfaces = BodyInterfaces::of(body, &items, None)?;
     // The drive is the first rigid interface the items name.
     let drive_set = body.boundary_with_interfaces(std::slice::from_ref(&parameters.drive))?;
@@ -260,32 +276,61 @@ pub fn driven_body_study(
     };
     // The frame turns about the axis point; the drive's ring is clamped in it wherever it is.
     let origin = parameters.axis_point.unwrap_or(drive.master);
+    let pinned_names: Vec<&str> = pinned_items
+        .iter()
+        .map(|p| p.split_once(':').map_or(p.as_str(), |(_, n)| n))
+        .collect();
     let output_names: Vec<String> = if parameters.outputs.is_empty() {
-        body.node_sets
+        let sets: Vec<String> = body
+            .node_sets
             .keys()
-            .filter(|k| **k != drive.name)
+            .filter(|k| **k != drive.name && !pinned_names.contains(&k.as_str()))
             .cloned()
-            .collect()
+            .collect();
+        if sets.is_empty() {
+            // The node farthest from the drive's master.
+            let far = (0..model.node_count())
+                .max_by(|&a, &b| {
+                    let d = |j: usize| {
+                        let p = model.nodes[j];
+                        (0..3)
+                            .map(|k| (p[k] - drive.master[k]).powi(2))
+                            .sum::<f64>()
+                    };
+                    d(a).total_cmp(&d(b))
+                })
+                .unwrap_or(0);
+            vec![format!("node:{}", far + 1)]
+        } else {
+            sets
+        }
     } else {
         parameters.outputs.clone()
     };
     let mut outputs = Vec::new();
     for name in &output_names {
-        let nodes = body
-            .node_sets
-            .get(name)
-            .ok_or_else(|| Error::InvalidOption {
+        let nodes = match name.strip_prefix("node:") {
+            Some(number) => vec![number.parse::<usize>().map_err(|_| Error::InvalidOption {
                 scene: "simulate".into(),
-                reason: format!(
-                    "no node set `{name}` to output (the body has: {})",
-                    body.node_sets
-                        .keys()
-                        .cloned()
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            })?;
-        outputs.push(model.dofs_of_nodes(nodes)?);
+                reason: format!("`{name}` names no node: node:N takes a 1-based node number"),
+            })?],
+            None => body
+                .node_sets
+                .get(name)
+                .ok_or_else(|| Error::InvalidOption {
+                    scene: "simulate".into(),
+                    reason: format!(
+                        "no node set `{name}` to output (the body has: {}; or node:N)",
+                        body.node_sets
+                            .keys()
+                            .cloned()
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                })?
+                .clone(),
+        };
+        outputs.push(model.dofs_of_nodes(&nodes)?);
     }
     let mean_axes = match parameters.axes {
         AxisKind::NodalFixed => None,
@@ -313,15 +358,35 @@ pub fn driven_body_study(
         driving,
     };
     let ring = model.dofs_of_nodes(&drive.nodes)?;
+    // Pinned rings: their masters' translations held in the frame, rotations free.
+    let mut pins = Vec::new();
+    for item in &pinned_items {
+        let name = item.split_once(':').map_or(item.as_str(), |(_, n)| n);
+        let interface = interfaces
+            .rigid
+            .iter()
+            .find(|i| i.name == name)
+            .ok_or_else(|| ReductionError::InvalidDofSet {
+                set: item.clone(),
+                reason: "a pinned interface must be a rigid (rbe2) node set".into(),
+            })?;
+        let rows = interface.rigid_motions(model)?;
+        pins.push(PinnedRing {
+            name: interface.name.clone(),
+            dofs: rows.iter().map(|(d, _)| *d).collect(),
+            rows: rows.iter().map(|(_, r)| [r[3], r[4], r[5]]).collect(),
+        });
+    }
 
     progress.phase("full body on the driven frame")?;
     let started = Instant::now();
-    let mut full_body = DrivenFrameBody::full(model, &ring, origin, axis)?;
+    let mut full_body = DrivenFrameBody::full(model, &ring, pins.clone(), origin, axis)?;
     let full_offline = started.elapsed().as_secs_f64();
-    let full_map = FieldMap::Free {
-        dofs: model.dof_count(),
-        free: Arc::new(full_body.free_dofs().to_vec()),
-    };
+    let coords = full_body
+        .coordinates()
+        .cloned()
+        .expect("the full body has coordinates");
+    let full_map = FieldMap::Full(Arc::new(coords.clone()));
 
     let mut times = Vec::new();
     let mut runs = Vec::new();
@@ -390,8 +455,9 @@ pub fn driven_body_study(
                     .iter()
                     .enumerate()
                     .filter(|(_, c)| {
-                        !matches!(&c.kind, ColumnKind::RigidInterface { interface, .. }
-                            if *interface == drive.name)
+                        !matches!(&c.kind, ColumnKind::RigidInterface { interface, dof }
+                            if *interface == drive.name
+                                || (*dof < 3 && pins.iter().any(|p| p.name == *interface)))
                     })
                     .map(|(j, _)| j)
                     .collect();
@@ -410,7 +476,7 @@ pub fn driven_body_study(
                     psi_all[(i, keep[j])]
                 }));
                 let map = FieldMap::Basis(psi.clone());
-                let psi_free = free_rows(&full_body, psi.as_ref().as_ref())?;
+                let psi_free = coords.coordinates_of(psi.as_ref().as_ref())?;
                 let mut reduced_body = DrivenFrameBody::reduced(&full_body, psi_free.as_ref())?;
                 let hz_range = frame_frequencies(&reduced_body)?;
                 let offline_s = reduced.offline_s + started.elapsed().as_secs_f64();

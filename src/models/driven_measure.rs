@@ -7,18 +7,18 @@ use std::sync::Arc;
 use faer::Mat;
 use nalgebra::Vector3;
 
-use crate::{analysis::MeanAxisView, dynamics::Driving, fem::FeModel, linalg::MassMatrix};
+use crate::{
+    analysis::MeanAxisView,
+    dynamics::{Driving, FrameCoordinates},
+    fem::FeModel,
+    linalg::MassMatrix,
+};
 
 /// How a run's coordinates give the full displacement field.
 #[derive(Debug, Clone)]
 pub enum FieldMap {
-    /// The full body's free DOF (the clamped ring at zero).
-    Free {
-        /// DOF of the body.
-        dofs: usize,
-        /// The free DOF, ascending.
-        free: Arc<Vec<usize>>,
-    },
+    /// The full body's coordinates (free DOF, pinned rings' rotations).
+    Full(Arc<FrameCoordinates>),
     /// A reduced body's basis Ψ (every DOF's row).
     Basis(Arc<Mat<f64>>),
 }
@@ -27,14 +27,7 @@ impl FieldMap {
     /// The nodal displacements (node-major, every DOF) of coordinates `x`.
     pub fn field(&self, x: &[f64]) -> Vec<f64> {
         match self {
-            FieldMap::Free { dofs, free } => {
-                assert_eq!(x.len(), free.len(), "one coordinate per free DOF");
-                let mut y = vec![0.0; *dofs];
-                for (&d, &v) in free.iter().zip(x) {
-                    y[d] = v;
-                }
-                y
-            }
+            FieldMap::Full(coords) => coords.extend(x),
             FieldMap::Basis(psi) => {
                 assert_eq!(x.len(), psi.ncols(), "one coordinate per column of Ψ");
                 let mut y = vec![0.0; psi.nrows()];

@@ -257,3 +257,34 @@ fn the_spin_up_seen_from_mean_axes_ends_in_scipys_mean_axis_steady_state() {
     let e = driven_body_study(&body, &p, &[], &[], true, &Progress::new().muted()).unwrap_err();
     assert!(e.to_string().contains("principal"), "{e}");
 }
+
+/// The far ring pinned to the carrier (its ring turns about its centroid, which keeps its
+/// place): the full body ends near SciPy's steady state of the pinned spin at the node
+/// farthest from the drive (radial and axial parts to 3e-3, the tangential one within the
+/// residual vibration), and Craig–Bampton keeps the pinned master's three rotations.
+#[test]
+fn a_pinned_ring_turns_about_its_place_as_in_scipys_steady_state() {
+    let (_, reference) = rod();
+    let mut p = parameters(&reference, 1e-3);
+    p.pinned = vec![reference["pinned"].as_str().unwrap().into()];
+    let node = reference["pinned_output_node"].as_u64().unwrap();
+    p.outputs = vec![format!("node:{node}")];
+    let s = study(&p, &[Method::CraigBampton], true);
+    let steady: Vec<f64> = reference["steady_pinned"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let size = steady.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let last = s.runs[0].outputs[0].last().unwrap();
+    for a in [0, 2] {
+        assert!(
+            (last[a] - steady[a]).abs() < 3e-3 * size,
+            "component {a}: {last:?} against {steady:?}"
+        );
+    }
+    assert!((last[1] - steady[1]).abs() < 2e-2 * size, "{last:?} against {steady:?}");
+    assert_eq!(s.runs[1].coordinates, 20 + 3, "20 modes and the pinned master's rotations");
+    assert!(s.runs[1].history_error.unwrap() < 1e-2);
+}
