@@ -127,6 +127,28 @@ fn newton() -> String {
     "N".into()
 }
 
+impl Units {
+    /// Metres per length unit (m, cm, mm, in, ft); another unit is an error naming it.
+    pub fn metres_per_length(&self) -> crate::Result<f64> {
+        Ok(match self.length.as_str() {
+            "m" => 1.0,
+            "cm" => 1e-2,
+            "mm" => 1e-3,
+            "in" => 0.0254,
+            "ft" => 0.3048,
+            other => {
+                return Err(crate::Error::InvalidOption {
+                    scene: "body".into(),
+                    reason: format!(
+                        "the body's length unit `{other}` is not one SI quantities can be \
+                         converted to (m, cm, mm, in, ft)"
+                    ),
+                });
+            }
+        })
+    }
+}
+
 impl Default for Units {
     fn default() -> Self {
         Self {

@@ -1,6 +1,6 @@
 //! What each command does: parse, run, map errors to the exit code.
 
-use std::{io::IsTerminal, path::PathBuf, process::ExitCode};
+use std::{path::PathBuf, process::ExitCode};
 
 use clap::Parser;
 
@@ -34,11 +34,7 @@ pub fn main() -> ExitCode {
     }
 }
 
-pub(super) fn progress(msg: &str) {
-    if std::io::stderr().is_terminal() {
-        eprintln!("{msg}");
-    }
-}
+use super::stderr::progress;
 
 fn run(cli: Cli) -> Result<()> {
     crate::linalg::use_sequential_kernels();

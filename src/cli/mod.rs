@@ -3,6 +3,7 @@
 mod arguments;
 mod commands;
 mod simulate;
+mod stderr;
 
 pub use arguments::Cli;
 pub use commands::main;

@@ -1,7 +1,7 @@
 //! `flexmodes simulate`: a body driven through a rigid interface (models::driven_body_study),
 //! printed as a table or JSON and written as a recording.
 
-use super::{arguments::SimulateArgs, commands::progress};
+use super::{arguments::SimulateArgs, stderr::progress};
 use crate::{
     Error, Progress, Result, TerminalProgress, body_file::ImportedBody, record::Recorder, scenes,
 };

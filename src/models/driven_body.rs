@@ -19,7 +19,6 @@ use crate::{
         AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, PinnedRing, Shake,
         SpinUp, integrate_driven, positions,
     },
-    linalg::{GeneralizedEigen, generalized_eigen},
     progress::Progress,
     reduction::{ColumnKind, Method, ReductionError},
 };
@@ -27,7 +26,7 @@ use crate::{
 use super::{
     BodyInterfaces, BodyReducer,
     driven_measure::{FieldMap, Measure, history_error, reaction_error, rigid_reaction, transpose},
-    driven_stability::{ExplicitCheck, explicit_runs},
+    driven_stability::{ExplicitCheck, explicit_runs, frame_frequencies},
 };
 
 /// The methods a driven body can be reduced by: those whose boundary columns are unit motions
@@ -170,26 +169,6 @@ pub struct DrivenStudy {
     pub stability: Vec<ExplicitCheck>,
 }
 
-/// Metres per length unit of the body files' units.
-pub fn metres_per(unit: &str) -> Result<f64> {
-    Ok(match unit {
-        "m" => 1.0,
-        "cm" => 1e-2,
-        "mm" => 1e-3,
-        "in" => 0.0254,
-        "ft" => 0.3048,
-        other => {
-            return Err(Error::InvalidOption {
-                scene: "simulate".into(),
-                reason: format!(
-                    "the body's length unit `{other}` is not one gravity can be converted to \
-                     (m, cm, mm, in, ft)"
-                ),
-            });
-        }
-    })
-}
-
 /// Runs the full body (when `full`) and each method × kept-mode count on `body` under
 /// `parameters`; the errors are against the full body's run.
 pub fn driven_body_study(
@@ -249,7 +228,7 @@ pub fn driven_body_study(
         });
     }
     let gravity = match parameters.gravity {
-        Some(g) => Vector3::from(g) / metres_per(&body.units.length)?,
+        Some(g) => Vector3::from(g) / body.units.metres_per_length()?,
         None => Vector3::zeros(),
     };
     let shake = match parameters.shake {
@@ -260,7 +239,7 @@ pub fn driven_body_study(
                     reason: "the shaking direction is zero".into(),
                 }
             })?,
-            amplitude: amplitude / metres_per(&body.units.length)?,
+            amplitude: amplitude / body.units.metres_per_length()?,
             frequency,
         }),
         None => None,
@@ -576,38 +555,5 @@ pub fn driven_body_study(
         dof: model.dof_count(),
         runs,
         stability,
-    })
-}
-
-/// The lowest and highest natural frequencies of a reduced body on its frame at rest, Hz,
-/// checked by the dense generalised eigensolver.
-fn frame_frequencies(body: &DrivenFrameBody) -> Result<Option<(f64, f64)>> {
-    let k = body.dim();
-    let columns = |c| -> Vec<Vec<f64>> {
-        (0..k)
-            .map(|j| {
-                let mut e = vec![0.0; k];
-                e[j] = 1.0;
-                body.mul(c, &e)
-            })
-            .collect()
-    };
-    let stiffness = crate::dynamics::Combination {
-        k: 1.0,
-        ..Default::default()
-    };
-    let mass = crate::dynamics::Combination {
-        m: 1.0,
-        ..Default::default()
-    };
-    let (kc, mc) = (columns(stiffness), columns(mass));
-    let kk = Mat::from_fn(k, k, |i, j| kc[j][i]);
-    let mm = Mat::from_fn(k, k, |i, j| mc[j][i]);
-    let e: GeneralizedEigen =
-        generalized_eigen(kk.as_ref(), mm.as_ref(), "reduced body on the driven frame")?;
-    let hz = e.hz();
-    Ok(match (hz.first(), hz.last()) {
-        (Some(&lo), Some(&hi)) => Some((lo, hi)),
-        _ => None,
     })
 }

@@ -4,12 +4,15 @@
 //! history compared with the full body's like theirs), and a run at [`ABOVE_CRITICAL`] of it
 //! that must diverge.
 
+use faer::Mat;
+
 use crate::{
     Error, Result,
     dynamics::{
-        DrivenExplicit, DrivenFrameBody, Driving, DynamicsError, critical_step,
+        Combination, DrivenExplicit, DrivenFrameBody, Driving, DynamicsError, critical_step,
         integrate_driven_explicit,
     },
+    linalg::{GeneralizedEigen, generalized_eigen},
     progress::Progress,
 };
 
@@ -115,4 +118,37 @@ pub(super) fn explicit_runs(
             diverged_at,
         },
     ))
+}
+
+/// The lowest and highest natural frequencies of a reduced body on its frame at rest, Hz,
+/// checked by the dense generalised eigensolver.
+pub(super) fn frame_frequencies(body: &DrivenFrameBody) -> Result<Option<(f64, f64)>> {
+    let k = body.dim();
+    let columns = |c| -> Vec<Vec<f64>> {
+        (0..k)
+            .map(|j| {
+                let mut e = vec![0.0; k];
+                e[j] = 1.0;
+                body.mul(c, &e)
+            })
+            .collect()
+    };
+    let stiffness = Combination {
+        k: 1.0,
+        ..Default::default()
+    };
+    let mass = Combination {
+        m: 1.0,
+        ..Default::default()
+    };
+    let (kc, mc) = (columns(stiffness), columns(mass));
+    let kk = Mat::from_fn(k, k, |i, j| kc[j][i]);
+    let mm = Mat::from_fn(k, k, |i, j| mc[j][i]);
+    let e: GeneralizedEigen =
+        generalized_eigen(kk.as_ref(), mm.as_ref(), "reduced body on the driven frame")?;
+    let hz = e.hz();
+    Ok(match (hz.first(), hz.last()) {
+        (Some(&lo), Some(&hi)) => Some((lo, hi)),
+        _ => None,
+    })
 }

@@ -25,7 +25,7 @@ pub use cantilever_study::{
     VariantModes, bottom_line_error, cantilever_study, witteveen_bases,
 };
 pub use driven_body::{
-    DRIVEN_METHODS, DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study, metres_per,
+    DRIVEN_METHODS, DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study,
 };
 pub use driven_measure::{FieldMap, history_error};
 pub use driven_stability::ExplicitCheck;

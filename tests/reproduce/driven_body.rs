@@ -284,7 +284,14 @@ fn a_pinned_ring_turns_about_its_place_as_in_scipys_steady_state() {
             "component {a}: {last:?} against {steady:?}"
         );
     }
-    assert!((last[1] - steady[1]).abs() < 2e-2 * size, "{last:?} against {steady:?}");
-    assert_eq!(s.runs[1].coordinates, 20 + 3, "20 modes and the pinned master's rotations");
+    assert!(
+        (last[1] - steady[1]).abs() < 2e-2 * size,
+        "{last:?} against {steady:?}"
+    );
+    assert_eq!(
+        s.runs[1].coordinates,
+        20 + 3,
+        "20 modes and the pinned master's rotations"
+    );
     assert!(s.runs[1].history_error.unwrap() < 1e-2);
 }
