@@ -16,6 +16,8 @@
 //! [matrices]
 //! stiffness = "k.mtx"           # Matrix Market, coordinate or array, .gz allowed
 //! mass = "m.mtx"                # a square matrix, or an n x 1 vector for a lumped mass
+//! # format = "harwell-boeing"   # ANSYS HBMAT / SciPy hb_write files instead
+//! # dof_map = "k.mapping"       # equations -> (node, UX..ROTZ), as ANSYS writes it
 //!
 //! [geometry]
 //! nodes = "nodes.csv"           # x,y,z per node (or inline [[x, y, z], ...])
@@ -167,6 +169,26 @@ pub struct MatrixFiles {
     pub stiffness: String,
     /// Mass M: square, or a vector (n × 1 or 1 × n) of a lumped mass.
     pub mass: String,
+    /// The files' format: `matrix-market` (default) or `harwell-boeing` (ANSYS `HBMAT`, SciPy
+    /// `hb_write`).
+    #[serde(default)]
+    pub format: MatrixFormat,
+    /// A DOF map (ANSYS `HBMAT`'s `.mapping`: lines `equation node DOF`, DOF `UX UY UZ ROTX
+    /// ROTY ROTZ`): the matrices' equations in the FE code's own order, placed on the body's
+    /// nodes and DOF.
+    #[serde(default)]
+    pub dof_map: Option<String>,
+}
+
+/// The format of the matrix files.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MatrixFormat {
+    /// NIST Matrix Market (`.mtx`, optionally gzip).
+    #[default]
+    MatrixMarket,
+    /// Harwell–Boeing, real assembled (`RSA`, `RUA`; optionally gzip).
+    HarwellBoeing,
 }
 
 /// Node coordinates and wireframe, each inline or as a CSV file.

@@ -8,8 +8,10 @@ use std::{
 };
 
 use super::{
-    BodySpec, DofOrder, InterfaceKind, InterfaceSpec, Units,
+    BodySpec, DofOrder, InterfaceKind, InterfaceSpec, MatrixFormat, Units,
     csv_table::{edges, read_table},
+    dof_map_file::parse_dof_map,
+    harwell_boeing::parse_harwell_boeing,
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
     parse_matrix_market,
 };
@@ -206,11 +208,15 @@ impl ImportedBody {
         let per = dofs.per_node();
 
         // Matrices.
+        let parse = |bytes: &[u8], name: &str| match spec.matrices.format {
+            MatrixFormat::MatrixMarket => parse_matrix_market(bytes, name),
+            MatrixFormat::HarwellBoeing => parse_harwell_boeing(bytes, name),
+        };
         let (k_bytes, k_name) = location.read(Some(&spec.matrices.stiffness))?;
-        let k_file = parse_matrix_market(&k_bytes, &k_name)?;
+        let mut k_file = parse(&k_bytes, &k_name)?;
         drop(k_bytes);
         let (m_bytes, m_name) = location.read(Some(&spec.matrices.mass))?;
-        let m_file = parse_matrix_market(&m_bytes, &m_name)?;
+        let mut m_file = parse(&m_bytes, &m_name)?;
         drop(m_bytes);
         if k_file.rows != k_file.cols {
             return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
@@ -296,6 +302,40 @@ impl ImportedBody {
         let has_coordinates = spec.geometry.nodes.is_some();
 
         // Node-major permutation of a file index.
+        // A DOF map places the FE code's equations on the body's nodes (node-major).
+        if let Some(map_file) = &spec.matrices.dof_map {
+            if spec.dof_order != DofOrder::NodeMajor {
+                return Err(body_error(
+                    key_line("dof_order"),
+                    "with a dof_map the map says where each equation goes: leave dof_order \
+                     node-major"
+                        .into(),
+                ));
+            }
+            let (bytes, map_name) = location.read(Some(map_file))?;
+            let equations = parse_dof_map(&bytes, &map_name, &dofs, node_count)?;
+            for (file, name) in [(&mut k_file, &k_name), (&mut m_file, &m_name)] {
+                if file.rows != equations.len() {
+                    return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+                        path: name.clone(),
+                        what: "matrix".into(),
+                        rows: file.rows,
+                        cols: file.cols,
+                        expected: format!(
+                            "the DOF map {map_name} has {} equations",
+                            equations.len()
+                        ),
+                    }));
+                }
+                let square = file.cols == file.rows;
+                for entry in &mut file.entries {
+                    entry.0 = equations[entry.0];
+                    if square {
+                        entry.1 = equations[entry.1];
+                    }
+                }
+            }
+        }
         let to_node_major = |i: usize| match spec.dof_order {
             DofOrder::NodeMajor => i,
             DofOrder::DofMajor => (i % node_count) * per + i / node_count,

@@ -5,6 +5,8 @@
 mod body_spec;
 mod body_writer;
 mod csv_table;
+mod dof_map_file;
+mod harwell_boeing;
 mod imported_body;
 mod matrix_checks;
 mod matrix_market;
@@ -12,9 +14,12 @@ mod npy;
 
 pub use crate::error::BodyFileError;
 pub use body_spec::{
-    BodySpec, DofOrder, GeometrySpec, InterfaceKind, InterfaceSpec, MatrixFiles, TableOrFile, Units,
+    BodySpec, DofOrder, GeometrySpec, InterfaceKind, InterfaceSpec, MatrixFiles, MatrixFormat,
+    TableOrFile, Units,
 };
 pub use body_writer::{BodyFiles, example_bodies, write_body, write_files};
+pub use dof_map_file::parse_dof_map;
+pub use harwell_boeing::parse_harwell_boeing;
 pub use imported_body::{BodyHandle, BodyLocation, ImportedBody, RigidSet, SYMMETRY_TOLERANCE};
 pub use matrix_market::{
     MatrixMarket, MatrixMarketFormat, parse_matrix_market, read_matrix_market, write_array,

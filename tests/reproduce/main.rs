@@ -14,6 +14,7 @@ mod floating_frame;
 mod frame;
 mod invariants;
 mod linalg;
+mod matrix_formats;
 mod published;
 mod scenes;
 mod sparse;

@@ -1,0 +1,105 @@
+//! A DOF map of an FE code's matrix output: which node and DOF each equation is. ANSYS
+//! `HBMAT` writes it beside the matrix (`.mapping`): a header line `Matrix Eqn Node DOF`, then
+//! one line per equation, `equation node label`, labels `UX UY UZ ROTX ROTY ROTZ`.
+
+use super::BodyFileError;
+use crate::{Error, Result, fem::DofMap};
+
+/// The body's DOF of each equation (0-based equation → 0-based node-major DOF), checked: every
+/// equation once, labels the body has, and every DOF of the body given an equation.
+pub fn parse_dof_map(
+    bytes: &[u8],
+    path: &str,
+    dofs: &DofMap,
+    node_count: usize,
+) -> Result<Vec<usize>> {
+    let error = |line: usize, reason: String| {
+        Error::BodyFile(BodyFileError::MatrixMarketLine {
+            path: path.into(),
+            line,
+            reason,
+        })
+    };
+    let text = std::str::from_utf8(bytes).map_err(|_| error(0, "the file is not text".into()))?;
+    let per = dofs.per_node();
+    let names: Vec<String> = dofs.node_dofs().iter().map(|d| d.name()).collect();
+    let mut equations: Vec<Option<usize>> = Vec::new();
+    let mut taken = vec![None; node_count * per];
+    for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l)) {
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        // The header and blank lines carry no equation.
+        let [eq, node, label] = fields[..] else {
+            if fields.is_empty() || fields[0].parse::<usize>().is_err() {
+                continue;
+            }
+            return Err(error(
+                number,
+                format!("`{}`: a line is `equation node DOF`", line.trim()),
+            ));
+        };
+        let (Ok(eq), Ok(node)) = (eq.parse::<usize>(), node.parse::<usize>()) else {
+            continue;
+        };
+        let name = match label.to_ascii_uppercase().as_str() {
+            "UX" => "x",
+            "UY" => "y",
+            "UZ" => "z",
+            "ROTX" => "θx",
+            "ROTY" => "θy",
+            "ROTZ" => "θz",
+            other => {
+                return Err(error(
+                    number,
+                    format!("DOF `{other}` of node {node} is not a displacement or rotation"),
+                ));
+            }
+        };
+        let position = names.iter().position(|n| *n == name).ok_or_else(|| {
+            error(
+                number,
+                format!(
+                    "node {node} has DOF `{label}`, which the body's DOF ({}) do not include",
+                    names.join(", ")
+                ),
+            )
+        })?;
+        if node == 0 || node > node_count {
+            return Err(error(
+                number,
+                format!("node {node} is not one of the body's nodes 1 to {node_count}"),
+            ));
+        }
+        if eq == 0 {
+            return Err(error(number, "equations are numbered from 1".into()));
+        }
+        let dof = (node - 1) * per + position;
+        if let Some(before) = taken[dof] {
+            return Err(error(
+                number,
+                format!("node {node} {label} already has equation {before}"),
+            ));
+        }
+        taken[dof] = Some(eq);
+        if equations.len() < eq {
+            equations.resize(eq, None);
+        }
+        if equations[eq - 1].is_some() {
+            return Err(error(number, format!("equation {eq} is mapped twice")));
+        }
+        equations[eq - 1] = Some(dof);
+    }
+    if let Some(eq) = equations.iter().position(Option::is_none) {
+        return Err(error(0, format!("equation {} has no node and DOF", eq + 1)));
+    }
+    if let Some(dof) = taken.iter().position(Option::is_none) {
+        return Err(error(
+            0,
+            format!(
+                "node {} DOF `{}` has no equation",
+                dof / per + 1,
+                names[dof % per]
+            ),
+        ));
+    }
+    Ok(equations.into_iter().map(|e| e.expect("checked")).collect())
+}

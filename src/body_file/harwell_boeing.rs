@@ -1,0 +1,402 @@
+//! The Harwell–Boeing exchange format (Duff, Grimes and Lewis 1989), as ANSYS `HBMAT` and
+//! SciPy's `hb_write` write it: real assembled matrices, symmetric (`RSA`, one triangle) or
+//! not (`RUA`), compressed columns in Fortran fixed-width fields. Optionally gzip-compressed.
+//!
+//! The four header lines give the card counts, the type and size, and the Fortran formats of
+//! the pointers, row indices and values (`(8I10)`, `(1P,4E20.12)`, `(3D26.16)`); the fields
+//! are cut by those widths, so values that touch (`1.0E+00-2.0E+00`) are read right. Every
+//! error names the file and the line; nothing is returned half-read.
+
+use std::io::Read;
+
+use super::{BodyFileError, MatrixMarket, MatrixMarketFormat};
+use crate::{Error, Result};
+
+fn error(path: &str, line: usize, reason: impl Into<String>) -> Error {
+    Error::BodyFile(BodyFileError::MatrixMarketLine {
+        path: path.into(),
+        line,
+        reason: reason.into(),
+    })
+}
+
+/// A Fortran edit descriptor of a repeated field: count per line and width.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct FieldFormat {
+    per_line: usize,
+    width: usize,
+}
+
+/// Parses `(8I10)`, `(1P,4E20.12)`, `(1P4E20.12)`, `(3D26.16)`, `(5F15.8)`.
+fn field_format(text: &str) -> Option<FieldFormat> {
+    let t = text.trim().trim_start_matches('(').trim_end_matches(')');
+    let t = t.trim();
+    // A scale factor `1P` (with or without a comma) changes nothing in the widths.
+    let t = match t.find(['P', 'p']) {
+        Some(i) if t[..i].chars().all(|c| c.is_ascii_digit()) => {
+            t[i + 1..].trim_start_matches(',').trim()
+        }
+        _ => t,
+    };
+    let letter = t.find(|c: char| c.is_ascii_alphabetic())?;
+    let per_line = if letter == 0 {
+        1
+    } else {
+        t[..letter].parse().ok()?
+    };
+    let rest = &t[letter + 1..];
+    let width_end = rest.find('.').unwrap_or(rest.len());
+    let width = rest[..width_end].trim().parse().ok()?;
+    (per_line > 0 && width > 0).then_some(FieldFormat { per_line, width })
+}
+
+/// Whether a field is a number of its kind (integer or real, Fortran `D` exponents allowed).
+fn is_number(text: &str, real: bool) -> bool {
+    if real {
+        text.replace(['D', 'd'], "E").parse::<f64>().is_ok()
+    } else {
+        text.parse::<i64>().is_ok()
+    }
+}
+
+/// The fields of `count` values laid out by `format` over the lines from `start`. A line
+/// whose blank-separated tokens are all numbers is read by them (SciPy's `hb_write` declares
+/// `E25.16` and writes 24 characters); otherwise by the format's widths (values that touch).
+#[allow(clippy::too_many_arguments)]
+fn fields<'a>(
+    lines: &[&'a str],
+    start: usize,
+    cards: usize,
+    count: usize,
+    format: FieldFormat,
+    real: bool,
+    path: &str,
+    what: &str,
+) -> Result<Vec<(usize, &'a str)>> {
+    let mut out = Vec::with_capacity(count);
+    for card in 0..cards {
+        let index = start + card;
+        let line = lines.get(index).ok_or_else(|| {
+            error(
+                path,
+                index + 1,
+                format!(
+                    "the file ends inside the {what} ({} of {count} read)",
+                    out.len()
+                ),
+            )
+        })?;
+        let line = line.trim_end_matches('\r');
+        let tokens: Vec<&str> = line.split_whitespace().collect();
+        if !tokens.is_empty()
+            && tokens.len() <= format.per_line
+            && tokens.iter().all(|t| is_number(t, real))
+        {
+            for t in tokens {
+                if out.len() == count {
+                    break;
+                }
+                out.push((index + 1, t));
+            }
+            continue;
+        }
+        for k in 0..format.per_line {
+            if out.len() == count {
+                break;
+            }
+            let from = k * format.width;
+            if from >= line.len() {
+                break;
+            }
+            let to = (from + format.width).min(line.len());
+            let field = line.get(from..to).ok_or_else(|| {
+                error(
+                    path,
+                    index + 1,
+                    format!("the {what} line is not plain text"),
+                )
+            })?;
+            out.push((index + 1, field.trim()));
+        }
+    }
+    if out.len() != count {
+        return Err(error(
+            path,
+            start + cards,
+            format!(
+                "{} {what} in {cards} lines, the header says {count}",
+                out.len()
+            ),
+        ));
+    }
+    Ok(out)
+}
+
+fn header_int(line: &str, field: usize, path: &str, number: usize, what: &str) -> Result<usize> {
+    let text = line
+        .get(14 * field..(14 * field + 14).min(line.len()))
+        .unwrap_or("");
+    text.trim().parse().map_err(|_| {
+        error(
+            path,
+            number,
+            format!("the {what} `{}` is not a count", text.trim()),
+        )
+    })
+}
+
+/// Parses Harwell–Boeing bytes (plain or gzip) named `path` in error messages.
+pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
+    let mut text = String::new();
+    if bytes.starts_with(&[0x1f, 0x8b]) {
+        flate2::read::MultiGzDecoder::new(bytes)
+            .read_to_string(&mut text)
+            .map_err(|e| {
+                error(
+                    path,
+                    0,
+                    format!("the gzip stream is damaged or not text: {e}"),
+                )
+            })?;
+    } else {
+        text = String::from_utf8(bytes.to_vec())
+            .map_err(|_| error(path, 0, "the file is not text"))?;
+    }
+    let lines: Vec<&str> = text.lines().collect();
+    if lines.len() < 4 {
+        return Err(error(
+            path,
+            lines.len(),
+            "a Harwell-Boeing file has four header lines",
+        ));
+    }
+    let cards = |field| header_int(lines[1], field, path, 2, "card count");
+    let (ptr_cards, ind_cards, val_cards) = (cards(1)?, cards(2)?, cards(3)?);
+    let rhs_cards = if lines[1].len() > 56 { cards(4)? } else { 0 };
+    let kind = lines[2].get(..3).unwrap_or("").to_ascii_uppercase();
+    let mut chars = kind.chars();
+    let (value_type, structure, assembly) = (chars.next(), chars.next(), chars.next());
+    if value_type != Some('R') {
+        return Err(error(
+            path,
+            3,
+            format!("type `{kind}`: only real matrices (R..) describe a body"),
+        ));
+    }
+    let symmetric = match structure {
+        Some('S') | Some('H') => true,
+        Some('U') => false,
+        _ => {
+            return Err(error(
+                path,
+                3,
+                format!("type `{kind}`: a body's matrix is symmetric (S) or stored whole (U)"),
+            ));
+        }
+    };
+    if assembly != Some('A') {
+        return Err(error(
+            path,
+            3,
+            format!("type `{kind}`: only assembled matrices (..A) are read, not elemental"),
+        ));
+    }
+    let dims = |field| header_int(&lines[2][..lines[2].len().min(70)], field, path, 3, "size");
+    let (rows, cols, nnz) = (dims(1)?, dims(2)?, dims(3)?);
+    let format = |from: usize, to: usize, what: &str| {
+        let text = lines[3].get(from..to.min(lines[3].len())).unwrap_or("");
+        field_format(text).ok_or_else(|| {
+            error(
+                path,
+                4,
+                format!("the {what} format `{}` is not a Fortran field", text.trim()),
+            )
+        })
+    };
+    let (ptr_format, ind_format, val_format) = (
+        format(0, 16, "pointer")?,
+        format(16, 32, "index")?,
+        format(32, 52, "value")?,
+    );
+    let start = 4 + usize::from(rhs_cards > 0);
+    let integer = |(line, text): (usize, &str), what: &str| -> Result<usize> {
+        text.parse()
+            .map_err(|_| error(path, line, format!("the {what} `{text}` is not an integer")))
+    };
+    let pointers = fields(
+        &lines,
+        start,
+        ptr_cards,
+        cols + 1,
+        ptr_format,
+        false,
+        path,
+        "pointers",
+    )?
+    .into_iter()
+    .map(|f| integer(f, "pointer"))
+    .collect::<Result<Vec<usize>>>()?;
+    let indices = fields(
+        &lines,
+        start + ptr_cards,
+        ind_cards,
+        nnz,
+        ind_format,
+        false,
+        path,
+        "indices",
+    )?;
+    let values = fields(
+        &lines,
+        start + ptr_cards + ind_cards,
+        val_cards,
+        nnz,
+        val_format,
+        true,
+        path,
+        "values",
+    )?;
+    if pointers.first() != Some(&1) || pointers.last() != Some(&(nnz + 1)) {
+        return Err(error(
+            path,
+            start + 1,
+            format!(
+                "the column pointers run from {:?} to {:?}, not from 1 to {}",
+                pointers.first(),
+                pointers.last(),
+                nnz + 1
+            ),
+        ));
+    }
+    let mut entries = Vec::with_capacity(nnz);
+    for j in 0..cols {
+        let (from, to) = (pointers[j], pointers[j + 1]);
+        if to < from {
+            return Err(error(
+                path,
+                start + 1,
+                format!("column {}'s pointer decreases ({from} then {to})", j + 1),
+            ));
+        }
+        for p in from - 1..to - 1 {
+            let (line, _) = indices[p];
+            let row = integer(indices[p], "row index")?;
+            if row == 0 || row > rows {
+                return Err(Error::BodyFile(BodyFileError::MatrixIndexOutOfRange {
+                    path: path.into(),
+                    line,
+                    row,
+                    col: j + 1,
+                    rows,
+                    cols,
+                }));
+            }
+            let (line, text) = values[p];
+            let value: f64 = text.replace(['D', 'd'], "E").parse().map_err(|_| {
+                error(
+                    path,
+                    line,
+                    format!("the value `{text}` is not a real number"),
+                )
+            })?;
+            if !value.is_finite() {
+                return Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
+                    path: path.into(),
+                    line,
+                    value: text.into(),
+                }));
+            }
+            entries.push((row - 1, j, value));
+        }
+    }
+    if val_cards == 0 && nnz > 0 {
+        return Err(error(
+            path,
+            2,
+            "a pattern-only file (no values) describes no body",
+        ));
+    }
+    Ok(MatrixMarket {
+        rows,
+        cols,
+        format: MatrixMarketFormat::Coordinate,
+        symmetric,
+        entries,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 3 × 3 symmetric matrix written the way ANSYS HBMAT does (RSA, lower triangle), with
+    /// values that touch and a `1P` scale factor.
+    const RSA: &str = "\
+test matrix                                                             key     
+             5             1             1             3             0
+RSA                        3             3             5             0
+(4I14)          (5I14)          (1P,2E13.5)         
+             1             3             5             6
+             1             2             2             3             3
+  4.00000E+00 -1.00000E+00
+  4.00000E+00-1.00000E+00
+  4.00000E+00
+";
+
+    #[test]
+    fn reads_a_symmetric_file_with_touching_values() {
+        let m = parse_harwell_boeing(RSA.as_bytes(), "t.rsa").unwrap();
+        assert!(m.symmetric);
+        assert_eq!((m.rows, m.cols), (3, 3));
+        assert_eq!(
+            m.entries,
+            vec![
+                (0, 0, 4.0),
+                (1, 0, -1.0),
+                (1, 1, 4.0),
+                (2, 1, -1.0),
+                (2, 2, 4.0)
+            ]
+        );
+        assert_eq!(
+            field_format("(1P4E20.12)"),
+            Some(FieldFormat {
+                per_line: 4,
+                width: 20
+            })
+        );
+        assert_eq!(
+            field_format("(8I10)"),
+            Some(FieldFormat {
+                per_line: 8,
+                width: 10
+            })
+        );
+    }
+
+    /// Damaged files are named errors with the line: a complex type, a row out of range, a
+    /// value that is not a number, a file cut short.
+    #[test]
+    fn damaged_files_name_file_and_line() {
+        let complex = RSA.replacen("RSA", "CSA", 1);
+        let e = parse_harwell_boeing(complex.as_bytes(), "t.rsa").unwrap_err();
+        assert!(e.to_string().contains("t.rsa:3"), "{e}");
+        let out_of_range = RSA.replacen(
+            "             1             2             2             3             3",
+            "             1             2             2             3             9",
+            1,
+        );
+        let e = parse_harwell_boeing(out_of_range.as_bytes(), "t.rsa").unwrap_err();
+        assert!(e.to_string().contains("t.rsa:6"), "{e}");
+        let not_a_number = RSA.replacen(
+            "  4.00000E+00 -1.00000E+00",
+            "  4.00000E+00 -1.0000xE+00",
+            1,
+        );
+        let e = parse_harwell_boeing(not_a_number.as_bytes(), "t.rsa").unwrap_err();
+        assert!(e.to_string().contains("t.rsa:7"), "{e}");
+        let cut: String = RSA.lines().take(7).collect::<Vec<_>>().join("\n");
+        let e = parse_harwell_boeing(cut.as_bytes(), "t.rsa").unwrap_err();
+        assert!(e.to_string().contains("ends inside the values"), "{e}");
+    }
+}

@@ -1,0 +1,64 @@
+//! Matrices as FE codes write them: a bar assembled by scikit-fem (P2 tetrahedra, consistent
+//! mass), written by SciPy's `hb_write` in Harwell–Boeing (RUA) in a shuffled equation order
+//! with an ANSYS-style DOF map, and its Matrix Market twin in node order
+//! (`assets/generate/hb_body.py`): both import to the same body.
+
+use std::path::PathBuf;
+
+use flexmodes::{body_file::ImportedBody, body_file::parse_dof_map, fem::DofMap};
+
+fn bar(file: &str) -> ImportedBody {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/bodies/hb-bar")
+        .join(file);
+    ImportedBody::load(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+#[test]
+fn harwell_boeing_with_a_dof_map_imports_to_its_matrix_market_twin() {
+    let (hb, mm) = (bar("body-hb.toml"), bar("body.toml"));
+    assert_eq!(hb.model.dof_count(), mm.model.dof_count());
+    assert_eq!(hb.model.dof_count(), 1539);
+    let (k_hb, k_mm) = (hb.model.k.to_dense(), mm.model.k.to_dense());
+    let (m_hb, m_mm) = (hb.model.m.to_dense(), mm.model.m.to_dense());
+    let n = k_mm.nrows();
+    let (mut dk, mut dm, mut sk, mut sm) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for j in 0..n {
+        for i in 0..n {
+            dk = dk.max((k_hb[(i, j)] - k_mm[(i, j)]).abs());
+            dm = dm.max((m_hb[(i, j)] - m_mm[(i, j)]).abs());
+            sk = sk.max(k_mm[(i, j)].abs());
+            sm = sm.max(m_mm[(i, j)].abs());
+        }
+    }
+    assert!(dk <= 1e-15 * sk, "K differs by {dk:e} of {sk:e}");
+    assert!(dm <= 1e-15 * sm, "M differs by {dm:e} of {sm:e}");
+    assert_eq!(hb.node_sets, mm.node_sets);
+}
+
+/// A DOF map names what it cannot place: a DOF the body does not have, an equation twice, a
+/// node DOF without an equation.
+#[test]
+fn a_dof_map_names_what_it_cannot_place() {
+    let dofs = DofMap::solid();
+    let good = " Matrix Eqn   Node   DOF\n 1 2 UX\n 2 2 UY\n 3 2 UZ\n 4 1 UX\n 5 1 UY\n 6 1 UZ\n";
+    assert_eq!(
+        parse_dof_map(good.as_bytes(), "k.mapping", &dofs, 2).unwrap(),
+        vec![3, 4, 5, 0, 1, 2]
+    );
+    let rotation = good.replace(" 6 1 UZ", " 6 1 ROTX");
+    let e = parse_dof_map(rotation.as_bytes(), "k.mapping", &dofs, 2).unwrap_err();
+    assert!(
+        e.to_string().contains("k.mapping:7") && e.to_string().contains("node 1"),
+        "{e}"
+    );
+    let twice = good.replace(" 6 1 UZ", " 6 1 UY");
+    let e = parse_dof_map(twice.as_bytes(), "k.mapping", &dofs, 2).unwrap_err();
+    assert!(e.to_string().contains("already has equation 5"), "{e}");
+    let missing = good.replace(" 6 1 UZ\n", "");
+    let e = parse_dof_map(missing.as_bytes(), "k.mapping", &dofs, 2).unwrap_err();
+    assert!(
+        e.to_string().contains("node 1 DOF `z` has no equation"),
+        "{e}"
+    );
+}
