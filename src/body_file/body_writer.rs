@@ -169,3 +169,51 @@ pub fn example_bodies() -> Result<Vec<(&'static str, BodyFiles)>> {
         ),
     ])
 }
+
+/// The body file and data files of an imported body as [`write_body`] writes them (node-major
+/// Matrix Market, whatever format it was read from), with its units, node sets, default
+/// interface and declared interfaces: what `flexmodes convert` writes. A body without node
+/// coordinates is refused (its nodes would be written as if it had them).
+pub fn write_imported_body(body: &super::ImportedBody, compress: bool) -> Result<BodyFiles> {
+    body.require_coordinates()?;
+    let mut files = write_body(
+        &body.model,
+        &body.node_sets,
+        body.default_interface.as_deref(),
+        &body.description,
+        compress,
+    )?;
+    let toml = files
+        .get_mut("body.toml")
+        .expect("write_body writes body.toml");
+    let mut text = String::from_utf8(std::mem::take(toml)).expect("written as UTF-8");
+    let units = &body.units;
+    text = text.replacen(
+        "[units]\nlength = \"m\"\nmass = \"kg\"\nforce = \"N\"\n",
+        &format!(
+            "[units]\nlength = \"{}\"\nmass = \"{}\"\nforce = \"{}\"\n",
+            units.length, units.mass, units.force
+        ),
+        1,
+    );
+    for (name, spec) in &body.interfaces {
+        let kind = match spec.kind {
+            super::InterfaceKind::Rbe2 => "rbe2",
+            super::InterfaceKind::Rbe3 => "rbe3",
+        };
+        let _ = write!(
+            text,
+            "\n[interfaces.{name}]\nkind = \"{kind}\"\nnode_set = \"{}\"\n",
+            spec.node_set
+        );
+        if let Some(m) = spec.master {
+            let _ = writeln!(text, "master = [{:e}, {:e}, {:e}]", m[0], m[1], m[2]);
+        }
+        if let Some(w) = &spec.weights {
+            let list: Vec<String> = w.iter().map(|x| format!("{x:e}")).collect();
+            let _ = writeln!(text, "weights = [{}]", list.join(", "));
+        }
+    }
+    *toml = text.into_bytes();
+    Ok(files)
+}

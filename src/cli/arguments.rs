@@ -139,6 +139,19 @@ pub(super) enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Write a body read from any supported format (Matrix Market, Harwell–Boeing with a DOF
+    /// map, dof-major) as a node-major Matrix Market body file in a folder, and print what was
+    /// read.
+    Convert {
+        /// The body file (TOML), or `builtin:NAME`.
+        body: String,
+        /// Destination folder (each file written atomically).
+        #[arg(long)]
+        out: PathBuf,
+        /// Compress the matrices (`.mtx.gz`).
+        #[arg(long)]
+        compress: bool,
+    },
     /// Reduce a body and write Ψ (psi.npy), K_r, M_r (Matrix Market) and model.json to a
     /// folder.
     Export {

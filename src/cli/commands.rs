@@ -323,6 +323,24 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Simulate(arguments) => super::simulate::run(arguments),
+        Command::Convert {
+            body,
+            out,
+            compress,
+        } => {
+            let loaded = ImportedBody::load(&body)?;
+            let files = crate::body_file::write_imported_body(&loaded, compress)?;
+            crate::body_file::write_files(&out, &files)?;
+            // What was read, as the written body reads back.
+            let written = ImportedBody::load(&out.join("body.toml").display().to_string())?;
+            let (_, text) = scenes::body_import::import_summary(&written)?;
+            println!(
+                "wrote {} ({})\n\n{text}",
+                out.display(),
+                files.keys().cloned().collect::<Vec<_>>().join(", ")
+            );
+            Ok(())
+        }
         Command::Import { body, json } => {
             let body = ImportedBody::load(&body)?;
             let (value, text) = scenes::body_import::import_summary(&body)?;
