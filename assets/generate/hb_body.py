@@ -2,8 +2,9 @@
 """A small body written in the Harwell-Boeing format the way ANSYS HBMAT ships one: a coarse
 steel bar meshed by gmsh, assembled by scikit-fem (P2 tetrahedra, consistent mass), its K and M
 renumbered in an FE code's own equation order and written by SciPy's `hb_write` (RUA), with the
-DOF map (`Matrix Eqn Node DOF`, labels UX UY UZ) beside them; and its Matrix Market twin in the
-body's own node order. Both body files describe the same body: flexmodes must read the same
+DOF map (`Matrix Eqn Node DOF`, labels UX UY UZ) beside them; the same matrices as Abaqus
+matrix-input lines (node, DOF, node, DOF, value; lower triangle, in that equation order); and
+its Matrix Market twin in the body's own node order. Both body files describe the same body: flexmodes must read the same
 matrices from either.
 
 Usage: hb_body.py [--out tests/bodies/hb-bar]
@@ -35,6 +36,20 @@ def write_hb_gz(path, a):
         f.write(buffer.getvalue())
 
 
+def write_abaqus_gz(path, a, order):
+    """Abaqus `*MATRIX OUTPUT, FORMAT=MATRIX INPUT` lines (row node, row DOF, column node,
+    column DOF, value; the lower triangle), in the order of the equations `order` walks."""
+    a = sp.tril(sp.csr_matrix(a)).tocsr()
+    rank = np.empty(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order))
+    with gzip.open(path, "wt") as f:
+        f.write("** written by assets/generate/hb_body.py in Abaqus matrix-input form\n")
+        for i in order:
+            row = a.getrow(i)
+            for j, v in sorted(zip(row.indices, row.data), key=lambda e: rank[e[0]]):
+                f.write(f"{i // 3 + 1},{i % 3 + 1}, {j // 3 + 1},{j % 3 + 1}, {v:.16E}\n")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--out", default=os.path.join(mb.REPO, "tests", "bodies", "hb-bar"))
@@ -59,6 +74,8 @@ def main():
     perm = sp.csc_matrix((np.ones(n), (np.arange(n), dof_of_equation)), shape=(n, n))
     write_hb_gz(os.path.join(args.out, "k.rua.gz"), perm @ K @ perm.T)
     write_hb_gz(os.path.join(args.out, "m.rua.gz"), perm @ M @ perm.T)
+    write_abaqus_gz(os.path.join(args.out, "k_abaqus.mtx.gz"), K, dof_of_equation)
+    write_abaqus_gz(os.path.join(args.out, "m_abaqus.mtx.gz"), M, dof_of_equation)
     with open(os.path.join(args.out, "k.mapping"), "w") as f:
         f.write(" Matrix Eqn   Node   DOF\n")
         for eq, dof in enumerate(dof_of_equation):
@@ -73,6 +90,11 @@ def main():
         f.write("# written by assets/generate/hb_body.py: the Matrix Market twin\n")
         f.write('name = "hb_bar"\n' + common)
         f.write('[matrices]\nstiffness = "k.mtx.gz"\nmass = "m.mtx.gz"\n' + geometry)
+    with open(os.path.join(args.out, "body-abaqus.toml"), "w") as f:
+        f.write("# written by assets/generate/hb_body.py: Abaqus matrix-input lines\n")
+        f.write('name = "hb_bar"\n' + common)
+        f.write('[matrices]\nformat = "abaqus"\nstiffness = "k_abaqus.mtx.gz"\n'
+                'mass = "m_abaqus.mtx.gz"\n' + geometry)
     with open(os.path.join(args.out, "body-hb.toml"), "w") as f:
         f.write("# written by assets/generate/hb_body.py: Harwell-Boeing in an FE code's order\n")
         f.write('name = "hb_bar"\n' + common)

@@ -16,7 +16,7 @@
 //! [matrices]
 //! stiffness = "k.mtx"           # Matrix Market, coordinate or array, .gz allowed
 //! mass = "m.mtx"                # a square matrix, or an n x 1 vector for a lumped mass
-//! # format = "harwell-boeing"   # ANSYS HBMAT / SciPy hb_write files instead
+//! # format = "harwell-boeing"   # ANSYS HBMAT / SciPy hb_write files instead (or "abaqus")
 //! # dof_map = "k.mapping"       # equations -> (node, UX..ROTZ), as ANSYS writes it
 //!
 //! [geometry]
@@ -169,8 +169,8 @@ pub struct MatrixFiles {
     pub stiffness: String,
     /// Mass M: square, or a vector (n × 1 or 1 × n) of a lumped mass.
     pub mass: String,
-    /// The files' format: `matrix-market` (default) or `harwell-boeing` (ANSYS `HBMAT`, SciPy
-    /// `hb_write`).
+    /// The files' format: `matrix-market` (default), `harwell-boeing` (ANSYS `HBMAT`, SciPy
+    /// `hb_write`) or `abaqus` (`*MATRIX OUTPUT, FORMAT=MATRIX INPUT`).
     #[serde(default)]
     pub format: MatrixFormat,
     /// A DOF map (ANSYS `HBMAT`'s `.mapping`: lines `equation node DOF`, DOF `UX UY UZ ROTX
@@ -189,6 +189,8 @@ pub enum MatrixFormat {
     MatrixMarket,
     /// Harwell–Boeing, real assembled (`RSA`, `RUA`; optionally gzip).
     HarwellBoeing,
+    /// Abaqus matrix output (`FORMAT=MATRIX INPUT`: node, DOF, node, DOF, value per line).
+    Abaqus,
 }
 
 /// Node coordinates and wireframe, each inline or as a CSV file.

@@ -9,6 +9,7 @@ use std::{
 
 use super::{
     BodySpec, DofOrder, InterfaceKind, InterfaceSpec, MatrixFormat, Units,
+    abaqus_matrix::parse_abaqus_matrix,
     csv_table::{edges, read_table},
     dof_map_file::parse_dof_map,
     harwell_boeing::parse_harwell_boeing,
@@ -211,6 +212,7 @@ impl ImportedBody {
         let parse = |bytes: &[u8], name: &str| match spec.matrices.format {
             MatrixFormat::MatrixMarket => parse_matrix_market(bytes, name),
             MatrixFormat::HarwellBoeing => parse_harwell_boeing(bytes, name),
+            MatrixFormat::Abaqus => parse_abaqus_matrix(bytes, name, &dofs),
         };
         let (k_bytes, k_name) = location.read(Some(&spec.matrices.stiffness))?;
         let mut k_file = parse(&k_bytes, &k_name)?;

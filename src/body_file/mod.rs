@@ -2,6 +2,7 @@
 //! files, node coordinates, wireframe and node sets; and the files a reduced model is
 //! exported to.
 
+mod abaqus_matrix;
 mod body_spec;
 mod body_writer;
 mod csv_table;
@@ -13,6 +14,7 @@ mod matrix_market;
 mod npy;
 
 pub use crate::error::BodyFileError;
+pub use abaqus_matrix::parse_abaqus_matrix;
 pub use body_spec::{
     BodySpec, DofOrder, GeometrySpec, InterfaceKind, InterfaceSpec, MatrixFiles, MatrixFormat,
     TableOrFile, Units,

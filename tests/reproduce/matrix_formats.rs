@@ -16,7 +16,17 @@ fn bar(file: &str) -> ImportedBody {
 
 #[test]
 fn harwell_boeing_with_a_dof_map_imports_to_its_matrix_market_twin() {
-    let (hb, mm) = (bar("body-hb.toml"), bar("body.toml"));
+    same_body(&bar("body-hb.toml"), &bar("body.toml"));
+}
+
+/// The same matrices as Abaqus matrix-input lines (node, DOF, node, DOF, value; the lower
+/// triangle in the shuffled equation order) import to the twin too.
+#[test]
+fn abaqus_matrix_input_imports_to_its_matrix_market_twin() {
+    same_body(&bar("body-abaqus.toml"), &bar("body.toml"));
+}
+
+fn same_body(hb: &ImportedBody, mm: &ImportedBody) {
     assert_eq!(hb.model.dof_count(), mm.model.dof_count());
     assert_eq!(hb.model.dof_count(), 1539);
     let (k_hb, k_mm) = (hb.model.k.to_dense(), mm.model.k.to_dense());

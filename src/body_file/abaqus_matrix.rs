@@ -1,0 +1,168 @@
+//! Abaqus matrix output (`*MATRIX GENERATE` with `*MATRIX OUTPUT, FORMAT=MATRIX INPUT`): one
+//! line per stored entry, `row node, row DOF, column node, column DOF, value`, DOF 1–3 the
+//! translations and 4–6 the rotations; lines starting with `*` are keywords or comments. The
+//! entries are placed on the body's node-major DOF directly (the format carries its own DOF
+//! map). A file holding one triangle is symmetric; one holding both is read whole. Optionally
+//! gzip-compressed. Every error names the file and the line; nothing is returned half-read.
+
+use std::io::Read;
+
+use super::{BodyFileError, MatrixMarket, MatrixMarketFormat};
+use crate::{Error, Result, fem::DofMap};
+
+fn error(path: &str, line: usize, reason: impl Into<String>) -> Error {
+    Error::BodyFile(BodyFileError::MatrixMarketLine {
+        path: path.into(),
+        line,
+        reason: reason.into(),
+    })
+}
+
+/// Parses Abaqus matrix-input bytes named `path` for a body whose nodes carry `dofs`; the
+/// matrix has a row per DOF of nodes 1 to the largest node the file names.
+pub fn parse_abaqus_matrix(bytes: &[u8], path: &str, dofs: &DofMap) -> Result<MatrixMarket> {
+    let mut text = String::new();
+    if bytes.starts_with(&[0x1f, 0x8b]) {
+        flate2::read::MultiGzDecoder::new(bytes)
+            .read_to_string(&mut text)
+            .map_err(|e| {
+                error(
+                    path,
+                    0,
+                    format!("the gzip stream is damaged or not text: {e}"),
+                )
+            })?;
+    } else {
+        text = String::from_utf8(bytes.to_vec())
+            .map_err(|_| error(path, 0, "the file is not text"))?;
+    }
+    let per = dofs.per_node();
+    let names: Vec<String> = dofs.node_dofs().iter().map(|d| d.name()).collect();
+    let label = |k: usize| {
+        ["x", "y", "z", "θx", "θy", "θz"]
+            .get(k.wrapping_sub(1))
+            .copied()
+    };
+    let mut entries = Vec::new();
+    let (mut upper, mut lower) = (false, false);
+    let mut largest_node = 0;
+    for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l)) {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('*') {
+            continue;
+        }
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        let [ni, di, nj, dj, value] = fields[..] else {
+            return Err(error(
+                path,
+                number,
+                format!(
+                    "{} fields: a line is `row node, row DOF, column node, column DOF, value`",
+                    fields.len()
+                ),
+            ));
+        };
+        let mut index = |node: &str, dof: &str| -> Result<usize> {
+            let node: usize = node
+                .parse()
+                .ok()
+                .filter(|&n| n > 0)
+                .ok_or_else(|| error(path, number, format!("`{node}` is not a node number")))?;
+            let k: usize = dof
+                .parse()
+                .map_err(|_| error(path, number, format!("`{dof}` is not a DOF number")))?;
+            let name = label(k).ok_or_else(|| {
+                error(
+                    path,
+                    number,
+                    format!("DOF {k} of node {node} is not a displacement (1-3) or rotation (4-6)"),
+                )
+            })?;
+            let position = names.iter().position(|n| n == name).ok_or_else(|| {
+                error(
+                    path,
+                    number,
+                    format!(
+                        "node {node} has DOF {k} ({name}), which the body's DOF ({}) do not \
+                         include",
+                        names.join(", ")
+                    ),
+                )
+            })?;
+            largest_node = largest_node.max(node);
+            Ok((node - 1) * per + position)
+        };
+        let (i, j) = (index(ni, di)?, index(nj, dj)?);
+        let v: f64 = value.replace(['D', 'd'], "E").parse().map_err(|_| {
+            error(
+                path,
+                number,
+                format!("the value `{value}` is not a real number"),
+            )
+        })?;
+        if !v.is_finite() {
+            return Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
+                path: path.into(),
+                line: number,
+                value: value.into(),
+            }));
+        }
+        upper |= i < j;
+        lower |= i > j;
+        entries.push((i, j, v));
+    }
+    if entries.is_empty() {
+        return Err(error(path, 0, "the file holds no matrix entries"));
+    }
+    let n = largest_node * per;
+    Ok(MatrixMarket {
+        rows: n,
+        cols: n,
+        format: MatrixMarketFormat::Coordinate,
+        // One triangle stored: mirror it; both: the file is the whole matrix.
+        symmetric: !(upper && lower),
+        entries,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TWO_NODES: &str = "\
+** stiffness of two nodes, lower triangle
+*MATRIX INPUT
+1,1, 1,1, 4.0
+2,1, 1,1, -1.0
+2,1, 2,1, 4.0
+1,2, 1,2, 4.0
+2,2, 1,2, -1.D0
+2,2, 2,2, 4.0
+1,3, 1,3, 1.0
+2,3, 2,3, 1.0
+";
+
+    #[test]
+    fn reads_a_lower_triangle_onto_node_major_dof() {
+        let m = parse_abaqus_matrix(TWO_NODES.as_bytes(), "k.mtx", &DofMap::solid()).unwrap();
+        assert_eq!((m.rows, m.cols), (6, 6));
+        assert!(m.symmetric);
+        assert!(m.entries.contains(&(3, 0, -1.0)) && m.entries.contains(&(4, 1, -1.0)));
+    }
+
+    #[test]
+    fn names_what_it_cannot_place() {
+        let rotation = TWO_NODES.replace("1,3, 1,3, 1.0", "1,4, 1,4, 1.0");
+        let e = parse_abaqus_matrix(rotation.as_bytes(), "k.mtx", &DofMap::solid()).unwrap_err();
+        assert!(
+            e.to_string().contains("k.mtx:9") && e.to_string().contains("node 1"),
+            "{e}"
+        );
+        let temperature = TWO_NODES.replace("2,3, 2,3, 1.0", "2,11, 2,11, 1.0");
+        let e = parse_abaqus_matrix(temperature.as_bytes(), "k.mtx", &DofMap::solid()).unwrap_err();
+        assert!(e.to_string().contains("k.mtx:10"), "{e}");
+        let short = TWO_NODES.replace("2,1, 2,1, 4.0", "2,1, 2,1");
+        let e = parse_abaqus_matrix(short.as_bytes(), "k.mtx", &DofMap::solid()).unwrap_err();
+        assert!(e.to_string().contains("k.mtx:5"), "{e}");
+    }
+}
