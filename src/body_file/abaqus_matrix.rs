@@ -5,9 +5,7 @@
 //! map). A file holding one triangle is symmetric; one holding both is read whole. Optionally
 //! gzip-compressed. Every error names the file and the line; nothing is returned half-read.
 
-use std::io::Read;
-
-use super::{BodyFileError, MatrixMarket, MatrixMarketFormat};
+use super::{BodyFileError, MatrixMarket, MatrixMarketFormat, matrix_bytes::plain_text};
 use crate::{Error, Result, fem::DofMap};
 
 fn error(path: &str, line: usize, reason: impl Into<String>) -> Error {
@@ -21,21 +19,7 @@ fn error(path: &str, line: usize, reason: impl Into<String>) -> Error {
 /// Parses Abaqus matrix-input bytes named `path` for a body whose nodes carry `dofs`; the
 /// matrix has a row per DOF of nodes 1 to the largest node the file names.
 pub fn parse_abaqus_matrix(bytes: &[u8], path: &str, dofs: &DofMap) -> Result<MatrixMarket> {
-    let mut text = String::new();
-    if bytes.starts_with(&[0x1f, 0x8b]) {
-        flate2::read::MultiGzDecoder::new(bytes)
-            .read_to_string(&mut text)
-            .map_err(|e| {
-                error(
-                    path,
-                    0,
-                    format!("the gzip stream is damaged or not text: {e}"),
-                )
-            })?;
-    } else {
-        text = String::from_utf8(bytes.to_vec())
-            .map_err(|_| error(path, 0, "the file is not text"))?;
-    }
+    let text = plain_text(bytes, path)?;
     let per = dofs.per_node();
     let names: Vec<String> = dofs.node_dofs().iter().map(|d| d.name()).collect();
     let label = |k: usize| {

@@ -7,9 +7,7 @@
 //! are cut by those widths, so values that touch (`1.0E+00-2.0E+00`) are read right. Every
 //! error names the file and the line; nothing is returned half-read.
 
-use std::io::Read;
-
-use super::{BodyFileError, MatrixMarket, MatrixMarketFormat};
+use super::{BodyFileError, MatrixMarket, MatrixMarketFormat, matrix_bytes::plain_text};
 use crate::{Error, Result};
 
 fn error(path: &str, line: usize, reason: impl Into<String>) -> Error {
@@ -147,21 +145,7 @@ fn header_int(line: &str, field: usize, path: &str, number: usize, what: &str) -
 
 /// Parses Harwell–Boeing bytes (plain or gzip) named `path` in error messages.
 pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
-    let mut text = String::new();
-    if bytes.starts_with(&[0x1f, 0x8b]) {
-        flate2::read::MultiGzDecoder::new(bytes)
-            .read_to_string(&mut text)
-            .map_err(|e| {
-                error(
-                    path,
-                    0,
-                    format!("the gzip stream is damaged or not text: {e}"),
-                )
-            })?;
-    } else {
-        text = String::from_utf8(bytes.to_vec())
-            .map_err(|_| error(path, 0, "the file is not text"))?;
-    }
+    let text = plain_text(bytes, path)?;
     let lines: Vec<&str> = text.lines().collect();
     if lines.len() < 4 {
         return Err(error(

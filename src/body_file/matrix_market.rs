@@ -9,10 +9,10 @@
 //! `integer` and `double` fields, duplicate coordinate entries summed) and strict where a
 //! mistake would change the body: every error names the file and the line.
 
-use super::BodyFileError;
+use super::{BodyFileError, matrix_bytes::plain_bytes};
 use std::{
     fs,
-    io::{BufRead, BufReader, Read, Write},
+    io::{BufRead, BufReader, Write},
     path::Path,
 };
 
@@ -72,21 +72,7 @@ pub fn read_matrix_market(path: &Path) -> Result<MatrixMarket> {
 
 /// Parses Matrix Market bytes (plain or gzip) named `name` in error messages.
 pub fn parse_matrix_market(bytes: &[u8], name: &str) -> Result<MatrixMarket> {
-    if bytes.starts_with(&[0x1f, 0x8b]) {
-        let mut text = Vec::new();
-        flate2::read::MultiGzDecoder::new(bytes)
-            .read_to_end(&mut text)
-            .map_err(|e| {
-                Error::BodyFile(BodyFileError::MatrixMarketLine {
-                    path: name.into(),
-                    line: 0,
-                    reason: format!("the gzip stream is damaged: {e}"),
-                })
-            })?;
-        parse_text(BufReader::new(text.as_slice()), name)
-    } else {
-        parse_text(BufReader::new(bytes), name)
-    }
+    parse_text(BufReader::new(&*plain_bytes(bytes, name)?), name)
 }
 
 fn line_error(name: &str, line: usize, reason: impl Into<String>) -> Error {

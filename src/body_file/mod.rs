@@ -9,6 +9,7 @@ mod csv_table;
 mod dof_map_file;
 mod harwell_boeing;
 mod imported_body;
+mod matrix_bytes;
 mod matrix_checks;
 mod matrix_market;
 mod npy;
