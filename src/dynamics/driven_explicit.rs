@@ -14,6 +14,7 @@ use super::{
     DrivenCost, DrivenFrameBody, Driving, DynamicsError,
     dormand_prince::{A, B5, C},
     driven_frame_body::Combination,
+    driven_integration::static_start,
 };
 use crate::{Progress, Result};
 
@@ -49,13 +50,7 @@ pub fn integrate_driven_explicit(
     let h = steps.step;
     // The steps that reach the end (a step that divides it exactly counts once).
     let count = (steps.end / h - 1e-9).ceil().max(1.0) as usize;
-    let (rate, acceleration, g_body) = driving.at(0.0);
-    let f0 = body.load(rate, acceleration, g_body);
-    let stiffness = Combination {
-        k: 1.0,
-        ..Default::default()
-    };
-    let u0 = body.solve(stiffness, &f0, vec![0.0; n])?;
+    let (u0, _) = static_start(body, driving)?;
     // y = [u; v]; ẏ = [v; a(t, u, v)].
     let derivative = |t: f64, y: &DVector<f64>| -> DVector<f64> {
         let (rate, acceleration, g_body) = driving.at(t);

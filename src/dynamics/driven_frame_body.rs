@@ -94,10 +94,6 @@ pub struct DrivenFrameBody {
     h_s: Vec<f64>,
     /// $M(1 \otimes e_a)$ for a = x, y, z: the load of a unit acceleration of gravity.
     unit_gravity: [Vec<f64>; 3],
-    /// Solves and Krylov iterations so far.
-    pub solves: usize,
-    /// Krylov iterations so far (sparse body only).
-    pub iterations: usize,
 }
 
 /// Checks that `m` is $M_s \otimes I_3$ on a node-major solid DOF map.
@@ -259,6 +255,24 @@ impl SparseDriven {
 }
 
 impl DenseDriven {
+    /// $(c_m M + c_k K + c_g G + c_h H)\,x$ by one product per nonzero coefficient (no
+    /// combined matrix per call: the integrators apply it several times a step).
+    fn mul(&self, c: Combination, x: &[f64]) -> Vec<f64> {
+        let x = DVector::from_column_slice(x);
+        let mut y = DVector::zeros(x.len());
+        for (coefficient, matrix) in [
+            (c.m, &self.m),
+            (c.k, &self.k),
+            (c.g, &self.g),
+            (c.h, &self.h),
+        ] {
+            if coefficient != 0.0 {
+                y.gemv(coefficient, matrix, &x, 1.0);
+            }
+        }
+        y.as_slice().to_vec()
+    }
+
     fn combine(&self, c: Combination) -> DMatrix<f64> {
         &self.m * c.m + &self.k * c.k + &self.g * c.g + &self.h * c.h
     }
@@ -303,8 +317,6 @@ impl DrivenFrameBody {
             g_s,
             h_s,
             unit_gravity,
-            solves: 0,
-            iterations: 0,
         })
     }
 
@@ -349,8 +361,6 @@ impl DrivenFrameBody {
             g_s: project_vector(&full.g_s),
             h_s: project_vector(&full.h_s),
             unit_gravity: std::array::from_fn(|a| project_vector(&full.unit_gravity[a])),
-            solves: 0,
-            iterations: 0,
         })
     }
 
@@ -407,10 +417,7 @@ impl DrivenFrameBody {
     pub fn mul(&self, c: Combination, x: &[f64]) -> Vec<f64> {
         match &self.operators {
             Operators::Sparse(s) => s.mul(c, x),
-            Operators::Dense(d) => {
-                let y = d.combine(c) * DVector::from_column_slice(x);
-                y.as_slice().to_vec()
-            }
+            Operators::Dense(d) => d.mul(c, x),
         }
     }
 
@@ -435,9 +442,9 @@ impl DrivenFrameBody {
 
     /// Solves $(c_m M + c_k K + c_g G + c_h H)\,x = b$ to [`DRIVEN_SOLVE_TOLERANCE`], from
     /// the guess `x0`. Sparse: GMRES preconditioned by the factor of $c_m M + c_k K$, kept
-    /// while $c_m, c_k$ stay; dense: LU, checked by its residual.
-    pub fn solve(&mut self, c: Combination, b: &[f64], x0: Vec<f64>) -> Result<Vec<f64>> {
-        self.solves += 1;
+    /// while $c_m, c_k$ stay; dense: LU, checked by its residual. Returns $x$ and the Krylov
+    /// iterations it took (0 for a dense body).
+    pub fn solve(&mut self, c: Combination, b: &[f64], x0: Vec<f64>) -> Result<(Vec<f64>, usize)> {
         match &mut self.operators {
             Operators::Sparse(s) => {
                 s.factor(c.m, c.k)?;
@@ -459,8 +466,7 @@ impl DrivenFrameBody {
                         max_iterations: 200,
                     },
                 )?;
-                self.iterations += stats.iterations;
-                Ok(x)
+                Ok((x, stats.iterations))
             }
             Operators::Dense(d) => {
                 let a = d.combine(c);
@@ -481,7 +487,7 @@ impl DrivenFrameBody {
                     }
                     .into());
                 }
-                Ok(x.as_slice().to_vec())
+                Ok((x.as_slice().to_vec(), 0))
             }
         }
     }
