@@ -4,22 +4,42 @@ use std::{collections::BTreeMap, fmt::Write as _, io::Write, path::Path};
 
 use crate::{Error, Result, fem::FeModel, linalg::MassMatrix};
 
-use super::matrix_market::write_coordinate_symmetric_to;
+use super::{InterfaceKind, InterfaceSpec, Units, matrix_market::write_coordinate_symmetric_to};
 use crate::atomic_file::write_atomically;
 
 /// The files of a body, by name, as bytes (what [`write_body`] puts in the folder).
 pub type BodyFiles = BTreeMap<String, Vec<u8>>;
 
+/// What a body file says beside the model's matrices and nodes.
+#[derive(Debug, Clone, Default)]
+pub struct BodyFileParameters {
+    /// Named node sets, 1-based node numbers.
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+    /// The node set or interface reductions use unless told otherwise.
+    pub default_interface: Option<String>,
+    /// One line shown by `flexmodes import`.
+    pub description: String,
+    /// The units the matrices are in.
+    pub units: Units,
+    /// Multipoint interfaces (`[interfaces.NAME]`).
+    pub interfaces: BTreeMap<String, InterfaceSpec>,
+    /// Write the matrices as `.mtx.gz`.
+    pub compress: bool,
+}
+
 /// The body file and its data files for `model`: `body.toml`, `k.mtx` and `m.mtx` (a vector when
 /// M is lumped; both `.mtx.gz` when `compress`), `nodes.csv`, `edges.csv`. Values are
 /// written in Rust's shortest round-trip form, so an import reproduces `model` exactly.
-pub fn write_body(
-    model: &FeModel,
-    node_sets: &BTreeMap<String, Vec<usize>>,
-    default_interface: Option<&str>,
-    description: &str,
-    compress: bool,
-) -> Result<BodyFiles> {
+pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<BodyFiles> {
+    let BodyFileParameters {
+        node_sets,
+        default_interface,
+        description,
+        units,
+        interfaces,
+        compress,
+    } = parameters;
+    let compress = *compress;
     let mut files = BodyFiles::new();
     let n = model.dof_count();
     let lower = |a: &crate::linalg::SparseSymmetric| {
@@ -103,7 +123,7 @@ pub fn write_body(
          description = \"{}\"\n\
          dofs = [{}]\n\
          dof_order = \"node-major\"\n{}\n\
-         [units]\nlength = \"m\"\nmass = \"kg\"\nforce = \"N\"\n\n\
+         [units]\nlength = \"{}\"\nmass = \"{}\"\nforce = \"{}\"\n\n\
          [matrices]\nstiffness = \"{k_name}\"\nmass = \"{m_name}\"\n\n\
          [geometry]\nnodes = \"nodes.csv\"\nedges = \"edges.csv\"\n\n\
          [node_sets]\n",
@@ -111,12 +131,34 @@ pub fn write_body(
         description.replace('"', "'"),
         dofs.join(", "),
         default_interface
+            .as_ref()
             .map(|s| format!("default_interface = \"{s}\"\n"))
             .unwrap_or_default(),
+        units.length,
+        units.mass,
+        units.force,
     );
     for (set, members) in node_sets {
         let list: Vec<String> = members.iter().map(|m| m.to_string()).collect();
         let _ = writeln!(toml, "{set} = [{}]", list.join(", "));
+    }
+    for (name, spec) in interfaces {
+        let kind = match spec.kind {
+            InterfaceKind::Rbe2 => "rbe2",
+            InterfaceKind::Rbe3 => "rbe3",
+        };
+        let _ = write!(
+            toml,
+            "\n[interfaces.{name}]\nkind = \"{kind}\"\nnode_set = \"{}\"\n",
+            spec.node_set
+        );
+        if let Some(m) = spec.master {
+            let _ = writeln!(toml, "master = [{:e}, {:e}, {:e}]", m[0], m[1], m[2]);
+        }
+        if let Some(w) = &spec.weights {
+            let list: Vec<String> = w.iter().map(|x| format!("{x:e}")).collect();
+            let _ = writeln!(toml, "weights = [{}]", list.join(", "));
+        }
     }
     files.insert("body.toml".into(), toml.into_bytes());
     Ok(files)
@@ -149,22 +191,30 @@ pub fn example_bodies() -> Result<Vec<(&'static str, BodyFiles)>> {
             "app-b-slab",
             write_body(
                 &slab,
-                &slab_sets,
-                Some("bottom_corners"),
-                "Lin (2005) App. B slab: 4 x 2 x 1 m, 8 trilinear bricks, E = 0.2e6 Pa, nu = 0.33, \
-                 62.4 kg lumped",
-                false,
+                &BodyFileParameters {
+                    node_sets: slab_sets,
+                    default_interface: Some("bottom_corners".into()),
+                    description: "Lin (2005) App. B slab: 4 x 2 x 1 m, 8 trilinear bricks, E = \
+                                  0.2e6 Pa, nu = 0.33, 62.4 kg lumped"
+                        .into(),
+                    ..Default::default()
+                },
             )?,
         ),
         (
             "l-bracket",
             write_body(
                 &bracket,
-                &bracket_sets,
-                Some("bolt_hole"),
-                "steel L-bracket, 60 x 30 x 10 mm base with a 10 x 10 mm bolt hole, \
-                 upright 40 mm above the base (50 mm overall), 5 mm trilinear bricks, consistent mass",
-                true,
+                &BodyFileParameters {
+                    node_sets: bracket_sets,
+                    default_interface: Some("bolt_hole".into()),
+                    description: "steel L-bracket, 60 x 30 x 10 mm base with a 10 x 10 mm bolt \
+                                  hole, upright 40 mm above the base (50 mm overall), 5 mm \
+                                  trilinear bricks, consistent mass"
+                        .into(),
+                    compress: true,
+                    ..Default::default()
+                },
             )?,
         ),
     ])
@@ -176,44 +226,15 @@ pub fn example_bodies() -> Result<Vec<(&'static str, BodyFiles)>> {
 /// coordinates is refused (its nodes would be written as if it had them).
 pub fn write_imported_body(body: &super::ImportedBody, compress: bool) -> Result<BodyFiles> {
     body.require_coordinates()?;
-    let mut files = write_body(
+    write_body(
         &body.model,
-        &body.node_sets,
-        body.default_interface.as_deref(),
-        &body.description,
-        compress,
-    )?;
-    let toml = files
-        .get_mut("body.toml")
-        .expect("write_body writes body.toml");
-    let mut text = String::from_utf8(std::mem::take(toml)).expect("written as UTF-8");
-    let units = &body.units;
-    text = text.replacen(
-        "[units]\nlength = \"m\"\nmass = \"kg\"\nforce = \"N\"\n",
-        &format!(
-            "[units]\nlength = \"{}\"\nmass = \"{}\"\nforce = \"{}\"\n",
-            units.length, units.mass, units.force
-        ),
-        1,
-    );
-    for (name, spec) in &body.interfaces {
-        let kind = match spec.kind {
-            super::InterfaceKind::Rbe2 => "rbe2",
-            super::InterfaceKind::Rbe3 => "rbe3",
-        };
-        let _ = write!(
-            text,
-            "\n[interfaces.{name}]\nkind = \"{kind}\"\nnode_set = \"{}\"\n",
-            spec.node_set
-        );
-        if let Some(m) = spec.master {
-            let _ = writeln!(text, "master = [{:e}, {:e}, {:e}]", m[0], m[1], m[2]);
-        }
-        if let Some(w) = &spec.weights {
-            let list: Vec<String> = w.iter().map(|x| format!("{x:e}")).collect();
-            let _ = writeln!(text, "weights = [{}]", list.join(", "));
-        }
-    }
-    *toml = text.into_bytes();
-    Ok(files)
+        &BodyFileParameters {
+            node_sets: body.node_sets.clone(),
+            default_interface: body.default_interface.clone(),
+            description: body.description.clone(),
+            units: body.units.clone(),
+            interfaces: body.interfaces.clone(),
+            compress,
+        },
+    )
 }

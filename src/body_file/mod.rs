@@ -20,7 +20,9 @@ pub use body_spec::{
     BodySpec, DofOrder, GeometrySpec, InterfaceKind, InterfaceSpec, MatrixFiles, MatrixFormat,
     TableOrFile, Units,
 };
-pub use body_writer::{BodyFiles, example_bodies, write_body, write_files, write_imported_body};
+pub use body_writer::{
+    BodyFileParameters, BodyFiles, example_bodies, write_body, write_files, write_imported_body,
+};
 pub use dof_map_file::parse_dof_map;
 pub use harwell_boeing::parse_harwell_boeing;
 pub use imported_body::{BodyHandle, BodyLocation, ImportedBody, RigidSet, SYMMETRY_TOLERANCE};

@@ -4,7 +4,6 @@
 
 use flexmodes::body_file::BodyFileError;
 use std::{
-    collections::BTreeMap,
     path::{Path, PathBuf},
     sync::atomic::{AtomicUsize, Ordering},
 };
@@ -15,8 +14,8 @@ use flexmodes::{
     analysis::{count_zero_energy_modes, free_free_modes, reduced_modes},
     assets,
     body_file::{
-        BodyHandle, ImportedBody, example_bodies, parse_matrix_market, read_matrix_market,
-        write_body, write_files,
+        BodyFileParameters, BodyHandle, ImportedBody, example_bodies, parse_matrix_market,
+        read_matrix_market, write_body, write_files,
     },
     fem::{RigidMotions, SlabParameters, slab},
     linalg::{MassMatrix, generalized_eigen},
@@ -613,7 +612,14 @@ fn a_mechanism_is_named_with_its_zero_energy_count() {
     };
     two.m = MassMatrix::Lumped([d.as_slice(), d.as_slice()].concat());
     two.edges.clear();
-    let files = write_body(&two, &BTreeMap::new(), None, "two loose slabs", false).unwrap();
+    let files = write_body(
+        &two,
+        &BodyFileParameters {
+            description: "two loose slabs".into(),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let dir = scratch("mechanism");
     write_files(&dir, &files).unwrap();
     let body = ImportedBody::load(dir.join("body.toml").to_str().unwrap()).unwrap();
