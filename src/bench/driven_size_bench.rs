@@ -12,10 +12,27 @@ use super::growth_exponent;
 use crate::{
     Progress, Result,
     body_file::ImportedBody,
+    dynamics::DrivenIntegration,
     models::{DrivenBodyParameters, driven_body_study},
     reduction::Method,
     report::{markdown_table, sig},
 };
+
+/// The spin-up every size runs: to the default rate in 50 ms, 50 steps of 1 ms sampled every
+/// 5 — short, since the cost per step, not the history, is what is measured.
+pub fn driven_size_parameters(drive: String) -> DrivenBodyParameters {
+    DrivenBodyParameters {
+        drive,
+        ramp: 0.05,
+        integration: DrivenIntegration {
+            step: 1e-3,
+            end: 0.05,
+            spectral_radius: 0.9,
+            output_every: 5,
+        },
+        ..Default::default()
+    }
+}
 
 /// One body of the size bench.
 #[derive(Debug, Clone, PartialEq)]

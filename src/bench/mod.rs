@@ -16,7 +16,7 @@ pub use body_advice::{AdvisedModel, BodyAdvice};
 pub use body_bench::{
     BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyBenchParameters, BodyBenchPoint, bench_body_modes,
 };
-pub use driven_size_bench::{DrivenSizePoint, bench_driven_sizes};
+pub use driven_size_bench::{DrivenSizePoint, bench_driven_sizes, driven_size_parameters};
 pub use export_bench::{ExportBenchParameters, bench_export};
 pub use mode_bench::{COMPARED_MODES, ModeBenchPoint, bench_modes};
 pub use pareto::mark_pareto;

@@ -73,18 +73,7 @@ fn run(cli: Cli) -> Result<()> {
             })?;
             let mut files = vec![body.display().to_string()];
             files.extend(larger.iter().map(|p| p.display().to_string()));
-            // A short spin-up: the cost per step, not the history, is what is measured.
-            let parameters = crate::models::DrivenBodyParameters {
-                drive,
-                ramp: 0.05,
-                integration: crate::dynamics::DrivenIntegration {
-                    step: 1e-3,
-                    end: 0.05,
-                    spectral_radius: 0.9,
-                    output_every: 5,
-                },
-                ..Default::default()
-            };
+            let parameters = crate::bench::driven_size_parameters(drive);
             let handle = Progress::new();
             let bar = TerminalProgress::start(&handle, "bench simulate");
             let (value, text) = crate::bench::bench_driven_sizes(

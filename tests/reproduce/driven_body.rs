@@ -162,7 +162,10 @@ fn the_full_body_and_its_reductions_follow_scipys_spin_up() {
             "reaction {force:?} against the rigid rod's {expected:?}"
         );
     }
-    assert!(force[2].abs() < 1e-3 * size, "no force along the axis: {force:?}");
+    assert!(
+        force[2].abs() < 1e-3 * size,
+        "no force along the axis: {force:?}"
+    );
 }
 
 /// Bad set-ups are named errors: a drive that is no rigid interface, a method whose basis moves
