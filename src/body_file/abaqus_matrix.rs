@@ -5,31 +5,21 @@
 //! map). A file holding one triangle is symmetric; one holding both is read whole. Optionally
 //! gzip-compressed. Every error names the file and the line; nothing is returned half-read.
 
-use super::{BodyFileError, MatrixMarket, MatrixMarketFormat, matrix_bytes::plain_text};
+use super::{
+    BodyFileError, MatrixMarket, MatrixMarketFormat, matrix_bytes::plain_text,
+    node_dof_placement::NodeDofPlacement,
+};
 use crate::{Error, Result, fem::DofMap};
 
-fn error(path: &str, line: usize, reason: impl Into<String>) -> Error {
-    Error::BodyFile(BodyFileError::MatrixMarketLine {
-        path: path.into(),
-        line,
-        reason: reason.into(),
-    })
-}
+use super::matrix_bytes::line_error as error;
 
 /// Parses Abaqus matrix-input bytes named `path` for a body whose nodes carry `dofs`; the
 /// matrix has a row per DOF of nodes 1 to the largest node the file names.
 pub fn parse_abaqus_matrix(bytes: &[u8], path: &str, dofs: &DofMap) -> Result<MatrixMarket> {
     let text = plain_text(bytes, path)?;
-    let per = dofs.per_node();
-    let names: Vec<String> = dofs.node_dofs().iter().map(|d| d.name()).collect();
-    let label = |k: usize| {
-        ["x", "y", "z", "θx", "θy", "θz"]
-            .get(k.wrapping_sub(1))
-            .copied()
-    };
+    let mut placement = NodeDofPlacement::new(dofs);
     let mut entries = Vec::new();
     let (mut upper, mut lower) = (false, false);
-    let mut largest_node = 0;
     for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l)) {
         let line = line.trim();
         if line.is_empty() || line.starts_with('*') {
@@ -55,26 +45,9 @@ pub fn parse_abaqus_matrix(bytes: &[u8], path: &str, dofs: &DofMap) -> Result<Ma
             let k: usize = dof
                 .parse()
                 .map_err(|_| error(path, number, format!("`{dof}` is not a DOF number")))?;
-            let name = label(k).ok_or_else(|| {
-                error(
-                    path,
-                    number,
-                    format!("DOF {k} of node {node} is not a displacement (1-3) or rotation (4-6)"),
-                )
-            })?;
-            let position = names.iter().position(|n| n == name).ok_or_else(|| {
-                error(
-                    path,
-                    number,
-                    format!(
-                        "node {node} has DOF {k} ({name}), which the body's DOF ({}) do not \
-                         include",
-                        names.join(", ")
-                    ),
-                )
-            })?;
-            largest_node = largest_node.max(node);
-            Ok((node - 1) * per + position)
+            placement
+                .index(node, k)
+                .map_err(|reason| error(path, number, reason))
         };
         let (i, j) = (index(ni, di)?, index(nj, dj)?);
         let v: f64 = value.replace(['D', 'd'], "E").parse().map_err(|_| {
@@ -98,7 +71,7 @@ pub fn parse_abaqus_matrix(bytes: &[u8], path: &str, dofs: &DofMap) -> Result<Ma
     if entries.is_empty() {
         return Err(error(path, 0, "the file holds no matrix entries"));
     }
-    let n = largest_node * per;
+    let n = placement.size();
     Ok(MatrixMarket {
         rows: n,
         cols: n,

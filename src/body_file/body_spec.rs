@@ -170,7 +170,8 @@ pub struct MatrixFiles {
     /// Mass M: square, or a vector (n × 1 or 1 × n) of a lumped mass.
     pub mass: String,
     /// The files' format: `matrix-market` (default), `harwell-boeing` (ANSYS `HBMAT`, SciPy
-    /// `hb_write`) or `abaqus` (`*MATRIX OUTPUT, FORMAT=MATRIX INPUT`).
+    /// `hb_write`), `abaqus` (`*MATRIX OUTPUT, FORMAT=MATRIX INPUT`) or `nastran-dmig`
+    /// (DMIG cards; the matrices by name, [`Self::stiffness_matrix`] and [`Self::mass_matrix`]).
     #[serde(default)]
     pub format: MatrixFormat,
     /// A DOF map (ANSYS `HBMAT`'s `.mapping`: lines `equation node DOF`, DOF `UX UY UZ ROTX
@@ -178,6 +179,13 @@ pub struct MatrixFiles {
     /// nodes and DOF.
     #[serde(default)]
     pub dof_map: Option<String>,
+    /// With `nastran-dmig`: the stiffness matrix's name on its DMIG cards (default `KAAX`, the
+    /// name `EXTSEOUT(DMIGPCH)` punches).
+    #[serde(default)]
+    pub stiffness_matrix: Option<String>,
+    /// With `nastran-dmig`: the mass matrix's name (default `MAAX`).
+    #[serde(default)]
+    pub mass_matrix: Option<String>,
 }
 
 /// The format of the matrix files.
@@ -191,6 +199,8 @@ pub enum MatrixFormat {
     HarwellBoeing,
     /// Abaqus matrix output (`FORMAT=MATRIX INPUT`: node, DOF, node, DOF, value per line).
     Abaqus,
+    /// Nastran DMIG cards in a bulk-data or punch file (grid, component per entry).
+    NastranDmig,
 }
 
 /// Node coordinates and wireframe, each inline or as a CSV file.

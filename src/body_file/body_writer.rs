@@ -7,6 +7,23 @@ use crate::{Error, Result, fem::FeModel, linalg::MassMatrix};
 use super::{InterfaceKind, InterfaceSpec, Units, matrix_market::write_coordinate_symmetric_to};
 use crate::atomic_file::write_atomically;
 
+/// The nonzero entries of `a` on and below its diagonal, `(row, column, value)`, 0-based,
+/// column by column.
+pub fn lower_entries(a: &crate::linalg::SparseSymmetric) -> Vec<(usize, usize, f64)> {
+    let f = a.as_faer();
+    let n = f.ncols();
+    let mut out = Vec::with_capacity(a.nnz() / 2 + n);
+    for j in 0..n {
+        let rows = f.symbolic().row_idx_of_col_raw(j);
+        for (&i, &v) in rows.iter().zip(f.val_of_col(j)) {
+            if i >= j && v != 0.0 {
+                out.push((i, j, v));
+            }
+        }
+    }
+    out
+}
+
 /// The files of a body, by name, as bytes (what [`write_body`] puts in the folder).
 pub type BodyFiles = BTreeMap<String, Vec<u8>>;
 
@@ -42,19 +59,7 @@ pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<Bo
     let compress = *compress;
     let mut files = BodyFiles::new();
     let n = model.dof_count();
-    let lower = |a: &crate::linalg::SparseSymmetric| {
-        let f = a.as_faer();
-        let mut out = Vec::with_capacity(a.nnz() / 2 + n);
-        for j in 0..n {
-            let rows = f.symbolic().row_idx_of_col_raw(j);
-            for (&i, &v) in rows.iter().zip(f.val_of_col(j)) {
-                if i >= j && v != 0.0 {
-                    out.push((i, j, v));
-                }
-            }
-        }
-        out
-    };
+    let lower = lower_entries;
     let io = |source| Error::Io {
         path: "(memory)".into(),
         source,

@@ -14,6 +14,7 @@ use super::{
     dof_map_file::parse_dof_map,
     harwell_boeing::parse_harwell_boeing,
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
+    nastran_dmig::parse_nastran_dmig,
     parse_matrix_market,
 };
 use crate::{
@@ -209,16 +210,30 @@ impl ImportedBody {
         let per = dofs.per_node();
 
         // Matrices.
-        let parse = |bytes: &[u8], name: &str| match spec.matrices.format {
+        let matrices = &spec.matrices;
+        if matrices.format != MatrixFormat::NastranDmig
+            && (matrices.stiffness_matrix.is_some() || matrices.mass_matrix.is_some())
+        {
+            return Err(body_error(
+                key_line("stiffness_matrix").max(key_line("mass_matrix")),
+                "stiffness_matrix and mass_matrix name DMIG matrices: they need format = \
+                 \"nastran-dmig\""
+                    .into(),
+            ));
+        }
+        let parse = |bytes: &[u8], name: &str, dmig: &str| match matrices.format {
             MatrixFormat::MatrixMarket => parse_matrix_market(bytes, name),
             MatrixFormat::HarwellBoeing => parse_harwell_boeing(bytes, name),
             MatrixFormat::Abaqus => parse_abaqus_matrix(bytes, name, &dofs),
+            MatrixFormat::NastranDmig => parse_nastran_dmig(bytes, name, dmig, &dofs),
         };
-        let (k_bytes, k_name) = location.read(Some(&spec.matrices.stiffness))?;
-        let mut k_file = parse(&k_bytes, &k_name)?;
+        let (k_bytes, k_name) = location.read(Some(&matrices.stiffness))?;
+        let k_dmig = matrices.stiffness_matrix.as_deref().unwrap_or("KAAX");
+        let mut k_file = parse(&k_bytes, &k_name, k_dmig)?;
         drop(k_bytes);
-        let (m_bytes, m_name) = location.read(Some(&spec.matrices.mass))?;
-        let mut m_file = parse(&m_bytes, &m_name)?;
+        let (m_bytes, m_name) = location.read(Some(&matrices.mass))?;
+        let m_dmig = matrices.mass_matrix.as_deref().unwrap_or("MAAX");
+        let mut m_file = parse(&m_bytes, &m_name, m_dmig)?;
         drop(m_bytes);
         if k_file.rows != k_file.cols {
             return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {

@@ -7,10 +7,15 @@ use super::BodyFileError;
 use crate::{Error, Result};
 
 fn damaged(path: &str, reason: String) -> Error {
+    line_error(path, 0, reason)
+}
+
+/// A line of a matrix file that does not parse (line 0: the file as a whole).
+pub(super) fn line_error(path: &str, line: usize, reason: impl Into<String>) -> Error {
     Error::BodyFile(BodyFileError::MatrixMarketLine {
         path: path.into(),
-        line: 0,
-        reason,
+        line,
+        reason: reason.into(),
     })
 }
 

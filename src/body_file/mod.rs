@@ -12,6 +12,8 @@ mod imported_body;
 mod matrix_bytes;
 mod matrix_checks;
 mod matrix_market;
+mod nastran_dmig;
+mod node_dof_placement;
 mod npy;
 
 pub use crate::error::BodyFileError;
@@ -21,7 +23,8 @@ pub use body_spec::{
     TableOrFile, Units,
 };
 pub use body_writer::{
-    BodyFileParameters, BodyFiles, example_bodies, write_body, write_files, write_imported_body,
+    BodyFileParameters, BodyFiles, example_bodies, lower_entries, write_body, write_files,
+    write_imported_body,
 };
 pub use dof_map_file::parse_dof_map;
 pub use harwell_boeing::parse_harwell_boeing;
@@ -30,4 +33,5 @@ pub use matrix_market::{
     MatrixMarket, MatrixMarketFormat, parse_matrix_market, read_matrix_market, write_array,
     write_coordinate_symmetric, write_coordinate_symmetric_to,
 };
+pub use nastran_dmig::parse_nastran_dmig;
 pub use npy::{npy_header, read_npy, write_npy};

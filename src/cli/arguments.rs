@@ -179,6 +179,11 @@ pub(super) enum Command {
         /// Pierre; CB and GR on plain node sets).
         #[arg(long, value_name = "N")]
         interface_modes: Option<usize>,
+        /// Also write the body for Exudyn in `OUT/exudyn/` (nodes, full M and K, the mode
+        /// basis without the first rbe2 interface's rigid motions: the floating frame is
+        /// attached there); `assets/python/flexmodes_exudyn.py` loads it.
+        #[arg(long)]
+        exudyn: bool,
         /// Print the wall time of each phase on stderr.
         #[arg(long)]
         timings: bool,

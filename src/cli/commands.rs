@@ -348,6 +348,7 @@ fn run(cli: Cli) -> Result<()> {
             out,
             psi_format,
             interface_modes,
+            exudyn,
             timings,
         } => {
             let started = std::time::Instant::now();
@@ -368,6 +369,7 @@ fn run(cli: Cli) -> Result<()> {
                 rigid_interfaces: interfaces.rigid,
                 averaging_interfaces: interfaces.averaging,
                 interface_modes,
+                exudyn,
             };
             let summary =
                 crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
@@ -408,6 +410,20 @@ fn run(cli: Cli) -> Result<()> {
                     &summary.residuals[..summary.residuals.len().min(8)]
                 ),
             );
+            if let Some(e) = &summary.exudyn {
+                println!(
+                    "Exudyn: {}/exudyn/, the floating frame on `{}`, {} {} (elastic Hz: {} ({}))",
+                    summary.dir.display(),
+                    e.frame,
+                    e.modes.ncols(),
+                    e.mode_type,
+                    crate::report::fmt_hz(&e.hz[..e.hz.len().min(8)]),
+                    crate::report::residual_note(
+                        &e.hz[..e.hz.len().min(8)],
+                        &e.residuals[..e.residuals.len().min(8)]
+                    ),
+                );
+            }
             Ok(())
         }
         Command::Report {

@@ -14,6 +14,10 @@ pub enum ReductionError {
     #[error("invalid {set} DOF set: {reason}")]
     InvalidDofSet { set: String, reason: String },
 
+    /// An export another code cannot take as it is (`to`: the code).
+    #[error("cannot export for {to}: {reason}")]
+    NotExportable { to: String, reason: String },
+
     /// A method asked of the generic [`reduce`](crate::reduction::reduce) entry point that
     /// needs more than a boundary set and a mode count.
     #[error("{method} needs {needs}")]

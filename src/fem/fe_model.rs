@@ -222,6 +222,21 @@ impl FeModel {
         })
     }
 
+    /// How far the rigid-body motions $R$ are from K's null space, relative to the data:
+    /// $\max|KR| / (\max|K| \max|R|)$. Round-off of an exact assembly leaves ~1e-16; a
+    /// matrix written with 11 significant digits (Nastran's 16-column fields) ~1e-11; a body
+    /// restrained before export order one.
+    pub fn rigid_motion_defect(&self) -> f64 {
+        let r = self.rigid_body_modes();
+        let kr = self.k.mul(r.as_ref());
+        let max = |a: &Mat<f64>| {
+            (0..a.ncols())
+                .flat_map(|j| (0..a.nrows()).map(move |i| (i, j)))
+                .fold(0.0f64, |m, (i, j)| m.max(a[(i, j)].abs()))
+        };
+        max(&kr) / (self.k.max_abs() * max(&r)).max(f64::MIN_POSITIVE)
+    }
+
     /// Node positions displaced by a DOF vector `u` scaled by `scale`.
     pub fn displaced(&self, u: &[f64], scale: f64) -> Vec<[f64; 3]> {
         self.nodes

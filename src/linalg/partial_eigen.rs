@@ -37,6 +37,11 @@ pub struct PartialEigenParameters {
     pub residual_tolerance: f64,
     /// Seed of the deterministic start block.
     pub seed: u64,
+    /// The relative precision K and M are known to (at least ε): a residual within
+    /// $4\,\delta\,\||K||\varphi|\| / \|K\varphi\|$ is as small as the data allows (matrices
+    /// written with 11 digits cannot give a pair better than that). Measured from the data,
+    /// e.g. by [`crate::fem::FeModel::rigid_motion_defect`].
+    pub data_precision: f64,
 }
 
 impl Default for PartialEigenParameters {
@@ -48,6 +53,7 @@ impl Default for PartialEigenParameters {
             ritz_tolerance: 1e-10,
             residual_tolerance: 1e-8,
             seed: 0x5eed_f1e7,
+            data_precision: f64::EPSILON,
         }
     }
 }
@@ -412,8 +418,9 @@ fn checked_pairs(
         let rel = r.norm_l2() / denom.max(f64::MIN_POSITIVE);
         // Computing Kφ alone costs ε |K||φ| of round-off: a residual at that floor is as
         // small as any solver can make it (a body whose λ_max/λ is 1e8 has a floor of ~1e-8).
-        let floor =
-            ROUND_OFF_FLOOR * f64::EPSILON * kv_abs.col(c).norm_l2() / denom.max(f64::MIN_POSITIVE);
+        let floor = (ROUND_OFF_FLOOR * f64::EPSILON).max(4.0 * params.data_precision)
+            * kv_abs.col(c).norm_l2()
+            / denom.max(f64::MIN_POSITIVE);
         if rel <= params.residual_tolerance.max(floor) {
             converged += 1;
         }

@@ -66,6 +66,8 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         "size": if body.has_coordinates { Some(sig(model.size())) } else { None },
         "rigid_motions_from_coordinates":
             model.rigid_motions == crate::fem::RigidMotions::FromGeometry,
+        "rigid_motion_defect": (model.rigid_motions == crate::fem::RigidMotions::FromGeometry)
+            .then(|| sig(model.rigid_motion_defect())),
         "zero_energy_modes": full.zero_modes,
         "zero_energy_threshold_hz": sig(full.threshold_hz),
         "lowest_elastic_hz": sig_vec(&hz),
@@ -115,7 +117,16 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         if full.zero_modes == 0 {
             " — the body was restrained before export".to_string()
         } else if model.rigid_motions == crate::fem::RigidMotions::FromGeometry {
-            "; they are the rigid motions of the node coordinates".to_string()
+            let defect = model.rigid_motion_defect();
+            format!(
+                "; they are the rigid motions of the node coordinates (K R = {defect:.1e} of \
+                 |K||R|{})",
+                if defect > 1e-13 {
+                    ": the matrices' own precision, which every residual check allows for"
+                } else {
+                    ""
+                }
+            )
         } else {
             String::new()
         },

@@ -9,6 +9,7 @@ mod dense_eigen;
 mod driven_body;
 mod errors;
 mod external_bodies;
+mod exudyn_export;
 mod failures;
 mod floating_frame;
 mod frame;

@@ -1,19 +1,6 @@
-//! `flexmodes export`: a reduced model written for another code. The folder holds
-//!
-//! - `psi.npy`: Ψ (n × r, `float64`, column-major), the full DOF in the body file's
-//!   node-major order, for `numpy.load` (or `psi.mtx`, `array real general`, with
-//!   [`PsiFormat::MatrixMarket`]); `k_r.mtx` and `m_r.mtx`: $\Psi^TK\Psi$ and $\Psi^TM\Psi$
-//!   (`array real symmetric`), readable by `scipy.io.mmread`, Julia's `MatrixMarket.mmread`
-//!   and MATLAB's `mmread`;
-//! - `model.json`: the body, method, interface and kept modes, one label per column, the
-//!   reduced model's frequencies, and for floating-frame use the inertia invariants of the
-//!   reduced body about the body frame's origin: the rigid-body mass matrix $R^TMR$ (6 × 6:
-//!   translations, then rotations; 3 × 3 for a planar body) and the couplings $R^TM\Psi$
-//!   (translations and rotations against each column).
-//!
-//! Everything is written to a temporary folder beside the destination and renamed into place,
-//! so an interrupted export leaves the previous folder (or none) as it was.
+//! [`export`]: reduce a body and write the reduced model (see the module `export`).
 
+use super::{ExudynBody, exudyn_body};
 use crate::linalg::LinalgError;
 use std::{
     path::{Path, PathBuf},
@@ -99,6 +86,9 @@ pub struct ExportParameters {
     pub averaging_interfaces: Vec<AveragingInterface>,
     /// Reduce the remaining constraint modes to this many characteristic constraint modes.
     pub interface_modes: Option<usize>,
+    /// Also write the body for Exudyn (`exudyn/`, see [`super::exudyn_body`]): the floating
+    /// frame on the first rigid interface.
+    pub exudyn: bool,
 }
 
 /// What [`export`] wrote.
@@ -118,6 +108,8 @@ pub struct ExportSummary {
     pub zero_energy: usize,
     /// Wall time of each phase, s, in order.
     pub timings: Vec<(&'static str, f64)>,
+    /// The Exudyn body, when asked for.
+    pub exudyn: Option<ExudynBody>,
 }
 
 /// Reduces `body` by `method` on `boundary` (1-based nodes) keeping `modes` normal modes and
@@ -219,6 +211,18 @@ pub fn export(
     let hz: Vec<f64> = all_hz[zero_energy..].to_vec();
     let residuals: Vec<f64> = eig.residuals[zero_energy..].to_vec();
     lap("reduced eigenproblem", &mut timings);
+    let exudyn = if parameters.exudyn {
+        let ex = exudyn_body(
+            body,
+            &basis,
+            &parameters.rigid_interfaces,
+            &parameters.averaging_interfaces,
+        )?;
+        lap("Exudyn basis", &mut timings);
+        Some(ex)
+    } else {
+        None
+    };
 
     let columns: Vec<serde_json::Value> = basis
         .columns
@@ -300,6 +304,13 @@ pub fn export(
             "mass": "m_r.mtx",
         },
         "inertia": inertia,
+        "exudyn": exudyn.as_ref().map(|e| json!({
+            "folder": "exudyn",
+            "frame": e.frame,
+            "modes": e.modes.ncols(),
+            "mode_type": e.mode_type,
+            "note": "load with assets/python/flexmodes_exudyn.py (numpy, scipy, exudyn)",
+        })),
         "inertia_note": if inertia.is_none() {
             "the body file gives no node coordinates, so the rigid-body motions and the inertia \
              invariants are unknown"
@@ -349,12 +360,17 @@ pub fn export(
         let text = serde_json::to_string_pretty(&doc).expect("JSON of plain values");
         write_atomically(&tmp.join("model.json"), |w| w.write_all(text.as_bytes()))?;
         lap("write K_r, M_r, model.json", &mut timings);
-        Ok(vec![
+        let mut files = vec![
             psi_name.into(),
             "k_r.mtx".into(),
             "m_r.mtx".into(),
             "model.json".into(),
-        ])
+        ];
+        if let Some(e) = &exudyn {
+            files.extend(e.write(body, &tmp.join("exudyn"))?);
+            lap("write the Exudyn body", &mut timings);
+        }
+        Ok(files)
     })();
     let files = match written {
         Ok(f) => f,
@@ -386,6 +402,7 @@ pub fn export(
         residuals,
         zero_energy,
         timings,
+        exudyn,
     })
 }
 

@@ -1,0 +1,53 @@
+//! Places a matrix entry's (node, component) on the body's node-major DOF, for the formats that
+//! name nodes and components themselves (Abaqus matrix output, Nastran DMIG): components 1–3
+//! the translations, 4–6 the rotations, nodes the body's 1-based node numbers.
+
+use crate::fem::DofMap;
+
+/// The placement of (node, component) pairs on a body whose nodes carry `dofs`.
+pub(super) struct NodeDofPlacement {
+    per: usize,
+    names: Vec<String>,
+    /// The largest node placed so far.
+    pub largest_node: usize,
+}
+
+impl NodeDofPlacement {
+    pub fn new(dofs: &DofMap) -> Self {
+        Self {
+            per: dofs.per_node(),
+            names: dofs.node_dofs().iter().map(|d| d.name()).collect(),
+            largest_node: 0,
+        }
+    }
+
+    /// The 0-based DOF of `node` (1-based) and `component` (1–6), or why there is none.
+    pub fn index(&mut self, node: usize, component: usize) -> Result<usize, String> {
+        if node == 0 {
+            return Err("node 0 is not a node number (they start at 1)".into());
+        }
+        let name = ["x", "y", "z", "θx", "θy", "θz"]
+            .get(component.wrapping_sub(1))
+            .copied()
+            .ok_or_else(|| {
+                format!(
+                    "component {component} of node {node} is not a displacement (1-3) or \
+                     rotation (4-6)"
+                )
+            })?;
+        let position = self.names.iter().position(|n| n == name).ok_or_else(|| {
+            format!(
+                "node {node} has DOF {component} ({name}), which the body's DOF ({}) do not \
+                 include",
+                self.names.join(", ")
+            )
+        })?;
+        self.largest_node = self.largest_node.max(node);
+        Ok((node - 1) * self.per + position)
+    }
+
+    /// Rows of the matrix: every DOF of nodes 1 to the largest placed.
+    pub fn size(&self) -> usize {
+        self.largest_node * self.per
+    }
+}

@@ -1,0 +1,306 @@
+//! The body of an export as Exudyn's `FEMinterface` holds it (Zwölfer and Gerstmayr's nodal
+//! floating frame of reference with modal reduction, Exudyn's `ObjectFFRFreducedOrder`): node
+//! positions, the full mass and stiffness matrices, and a mode basis without rigid-body
+//! motions, in Exudyn's coordinate order (node by node, x y z) and node numbering (0-based).
+//!
+//! The floating frame is attached to the export's first rigid (RBE2) interface: the reduced
+//! basis drops that interface's six constraint modes (its ring then never moves in the frame,
+//! the frame's rigid motion is the body's), and keeps everything else: the fixed-interface
+//! modes and the other interfaces' constraint modes. That is exactly the basis `flexmodes
+//! simulate` integrates with the drive at that interface, so the two codes can be compared.
+//! The kept basis is checked: no row of the frame's ring may move, and its reduced pencil
+//! $(\Psi^TK\Psi, \Psi^TM\Psi)$ must have no zero-energy mode (the frame alone must hold the
+//! body), every eigenpair's residual checked.
+//!
+//! Files, in `exudyn/` of the export folder: `nodes.npy` (n × 3), `mass.mtx` and
+//! `stiffness.mtx` (3n × 3n, Matrix Market `coordinate real symmetric`), `modes.npy`
+//! (3n × m, `float64`) and `body.json` (units, the frame, node sets and interfaces by 0-based
+//! node numbers, the basis' eigenvalues ω² and frequencies). `assets/python/flexmodes_exudyn.py`
+//! builds Exudyn's `FEMinterface` and `ObjectFFRFreducedOrderInterface` from them with numpy
+//! and scipy only.
+
+use std::path::Path;
+
+use faer::Mat;
+use serde_json::json;
+
+use crate::{
+    Result,
+    analysis::{zero_energy_below, zero_energy_threshold_hz},
+    atomic_file::write_atomically,
+    body_file::{ImportedBody, lower_entries, write_coordinate_symmetric, write_npy},
+    error::ReductionError,
+    fem::{Direction, NodeDof},
+    linalg::{MassMatrix, generalized_eigen},
+    reduction::{AveragingInterface, Basis, ColumnKind, RigidInterface},
+    report::sig_vec,
+};
+
+/// The `format` field of `body.json`.
+pub const EXUDYN_FORMAT: &str = "flexmodes exudyn body 1";
+
+/// The body of an export for Exudyn, checked and ready to write.
+#[derive(Debug, Clone)]
+pub struct ExudynBody {
+    /// The interface the floating frame is attached to.
+    pub frame: String,
+    /// The mode basis in Exudyn's order: row `3·node + axis`, one column per kept mode.
+    pub modes: Mat<f64>,
+    /// Eigenvalues ω² of the kept basis' reduced pencil, (rad/s)², ascending.
+    pub eigenvalues: Vec<f64>,
+    /// The same as frequencies, Hz.
+    pub hz: Vec<f64>,
+    /// Each eigenpair's relative residual.
+    pub residuals: Vec<f64>,
+    /// Exudyn's name for the basis: `NormalModes` (fixed-interface modes only) or `HCBmodes`
+    /// (with other interfaces' constraint modes).
+    pub mode_type: &'static str,
+    /// For each of Exudyn's coordinates, the body's DOF.
+    order: Vec<usize>,
+    doc: serde_json::Value,
+}
+
+fn refuse(reason: impl Into<String>) -> crate::Error {
+    ReductionError::NotExportable {
+        to: "Exudyn".into(),
+        reason: reason.into(),
+    }
+    .into()
+}
+
+/// Builds the Exudyn body of `basis` (see the module): the frame on `rigid[0]`.
+pub fn exudyn_body(
+    body: &ImportedBody,
+    basis: &Basis,
+    rigid: &[RigidInterface],
+    averaging: &[AveragingInterface],
+) -> Result<ExudynBody> {
+    let model = &body.model;
+    if !body.has_coordinates {
+        return Err(refuse("the body file gives no node coordinates"));
+    }
+    let per_node = model.dofs.node_dofs();
+    let translations = [Direction::X, Direction::Y, Direction::Z].map(NodeDof::Translation);
+    if per_node.len() != 3 || !translations.iter().all(|d| per_node.contains(d)) {
+        return Err(refuse(format!(
+            "Exudyn's reduced-order FFRF object takes three translations per node; the body's \
+             nodes carry {}",
+            per_node
+                .iter()
+                .map(|d| d.name())
+                .collect::<Vec<_>>()
+                .join(" ")
+        )));
+    }
+    let frame = rigid.first().ok_or_else(|| {
+        refuse(
+            "the floating frame is attached to a rigid interface: give one as `rbe2:SET` \
+             (the first is the frame)",
+        )
+    })?;
+    let nodes = model.node_count();
+    let order: Vec<usize> = (0..nodes)
+        .flat_map(|node| {
+            translations.map(|d| {
+                model
+                    .dofs
+                    .index(node, d)
+                    .expect("checked: x y z translations")
+            })
+        })
+        .collect();
+
+    let keep: Vec<usize> = (0..basis.size())
+        .filter(|&j| {
+            !matches!(&basis.columns[j].kind,
+                ColumnKind::RigidInterface { interface, .. } if *interface == frame.name)
+        })
+        .collect();
+    if keep.len() + 6 != basis.size() {
+        return Err(refuse(format!(
+            "the basis has no six constraint modes of `{}`: {} of its {} columns are other",
+            frame.name,
+            keep.len(),
+            basis.size()
+        )));
+    }
+    if keep.is_empty() {
+        return Err(refuse(format!(
+            "with `{}` as the frame nothing elastic is left: keep modes (--modes) or another \
+             interface",
+            frame.name
+        )));
+    }
+    let modes = Mat::from_fn(order.len(), keep.len(), |i, j| {
+        basis.psi[(order[i], keep[j])]
+    });
+    let largest = (0..modes.ncols())
+        .flat_map(|j| modes.col(j).iter().map(|v| v.abs()).collect::<Vec<_>>())
+        .fold(0.0, f64::max);
+    for &node in &frame.nodes {
+        for axis in 0..3 {
+            let row = 3 * (node - 1) + axis;
+            let moved = (0..modes.ncols())
+                .map(|j| modes[(row, j)].abs())
+                .fold(0.0, f64::max);
+            if moved > 1e-12 * largest {
+                return Err(refuse(format!(
+                    "the kept basis moves node {node} of the frame's ring `{}` by {moved:.2e} \
+                     (largest entry {largest:.2e}): the frame would not be attached to it",
+                    frame.name
+                )));
+            }
+        }
+    }
+
+    let kept = Basis {
+        method: basis.method,
+        psi: Mat::from_fn(basis.psi.nrows(), keep.len(), |i, j| {
+            basis.psi[(i, keep[j])]
+        }),
+        columns: keep.iter().map(|&j| basis.columns[j].clone()).collect(),
+        statistics: basis.statistics,
+    };
+    let (k_r, m_r) = (kept.reduced_stiffness(model), kept.reduced_mass(model));
+    let eig = generalized_eigen(k_r.as_ref(), m_r.as_ref(), "Exudyn mode basis")?;
+    let hz = eig.hz();
+    let zero = zero_energy_below(&hz, zero_energy_threshold_hz(model));
+    if zero > 0 {
+        return Err(refuse(format!(
+            "the basis without `{}`'s constraint modes keeps {zero} zero-energy mode(s) \
+             (lowest {:.3e} Hz): the frame's interface alone does not hold the body",
+            frame.name, hz[0]
+        )));
+    }
+    let mode_type = if keep
+        .iter()
+        .all(|&j| matches!(basis.columns[j].kind, ColumnKind::Normal { .. }))
+    {
+        "NormalModes"
+    } else {
+        "HCBmodes"
+    };
+    let zero_based = |nodes: &[usize]| nodes.iter().map(|n| n - 1).collect::<Vec<_>>();
+    let doc = json!({
+        "format": EXUDYN_FORMAT,
+        "body_name": model.name,
+        "body": body.location.display(),
+        "units": { "length": body.units.length, "mass": body.units.mass, "force": body.units.force },
+        "node_numbering": "0-based (Exudyn's)",
+        "coordinate_order": "node by node, x y z (Exudyn's)",
+        "nodes": nodes,
+        "method": basis.method.id(),
+        "frame": {
+            "interface": frame.name,
+            "kind": "rbe2",
+            "master": frame.master,
+            "node_numbers": zero_based(&frame.nodes),
+            "note": "the floating frame's origin and axes are the body's own; the ring never \
+                     moves in it (its constraint modes are left out of the basis)",
+        },
+        "mode_type": mode_type,
+        "modes": keep.len(),
+        "columns": keep.iter().map(|&j| basis.columns[j].label.clone()).collect::<Vec<_>>(),
+        "eigenvalues": eig.values,
+        "hz": hz,
+        "residuals": sig_vec(&eig.residuals),
+        "node_sets": body.node_sets.iter().map(|(name, nodes)| json!({
+            "name": name,
+            "node_numbers": zero_based(nodes),
+        })).collect::<Vec<_>>(),
+        "interfaces": rigid.iter().map(|i| json!({
+            "name": i.name, "kind": "rbe2", "master": i.master,
+            "node_numbers": zero_based(&i.nodes),
+        })).chain(averaging.iter().map(|i| json!({
+            "name": i.name, "kind": "rbe3", "master": i.master,
+            "node_numbers": zero_based(&i.nodes), "weights": i.weights,
+        }))).collect::<Vec<_>>(),
+        "files": {
+            "nodes": "nodes.npy",
+            "mass": "mass.mtx",
+            "stiffness": "stiffness.mtx",
+            "modes": "modes.npy",
+        },
+    });
+    Ok(ExudynBody {
+        frame: frame.name.clone(),
+        modes,
+        eigenvalues: eig.values.clone(),
+        hz,
+        residuals: eig.residuals.clone(),
+        mode_type,
+        order,
+        doc,
+    })
+}
+
+impl ExudynBody {
+    /// Writes the files into `dir` (created; each file atomically) and returns their names
+    /// relative to `dir`'s parent.
+    pub fn write(&self, body: &ImportedBody, dir: &Path) -> Result<Vec<String>> {
+        let model = &body.model;
+        std::fs::create_dir_all(dir).map_err(|source| crate::Error::Io {
+            path: dir.display().to_string(),
+            source,
+        })?;
+        let mut position = vec![0; self.order.len()];
+        for (p, &dof) in self.order.iter().enumerate() {
+            position[dof] = p;
+        }
+        let permuted = |entries: Vec<(usize, usize, f64)>| -> Vec<(usize, usize, f64)> {
+            let mut out: Vec<_> = entries
+                .into_iter()
+                .map(|(i, j, v)| {
+                    let (a, b) = (position[i], position[j]);
+                    (a.max(b), a.min(b), v)
+                })
+                .collect();
+            out.sort_by_key(|&(i, j, _)| (j, i));
+            out
+        };
+        let n = self.order.len();
+        let nodes = Mat::from_fn(model.node_count(), 3, |i, j| model.nodes[i][j]);
+        write_npy(&dir.join("nodes.npy"), nodes.as_ref())?;
+        let mass = match &model.m {
+            MassMatrix::Lumped(d) => d
+                .iter()
+                .enumerate()
+                .filter(|(_, v)| **v != 0.0)
+                .map(|(i, &v)| (i, i, v))
+                .collect(),
+            MassMatrix::Consistent(a) => lower_entries(a),
+        };
+        let units = &body.units;
+        write_coordinate_symmetric(
+            &dir.join("mass.mtx"),
+            n,
+            &permuted(mass),
+            &format!(
+                "mass of {} in {}; Exudyn's order: node by node, x y z",
+                model.name, units.mass
+            ),
+        )?;
+        write_coordinate_symmetric(
+            &dir.join("stiffness.mtx"),
+            n,
+            &permuted(lower_entries(&model.k)),
+            &format!(
+                "stiffness of {} in {}/{}; Exudyn's order: node by node, x y z",
+                model.name, units.force, units.length
+            ),
+        )?;
+        write_npy(&dir.join("modes.npy"), self.modes.as_ref())?;
+        let text = serde_json::to_string_pretty(&self.doc).expect("JSON of plain values");
+        write_atomically(&dir.join("body.json"), |w| w.write_all(text.as_bytes()))?;
+        Ok([
+            "nodes.npy",
+            "mass.mtx",
+            "stiffness.mtx",
+            "modes.npy",
+            "body.json",
+        ]
+        .iter()
+        .map(|f| format!("exudyn/{f}"))
+        .collect())
+    }
+}
