@@ -203,6 +203,30 @@ pub enum MatrixFormat {
     NastranDmig,
 }
 
+impl MatrixFormat {
+    /// The ids a body file's `format` and `convert --format` take.
+    pub const IDS: [&'static str; 4] =
+        ["matrix-market", "harwell-boeing", "abaqus", "nastran-dmig"];
+}
+
+impl std::str::FromStr for MatrixFormat {
+    type Err = crate::error::UnknownId;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim() {
+            "matrix-market" => Ok(Self::MatrixMarket),
+            "harwell-boeing" => Ok(Self::HarwellBoeing),
+            "abaqus" => Ok(Self::Abaqus),
+            "nastran-dmig" => Ok(Self::NastranDmig),
+            other => Err(crate::error::UnknownId::new(
+                "matrix format",
+                other,
+                &Self::IDS,
+            )),
+        }
+    }
+}
+
 /// Node coordinates and wireframe, each inline or as a CSV file.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -4,7 +4,11 @@ use std::{collections::BTreeMap, fmt::Write as _, io::Write, path::Path};
 
 use crate::{Error, Result, fem::FeModel, linalg::MassMatrix};
 
-use super::{InterfaceKind, InterfaceSpec, Units, matrix_market::write_coordinate_symmetric_to};
+use super::{
+    InterfaceKind, InterfaceSpec, MatrixFormat, Units,
+    format_writers::{abaqus_text, dmig_text},
+    matrix_market::write_coordinate_symmetric_to,
+};
 use crate::atomic_file::write_atomically;
 
 /// The nonzero entries of `a` on and below its diagonal, `(row, column, value)`, 0-based,
@@ -40,8 +44,11 @@ pub struct BodyFileParameters {
     pub units: Units,
     /// Multipoint interfaces (`[interfaces.NAME]`).
     pub interfaces: BTreeMap<String, InterfaceSpec>,
-    /// Write the matrices as `.mtx.gz`.
+    /// Write the matrices gzip-compressed (`.gz`).
     pub compress: bool,
+    /// The matrices' format: Matrix Market (default), Abaqus matrix input or Nastran DMIG
+    /// (Harwell–Boeing is read, not written).
+    pub format: MatrixFormat,
 }
 
 /// The body file and its data files for `model`: `body.toml`, `k.mtx` and `m.mtx` (a vector when
@@ -49,14 +56,20 @@ pub struct BodyFileParameters {
 /// written in Rust's shortest round-trip form, so an import reproduces `model` exactly.
 pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<BodyFiles> {
     let BodyFileParameters {
-        node_sets,
-        default_interface,
         description,
-        units,
-        interfaces,
         compress,
+        format,
+        ..
     } = parameters;
     let compress = *compress;
+    if *format == MatrixFormat::HarwellBoeing {
+        return Err(Error::InvalidOption {
+            scene: "convert".into(),
+            reason: "Harwell-Boeing is read, not written: write matrix-market, abaqus or \
+                     nastran-dmig"
+                .into(),
+        });
+    }
     let mut files = BodyFiles::new();
     let n = model.dof_count();
     let lower = lower_entries;
@@ -83,7 +96,63 @@ pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<Bo
             Ok(name.into())
         }
     };
-    let k_name = store("k.mtx", k)?;
+    let mass_entries = || match &model.m {
+        MassMatrix::Lumped(d) => d
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| **v != 0.0)
+            .map(|(i, &v)| (i, i, v))
+            .collect::<Vec<_>>(),
+        MassMatrix::Consistent(a) => lower(a),
+    };
+    let (k_name, m_name, names) = match format {
+        MatrixFormat::Abaqus => {
+            let k = abaqus_text(model, &lower(&model.k), "stiffness");
+            let m = abaqus_text(model, &mass_entries(), "mass");
+            (
+                store("k.mtx", k.into_bytes())?,
+                store("m.mtx", m.into_bytes())?,
+                "",
+            )
+        }
+        MatrixFormat::NastranDmig => {
+            let mut cards = dmig_text(model, "KAAX", &lower(&model.k), "stiffness");
+            cards.push_str(&dmig_text(model, "MAAX", &mass_entries(), "mass"));
+            cards.push_str("ENDDATA\n");
+            let name = store("body.pch", cards.into_bytes())?;
+            (
+                name.clone(),
+                name,
+                "stiffness_matrix = \"KAAX\"\nmass_matrix = \"MAAX\"\n",
+            )
+        }
+        _ => {
+            let k_name = store("k.mtx", k)?;
+            (k_name, matrix_market_mass(model, &mut store, io)?, "")
+        }
+    };
+    let format_line = match format {
+        MatrixFormat::Abaqus => "format = \"abaqus\"\n",
+        MatrixFormat::NastranDmig => "format = \"nastran-dmig\"\n",
+        _ => "",
+    };
+    body_toml(
+        model,
+        parameters,
+        &k_name,
+        &m_name,
+        &format!("{format_line}{names}"),
+        files,
+    )
+}
+
+/// M as Matrix Market (a vector when lumped), stored by `store`.
+fn matrix_market_mass(
+    model: &FeModel,
+    store: &mut impl FnMut(&str, Vec<u8>) -> Result<String>,
+    io: impl Fn(std::io::Error) -> Error + Copy,
+) -> Result<String> {
+    let n = model.dof_count();
     let mut m = Vec::new();
     match &model.m {
         MassMatrix::Lumped(d) => {
@@ -98,13 +167,32 @@ pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<Bo
             write_coordinate_symmetric_to(
                 &mut m,
                 n,
-                &lower(a),
+                &lower_entries(a),
                 &format!("consistent mass of {}, kg", model.name),
             )
             .map_err(io)?;
         }
     }
-    let m_name = store("m.mtx", m)?;
+    store("m.mtx", m)
+}
+
+/// `body.toml`, `nodes.csv` and `edges.csv` added to `files` (the matrices already in).
+fn body_toml(
+    model: &FeModel,
+    parameters: &BodyFileParameters,
+    k_name: &str,
+    m_name: &str,
+    matrix_keys: &str,
+    mut files: BodyFiles,
+) -> Result<BodyFiles> {
+    let BodyFileParameters {
+        node_sets,
+        default_interface,
+        description,
+        units,
+        interfaces,
+        ..
+    } = parameters;
     let mut nodes = String::from("x,y,z\n");
     for p in &model.nodes {
         let _ = writeln!(nodes, "{:e},{:e},{:e}", p[0], p[1], p[2]);
@@ -129,7 +217,7 @@ pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<Bo
          dofs = [{}]\n\
          dof_order = \"node-major\"\n{}\n\
          [units]\nlength = \"{}\"\nmass = \"{}\"\nforce = \"{}\"\n\n\
-         [matrices]\nstiffness = \"{k_name}\"\nmass = \"{m_name}\"\n\n\
+         [matrices]\n{matrix_keys}stiffness = \"{k_name}\"\nmass = \"{m_name}\"\n\n\
          [geometry]\nnodes = \"nodes.csv\"\nedges = \"edges.csv\"\n\n\
          [node_sets]\n",
         model.name,
@@ -229,7 +317,11 @@ pub fn example_bodies() -> Result<Vec<(&'static str, BodyFiles)>> {
 /// Matrix Market, whatever format it was read from), with its units, node sets, default
 /// interface and declared interfaces: what `flexmodes convert` writes. A body without node
 /// coordinates is refused (its nodes would be written as if it had them).
-pub fn write_imported_body(body: &super::ImportedBody, compress: bool) -> Result<BodyFiles> {
+pub fn write_imported_body(
+    body: &super::ImportedBody,
+    compress: bool,
+    format: MatrixFormat,
+) -> Result<BodyFiles> {
     body.require_coordinates()?;
     write_body(
         &body.model,
@@ -240,6 +332,7 @@ pub fn write_imported_body(body: &super::ImportedBody, compress: bool) -> Result
             units: body.units.clone(),
             interfaces: body.interfaces.clone(),
             compress,
+            format,
         },
     )
 }

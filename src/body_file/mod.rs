@@ -7,6 +7,7 @@ mod body_spec;
 mod body_writer;
 mod csv_table;
 mod dof_map_file;
+mod format_writers;
 mod harwell_boeing;
 mod imported_body;
 mod matrix_bytes;

@@ -148,9 +148,13 @@ pub(super) enum Command {
         /// Destination folder (each file written atomically).
         #[arg(long)]
         out: PathBuf,
-        /// Compress the matrices (`.mtx.gz`).
+        /// Compress the matrices (`.gz`).
         #[arg(long)]
         compress: bool,
+        /// The matrices' format: matrix-market, abaqus (matrix input lines) or nastran-dmig
+        /// (DMIG cards KAAX and MAAX in `body.pch`).
+        #[arg(long, default_value = "matrix-market")]
+        format: crate::body_file::MatrixFormat,
     },
     /// Reduce a body and write Ψ (psi.npy), K_r, M_r (Matrix Market) and model.json to a
     /// folder.

@@ -316,9 +316,10 @@ fn run(cli: Cli) -> Result<()> {
             body,
             out,
             compress,
+            format,
         } => {
             let loaded = ImportedBody::load(&body)?;
-            let files = crate::body_file::write_imported_body(&loaded, compress)?;
+            let files = crate::body_file::write_imported_body(&loaded, compress, format)?;
             crate::body_file::write_files(&out, &files)?;
             // What was read, as the written body reads back.
             let written = ImportedBody::load(&out.join("body.toml").display().to_string())?;

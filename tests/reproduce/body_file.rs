@@ -812,7 +812,11 @@ fn a_body_written_back_keeps_its_units_and_interfaces() {
         },
     );
     let dir = scratch("written-back");
-    write_files(&dir, &write_imported_body(&body, true).unwrap()).unwrap();
+    write_files(
+        &dir,
+        &write_imported_body(&body, true, Default::default()).unwrap(),
+    )
+    .unwrap();
     let back = ImportedBody::load(dir.join("body.toml").to_str().unwrap()).unwrap();
     assert_eq!(back.interfaces, body.interfaces);
     assert_eq!(back.units, body.units);
