@@ -179,11 +179,11 @@ pub struct MatrixFiles {
     /// nodes and DOF.
     #[serde(default)]
     pub dof_map: Option<String>,
-    /// With `nastran-dmig`: the stiffness matrix's name on its DMIG cards (default `KAAX`, the
-    /// name `EXTSEOUT(DMIGPCH)` punches).
+    /// With `nastran-dmig` or `op4`: the stiffness matrix's name in the file (default `KAAX`,
+    /// the name `EXTSEOUT(DMIGPCH)` punches).
     #[serde(default)]
     pub stiffness_matrix: Option<String>,
-    /// With `nastran-dmig`: the mass matrix's name (default `MAAX`).
+    /// With `nastran-dmig` or `op4`: the mass matrix's name (default `MAAX`).
     #[serde(default)]
     pub mass_matrix: Option<String>,
 }
@@ -201,6 +201,8 @@ pub enum MatrixFormat {
     Abaqus,
     /// Nastran DMIG cards in a bulk-data or punch file (grid, component per entry).
     NastranDmig,
+    /// Nastran OUTPUT4 (binary or ASCII; the matrices by name, placed by `dof_map`).
+    Op4,
 }
 
 impl MatrixFormat {
@@ -218,6 +220,7 @@ impl std::str::FromStr for MatrixFormat {
             "harwell-boeing" => Ok(Self::HarwellBoeing),
             "abaqus" => Ok(Self::Abaqus),
             "nastran-dmig" => Ok(Self::NastranDmig),
+            "op4" => Ok(Self::Op4),
             other => Err(crate::error::UnknownId::new(
                 "matrix format",
                 other,

@@ -62,12 +62,17 @@ pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<Bo
         ..
     } = parameters;
     let compress = *compress;
-    if *format == MatrixFormat::HarwellBoeing {
+    if matches!(format, MatrixFormat::HarwellBoeing | MatrixFormat::Op4) {
         return Err(Error::InvalidOption {
             scene: "convert".into(),
-            reason: "Harwell-Boeing is read, not written: write matrix-market, abaqus or \
-                     nastran-dmig"
-                .into(),
+            reason: format!(
+                "{} is read, not written: write matrix-market, abaqus or nastran-dmig",
+                if *format == MatrixFormat::Op4 {
+                    "OP4"
+                } else {
+                    "Harwell-Boeing"
+                }
+            ),
         });
     }
     let mut files = BodyFiles::new();

@@ -15,6 +15,7 @@ use super::{
     harwell_boeing::parse_harwell_boeing,
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
     nastran_dmig::parse_nastran_dmig,
+    nastran_op4::parse_op4,
     parse_matrix_market,
 };
 use crate::{
@@ -211,13 +212,15 @@ impl ImportedBody {
 
         // Matrices.
         let matrices = &spec.matrices;
-        if matrices.format != MatrixFormat::NastranDmig
-            && (matrices.stiffness_matrix.is_some() || matrices.mass_matrix.is_some())
+        if !matches!(
+            matrices.format,
+            MatrixFormat::NastranDmig | MatrixFormat::Op4
+        ) && (matrices.stiffness_matrix.is_some() || matrices.mass_matrix.is_some())
         {
             return Err(body_error(
                 key_line("stiffness_matrix").max(key_line("mass_matrix")),
-                "stiffness_matrix and mass_matrix name DMIG matrices: they need format = \
-                 \"nastran-dmig\""
+                "stiffness_matrix and mass_matrix name DMIG or OP4 matrices: they need format = \
+                 \"nastran-dmig\" or \"op4\""
                     .into(),
             ));
         }
@@ -226,6 +229,7 @@ impl ImportedBody {
             MatrixFormat::HarwellBoeing => parse_harwell_boeing(bytes, name),
             MatrixFormat::Abaqus => parse_abaqus_matrix(bytes, name, &dofs),
             MatrixFormat::NastranDmig => parse_nastran_dmig(bytes, name, dmig, &dofs),
+            MatrixFormat::Op4 => parse_op4(bytes, name, dmig),
         };
         let (k_bytes, k_name) = location.read(Some(&matrices.stiffness))?;
         let k_dmig = matrices.stiffness_matrix.as_deref().unwrap_or("KAAX");

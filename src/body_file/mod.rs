@@ -14,6 +14,7 @@ mod matrix_bytes;
 mod matrix_checks;
 mod matrix_market;
 mod nastran_dmig;
+mod nastran_op4;
 mod node_dof_placement;
 mod npy;
 
@@ -35,4 +36,5 @@ pub use matrix_market::{
     write_coordinate_symmetric, write_coordinate_symmetric_to,
 };
 pub use nastran_dmig::parse_nastran_dmig;
+pub use nastran_op4::parse_op4;
 pub use npy::{npy_header, read_npy, write_npy};

@@ -55,6 +55,17 @@ fn nastran_dmig_imports_to_its_matrix_market_twin() {
     }
 }
 
+/// The same matrices as Nastran OUTPUT4 files written by NASA's pyyeti in the shuffled
+/// equation order, placed by the DOF map (`assets/generate/op4_body.py`): binary double
+/// precision in the sparse "bigmat" form, and ASCII with K in non-bigmat strings and M dense.
+/// Both import to the twin exactly.
+#[test]
+fn op4_binary_and_ascii_import_to_their_matrix_market_twin() {
+    let mm = bar("body.toml");
+    same_body(&bar("body-op4.toml"), &mm);
+    same_body(&bar("body-op4-ascii.toml"), &mm);
+}
+
 /// `convert --format` writes each format flexmodes reads in full precision: the bar read from
 /// its DMIG cards, written as Abaqus lines, as DMIG cards and as Matrix Market, reads back to
 /// the same matrices exactly, node sets kept.

@@ -1,0 +1,534 @@
+//! Nastran OUTPUT4 (OP4) matrices, binary or ASCII: one named matrix picked out of the file. OP4
+//! carries no DOF map: its rows are the FE code's equations, placed on the body's nodes by the
+//! body file's `dof_map` (or, without one, taken as the body's node-major DOF).
+//!
+//! Layout (as Nastran's OUTPUT4 and NASA's pyyeti write it). Each matrix: a header
+//! (`NCOL NROW NF NTYPE NAME`; NROW < 0 marks the "bigmat" sparse form), one record per column
+//! with data (`ICOL IROW NW`), and a closing record with ICOL = NCOL + 1. A dense column
+//! (IROW > 0) holds consecutive values from row IROW; a sparse one (IROW = 0) holds strings of
+//! consecutive values, each headed by `IS = row + 65536·(L + 1)` (non-bigmat) or by the pair
+//! `L + 1, row` (bigmat), L the string's length in 4-byte words. Binary files are Fortran
+//! unformatted records (a 4-byte length before and after each; either byte order; 4-byte
+//! integers), NTYPE 1 single and 2 double precision; ASCII files give the header in `4I8, A8`
+//! followed by the values' Fortran format (`1P,3E23.16`), column headers in `3I8`, string
+//! headers on their own lines. Complex matrices (NTYPE 3, 4) are refused by name. Every error
+//! names the file and the line (ASCII) or the byte (binary); nothing is returned half-read.
+
+use std::collections::BTreeSet;
+
+use super::{
+    MatrixMarket, MatrixMarketFormat,
+    matrix_bytes::{line_error as error, plain_bytes},
+    nastran_dmig::nastran_real,
+};
+use crate::Result;
+
+/// A matrix being read: its size and the entries so far (0-based).
+struct Matrix {
+    rows: usize,
+    cols: usize,
+    entries: Vec<(usize, usize, f64)>,
+}
+
+impl Matrix {
+    fn into_market(self) -> MatrixMarket {
+        MatrixMarket {
+            rows: self.rows,
+            cols: self.cols,
+            format: MatrixMarketFormat::Coordinate,
+            // OP4 stores every column whole, a symmetric form (6) too.
+            symmetric: false,
+            entries: self.entries,
+        }
+    }
+}
+
+/// Checks a matrix's NTYPE: the 4-byte words per value (1 single, 2 double precision).
+fn words_per_value(ntype: i64, name: &str) -> std::result::Result<usize, String> {
+    match ntype {
+        1 => Ok(1),
+        2 => Ok(2),
+        3 | 4 => Err(format!(
+            "`{name}` is complex (NTYPE {ntype}): a body's matrices are real"
+        )),
+        other => Err(format!("`{name}` has NTYPE {other}, not 1-4")),
+    }
+}
+
+/// Parses the OP4 matrix `matrix` of the bytes named `path` (binary or ASCII, gzip allowed).
+pub fn parse_op4(bytes: &[u8], path: &str, matrix: &str) -> Result<MatrixMarket> {
+    let bytes = plain_bytes(bytes, path)?;
+    let wanted = matrix.to_ascii_uppercase();
+    let binary = bytes.len() >= 4
+        && (bytes[..4] == 24i32.to_le_bytes()
+            || bytes[..4] == 24i32.to_be_bytes()
+            || bytes[..4] == 48i32.to_le_bytes()
+            || bytes[..4] == 48i32.to_be_bytes());
+    let found = if binary {
+        binary_op4(&bytes, path, &wanted)?
+    } else {
+        let text = std::str::from_utf8(&bytes).map_err(|_| {
+            error(
+                path,
+                0,
+                "neither a binary OP4 (a 24-byte first record) nor text",
+            )
+        })?;
+        ascii_op4(text, path, &wanted)?
+    };
+    match found {
+        Ok(m) => Ok(m.into_market()),
+        Err(names) => Err(error(
+            path,
+            0,
+            format!(
+                "no OP4 matrix `{wanted}` (the file's matrices: {})",
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.into_iter().collect::<Vec<_>>().join(", ")
+                }
+            ),
+        )),
+    }
+}
+
+/// Fortran unformatted records of one byte order.
+struct Records<'a> {
+    bytes: &'a [u8],
+    at: usize,
+    little: bool,
+}
+
+impl<'a> Records<'a> {
+    fn int(&self, b: &[u8]) -> i64 {
+        let a = [b[0], b[1], b[2], b[3]];
+        i64::from(if self.little {
+            i32::from_le_bytes(a)
+        } else {
+            i32::from_be_bytes(a)
+        })
+    }
+
+    /// The next record's body and the byte it starts at; `None` at the end of the file.
+    fn next(&mut self, path: &str) -> Result<Option<(&'a [u8], usize)>> {
+        if self.at == self.bytes.len() {
+            return Ok(None);
+        }
+        let start = self.at;
+        let fail = |reason: String| error(path, 0, format!("byte {start}: {reason}"));
+        if start + 4 > self.bytes.len() {
+            return Err(fail("the file ends inside a record's length".into()));
+        }
+        let len = self.int(&self.bytes[start..start + 4]);
+        let len = usize::try_from(len).map_err(|_| fail(format!("record length {len}")))?;
+        let end = start + 4 + len;
+        if end + 4 > self.bytes.len() {
+            return Err(fail(format!(
+                "a record of {len} bytes runs past the end of the file ({} bytes)",
+                self.bytes.len()
+            )));
+        }
+        let trailer = self.int(&self.bytes[end..end + 4]);
+        if trailer != len as i64 {
+            return Err(fail(format!(
+                "a record of {len} bytes closes with length {trailer}: not an OP4 record"
+            )));
+        }
+        self.at = end + 4;
+        Ok(Some((&self.bytes[start + 4..end], start)))
+    }
+}
+
+type Found = std::result::Result<Matrix, BTreeSet<String>>;
+
+fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
+    let little = bytes[..4] == 24i32.to_le_bytes() || bytes[..4] == 48i32.to_le_bytes();
+    let mut records = Records {
+        bytes,
+        at: 0,
+        little,
+    };
+    let mut names = BTreeSet::new();
+    while let Some((header, at)) = records.next(path)? {
+        let fail = |reason: String| error(path, 0, format!("byte {at}: {reason}"));
+        if header.len() == 48 {
+            return Err(fail(
+                "an OP4 with 8-byte integers: only 4-byte integers are read".into(),
+            ));
+        }
+        if header.len() != 24 {
+            return Err(fail(format!(
+                "a matrix header of {} bytes, expected 24 (NCOL NROW NF NTYPE NAME)",
+                header.len()
+            )));
+        }
+        let word = |k: usize| records.int(&header[4 * k..4 * k + 4]);
+        let name = String::from_utf8_lossy(&header[16..24])
+            .trim()
+            .to_ascii_uppercase();
+        let (ncols, nrows, ntype) = (word(0), word(1), word(3));
+        let wpv = words_per_value(ntype, &name).map_err(fail)?;
+        let bigmat = nrows < 0;
+        let (rows, cols) = (nrows.unsigned_abs() as usize, ncols.max(0) as usize);
+        let value_bytes = 4 * wpv;
+        let mut m = Matrix {
+            rows,
+            cols,
+            entries: Vec::new(),
+        };
+        loop {
+            let (record, at) = records
+                .next(path)?
+                .ok_or_else(|| fail(format!("`{name}` ends before its closing record")))?;
+            let fail = |reason: String| error(path, 0, format!("byte {at}: {reason}"));
+            if record.len() < 12 {
+                return Err(fail(format!("a column record of {} bytes", record.len())));
+            }
+            let w = |k: usize| records.int(&record[4 * k..4 * k + 4]);
+            let (icol, irow) = (w(0), w(1));
+            if icol > ncols {
+                break;
+            }
+            if icol < 1 {
+                return Err(fail(format!("column {icol} of `{name}`")));
+            }
+            let col = icol as usize - 1;
+            let value = |offset: usize| -> f64 {
+                let b = &record[offset..offset + value_bytes];
+                if wpv == 1 {
+                    let a = [b[0], b[1], b[2], b[3]];
+                    f64::from(if little {
+                        f32::from_le_bytes(a)
+                    } else {
+                        f32::from_be_bytes(a)
+                    })
+                } else {
+                    let mut a = [0u8; 8];
+                    a.copy_from_slice(b);
+                    if little {
+                        f64::from_le_bytes(a)
+                    } else {
+                        f64::from_be_bytes(a)
+                    }
+                }
+            };
+            let push = |row: i64, v: f64, m: &mut Matrix| -> Result<()> {
+                if row < 1 || row as usize > rows {
+                    return Err(fail(format!(
+                        "row {row} of column {icol}: `{name}` has {rows}"
+                    )));
+                }
+                if !v.is_finite() {
+                    return Err(fail(format!("{v} at row {row}, column {icol}")));
+                }
+                if v != 0.0 {
+                    m.entries.push((row as usize - 1, col, v));
+                }
+                Ok(())
+            };
+            let data = &record[12..];
+            if irow > 0 {
+                if data.len() % value_bytes != 0 {
+                    return Err(fail(format!("{} bytes of values", data.len())));
+                }
+                for k in 0..data.len() / value_bytes {
+                    push(irow + k as i64, value(12 + k * value_bytes), &mut m)?;
+                }
+            } else {
+                let mut p = 12;
+                while p < record.len() {
+                    let head = if bigmat { 8 } else { 4 };
+                    if p + head > record.len() {
+                        return Err(fail("a string header runs past its column record".into()));
+                    }
+                    let (words, row) = if bigmat {
+                        (w(p / 4) - 1, w(p / 4 + 1))
+                    } else {
+                        let is = w(p / 4);
+                        ((is >> 16) - 1, is & 0xFFFF)
+                    };
+                    p += head;
+                    let count = usize::try_from(words).unwrap_or(usize::MAX) / wpv;
+                    if words < 1 || p + count * value_bytes > record.len() {
+                        return Err(fail(format!(
+                            "a string of {words} words at row {row} does not fit its column record"
+                        )));
+                    }
+                    for k in 0..count {
+                        push(row + k as i64, value(p + k * value_bytes), &mut m)?;
+                    }
+                    p += count * value_bytes;
+                }
+            }
+        }
+        if name == wanted {
+            return Ok(Ok(m));
+        }
+        names.insert(name);
+    }
+    Ok(Err(names))
+}
+
+/// Integers of fixed `width` in `line` (or, when those do not parse, blank-separated).
+fn ints(line: &str, width: usize, count: usize) -> Option<Vec<i64>> {
+    let chars: Vec<char> = line.chars().collect();
+    let fixed: Option<Vec<i64>> = (0..count)
+        .map(|k| {
+            let (a, b) = (
+                (k * width).min(chars.len()),
+                ((k + 1) * width).min(chars.len()),
+            );
+            chars[a..b].iter().collect::<String>().trim().parse().ok()
+        })
+        .collect();
+    fixed.or_else(|| {
+        let v: Vec<i64> = line
+            .split_whitespace()
+            .map(|t| t.parse().ok())
+            .collect::<Option<_>>()?;
+        (v.len() == count).then_some(v)
+    })
+}
+
+fn ascii_op4(text: &str, path: &str, wanted: &str) -> Result<Found> {
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l)).peekable();
+    let mut names = BTreeSet::new();
+    while let Some((number, header)) = lines.next() {
+        if header.trim().is_empty() {
+            continue;
+        }
+        let fail = |line: usize, reason: String| error(path, line, reason);
+        let head = ints(header.get(..32).unwrap_or(header), 8, 4).ok_or_else(|| {
+            fail(
+                number,
+                "not an OP4 matrix header (NCOL NROW NF NTYPE in 4I8, then the name)".into(),
+            )
+        })?;
+        let name = header.get(32..40).unwrap_or("").trim().to_ascii_uppercase();
+        let wpv = words_per_value(head[3], &name).map_err(|r| fail(number, r))?;
+        // The values' Fortran format, e.g. `1P,3E23.16`: values per line and width.
+        let format = header.get(40..).unwrap_or("").trim().to_ascii_uppercase();
+        let width = format
+            .rsplit(',')
+            .next()
+            .and_then(|f| {
+                let at = f.find(['E', 'D'])?;
+                let (count, rest) = f.split_at(at);
+                let width: usize = rest[1..].split('.').next()?.parse().ok()?;
+                count.trim().parse::<usize>().ok().map(|_| width)
+            })
+            .filter(|&w| w > 0)
+            .ok_or_else(|| {
+                fail(
+                    number,
+                    format!("the values' format `{format}` is not like 1P,3E23.16"),
+                )
+            })?;
+        let (ncols, nrows) = (head[0], head[1]);
+        let bigmat = nrows < 0;
+        let (rows, cols) = (nrows.unsigned_abs() as usize, ncols.max(0) as usize);
+        let mut m = Matrix {
+            rows,
+            cols,
+            entries: Vec::new(),
+        };
+        // Values read line by line, each `width` characters.
+        let values = |count: usize,
+                      from_row: i64,
+                      col: usize,
+                      m: &mut Matrix,
+                      lines: &mut std::iter::Peekable<_>|
+         -> Result<()> {
+            let mut row = from_row;
+            let mut left = count;
+            while left > 0 {
+                let (n, line): (usize, &str) = lines
+                    .next()
+                    .ok_or_else(|| fail(0, format!("`{name}` ends inside column {}", col + 1)))?;
+                let chars: Vec<char> = line.trim_end().chars().collect();
+                let mut k = 0;
+                while left > 0 && k * width < chars.len() {
+                    let token: String = chars[k * width..((k + 1) * width).min(chars.len())]
+                        .iter()
+                        .collect();
+                    let v = nastran_real(&token)
+                        .filter(|v| v.is_finite())
+                        .ok_or_else(|| {
+                            fail(
+                                n,
+                                format!("the value `{}` is not a real number", token.trim()),
+                            )
+                        })?;
+                    if row < 1 || row as usize > rows {
+                        return Err(fail(
+                            n,
+                            format!("row {row} of column {}: `{name}` has {rows}", col + 1),
+                        ));
+                    }
+                    if v != 0.0 {
+                        m.entries.push((row as usize - 1, col, v));
+                    }
+                    row += 1;
+                    left -= 1;
+                    k += 1;
+                }
+                if k == 0 {
+                    return Err(fail(
+                        n,
+                        format!("a line without values inside column {}", col + 1),
+                    ));
+                }
+            }
+            Ok(())
+        };
+        loop {
+            let (n, line) = lines
+                .next()
+                .ok_or_else(|| fail(0, format!("`{name}` ends before its closing record")))?;
+            let [icol, irow, nw] = ints(line, 8, 3)
+                .and_then(|v| <[i64; 3]>::try_from(v).ok())
+                .ok_or_else(|| fail(n, "not a column header (ICOL IROW NW in 3I8)".into()))?;
+            if icol > ncols {
+                lines.next(); // the closing record's one value
+                break;
+            }
+            if icol < 1 {
+                return Err(fail(n, format!("column {icol} of `{name}`")));
+            }
+            let col = icol as usize - 1;
+            if irow > 0 {
+                values(nw.max(0) as usize, irow, col, &mut m, &mut lines)?;
+                continue;
+            }
+            let mut words = nw;
+            while words > 0 {
+                let (h, string) = lines
+                    .next()
+                    .ok_or_else(|| fail(0, format!("`{name}` ends inside column {icol}")))?;
+                let (length, row, used) = if bigmat {
+                    let [l, r] = ints(string, 8, 2)
+                        .and_then(|v| <[i64; 2]>::try_from(v).ok())
+                        .ok_or_else(|| fail(h, "not a bigmat string header (L+1, row)".into()))?;
+                    (l - 1, r, 2)
+                } else {
+                    let is: i64 = string.trim().parse().map_err(|_| {
+                        fail(h, "not a string header (IS = row + 65536(L+1))".into())
+                    })?;
+                    ((is >> 16) - 1, is & 0xFFFF, 1)
+                };
+                if length < 1 || length + used > words {
+                    return Err(fail(
+                        h,
+                        format!("a string of {length} words in a column of {nw}"),
+                    ));
+                }
+                values(length as usize / wpv, row, col, &mut m, &mut lines)?;
+                words -= length + used;
+            }
+        }
+        if name == wanted {
+            return Ok(Ok(m));
+        }
+        names.insert(name);
+    }
+    Ok(Err(names))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Fortran records of `words` (i32 or f64) in little-endian order.
+    fn record(out: &mut Vec<u8>, body: &[u8]) {
+        out.extend((body.len() as i32).to_le_bytes());
+        out.extend(body);
+        out.extend((body.len() as i32).to_le_bytes());
+    }
+    fn ints(v: &[i32]) -> Vec<u8> {
+        v.iter().flat_map(|x| x.to_le_bytes()).collect()
+    }
+    fn doubles(v: &[f64]) -> Vec<u8> {
+        v.iter().flat_map(|x| x.to_le_bytes()).collect()
+    }
+
+    /// A 3 × 3 matrix `A`: column 1 dense, column 3 as one bigmat string, then the close.
+    fn binary(bigmat: bool, ntype: i32) -> Vec<u8> {
+        let mut out = Vec::new();
+        let rows = if bigmat { -3 } else { 3 };
+        record(
+            &mut out,
+            &[ints(&[3, rows, 6, ntype]), b"A       ".to_vec()].concat(),
+        );
+        record(
+            &mut out,
+            &[ints(&[1, 1, 4]), doubles(&[2.0, -1.0])].concat(),
+        );
+        let head = if bigmat {
+            ints(&[5, 2])
+        } else {
+            ints(&[2 + (5 << 16)])
+        };
+        let words = if bigmat { 6 } else { 5 };
+        record(
+            &mut out,
+            &[ints(&[3, 0, words]), head, doubles(&[-1.0, 4.0])].concat(),
+        );
+        record(&mut out, &[ints(&[4, 1, 2]), doubles(&[1.0])].concat());
+        out
+    }
+
+    #[test]
+    fn reads_dense_and_string_columns_in_both_sparse_forms() {
+        for bigmat in [true, false] {
+            let m = parse_op4(&binary(bigmat, 2), "a.op4", "a").unwrap();
+            assert_eq!((m.rows, m.cols), (3, 3));
+            assert_eq!(
+                m.entries,
+                vec![(0, 0, 2.0), (1, 0, -1.0), (1, 2, -1.0), (2, 2, 4.0)]
+            );
+        }
+        let ascii = r#"
+       3      -3       6       2A       1P,3E23.16
+       1       1       2
+ 2.0000000000000000E+00-1.0000000000000000E+00
+       3       0       6
+       5       2
+-1.0000000000000000E+00 4.0000000000000000E+00
+       4       1       1
+ 1.0000000000000000E+00
+"#
+        .trim_start_matches('\n');
+        let m = parse_op4(ascii.as_bytes(), "a.op4", "A").unwrap();
+        assert_eq!(
+            m.entries,
+            vec![(0, 0, 2.0), (1, 0, -1.0), (1, 2, -1.0), (2, 2, 4.0)]
+        );
+        let bad = ascii.replace("-1.0000000000000000E+00 4.0", "-1.0000000000000000X+00 4.0");
+        let e = parse_op4(bad.as_bytes(), "a.op4", "A")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("a.op4:6:") && e.contains("not a real"), "{e}");
+    }
+
+    #[test]
+    fn names_what_it_cannot_read() {
+        let e = parse_op4(&binary(true, 4), "a.op4", "A")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("complex"), "{e}");
+        let e = parse_op4(&binary(true, 2), "a.op4", "KAAX")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("the file's matrices: A"), "{e}");
+        let mut cut = binary(false, 2);
+        cut.truncate(cut.len() - 6);
+        let e = parse_op4(&cut, "a.op4", "A").unwrap_err().to_string();
+        assert!(e.contains("runs past the end"), "{e}");
+        let mut wrong = binary(false, 2);
+        let at = 4 + 24 + 4 + 4 + 4; // the first column record's row
+        wrong[at..at + 4].copy_from_slice(&7i32.to_le_bytes());
+        let e = parse_op4(&wrong, "a.op4", "A").unwrap_err().to_string();
+        assert!(e.contains("row 7") && e.contains("byte 32"), "{e}");
+    }
+}
