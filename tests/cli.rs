@@ -1313,3 +1313,49 @@ fn convert_writes_what_was_read_as_a_matrix_market_body() {
         "{text}"
     );
 }
+
+/// Bad requests of the carrying-out commands are named errors with a failing exit code and
+/// leave nothing behind: an Exudyn export without a rigid interface for its frame, and OP4 as
+/// an output format.
+#[test]
+fn carrying_out_refuses_by_name_and_writes_nothing() {
+    let dir = temp_dir("refused-exudyn").join("out");
+    let rod = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/bodies/steel-rod/body.toml"
+    );
+    let out = flexmodes(&[
+        "export",
+        "--body",
+        rod,
+        "--method",
+        "cb",
+        "--boundary",
+        "end_a",
+        "--modes",
+        "4",
+        "--out",
+        dir.to_str().unwrap(),
+        "--exudyn",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && stderr.contains("cannot export for Exudyn"),
+        "{stderr}"
+    );
+    assert!(!dir.exists());
+    let out = flexmodes(&[
+        "convert",
+        rod,
+        "--out",
+        dir.to_str().unwrap(),
+        "--format",
+        "op4",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && stderr.contains("OP4 is read, not written"),
+        "{stderr}"
+    );
+    assert!(!dir.exists());
+}

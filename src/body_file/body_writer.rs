@@ -63,17 +63,14 @@ pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<Bo
     } = parameters;
     let compress = *compress;
     if matches!(format, MatrixFormat::HarwellBoeing | MatrixFormat::Op4) {
-        return Err(Error::InvalidOption {
-            scene: "convert".into(),
-            reason: format!(
-                "{} is read, not written: write matrix-market, abaqus or nastran-dmig",
-                if *format == MatrixFormat::Op4 {
-                    "OP4"
-                } else {
-                    "Harwell-Boeing"
-                }
-            ),
-        });
+        return Err(Error::BodyFile(super::BodyFileError::NotWritable {
+            format: if *format == MatrixFormat::Op4 {
+                "OP4"
+            } else {
+                "Harwell-Boeing"
+            }
+            .into(),
+        }));
     }
     let mut files = BodyFiles::new();
     let n = model.dof_count();

@@ -5,6 +5,10 @@ use thiserror::Error;
 /// Errors of reading a body: the file, the line and what is wrong there.
 #[derive(Debug, Error)]
 pub enum BodyFileError {
+    /// A format flexmodes reads but does not write.
+    #[error("{format} is read, not written: write matrix-market, abaqus or nastran-dmig")]
+    NotWritable { format: String },
+
     /// A Matrix Market file whose first line is not a real `coordinate` or `array` header.
     #[error("{path}:{line}: not a real Matrix Market matrix: {found}")]
     MatrixMarketHeader {
