@@ -38,6 +38,8 @@ pub mod record;
 pub mod reduction;
 pub mod report;
 pub mod scenes;
+#[cfg(feature = "serve")]
+pub mod serve;
 mod terminal_progress;
 pub mod work_pool;
 

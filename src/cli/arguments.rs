@@ -196,6 +196,11 @@ pub(super) enum Command {
     /// reduced models (gr, mt, cb, mc) run the same spin-up; each model's history and reaction
     /// against the full body's, its offline and online time.
     Simulate(SimulateArgs),
+    /// Serve the scenes to browsers on the network: the embedded Rerun web viewer (offline,
+    /// gzip) and the recordings over Rerun's data server; prints the URL to share; then reads
+    /// teacher commands (`show SCENE [--method …] [--modes N] …`, `list`, `quit`) from the
+    /// terminal. Needs the `serve` feature.
+    Serve(ServeArgs),
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {
         /// Scene id.
@@ -348,6 +353,32 @@ impl From<WindowArgs> for crate::gui::ViewerOptions {
             pause: std::time::Duration::from_secs_f64(w.pause.max(0.0)),
         }
     }
+}
+
+/// Arguments of `flexmodes serve`.
+#[derive(Debug, Args, Clone)]
+pub(super) struct ServeArgs {
+    /// Scene ids (default: every scene, unless --file is given).
+    pub(super) scenes: Vec<String>,
+    /// Serve these `.rrd` files too (each decoded whole first).
+    #[arg(long = "file")]
+    pub(super) files: Vec<PathBuf>,
+    /// The address to listen on: 127.0.0.1 (default) is this machine only; a classroom address
+    /// (the teacher's, e.g. 192.168.1.20) lets that network in, 0.0.0.0 every interface.
+    /// Anyone who can reach it can watch and load the server.
+    #[arg(long, default_value = "127.0.0.1")]
+    pub(super) bind: std::net::IpAddr,
+    /// The web page's port.
+    #[arg(long, default_value_t = 9090)]
+    pub(super) port: u16,
+    /// The data server's port.
+    #[arg(long, default_value_t = 9876)]
+    pub(super) grpc_port: u16,
+    /// The viewer's theme in the shared URL: dark or light (default: each browser's own).
+    #[arg(long)]
+    pub(super) theme: Option<String>,
+    #[command(flatten)]
+    pub(super) options: OptionArgs,
 }
 
 /// Scene options shared by `record` and `report`.

@@ -312,6 +312,7 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Simulate(arguments) => super::simulate::run(arguments),
+        Command::Serve(arguments) => super::serve::run(arguments),
         Command::Convert {
             body,
             out,

@@ -2,6 +2,7 @@
 
 mod arguments;
 mod commands;
+mod serve;
 mod simulate;
 mod stderr;
 

@@ -117,6 +117,10 @@ pub enum Error {
     /// the method.
     #[error(transparent)]
     Reduction(#[from] super::ReductionError),
+
+    /// Errors of serving the classroom (`flexmodes serve`).
+    #[error(transparent)]
+    Serve(#[from] super::ServeError),
 }
 
 /// Result alias used across the crate.

@@ -8,6 +8,7 @@ mod dynamics_error;
 mod flexmodes_error;
 mod linalg_error;
 mod reduction_error;
+mod serve_error;
 mod unknown_id;
 
 pub use body_file_error::BodyFileError;
@@ -15,4 +16,5 @@ pub use dynamics_error::DynamicsError;
 pub use flexmodes_error::{Error, Result};
 pub use linalg_error::LinalgError;
 pub use reduction_error::ReductionError;
+pub use serve_error::ServeError;
 pub use unknown_id::UnknownId;

@@ -463,8 +463,15 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                     .with_color(color(*c)),
             )?;
         }
-        Visual::Bars { path, values } => {
-            rec.log_static(path.as_str(), &rerun::BarChart::new(values.clone()))?;
+        Visual::Bars {
+            path,
+            values,
+            color: c,
+        } => {
+            rec.log_static(
+                path.as_str(),
+                &rerun::BarChart::new(values.clone()).with_color(color(*c)),
+            )?;
         }
     }
     Ok(())

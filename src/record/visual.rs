@@ -233,6 +233,8 @@ pub enum Visual {
         path: String,
         /// Values.
         values: Vec<f64>,
+        /// The bars' colour: a method's own, so the chart matches its 3-D view.
+        color: Color,
     },
 }
 

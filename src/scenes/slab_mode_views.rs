@@ -3,7 +3,7 @@
 
 use faer::Mat;
 
-use super::mode_visuals::{REFERENCE, columns, method_color, mode_set};
+use super::mode_visuals::{columns, method_color, mode_set};
 use crate::{
     fem::FeModel,
     linalg::GeneralizedEigen,
@@ -39,7 +39,13 @@ pub fn slab_mode_views(
         .enumerate()
         .map(|(k, (u, f))| (u, format!("{}: {f:.3} Hz", k + 1)))
         .collect();
-    visuals.extend(mode_set(model, "free_free", &ff_modes, REFERENCE));
+    // The full body's own modes, in the full model's colour.
+    visuals.extend(mode_set(
+        model,
+        "free_free",
+        &ff_modes,
+        method_color(Method::NoReduction),
+    ));
     let nb = part.b.len();
     let constraint = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
     // Bodies with large interfaces (an imported body's bolt hole) show the first few.

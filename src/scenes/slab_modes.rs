@@ -88,6 +88,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     visuals.push(Visual::Bars {
         path: "metrics/reduced_hz/nr".into(),
         values: free_free_hz[..free_free_hz.len().min(12)].to_vec(),
+        color: super::mode_visuals::method_color(Method::NoReduction),
     });
     bars.push(Layout::BarChart {
         name: "nr".into(),
@@ -127,6 +128,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         visuals.push(Visual::Bars {
             path: format!("metrics/reduced_hz/{}", m.id()),
             values: hz[..hz.len().min(12)].to_vec(),
+            color: super::mode_visuals::method_color(m),
         });
         bars.push(Layout::BarChart {
             name: m.id().into(),

@@ -117,6 +117,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         visuals.push(Visual::Bars {
             path: format!("metrics/reduced_hz/{}", m.id()),
             values: hz[..hz.len().min(12)].to_vec(),
+            color: super::mode_visuals::method_color(m),
         });
         bars.push(Layout::BarChart {
             name: m.id().into(),

@@ -1,0 +1,239 @@
+#!/usr/bin/env python3
+"""`flexmodes serve` checked as a person would use it: start the server on a free loopback
+port, open its URL in Debian's headless Chromium (software rendering: SwiftShader through
+ANGLE, the viewer's WebGL renderer), wait until the viewer reports the served recording active
+and has not panicked, stop the mode animation at a phase, take a screenshot and count each
+shown method's colour in it. Exits non-zero with the reason when anything fails; keeps the
+screenshot.
+
+    apt-get install chromium; python3 -m pip install -r assets/serve/requirements.txt
+    cargo build --release --features serve
+    python3 assets/serve/check_serve.py --binary target/release/flexmodes --bind 127.0.0.2 \\
+        --theme light --out target/serve-light.png
+
+No traffic leaves the loopback range: the server binds a 127.x address, Chromium runs with
+its background networking off, and the page links nothing outside (the server strips the
+web-font links).
+"""
+
+import argparse
+import base64
+import colorsys
+import io
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+import websocket
+from PIL import Image
+
+# The methods' colours (src/scenes/mode_visuals.rs, method_color; a Rust test keeps the two
+# equal).
+PALETTE = {
+    "nr": (120, 120, 150),
+    "gr": (230, 120, 0),
+    "mt": (210, 50, 50),
+    "cb": (40, 110, 230),
+    "mc": (30, 150, 60),
+    "eit": (160, 70, 200),
+    "mr": (220, 60, 140),
+    "bh": (0, 150, 160),
+    "mm": (150, 150, 0),
+    "bt": (150, 90, 40),
+}
+
+
+def fail(message):
+    print(f"check_serve: FAILED: {message}", file=sys.stderr)
+    sys.exit(1)
+
+
+def free_port(address):
+    with socket.socket() as s:
+        s.bind((address, 0))
+        return s.getsockname()[1]
+
+
+class Cdp:
+    """A minimal Chrome DevTools Protocol client on one page target."""
+
+    def __init__(self, ws_url):
+        self.ws = websocket.create_connection(ws_url, timeout=120)
+        self.next_id = 0
+
+    def call(self, method, **params):
+        self.next_id += 1
+        self.ws.send(json.dumps({"id": self.next_id, "method": method, "params": params}))
+        while True:
+            reply = json.loads(self.ws.recv())
+            if reply.get("id") == self.next_id:
+                if "error" in reply:
+                    fail(f"{method}: {reply['error']}")
+                return reply.get("result", {})
+
+    def evaluate(self, expression):
+        result = self.call("Runtime.evaluate", expression=expression, returnByValue=True)
+        if "exceptionDetails" in result:
+            return None
+        return result.get("result", {}).get("value")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--binary", required=True, help="flexmodes built with --features serve")
+    p.add_argument("--bind", default="127.0.0.1")
+    p.add_argument("--scene", default="slab-modes")
+    p.add_argument("--methods", default="gr,cb,mc",
+                   help="the scene's reduced models; the full model (nr) is counted too")
+    p.add_argument("--theme", choices=["dark", "light"], default="dark")
+    p.add_argument("--phase", type=float, default=0.25, help="the mode animation's phase, 0-1")
+    p.add_argument("--share", type=float, default=0.002,
+                   help="least fraction of the screenshot's pixels each method's colour covers")
+    p.add_argument("--out", default="serve-check.png")
+    p.add_argument("--timeout", type=float, default=240.0)
+    p.add_argument("--chromium", default=shutil.which("chromium") or "/usr/bin/chromium")
+    args = p.parse_args()
+    if not args.bind.startswith("127."):
+        fail(f"--bind {args.bind}: the check stays on the loopback range (127.x)")
+    port, grpc_port = free_port(args.bind), free_port(args.bind)
+    started = time.time()
+    server = subprocess.Popen(
+        [args.binary, "serve", args.scene, "--method", args.methods, "--bind", args.bind,
+         "--port", str(port), "--grpc-port", str(grpc_port), "--theme", args.theme],
+        stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    url = None
+    while url is None:
+        line = server.stdout.readline()
+        if not line:
+            fail(f"the server stopped: {server.stderr.read()}")
+        if line.startswith("open in a browser: "):
+            url = line.split(": ", 1)[1].strip()
+    served = time.time() - started
+    print(f"serve: {url} after {served:.1f} s")
+
+    profile = tempfile.mkdtemp(prefix="check-serve-")
+    debug_port = free_port("127.0.0.1")
+    chromium = subprocess.Popen(
+        [args.chromium, "--headless=new", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+         "--no-sandbox", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync", "--disable-quic",
+         "--disable-default-apps", "--window-size=1280,800", f"--user-data-dir={profile}",
+         f"--remote-debugging-port={debug_port}", "about:blank"],
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        target = None
+        for _ in range(100):
+            try:
+                with urllib.request.urlopen(f"http://127.0.0.1:{debug_port}/json") as r:
+                    pages = [t for t in json.load(r) if t["type"] == "page"]
+                if pages:
+                    target = pages[0]["webSocketDebuggerUrl"]
+                    break
+            except OSError:
+                pass
+            time.sleep(0.2)
+        if target is None:
+            fail("chromium's remote-debugging port never answered")
+        cdp = Cdp(target)
+        cdp.call("Page.enable")
+        cdp.call("Emulation.setDeviceMetricsOverride", width=1280, height=800,
+                 deviceScaleFactor=1, mobile=False)
+        cdp.call("Emulation.setEmulatedMedia",
+                 features=[{"name": "prefers-color-scheme", "value": args.theme}])
+        cdp.call("Page.navigate", url=url)
+        opened = time.time()
+        state = None
+        while time.time() - opened < args.timeout:
+            state = cdp.evaluate(
+                "window._handle ? {rec: window._handle.get_active_recording_id() ?? null, "
+                "panicked: window._handle.has_panicked()} : null")
+            if state and state["panicked"]:
+                fail(f"the viewer panicked: {cdp.evaluate('window._handle.panic_message()')}")
+            if state and state["rec"]:
+                break
+            time.sleep(1.0)
+        else:
+            fail(f"no active recording after {args.timeout:.0f} s (last state {state})")
+        recording = state["rec"]
+        active = time.time() - started
+        print(f"viewer: recording {recording} active {active:.1f} s after serve started")
+        # Stop the mode animation at a phase (the timeline runs over the phase steps).
+        span = None
+        for _ in range(60):  # the data arrives after the recording is active
+            span = cdp.evaluate(
+                f"JSON.stringify(window._handle.get_timeline_time_range({json.dumps(recording)}, 'phase'))")
+            span = json.loads(span) if span else None
+            if span:
+                break
+            time.sleep(0.5)
+        cdp.evaluate(f"window._handle.set_playing({json.dumps(recording)}, false)")
+        cdp.evaluate(f"window._handle.set_active_timeline({json.dumps(recording)}, 'phase')")
+        print(f"phase timeline: {span}")
+        if span and "min" in span and "max" in span:
+            t = round(span["min"] + args.phase * (span["max"] - span["min"]))
+            cdp.evaluate(f"window._handle.set_time_for_timeline({json.dumps(recording)}, 'phase', {t})")
+            for _ in range(40):  # applied on the viewer's next frame
+                now = cdp.evaluate(
+                    f"window._handle.get_time_for_timeline({json.dumps(recording)}, 'phase')")
+                if now is not None and abs(now - t) <= 0.5:
+                    break
+                time.sleep(0.25)
+            if now is None or abs(now - t) > 0.5:
+                fail(f"the phase did not stop at {t} (the viewer says {now})")
+        else:
+            fail(f"the recording has no phase timeline ({span})")
+        # Frames render slowly in software: wait until two screenshots in a row agree.
+        previous, image = None, None
+        for _ in range(30):
+            time.sleep(2.0)
+            shot = base64.b64decode(cdp.call("Page.captureScreenshot", format="png")["data"])
+            if shot == previous:
+                break
+            previous = shot
+        image = Image.open(io.BytesIO(previous)).convert("RGB")
+        if cdp.evaluate("window._handle.has_panicked()"):
+            fail("the viewer panicked while rendering")
+        os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+        image.save(args.out)
+        total = image.width * image.height
+        counts = {m: 0 for m in ["nr"] + args.methods.split(",")}
+        targets = {m: colorsys.rgb_to_hsv(*(v / 255 for v in PALETTE[m])) for m in counts}
+        for n, (r, g, b) in image.getcolors(total):
+            h, s, v = colorsys.rgb_to_hsv(r / 255, g / 255, b / 255)
+            for m, (th, ts, tv) in targets.items():
+                # The colour, or its tint on either theme's background (bars are drawn
+                # translucent): the same hue, at least half the saturation.
+                dh = min(abs(h - th), 1 - abs(h - th))
+                if dh <= 12 / 360 and ts * 0.5 <= s <= ts * 1.3 + 0.05 and v >= 0.25:
+                    counts[m] += n
+        shares = {m: n / total for m, n in counts.items()}
+        print(f"screenshot {args.out} ({image.width}x{image.height}, {args.theme}): "
+              + ", ".join(f"{m} {s:.2%}" for m, s in shares.items()))
+        thin = [m for m, s in shares.items() if s < args.share]
+        if thin:
+            fail(f"{', '.join(thin)} cover(s) less than {args.share:.2%} of the page")
+    finally:
+        chromium.kill()
+        chromium.wait()
+        shutil.rmtree(profile, ignore_errors=True)
+        if server.poll() is None:
+            server.stdin.write("quit\n")
+            server.stdin.flush()
+            try:
+                code = server.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                server.kill()
+                fail("the server did not stop on `quit`")
+            if code != 0:
+                fail(f"the server stopped with exit code {code}")
+    print(f"ok: {time.time() - started:.1f} s in all")
+
+
+if __name__ == "__main__":
+    main()

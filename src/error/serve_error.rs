@@ -1,0 +1,35 @@
+//! Errors of serving the classroom: which address, port, file or asset.
+
+use thiserror::Error;
+
+/// Errors of `flexmodes serve`: which address, port, file or asset.
+#[derive(Debug, Error)]
+pub enum ServeError {
+    /// The binary was built without the `serve` feature.
+    #[error(
+        "this flexmodes was built without the `serve` feature: build it with \
+         `cargo build --release --features serve` (see the README, \"A classroom in the browser\")"
+    )]
+    NotBuilt,
+
+    /// A port another program (or another server) already holds.
+    #[error("{address}:{port} is in use (the {what}); choose another with --{option}")]
+    PortInUse {
+        address: String,
+        port: u16,
+        what: &'static str,
+        option: &'static str,
+    },
+
+    /// An address that is not an IP address of this machine.
+    #[error("cannot bind {address}: {reason}")]
+    Bind { address: String, reason: String },
+
+    /// A recording file that does not decode whole (or holds no recording).
+    #[error("{path}: not a Rerun recording flexmodes can serve: {reason}")]
+    Recording { path: String, reason: String },
+
+    /// The embedded web viewer's files.
+    #[error("the embedded web viewer: {reason}")]
+    Viewer { reason: String },
+}
