@@ -84,6 +84,40 @@ class Cdp:
         return result.get("result", {}).get("value")
 
 
+def refused(binary, args, says, code_wanted=True):
+    """`flexmodes serve ARGS` exits non-zero at once, naming `says`, with no stack trace."""
+    done = subprocess.run([binary, "serve", *args], capture_output=True, text=True, timeout=120,
+                          stdin=subprocess.DEVNULL)
+    if done.returncode == 0 or says not in done.stderr or "panicked" in done.stderr:
+        fail(f"serve {' '.join(args)}: exit {done.returncode}, stderr {done.stderr!r}; "
+             f"wanted an error naming {says!r}")
+    print(f"refused as it should: serve {' '.join(args)} -> {done.stderr.strip()}")
+
+
+def bad_input(binary, address):
+    """A port in use, an unknown scene, a missing and a corrupt recording."""
+    with socket.socket() as held:
+        held.bind((address, 0))
+        held.listen()
+        port = held.getsockname()[1]
+        refused(binary, ["slab-modes", "--bind", address, "--port", str(port),
+                         "--grpc-port", str(free_port(address))], "in use")
+    refused(binary, ["no-such-scene", "--bind", address], "no-such-scene")
+    with tempfile.TemporaryDirectory() as tmp:
+        missing = os.path.join(tmp, "missing.rrd")
+        refused(binary, ["--file", missing, "--bind", address], "missing.rrd")
+        # A recording's header with garbage behind it (Rerun's own `rrd verify` passes it).
+        good = os.path.join(tmp, "good.rrd")
+        subprocess.run([binary, "record", "beam-modes", "--save", good], check=True,
+                       capture_output=True)
+        data = bytearray(open(good, "rb").read())
+        for k in range(64, len(data), 7):
+            data[k] ^= 0x5A
+        corrupt = os.path.join(tmp, "corrupt.rrd")
+        open(corrupt, "wb").write(bytes(data))
+        refused(binary, ["--file", corrupt, "--bind", address], "corrupt.rrd")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--binary", required=True, help="flexmodes built with --features serve")
@@ -98,14 +132,22 @@ def main():
     p.add_argument("--out", default="serve-check.png")
     p.add_argument("--timeout", type=float, default=240.0)
     p.add_argument("--chromium", default=shutil.which("chromium") or "/usr/bin/chromium")
+    p.add_argument("--every-scene", action="store_true",
+                   help="serve every scene and show each in turn: active, no panic")
+    p.add_argument("--bad-input", action="store_true",
+                   help="first check that bad input is refused by name")
     args = p.parse_args()
     if not args.bind.startswith("127."):
         fail(f"--bind {args.bind}: the check stays on the loopback range (127.x)")
+    if args.bad_input:
+        bad_input(args.binary, args.bind)
     port, grpc_port = free_port(args.bind), free_port(args.bind)
     started = time.time()
     server = subprocess.Popen(
-        [args.binary, "serve", args.scene, "--method", args.methods, "--bind", args.bind,
-         "--port", str(port), "--grpc-port", str(grpc_port), "--theme", args.theme],
+        [args.binary, "serve",
+         *([] if args.every_scene else [args.scene, "--method", args.methods]),
+         "--bind", args.bind, "--port", str(port), "--grpc-port", str(grpc_port),
+         "--theme", args.theme],
         stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     url = None
     while url is None:
@@ -163,6 +205,42 @@ def main():
         recording = state["rec"]
         active = time.time() - started
         print(f"viewer: recording {recording} active {active:.1f} s after serve started")
+        if args.every_scene:
+            listed = subprocess.run([args.binary, "list"], capture_output=True, text=True,
+                                    check=True).stdout.splitlines()
+            ids = [line.split()[0] for line in listed if line.strip()]
+            # The viewer follows each recording as it arrives: wait for the last one.
+            last, shown = f"flexmodes-{ids[-1]}", None
+            for _ in range(480):
+                shown = cdp.evaluate("window._handle.get_active_recording_id() ?? null")
+                if shown == last:
+                    break
+                time.sleep(0.25)
+            else:
+                fail(f"the viewer never reached the last recording {last} (it shows {shown})")
+            print(f"viewer: every recording arrived {time.time() - started:.1f} s after serve started")
+            for scene in ids:
+                wanted = f"flexmodes-{scene}"
+                cdp.evaluate(f"window._handle.set_active_recording_id({json.dumps(wanted)})")
+                shown = None
+                for _ in range(40):
+                    shown = cdp.evaluate("window._handle.get_active_recording_id() ?? null")
+                    if shown == wanted:
+                        break
+                    time.sleep(0.25)
+                time.sleep(1.0)
+                if shown != wanted:
+                    fail(f"the viewer did not show {wanted} (it shows {shown})")
+                if cdp.evaluate("window._handle.has_panicked()"):
+                    fail(f"the viewer panicked on {wanted}: "
+                         f"{cdp.evaluate('window._handle.panic_message()')}")
+                shot = base64.b64decode(cdp.call("Page.captureScreenshot", format="png")["data"])
+                stem = os.path.splitext(args.out)[0]
+                os.makedirs(os.path.dirname(os.path.abspath(stem)), exist_ok=True)
+                open(f"{stem}-{scene}.png", "wb").write(shot)
+            print(f"every scene shown without a panic: {', '.join(ids)}")
+            cdp.evaluate(f"window._handle.set_active_recording_id({json.dumps('flexmodes-' + args.scene)})")
+            recording = f"flexmodes-{args.scene}"
         # Stop the mode animation at a phase (the timeline runs over the phase steps).
         span = None
         for _ in range(60):  # the data arrives after the recording is active
@@ -218,6 +296,19 @@ def main():
         thin = [m for m, s in shares.items() if s < args.share]
         if thin:
             fail(f"{', '.join(thin)} cover(s) less than {args.share:.2%} of the page")
+        # The teacher shows the scene again with other options: the viewer follows.
+        server.stdin.write(f"show {args.scene} --method cb --modes 4\n")
+        server.stdin.flush()
+        switched = time.time()
+        while time.time() - switched < 60:
+            now = cdp.evaluate("window._handle.get_active_recording_id() ?? null")
+            if now and now != recording:
+                print(f"teacher's `show`: the viewer followed to {now} in "
+                      f"{time.time() - switched:.1f} s")
+                break
+            time.sleep(0.5)
+        else:
+            fail("the viewer did not follow the teacher's `show` within 60 s")
     finally:
         chromium.kill()
         chromium.wait()

@@ -13,12 +13,12 @@ use rerun::{
         re_log_types::{BlueprintActivationCommand, LogMsg},
         re_sdk_types::blueprint::archetypes::{
             ContainerBlueprint, EyeControls3D, PanelBlueprint, PlotLegend, TimePanelBlueprint,
-            ViewBlueprint, ViewContents, ViewportBlueprint,
+            ViewBlueprint, ViewContents, ViewportBlueprint, VisualBounds2D,
         },
     },
 };
 
-use super::{Eye, Layout};
+use super::{Bounds, Eye, Layout};
 use crate::{Error, Result};
 
 /// How the blueprint is built and sent.
@@ -37,11 +37,13 @@ pub(crate) struct BlueprintParameters<'a> {
 const VIEWPORT: (f64, f64) = (1280.0, 740.0);
 
 /// Logs `layout` as a blueprint, each 3D view with the camera `eye_for(origin, aspect)` gives
-/// (aspect: the view's width over height by the layout's shares), and sends it through `rec`.
+/// (aspect: the view's width over height by the layout's shares), each 2D view showing what
+/// `bounds_for(origin)` bounds with a margin, and sends it through `rec`.
 pub(crate) fn send_blueprint(
     rec: &RecordingStream,
     layout: &Layout,
     eye_for: &dyn Fn(&str, f64) -> Option<Eye>,
+    bounds_for: &dyn Fn(&str) -> Option<Bounds>,
     params: &BlueprintParameters,
 ) -> Result<()> {
     let application_id = rec
@@ -57,6 +59,7 @@ pub(crate) fn send_blueprint(
     let writer = Writer {
         bp: &bp,
         eye_for,
+        bounds_for,
         planar: params.planar,
     };
     // The viewport's root is a container: a lone view goes into tabs.
@@ -123,8 +126,13 @@ fn rerun_error(e: rerun::RecordingStreamError) -> Error {
 struct Writer<'a> {
     bp: &'a RecordingStream,
     eye_for: &'a dyn Fn(&str, f64) -> Option<Eye>,
+    bounds_for: &'a dyn Fn(&str) -> Option<Bounds>,
     planar: bool,
 }
+
+/// Margin around a 2D view's contents, as a share of their larger extent (labels sit beside
+/// the shapes).
+const MARGIN_2D: f64 = 0.12;
 
 /// The parts of `size` that `shares` give, one per item (equal parts without shares).
 fn split(size: f64, shares: &[f32], items: usize) -> Vec<f64> {
@@ -221,6 +229,24 @@ impl Writer<'_> {
                 .log(
                     format!("{path}/PlotLegend").as_str(),
                     &PlotLegend::new().with_visible(false),
+                )
+                .map_err(rerun_error)?;
+        }
+        // A 2D view shows all it draws (planar bodies are drawn with y up: y flipped), so a beam
+        // fits a 1280 × 800 window instead of being cut at its edges.
+        if class == "2D"
+            && let Some(b) = (self.bounds_for)(origin)
+        {
+            let m = MARGIN_2D * (b.hi[0] - b.lo[0]).max(b.hi[1] - b.lo[1]).max(1e-9);
+            self.bp
+                .log(
+                    format!("{path}/VisualBounds2D").as_str(),
+                    &VisualBounds2D::new(rerun::blueprint::components::VisualBounds2D::from(
+                        rerun::datatypes::Range2D {
+                            x_range: [b.lo[0] - m, b.hi[0] + m].into(),
+                            y_range: [-b.hi[1] - m, -b.lo[1] + m].into(),
+                        },
+                    )),
                 )
                 .map_err(rerun_error)?;
         }

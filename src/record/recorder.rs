@@ -94,10 +94,12 @@ impl Recorder {
         let eye_for = |origin: &str, aspect: f64| {
             Bounds::of(origin, &out.visuals).map(|b| Eye::framing(&b, aspect))
         };
+        let bounds_for = |origin: &str| Bounds::of(origin, &out.visuals);
         send_blueprint(
             rec,
             &out.layout,
             &eye_for,
+            &bounds_for,
             &BlueprintParameters {
                 planar,
                 timeline: out.timeline.as_deref(),
