@@ -51,6 +51,18 @@ fn list_names_every_scene() {
             "{id} missing:\n{text}"
         );
     }
+    // The summaries start in one column, whatever the length of the id.
+    let columns: Vec<usize> = text
+        .lines()
+        .map(|l| {
+            let id = l.split_whitespace().next().unwrap();
+            id.len() + l[id.len()..].find(|c: char| c != ' ').unwrap()
+        })
+        .collect();
+    assert!(
+        columns.windows(2).all(|w| w[0] == w[1]),
+        "{columns:?}\n{text}"
+    );
 }
 
 #[test]

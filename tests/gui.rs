@@ -510,3 +510,35 @@ fn a_request_stops_a_running_anticipation() {
     assert_eq!(w.anticipated(), 0);
     assert!(running.reading().unwrap().time < 20.0);
 }
+
+/// An imported body offers every method in the explorer, as the CLI does, and all eight are
+/// computed when ticked (the L-bracket, a body from a body file).
+#[test]
+fn an_imported_body_offers_and_computes_every_method() {
+    let explorer = Explorer::new(Controls::for_body("builtin:l-bracket").unwrap());
+    let mut h = Harness::new_ui_state(
+        |ui: &mut egui::Ui, e: &mut Explorer| {
+            e.poll();
+            let commands = e.panel_ui(ui);
+            e.apply(commands);
+        },
+        explorer,
+    );
+    settle(&mut h);
+    for id in ["GR", "MT", "CB", "MC", "MR", "BH", "MM", "BT"] {
+        assert!(
+            h.query_all_by_label(id).next().is_some(),
+            "no control for {id}"
+        );
+    }
+    let report = &h.state().current.as_ref().unwrap().report;
+    let methods: Vec<String> = report.parameters["methods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m.as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(methods, ["gr", "mt", "cb", "mc", "mr", "bh", "mm", "bt"]);
+    let reduced = report.results["reduced_hz"].as_object().unwrap();
+    assert_eq!(reduced.len(), 8, "{:?}", reduced.keys().collect::<Vec<_>>());
+}

@@ -40,8 +40,10 @@ fn run(cli: Cli) -> Result<()> {
     crate::linalg::use_sequential_kernels();
     match cli.command {
         Command::List => {
-            for s in scenes::all() {
-                println!("{:<16} {}", s.info.id, s.info.summary);
+            let all = scenes::all();
+            let width = all.iter().map(|s| s.info.id.len()).max().unwrap_or(0);
+            for s in all {
+                println!("{:<width$}  {}", s.info.id, s.info.summary);
             }
             Ok(())
         }

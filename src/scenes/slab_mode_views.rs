@@ -78,10 +78,20 @@ pub fn slab_mode_views(
         &fi_modes,
         method_color(Method::CraigBampton),
     ));
-    let mut tabs: Vec<Layout> = ["free_free", "guyan_c", "fixed_interface"]
-        .into_iter()
-        .map(|set| Layout::view3d(set, &format!("/modes/{set}")))
-        .collect();
+    // A view that shows a subset says so in its tab.
+    let constraint_tab = if nb > c_modes.len() {
+        format!("guyan_c ({} of {nb})", c_modes.len())
+    } else {
+        "guyan_c".to_string()
+    };
+    let mut tabs: Vec<Layout> = [
+        ("free_free", "free_free".to_string()),
+        ("guyan_c", constraint_tab),
+        ("fixed_interface", "fixed_interface".to_string()),
+    ]
+    .into_iter()
+    .map(|(set, name)| Layout::view3d(&name, &format!("/modes/{set}")))
+    .collect();
     if let Some(i) = ["free_free", "guyan_c", "fixed_interface"]
         .iter()
         .position(|s| *s == first_tab)

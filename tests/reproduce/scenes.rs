@@ -210,3 +210,27 @@ fn result_tables_rank_errors_from_their_numbers() {
     assert!(table.best_and_worst(0).is_none());
     assert!(out.report.table.contains(&table.markdown()));
 }
+
+/// A view that shows a subset says so: the L-bracket's bolt hole has 72 boundary DOF, of which
+/// the constraint-mode tab draws 24.
+#[test]
+fn a_view_of_a_subset_says_how_many_of_how_many() {
+    fn names(l: &flexmodes::record::Layout, out: &mut Vec<String>) {
+        use flexmodes::record::Layout;
+        match l {
+            Layout::Horizontal(items, _) | Layout::Vertical(items, _) | Layout::Tabs(items) => {
+                items.iter().for_each(|i| names(i, out))
+            }
+            Layout::Spatial3D { name, .. } => out.push(name.clone()),
+            _ => {}
+        }
+    }
+    let out = run("modes", SceneOptions::default());
+    let mut tabs = Vec::new();
+    names(&out.layout, &mut tabs);
+    assert!(tabs.contains(&"guyan_c (24 of 72)".to_string()), "{tabs:?}");
+    let slab = run("slab-modes", SceneOptions::default());
+    let mut tabs = Vec::new();
+    names(&slab.layout, &mut tabs);
+    assert!(tabs.contains(&"guyan_c".to_string()), "{tabs:?}");
+}
