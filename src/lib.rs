@@ -31,6 +31,7 @@ pub mod export;
 pub mod fem;
 #[cfg(feature = "gui")]
 pub mod gui;
+pub mod inline_markdown;
 pub mod linalg;
 pub mod models;
 mod progress;

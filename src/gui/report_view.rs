@@ -3,17 +3,36 @@
 
 use rerun::external::egui;
 
-use crate::report::{Block, Report, Table};
+use crate::{
+    inline_markdown::{SpanStyle, inline_spans},
+    report::{Block, Report, Table},
+};
 
 /// Draws a report's text and its tables as grids (the report's own [`Block`]s), with the best
 /// and worst value of each ranked column highlighted (green, red) from the cells' numbers.
 pub(super) fn table_ui(ui: &mut egui::Ui, report: &Report) {
     for (id, block) in report.blocks().into_iter().enumerate() {
         match block {
-            Block::Table(table) => grid_ui(ui, id, table),
+            // Wide tables scroll sideways instead of being cut at the panel's edge.
+            Block::Table(table) => {
+                egui::ScrollArea::horizontal()
+                    .id_salt(("report-table", id))
+                    .show(ui, |ui| grid_ui(ui, id, table));
+            }
+            // The text's inline markdown drawn, not shown as markup.
             Block::Text(text) => {
                 for line in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
-                    ui.label(egui::RichText::new(line).small());
+                    ui.horizontal_wrapped(|ui| {
+                        ui.spacing_mut().item_spacing.x = 0.0;
+                        for (span, style) in inline_spans(line) {
+                            let t = egui::RichText::new(span).small();
+                            ui.label(match style {
+                                SpanStyle::Plain => t,
+                                SpanStyle::Code => t.code(),
+                                SpanStyle::Strong => t.strong(),
+                            });
+                        }
+                    });
                 }
             }
         }

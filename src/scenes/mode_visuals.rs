@@ -73,7 +73,9 @@ fn slot(model: &FeModel, k: usize) -> [f64; 3] {
             0.0,
         ]
     } else {
-        // Three columns; a gap of half the body's size between neighbours.
+        // Three columns in a wall facing the camera (rows stacked along z, not receding along
+        // y), so neither the bodies nor their labels overlap on screen and the view is filled
+        // from top to bottom; a gap of half the body's size between neighbours.
         let ext = |d: usize| {
             let lo = model
                 .nodes
@@ -90,8 +92,8 @@ fn slot(model: &FeModel, k: usize) -> [f64; 3] {
         let gap = 0.5 * model.size();
         [
             (ext(0) + gap) * (k % 3) as f64,
-            -(ext(1) + gap) * (k / 3) as f64,
             0.0,
+            -(ext(2) + gap) * (k / 3) as f64,
         ]
     }
 }
