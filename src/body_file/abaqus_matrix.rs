@@ -6,10 +6,11 @@
 //! gzip-compressed. Every error names the file and the line; nothing is returned half-read.
 
 use super::{
-    BodyFileError, MatrixMarket, MatrixMarketFormat, matrix_bytes::plain_text,
+    MatrixMarket, MatrixMarketFormat,
+    matrix_bytes::{entry_value, plain_text},
     node_dof_placement::NodeDofPlacement,
 };
-use crate::{Error, Result, fem::DofMap};
+use crate::{Result, fem::DofMap};
 
 use super::matrix_bytes::line_error as error;
 
@@ -50,20 +51,7 @@ pub fn parse_abaqus_matrix(bytes: &[u8], path: &str, dofs: &DofMap) -> Result<Ma
                 .map_err(|reason| error(path, number, reason))
         };
         let (i, j) = (index(ni, di)?, index(nj, dj)?);
-        let v: f64 = value.replace(['D', 'd'], "E").parse().map_err(|_| {
-            error(
-                path,
-                number,
-                format!("the value `{value}` is not a real number"),
-            )
-        })?;
-        if !v.is_finite() {
-            return Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
-                path: path.into(),
-                line: number,
-                value: value.into(),
-            }));
-        }
+        let v = entry_value(value, path, number)?;
         upper |= i < j;
         lower |= i > j;
         entries.push((i, j, v));

@@ -7,7 +7,10 @@
 //! are cut by those widths, so values that touch (`1.0E+00-2.0E+00`) are read right. Every
 //! error names the file and the line; nothing is returned half-read.
 
-use super::{BodyFileError, MatrixMarket, MatrixMarketFormat, matrix_bytes::plain_text};
+use super::{
+    BodyFileError, MatrixMarket, MatrixMarketFormat,
+    matrix_bytes::{entry_value, plain_text},
+};
 use crate::{Error, Result};
 
 fn error(path: &str, line: usize, reason: impl Into<String>) -> Error {
@@ -276,20 +279,7 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
                 }));
             }
             let (line, text) = values[p];
-            let value: f64 = text.replace(['D', 'd'], "E").parse().map_err(|_| {
-                error(
-                    path,
-                    line,
-                    format!("the value `{text}` is not a real number"),
-                )
-            })?;
-            if !value.is_finite() {
-                return Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
-                    path: path.into(),
-                    line,
-                    value: text.into(),
-                }));
-            }
+            let value = entry_value(text, path, line)?;
             entries.push((row - 1, j, value));
         }
     }

@@ -15,10 +15,11 @@
 use std::collections::{BTreeSet, HashSet};
 
 use super::{
-    BodyFileError, MatrixMarket, MatrixMarketFormat, matrix_bytes::plain_text,
+    MatrixMarket, MatrixMarketFormat,
+    matrix_bytes::{entry_value, plain_text},
     node_dof_placement::NodeDofPlacement,
 };
-use crate::{Error, Result, fem::DofMap};
+use crate::{Result, fem::DofMap};
 
 use super::matrix_bytes::line_error as error;
 
@@ -105,20 +106,6 @@ fn cards(text: &str) -> Vec<Card> {
         }
     }
     out
-}
-
-/// A Nastran real: `1.5`, `1.5E+3`, `1.5D+3`, `1.5+3`, `-.5-2`.
-pub(super) fn nastran_real(text: &str) -> Option<f64> {
-    let t = text.trim().replace(['D', 'd'], "E");
-    if let Ok(v) = t.parse::<f64>() {
-        return Some(v);
-    }
-    // The exponent without its letter: a sign after the first character, not after an E.
-    let bytes = t.as_bytes();
-    let at = (1..bytes.len()).rev().find(|&i| {
-        (bytes[i] == b'+' || bytes[i] == b'-') && !matches!(bytes[i - 1], b'E' | b'e')
-    })?;
-    format!("{}E{}", &t[..at], &t[at..]).parse().ok()
 }
 
 /// Parses the DMIG matrix `matrix` of the bulk-data bytes named `path` for a body whose nodes
@@ -211,20 +198,7 @@ pub fn parse_nastran_dmig(
             let i = grid(k, &mut placement)?;
             let line = card.line_of(k + 2);
             let text = card.get(k + 2);
-            let v = nastran_real(text).ok_or_else(|| {
-                error(
-                    path,
-                    line,
-                    format!("the value `{text}` is not a real number"),
-                )
-            })?;
-            if !v.is_finite() {
-                return Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
-                    path: path.into(),
-                    line,
-                    value: text.into(),
-                }));
-            }
+            let v = entry_value(text, path, line)?;
             let key = if symmetric {
                 (i.max(j), i.min(j))
             } else {
@@ -308,19 +282,6 @@ DMIG        MAAX       1       1               1       1     1.0
                 (5, 5, 1.5)
             ]
         );
-    }
-
-    #[test]
-    fn reals_as_nastran_writes_them() {
-        for (t, v) in [
-            ("1.5+3", 1.5e3),
-            ("-.5-2", -0.5e-2),
-            ("2.D-1", 0.2),
-            ("7.", 7.0),
-        ] {
-            assert_eq!(nastran_real(t), Some(v), "{t}");
-        }
-        assert_eq!(nastran_real("x1"), None);
     }
 
     #[test]

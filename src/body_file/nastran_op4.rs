@@ -18,8 +18,7 @@ use std::collections::BTreeSet;
 
 use super::{
     MatrixMarket, MatrixMarketFormat,
-    matrix_bytes::{line_error as error, plain_bytes},
-    nastran_dmig::nastran_real,
+    matrix_bytes::{entry_value, line_error as error, plain_bytes},
 };
 use crate::Result;
 
@@ -352,14 +351,7 @@ fn ascii_op4(text: &str, path: &str, wanted: &str) -> Result<Found> {
                     let token: String = chars[k * width..((k + 1) * width).min(chars.len())]
                         .iter()
                         .collect();
-                    let v = nastran_real(&token)
-                        .filter(|v| v.is_finite())
-                        .ok_or_else(|| {
-                            fail(
-                                n,
-                                format!("the value `{}` is not a real number", token.trim()),
-                            )
-                        })?;
+                    let v = entry_value(&token, path, n)?;
                     if row < 1 || row as usize > rows {
                         return Err(fail(
                             n,
