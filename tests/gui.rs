@@ -8,16 +8,25 @@ use egui_kittest::{Harness, kittest::Queryable};
 use flexmodes::gui::{Controls, Explorer};
 use rerun::external::egui::{self, accesskit::Role};
 
-fn harness(scene: &str) -> Harness<'static, Explorer> {
-    let explorer = Explorer::new(Controls::for_scene(scene).unwrap());
+/// The explorer's panel with `controls`, applying its commands after each frame.
+fn harness_with(controls: Controls) -> Harness<'static, Explorer> {
     Harness::new_ui_state(
         |ui: &mut egui::Ui, e: &mut Explorer| {
             e.poll();
             let commands = e.panel_ui(ui);
             e.apply(commands);
         },
-        explorer,
+        Explorer::new(controls),
     )
+}
+
+fn harness(scene: &str) -> Harness<'static, Explorer> {
+    harness_with(Controls::for_scene(scene).unwrap())
+}
+
+/// The explorer's panel on the `modes` scene of body file `body`.
+fn body_harness(body: &str) -> Harness<'static, Explorer> {
+    harness_with(Controls::for_body(body).unwrap())
 }
 
 /// Steps frames until the worker is done (the UI never blocks on it).
@@ -308,15 +317,7 @@ fn a_running_simulation_shows_its_simulated_time() {
 
 #[test]
 fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
-    let explorer = Explorer::new(Controls::for_body("builtin:app-b-slab").unwrap());
-    let mut h = Harness::new_ui_state(
-        |ui: &mut egui::Ui, e: &mut Explorer| {
-            e.poll();
-            let commands = e.panel_ui(ui);
-            e.apply(commands);
-        },
-        explorer,
-    );
+    let mut h = body_harness("builtin:app-b-slab");
     settle(&mut h);
     assert_eq!(h.state().controls.scene, "modes");
     let report = &h.state().current.as_ref().unwrap().report;
@@ -515,15 +516,7 @@ fn a_request_stops_a_running_anticipation() {
 /// computed when ticked (the L-bracket, a body from a body file).
 #[test]
 fn an_imported_body_offers_and_computes_every_method() {
-    let explorer = Explorer::new(Controls::for_body("builtin:l-bracket").unwrap());
-    let mut h = Harness::new_ui_state(
-        |ui: &mut egui::Ui, e: &mut Explorer| {
-            e.poll();
-            let commands = e.panel_ui(ui);
-            e.apply(commands);
-        },
-        explorer,
-    );
+    let mut h = body_harness("builtin:l-bracket");
     settle(&mut h);
     for id in ["GR", "MT", "CB", "MC", "MR", "BH", "MM", "BT"] {
         assert!(

@@ -28,6 +28,20 @@ pub fn lower_entries(a: &crate::linalg::SparseSymmetric) -> Vec<(usize, usize, f
     out
 }
 
+/// The nonzero entries of M on and below its diagonal (a lumped M: its diagonal), as
+/// [`lower_entries`].
+pub fn mass_lower_entries(m: &MassMatrix) -> Vec<(usize, usize, f64)> {
+    match m {
+        MassMatrix::Lumped(d) => d
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| **v != 0.0)
+            .map(|(i, &v)| (i, i, v))
+            .collect(),
+        MassMatrix::Consistent(a) => lower_entries(a),
+    }
+}
+
 /// The files of a body, by name, as bytes (what [`write_body`] puts in the folder).
 pub type BodyFiles = BTreeMap<String, Vec<u8>>;
 
@@ -98,15 +112,7 @@ pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<Bo
             Ok(name.into())
         }
     };
-    let mass_entries = || match &model.m {
-        MassMatrix::Lumped(d) => d
-            .iter()
-            .enumerate()
-            .filter(|(_, v)| **v != 0.0)
-            .map(|(i, &v)| (i, i, v))
-            .collect::<Vec<_>>(),
-        MassMatrix::Consistent(a) => lower(a),
-    };
+    let mass_entries = || mass_lower_entries(&model.m);
     let (k_name, m_name, names) = match format {
         MatrixFormat::Abaqus => {
             let k = abaqus_text(model, &lower(&model.k), "stiffness");

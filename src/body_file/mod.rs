@@ -25,8 +25,8 @@ pub use body_spec::{
     TableOrFile, Units,
 };
 pub use body_writer::{
-    BodyFileParameters, BodyFiles, example_bodies, lower_entries, write_body, write_files,
-    write_imported_body,
+    BodyFileParameters, BodyFiles, example_bodies, lower_entries, mass_lower_entries, write_body,
+    write_files, write_imported_body,
 };
 pub use dof_map_file::parse_dof_map;
 pub use harwell_boeing::parse_harwell_boeing;

@@ -415,15 +415,16 @@ fn run(cli: Cli) -> Result<()> {
                 ),
             );
             if let Some(e) = &summary.exudyn {
+                let hz = e.hz();
                 println!(
                     "Exudyn: {}/exudyn/, the floating frame on `{}`, {} {} (elastic Hz: {} ({}))",
                     summary.dir.display(),
                     e.frame,
                     e.modes.ncols(),
                     e.mode_type,
-                    crate::report::fmt_hz(&e.hz[..e.hz.len().min(8)]),
+                    crate::report::fmt_hz(&hz[..hz.len().min(8)]),
                     crate::report::residual_note(
-                        &e.hz[..e.hz.len().min(8)],
+                        &hz[..hz.len().min(8)],
                         &e.residuals[..e.residuals.len().min(8)]
                     ),
                 );
@@ -455,14 +456,7 @@ fn run(cli: Cli) -> Result<()> {
             save,
             options,
         } => {
-            let ids: Vec<String> = if all {
-                scenes::all()
-                    .iter()
-                    .map(|s| s.info.id.to_string())
-                    .collect()
-            } else {
-                ids
-            };
+            let ids: Vec<String> = if all { scenes::all_ids() } else { ids };
             if ids.is_empty() {
                 return Err(Error::InvalidOption {
                     scene: "-".into(),

@@ -58,10 +58,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     }
     // Everything that can fail on the input fails before a port is taken.
     let ids: Vec<String> = if ids.is_empty() && files.is_empty() {
-        scenes::all()
-            .iter()
-            .map(|s| s.info.id.to_string())
-            .collect()
+        scenes::all_ids()
     } else {
         ids
     };
@@ -101,7 +98,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     if bind.is_unspecified() {
         origins.push(format!("http://*:{port}"));
     }
-    let mut classroom = Classroom::start(bind, grpc_port, origins)?;
+    let classroom = Classroom::start(bind, grpc_port, origins)?;
     let web = WebServer::start(bind, port, viewer)?;
     for messages in recordings {
         classroom.publish(messages);

@@ -28,10 +28,12 @@ use crate::{
     Result,
     analysis::{zero_energy_below, zero_energy_threshold_hz},
     atomic_file::write_atomically,
-    body_file::{ImportedBody, lower_entries, write_coordinate_symmetric, write_npy},
+    body_file::{
+        ImportedBody, lower_entries, mass_lower_entries, write_coordinate_symmetric, write_npy,
+    },
     error::ReductionError,
     fem::{Direction, NodeDof},
-    linalg::{MassMatrix, generalized_eigen},
+    linalg::{generalized_eigen, hz_from_eigenvalue},
     reduction::{AveragingInterface, Basis, ColumnKind, RigidInterface},
     report::sig_vec,
 };
@@ -48,8 +50,6 @@ pub struct ExudynBody {
     pub modes: Mat<f64>,
     /// Eigenvalues ω² of the kept basis' reduced pencil, (rad/s)², ascending.
     pub eigenvalues: Vec<f64>,
-    /// The same as frequencies, Hz.
-    pub hz: Vec<f64>,
     /// Each eigenpair's relative residual.
     pub residuals: Vec<f64>,
     /// Exudyn's name for the basis: `NormalModes` (fixed-interface modes only) or `HCBmodes`
@@ -135,8 +135,8 @@ pub fn exudyn_body(
         basis.psi[(order[i], keep[j])]
     });
     let largest = (0..modes.ncols())
-        .flat_map(|j| modes.col(j).iter().map(|v| v.abs()).collect::<Vec<_>>())
-        .fold(0.0, f64::max);
+        .flat_map(|j| (0..modes.nrows()).map(move |i| (i, j)))
+        .fold(0.0f64, |m, (i, j)| m.max(modes[(i, j)].abs()));
     for &node in &frame.nodes {
         for axis in 0..3 {
             let row = 3 * (node - 1) + axis;
@@ -226,7 +226,6 @@ pub fn exudyn_body(
         frame: frame.name.clone(),
         modes,
         eigenvalues: eig.values.clone(),
-        hz,
         residuals: eig.residuals.clone(),
         mode_type,
         order,
@@ -235,6 +234,14 @@ pub fn exudyn_body(
 }
 
 impl ExudynBody {
+    /// [`Self::eigenvalues`] as frequencies, Hz.
+    pub fn hz(&self) -> Vec<f64> {
+        self.eigenvalues
+            .iter()
+            .map(|&l| hz_from_eigenvalue(l))
+            .collect()
+    }
+
     /// Writes the files into `dir` (created; each file atomically) and returns their names
     /// relative to `dir`'s parent.
     pub fn write(&self, body: &ImportedBody, dir: &Path) -> Result<Vec<String>> {
@@ -261,15 +268,7 @@ impl ExudynBody {
         let n = self.order.len();
         let nodes = Mat::from_fn(model.node_count(), 3, |i, j| model.nodes[i][j]);
         write_npy(&dir.join("nodes.npy"), nodes.as_ref())?;
-        let mass = match &model.m {
-            MassMatrix::Lumped(d) => d
-                .iter()
-                .enumerate()
-                .filter(|(_, v)| **v != 0.0)
-                .map(|(i, &v)| (i, i, v))
-                .collect(),
-            MassMatrix::Consistent(a) => lower_entries(a),
-        };
+        let mass = mass_lower_entries(&model.m);
         let units = &body.units;
         write_coordinate_symmetric(
             &dir.join("mass.mtx"),

@@ -45,6 +45,9 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         crate::linalg::MassMatrix::Consistent(m) => ("consistent", m.nnz()),
     };
     let dof_names: Vec<String> = model.dofs.node_dofs().iter().map(|d| d.name()).collect();
+    // How far the coordinates' rigid motions are from K's null space (computed once).
+    let defect = (model.rigid_motions == crate::fem::RigidMotions::FromGeometry)
+        .then(|| model.rigid_motion_defect());
     let sets: Map<String, Value> = body
         .node_sets
         .iter()
@@ -66,8 +69,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         "size": if body.has_coordinates { Some(sig(model.size())) } else { None },
         "rigid_motions_from_coordinates":
             model.rigid_motions == crate::fem::RigidMotions::FromGeometry,
-        "rigid_motion_defect": (model.rigid_motions == crate::fem::RigidMotions::FromGeometry)
-            .then(|| sig(model.rigid_motion_defect())),
+        "rigid_motion_defect": defect.map(sig),
         "zero_energy_modes": full.zero_modes,
         "zero_energy_threshold_hz": sig(full.threshold_hz),
         "lowest_elastic_hz": sig_vec(&hz),
@@ -116,8 +118,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         model.dofs.rigid_body_count(),
         if full.zero_modes == 0 {
             " — the body was restrained before export".to_string()
-        } else if model.rigid_motions == crate::fem::RigidMotions::FromGeometry {
-            let defect = model.rigid_motion_defect();
+        } else if let Some(defect) = defect {
             format!(
                 "; they are the rigid motions of the node coordinates (K R = {defect:.1e} of \
                  |K||R|{})",

@@ -27,6 +27,6 @@ pub mod slab_sims;
 
 pub use mode_visuals::method_color;
 pub use options::{SceneOptions, SceneOutput};
-pub use registry::{Scene, all, find, ids};
+pub use registry::{Scene, all, all_ids, find, ids};
 pub use run_cache::{CacheWeight, RunCache};
 pub use scene_info::{SceneControls, SceneInfo};

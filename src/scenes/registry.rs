@@ -117,11 +117,12 @@ pub fn all() -> Vec<Scene> {
 
 /// Scene ids, comma separated.
 pub fn ids() -> String {
-    all()
-        .iter()
-        .map(|s| s.info.id)
-        .collect::<Vec<_>>()
-        .join(", ")
+    all_ids().join(", ")
+}
+
+/// Every scene's id, in the registry's order.
+pub fn all_ids() -> Vec<String> {
+    all().iter().map(|s| s.info.id.to_string()).collect()
 }
 
 /// Finds a scene by id.

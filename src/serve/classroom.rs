@@ -17,11 +17,9 @@ use crate::{
     scenes::{Scene, SceneOptions},
 };
 
-/// The data server and what it was given.
+/// The data server.
 pub struct Classroom {
     sink: GrpcServerSink,
-    /// Recording ids published, in order.
-    pub published: Vec<String>,
 }
 
 /// `rerun+http://ADDRESS:PORT/proxy`: where a viewer connects for the data.
@@ -48,21 +46,12 @@ impl Classroom {
                 reason: e.to_string(),
             }
         })?;
-        Ok(Self {
-            sink,
-            published: Vec::new(),
-        })
+        Ok(Self { sink })
     }
 
     /// Sends one recording's messages (and its blueprint's) to every viewer.
-    pub fn publish(&mut self, messages: Vec<LogMsg>) {
+    pub fn publish(&self, messages: Vec<LogMsg>) {
         for m in messages {
-            if let LogMsg::SetStoreInfo(info) = &m
-                && info.info.store_id.is_recording()
-            {
-                self.published
-                    .push(info.info.store_id.recording_id().to_string());
-            }
             self.sink.send(m);
         }
         self.sink
