@@ -146,10 +146,10 @@ fn a_newer_request_abandons_a_running_reduction_at_its_next_phase() {
         refine: Some([24, 12, 6]),
         ..Default::default()
     };
-    let first = w.submit(1, "slab-modes", slow, false);
+    let first = w.submit(1, "slab-modes", slow);
     let start = Instant::now();
     let at_cancel = wait_for("a phase", start, 120, || first.phase_reading());
-    let second = w.submit(2, "beam-modes", SceneOptions::default(), false);
+    let second = w.submit(2, "beam-modes", SceneOptions::default());
     assert!(first.is_cancelled() && !second.is_cancelled());
     let finished = next_result(&w, start, 300);
     assert_eq!(
@@ -277,12 +277,12 @@ fn the_integrator_of_a_simulation_is_a_control() {
 fn a_newer_request_cancels_a_running_simulation() {
     use flexmodes::{gui::Worker, scenes::SceneOptions};
     let mut w = Worker::new();
-    let first = w.submit(1, "slab-sim1", full_model_sim1(1.0), false);
+    let first = w.submit(1, "slab-sim1", full_model_sim1(1.0));
     let start = Instant::now();
     wait_for("progress", start, 120, || {
         first.reading().filter(|r| r.time > 0.0)
     });
-    let second = w.submit(2, "beam-modes", SceneOptions::default(), false);
+    let second = w.submit(2, "beam-modes", SceneOptions::default());
     assert!(first.is_cancelled() && !second.is_cancelled());
     let finished = next_result(&w, start, 120);
     // The cancelled request reports nothing; the full-order run stopped short of its end.
@@ -478,7 +478,7 @@ fn an_anticipated_request_is_served_from_the_cache() {
     });
     let cached = w.cached();
     assert!(cached > 0, "the anticipation kept its integration");
-    let request = w.submit(1, "slab-sim1", options, false);
+    let request = w.submit(1, "slab-sim1", options);
     let finished = next_result(&w, Instant::now(), 120);
     assert!(finished.result.is_ok());
     assert_eq!(w.cached(), cached, "no new cache entry");
@@ -500,7 +500,7 @@ fn a_request_stops_a_running_anticipation() {
         w.anticipation()
             .filter(|p| p.reading().is_some_and(|r| r.time > 0.0))
     });
-    w.submit(1, "beam-modes", SceneOptions::default(), false);
+    w.submit(1, "beam-modes", SceneOptions::default());
     assert!(running.is_cancelled());
     assert!(next_result(&w, start, 120).result.is_ok());
     // The anticipating thread stops at the cancelled integration's next output step and

@@ -331,6 +331,20 @@ pub(super) struct WindowArgs {
     /// would; the explorer anticipates likely requests meanwhile).
     #[arg(long, requires = "toggle", default_value_t = 0.0)]
     pub(super) pause: f64,
+    /// With --toggle: save screenshots into this folder at fixed intervals after each
+    /// toggle (`switch-SS-FF.png`; the first at the toggle itself).
+    #[arg(long, requires = "toggle")]
+    pub(super) frames: Option<PathBuf>,
+    /// With --frames: milliseconds between two frames.
+    #[arg(long, requires = "frames", default_value_t = 150)]
+    pub(super) frame_every_ms: u64,
+    /// With --frames: frames per toggle.
+    #[arg(long, requires = "frames", default_value_t = 20)]
+    pub(super) frame_count: u32,
+    /// Show each new result as the viewer takes it in, instead of keeping the previous one
+    /// on screen until the new one is complete (to see what the atomic switch prevents).
+    #[arg(long, hide = true)]
+    pub(super) progressive_switch: bool,
 }
 
 #[cfg(feature = "gui")]
@@ -351,6 +365,12 @@ impl From<WindowArgs> for crate::gui::ViewerOptions {
             toggle: w.toggle,
             repeat: w.repeat,
             pause: std::time::Duration::from_secs_f64(w.pause.max(0.0)),
+            frames: w.frames.map(|dir| crate::gui::FrameSeries {
+                dir,
+                every: std::time::Duration::from_millis(w.frame_every_ms),
+                count: w.frame_count,
+            }),
+            atomic: !w.progressive_switch,
         }
     }
 }

@@ -2,22 +2,24 @@
 
 use std::path::{Path, PathBuf};
 
-use re_viewer_context::{RecordingOrTable, SystemCommand, SystemCommandSender as _};
 use rerun::external::{
     eframe, egui,
-    re_log_channel::{self, LogSender, LogSource},
+    re_log_channel::{self, LogSource},
     re_log_encoding::DecoderApp,
-    re_log_types::{LogMsg, StoreId},
-    re_viewer::{self, external::re_viewer_context},
+    re_viewer,
 };
 
-use super::{Controls, Explorer};
+use super::{
+    Controls, Explorer,
+    capture::{Capture, FrameSeries},
+    viewer_handoff::{HandoffState, ViewerHandoff},
+};
 use crate::{Error, Result};
 
 /// Window options of [`run`].
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct ViewerOptions {
-    /// Save a screenshot here once the first recording is shown (after `toggle`, the second),
+    /// Save a screenshot here once the first recording is shown (after `toggle`, the last),
     /// then quit.
     pub screenshot: Option<PathBuf>,
     /// Inner window size in points.
@@ -30,6 +32,25 @@ pub struct ViewerOptions {
     pub repeat: u32,
     /// How long to look at each recording before the next toggle.
     pub pause: std::time::Duration,
+    /// Screenshots at fixed intervals after each toggle.
+    pub frames: Option<FrameSeries>,
+    /// Switch in one step once the new recording is in (see [`ViewerHandoff`]); `false`
+    /// shows it as it arrives.
+    pub atomic: bool,
+}
+
+impl Default for ViewerOptions {
+    fn default() -> Self {
+        Self {
+            screenshot: None,
+            window_size: None,
+            toggle: None,
+            repeat: 0,
+            pause: std::time::Duration::ZERO,
+            frames: None,
+            atomic: true,
+        }
+    }
 }
 
 /// [`ViewerOptions::toggle`] that presses "more modes".
@@ -37,61 +58,13 @@ pub const MORE_MODES: &str = "more-modes";
 /// [`ViewerOptions::toggle`] that presses "fewer modes".
 pub const FEWER_MODES: &str = "fewer-modes";
 
-/// Frames to let the viewer ingest and lay out a recording before a screenshot.
-const SETTLE_FRAMES: u32 = 30;
-
-/// Scripted screenshot: waits for results, optionally toggles a method, then captures.
-#[derive(Debug)]
-struct Capture {
-    path: PathBuf,
-    toggle: Option<String>,
-    /// Toggles still to make; `wanted` recordings in all before the screenshot.
-    toggles_left: u32,
-    /// Time to wait after a recording shows before toggling.
-    pause: std::time::Duration,
-    /// When the next toggle is due.
-    toggle_at: Option<std::time::Instant>,
-    wanted: u32,
-    shown: u32,
-    settle: u32,
-    requested: bool,
-}
-
 const STORAGE_KEY: &str = "flexmodes-controls";
 
 struct FlexmodesApp {
     explorer: Option<Explorer>,
     viewer: re_viewer::App,
-    tx: LogSender,
-    shown: Option<StoreId>,
+    handoff: ViewerHandoff,
     capture: Option<Capture>,
-    /// Time spent handing each new recording to the viewer (decoding included), newest last.
-    handoffs: Vec<std::time::Duration>,
-}
-
-impl FlexmodesApp {
-    fn show_recording(&mut self, messages: Vec<LogMsg>) {
-        let mut first: Option<StoreId> = None;
-        for msg in messages {
-            if let LogMsg::SetStoreInfo(info) = &msg
-                && first.is_none()
-                && info.info.store_id.is_recording()
-            {
-                first = Some(info.info.store_id.clone());
-            }
-            let _ = self.tx.send(msg.into());
-        }
-        // The new recording replaces the old one in memory; the layout (per application id)
-        // stays as the user left it.
-        if let Some(old) = self.shown.take() {
-            self.viewer
-                .command_sender
-                .send_system(SystemCommand::CloseRecordingOrTable(
-                    RecordingOrTable::Recording { store_id: old },
-                ));
-        }
-        self.shown = first;
-    }
 }
 
 impl eframe::App for FlexmodesApp {
@@ -109,50 +82,42 @@ impl eframe::App for FlexmodesApp {
     }
 
     fn logic(&mut self, ctx: &egui::Context, frame: &mut eframe::Frame) {
-        self.capture_step(ctx);
+        if let Some(c) = &mut self.capture {
+            let idle = self.handoff.state() == HandoffState::Idle
+                && self.explorer.as_ref().is_none_or(|e| !e.is_computing());
+            if c.step(ctx, idle) {
+                if let Some(e) = &self.explorer {
+                    c.report(e);
+                }
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        }
         if let Some(mut explorer) = self.explorer.take() {
             explorer.wake(ctx);
             explorer.poll();
             if let Some(messages) = explorer.take_fresh().map(|c| c.messages.clone()) {
                 let start = std::time::Instant::now();
-                self.show_recording(messages);
-                self.handoffs.push(start.elapsed());
+                self.handoff.offer(ctx, messages);
                 if let Some(c) = &mut self.capture {
-                    c.shown += 1;
-                    c.settle = 0;
-                    if c.toggles_left > 0 {
-                        c.toggle_at = Some(std::time::Instant::now() + c.pause);
-                    }
+                    c.handoffs.push(start.elapsed());
                 }
             }
-            if let Some(c) = &mut self.capture
-                && let Some(due) = c.toggle_at
+            if self.handoff.step(ctx)
+                && let Some(c) = &mut self.capture
             {
-                if std::time::Instant::now() >= due {
-                    c.toggle_at = None;
-                    if let Some(m) = c.toggle.clone() {
-                        c.toggles_left -= 1;
-                        match m.as_str() {
-                            MORE_MODES => explorer.controls.modes += 1,
-                            FEWER_MODES => {
-                                explorer.controls.modes = explorer.controls.modes.saturating_sub(1)
-                            }
-                            _ if explorer.controls.methods.contains(&m) => {
-                                explorer.controls.methods.retain(|id| *id != m)
-                            }
-                            _ => explorer.controls.methods.push(m),
-                        }
-                        explorer.request();
-                    }
-                } else {
-                    ctx.request_repaint_after(due - std::time::Instant::now());
-                }
+                c.on_shown();
             }
-            if explorer.is_computing() {
+            explorer.viewer_state = self.handoff.state();
+            if let Some(c) = &mut self.capture {
+                c.toggle_step(ctx, &mut explorer);
+            }
+            if explorer.is_computing() || explorer.viewer_state != HandoffState::Idle {
                 // Keep the spinner turning; the worker's result is polled next frame.
                 ctx.request_repaint_after(std::time::Duration::from_millis(50));
             }
             self.explorer = Some(explorer);
+        } else {
+            self.handoff.step(ctx);
         }
         eframe::App::logic(&mut self.viewer, ctx, frame);
     }
@@ -169,103 +134,15 @@ impl eframe::App for FlexmodesApp {
                 .inner;
             explorer.apply(commands);
         }
+        // What is left of the window after the panel is the viewer's.
+        let viewer_rect = ui.available_rect_before_wrap();
         eframe::App::ui(&mut self.viewer, ui, frame);
+        self.handoff.paint_cover(ui.ctx(), viewer_rect);
+        if let Some(explorer) = &self.explorer {
+            explorer.updating_badge(ui.ctx());
+        }
     }
 }
-
-impl FlexmodesApp {
-    /// Drives `--screenshot`: once the wanted recording has shown for a while (and nothing is
-    /// computing), asks egui for a screenshot, saves it as PNG and closes the window.
-    fn capture_step(&mut self, ctx: &egui::Context) {
-        let Some(c) = &mut self.capture else { return };
-        let image = ctx.input(|i| {
-            i.raw.events.iter().find_map(|e| match e {
-                egui::Event::Screenshot {
-                    image, user_data, ..
-                } if user_data
-                    .data
-                    .as_ref()
-                    .is_some_and(|d| d.downcast_ref::<FlexmodesShot>().is_some()) =>
-                {
-                    Some(image.clone())
-                }
-                _ => None,
-            })
-        });
-        if let Some(image) = image {
-            let [w, h] = image.size;
-            let rgba: Vec<u8> = image.pixels.iter().flat_map(|p| p.to_array()).collect();
-            match image::RgbaImage::from_raw(w as u32, h as u32, rgba) {
-                Some(img) => match img.save(&c.path) {
-                    Ok(()) => eprintln!("screenshot saved to {}", c.path.display()),
-                    Err(e) => eprintln!("error: could not save {}: {e}", c.path.display()),
-                },
-                None => eprintln!("error: screenshot buffer has the wrong size"),
-            }
-            if let Some(e) = &self.explorer {
-                // Click to result on the UI thread, plus handing it to the viewer.
-                let total: Vec<f64> = e
-                    .latencies
-                    .iter()
-                    .zip(&self.handoffs)
-                    .map(|(a, b)| (*a + *b).as_secs_f64())
-                    .collect();
-                let l: Vec<String> = total.iter().map(|d| format!("{d:.3}")).collect();
-                eprintln!("update times (request to viewer), s: {}", l.join(", "));
-                let h: Vec<String> = self
-                    .handoffs
-                    .iter()
-                    .map(|d| format!("{:.3}", d.as_secs_f64()))
-                    .collect();
-                eprintln!("  of which handing to the viewer, s: {}", h.join(", "));
-                let phases: Vec<String> = e
-                    .phase_times
-                    .iter()
-                    .map(|(c, e)| format!("{c:.3}/{e:.3}"))
-                    .collect();
-                eprintln!(
-                    "  of which running the scene / building the recording's messages, s: {}",
-                    phases.join(", ")
-                );
-                // The first is the scene's opening; the rest are switches.
-                let mut switches: Vec<f64> = total.iter().skip(1).copied().collect();
-                if !switches.is_empty() {
-                    switches.sort_by(f64::total_cmp);
-                    let n = switches.len();
-                    let median = if n % 2 == 1 {
-                        switches[n / 2]
-                    } else {
-                        0.5 * (switches[n / 2 - 1] + switches[n / 2])
-                    };
-                    eprintln!("switch latency, s: median {median:.3} over {n}");
-                    let (anticipated, cached) = e.anticipation_counts();
-                    eprintln!(
-                        "  anticipated requests run to their end: {anticipated}; cache entries: \
-                         {cached}"
-                    );
-                }
-            }
-            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
-            return;
-        }
-        let idle = self.explorer.as_ref().is_none_or(|e| !e.is_computing());
-        let ready = (self.explorer.is_none() || c.shown >= c.wanted) && idle;
-        if ready && !c.requested {
-            c.settle += 1;
-            if c.settle >= SETTLE_FRAMES {
-                c.requested = true;
-                ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(egui::UserData::new(
-                    FlexmodesShot,
-                )));
-            }
-        }
-        ctx.request_repaint();
-    }
-}
-
-/// Marks our screenshot requests apart from the viewer's own.
-#[derive(Debug, Clone, Copy)]
-struct FlexmodesShot;
 
 /// Opens the explorer on `scene` (default `beam-modes`), or the viewer on a saved recording.
 pub fn run(scene: Option<&str>, file: Option<&Path>, opts: ViewerOptions) -> Result<()> {
@@ -302,17 +179,16 @@ pub fn run_with_body(
     } else {
         0
     };
-    let capture = opts.screenshot.clone().map(|path| Capture {
-        path,
-        toggle: opts.toggle.clone(),
-        toggles_left: toggles,
-        pause: opts.pause,
-        toggle_at: None,
-        wanted: toggles + 1,
-        shown: 0,
-        settle: 0,
-        requested: false,
+    let capture = opts.screenshot.clone().map(|path| {
+        Capture::new(
+            path,
+            opts.toggle.clone(),
+            toggles,
+            opts.pause,
+            opts.frames.clone(),
+        )
     });
+    let atomic = opts.atomic;
     let runtime = tokio::runtime::Runtime::new().map_err(|e| gui_error(e.to_string()))?;
     let handle = runtime.handle().clone();
     let main_thread_token = re_viewer::MainThreadToken::i_promise_i_am_on_the_main_thread();
@@ -347,16 +223,15 @@ pub fn run_with_body(
                 (Some(_), Some(r)) if !explicit_scene => Some(r),
                 (i, _) => i,
             };
+            let handoff = ViewerHandoff::new(tx, viewer.command_sender.clone(), atomic);
             let mut app = FlexmodesApp {
                 explorer: controls.map(Explorer::new),
                 viewer,
-                tx,
-                shown: None,
+                handoff,
                 capture,
-                handoffs: Vec::new(),
             };
             if let Some(bytes) = &file_bytes {
-                app.show_recording(
+                app.handoff.show_file(
                     DecoderApp::decode_lazy(bytes.as_slice())
                         .flatten()
                         .collect(),

@@ -7,7 +7,10 @@ use rerun::external::egui;
 
 use crate::{dynamics::IntegrationScheme, fem::SlabParameters, scenes};
 
-use super::{Change, Command, Computed, Controls, Worker, report_view::table_ui};
+use super::{
+    Change, Command, Computed, Controls, Worker, report_view::table_ui,
+    viewer_handoff::HandoffState,
+};
 use crate::body_file::{BodyHandle, ImportedBody};
 
 /// Controls, the worker, the last good recording and what went wrong.
@@ -32,7 +35,9 @@ pub struct Explorer {
     /// Where "save" writes.
     pub save_path: String,
     fresh: bool,
-    shown_scenes: std::collections::HashSet<String>,
+    /// What the viewer does with the newest result (taken in while the previous one stays
+    /// on screen); set by the window each frame.
+    pub viewer_state: HandoffState,
     /// The body file of the `modes` scene as loaded, with the text it was loaded from.
     body: Option<(String, BodyHandle)>,
     /// Text being typed into the panel, not yet applied (transient).
@@ -75,7 +80,7 @@ impl Explorer {
             status: String::new(),
             save_path,
             fresh: false,
-            shown_scenes: Default::default(),
+            viewer_state: HandoffState::Idle,
             body: None,
         };
         e.request();
@@ -90,9 +95,8 @@ impl Explorer {
         match options {
             Ok(options) => {
                 self.generation += 1;
-                let seen = self.shown_scenes.contains(&self.controls.scene);
                 self.worker
-                    .submit(self.generation, &self.controls.scene, options, seen);
+                    .submit(self.generation, &self.controls.scene, options);
                 self.computing_since = Some(Instant::now());
             }
             Err(e) => self.error = Some(e.to_string()),
@@ -159,7 +163,6 @@ impl Explorer {
                 Ok(c) => {
                     self.anticipate();
                     self.phase_times.push((c.compute_s, c.messages_s));
-                    self.shown_scenes.insert(c.scene.clone());
                     self.current = Some(c);
                     self.error = None;
                     self.fresh = true;
@@ -216,6 +219,60 @@ impl Explorer {
         if !options.is_empty() {
             self.worker.anticipate(&self.controls.scene, options);
         }
+    }
+
+    /// Bytes the kept time integrations weigh.
+    pub fn cached_bytes(&self) -> usize {
+        self.worker.cached_bytes()
+    }
+
+    /// The most the kept time integrations may weigh, bytes.
+    pub fn cache_budget(&self) -> usize {
+        self.worker.cache_budget()
+    }
+
+    /// Whether the view shows an older result than the controls ask for, and why (computing
+    /// or loading into the viewer); `None` when it is up to date.
+    pub fn updating(&self) -> Option<String> {
+        if let Some(since) = self.computing_since {
+            let mut text = format!("updating: computing {:.1} s", since.elapsed().as_secs_f64());
+            if let Some(r) = self.worker.progress() {
+                text.push_str(&format!(" · t = {:.2} of {:.2} s", r.time, r.end_time));
+            }
+            return Some(text);
+        }
+        match self.viewer_state {
+            HandoffState::Loading { queued } => Some(format!(
+                "updating: loading the new result into the viewer ({queued} messages left)"
+            )),
+            HandoffState::Capturing | HandoffState::Covering { .. } => {
+                Some("updating: laying out the new result".into())
+            }
+            HandoffState::Idle => None,
+        }
+    }
+
+    /// Marks the view as out of date while it shows the previous result: a badge at the
+    /// top right of the window.
+    pub fn updating_badge(&self, ctx: &egui::Context) {
+        let Some(text) = self.updating() else { return };
+        // Above the cover of a switch (see `ViewerHandoff`).
+        egui::Area::new(egui::Id::new("flexmodes-updating"))
+            .order(egui::Order::Tooltip)
+            .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-16.0, 40.0))
+            .interactable(false)
+            .show(ctx, |ui| {
+                egui::Frame::popup(ui.style()).show(ui, |ui| {
+                    ui.horizontal(|ui| {
+                        ui.spinner();
+                        ui.label(text);
+                    });
+                    ui.label(
+                        egui::RichText::new("the view shows the previous result until then")
+                            .small(),
+                    );
+                });
+            });
     }
 
     /// Anticipated requests that ran to their end, and the cache's entries.

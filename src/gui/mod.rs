@@ -5,12 +5,16 @@
 //! [`run`] wraps it with the viewer in a native window.
 
 mod app;
+mod capture;
 mod controls;
 mod explorer;
 mod report_view;
+mod viewer_handoff;
 mod worker;
 
 pub use app::{FEWER_MODES, MORE_MODES, ViewerOptions, run, run_with_body};
+pub use capture::{FrameSeries, resident_bytes};
 pub use controls::{Change, Command, Controls, MESH_PRESETS};
 pub use explorer::Explorer;
+pub use viewer_handoff::{HandoffState, ViewerHandoff};
 pub use worker::{Computed, Finished, Worker};

@@ -60,7 +60,6 @@ struct Job {
     generation: u64,
     scene: String,
     options: SceneOptions,
-    keep_user_layout: bool,
 }
 
 /// Requests run ahead of time, only to fill the cache.
@@ -125,7 +124,7 @@ impl Worker {
                         job = newer;
                     }
                     let start = Instant::now();
-                    let result = compute(&job, job.keep_user_layout);
+                    let result = compute(&job);
                     // A request made meanwhile supersedes this one: drop it.
                     if job.generation < latest_w.load(Ordering::SeqCst) {
                         continue;
@@ -238,6 +237,11 @@ impl Worker {
         self.cache.bytes()
     }
 
+    /// The most those entries may weigh, bytes.
+    pub fn cache_budget(&self) -> usize {
+        self.cache.budget()
+    }
+
     /// Repaints `ctx` whenever a result is ready.
     pub fn wake(&self, ctx: &egui::Context) {
         if let Ok(mut guard) = self.waker.lock()
@@ -249,15 +253,7 @@ impl Worker {
 
     /// Requests a computation of generation `generation` (larger than any before) and cancels
     /// the previous one; returns the new request's progress handle.
-    /// `keep_user_layout`: send the scene's blueprint as the default only (the scene was
-    /// shown before and the user may have arranged its views).
-    pub fn submit(
-        &mut self,
-        generation: u64,
-        scene: &str,
-        mut options: SceneOptions,
-        keep_user_layout: bool,
-    ) -> Progress {
+    pub fn submit(&mut self, generation: u64, scene: &str, mut options: SceneOptions) -> Progress {
         // Newest generation first, so the cancelled job's error is dropped as superseded.
         self.latest.store(generation, Ordering::SeqCst);
         if let Some(old) = self.running.take() {
@@ -278,7 +274,6 @@ impl Worker {
             generation,
             scene: scene.into(),
             options,
-            keep_user_layout,
         });
         progress
     }
@@ -310,7 +305,7 @@ fn lower_priority() {
     }
 }
 
-fn compute(job: &Job, keep_user_layout: bool) -> Result<Computed, String> {
+fn compute(job: &Job) -> Result<Computed, String> {
     let (scene, options, generation) = (&job.scene, &job.options, job.generation);
     let chain = |e: crate::Error| {
         let mut msg = e.to_string();
@@ -325,9 +320,10 @@ fn compute(job: &Job, keep_user_layout: bool) -> Result<Computed, String> {
     let start = Instant::now();
     let out = s.execute(options).map_err(chain)?;
     let compute_s = start.elapsed().as_secs_f64();
+    // The window makes the layout active once the whole recording is in the viewer.
     let recorder = Recorder {
         recording_suffix: Some(generation.to_string()),
-        keep_user_layout,
+        default_blueprint_only: true,
     };
     let start = Instant::now();
     let messages = recorder.messages(&out).map_err(chain)?;

@@ -12,8 +12,8 @@ use rerun::{
     external::{
         re_log_types::{BlueprintActivationCommand, LogMsg},
         re_sdk_types::blueprint::archetypes::{
-            ContainerBlueprint, EyeControls3D, PanelBlueprint, PlotLegend, TimePanelBlueprint,
-            ViewBlueprint, ViewContents, ViewportBlueprint, VisualBounds2D,
+            ContainerBlueprint, EyeControls3D, PanelBlueprint, PlotLegend, ScalarAxis,
+            TimePanelBlueprint, ViewBlueprint, ViewContents, ViewportBlueprint, VisualBounds2D,
         },
     },
 };
@@ -38,12 +38,14 @@ const VIEWPORT: (f64, f64) = (1280.0, 740.0);
 
 /// Logs `layout` as a blueprint, each 3D view with the camera `eye_for(origin, aspect)` gives
 /// (aspect: the view's width over height by the layout's shares), each 2D view showing what
-/// `bounds_for(origin)` bounds with a margin, and sends it through `rec`.
+/// `bounds_for(origin)` bounds with a margin, each time-series view the value range
+/// `series_range_for(origin)` gives with a margin, and sends it through `rec`.
 pub(crate) fn send_blueprint(
     rec: &RecordingStream,
     layout: &Layout,
     eye_for: &dyn Fn(&str, f64) -> Option<Eye>,
     bounds_for: &dyn Fn(&str) -> Option<Bounds>,
+    series_range_for: &dyn Fn(&str) -> Option<[f64; 2]>,
     params: &BlueprintParameters,
 ) -> Result<()> {
     let application_id = rec
@@ -60,6 +62,7 @@ pub(crate) fn send_blueprint(
         bp: &bp,
         eye_for,
         bounds_for,
+        series_range_for,
         planar: params.planar,
     };
     // The viewport's root is a container: a lone view goes into tabs.
@@ -127,8 +130,13 @@ struct Writer<'a> {
     bp: &'a RecordingStream,
     eye_for: &'a dyn Fn(&str, f64) -> Option<Eye>,
     bounds_for: &'a dyn Fn(&str) -> Option<Bounds>,
+    series_range_for: &'a dyn Fn(&str) -> Option<[f64; 2]>,
     planar: bool,
 }
+
+/// Margin above and below a time-series view's values, as a share of their range (the
+/// viewer's own automatic margin).
+const MARGIN_SERIES: f64 = 0.05;
 
 /// Margin around a 2D view's contents, as a share of their larger extent (labels sit beside
 /// the shapes).
@@ -247,6 +255,19 @@ impl Writer<'_> {
                             y_range: [-b.hi[1] - m, -b.lo[1] + m].into(),
                         },
                     )),
+                )
+                .map_err(rerun_error)?;
+        }
+        // A time-series view gets its value range from the data: left to itself the viewer
+        // fits it over the first frames it draws (the plot jumps after a switch).
+        if class == "TimeSeries"
+            && let Some([lo, hi]) = (self.series_range_for)(origin)
+        {
+            let m = MARGIN_SERIES * (hi - lo).max(1e-12 * lo.abs().max(hi.abs()).max(1.0));
+            self.bp
+                .log(
+                    format!("{path}/ScalarAxis").as_str(),
+                    &ScalarAxis::new().with_range(rerun::datatypes::Range1D([lo - m, hi + m])),
                 )
                 .map_err(rerun_error)?;
         }

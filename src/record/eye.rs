@@ -107,6 +107,25 @@ impl Bounds {
     }
 }
 
+/// The range of the values of every [`Visual::Series`] under entity `origin` (with or
+/// without its leading slash); `None` when none is there or none is finite.
+pub fn series_range(origin: &str, visuals: &[Visual]) -> Option<[f64; 2]> {
+    let origin = origin.trim_start_matches('/');
+    let mut range: Option<[f64; 2]> = None;
+    for v in visuals {
+        if let Visual::Series { path, values, .. } = v
+            && (origin.is_empty() || path == origin || path.starts_with(&format!("{origin}/")))
+        {
+            for &x in values.iter().filter(|x| x.is_finite()) {
+                let r = range.get_or_insert([x, x]);
+                r[0] = r[0].min(x);
+                r[1] = r[1].max(x);
+            }
+        }
+    }
+    range
+}
+
 impl Eye {
     /// The camera (z up) that frames `bounds` in a view `aspect` times wider than high: it
     /// looks at their centre across the longer horizontal extent, turned [`SKEW`] from

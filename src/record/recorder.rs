@@ -28,9 +28,10 @@ pub struct Recorder {
     /// Appended to the recording id, so successive recordings of one scene in the desktop
     /// app are distinct stores.
     pub recording_suffix: Option<String>,
-    /// Send the blueprint as the default only, so a layout the user changed survives a new
-    /// recording (desktop app). Files get it as the active blueprint.
-    pub keep_user_layout: bool,
+    /// Send the blueprint as the application's default only, not active (the desktop app
+    /// activates it itself once the whole recording is in the viewer). Files get it as the
+    /// active blueprint.
+    pub default_blueprint_only: bool,
 }
 
 impl Recorder {
@@ -95,15 +96,17 @@ impl Recorder {
             Bounds::of(origin, &out.visuals).map(|b| Eye::framing(&b, aspect))
         };
         let bounds_for = |origin: &str| Bounds::of(origin, &out.visuals);
+        let series_range_for = |origin: &str| super::eye::series_range(origin, &out.visuals);
         send_blueprint(
             rec,
             &out.layout,
             &eye_for,
             &bounds_for,
+            &series_range_for,
             &BlueprintParameters {
                 planar,
                 timeline: out.timeline.as_deref(),
-                make_active: !self.keep_user_layout,
+                make_active: !self.default_blueprint_only,
             },
         )?;
         Ok(())

@@ -15,8 +15,10 @@ use crate::{
 const CAPACITY: usize = 64;
 /// Bytes kept at most, by the entries' [`CacheWeight`]: an integration without reduction on
 /// the explorer's largest simulation mesh (2 295 DOF) holds about 200 MB, so 64 of them
-/// would not fit a desktop's memory.
-const BYTE_BUDGET: usize = 1 << 30;
+/// would not fit a desktop's memory; 512 MiB keeps two of them, or all the integrations of
+/// the App. B slab's switches. The explorer's memory over 50 switches is measured against it
+/// (`gui --screenshot --toggle ... --repeat 50` prints both).
+const BYTE_BUDGET: usize = 512 << 20;
 
 /// What a cached value weighs, bytes on the heap (an estimate; see the implementations).
 pub trait CacheWeight {
@@ -48,7 +50,7 @@ struct Entries {
 
 /// Results of time integrations (and other expensive steps) keyed by everything that determines
 /// them, so a request that only ticks another method integrates that method alone. At most
-/// 64 entries and 1 GiB ([`CacheWeight`]) are kept; beyond either, the least recently used
+/// 64 entries and 512 MiB ([`CacheWeight`]) are kept; beyond either, the least recently used
 /// entries go.
 ///
 /// The default cache is detached: it keeps nothing and every step runs (the CLI). Clones share
@@ -111,6 +113,14 @@ impl RunCache {
     /// Whether nothing is kept.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+
+    /// The most the kept entries may weigh, bytes (0 for a detached cache).
+    pub fn budget(&self) -> usize {
+        self.0
+            .as_ref()
+            .and_then(|e| e.lock().ok().map(|e| e.budget))
+            .unwrap_or(0)
     }
 
     /// Bytes the kept entries weigh ([`CacheWeight`]).

@@ -70,7 +70,7 @@ pub fn scene_messages(
     let out = scene.execute(options)?;
     Recorder {
         recording_suffix: suffix,
-        keep_user_layout: false,
+        default_blueprint_only: false,
     }
     .messages(&out)
 }
