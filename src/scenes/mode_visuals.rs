@@ -182,14 +182,20 @@ mod palette_tests {
         }
     }
 
-    /// The browser check counts these colours: its table must be this one.
+    /// The browser check and the explorer's switch check count these colours: their tables
+    /// must be this one.
     #[test]
-    fn the_browser_check_counts_these_colours() {
-        let script = include_str!("../../assets/serve/check_serve.py");
-        for m in ALL {
-            let c = method_color(m);
-            let line = format!("\"{}\": ({}, {}, {}),", m.id(), c[0], c[1], c[2]);
-            assert!(script.contains(&line), "check_serve.py lacks {line}");
+    fn the_screenshot_checks_count_these_colours() {
+        let scripts = [
+            ("check_serve.py", include_str!("../../assets/serve/check_serve.py")),
+            ("switch_frames.py", include_str!("../../assets/gui/switch_frames.py")),
+        ];
+        for (name, script) in scripts {
+            for m in ALL {
+                let c = method_color(m);
+                let line = format!("\"{}\": ({}, {}, {}),", m.id(), c[0], c[1], c[2]);
+                assert!(script.contains(&line), "{name} lacks {line}");
+            }
         }
     }
 }
