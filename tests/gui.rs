@@ -5,7 +5,10 @@
 use std::time::{Duration, Instant};
 
 use egui_kittest::{Harness, kittest::Queryable};
-use flexmodes::gui::{Controls, Explorer};
+use flexmodes::{
+    gui::{Controls, Explorer},
+    record::RecordingDigest,
+};
 use rerun::external::egui::{self, accesskit::Role};
 
 /// The explorer's panel with `controls`, applying its commands after each frame.
@@ -534,4 +537,97 @@ fn an_imported_body_offers_and_computes_every_method() {
     assert_eq!(methods, ["gr", "mt", "cb", "mc", "mr", "bh", "mm", "bt"]);
     let reduced = report.results["reduced_hz"].as_object().unwrap();
     assert_eq!(reduced.len(), 8, "{:?}", reduced.keys().collect::<Vec<_>>());
+}
+
+/// The recording shown after `switches` applied one after the other (each waited for), and
+/// the digest of a fresh explorer's recording of the final controls.
+fn switched_and_fresh(
+    controls: Controls,
+    switches: &[flexmodes::gui::Change],
+) -> (RecordingDigest, RecordingDigest, Controls) {
+    let mut h = harness_with(controls);
+    settle(&mut h);
+    let first = RecordingDigest::of(&h.state().current.as_ref().unwrap().messages);
+    for change in switches {
+        h.state_mut()
+            .apply(vec![flexmodes::gui::Command::Set(change.clone())]);
+        settle(&mut h);
+        assert!(
+            h.state().error.is_none(),
+            "{change:?}: {:?}",
+            h.state().error
+        );
+    }
+    let last = h.state().controls.clone();
+    let switched = RecordingDigest::of(&h.state().current.as_ref().unwrap().messages);
+    let mut fresh = harness_with(last.clone());
+    settle(&mut fresh);
+    let fresh = RecordingDigest::of(&fresh.state().current.as_ref().unwrap().messages);
+    // The switches changed the recording: the comparison can fail.
+    assert!(
+        first.difference(&fresh, &[]).is_some(),
+        "{switches:?} changed nothing"
+    );
+    (switched, fresh, last)
+}
+
+/// After a sequence of switches (methods unticked and ticked, modes changed, axes changed),
+/// the recording shown holds exactly the entities of a fresh recording of the final
+/// selection, with the same contents (the wall times of the text and of the speed–accuracy
+/// chart apart), and its layout is the fresh one's: a removed method leaves no entity, view
+/// or tab behind, and integrations served from the cache equal integrations run anew.
+#[test]
+fn after_any_switches_the_recording_equals_a_fresh_one() {
+    use flexmodes::{dynamics::AxisKind, gui::Change, reduction::Method};
+    let timed = ["/scene", "/metrics/speed_accuracy"];
+    let cases: Vec<(Controls, Vec<Change>, Option<&str>)> = vec![
+        (
+            Controls::for_scene("slab-sim1").unwrap(),
+            vec![
+                Change::Method(Method::Guyan, false),
+                Change::Modes(5),
+                Change::Method(Method::Guyan, true),
+                Change::Method(Method::ModalTruncation, false),
+                Change::Axes(Some(AxisKind::Mean)),
+                Change::Modes(6),
+            ],
+            Some("mt"),
+        ),
+        (
+            Controls::for_scene("slab-modes").unwrap(),
+            vec![
+                Change::Method(Method::CraigBampton, false),
+                Change::Modes(3),
+                Change::Method(Method::Guyan, false),
+                Change::Method(Method::CraigBampton, true),
+            ],
+            Some("gr"),
+        ),
+        (
+            Controls::for_body("builtin:l-bracket").unwrap(),
+            vec![
+                Change::Method(Method::MacNealRubin, false),
+                Change::Boundary("rbe2:bolt_hole".into()),
+                Change::Method(Method::BenfieldHruda, false),
+                Change::Modes(6),
+            ],
+            None,
+        ),
+    ];
+    for (controls, switches, removed) in cases {
+        let scene = controls.scene.clone();
+        let (switched, fresh, last) = switched_and_fresh(controls, &switches);
+        if let Some(d) = switched.difference(&fresh, &timed) {
+            panic!("{scene} after {switches:?} ({last:?}): {d}");
+        }
+        assert!(!switched.recording.is_empty() && !switched.blueprint.is_empty());
+        if let Some(m) = removed {
+            let left: Vec<&str> = switched
+                .entities()
+                .into_iter()
+                .filter(|p| p.split('/').any(|part| part == m))
+                .collect();
+            assert!(left.is_empty(), "{scene}: {m} left {left:?}");
+        }
+    }
 }

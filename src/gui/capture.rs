@@ -253,6 +253,14 @@ impl Capture {
             );
         }
         let mib = |b: u64| b as f64 / (1u64 << 20) as f64;
+        eprintln!(
+            "resident memory after each recording shown, MiB: {}",
+            self.resident
+                .iter()
+                .map(|b| format!("{:.0}", mib(*b)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
         if let (Some(first), Some(last)) = (self.resident.first(), self.resident.last()) {
             let peak = self.resident.iter().copied().max().unwrap_or(0);
             eprintln!(

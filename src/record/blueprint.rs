@@ -57,6 +57,8 @@ pub(crate) fn send_blueprint(
         .blueprint()
         .memory()
         .map_err(rerun_error)?;
+    // No log time: two runs give the same blueprint.
+    bp.set_log_time_enabled(false);
     bp.set_time_sequence("blueprint", 0);
     let writer = Writer {
         bp: &bp,
@@ -68,9 +70,9 @@ pub(crate) fn send_blueprint(
     // The viewport's root is a container: a lone view goes into tabs.
     let root = match layout {
         Layout::Horizontal(..) | Layout::Vertical(..) | Layout::Tabs(..) => {
-            writer.log(layout, VIEWPORT)?
+            writer.log(layout, VIEWPORT, "0")?
         }
-        view => writer.log(&Layout::Tabs(vec![view.clone()]), VIEWPORT)?,
+        view => writer.log(&Layout::Tabs(vec![view.clone()]), VIEWPORT, "0")?,
     };
     let root_id = root
         .strip_prefix("container/")
@@ -142,6 +144,28 @@ const MARGIN_SERIES: f64 = 0.05;
 /// the shapes).
 const MARGIN_2D: f64 = 0.12;
 
+/// The id of the container or view at `place` in a layout: a hash of the place and of what
+/// the item is (its kind, name and origin; a container's kind), the same in every run.
+fn layout_id(place: &str, layout: &Layout) -> uuid::Uuid {
+    use std::hash::{Hash, Hasher};
+    let what = match layout {
+        Layout::Horizontal(..) => "horizontal".to_string(),
+        Layout::Vertical(..) => "vertical".to_string(),
+        Layout::Tabs(..) => "tabs".to_string(),
+        view => format!("{view:?}"),
+    };
+    let half = |salt: u64| {
+        let mut h = std::hash::DefaultHasher::new();
+        (salt, place, &what).hash(&mut h);
+        h.finish()
+    };
+    // Shaped as a version-4 uuid, its "random" bytes the hash.
+    let mut bytes = [0u8; 16];
+    bytes[..8].copy_from_slice(&half(1).to_le_bytes());
+    bytes[8..].copy_from_slice(&half(2).to_le_bytes());
+    uuid::Builder::from_random_bytes(bytes).into_uuid()
+}
+
 /// The parts of `size` that `shares` give, one per item (equal parts without shares).
 fn split(size: f64, shares: &[f32], items: usize) -> Vec<f64> {
     let shares: Vec<f64> = (0..items)
@@ -153,9 +177,11 @@ fn split(size: f64, shares: &[f32], items: usize) -> Vec<f64> {
 
 impl Writer<'_> {
     /// Logs a container (its children first) or a view given `size` (width, height) of the
-    /// viewport; returns its blueprint path (`container/<id>` or `view/<id>`).
-    fn log(&self, layout: &Layout, size: (f64, f64)) -> Result<String> {
-        let id = uuid::Uuid::new_v4();
+    /// viewport; returns its blueprint path (`container/<id>` or `view/<id>`). `place` is its
+    /// place in the layout (`0`, `0/2`, …): its id follows from it and from what it shows, so
+    /// two recordings of one selection get the same blueprint.
+    fn log(&self, layout: &Layout, size: (f64, f64), place: &str) -> Result<String> {
+        let id = layout_id(place, layout);
         let container = |kind: ContainerKind,
                          items: &[Layout],
                          sizes: Vec<(f64, f64)>|
@@ -163,8 +189,9 @@ impl Writer<'_> {
             let children = items
                 .iter()
                 .zip(sizes)
-                .map(|(item, size)| {
-                    self.log(item, size)
+                .enumerate()
+                .map(|(k, (item, size))| {
+                    self.log(item, size, &format!("{place}/{k}"))
                         .map(|p| IncludedContent(p.as_str().into()))
                 })
                 .collect::<Result<Vec<_>>>()?;

@@ -8,6 +8,7 @@ mod layout;
 mod log_log_chart;
 mod recorder;
 mod recording_content;
+mod recording_digest;
 mod visual;
 
 pub use eye::{Bounds, Eye};
@@ -15,4 +16,5 @@ pub use layout::Layout;
 pub use log_log_chart::{LogLogChart, LogLogSeries};
 pub use recorder::{Recorder, encode_messages};
 pub use recording_content::RecordingContent;
+pub use recording_digest::RecordingDigest;
 pub use visual::{Color, Geometry, PHASE_STEPS, Visual};

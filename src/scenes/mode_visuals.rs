@@ -187,8 +187,14 @@ mod palette_tests {
     #[test]
     fn the_screenshot_checks_count_these_colours() {
         let scripts = [
-            ("check_serve.py", include_str!("../../assets/serve/check_serve.py")),
-            ("switch_frames.py", include_str!("../../assets/gui/switch_frames.py")),
+            (
+                "check_serve.py",
+                include_str!("../../assets/serve/check_serve.py"),
+            ),
+            (
+                "switch_frames.py",
+                include_str!("../../assets/gui/switch_frames.py"),
+            ),
         ];
         for (name, script) in scripts {
             for m in ALL {
