@@ -415,22 +415,24 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
     assert!(h.state().current.is_some());
 }
 
+/// Every scene opens with its default controls (including those without method choices: the
+/// failures scene runs with fixed settings), shows a recording and no error, and its views'
+/// tab titles fit the explorer's viewer at 1 280 × 800 (by the layout's estimate of title
+/// widths).
 #[test]
-fn every_scene_opens_with_its_default_controls() {
-    // Including the scenes without method choices (the failures scene runs with fixed
-    // settings): each shows a recording and no error.
-    for id in [
-        "failures",
-        "beam-mean-axes",
-        "beam-profiles",
-        "cantilever-variants",
-        "slab-mode-sets",
-    ] {
-        let mut h = harness(id);
+fn every_scene_opens_with_its_default_controls_and_its_titles_fit() {
+    let mut cut = Vec::new();
+    for id in flexmodes::scenes::all_ids() {
+        let mut h = harness(&id);
         settle(&mut h);
         assert!(h.state().error.is_none(), "{id}: {:?}", h.state().error);
         assert!(!paths(&h).is_empty(), "{id}: the recording has no entities");
+        let layout = &h.state().current.as_ref().unwrap().layout;
+        for t in layout.cut_titles(flexmodes::gui::VIEWER_AREA) {
+            cut.push(format!("{id}: {t}"));
+        }
     }
+    assert!(cut.is_empty(), "tab titles cut at 1 280 × 800: {cut:#?}");
 }
 
 #[test]

@@ -60,6 +60,13 @@ pub const FEWER_MODES: &str = "fewer-modes";
 
 const STORAGE_KEY: &str = "flexmodes-controls";
 
+/// The explorer's panel width at start, points.
+const PANEL_WIDTH: f32 = 330.0;
+
+/// The viewer's part of a 1 280 × 800 explorer window (the panel, the viewer's top bar and
+/// its collapsed time panel taken away), points: what each scene's layout must fit.
+pub const VIEWER_AREA: (f64, f64) = (1280.0 - PANEL_WIDTH as f64, 730.0);
+
 struct FlexmodesApp {
     explorer: Option<Explorer>,
     viewer: re_viewer::App,
@@ -125,7 +132,7 @@ impl eframe::App for FlexmodesApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         if let Some(explorer) = &mut self.explorer {
             let commands = egui::Panel::left("flexmodes-panel")
-                .default_size(330.0)
+                .default_size(PANEL_WIDTH)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical()
                         .show(ui, |ui| explorer.panel_ui(ui))

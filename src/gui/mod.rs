@@ -12,7 +12,7 @@ mod report_view;
 mod viewer_handoff;
 mod worker;
 
-pub use app::{FEWER_MODES, MORE_MODES, ViewerOptions, run, run_with_body};
+pub use app::{FEWER_MODES, MORE_MODES, VIEWER_AREA, ViewerOptions, run, run_with_body};
 pub use capture::{FrameSeries, resident_bytes};
 pub use controls::{Change, Command, Controls, MESH_PRESETS};
 pub use explorer::Explorer;

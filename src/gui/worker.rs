@@ -30,6 +30,8 @@ pub struct Computed {
     pub report: Report,
     /// Entity paths logged.
     pub entity_paths: Vec<String>,
+    /// The views' layout.
+    pub layout: crate::record::Layout,
     /// The recording's messages, as the viewer takes them (encoded only to be saved).
     pub messages: Vec<LogMsg>,
     /// Running the scene, s.
@@ -324,6 +326,7 @@ fn compute(job: &Job) -> Result<Computed, String> {
     let recorder = Recorder {
         recording_suffix: Some(generation.to_string()),
         default_blueprint_only: true,
+        viewer_area: Some(super::VIEWER_AREA),
     };
     let start = Instant::now();
     let messages = recorder.messages(&out).map_err(chain)?;
@@ -331,6 +334,7 @@ fn compute(job: &Job) -> Result<Computed, String> {
     Ok(Computed {
         scene: scene.clone(),
         entity_paths: out.visuals.iter().map(|v| v.path().to_string()).collect(),
+        layout: recorder.fitted_layout(&out).0,
         report: out.report,
         messages,
         compute_s,

@@ -18,11 +18,13 @@ use rerun::{
     },
 };
 
-use super::{Bounds, Eye, Layout};
+use super::{Bounds, Eye, Layout, layout::split};
 use crate::{Error, Result};
 
 /// How the blueprint is built and sent.
 pub(crate) struct BlueprintParameters<'a> {
+    /// The viewer's area for views, points.
+    pub viewport: (f64, f64),
     /// Planar bodies: their "3D" views are 2D views.
     pub planar: bool,
     /// The timeline the time panel plays (looping), if the recording has one.
@@ -33,8 +35,9 @@ pub(crate) struct BlueprintParameters<'a> {
 }
 
 /// The viewer's area for views at the default window size (1280 × 800 less the top bar and the
-/// collapsed time panel), points: where a view's share of it, and so its aspect, is reckoned.
-const VIEWPORT: (f64, f64) = (1280.0, 740.0);
+/// collapsed time panel), points: where a view's share of it, and so its aspect, is reckoned
+/// (the desktop explorer gives its own, narrower).
+pub const VIEWPORT: (f64, f64) = (1280.0, 740.0);
 
 /// Logs `layout` as a blueprint, each 3D view with the camera `eye_for(origin, aspect)` gives
 /// (aspect: the view's width over height by the layout's shares), each 2D view showing what
@@ -70,9 +73,9 @@ pub(crate) fn send_blueprint(
     // The viewport's root is a container: a lone view goes into tabs.
     let root = match layout {
         Layout::Horizontal(..) | Layout::Vertical(..) | Layout::Tabs(..) => {
-            writer.log(layout, VIEWPORT, "0")?
+            writer.log(layout, params.viewport, "0")?
         }
-        view => writer.log(&Layout::Tabs(vec![view.clone()]), VIEWPORT, "0")?,
+        view => writer.log(&Layout::Tabs(vec![view.clone()]), params.viewport, "0")?,
     };
     let root_id = root
         .strip_prefix("container/")
@@ -164,15 +167,6 @@ fn layout_id(place: &str, layout: &Layout) -> uuid::Uuid {
     bytes[..8].copy_from_slice(&half(1).to_le_bytes());
     bytes[8..].copy_from_slice(&half(2).to_le_bytes());
     uuid::Builder::from_random_bytes(bytes).into_uuid()
-}
-
-/// The parts of `size` that `shares` give, one per item (equal parts without shares).
-fn split(size: f64, shares: &[f32], items: usize) -> Vec<f64> {
-    let shares: Vec<f64> = (0..items)
-        .map(|i| shares.get(i).map_or(1.0, |&s| f64::from(s).max(0.0)))
-        .collect();
-    let total = shares.iter().sum::<f64>().max(f64::MIN_POSITIVE);
-    shares.iter().map(|s| size * s / total).collect()
 }
 
 impl Writer<'_> {

@@ -122,4 +122,170 @@ impl Layout {
             | Layout::BarChart { origin, .. } => vec![origin.clone()],
         }
     }
+
+    /// The view's tab title; `None` for a container.
+    pub fn title(&self) -> Option<&str> {
+        match self {
+            Layout::Horizontal(..) | Layout::Vertical(..) | Layout::Tabs(..) => None,
+            Layout::Spatial3D { name, .. }
+            | Layout::Text { name, .. }
+            | Layout::TimeSeries { name, .. }
+            | Layout::Spatial2D { name, .. }
+            | Layout::BarChart { name, .. } => Some(name),
+        }
+    }
+
+    /// The layout with the tab titles the viewer would cut at `size` (width, height in
+    /// points) shortened to fit (`craig_bampton` → `craig_b…`), and each shortened title with
+    /// the full one. Titles are never shortened below [`MIN_TITLE_CHARS`] characters.
+    pub fn fit_titles(&self, size: (f64, f64)) -> (Layout, Vec<(String, String)>) {
+        let mut short = Vec::new();
+        let fitted = self.fitted(size, &mut short);
+        (fitted, short)
+    }
+
+    fn fitted(&self, size: (f64, f64), short: &mut Vec<(String, String)>) -> Layout {
+        let (width, height) = size;
+        match self {
+            Layout::Horizontal(items, shares) => Layout::Horizontal(
+                items
+                    .iter()
+                    .zip(split(width, shares, items.len()))
+                    .map(|(item, w)| item.fitted((w, height), short))
+                    .collect(),
+                shares.clone(),
+            ),
+            Layout::Vertical(items, shares) => Layout::Vertical(
+                items
+                    .iter()
+                    .zip(split(height, shares, items.len()))
+                    .map(|(item, h)| item.fitted((width, h), short))
+                    .collect(),
+                shares.clone(),
+            ),
+            Layout::Tabs(items) => {
+                let room = width - items.first().map_or(0.0, Layout::buttons_width);
+                let lengths: Vec<usize> = items
+                    .iter()
+                    .filter_map(|i| i.title().map(|t| t.chars().count()))
+                    .collect();
+                let needed = |cap: usize| -> f64 {
+                    lengths
+                        .iter()
+                        .map(|&n| title_width(&"x".repeat(n.min(cap))))
+                        .sum()
+                };
+                let longest = lengths.iter().copied().max().unwrap_or(0);
+                let cap = (MIN_TITLE_CHARS..=longest)
+                    .rev()
+                    .find(|&cap| needed(cap) <= room)
+                    .unwrap_or(MIN_TITLE_CHARS);
+                Layout::Tabs(
+                    items
+                        .iter()
+                        .map(|item| match item.title() {
+                            Some(t) if t.chars().count() > cap => {
+                                let cut: String = t.chars().take(cap - 1).collect();
+                                let cut = format!("{}…", cut.trim_end());
+                                short.push((cut.clone(), t.to_string()));
+                                item.with_title(cut)
+                            }
+                            Some(_) => item.clone(),
+                            None => item.fitted(size, short),
+                        })
+                        .collect(),
+                )
+            }
+            view => match Layout::Tabs(vec![view.clone()]).fitted(size, short) {
+                Layout::Tabs(mut v) if v.len() == 1 => v.remove(0),
+                other => other,
+            },
+        }
+    }
+
+    /// The view with its title replaced (a container unchanged).
+    fn with_title(&self, title: String) -> Layout {
+        let mut out = self.clone();
+        match &mut out {
+            Layout::Horizontal(..) | Layout::Vertical(..) | Layout::Tabs(..) => {}
+            Layout::Spatial3D { name, .. }
+            | Layout::Text { name, .. }
+            | Layout::TimeSeries { name, .. }
+            | Layout::Spatial2D { name, .. }
+            | Layout::BarChart { name, .. } => *name = title,
+        }
+        out
+    }
+
+    /// What the view's title-bar buttons take, points: help, visibility and maximise, and a
+    /// time series' play arrow; a container's first item's.
+    fn buttons_width(&self) -> f64 {
+        match self {
+            Layout::Horizontal(v, _) | Layout::Vertical(v, _) | Layout::Tabs(v) => {
+                v.first().map_or(0.0, Layout::buttons_width)
+            }
+            Layout::TimeSeries { .. } => 4.0 * TITLE_BAR_BUTTON,
+            _ => 3.0 * TITLE_BAR_BUTTON,
+        }
+    }
+
+    /// The tab titles the viewer would cut when the layout fills `size` (width, height in
+    /// points), by the estimate of [`title_width`] and [`TITLE_BAR_BUTTON`]: a lone view's
+    /// title shares its width with the view's buttons, the titles of a tabs container share
+    /// the container's width with the buttons of its shown view.
+    pub fn cut_titles(&self, size: (f64, f64)) -> Vec<String> {
+        let (width, height) = size;
+        match self {
+            Layout::Horizontal(items, shares) => items
+                .iter()
+                .zip(split(width, shares, items.len()))
+                .flat_map(|(item, w)| item.cut_titles((w, height)))
+                .collect(),
+            Layout::Vertical(items, shares) => items
+                .iter()
+                .zip(split(height, shares, items.len()))
+                .flat_map(|(item, h)| item.cut_titles((width, h)))
+                .collect(),
+            Layout::Tabs(items) => {
+                // The buttons of the view shown (the first).
+                let mut used = items.first().map_or(0.0, Layout::buttons_width);
+                let mut cut = Vec::new();
+                for item in items {
+                    match item.title() {
+                        Some(t) => {
+                            used += title_width(t);
+                            if used > width {
+                                cut.push(t.to_string());
+                            }
+                        }
+                        None => cut.extend(item.cut_titles(size)),
+                    }
+                }
+                cut
+            }
+            view => Layout::Tabs(vec![view.clone()]).cut_titles(size),
+        }
+    }
+}
+
+/// Tab titles are shortened to no fewer characters than this (the ellipsis included).
+pub const MIN_TITLE_CHARS: usize = 5;
+
+/// What one of a view's title-bar buttons takes, points (measured on the explorer's
+/// screenshots at 1 280 × 800).
+pub const TITLE_BAR_BUTTON: f64 = 25.0;
+
+/// The width of a tab with title `title`, points: its characters at 7.5 points (the viewer's
+/// proportional font, 12 points) and the tab's icon and padding.
+pub fn title_width(title: &str) -> f64 {
+    24.0 + 7.5 * title.chars().count() as f64
+}
+
+/// The parts of `size` that `shares` give, one per item (equal parts without shares).
+pub(super) fn split(size: f64, shares: &[f32], items: usize) -> Vec<f64> {
+    let shares: Vec<f64> = (0..items)
+        .map(|i| shares.get(i).map_or(1.0, |&s| f64::from(s).max(0.0)))
+        .collect();
+    let total = shares.iter().sum::<f64>().max(f64::MIN_POSITIVE);
+    shares.iter().map(|s| size * s / total).collect()
 }

@@ -8,7 +8,7 @@ use rerun::{
 };
 
 use super::{
-    Bounds, Eye, Geometry, PHASE_STEPS, RecordingContent, Visual,
+    Bounds, Eye, Geometry, Layout, PHASE_STEPS, RecordingContent, Visual,
     blueprint::{BlueprintParameters, send_blueprint},
 };
 use crate::{Error, Result};
@@ -32,6 +32,10 @@ pub struct Recorder {
     /// activates it itself once the whole recording is in the viewer). Files get it as the
     /// active blueprint.
     pub default_blueprint_only: bool,
+    /// The viewer's area for views, points (`None`: a 1280 × 800 window of the standalone
+    /// viewer): tab titles that would be cut there are shortened, and the scene text lists
+    /// them in full.
+    pub viewer_area: Option<(f64, f64)>,
 }
 
 impl Recorder {
@@ -69,12 +73,32 @@ impl Recorder {
         crate::atomic_file::write_bytes_atomically(path, &bytes)
     }
 
+    /// The viewer's area for views, points.
+    pub fn area(&self) -> (f64, f64) {
+        self.viewer_area.unwrap_or(super::blueprint::VIEWPORT)
+    }
+
+    /// `out`'s layout with the tab titles that would be cut in [`Self::area`] shortened, and
+    /// each shortened title with its full one.
+    pub fn fitted_layout(&self, out: &RecordingContent) -> (Layout, Vec<(String, String)>) {
+        out.layout.fit_titles(self.area())
+    }
+
     /// Logs everything of `out` to `rec`: the text panel, the visuals, the blueprint.
     pub fn log(&self, rec: &RecordingStream, out: &RecordingContent) -> Result<()> {
-        rec.log_static(
-            "scene",
-            &rerun::TextDocument::from_markdown(out.markdown.clone()),
-        )?;
+        let (layout, shortened) = self.fitted_layout(out);
+        let mut markdown = out.markdown.clone();
+        if !shortened.is_empty() {
+            let list: Vec<String> = shortened
+                .iter()
+                .map(|(short, full)| format!("{short} {full}"))
+                .collect();
+            markdown.push_str(&format!(
+                "\n\nTab titles shortened to fit the window: {}.\n",
+                list.join("; ")
+            ));
+        }
+        rec.log_static("scene", &rerun::TextDocument::from_markdown(markdown))?;
         let up = if out.y_up {
             rerun::ViewCoordinates::RIGHT_HAND_Y_UP()
         } else {
@@ -84,7 +108,7 @@ impl Recorder {
         // contents exactly; solids in 3D views with their up axis.
         let planar = out.y_up;
         if !planar {
-            for origin in out.layout.spatial_origins() {
+            for origin in layout.spatial_origins() {
                 rec.log_static(origin.as_str(), &up)?;
             }
         }
@@ -99,7 +123,7 @@ impl Recorder {
         let series_range_for = |origin: &str| super::eye::series_range(origin, &out.visuals);
         send_blueprint(
             rec,
-            &out.layout,
+            &layout,
             &eye_for,
             &bounds_for,
             &series_range_for,
@@ -107,6 +131,7 @@ impl Recorder {
                 planar,
                 timeline: out.timeline.as_deref(),
                 make_active: !self.default_blueprint_only,
+                viewport: self.area(),
             },
         )?;
         Ok(())

@@ -77,6 +77,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     .rank_lower(&[1, 3]);
     let mut visuals = vec![undeformed(&model)];
     let mut tabs = Vec::new();
+    let mut normal_tabs = Vec::new();
     for (i, &m) in methods.iter().enumerate() {
         let basis = reduce(
             &model,
@@ -146,8 +147,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             .collect();
         let set_n = format!("{}_mean_normal", m.id());
         visuals.extend(mode_set(&model, &set_n, &nm, color));
-        tabs.push(Layout::view3d(&set_c, &format!("/modes/{set_c}")));
-        tabs.push(Layout::view3d(&set_n, &format!("/modes/{set_n}")));
+        // Titles short enough for a 1280 × 800 window: constraint modes above, normal modes
+        // below (the entity paths keep the full set names).
+        let id = m.id().to_uppercase();
+        tabs.push(Layout::view3d(&id, &format!("/modes/{set_c}")));
+        normal_tabs.push(Layout::view3d(&id, &format!("/modes/{set_n}")));
     }
     let full_modes: Vec<(Vec<f64>, String)> = columns(&full_c)
         .into_iter()
@@ -155,7 +159,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .map(|(u, &dof)| (u, format!("full constraint {}", model.dof_label(dof))))
         .collect();
     visuals.extend(mode_set(&model, "full_constraint", &full_modes, REFERENCE));
-    tabs.push(Layout::view3d("full_constraint", "/modes/full_constraint"));
+    tabs.push(Layout::view3d("full", "/modes/full_constraint"));
     report
         .results
         .insert("full_fixed_interface_hz".into(), json!(sig_vec(&full_hz)));
@@ -173,11 +177,18 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          constraint modes as absolute displacements, the constrained eigenproblem (Eq. 8.45) \
          the normal modes. Mode condensation reproduces the full model's constraint modes \
          exactly and its two lowest fixed-interface frequencies: mode shapes prepared for \
-         nodal-fixed axes work with mean axes.\n\n{}",
+         nodal-fixed axes work with mean axes. Views: each method's constraint modes (top tabs, with \
+         the full model's) and normal modes (bottom tabs), on the mean axes.\n\n{}",
         report.table
     );
     let layout = Layout::Horizontal(
-        vec![Layout::Tabs(tabs), Layout::scene_text()],
+        vec![
+            Layout::Vertical(
+                vec![Layout::Tabs(tabs), Layout::Tabs(normal_tabs)],
+                vec![1.0, 1.0],
+            ),
+            Layout::scene_text(),
+        ],
         vec![3.0, 2.0],
     );
     Ok(SceneOutput {

@@ -388,14 +388,15 @@ fn layout(statics: &[StaticCase]) -> Layout {
     Layout::Horizontal(
         vec![
             Layout::Tabs(vec![
-                Layout::view3d("modes v1", "/modes/v1"),
-                Layout::view3d("modes v2", "/modes/v2"),
-                Layout::view3d("modes v3", "/modes/v3"),
-                Layout::view3d("structure", "/structure"),
+                // Short titles: four tabs share a third of a 1280 × 800 window.
+                Layout::view3d("v1", "/modes/v1"),
+                Layout::view3d("v2", "/modes/v2"),
+                Layout::view3d("v3", "/modes/v3"),
+                Layout::view3d("beams", "/structure"),
             ]),
             Layout::Vertical(
                 vec![
-                    tabs_of("freq_error", "frequency error %"),
+                    tabs_of("freq_error", "f error %"),
                     tabs_of("mac", "MAC"),
                     Layout::Tabs(
                         statics

@@ -217,16 +217,17 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             origin: format!("/plots/plank/{name}"),
         });
     }
-    plots.push(Layout::Tabs(vec![
+    // The health plots as tabs of the large top view, where their titles fit.
+    let health = [
         Layout::TimeSeries {
             name: "energy".into(),
             origin: "/plots/energy".into(),
         },
         Layout::TimeSeries {
-            name: "log₁₀ constraint violation (m)".into(),
+            name: "log₁₀ |Φ|, m".into(),
             origin: "/plots/constraint_violation".into(),
         },
-    ]));
+    ];
     report.results.insert(
         "max_symmetry_defect_m".into(),
         serde_json::Value::Object(defects),
@@ -263,14 +264,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .sqrt(),
         drop = plank_setup().drop,
     );
-    let layout = simulation_layout(
-        Layout::Spatial3D {
-            name: "plank".into(),
-            origin: "/world".into(),
-            contents: vec!["$origin/**".into()],
-        },
-        plots,
-    );
+    let mut top = vec![Layout::Spatial3D {
+        name: "plank".into(),
+        origin: "/world".into(),
+        contents: vec!["$origin/**".into()],
+    }];
+    top.extend(health);
+    let layout = simulation_layout(Layout::Tabs(top), plots);
     Ok(SceneOutput {
         report,
         markdown,

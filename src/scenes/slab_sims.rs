@@ -327,13 +327,13 @@ pub fn run_scenario(
             colors,
         });
     }
-    let mut plot_views: Vec<Layout> = dirs
+    // The three deflections side by side under the lanes; the health plots are tabs of the
+    // large top view, where their titles fit a 1280 × 800 window.
+    let plot_views: Vec<Layout> = dirs
         .iter()
         .map(|dir| Layout::TimeSeries {
-            // The direction first: in the explorer four plots share the viewer's width and
-            // the end of a title is cut.
             name: format!(
-                "δ{} of node 8, m",
+                "δ{} node 8, m",
                 match *dir {
                     "xi" => "ξ",
                     "eta" => "η",
@@ -343,18 +343,16 @@ pub fn run_scenario(
             origin: format!("/plots/node8/delta_{dir}"),
         })
         .collect();
-    let mut tabs = Vec::new();
-    tabs.extend([
+    let health = [
         Layout::TimeSeries {
-            name: "log₁₀ |Φ|, m (constraint violation)".into(),
+            name: "log₁₀ |Φ|, m".into(),
             origin: "/plots/constraint_violation".into(),
         },
         Layout::TimeSeries {
             name: "energy".into(),
             origin: "/plots/energy".into(),
         },
-    ]);
-    plot_views.push(Layout::Tabs(tabs));
+    ];
     // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method.
     let scale = opts.deformation_scale_or(info.id, || {
         deformation_scale(
@@ -431,25 +429,23 @@ pub fn run_scenario(
         }
     }
     let view = if scale != 1.0 {
-        format!("slab, one lane per method (deflection ×{scale}; grey: undeformed)")
+        format!("slab lanes (×{scale}; grey: undeformed)")
     } else {
-        "slab, one lane per method (grey: undeformed)".to_string()
+        "slab lanes (grey: undeformed)".to_string()
     };
     report
         .results
         .insert("deformation_scale".into(), json!(scale));
     // The speed–accuracy chart as a tab of the large top view, where its labels fit.
-    let top = if visuals.iter().any(|v| v.path() == "metrics/speed_accuracy") {
-        Layout::Tabs(vec![
-            Layout::view3d(&view, "/world/slab"),
-            Layout::Spatial2D {
-                name: "speed vs accuracy".into(),
-                origin: "/metrics/speed_accuracy".into(),
-            },
-        ])
-    } else {
-        Layout::view3d(&view, "/world/slab")
-    };
+    let mut top = vec![Layout::view3d(&view, "/world/slab")];
+    if visuals.iter().any(|v| v.path() == "metrics/speed_accuracy") {
+        top.push(Layout::Spatial2D {
+            name: "speed vs accuracy".into(),
+            origin: "/metrics/speed_accuracy".into(),
+        });
+    }
+    top.extend(health);
+    let top = Layout::Tabs(top);
     let layout = simulation_layout(top, plot_views);
     Ok(SceneOutput {
         report,

@@ -71,6 +71,7 @@ pub fn scene_messages(
     Recorder {
         recording_suffix: suffix,
         default_blueprint_only: false,
+        viewer_area: None,
     }
     .messages(&out)
 }
