@@ -109,10 +109,11 @@ impl eframe::App for FlexmodesApp {
                     c.handoffs.push(start.elapsed());
                 }
             }
-            if self.handoff.step(ctx)
-                && let Some(c) = &mut self.capture
-            {
-                c.on_shown();
+            if self.handoff.step(ctx) {
+                explorer.shown();
+                if let Some(c) = &mut self.capture {
+                    c.on_shown();
+                }
             }
             explorer.viewer_state = self.handoff.state();
             if let Some(c) = &mut self.capture {

@@ -17,7 +17,7 @@ use crate::body_file::{BodyHandle, ImportedBody};
 pub struct Explorer {
     /// What the user chose (persisted).
     pub controls: Controls,
-    worker: Worker,
+    pub(super) worker: Worker,
     generation: u64,
     /// When the running request started, if one runs.
     pub computing_since: Option<Instant>,
@@ -38,6 +38,9 @@ pub struct Explorer {
     /// What the viewer does with the newest result (taken in while the previous one stays
     /// on screen); set by the window each frame.
     pub viewer_state: HandoffState,
+    /// The report of the recording the viewer shows, once the window said so (see
+    /// [`Self::shown`]); the panel's table follows it, not the newest result.
+    on_screen: Option<crate::report::Report>,
     /// The body file of the `modes` scene as loaded, with the text it was loaded from.
     body: Option<(String, BodyHandle)>,
     /// Text being typed into the panel, not yet applied (transient).
@@ -81,6 +84,7 @@ impl Explorer {
             save_path,
             fresh: false,
             viewer_state: HandoffState::Idle,
+            on_screen: None,
             body: None,
         };
         e.request();
@@ -105,7 +109,7 @@ impl Explorer {
 
     /// The body file of the `modes` scene, loaded (and checked) when its name changed; `None`
     /// for other scenes.
-    fn loaded_body(&mut self) -> crate::Result<Option<BodyHandle>> {
+    pub(super) fn loaded_body(&mut self) -> crate::Result<Option<BodyHandle>> {
         if !self.controls.takes_body() {
             return Ok(None);
         }
@@ -174,51 +178,9 @@ impl Explorer {
         changed
     }
 
-    /// The controls one click away that need new time integrations: one kept mode more or
-    /// fewer, and each of the scene's methods not ticked, ticked. Only simulations: their
-    /// integrations are what a switch waits for, and what the cache keeps.
-    pub fn likely_next(&self) -> Vec<Controls> {
-        let Ok(scene) = scenes::find(&self.controls.scene) else {
-            return Vec::new();
-        };
-        let c = scene.info.controls;
-        if c.end_time.is_none() {
-            return Vec::new();
-        }
-        let mut out = Vec::new();
-        if c.modes.is_some() {
-            out.push(Controls {
-                modes: self.controls.modes + 1,
-                ..self.controls.clone()
-            });
-            if self.controls.modes > 0 {
-                out.push(Controls {
-                    modes: self.controls.modes - 1,
-                    ..self.controls.clone()
-                });
-            }
-        }
-        for m in c.methods {
-            if !self.controls.methods.iter().any(|id| id == m.id()) {
-                let mut next = self.controls.clone();
-                next.methods.push(m.id().into());
-                out.push(next);
-            }
-        }
-        out
-    }
-
-    /// Hands [`Self::likely_next`] to the worker to run ahead of time.
-    fn anticipate(&mut self) {
-        let body = self.loaded_body().ok().flatten();
-        let options = self
-            .likely_next()
-            .iter()
-            .filter_map(|c| c.options_with(body.as_ref()).ok())
-            .collect::<Vec<_>>();
-        if !options.is_empty() {
-            self.worker.anticipate(&self.controls.scene, options);
-        }
+    /// The window's viewer now shows the newest result.
+    pub fn shown(&mut self) {
+        self.on_screen = self.current.as_ref().map(|c| c.report.clone());
     }
 
     /// Bytes the kept time integrations weigh.
@@ -229,50 +191,6 @@ impl Explorer {
     /// The most the kept time integrations may weigh, bytes.
     pub fn cache_budget(&self) -> usize {
         self.worker.cache_budget()
-    }
-
-    /// Whether the view shows an older result than the controls ask for, and why (computing
-    /// or loading into the viewer); `None` when it is up to date.
-    pub fn updating(&self) -> Option<String> {
-        if let Some(since) = self.computing_since {
-            let mut text = format!("updating: computing {:.1} s", since.elapsed().as_secs_f64());
-            if let Some(r) = self.worker.progress() {
-                text.push_str(&format!(" · t = {:.2} of {:.2} s", r.time, r.end_time));
-            }
-            return Some(text);
-        }
-        match self.viewer_state {
-            HandoffState::Loading { queued } => Some(format!(
-                "updating: loading the new result into the viewer ({queued} messages left)"
-            )),
-            HandoffState::Capturing | HandoffState::Covering { .. } => {
-                Some("updating: laying out the new result".into())
-            }
-            HandoffState::Idle => None,
-        }
-    }
-
-    /// Marks the view as out of date while it shows the previous result: a badge at the
-    /// top right of the window.
-    pub fn updating_badge(&self, ctx: &egui::Context) {
-        let Some(text) = self.updating() else { return };
-        // Above the cover of a switch (see `ViewerHandoff`).
-        egui::Area::new(egui::Id::new("flexmodes-updating"))
-            .order(egui::Order::Tooltip)
-            .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-16.0, 40.0))
-            .interactable(false)
-            .show(ctx, |ui| {
-                egui::Frame::popup(ui.style()).show(ui, |ui| {
-                    ui.horizontal(|ui| {
-                        ui.spinner();
-                        ui.label(text);
-                    });
-                    ui.label(
-                        egui::RichText::new("the view shows the previous result until then")
-                            .small(),
-                    );
-                });
-            });
     }
 
     /// Anticipated requests that ran to their end, and the cache's entries.
@@ -623,11 +541,16 @@ impl Explorer {
             };
             ui.label(egui::RichText::new(text).small());
         }
-        if let Some(c) = &self.current {
+        // The table of the recording on screen: the viewer may still show the previous one.
+        if let Some(report) = self
+            .on_screen
+            .as_ref()
+            .or(self.current.as_ref().map(|c| &c.report))
+        {
             ui.separator();
-            ui.strong(format!("results: {}", c.scene));
+            ui.strong(format!("results: {}", report.scene));
             egui::ScrollArea::both().max_height(320.0).show(ui, |ui| {
-                table_ui(ui, &c.report);
+                table_ui(ui, report);
             });
         }
         ui.separator();

@@ -4,11 +4,13 @@
 //! [`Explorer`] holds everything but the viewer, so headless tests drive it with egui_kittest;
 //! [`run`] wraps it with the viewer in a native window.
 
+mod anticipation;
 mod app;
 mod capture;
 mod controls;
 mod explorer;
 mod report_view;
+mod updating_badge;
 mod viewer_handoff;
 mod worker;
 

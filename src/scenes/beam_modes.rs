@@ -177,9 +177,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          1, 2, 5 (Fig. 6-3): Guyan raises frequencies, and the lopsided masters of (b) break the \
          axial symmetry.\n\
          * **guyan_c**: constraint modes for masters {b} (Fig. 6-5).\n\
-         * **boundary / fixed_interface**: modal truncation's boundary movements (no interior \
+         * **boundary / fixed_interface** (tab \"fixed\"): modal truncation's boundary movements (no interior \
          motion, Fig. 6-6) and the fixed-interface normal modes (Fig. 6-7).\n\
-         * **craig_bampton / mode_condensation**: Ψ_CB and Ψ_MC with {kept} kept modes \
+         * **craig_bampton / mode_condensation** (tabs \"CB\", \"MC\"): Ψ_CB and Ψ_MC with {kept} kept modes \
          (Figs. 6-8, 6-9); different columns, one column space.\n\n{}",
         report.table
     );
@@ -188,7 +188,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut tabs = Vec::new();
     let mut add = |set: &str, modes: Vec<(Vec<f64>, String)>, color, visuals: &mut Vec<Visual>| {
         visuals.extend(mode_set(&model, set, &modes, color));
-        tabs.push(Layout::view3d(set, &format!("/modes/{set}")));
+        tabs.push(Layout::view3d(tab_title(set), &format!("/modes/{set}")));
     };
     let ff_modes: Vec<(Vec<f64>, String)> = columns(&ff.vectors)
         .into_iter()
@@ -248,8 +248,17 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             &mut visuals,
         );
     }
+    // Two rows of tabs: the free-free and Guyan sets above, the rest below (eight tabs in one
+    // row do not fit a 1280 × 800 window).
+    let below = tabs.split_off(tabs.len().min(4));
     let layout = Layout::Horizontal(
-        vec![Layout::Tabs(tabs), Layout::scene_text()],
+        vec![
+            Layout::Vertical(
+                vec![Layout::Tabs(tabs), Layout::Tabs(below)],
+                vec![1.0, 1.0],
+            ),
+            Layout::scene_text(),
+        ],
         vec![3.0, 2.0],
     );
     Ok(SceneOutput {
@@ -260,4 +269,15 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         timeline: Some("phase".into()),
         y_up: true,
     })
+}
+
+/// A mode set's tab title, short enough for four tabs in a row of a 1280 × 800 window (the
+/// scene text names the sets in full).
+fn tab_title(set: &str) -> &str {
+    match set {
+        "fixed_interface" => "fixed",
+        "craig_bampton" => "CB",
+        "mode_condensation" => "MC",
+        other => other,
+    }
 }

@@ -396,13 +396,13 @@ fn layout(statics: &[StaticCase]) -> Layout {
             ]),
             Layout::Vertical(
                 vec![
-                    tabs_of("freq_error", "f error %"),
+                    tabs_of("freq_error", "Δf %"),
                     tabs_of("mac", "MAC"),
                     Layout::Tabs(
                         statics
                             .iter()
                             .map(|c| Layout::Spatial2D {
-                                name: format!("statics {}", c.id),
+                                name: c.id.to_string(),
                                 origin: format!("/statics/{}", c.id),
                             })
                             .collect(),

@@ -297,7 +297,11 @@ fn scene_text(study: &DualSpinStudy, tables: &str) -> String {
          at the arm's end. The joints are locked (a frozen configuration). The **motor** puts a \
          torque about z on the hub; the **sensors** read the platform's rotation about z and x. \
          Modal damping ζ = {ZETA} everywhere. Our frame members replace the slab of the scene's \
-         name: a brick slab's interfaces would need many nodes and a multi-point joint.\n\n\
+         name: a brick slab's interfaces would need many nodes and a multi-point joint. \
+         Views: **θz FRF: sets** and **θx FRF: sets**, the platform's rotation about z and x per \
+         unit motor torque by each mode set against the full model; **θz FRF: influence**, the \
+         set kept by influence against the lowest modes; **rotor σ**, each rotor mode's \
+         log10 σ/σmax + 12 (blue: kept).\n\n\
          **Mode sets**, modes truncated at {TRUNCATION_HZ} Hz = 2 × the 10 Hz of interest: CB \
          (constraint modes of the interface + fixed-interface modes), MR (free-interface modes \
          + Craig–Chang residual flexibility; rotor r-set = the six DOF of a boom's first node, \
@@ -337,20 +341,20 @@ fn layout() -> Layout {
                 vec![
                     Layout::Tabs(vec![
                         Layout::Spatial2D {
-                            name: "FRF platform θz: mode sets".into(),
+                            name: "θz FRF: sets".into(),
                             origin: "/frf/sets_yaw".into(),
                         },
                         Layout::Spatial2D {
-                            name: "FRF platform θx: mode sets".into(),
+                            name: "θx FRF: sets".into(),
                             origin: "/frf/sets_roll".into(),
                         },
                     ]),
                     Layout::Spatial2D {
-                        name: "FRF platform θz: influence vs lowest".into(),
+                        name: "θz FRF: influence".into(),
                         origin: "/frf/selection_yaw".into(),
                     },
                     Layout::BarChart {
-                        name: "rotor modes: log10 σ/σmax + 12 (blue kept)".into(),
+                        name: "rotor σ (blue kept)".into(),
                         origin: "/influence".into(),
                         legend: true,
                     },
