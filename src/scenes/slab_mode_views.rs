@@ -102,33 +102,22 @@ pub fn slab_mode_views(
     // Up to five charts in a row under the modes; more (a body's eight methods) in two rows
     // and a wider column, so each chart stays wider than its title bar in a 1280 × 800
     // window.
-    let layout = if bars.len() <= 5 {
-        Layout::Horizontal(
-            vec![
-                Layout::Vertical(
-                    vec![Layout::Tabs(tabs), Layout::Horizontal(bars, vec![])],
-                    vec![3.0, 1.0],
-                ),
-                Layout::scene_text(),
-            ],
-            vec![3.0, 2.0],
-        )
+    let (charts, heights, widths) = if bars.len() <= 5 {
+        (Layout::Horizontal(bars, vec![]), [3.0, 1.0], [3.0, 2.0])
     } else {
         let per_row = bars.len().div_ceil(2);
-        let rows: Vec<Layout> = bars
+        let rows = bars
             .chunks(per_row)
             .map(|row| Layout::Horizontal(row.to_vec(), vec![]))
             .collect();
-        Layout::Horizontal(
-            vec![
-                Layout::Vertical(
-                    vec![Layout::Tabs(tabs), Layout::Vertical(rows, vec![])],
-                    vec![1.0, 1.0],
-                ),
-                Layout::scene_text(),
-            ],
-            vec![2.0, 1.0],
-        )
+        (Layout::Vertical(rows, vec![]), [1.0, 1.0], [2.0, 1.0])
     };
+    let layout = Layout::Horizontal(
+        vec![
+            Layout::Vertical(vec![Layout::Tabs(tabs), charts], heights.to_vec()),
+            Layout::scene_text(),
+        ],
+        widths.to_vec(),
+    );
     (visuals, layout)
 }
