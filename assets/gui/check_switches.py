@@ -99,7 +99,7 @@ def measured(log):
     if m:
         out["toggle_to_shown_s"] = [float(x) for x in m.group(1).split(",") if x.strip()]
     m = re.search(r"resident memory, MiB: (\d+) after the first recording, (\d+) after the "
-                  r"last \((\d+) shown\), peak (\d+); growth (\d+) MiB; run cache ([\d.]+) of "
+                  r"last \((\d+) shown[^)]*\), peak (\d+); growth (\d+) MiB; run cache ([\d.]+) of "
                   r"its (\d+) MiB bound", log)
     if m:
         keys = ["first_mib", "last_mib", "shown", "peak_mib", "growth_mib", "cache_mib",

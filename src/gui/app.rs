@@ -112,7 +112,7 @@ impl eframe::App for FlexmodesApp {
             if self.handoff.step(ctx) {
                 explorer.shown();
                 if let Some(c) = &mut self.capture {
-                    c.on_shown();
+                    c.on_shown(ctx);
                 }
             }
             explorer.viewer_state = self.handoff.state();

@@ -43,8 +43,8 @@ pub(super) struct Capture {
     frames: Option<FrameSeries>,
     /// Frame times still to take for the current toggle: (toggle number, frame number, due).
     frames_due: Vec<(u32, u32, Instant)>,
-    /// Resident memory after each recording was shown, bytes.
-    pub resident: Vec<u64>,
+    /// Memory after each recording was shown.
+    pub memory: Vec<MemorySample>,
     /// Time spent handing each new recording to the viewer, newest last.
     pub handoffs: Vec<Duration>,
     /// When the last toggle was made.
@@ -86,7 +86,7 @@ impl Capture {
             requested: false,
             frames,
             frames_due: Vec::new(),
-            resident: Vec::new(),
+            memory: Vec::new(),
             handoffs: Vec::new(),
             toggled: None,
             toggle_to_shown: Vec::new(),
@@ -94,10 +94,10 @@ impl Capture {
     }
 
     /// A new recording became the one shown.
-    pub(super) fn on_shown(&mut self) {
+    pub(super) fn on_shown(&mut self, ctx: &egui::Context) {
         self.shown += 1;
         self.settle = 0;
-        self.resident.push(resident_bytes().unwrap_or(0));
+        self.memory.push(MemorySample::now(ctx));
         if let Some(t) = self.toggled.take() {
             self.toggle_to_shown.push(t.elapsed());
         }
@@ -252,29 +252,96 @@ impl Capture {
                 "  anticipated requests run to their end: {anticipated}; cache entries: {cached}"
             );
         }
-        let mib = |b: u64| b as f64 / (1u64 << 20) as f64;
-        eprintln!(
-            "resident memory after each recording shown, MiB: {}",
-            self.resident
-                .iter()
-                .map(|b| format!("{:.0}", mib(*b)))
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-        if let (Some(first), Some(last)) = (self.resident.first(), self.resident.last()) {
-            let peak = self.resident.iter().copied().max().unwrap_or(0);
-            eprintln!(
-                "resident memory, MiB: {:.0} after the first recording, {:.0} after the last \
-                 ({} shown), peak {:.0}; growth {:.0} MiB; run cache {:.1} of its {:.0} MiB bound",
-                mib(*first),
-                mib(*last),
-                self.resident.len(),
-                mib(peak),
-                mib(last.saturating_sub(*first)),
-                mib(e.cached_bytes() as u64),
-                mib(e.cache_budget() as u64),
-            );
+        report_memory(&self.memory, e);
+    }
+}
+
+/// Memory measured after a recording was shown.
+#[derive(Debug, Clone, Copy)]
+pub struct MemorySample {
+    /// The process' resident set size, bytes (everything: our heap, the viewer's, the
+    /// graphics driver's).
+    pub resident: u64,
+    /// Bytes live on the Rust heap (ours and the embedded viewer's), as counted by the
+    /// accounting allocator the `flexmodes` binary installs; `None` where it is not installed
+    /// (tests).
+    pub heap: Option<u64>,
+    /// Frames drawn so far.
+    pub frames: u64,
+}
+
+impl MemorySample {
+    /// Measures now.
+    pub fn now(ctx: &egui::Context) -> Self {
+        Self {
+            resident: resident_bytes().unwrap_or(0),
+            heap: rust_heap_bytes(),
+            frames: ctx.cumulative_frame_nr(),
         }
+    }
+}
+
+/// Bytes live on the Rust heap, if the binary counts them (see `main.rs`).
+pub fn rust_heap_bytes() -> Option<u64> {
+    rerun::external::re_viewer::external::re_memory::accounting_allocator::global_allocs()
+        .map(|c| c.size as u64)
+}
+
+/// Prints the memory series of a scripted run and what it says: growth of the Rust heap
+/// (data: our run cache, the viewer's stores and caches) apart from growth outside it (the
+/// graphics driver's), per switch and per frame drawn.
+fn report_memory(memory: &[MemorySample], e: &Explorer) {
+    let mib = |b: u64| b as f64 / (1u64 << 20) as f64;
+    let series = |f: &dyn Fn(&MemorySample) -> u64| {
+        memory
+            .iter()
+            .map(|m| format!("{:.0}", mib(f(m))))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    eprintln!(
+        "resident memory after each recording shown, MiB: {}",
+        series(&|m| m.resident)
+    );
+    if memory.iter().all(|m| m.heap.is_some()) {
+        eprintln!(
+            "Rust heap (ours and the viewer's) after each recording shown, MiB: {}",
+            series(&|m| m.heap.unwrap_or(0))
+        );
+    }
+    let (Some(first), Some(last)) = (memory.first(), memory.last()) else {
+        return;
+    };
+    let peak = memory.iter().map(|m| m.resident).max().unwrap_or(0);
+    let frames = last.frames.saturating_sub(first.frames);
+    eprintln!(
+        "resident memory, MiB: {:.0} after the first recording, {:.0} after the last \
+         ({} shown, {frames} frames drawn between), peak {:.0}; growth {:.0} MiB; \
+         run cache {:.1} of its {:.0} MiB bound",
+        mib(first.resident),
+        mib(last.resident),
+        memory.len(),
+        mib(peak),
+        mib(last.resident.saturating_sub(first.resident)),
+        mib(e.cached_bytes() as u64),
+        mib(e.cache_budget() as u64),
+    );
+    if let (Some(h0), Some(h1)) = (first.heap, last.heap) {
+        let peak_heap = memory.iter().filter_map(|m| m.heap).max().unwrap_or(0);
+        let outside = |m: &MemorySample| m.resident.saturating_sub(m.heap.unwrap_or(0));
+        let grown_outside = outside(last) as f64 - outside(first) as f64;
+        eprintln!(
+            "Rust heap, MiB: {:.0} after the first recording, {:.0} after the last, peak {:.0} \
+             (growth {:+.1} MiB over {} switches); outside the Rust heap (graphics driver, \
+             allocator slack) grew {:.0} MiB, {:.2} MiB per frame drawn",
+            mib(h0),
+            mib(h1),
+            mib(peak_heap),
+            (h1 as f64 - h0 as f64) / (1u64 << 20) as f64,
+            memory.len() - 1,
+            grown_outside / (1u64 << 20) as f64,
+            grown_outside / (1u64 << 20) as f64 / frames.max(1) as f64,
+        );
     }
 }
 
