@@ -1,6 +1,6 @@
-//! The inline markdown of a report's text lines (`code`, **bold**, a leading `- ` bullet), cut
-//! into styled spans, so a panel that draws text itself (the explorer's side panel) shows the
-//! text, not its markup.
+//! The inline markdown of a report's text lines (`code`, **bold**, a leading `- ` bullet, a
+//! `#` heading), cut into styled spans, so a panel that draws text itself (the explorer's side
+//! panel) shows the text, not its markup.
 
 /// How a span is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -16,6 +16,14 @@ pub enum SpanStyle {
 /// The spans of one line, markup removed: a leading `- ` or `* ` becomes `• `; an unmatched
 /// marker stays as text.
 pub fn inline_spans(line: &str) -> Vec<(String, SpanStyle)> {
+    // A heading (`## Mode sets`) is one strong span, its hashes gone.
+    let hashes = line.chars().take_while(|&c| c == '#').count();
+    if (1..=6).contains(&hashes)
+        && let Some(title) = line[hashes..].strip_prefix(' ')
+    {
+        let title = title.replace("**", "").replace('`', "");
+        return vec![(title.trim().to_string(), SpanStyle::Strong)];
+    }
     let line = match line.strip_prefix("- ").or_else(|| line.strip_prefix("* ")) {
         Some(rest) => format!("• {rest}"),
         None => line.to_string(),
@@ -74,5 +82,11 @@ mod tests {
         );
         assert_eq!(inline_spans("- one"), vec![("• one".into(), Plain)]);
         assert_eq!(inline_spans("a ` b"), vec![("a ` b".into(), Plain)]);
+        for heading in ["# Mode sets", "## Mode sets", "### **Mode** sets"] {
+            assert_eq!(inline_spans(heading), vec![("Mode sets".into(), Strong)]);
+        }
+        // Not a heading: no space after the hashes, or more than six.
+        assert_eq!(inline_spans("#5 node"), vec![("#5 node".into(), Plain)]);
+        assert_eq!(inline_spans("####### x"), vec![("####### x".into(), Plain)]);
     }
 }

@@ -33,6 +33,7 @@ pub mod fem;
 pub mod gui;
 pub mod inline_markdown;
 pub mod linalg;
+pub mod markdown_tables;
 pub mod models;
 mod progress;
 pub mod record;

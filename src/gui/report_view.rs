@@ -5,6 +5,7 @@ use rerun::external::egui;
 
 use crate::{
     inline_markdown::{SpanStyle, inline_spans},
+    markdown_tables::table_width,
     report::{Block, Report, Table},
 };
 
@@ -13,11 +14,20 @@ use crate::{
 pub(super) fn table_ui(ui: &mut egui::Ui, report: &Report) {
     for (id, block) in report.blocks().into_iter().enumerate() {
         match block {
-            // Wide tables scroll sideways instead of being cut at the panel's edge.
+            // A table wider than the panel is drawn as a list, one wrapped item per row,
+            // instead of a grid cut at the panel's edge.
             Block::Table(table) => {
-                egui::ScrollArea::horizontal()
-                    .id_salt(("report-table", id))
-                    .show(ui, |ui| grid_ui(ui, id, table));
+                let texts: Vec<Vec<&str>> = table
+                    .rows
+                    .iter()
+                    .map(|r| r.iter().map(|c| c.text.as_str()).collect())
+                    .collect();
+                let header: Vec<&str> = table.header.iter().map(String::as_str).collect();
+                if table_width(&header, &texts) <= f64::from(ui.available_width()) {
+                    grid_ui(ui, id, table);
+                } else {
+                    list_ui(ui, table);
+                }
             }
             // The text's inline markdown drawn, not shown as markup.
             Block::Text(text) => {
@@ -39,7 +49,8 @@ pub(super) fn table_ui(ui: &mut egui::Ui, report: &Report) {
     }
 }
 
-fn grid_ui(ui: &mut egui::Ui, id: usize, table: &Table) {
+/// The best and worst mark of every cell of a table's ranked columns.
+fn marks(table: &Table) -> Vec<Vec<Option<egui::Color32>>> {
     let columns = table.header.len();
     let mut marks = vec![vec![None; columns]; table.rows.len()];
     for c in table
@@ -57,6 +68,38 @@ fn grid_ui(ui: &mut egui::Ui, id: usize, table: &Table) {
             }
         }
     }
+    marks
+}
+
+/// A table as a list: each row's first cell in bold, then its other cells after their
+/// column titles, wrapped to the panel; ranked cells keep their colours.
+fn list_ui(ui: &mut egui::Ui, table: &Table) {
+    let marks = marks(table);
+    for (r, row) in table.rows.iter().enumerate() {
+        ui.horizontal_wrapped(|ui| {
+            ui.spacing_mut().item_spacing.x = 0.0;
+            if let Some(first) = row.first() {
+                ui.label(egui::RichText::new(format!("• {} — ", first.text)).strong());
+            }
+            let mut sep = "";
+            for (c, cell) in row.iter().enumerate().skip(1) {
+                if cell.text.trim().is_empty() {
+                    continue;
+                }
+                let title = table.header.get(c).map_or("", |h| h.as_str());
+                ui.label(format!("{sep}{title}: "));
+                match marks[r].get(c).copied().flatten() {
+                    Some(color) => ui.colored_label(color, &cell.text),
+                    None => ui.label(&cell.text),
+                };
+                sep = " · ";
+            }
+        });
+    }
+}
+
+fn grid_ui(ui: &mut egui::Ui, id: usize, table: &Table) {
+    let marks = marks(table);
     egui::Grid::new(("report", id))
         .striped(true)
         .show(ui, |ui| {

@@ -253,12 +253,16 @@ impl Writer<'_> {
                     .with_space_origin(origin.as_str()),
             )
             .map_err(rerun_error)?;
-        if let Layout::BarChart { legend: false, .. } = layout {
+        // A bar chart's legend, where shown, sits at the top left: the charts' bars (frequencies,
+        // errors by mode number) rise to the right, so the legend covers the fewest there.
+        if let Layout::BarChart { legend, .. } = layout {
+            let plot_legend = if *legend {
+                PlotLegend::new().with_corner(rerun::blueprint::components::Corner2D::LeftTop)
+            } else {
+                PlotLegend::new().with_visible(false)
+            };
             self.bp
-                .log(
-                    format!("{path}/PlotLegend").as_str(),
-                    &PlotLegend::new().with_visible(false),
-                )
+                .log(format!("{path}/PlotLegend").as_str(), &plot_legend)
                 .map_err(rerun_error)?;
         }
         // A 2D view shows all it draws (planar bodies are drawn with y up: y flipped), so a beam

@@ -123,6 +123,24 @@ impl Layout {
         }
     }
 
+    /// The size of the view showing `origin` (points, width and height) when the layout fills
+    /// `size`; `None` when no view shows it. A tab's view has its container's size.
+    pub fn view_size(&self, origin: &str, size: (f64, f64)) -> Option<(f64, f64)> {
+        let (width, height) = size;
+        match self {
+            Layout::Horizontal(items, shares) => items
+                .iter()
+                .zip(split(width, shares, items.len()))
+                .find_map(|(item, w)| item.view_size(origin, (w, height))),
+            Layout::Vertical(items, shares) => items
+                .iter()
+                .zip(split(height, shares, items.len()))
+                .find_map(|(item, h)| item.view_size(origin, (width, h))),
+            Layout::Tabs(items) => items.iter().find_map(|item| item.view_size(origin, size)),
+            view => view.origins().iter().any(|o| o == origin).then_some(size),
+        }
+    }
+
     /// The view's tab title; `None` for a container.
     pub fn title(&self) -> Option<&str> {
         match self {

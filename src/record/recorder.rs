@@ -98,6 +98,13 @@ impl Recorder {
                 list.join("; ")
             ));
         }
+        // Tables wider than the text panel are written as lists (the panel would cut them).
+        if let Some((width, _)) = layout.view_size("/scene", self.area()) {
+            markdown = crate::markdown_tables::fit_tables(
+                &markdown,
+                width - crate::markdown_tables::PANEL_MARGIN,
+            );
+        }
         rec.log_static("scene", &rerun::TextDocument::from_markdown(markdown))?;
         let up = if out.y_up {
             rerun::ViewCoordinates::RIGHT_HAND_Y_UP()
@@ -491,16 +498,6 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                     .with_abscissa(abscissa.clone())
                     .with_widths([*width as f32])
                     .with_color(color(*c)),
-            )?;
-        }
-        Visual::Bars {
-            path,
-            values,
-            color: c,
-        } => {
-            rec.log_static(
-                path.as_str(),
-                &rerun::BarChart::new(values.clone()).with_color(color(*c)),
             )?;
         }
     }

@@ -227,15 +227,6 @@ pub enum Visual {
         /// Bar colour.
         color: Color,
     },
-    /// Scalar values shown as a bar chart (`metrics/...`).
-    Bars {
-        /// Entity path.
-        path: String,
-        /// Values.
-        values: Vec<f64>,
-        /// The bars' colour: a method's own, so the chart matches its 3-D view.
-        color: Color,
-    },
 }
 
 impl Visual {
@@ -252,7 +243,6 @@ impl Visual {
             | Visual::Scatter { path, .. }
             | Visual::Label3D { path, .. }
             | Visual::Polyline2D { path, .. }
-            | Visual::Bars { path, .. }
             | Visual::SeriesBars { path, .. } => path,
         }
     }

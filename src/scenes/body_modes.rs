@@ -9,7 +9,8 @@ use std::time::Instant;
 use serde_json::{Map, Value, json};
 
 use super::{
-    SceneInfo, SceneOptions, SceneOutput, body_import::FULL_MODES, mode_visuals::undeformed,
+    SceneInfo, SceneOptions, SceneOutput, body_import::FULL_MODES, frequency_bars::FrequencyBars,
+    mode_visuals::undeformed,
 };
 use crate::analysis::pair_modes;
 use crate::models::{
@@ -22,7 +23,7 @@ use crate::{
     Error, Result,
     body_file::{BodyHandle, ImportedBody},
     linalg::{GeneralizedEigen, principal_angles},
-    record::{Layout, Visual},
+    record::Layout,
     reduction::{Method, ModeSelection},
     report::{Cell, Report, Table, fmt_hz, residual_note, sig, sig_vec},
 };
@@ -199,6 +200,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         visuals.push(undeformed(model));
     }
     let mut bars = Vec::new();
+    let mut freq_bars = FrequencyBars::new(COMPARED_MODES);
+    freq_bars.push(Method::NoReduction, &full_hz);
     // The full body's rigid and lowest elastic modes each basis should contain.
     let compared =
         (full.zero_modes + full_hz.len().min(COMPARED_MODES)).min(full.modes.vectors.ncols());
@@ -300,17 +303,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             Cell::number(rigid_hz, format!("{rigid_hz:.2e}")),
             Cell::number(elapsed, format!("{elapsed:.3}")),
         ]);
-        visuals.push(Visual::Bars {
-            path: format!("metrics/reduced_hz/{}", m.id()),
-            values: hz[..hz.len().min(12)].to_vec(),
-            color: super::mode_visuals::method_color(m),
-        });
-        bars.push(Layout::BarChart {
-            name: m.id().into(),
-            origin: format!("/metrics/reduced_hz/{}", m.id()),
-            legend: false,
-        });
+        freq_bars.push(m, &hz);
     }
+
+    visuals.extend(freq_bars.visuals());
+    bars.insert(0, freq_bars.layout());
 
     let mut report = Report::new(INFO.id);
     let p = &mut report.parameters;
@@ -518,8 +515,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          with the full body's, paired by order; the angle is the largest principal angle between the basis \
          and the full body's zero-energy and six lowest elastic modes (0: contained). \"rigid \
          modes at\" is the highest frequency a reduced model gives its rigid-body motions, \
-         which should be zero: round-off in the method's coordinates lifts it.\n\n{}",
-        model.name, body.description, report.table
+         which should be zero: round-off in the method's coordinates lifts it. {}\n\n{}",
+        model.name,
+        body.description,
+        freq_bars.caption(),
+        report.table
     );
     let layout = if let (true, Some((psi_s, fi))) = (body.has_coordinates, &held) {
         let (mode_visuals, l) = super::slab_mode_views::slab_mode_views(

@@ -12,6 +12,7 @@ pub mod body_simulation;
 mod body_simulation_visuals;
 pub mod cantilever_variants;
 mod failures;
+mod frequency_bars;
 mod mode_visuals;
 mod options;
 pub mod plank_symmetry;

@@ -99,11 +99,12 @@ pub fn slab_mode_views(
         let front = tabs.remove(i);
         tabs.insert(0, front);
     }
-    // Up to five charts in a row under the modes; more (a body's eight methods) in two rows
+    // Up to five charts in a row under the modes (a third of the height: the frequency
+    // chart's legend needs room); more (a body's eight methods) in two rows
     // and a wider column, so each chart stays wider than its title bar in a 1280 × 800
     // window.
     let (charts, heights, widths) = if bars.len() <= 5 {
-        (Layout::Horizontal(bars, vec![]), [3.0, 1.0], [3.0, 2.0])
+        (Layout::Horizontal(bars, vec![]), [2.0, 1.0], [3.0, 2.0])
     } else {
         let per_row = bars.len().div_ceil(2);
         let rows = bars

@@ -4,7 +4,7 @@
 use serde_json::{Map, Value, json};
 
 use super::{
-    SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed,
+    SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
     slab_mode_views::slab_mode_views,
 };
 use crate::dynamics::AxisKind;
@@ -12,7 +12,6 @@ use crate::{
     Result,
     analysis::{elastic_hz, free_free_modes, reduced_hz, reduced_modes},
     fem::{SlabParameters, slab},
-    record::{Layout, Visual},
     reduction::{
         Method, ModeSelection, NodalFixedAxes, Partition, ReductionParameters, constraint_modes,
         fixed_interface_modes, reduce,
@@ -46,6 +45,8 @@ pub const APP_B_BRICKS: [usize; 3] = [4, 2, 1];
 const EXTRA_GUYAN_MASTERS: [usize; 2] = [5, 11];
 /// Free-free modes drawn (all frequencies are reported).
 const SHOWN_FREE_FREE: usize = 12;
+/// Frequencies per model in the bar chart.
+const SHOWN_BARS: usize = 12;
 const AVAILABLE: [Method; 4] = [
     Method::ModalTruncation,
     Method::CraigBampton,
@@ -84,17 +85,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         fmt_hz(&free_free_hz[..free_free_hz.len().min(8)]),
     ]];
     let mut visuals = vec![undeformed(&model)];
-    let mut bars = Vec::new();
-    visuals.push(Visual::Bars {
-        path: "metrics/reduced_hz/nr".into(),
-        values: free_free_hz[..free_free_hz.len().min(12)].to_vec(),
-        color: super::mode_visuals::method_color(Method::NoReduction),
-    });
-    bars.push(Layout::BarChart {
-        name: "nr".into(),
-        origin: "/metrics/reduced_hz/nr".into(),
-        legend: false,
-    });
+    let mut bars = FrequencyBars::new(SHOWN_BARS);
+    bars.push(Method::NoReduction, &free_free_hz);
     for &m in &methods {
         let params = ReductionParameters {
             boundary_nodes: if m == Method::Guyan {
@@ -125,16 +117,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             let hz_nf = reduced_hz(&model, &nf)?;
             reduced_nf.insert(m.id().into(), json!(sig_vec(&hz_nf)));
         }
-        visuals.push(Visual::Bars {
-            path: format!("metrics/reduced_hz/{}", m.id()),
-            values: hz[..hz.len().min(12)].to_vec(),
-            color: super::mode_visuals::method_color(m),
-        });
-        bars.push(Layout::BarChart {
-            name: m.id().into(),
-            origin: format!("/metrics/reduced_hz/{}", m.id()),
-            legend: false,
-        });
+        bars.push(m, &hz);
     }
 
     let mut report = Report::new(INFO.id);
@@ -176,13 +159,16 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         "# slab-modes\n\nThe App. B slab (4 × 2 × 1 m, 8 trilinear bricks, 30 nodes, E = 0.2e6 Pa, \
          ν = 0.33, 62.4 kg lumped as Table B-1). Views: free-free elastic modes, the constraint \
          modes of boundary nodes {boundary:?} (unit boundary displacements, interior static), \
-         the {kept} kept fixed-interface modes, and bar charts of each reduced model's \
-         free-free frequencies. CB, MC and GR contain the six rigid-body motions and, being Ritz \
+         the {kept} kept fixed-interface modes, and the full and reduced models' free-free \
+         frequencies side by side. CB, MC and GR contain the six rigid-body motions and, being Ritz \
          approximations, are stiffer than the full model (Guyan most). MT does not: its \
          boundary columns move the boundary nodes alone, so it has no rigid-body mode and its \
-         lowest frequencies are spoiled rigid-body motions, the failure §7.1 shows on the beam.\n\n{}",
+         lowest frequencies are spoiled rigid-body motions, the failure §7.1 shows on the beam. \
+         {}\n\n{}",
+        bars.caption(),
         report.table
     );
+    visuals.extend(bars.visuals());
 
     let (mode_visuals, layout) = slab_mode_views(
         &model,
@@ -193,7 +179,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         SHOWN_FREE_FREE,
         kept,
         "free_free",
-        bars,
+        vec![bars.layout()],
     );
     visuals.extend(mode_visuals);
     Ok(SceneOutput {

@@ -5,13 +5,14 @@ use std::time::Instant;
 
 use serde_json::{Map, Value, json};
 
-use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed};
+use super::{
+    SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
+};
 use crate::{
     Error, Result,
     analysis::{elastic_hz, lowest_free_free_modes, reduced_modes},
     fem::{SlabParameters, slab},
     linalg::{check_reduction_memory, peak_resident_bytes},
-    record::{Layout, Visual},
     reduction::{
         InteriorProblem, Method, ModeCondensationRoute, ModeSelection, SolverPath,
         craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
@@ -83,7 +84,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     let mut method_s = Map::new();
     let mut rows = Vec::new();
     let mut visuals = vec![undeformed(&model)];
-    let mut bars = Vec::new();
+    let mut bars = FrequencyBars::new(12);
     for &m in &methods {
         let started = Instant::now();
         let basis = match m {
@@ -114,20 +115,13 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
             fmt_hz(&hz[..hz.len().min(6)]),
             format!("{elapsed:.3}"),
         ]);
-        visuals.push(Visual::Bars {
-            path: format!("metrics/reduced_hz/{}", m.id()),
-            values: hz[..hz.len().min(12)].to_vec(),
-            color: super::mode_visuals::method_color(m),
-        });
-        bars.push(Layout::BarChart {
-            name: m.id().into(),
-            origin: format!("/metrics/reduced_hz/{}", m.id()),
-            legend: false,
-        });
+        bars.push(m, &hz);
     }
     opts.progress.phase("free-free modes")?;
     let ff = lowest_free_free_modes(&model, FREE_FREE)?;
     let free_free_hz = elastic_hz(&ff);
+    bars.push_first(Method::NoReduction, &free_free_hz);
+    visuals.extend(bars.visuals());
     let peak = peak_resident_bytes();
 
     let mut report = Report::new(info.id);
@@ -205,11 +199,13 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
          the kept modes above {} interior DOF). Four point supports soften as the mesh \
          refines, so the fixed-interface frequencies do not converge; the free-free ones \
          converge from above. Views: the surface wireframe (grid lines thinned to at most 8 \
-         per face), free-free modes, constraint modes and fixed-interface modes drawn on it.\n\n{}",
+         per face), free-free modes, constraint modes and fixed-interface modes drawn on it. \
+         {}\n\n{}",
         bricks[0],
         bricks[1],
         bricks[2],
         crate::reduction::MC_COMPLETE_ROUTE_LIMIT,
+        bars.caption(),
         report.table
     );
 
@@ -222,7 +218,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         FREE_FREE,
         kept,
         "fixed_interface",
-        bars,
+        vec![bars.layout()],
     );
     visuals.extend(mode_visuals);
     Ok(SceneOutput {
