@@ -10,6 +10,7 @@ use std::{
 use rerun::external::egui;
 
 use super::{Explorer, FEWER_MODES, MORE_MODES};
+use crate::linalg::resident_bytes;
 
 /// Frames to let the viewer lay out a recording before the final screenshot.
 const SETTLE_FRAMES: u32 = 30;
@@ -291,11 +292,11 @@ pub fn rust_heap_bytes() -> Option<u64> {
 /// (data: our run cache, the viewer's stores and caches) apart from growth outside it (the
 /// graphics driver's), per switch and per frame drawn.
 fn report_memory(memory: &[MemorySample], e: &Explorer) {
-    let mib = |b: u64| b as f64 / (1u64 << 20) as f64;
+    let mib = |b: f64| b / (1u64 << 20) as f64;
     let series = |f: &dyn Fn(&MemorySample) -> u64| {
         memory
             .iter()
-            .map(|m| format!("{:.0}", mib(f(m))))
+            .map(|m| format!("{:.0}", mib(f(m) as f64)))
             .collect::<Vec<_>>()
             .join(", ")
     };
@@ -318,29 +319,28 @@ fn report_memory(memory: &[MemorySample], e: &Explorer) {
         "resident memory, MiB: {:.0} after the first recording, {:.0} after the last \
          ({} shown, {frames} frames drawn between), peak {:.0}; growth {:.0} MiB; \
          run cache {:.1} of its {:.0} MiB bound",
-        mib(first.resident),
-        mib(last.resident),
+        mib(first.resident as f64),
+        mib(last.resident as f64),
         memory.len(),
-        mib(peak),
-        mib(last.resident.saturating_sub(first.resident)),
-        mib(e.cached_bytes() as u64),
-        mib(e.cache_budget() as u64),
+        mib(peak as f64),
+        mib(last.resident.saturating_sub(first.resident) as f64),
+        mib(e.cached_bytes() as f64),
+        mib(e.cache_budget() as f64),
     );
     if let (Some(h0), Some(h1)) = (first.heap, last.heap) {
         let peak_heap = memory.iter().filter_map(|m| m.heap).max().unwrap_or(0);
-        let outside = |m: &MemorySample| m.resident.saturating_sub(m.heap.unwrap_or(0));
-        let grown_outside = outside(last) as f64 - outside(first) as f64;
+        let outside = |m: &MemorySample| m.resident as f64 - m.heap.unwrap_or(0) as f64;
+        let grown_outside = mib(outside(last) - outside(first));
         eprintln!(
             "Rust heap, MiB: {:.0} after the first recording, {:.0} after the last, peak {:.0} \
              (growth {:+.1} MiB over {} switches); outside the Rust heap (graphics driver, \
-             allocator slack) grew {:.0} MiB, {:.2} MiB per frame drawn",
-            mib(h0),
-            mib(h1),
-            mib(peak_heap),
-            (h1 as f64 - h0 as f64) / (1u64 << 20) as f64,
+             allocator slack) grew {grown_outside:.0} MiB, {:.2} MiB per frame drawn",
+            mib(h0 as f64),
+            mib(h1 as f64),
+            mib(peak_heap as f64),
+            mib(h1 as f64 - h0 as f64),
             memory.len() - 1,
-            grown_outside / (1u64 << 20) as f64,
-            grown_outside / (1u64 << 20) as f64 / frames.max(1) as f64,
+            grown_outside / frames.max(1) as f64,
         );
     }
 }
@@ -356,13 +356,4 @@ fn save_png(image: &egui::ColorImage, path: &std::path::Path, say: bool) {
         },
         None => eprintln!("error: screenshot buffer has the wrong size"),
     }
-}
-
-/// The process' resident set size (Linux: `/proc/self/statm`), bytes.
-pub fn resident_bytes() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/self/statm").ok()?;
-    let pages: u64 = text.split_whitespace().nth(1)?.parse().ok()?;
-    // SAFETY: sysconf takes no pointers.
-    let page = unsafe { libc::sysconf(libc::_SC_PAGESIZE) };
-    Some(pages * u64::try_from(page).ok()?)
 }

@@ -15,7 +15,7 @@ mod viewer_handoff;
 mod worker;
 
 pub use app::{FEWER_MODES, MORE_MODES, VIEWER_AREA, ViewerOptions, run, run_with_body};
-pub use capture::{FrameSeries, MemorySample, resident_bytes, rust_heap_bytes};
+pub use capture::FrameSeries;
 pub use controls::{Change, Command, Controls, MESH_PRESETS};
 pub use explorer::Explorer;
 pub use viewer_handoff::{HandoffState, ViewerHandoff};

@@ -39,6 +39,11 @@ pub fn available_bytes() -> Option<u64> {
     proc_kib("/proc/meminfo", "MemAvailable:")
 }
 
+/// The process's resident set now (`VmRSS` of `/proc/self/status`), bytes.
+pub fn resident_bytes() -> Option<u64> {
+    proc_kib("/proc/self/status", "VmRSS:")
+}
+
 /// The process's peak resident set (`VmHWM` of `/proc/self/status`), bytes.
 pub fn peak_resident_bytes() -> Option<u64> {
     proc_kib("/proc/self/status", "VmHWM:")
@@ -61,4 +66,19 @@ fn proc_kib(file: &str, key: &str) -> Option<u64> {
 /// phase; false where the kernel does not allow it (the peak then stays the process's).
 pub fn reset_peak_resident() -> bool {
     std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn the_resident_set_is_read_and_never_above_its_peak() {
+        let now = resident_bytes().expect("VmRSS in /proc/self/status");
+        let peak = peak_resident_bytes().expect("VmHWM in /proc/self/status");
+        // A test process holds at least its own code: over a megabyte.
+        assert!(now > 1 << 20, "{now}");
+        assert!(now <= peak, "resident {now} above peak {peak}");
+    }
 }

@@ -31,7 +31,7 @@ pub use lyapunov::{solve_block_diagonal_lyapunov, solve_lyapunov};
 pub use mass_matrix::MassMatrix;
 pub use memory::{
     available_bytes, check_reduction_memory, estimated_reduction_bytes, peak_resident_bytes,
-    reset_peak_resident,
+    reset_peak_resident, resident_bytes,
 };
 pub use nested_dissection::nested_dissection;
 pub use partial_eigen::{

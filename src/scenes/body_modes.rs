@@ -536,20 +536,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         visuals.extend(mode_visuals);
         l
     } else {
-        // The charts in rows of four: eight side by side would be narrower than their title
-        // bars in a 1280 × 800 window.
-        let rows: Vec<Layout> = bars
-            .chunks(4)
-            .map(|row| Layout::Horizontal(row.to_vec(), vec![]))
-            .collect();
-        let charts = if rows.len() == 1 {
-            rows.into_iter()
-                .next()
-                .unwrap_or(Layout::Horizontal(vec![], vec![]))
-        } else {
-            Layout::Vertical(rows, vec![])
-        };
-        Layout::Horizontal(vec![charts, Layout::scene_text()], vec![3.0, 2.0])
+        // No geometry to draw: the charts (the frequencies, and the interface sweep and
+        // response where asked for) stacked at full width beside the text.
+        Layout::Horizontal(
+            vec![Layout::Vertical(bars, vec![]), Layout::scene_text()],
+            vec![3.0, 2.0],
+        )
     };
     Ok(SceneOutput {
         report,

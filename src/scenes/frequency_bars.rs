@@ -14,6 +14,9 @@ const ORIGIN: &str = "hz";
 /// Share of a mode number's unit width the bars of all models take together.
 const GROUP_WIDTH: f64 = 0.8;
 
+/// Modes per model a scene shows unless it has its own count.
+pub const SHOWN_MODES: usize = 12;
+
 /// The title of the chart: what the bars are (y), in which unit, against what (x).
 pub const TITLE: &str = "f, Hz, by mode no.";
 

@@ -17,7 +17,7 @@ const MAX_DRAWN_CONSTRAINT_MODES: usize = 24;
 /// The slab's mode views: free-free elastic modes (at most `shown_free_free`), the constraint
 /// modes $[I; \Psi_s]$ of the boundary DOF and the first `kept` fixed-interface modes, each
 /// set under `modes/<set>/<k>`, and the layout with those tabs (`first_tab` in front) above the
-/// reduced-frequency bar charts, beside the scene text.
+/// `charts` (the reduced-frequency chart first), beside the scene text.
 #[allow(clippy::too_many_arguments)]
 pub fn slab_mode_views(
     model: &FeModel,
@@ -28,7 +28,7 @@ pub fn slab_mode_views(
     shown_free_free: usize,
     kept: usize,
     first_tab: &str,
-    bars: Vec<Layout>,
+    charts: Vec<Layout>,
 ) -> (Vec<Visual>, Layout) {
     let mut visuals = Vec::new();
     let ff_modes: Vec<(Vec<f64>, String)> = columns(&free_free.vectors)
@@ -99,26 +99,18 @@ pub fn slab_mode_views(
         let front = tabs.remove(i);
         tabs.insert(0, front);
     }
-    // Up to five charts in a row under the modes (a third of the height: the frequency
-    // chart's legend needs room); more (a body's eight methods) in two rows
-    // and a wider column, so each chart stays wider than its title bar in a 1280 × 800
-    // window.
-    let (charts, heights, widths) = if bars.len() <= 5 {
-        (Layout::Horizontal(bars, vec![]), [2.0, 1.0], [3.0, 2.0])
-    } else {
-        let per_row = bars.len().div_ceil(2);
-        let rows = bars
-            .chunks(per_row)
-            .map(|row| Layout::Horizontal(row.to_vec(), vec![]))
-            .collect();
-        (Layout::Vertical(rows, vec![]), [1.0, 1.0], [2.0, 1.0])
-    };
+    // The charts (the grouped frequency chart, and an imported body's interface sweep and
+    // response where asked for) in one row under the modes, a third of the height: the
+    // frequency chart's legend needs room.
     let layout = Layout::Horizontal(
         vec![
-            Layout::Vertical(vec![Layout::Tabs(tabs), charts], heights.to_vec()),
+            Layout::Vertical(
+                vec![Layout::Tabs(tabs), Layout::Horizontal(charts, vec![])],
+                vec![2.0, 1.0],
+            ),
             Layout::scene_text(),
         ],
-        widths.to_vec(),
+        vec![3.0, 2.0],
     );
     (visuals, layout)
 }

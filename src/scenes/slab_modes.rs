@@ -4,7 +4,9 @@
 use serde_json::{Map, Value, json};
 
 use super::{
-    SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
+    SceneInfo, SceneOptions, SceneOutput,
+    frequency_bars::{FrequencyBars, SHOWN_MODES},
+    mode_visuals::undeformed,
     slab_mode_views::slab_mode_views,
 };
 use crate::dynamics::AxisKind;
@@ -45,8 +47,6 @@ pub const APP_B_BRICKS: [usize; 3] = [4, 2, 1];
 const EXTRA_GUYAN_MASTERS: [usize; 2] = [5, 11];
 /// Free-free modes drawn (all frequencies are reported).
 const SHOWN_FREE_FREE: usize = 12;
-/// Frequencies per model in the bar chart.
-const SHOWN_BARS: usize = 12;
 const AVAILABLE: [Method; 4] = [
     Method::ModalTruncation,
     Method::CraigBampton,
@@ -85,7 +85,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         fmt_hz(&free_free_hz[..free_free_hz.len().min(8)]),
     ]];
     let mut visuals = vec![undeformed(&model)];
-    let mut bars = FrequencyBars::new(SHOWN_BARS);
+    let mut bars = FrequencyBars::new(SHOWN_MODES);
     bars.push(Method::NoReduction, &free_free_hz);
     for &m in &methods {
         let params = ReductionParameters {

@@ -6,7 +6,9 @@ use std::time::Instant;
 use serde_json::{Map, Value, json};
 
 use super::{
-    SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
+    SceneInfo, SceneOptions, SceneOutput,
+    frequency_bars::{FrequencyBars, SHOWN_MODES},
+    mode_visuals::undeformed,
 };
 use crate::{
     Error, Result,
@@ -84,7 +86,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     let mut method_s = Map::new();
     let mut rows = Vec::new();
     let mut visuals = vec![undeformed(&model)];
-    let mut bars = FrequencyBars::new(12);
+    let mut bars = FrequencyBars::new(SHOWN_MODES);
     for &m in &methods {
         let started = Instant::now();
         let basis = match m {
