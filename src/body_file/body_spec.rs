@@ -18,6 +18,8 @@
 //! mass = "m.mtx"                # a square matrix, or an n x 1 vector for a lumped mass
 //! # format = "harwell-boeing"   # ANSYS HBMAT / SciPy hb_write files instead (or "abaqus")
 //! # dof_map = "k.mapping"       # equations -> (node, UX..ROTZ), as ANSYS writes it
+//! # format = "calculix"         # CalculiX MATRIXSTORAGE: stiffness = "job.sti",
+//! #                             # mass = "job.mas", dof_map = "job.dof" (node.dof lines)
 //!
 //! [geometry]
 //! nodes = "nodes.csv"           # x,y,z per node (or inline [[x, y, z], ...])
@@ -170,7 +172,8 @@ pub struct MatrixFiles {
     /// Mass M: square, or a vector (n × 1 or 1 × n) of a lumped mass.
     pub mass: String,
     /// The files' format: `matrix-market` (default), `harwell-boeing` (ANSYS `HBMAT`, SciPy
-    /// `hb_write`), `abaqus` (`*MATRIX OUTPUT, FORMAT=MATRIX INPUT`) or `nastran-dmig`
+    /// `hb_write`), `abaqus` (`*MATRIX OUTPUT, FORMAT=MATRIX INPUT`), `calculix`
+    /// (`*FREQUENCY, SOLVER=MATRIXSTORAGE`: `.sti`, `.mas` and the `.dof` map) or `nastran-dmig`
     /// (DMIG cards; the matrices by name, [`Self::stiffness_matrix`] and [`Self::mass_matrix`]).
     #[serde(default)]
     pub format: MatrixFormat,
@@ -203,6 +206,9 @@ pub enum MatrixFormat {
     NastranDmig,
     /// Nastran OUTPUT4 (binary or ASCII; the matrices by name, placed by `dof_map`).
     Op4,
+    /// CalculiX's matrix storage (`*FREQUENCY, SOLVER=MATRIXSTORAGE`): `job.sti` and
+    /// `job.mas` (`row column value`, upper triangle), placed by `dof_map = "job.dof"`.
+    Calculix,
 }
 
 impl MatrixFormat {
@@ -221,6 +227,7 @@ impl std::str::FromStr for MatrixFormat {
             "abaqus" => Ok(Self::Abaqus),
             "nastran-dmig" => Ok(Self::NastranDmig),
             "op4" => Ok(Self::Op4),
+            "calculix" => Ok(Self::Calculix),
             other => Err(crate::error::UnknownId::new(
                 "matrix format",
                 other,

@@ -76,14 +76,15 @@ pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<Bo
         ..
     } = parameters;
     let compress = *compress;
-    if matches!(format, MatrixFormat::HarwellBoeing | MatrixFormat::Op4) {
+    let unwritable = match format {
+        MatrixFormat::Op4 => Some("OP4"),
+        MatrixFormat::HarwellBoeing => Some("Harwell-Boeing"),
+        MatrixFormat::Calculix => Some("CalculiX matrix storage"),
+        _ => None,
+    };
+    if let Some(format) = unwritable {
         return Err(Error::BodyFile(super::BodyFileError::NotWritable {
-            format: if *format == MatrixFormat::Op4 {
-                "OP4"
-            } else {
-                "Harwell-Boeing"
-            }
-            .into(),
+            format: format.into(),
         }));
     }
     let mut files = BodyFiles::new();

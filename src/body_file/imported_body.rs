@@ -10,6 +10,7 @@ use std::{
 use super::{
     BodySpec, DofOrder, InterfaceKind, InterfaceSpec, MatrixFormat, Units,
     abaqus_matrix::parse_abaqus_matrix,
+    calculix_matrix::{calculix_equation_count, parse_calculix_dof_map, parse_calculix_matrix},
     csv_table::{edges, read_table},
     dof_map_file::parse_dof_map,
     harwell_boeing::parse_harwell_boeing,
@@ -224,7 +225,23 @@ impl ImportedBody {
                     .into(),
             ));
         }
+        // CalculiX numbers its equations by the lines of its `.dof` file.
+        let calculix_equations = if matrices.format == MatrixFormat::Calculix {
+            let Some(map_file) = &matrices.dof_map else {
+                return Err(body_error(
+                    key_line("format"),
+                    "format = \"calculix\" needs dof_map = \"job.dof\" (the equations' nodes \
+                     and DOF, written beside job.sti and job.mas)"
+                        .into(),
+                ));
+            };
+            let (bytes, map_name) = location.read(Some(map_file))?;
+            calculix_equation_count(&bytes, &map_name)?
+        } else {
+            0
+        };
         let parse = |bytes: &[u8], name: &str, dmig: &str| match matrices.format {
+            MatrixFormat::Calculix => parse_calculix_matrix(bytes, name, calculix_equations),
             MatrixFormat::MatrixMarket => parse_matrix_market(bytes, name),
             MatrixFormat::HarwellBoeing => parse_harwell_boeing(bytes, name),
             MatrixFormat::Abaqus => parse_abaqus_matrix(bytes, name, &dofs),
@@ -334,7 +351,11 @@ impl ImportedBody {
                 ));
             }
             let (bytes, map_name) = location.read(Some(map_file))?;
-            let equations = parse_dof_map(&bytes, &map_name, &dofs, node_count)?;
+            let equations = if matrices.format == MatrixFormat::Calculix {
+                parse_calculix_dof_map(&bytes, &map_name, &dofs, node_count)?
+            } else {
+                parse_dof_map(&bytes, &map_name, &dofs, node_count)?
+            };
             for (file, name) in [(&mut k_file, &k_name), (&mut m_file, &m_name)] {
                 if file.rows != equations.len() {
                     return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {

@@ -5,6 +5,7 @@
 mod abaqus_matrix;
 mod body_spec;
 mod body_writer;
+mod calculix_matrix;
 mod csv_table;
 mod dof_map_file;
 mod format_writers;
@@ -28,6 +29,7 @@ pub use body_writer::{
     BodyFileParameters, BodyFiles, example_bodies, lower_entries, mass_lower_entries, write_body,
     write_files, write_imported_body,
 };
+pub use calculix_matrix::{calculix_equation_count, parse_calculix_dof_map, parse_calculix_matrix};
 pub use dof_map_file::parse_dof_map;
 pub use harwell_boeing::parse_harwell_boeing;
 pub use imported_body::{BodyHandle, BodyLocation, ImportedBody, RigidSet, SYMMETRY_TOLERANCE};

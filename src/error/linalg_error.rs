@@ -38,6 +38,32 @@ pub enum LinalgError {
         residual: f64,
     },
 
+    /// The Sturm sequence check could not factor $K - \sigma' M$ accurately at any shift tried.
+    #[error(
+        "the Sturm sequence check failed: K - σ'M at σ' = {shift:.6e} (rad/s)² could not be \
+         factored accurately ({reason})"
+    )]
+    SturmCheckFailed { shift: f64, reason: String },
+
+    /// Every route of the free-body eigensolver failed.
+    #[error(
+        "the free-free eigensolver found no accurate set of {wanted} pairs; routes tried: {routes}"
+    )]
+    EigenRoutesFailed { wanted: usize, routes: String },
+
+    /// A partial eigensolution that the Sturm count shows to have skipped eigenvalues, after
+    /// every retry.
+    #[error(
+        "the partial eigensolver missed {missed} mode(s) below {hz:.6e} Hz: the Sturm count \
+         finds {below} eigenvalues below the shift, the solver {found}"
+    )]
+    MissedModes {
+        missed: usize,
+        below: usize,
+        found: usize,
+        hz: f64,
+    },
+
     /// A dense eigen-decomposition whose pairs failed their residual or orthonormality check
     /// with every kernel tried.
     #[error(

@@ -61,6 +61,10 @@ pub struct GeneralizedEigen {
     pub residuals: Vec<f64>,
     /// How many leading pairs have zero energy (rigid-body motions, mechanisms).
     pub zero_energy: usize,
+    /// The Sturm sequence check of a partial solve (none for a complete dense solve, which
+    /// misses nothing by construction): how many eigenvalues lie below a shift just above the
+    /// pairs found, and how many the solver found there.
+    pub sturm: Option<super::SturmCount>,
 }
 
 impl GeneralizedEigen {
@@ -92,6 +96,7 @@ impl GeneralizedEigen {
             vectors: self.vectors.subcols(0, count).to_owned(),
             residuals: self.residuals[..count.min(self.residuals.len())].to_vec(),
             zero_energy: self.zero_energy.min(count),
+            sturm: self.sturm,
         }
     }
 }
@@ -128,6 +133,7 @@ pub fn generalized_eigen(
             vectors: Mat::zeros(0, 0),
             residuals: vec![],
             zero_energy: 0,
+            sturm: None,
         });
     }
     for (name, a) in [("stiffness", k), ("mass", m)] {
@@ -206,6 +212,7 @@ pub fn generalized_eigen(
                 vectors,
                 residuals: check.residuals,
                 zero_energy: check.zero_energy,
+                sturm: None,
             });
         }
         worst = worst.min(

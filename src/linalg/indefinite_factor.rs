@@ -6,7 +6,9 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::{
-    Conj, Mat, MatRef, Par, Side, linalg::solvers::LdltError, sparse::linalg::cholesky::LdltRef,
+    Conj, Mat, MatRef, Par, Side,
+    linalg::solvers::LdltError,
+    sparse::linalg::cholesky::{LdltRef, SymbolicCholeskyRaw, supernodal::SupernodalLdltRef},
 };
 
 use super::{LinalgError, SparseSymmetric, SymbolicFactor};
@@ -67,6 +69,31 @@ impl IndefiniteFactor {
             values,
             what: what.into(),
         })
+    }
+
+    /// The number of negative pivots of $D$: by Sylvester's law of inertia, the number of
+    /// negative eigenvalues of the matrix factored (for $K - \sigma M$: the eigenvalues of the
+    /// pencil below $\sigma$, the Sturm count).
+    pub fn negative_pivots(&self) -> usize {
+        let sym = self.symbolic.inner();
+        match sym.raw() {
+            SymbolicCholeskyRaw::Simplicial(simplicial) => {
+                // Each column of L starts with its diagonal, which holds D.
+                let col_ptr = simplicial.col_ptr();
+                (0..simplicial.ncols())
+                    .filter(|&j| self.values[col_ptr[j]] < 0.0)
+                    .count()
+            }
+            SymbolicCholeskyRaw::Supernodal(supernodal) => {
+                let factor = SupernodalLdltRef::<'_, usize, f64>::new(supernodal, &self.values);
+                (0..supernodal.n_supernodes())
+                    .map(|s| {
+                        let block = factor.supernode(s).val();
+                        (0..block.ncols()).filter(|&j| block[(j, j)] < 0.0).count()
+                    })
+                    .sum()
+            }
+        }
     }
 
     fn solve_once(&self, rhs: MatRef<'_, f64>) -> Mat<f64> {

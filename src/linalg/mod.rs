@@ -13,6 +13,7 @@ mod nested_dissection;
 mod partial_eigen;
 mod saddle_point;
 mod sparse_symmetric;
+mod sturm_count;
 mod symmetric_eigen;
 mod symmetric_factor;
 
@@ -41,6 +42,7 @@ pub use saddle_point::{
     REDUNDANT_PSD, REDUNDANT_SADDLE, pinv_solve, range_space_solve, saddle_point_solve,
 };
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
+pub use sturm_count::{SturmCount, sturm_count};
 pub use symmetric_eigen::{
     SymmetricEigen, SymmetricEigenKernel, dense_eigen_tolerance, symmetric_eigen,
     symmetric_eigen_with,

@@ -17,7 +17,7 @@ use faer::{Mat, MatRef};
 
 use super::{
     GeneralizedEigen, MassMatrix, SparseSymmetric, SymmetricFactor, ZERO_ENERGY_RATIO,
-    eigenvalue_scale, fix_sign, symmetric_eigen,
+    eigenvalue_scale, fix_sign, generalized_eigen, symmetric_eigen,
 };
 use crate::{Error, Result};
 
@@ -67,7 +67,7 @@ const ROUND_OFF_FLOOR: f64 = 64.0;
 const STALLED_RITZ: f64 = 1e-6;
 
 /// What the solver did (operation counts, for tests and the bench).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct PartialEigenStatistics {
     /// Restarts of the basis.
     pub restarts: usize,
@@ -77,7 +77,17 @@ pub struct PartialEigenStatistics {
     pub basis_size: usize,
     /// Largest residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ of the returned pairs.
     pub max_residual: f64,
+    /// The Ritz values above the returned pairs, ascending, (rad/s)²: upper bounds of the next
+    /// eigenvalues (for the Sturm check, [`super::sturm_count`]).
+    pub ritz_above: Vec<f64>,
 }
+
+/// Multiple of $\varepsilon\,\lambda_{max}\,\theta$ that a Ritz residual
+/// $\|Au - \theta u\|_M/\theta$ can reach: each solve with the factor of $K - \sigma M$ errs
+/// by about $\varepsilon\lambda_{max}/(\lambda - \sigma)$ in the direction of an eigenvector
+/// of eigenvalue $\lambda$ (a backward-stable factor of a matrix whose largest eigenvalue is
+/// $\lambda_{max}$), so a tolerance below it can never be met.
+const ATTAINABLE_RITZ: f64 = 64.0;
 
 /// The `wanted` lowest eigenpairs of $K\Phi = M\Phi\Lambda$ above the shift `sigma`
 /// ($\sigma = 0$ for a positive definite $K$), given `factor` $= \mathrm{chol}(K - \sigma M)$.
@@ -113,6 +123,7 @@ pub fn lowest_modes(
                 vectors: Mat::zeros(n, 0),
                 residuals: vec![],
                 zero_energy: 0,
+                sturm: None,
             },
             PartialEigenStatistics::default(),
         ));
@@ -130,6 +141,9 @@ pub fn lowest_modes(
         ..Default::default()
     };
     let apply = |x: MatRef<'_, f64>| factor.solve(m.mul(x).as_ref());
+    let attainable = ATTAINABLE_RITZ
+        * f64::EPSILON
+        * eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
 
     // V (M-orthonormal), MV = M V and AV = A V for the first `with_a` columns.
     let mut v = Mat::<f64>::zeros(n, max_basis + b);
@@ -210,7 +224,8 @@ pub fn lowest_modes(
             .collect();
         let converged = relative
             .iter()
-            .take_while(|&&r| r <= ritz_tolerance)
+            .zip(&theta)
+            .take_while(|&(&r, &t)| r <= ritz_tolerance.max(attainable * t.abs()))
             .count();
         let worst_ritz = relative.iter().copied().fold(0.0f64, f64::max);
         // The Ritz residuals stop falling where the solves' round-off, ε λ_max/(λ - σ) of
@@ -223,17 +238,21 @@ pub fn lowest_modes(
                 .all(|&previous| worst_ritz > 0.5 * previous);
         ritz_history.push(worst_ritz);
         if stalled && converged < wanted {
-            let checked = checked_pairs(k, m, sigma, wanted, known, &theta, &ritz, params)?;
+            let checked = refined_pairs(k, m, factor, sigma, wanted, known, &theta, &ritz, params)?;
             if checked.converged == wanted {
                 stats.max_residual = checked.max_residual;
+                stats.block_solves += 1;
+                stats.ritz_above = ritz_values_above(sigma, &theta, wanted);
                 result = (checked.eigen, stats);
                 break;
             }
         }
         if converged == wanted {
-            let checked = checked_pairs(k, m, sigma, wanted, known, &theta, &ritz, params)?;
+            let checked = refined_pairs(k, m, factor, sigma, wanted, known, &theta, &ritz, params)?;
+            stats.block_solves += 1;
             if checked.converged == wanted {
                 stats.max_residual = checked.max_residual;
+                stats.ritz_above = ritz_values_above(sigma, &theta, wanted);
                 result = (checked.eigen, stats);
                 break;
             }
@@ -249,7 +268,7 @@ pub fn lowest_modes(
         if stats.restarts == params.max_restarts {
             // The error names the residual users know, ‖Kφ − λMφ‖/‖Kφ‖ of the pairs as they
             // stand, and how many of them meet the tolerance.
-            let checked = checked_pairs(k, m, sigma, wanted, known, &theta, &ritz, params)?;
+            let checked = refined_pairs(k, m, factor, sigma, wanted, known, &theta, &ritz, params)?;
             return Err(Error::Linalg(LinalgError::EigenNotConverged {
                 converged: checked.converged,
                 wanted,
@@ -367,6 +386,73 @@ fn next_uniform(state: &mut u64) -> f64 {
     bits as f64 / (1u64 << 52) as f64 - 1.0
 }
 
+/// $\lambda = \sigma + 1/\theta$ of the Ritz values after the first `wanted`, ascending.
+fn ritz_values_above(sigma: f64, theta: &[f64], wanted: usize) -> Vec<f64> {
+    let mut above: Vec<f64> = theta
+        .iter()
+        .skip(wanted)
+        .filter(|t| **t > 0.0)
+        .map(|t| sigma + 1.0 / t)
+        .collect();
+    above.sort_by(f64::total_cmp);
+    above
+}
+
+/// The wanted pairs checked on the original pencil, after one step of inverse iteration on
+/// the Ritz vectors that are not known null vectors: $X = A U$, then Rayleigh–Ritz of
+/// $(K, M)$ on the span of $X$. A Ritz vector $u$ carries the solves' round-off in every
+/// direction, and $K$ multiplies the part along its stiffest modes by $\lambda_{max}$; one
+/// application of $A$ damps the part along an eigenvector of eigenvalue $\mu$ by
+/// $(\lambda - \sigma)/(\mu - \sigma)$ (Ericsson and Ruhe's purification). The better of
+/// the two sets (the one with more converged pairs, then the smaller worst residual) is kept.
+#[allow(clippy::too_many_arguments)]
+fn refined_pairs(
+    k: &SparseSymmetric,
+    m: &MassMatrix,
+    factor: &SymmetricFactor,
+    sigma: f64,
+    wanted: usize,
+    known: usize,
+    theta: &[f64],
+    ritz: &Mat<f64>,
+    params: &PartialEigenParameters,
+) -> Result<CheckedPairs> {
+    let plain = checked_pairs(k, m, sigma, wanted, known, theta, ritz, params)?;
+    let free = wanted - known;
+    if free == 0 || plain.converged == wanted && plain.max_residual <= 1e-12 {
+        return Ok(plain);
+    }
+    let u = ritz.subcols(known, free);
+    let mut x = factor.solve(m.mul(u).as_ref());
+    if known > 0 {
+        // Keep X M-orthogonal to the known null vectors, as the iteration kept U.
+        let null = ritz.subcols(0, known);
+        for _ in 0..2 {
+            let coeffs = m.mul(null).transpose() * &x;
+            x -= null * &coeffs;
+        }
+    }
+    let kx = k.mul(x.as_ref());
+    let mx = m.mul(x.as_ref());
+    let kr = x.transpose() * &kx;
+    let mr = x.transpose() * &mx;
+    let sym = |a: &Mat<f64>| Mat::from_fn(free, free, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
+    let Ok(small) = generalized_eigen(sym(&kr).as_ref(), sym(&mr).as_ref(), "refined Ritz") else {
+        return Ok(plain);
+    };
+    let y = x * &small.vectors;
+    let mut vectors = ritz.subcols(0, wanted).to_owned();
+    vectors.subcols_mut(known, free).copy_from(&y);
+    let mut refined_theta = theta[..wanted].to_vec();
+    for (c, &l) in small.values.iter().enumerate() {
+        refined_theta[known + c] = 1.0 / (l - sigma);
+    }
+    let refined = checked_pairs(k, m, sigma, wanted, known, &refined_theta, &vectors, params)?;
+    let better = refined.converged > plain.converged
+        || refined.converged == plain.converged && refined.max_residual < plain.max_residual;
+    Ok(if better { refined } else { plain })
+}
+
 struct CheckedPairs {
     eigen: GeneralizedEigen,
     converged: usize,
@@ -440,6 +526,7 @@ fn checked_pairs(
             vectors,
             residuals,
             zero_energy,
+            sturm: None,
         },
         converged,
         max_residual,

@@ -402,6 +402,7 @@ impl<'a> BodyReducer<'a> {
                     vectors: modes.vectors.subcols(z, count).to_owned(),
                     residuals: modes.residuals[z..].to_vec(),
                     zero_energy: 0,
+                    sturm: None,
                 };
                 note = Some(format!(
                     "position gramian of the {count} lowest elastic free-free modes driven by \

@@ -367,6 +367,18 @@ pub fn driven_body_study(
         .expect("the full body has coordinates");
     let full_map = FieldMap::Full(Arc::new(coords.clone()));
 
+    // The eigen solve the reduced models need comes first: a body whose free-free modes
+    // cannot be found fails here, not after minutes of integrating the full body.
+    let needs_reducer = !methods.is_empty() && !modes.is_empty();
+    let zero_energy = if needs_reducer {
+        progress.phase("the body's zero-energy modes (free-free eigen solve)")?;
+        let started = Instant::now();
+        let zero = count_zero_energy_modes(model, 1)?;
+        Some((zero, started.elapsed().as_secs_f64()))
+    } else {
+        None
+    };
+
     let mut times = Vec::new();
     let mut runs = Vec::new();
     let mut stability = Vec::new();
@@ -406,12 +418,7 @@ pub fn driven_body_study(
         });
     }
 
-    let needs_reducer = !methods.is_empty() && !modes.is_empty();
-    if needs_reducer {
-        progress.phase("the body's zero-energy modes")?;
-        let started = Instant::now();
-        let zero = count_zero_energy_modes(model, 1)?;
-        let zero_s = started.elapsed().as_secs_f64();
+    if let Some((zero, zero_s)) = zero_energy {
         let mut reducer = BodyReducer::new(model, interfaces, &zero, zero_s, progress.clone())?;
         for &method in methods {
             if !DRIVEN_METHODS.contains(&method) {

@@ -9,11 +9,10 @@ use super::{COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, ModeSelection};
 use crate::{
     Error, Result,
     fem::{FeModel, RigidMotions},
-    linalg::{
-        GeneralizedEigen, PartialEigenParameters, SymbolicFactor, SymmetricFactor,
-        generalized_eigen, lowest_modes, negative_shift, nested_dissection,
-    },
+    linalg::{GeneralizedEigen, generalized_eigen},
 };
+
+use super::free_body_solver::{FreeBodyParameters, free_body_pairs};
 
 /// The rigid-body modes and the `elastic` lowest elastic free-free modes, ascending and
 /// mass-normalised: the complete dense eigenproblem up to [`DENSE_INTERIOR_LIMIT`] DOF,
@@ -35,40 +34,10 @@ pub fn lowest_free_modes(model: &FeModel, elastic: usize) -> Result<GeneralizedE
 }
 
 /// The `wanted` lowest pairs of an unrestrained (or possibly restrained) body by shift-invert
-/// Lanczos on $K - \sigma M$ with the shift of [`negative_shift`]: its rigid motions, when
-/// the coordinates give them, enter exact and count among the pairs; otherwise up to six zero
-/// eigenvalues coincide and a block of eight finds them all. Every pair is checked by its
-/// residual ([`lowest_modes`]).
+/// Lanczos with its null space refined and deflated, falling back on other shifts and the dense
+/// solve; every pair residual-checked and the set Sturm-checked ([`free_body_pairs`]).
 pub fn lowest_free_body_pairs(model: &FeModel, wanted: usize) -> Result<GeneralizedEigen> {
-    let n = model.dof_count();
-    let sigma = negative_shift(&model.k, &model.m);
-    let shifted = model.k.shifted(&model.m, sigma);
-    let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
-    let order = nested_dissection(shifted.as_faer(), &coords);
-    let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
-    let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
-    let rigid_modes =
-        (model.rigid_motions == RigidMotions::FromGeometry).then(|| model.rigid_body_modes());
-    let parameters = PartialEigenParameters {
-        block_size: if rigid_modes.is_some() { 4 } else { 8 },
-        // Deflated rigid motions are exact only as far as the data makes them K's null space.
-        data_precision: if rigid_modes.is_some() {
-            model.rigid_motion_defect().max(f64::EPSILON)
-        } else {
-            f64::EPSILON
-        },
-        ..Default::default()
-    };
-    let (eig, _) = lowest_modes(
-        &model.k,
-        &model.m,
-        &factor,
-        sigma,
-        wanted,
-        rigid_modes.as_ref().map(|r| r.as_ref()),
-        &parameters,
-    )?;
-    Ok(eig)
+    Ok(free_body_pairs(model, wanted, &FreeBodyParameters::default())?.eigen)
 }
 
 /// The free-interface modes a selection keeps: the rigid-body modes plus `Count(k)` elastic
@@ -142,6 +111,7 @@ pub fn restrained_modes(
         vectors,
         residuals: eig.residuals[..kept].to_vec(),
         zero_energy: eig.zero_energy.min(kept),
+        sturm: None,
     })
 }
 

@@ -127,6 +127,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             .to_owned(),
         residuals: full.modes.residuals[full.zero_modes..].to_vec(),
         zero_energy: 0,
+        sturm: None,
     };
 
     let mut reducer = BodyReducer::new(

@@ -1,0 +1,398 @@
+//! The lowest free-free pairs of a large unrestrained body, by routes that fall back on each
+//! other, each result checked pair by pair and by a Sturm count.
+//!
+//! $K$ is singular, so the factor is of $K - \sigma M$ with $\sigma < 0$. Two things decide
+//! whether the elastic pairs come out accurate:
+//!
+//! 1. **The null space must be the stored pencil's own.** Rigid motions built from the node
+//!    coordinates are $K$'s null space only as far as the data: coordinates written with six
+//!    digits, or $K$ with fourteen (CalculiX) leave $KR = E \ne 0$, and the true near-null
+//!    vectors are $R + \sum_j c_j\varphi_j$ with $c_j \sim \|E\|/\lambda_j$. Deflating $R$ as if
+//!    exact then puts errors of that size into every elastic pair. So the null space is first
+//!    *refined*: inverse subspace iteration $Z \leftarrow (K - \sigma M)^{-1}MZ$ from $R$ (or
+//!    from random vectors when the coordinates do not give $R$) with Rayleigh–Ritz on $(K, M)$,
+//!    which damps the elastic part by $|\sigma|/(\lambda_j - \sigma)$ per step; the pairs below
+//!    the zero-energy threshold are then deflated exactly.
+//! 2. **Left to the iteration, the null vectors cost the elastic pairs $\varepsilon
+//!    \lambda_{max}/|\sigma|$** (the factor's error along them, $10^{-6}$ when
+//!    $\sigma = -10^{-10}\lambda_{max}$), which is why they are deflated and never iterated.
+//!
+//! Routes, in order, each checked by [`lowest_modes`]' residual test on the original pencil:
+//! (1) the small shift of [`negative_shift`] with the refined null space deflated; (2) a shift
+//! from the body's spectrum, $\sigma = -\tilde\lambda_1/2$ with $\tilde\lambda_1$ the lowest
+//! elastic Ritz value of the refinement, more restarts and a larger block; (3) the complete
+//! dense solve for bodies of up to [`COMPLETE_EIGEN_LIMIT`] DOF. The error, when every route
+//! fails, lists each route and its worst residual. An accepted set is Sturm-checked
+//! ([`sturm_count`]); a count above the pairs found retries with more pairs, then fails with
+//! [`LinalgError::MissedModes`].
+
+use faer::{Mat, MatRef};
+
+use super::COMPLETE_EIGEN_LIMIT;
+use crate::{
+    Error, Result,
+    error::LinalgError,
+    fem::{FeModel, RigidMotions},
+    linalg::{
+        GeneralizedEigen, MassMatrix, PartialEigenParameters, SparseSymmetric, SturmCount,
+        SymbolicFactor, SymmetricFactor, ZERO_ENERGY_RATIO, eigenvalue_scale, generalized_eigen,
+        hz_from_eigenvalue, lowest_modes, negative_shift, nested_dissection, sturm_count,
+    },
+};
+
+/// Settings of [`free_body_pairs`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeBodyParameters {
+    /// Steps of inverse subspace iteration refining rigid motions known from the geometry.
+    pub null_steps_from_geometry: usize,
+    /// Steps when the null space starts from random vectors.
+    pub null_steps_from_random: usize,
+    /// Extra columns beyond the expected null space (they estimate the lowest elastic
+    /// eigenvalue and catch a mechanism).
+    pub null_extra: usize,
+    /// Retries with more pairs when the Sturm count finds modes the solver missed.
+    pub sturm_retries: usize,
+    /// Seed of the random start vectors.
+    pub seed: u64,
+}
+
+impl Default for FreeBodyParameters {
+    fn default() -> Self {
+        Self {
+            null_steps_from_geometry: 2,
+            null_steps_from_random: 5,
+            null_extra: 3,
+            sturm_retries: 2,
+            seed: 0x0dd_ba11,
+        }
+    }
+}
+
+/// One route of [`free_body_pairs`] and how it ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RouteAttempt {
+    /// What the route was ("shift -7.5e3, null space refined", ...).
+    pub route: String,
+    /// Pairs that passed their residual check.
+    pub converged: usize,
+    /// Pairs wanted.
+    pub wanted: usize,
+    /// Worst relative residual of the pairs as they stood.
+    pub residual: f64,
+}
+
+/// What [`free_body_pairs`] returns: the pairs, their Sturm check and how they were found.
+#[derive(Debug, Clone)]
+pub struct FreeBodySolution {
+    /// The lowest pairs, ascending, mass-normalised, each residual-checked; `sturm` set.
+    pub eigen: GeneralizedEigen,
+    /// The route that gave them.
+    pub route: String,
+    /// Routes tried before it (failed).
+    pub failed: Vec<RouteAttempt>,
+    /// Zero-energy vectors deflated (the refined null space).
+    pub null_vectors: usize,
+}
+
+/// The `wanted` lowest pairs of `model`'s pencil (an unrestrained body: rigid motions first),
+/// by the routes of this module.
+pub fn free_body_pairs(
+    model: &FeModel,
+    wanted: usize,
+    params: &FreeBodyParameters,
+) -> Result<FreeBodySolution> {
+    let n = model.dof_count();
+    let (k, m) = (&model.k, &model.m);
+    let scale = eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
+    let sigma0 = negative_shift(k, m);
+    let shifted = k.shifted(m, sigma0);
+    let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
+    let order = nested_dissection(shifted.as_faer(), &coords);
+    let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
+    let factor0 =
+        SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
+    drop(shifted);
+
+    let geometric =
+        (model.rigid_motions == RigidMotions::FromGeometry).then(|| model.rigid_body_modes());
+    let data_precision = if geometric.is_some() {
+        model.rigid_motion_defect().max(f64::EPSILON)
+    } else {
+        f64::EPSILON
+    };
+    let null = refined_null_space(
+        k,
+        m,
+        &factor0,
+        geometric.as_ref().map(|r| r.as_ref()),
+        model.dofs.rigid_body_count(),
+        scale,
+        params,
+    )?;
+    let null_count = null.vectors.ncols().min(wanted);
+    let null_vectors = null.vectors.subcols(0, null_count).to_owned();
+
+    let mut failed = Vec::new();
+    let base = PartialEigenParameters {
+        data_precision,
+        ..Default::default()
+    };
+    // Route 1: the small shift, the refined null space deflated.
+    let route1 = format!("shift {sigma0:.2e} (rad/s)², {null_count} null vectors deflated");
+    match sturm_checked(
+        k,
+        m,
+        &factor0,
+        sigma0,
+        wanted,
+        null_vectors.as_ref(),
+        &base,
+        &symbolic,
+        params,
+    ) {
+        Ok(eigen) => {
+            return Ok(FreeBodySolution {
+                eigen,
+                route: route1,
+                failed,
+                null_vectors: null_count,
+            });
+        }
+        Err(e) => failed.push(attempt(route1, wanted, e)?),
+    }
+    // Route 2: a shift from the spectrum, a larger block, more restarts.
+    if let Some(lowest) = null.lowest_elastic
+        && -0.5 * lowest < sigma0
+    {
+        let sigma1 = -0.5 * lowest;
+        let route2 = format!(
+            "shift {sigma1:.2e} (rad/s)² from the lowest elastic estimate, block 8, 150 restarts"
+        );
+        let shifted = k.shifted(m, sigma1);
+        let result =
+            SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "K - σM").and_then(|factor1| {
+                sturm_checked(
+                    k,
+                    m,
+                    &factor1,
+                    sigma1,
+                    wanted,
+                    null_vectors.as_ref(),
+                    &PartialEigenParameters {
+                        block_size: 8,
+                        max_restarts: 150,
+                        ..base.clone()
+                    },
+                    &symbolic,
+                    params,
+                )
+            });
+        match result {
+            Ok(eigen) => {
+                return Ok(FreeBodySolution {
+                    eigen,
+                    route: route2,
+                    failed,
+                    null_vectors: null_count,
+                });
+            }
+            Err(e) => failed.push(attempt(route2, wanted, e)?),
+        }
+    }
+    // Route 3: the complete dense solve of a body small enough.
+    if n <= COMPLETE_EIGEN_LIMIT {
+        let route3 = "complete dense solve".to_string();
+        match generalized_eigen(
+            model.k_dense().as_ref(),
+            model.m_dense().as_ref(),
+            "free-free",
+        ) {
+            Ok(all) => {
+                return Ok(FreeBodySolution {
+                    eigen: all.first(wanted),
+                    route: route3,
+                    failed,
+                    null_vectors: 0,
+                });
+            }
+            Err(e) => failed.push(attempt(route3, wanted, e)?),
+        }
+    }
+    Err(Error::Linalg(LinalgError::EigenRoutesFailed {
+        wanted,
+        routes: failed
+            .iter()
+            .map(|a| {
+                format!(
+                    "{}: {} of {} pairs, worst residual {:.1e}",
+                    a.route, a.converged, a.wanted, a.residual
+                )
+            })
+            .collect::<Vec<_>>()
+            .join("; "),
+    }))
+}
+
+/// A route's failure as an attempt; errors that are not convergence failures (memory, a
+/// factor that is not positive definite) end the search.
+fn attempt(route: String, wanted: usize, e: Error) -> Result<RouteAttempt> {
+    match e {
+        Error::Linalg(LinalgError::EigenNotConverged {
+            converged,
+            wanted,
+            residual,
+        }) => Ok(RouteAttempt {
+            route,
+            converged,
+            wanted,
+            residual,
+        }),
+        Error::Linalg(LinalgError::MissedModes { missed, .. }) => Ok(RouteAttempt {
+            route: format!("{route} (Sturm count: {missed} missed)"),
+            converged: wanted.saturating_sub(missed),
+            wanted,
+            residual: f64::NAN,
+        }),
+        Error::Linalg(LinalgError::EigenCheckFailed { residual, .. }) => Ok(RouteAttempt {
+            route,
+            converged: 0,
+            wanted,
+            residual,
+        }),
+        other => Err(other),
+    }
+}
+
+/// [`lowest_modes`] followed by the Sturm count; a count above the pairs found retries with
+/// that many more pairs (and two to spare), up to `params.sturm_retries` times.
+#[allow(clippy::too_many_arguments)]
+fn sturm_checked(
+    k: &SparseSymmetric,
+    m: &MassMatrix,
+    factor: &SymmetricFactor,
+    sigma: f64,
+    wanted: usize,
+    null: MatRef<'_, f64>,
+    partial: &PartialEigenParameters,
+    symbolic: &SymbolicFactor,
+    params: &FreeBodyParameters,
+) -> Result<GeneralizedEigen> {
+    let mut asked = wanted;
+    let mut last: Option<SturmCount> = None;
+    for _ in 0..=params.sturm_retries {
+        let (eigen, stats) = lowest_modes(k, m, factor, sigma, asked, Some(null), partial)?;
+        let count = sturm_count(k, m, symbolic, &eigen.values, &stats.ritz_above)?;
+        if count.missed() == 0 {
+            let mut eigen = eigen.first(wanted);
+            eigen.sturm = Some(count);
+            return Ok(eigen);
+        }
+        asked += count.missed() + 2;
+        last = Some(count);
+        if asked + 8 > k.dim() / 2 {
+            break;
+        }
+    }
+    let count = last.expect("the loop ran");
+    Err(Error::Linalg(LinalgError::MissedModes {
+        missed: count.missed(),
+        below: count.below,
+        found: count.found,
+        hz: hz_from_eigenvalue(count.shift),
+    }))
+}
+
+/// The refined null space and the lowest elastic eigenvalue estimate.
+struct NullSpace {
+    /// M-orthonormal zero-energy vectors of the stored pencil.
+    vectors: Mat<f64>,
+    /// The lowest Ritz value above the zero-energy threshold, (rad/s)² (an upper bound of the
+    /// lowest elastic eigenvalue).
+    lowest_elastic: Option<f64>,
+}
+
+/// Inverse subspace iteration on $(K - \sigma M)^{-1}M$ from the geometric rigid motions (or
+/// random vectors) and `extra` random columns, with Rayleigh–Ritz on $(K, M)$ after every step;
+/// the Ritz vectors whose values lie below the zero-energy threshold are the null space.
+fn refined_null_space(
+    k: &SparseSymmetric,
+    m: &MassMatrix,
+    factor: &SymmetricFactor,
+    geometric: Option<MatRef<'_, f64>>,
+    rigid_count: usize,
+    scale: f64,
+    params: &FreeBodyParameters,
+) -> Result<NullSpace> {
+    let n = k.dim();
+    let base = geometric.map_or(0, |r| r.ncols());
+    let p = (rigid_count.max(base) + params.null_extra).min(n);
+    let mut rng = params.seed;
+    let mut z = Mat::from_fn(n, p, |_, _| uniform(&mut rng));
+    if let Some(r) = geometric {
+        z.subcols_mut(0, base).copy_from(r);
+    }
+    let steps = if geometric.is_some() {
+        params.null_steps_from_geometry
+    } else {
+        params.null_steps_from_random
+    };
+    let threshold = ZERO_ENERGY_RATIO * scale;
+    let mut values = Vec::new();
+    for _ in 0..steps.max(1) {
+        // The image is dominated by the null space (gain 1/|σ| against 1/λ): made
+        // M-orthonormal before the Rayleigh–Ritz, so the extra columns keep their elastic part.
+        let x = m_orthonormal(factor.solve(m.mul(z.as_ref()).as_ref()), m);
+        let kx = k.mul(x.as_ref());
+        let mx = m.mul(x.as_ref());
+        let sym = |a: Mat<f64>| Mat::from_fn(p, p, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
+        let small = generalized_eigen(
+            sym(x.transpose() * &kx).as_ref(),
+            sym(x.transpose() * &mx).as_ref(),
+            "null-space Rayleigh-Ritz",
+        )?;
+        z = &x * &small.vectors;
+        values = small.values;
+    }
+    let nulls = values.iter().take_while(|&&v| v.abs() <= threshold).count();
+    Ok(NullSpace {
+        vectors: z.subcols(0, nulls).to_owned(),
+        lowest_elastic: values.get(nulls).copied().filter(|v| *v > threshold),
+    })
+}
+
+/// The columns of `x` made M-orthonormal in order (Gram–Schmidt, each column twice against the
+/// ones before it, Kahan's rule); a column that vanishes is left at zero.
+fn m_orthonormal(mut x: Mat<f64>, m: &MassMatrix) -> Mat<f64> {
+    let mut mx = m.mul(x.as_ref());
+    for j in 0..x.ncols() {
+        for _ in 0..2 {
+            if j > 0 {
+                let coeffs = mx.subcols(0, j).transpose() * x.col(j);
+                let proj = x.subcols(0, j) * &coeffs;
+                let mut col = x.col_mut(j);
+                col -= &proj;
+            }
+        }
+        let mcol = m.mul(x.col(j).as_mat());
+        let norm = (x.col(j).transpose() * mcol.col(0)).max(0.0).sqrt();
+        let inv = if norm > 0.0 { 1.0 / norm } else { 0.0 };
+        for i in 0..x.nrows() {
+            x[(i, j)] *= inv;
+        }
+        for i in 0..x.nrows() {
+            mx[(i, j)] = mcol[(i, 0)] * inv;
+        }
+    }
+    x
+}
+
+/// A uniform number in [−1, 1) from a xorshift64* state.
+fn uniform(state: &mut u64) -> f64 {
+    let mut s = *state;
+    s ^= s >> 12;
+    s ^= s << 25;
+    s ^= s >> 27;
+    *state = s;
+    let bits = s.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
+    bits as f64 / (1u64 << 52) as f64 - 1.0
+}
