@@ -583,14 +583,14 @@ def calculix_body(out, name, h, units, material, description):
 BODIES = {
     # scikit-fem, structured, carved
     "skfem-eyebar-si": (lambda o: skfem_eyebar(
-        o, "skfem_eyebar_si", 43, 1.0, SI, STEEL_SI,
+        o, "skfem_eyebar_si", 41, 1.0, SI, STEEL_SI,
         "steel eye-bar 240 mm, scikit-fem structured P2 tetrahedra, eyes and waist carved by "
         "removing elements, SI"), "large"),
     "skfem-eyebar-mm": (lambda o: skfem_eyebar(
         o, "skfem_eyebar_mm", 24, 1000.0, MM, STEEL_MM,
         "steel eye-bar 240 mm, scikit-fem structured P2 tetrahedra, carved, mm-t-s"), "small"),
     "skfem-eyebar-150k": (lambda o: skfem_eyebar(
-        o, "skfem_eyebar_150k", 68, 1.0, SI, STEEL_SI,
+        o, "skfem_eyebar_150k", 64, 1.0, SI, STEEL_SI,
         "steel eye-bar 240 mm, scikit-fem structured P2 tetrahedra, carved, SI, ~150 k DOF"),
         "huge"),
     "skfem-thin-channel": (lambda o: skfem_thin_plate(
@@ -615,10 +615,10 @@ BODIES = {
         "small"),
     # CalculiX
     "ccx-bracket": (lambda o: calculix_body(
-        o, "ccx_bracket", 9.0, MM, STEEL_MM,
+        o, "ccx_bracket", 14.0, MM, STEEL_MM,
         "steel angle bracket, gmsh C3D10, K and M written by CalculiX 2.20, mm-t-s"), "small"),
     "ccx-bracket-large": (lambda o: calculix_body(
-        o, "ccx_bracket_large", 3.6, MM, STEEL_MM,
+        o, "ccx_bracket_large", 6.5, MM, STEEL_MM,
         "steel angle bracket, gmsh C3D10, K and M written by CalculiX 2.20, mm-t-s, 30 k+ DOF"),
         "large"),
 }

@@ -52,7 +52,10 @@ pub fn parse_calculix_matrix(bytes: &[u8], path: &str, equations: usize) -> Resu
             }));
         }
         let v = entry_value(value, path, number)?;
-        entries.push((i - 1, j - 1, v));
+        // CalculiX stores the couplings its elements' pattern has, zeros among them.
+        if v != 0.0 {
+            entries.push((i - 1, j - 1, v));
+        }
     }
     if entries.is_empty() {
         return Err(error(path, 0, "the file holds no matrix entries"));

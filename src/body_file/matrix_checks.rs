@@ -101,7 +101,12 @@ pub(super) fn mass_matrix(
     )?))
 }
 
-/// M must be positive definite: every lumped entry positive, a consistent M factorisable.
+/// Relative part of its diagonal within which a consistent mass may be singular (positive
+/// semi-definite up to round-off).
+pub(super) const SEMI_DEFINITE_MASS: f64 = 1e-10;
+
+/// M must be positive definite, or semi-definite to round-off ([`SEMI_DEFINITE_MASS`]):
+/// every lumped entry positive, every diagonal entry positive, a consistent M factorisable.
 pub(super) fn check_mass(model: &FeModel, name: &str) -> Result<()> {
     let fail = |dof: usize, reason: String| {
         Error::BodyFile(BodyFileError::MassNotPositive {
@@ -130,10 +135,24 @@ pub(super) fn check_mass(model: &FeModel, name: &str) -> Result<()> {
             if let Err(Error::Linalg(LinalgError::NonPositivePivot { index, .. })) =
                 SymmetricFactor::sparse(m.as_faer(), &symbolic, "mass")
             {
-                return Err(fail(
-                    index,
-                    "the Cholesky pivot of this DOF is not positive".into(),
-                ));
+                // A consistent mass integrated with too few points is singular but positive
+                // semi-definite (CalculiX's C3D10: one null vector per direction for a whole
+                // mesh): M + τ diag(M) is then positive definite for a τ at round-off. The
+                // free-free solver needs only K - σM positive definite, which its own
+                // factorisation checks.
+                let regularised = m.shifted(
+                    &MassMatrix::Lumped(m.diagonal()),
+                    -SEMI_DEFINITE_MASS,
+                );
+                if SymmetricFactor::sparse(regularised.as_faer(), &symbolic, "mass").is_err() {
+                    return Err(fail(
+                        index,
+                        format!(
+                            "the Cholesky pivot of this DOF is not positive, even with \
+                             {SEMI_DEFINITE_MASS:.0e} of the diagonal added"
+                        ),
+                    ));
+                }
             }
         }
     }
