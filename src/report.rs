@@ -240,12 +240,22 @@ pub fn residual_note(hz: &[f64], residuals: &[f64]) -> String {
         .filter(|(_, r)| **r > RESIDUAL_FLAG || r.is_nan())
         .map(|(f, r)| format!("{} Hz ({r:.1e})", sig6(*f)))
         .collect();
+    // The first few name the trouble; a model of a thousand flagged pairs is one line.
+    const NAMED: usize = 6;
     if flagged.is_empty() {
         format!("relative residuals ≤ {worst:.1e}")
-    } else {
+    } else if flagged.len() <= NAMED {
         format!(
             "**residual above {RESIDUAL_FLAG:.0e}, not to be trusted:** {}",
             flagged.join(", ")
+        )
+    } else {
+        format!(
+            "**residual above {RESIDUAL_FLAG:.0e} in {} of {} pairs (worst {worst:.1e}), not to \
+             be trusted:** {}, …",
+            flagged.len(),
+            hz.len(),
+            flagged[..NAMED].join(", ")
         )
     }
 }

@@ -371,6 +371,32 @@ def skfem_insert(out, name, cells, units, scale, description):
 
 
 # ---------------------------------------------------------------------------------------------
+# gmsh + scikit-fem (assets/generate/make_bodies.py's meshing and assembly)
+# ---------------------------------------------------------------------------------------------
+
+def graded_plate_geometry(h):
+    """A 100 x 50 x 8 mm plate (in metres) with a 20 mm bore and a 2 mm pin hole beside it:
+    curvature-driven sizing makes elements near the pin hole ~10 times smaller than the rest."""
+    import gmsh
+    occ = gmsh.model.occ
+    plate = occ.addBox(0, 0, 0, 0.1, 0.05, 0.008)
+    tools = [(3, occ.addCylinder(0.03, 0.025, -0.001, 0, 0, 0.01, 0.01)),
+             (3, occ.addCylinder(0.075, 0.025, -0.001, 0, 0, 0.01, 0.001))]
+    occ.cut([(3, plate)], tools)
+    occ.synchronize()
+    return {"bore": ((0.03, 0.025), 0.01), "pin": ((0.075, 0.025), 0.001)}, h
+
+
+def gmsh_skfem_graded(out, name, h, description):
+    import make_bodies
+    coords, tets, bores = make_bodies.mesh_p2(graded_plate_geometry, h, 16)
+    K, M, X, _ = make_bodies.assemble(coords, tets, **STEEL_SI)
+    scale = np.abs(X).max()
+    sets = {s: make_bodies.nodes_on_bore(X, c, r, 1e-6 * scale) for s, (c, r) in bores.items()}
+    finish(out, name, "gmsh + scikit-fem (graded P2 tetrahedra)", description, SI, K, M, X, sets)
+
+
+# ---------------------------------------------------------------------------------------------
 # FElupe
 # ---------------------------------------------------------------------------------------------
 
@@ -476,6 +502,16 @@ def bracket_geometry():
             "bore": ((30.0, 55.0), 10.0, 0)}
 
 
+def block_geometry():
+    """A 60 x 24 x 10 mm block with a 10 mm through bore: a small CalculiX body."""
+    import gmsh
+    occ = gmsh.model.occ
+    body = occ.addBox(0, 0, 0, 60, 24, 10)
+    occ.cut([(3, body)], [(3, occ.addCylinder(15, 12, -1, 0, 0, 12, 5))])
+    occ.synchronize()
+    return {"bore": ((15.0, 12.0), 5.0, 2)}
+
+
 def calculix_deck(path, X, tets, material, step):
     with open(path, "w") as f:
         f.write("** written by flexmodes' assets/generate/corpus.py\n*NODE\n")
@@ -517,11 +553,11 @@ def read_calculix_matrix(path, n):
     return (upper + sp.triu(upper, 1).T).tocsr()
 
 
-def calculix_body(out, name, h, units, material, description):
+def calculix_body(out, name, h, units, material, description, geometry=bracket_geometry):
     """A C3D10 bracket meshed by gmsh, K and M written by CalculiX itself; its frequencies
     computed by CalculiX. Written twice: CalculiX's own files (body.toml, format "calculix")
     and converted to node-major Matrix Market (converted/body.toml)."""
-    X, tets, holes = gmsh_c3d10(bracket_geometry, h)
+    X, tets, holes = gmsh_c3d10(geometry, h)
     os.makedirs(out, exist_ok=True)
     calculix_deck(os.path.join(out, "job.inp"), X, tets, material,
                   "*STEP\n*FREQUENCY,SOLVER=MATRIXSTORAGE\n*END STEP\n")
@@ -545,7 +581,7 @@ def calculix_body(out, name, h, units, material, description):
     K = (P @ K_eq @ P.T).tocsr()
     M = (P @ M_eq @ P.T).tocsr()
     for junk in ("job.12d", "job.cvg", "job.sta", "job.frd", "job.dat", "frequency.12d",
-                 "frequency.cvg", "frequency.sta", "frequency.frd"):
+                 "frequency.cvg", "frequency.sta", "frequency.frd", "spooles.out"):
         p = os.path.join(out, junk)
         if os.path.exists(p):
             os.remove(p)
@@ -562,10 +598,16 @@ def calculix_body(out, name, h, units, material, description):
     sets = {}
     for hname, (centre, radius, axis) in holes.items():
         sets[hname] = surface_nodes_near(X, surface, centre, radius, 0.05 * radius, axis)
+    # CalculiX's own files, byte for byte, gzip-compressed (flexmodes reads either).
+    for ext in ("sti", "mas", "dof"):
+        path = os.path.join(out, f"job.{ext}")
+        with open(path, "rb") as f, gzip.open(path + ".gz", "wb", compresslevel=6) as g:
+            g.write(f.read())
+        os.remove(path)
     write_nodes(os.path.join(out, "nodes.csv"), X)
     write_body_toml(os.path.join(out, "body.toml"), name, description, units, sets,
-                    {"format": "calculix", "stiffness": "job.sti", "mass": "job.mas",
-                     "dof_map": "job.dof"})
+                    {"format": "calculix", "stiffness": "job.sti.gz", "mass": "job.mas.gz",
+                     "dof_map": "job.dof.gz"})
     conv = os.path.join(out, "converted")
     os.makedirs(conv, exist_ok=True)
     write_mtx_gz(os.path.join(conv, "k.mtx.gz"), K, "CalculiX 2.20 MATRIXSTORAGE, converted")
@@ -583,7 +625,7 @@ def calculix_body(out, name, h, units, material, description):
 BODIES = {
     # scikit-fem, structured, carved
     "skfem-eyebar-si": (lambda o: skfem_eyebar(
-        o, "skfem_eyebar_si", 41, 1.0, SI, STEEL_SI,
+        o, "skfem_eyebar_si", 42, 1.0, SI, STEEL_SI,
         "steel eye-bar 240 mm, scikit-fem structured P2 tetrahedra, eyes and waist carved by "
         "removing elements, SI"), "large"),
     "skfem-eyebar-mm": (lambda o: skfem_eyebar(
@@ -605,6 +647,11 @@ BODIES = {
         o, "skfem_insert", 14, MM, 1000.0,
         "aluminium block with an insert 1000x stiffer around a bore, scikit-fem P2, mm-t-s"),
         "small"),
+    # gmsh + scikit-fem
+    "gmsh-skfem-graded": (lambda o: gmsh_skfem_graded(
+        o, "gmsh_skfem_graded", 0.006,
+        "steel plate with a 20 mm bore and a 2 mm pin hole, gmsh P2 tetrahedra graded ~10:1, "
+        "scikit-fem, SI"), "small"),
     # FElupe
     "felupe-graded": (lambda o: felupe_graded(
         o, "felupe_graded", SI, STEEL_SI, 1.0,
@@ -614,11 +661,15 @@ BODIES = {
         "two steel blocks joined by a layer 1e5 times softer (nearly free), FElupe, mm-t-s"),
         "small"),
     # CalculiX
+    "ccx-block": (lambda o: calculix_body(
+        o, "ccx_block", 12.0, MM, STEEL_MM,
+        "steel block with a bore, gmsh C3D10, K and M written by CalculiX 2.20, mm-t-s",
+        block_geometry), "small"),
     "ccx-bracket": (lambda o: calculix_body(
-        o, "ccx_bracket", 14.0, MM, STEEL_MM,
+        o, "ccx_bracket", 18.0, MM, STEEL_MM,
         "steel angle bracket, gmsh C3D10, K and M written by CalculiX 2.20, mm-t-s"), "small"),
     "ccx-bracket-large": (lambda o: calculix_body(
-        o, "ccx_bracket_large", 6.5, MM, STEEL_MM,
+        o, "ccx_bracket_large", 5.0, MM, STEEL_MM,
         "steel angle bracket, gmsh C3D10, K and M written by CalculiX 2.20, mm-t-s, 30 k+ DOF"),
         "large"),
 }

@@ -140,10 +140,7 @@ pub(super) fn check_mass(model: &FeModel, name: &str) -> Result<()> {
                 // mesh): M + τ diag(M) is then positive definite for a τ at round-off. The
                 // free-free solver needs only K - σM positive definite, which its own
                 // factorisation checks.
-                let regularised = m.shifted(
-                    &MassMatrix::Lumped(m.diagonal()),
-                    -SEMI_DEFINITE_MASS,
-                );
+                let regularised = m.shifted(&MassMatrix::Lumped(m.diagonal()), -SEMI_DEFINITE_MASS);
                 if SymmetricFactor::sparse(regularised.as_faer(), &symbolic, "mass").is_err() {
                     return Err(fail(
                         index,

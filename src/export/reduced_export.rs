@@ -160,12 +160,14 @@ pub fn export(
         }
         None => None,
     };
+    let mut free_free_sturm = None;
     let basis = match basis {
         Some(b) => b,
         None => {
             // Built from the interface loads and the body's free-free modes (models'
             // BodyReducer): rigid interfaces give their masters' six loads, nothing to tie.
             let full = count_zero_energy_modes(model, 10)?;
+            free_free_sturm = Some(full.modes.sturm);
             let interfaces = BodyInterfaces {
                 boundary: boundary.to_vec(),
                 rigid: parameters.rigid_interfaces.clone(),
@@ -297,6 +299,14 @@ pub fn export(
         "reduced_elastic_hz": sig_vec(&hz),
         "reduced_elastic_residuals": sig_vec(&residuals),
         "reduced_zero_energy_modes": zero_energy,
+        // The body's free-free solve, when the method needed one: modes it skipped below the
+        // highest pair, by the Sturm count (0 by construction for a complete dense solve).
+        "free_free_missed_modes": free_free_sturm.map(|s| s.map_or(0, |c| c.missed())),
+        "free_free_sturm_check": free_free_sturm.flatten().map(|c| json!({
+            "shift_hz": crate::linalg::hz_from_eigenvalue(c.shift),
+            "eigenvalues_below": c.below,
+            "found_below": c.found,
+        })),
         "zero_energy_threshold_hz": threshold,
         "files": {
             "psi": parameters.psi_format.file_name(),

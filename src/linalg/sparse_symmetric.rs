@@ -366,3 +366,39 @@ impl SparseAssembly {
         SparseSymmetric::from_parts(self.pattern, self.values)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_shift_keeps_mass_entries_the_stiffness_pattern_lacks() {
+        for n in [3, 17, 64] {
+            // K couples every other DOF only; M couples neighbours: M's entries lie outside
+            // K's pattern, as with couplings an FE code's stiffness cancels exactly.
+            let mut k = Vec::new();
+            let mut m = Vec::new();
+            for i in 0..n {
+                k.push((i, i, 3.0 + i as f64));
+                m.push((i, i, 2.0));
+                if i + 2 < n {
+                    k.extend([(i, i + 2, -1.0), (i + 2, i, -1.0)]);
+                }
+                if i + 1 < n {
+                    m.extend([(i, i + 1, 0.5), (i + 1, i, 0.5)]);
+                }
+            }
+            let k = SparseSymmetric::from_triplets(n, &k);
+            let m = MassMatrix::Consistent(SparseSymmetric::from_triplets(n, &m));
+            for sigma in [-7.5e3, 0.25] {
+                let shifted = k.shifted(&m, sigma).to_dense();
+                let expected = k.to_dense() - m.to_dense() * faer::Scale(sigma);
+                assert!((shifted - expected).norm_max() <= 1e-12 * sigma.abs().max(1.0));
+            }
+            let lumped = MassMatrix::Lumped((0..n).map(|i| 1.0 + i as f64).collect());
+            let shifted = k.shifted(&lumped, 2.0).to_dense();
+            let expected = k.to_dense() - lumped.to_dense() * faer::Scale(2.0);
+            assert!((shifted - expected).norm_max() <= 1e-12);
+        }
+    }
+}

@@ -87,3 +87,53 @@ pub fn sturm_count(
         reason: last_error.map(|e| e.to_string()).unwrap_or_default(),
     }))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A chain of springs (tridiagonal K) with a consistent-like tridiagonal M: eigenvalues
+    /// known from the dense solve.
+    fn chain(n: usize) -> (SparseSymmetric, MassMatrix, Vec<f64>) {
+        let mut k = Vec::new();
+        let mut m = Vec::new();
+        for i in 0..n {
+            k.push((i, i, 2.0 + i as f64 * 0.01));
+            m.push((i, i, 4.0));
+            if i + 1 < n {
+                k.extend([(i, i + 1, -1.0), (i + 1, i, -1.0)]);
+                m.extend([(i, i + 1, 1.0), (i + 1, i, 1.0)]);
+            }
+        }
+        let k = SparseSymmetric::from_triplets(n, &k);
+        let m = SparseSymmetric::from_triplets(n, &m);
+        let all =
+            crate::linalg::generalized_eigen(k.to_dense().as_ref(), m.to_dense().as_ref(), "chain")
+                .unwrap();
+        (k, MassMatrix::Consistent(m), all.values)
+    }
+
+    #[test]
+    fn counts_what_a_solver_skipped() {
+        for n in [30, 200] {
+            let (k, m, values) = chain(n);
+            let symbolic = SymbolicFactor::analyse(k.shifted(&m, 0.1).as_faer()).unwrap();
+            for wanted in [1, 5, 12] {
+                let found = &values[..wanted];
+                let count = sturm_count(&k, &m, &symbolic, found, &values[wanted..]).unwrap();
+                assert_eq!(
+                    (count.below, count.missed()),
+                    (wanted, 0),
+                    "n {n}, {wanted}"
+                );
+                // The same set with its second-lowest pair left out: one missed.
+                let mut gap: Vec<f64> = found.to_vec();
+                if wanted > 1 {
+                    gap.remove(1);
+                    let count = sturm_count(&k, &m, &symbolic, &gap, &values[wanted..]).unwrap();
+                    assert_eq!(count.missed(), 1, "n {n}, {wanted}: {count:?}");
+                }
+            }
+        }
+    }
+}

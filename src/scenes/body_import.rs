@@ -31,6 +31,21 @@ pub(super) fn refuse_mechanism(
     Ok(())
 }
 
+/// "0 (Sturm count: …)": how many eigenvalues below the highest pair the solver skipped, as
+/// the inertia of $K - \sigma' M$ counts them, or that the solve was complete.
+pub(super) fn missed_note(modes: &crate::linalg::GeneralizedEigen) -> String {
+    match modes.sturm {
+        Some(c) => format!(
+            "{} (Sturm count: {} eigenvalues below {} Hz, {} found)",
+            c.missed(),
+            c.below,
+            sig6(crate::linalg::hz_from_eigenvalue(c.shift)),
+            c.found
+        ),
+        None => "0 (complete dense solve)".into(),
+    }
+}
+
 /// What `flexmodes import` prints: the body's size, mass, zero-energy modes and lowest
 /// frequencies, its node sets; JSON and text. A mechanism is [`Error::Mechanism`].
 pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
@@ -74,6 +89,12 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         "zero_energy_threshold_hz": sig(full.threshold_hz),
         "lowest_elastic_hz": sig_vec(&hz),
         "lowest_elastic_residuals": sig_vec(&full.elastic_residuals()),
+        "missed_modes": full.modes.sturm.map_or(0, |c| c.missed()),
+        "sturm_check": full.modes.sturm.map(|c| json!({
+            "shift_hz": sig(crate::linalg::hz_from_eigenvalue(c.shift)),
+            "eigenvalues_below": c.below,
+            "found_below": c.found,
+        })),
         "mass_centre": properties.centre.map(sig),
         "inertia_about_mass_centre": properties.inertia.map(|row| row.map(sig)),
         "node_sets": sets,
@@ -87,7 +108,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         "# {} ({})\n\n{}\n\n- {} nodes × {} DOF ({}) = {} DOF, node-major\n- K: {} stored \
          entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
          coordinates: {}\n- zero-energy modes: {} (below {:.2e} Hz; a free {} body has {}){}\n\
-         - lowest elastic frequencies, Hz: {} ({})\n- mass centre: {}; inertia about it: {}\n\
+         - lowest elastic frequencies, Hz: {} ({})\n- missed modes: {}\n- mass centre: {}; inertia about it: {}\n\
          - node sets: {}\n- units: {}, {}, {}",
         model.name,
         body.location.display(),
@@ -133,6 +154,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         },
         fmt_hz(&hz),
         residual_note(&hz, &full.elastic_residuals()),
+        missed_note(&full.modes),
         if body.has_coordinates {
             format!(
                 "({}) {}",

@@ -179,8 +179,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut reduced_zero = Map::new();
     let mut residual_lines = vec![
         format!(
-            "full body: {}",
-            residual_note(&full_hz, &full.elastic_residuals())
+            "full body: {}; missed modes: {}",
+            residual_note(&full_hz, &full.elastic_residuals()),
+            super::body_import::missed_note(&full.modes)
         ),
         format!("fixed-interface: {}", residual_note(&fi_hz, &fi_residuals)),
     ];
@@ -341,6 +342,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     r.insert("dofs".into(), json!(dofs));
     r.insert("nnz".into(), json!(model.stiffness_nnz()));
     r.insert("zero_energy_modes".into(), json!(full.zero_modes));
+    r.insert(
+        "missed_modes".into(),
+        json!(full.modes.sturm.map_or(0, |c| c.missed())),
+    );
     r.insert("free_free_hz".into(), json!(sig_vec(&full_hz)));
     r.insert("fixed_interface_hz".into(), json!(sig_vec(&fi_hz)));
     r.insert("reduced_hz".into(), Value::Object(reduced));

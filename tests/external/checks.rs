@@ -10,6 +10,7 @@ use flexmodes::{
     reduction::{ColumnKind, Method, ModeSelection, ReductionParameters, SolverPath, reduce},
 };
 use serde_json::Value;
+use std::time::Instant;
 
 /// The body in `dir` (its `body.toml`) and its `reference.json`.
 pub fn load(dir: &Path) -> (ImportedBody, Value) {
@@ -179,4 +180,74 @@ pub fn check_reductions(name: &str, body: &ImportedBody, reference: &Value) {
             1e-6,
         );
     }
+}
+
+pub fn corpus_reference(dir: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("reference.json")).unwrap()).unwrap()
+}
+
+/// Imports `body.toml` in `dir` and checks its free-free pairs: six zero-energy modes, none
+/// missed by the Sturm count, the twelve lowest elastic frequencies equal to the reference to
+/// `tol`. Returns the elastic frequencies and the seconds the import's eigen solve took.
+pub fn check_corpus_body(name: &str, toml: &Path, reference: &Value, tol: f64) -> (Vec<f64>, f64) {
+    let body = ImportedBody::load(toml.to_str().unwrap())
+        .unwrap_or_else(|e| panic!("{name}: {}: {e}", toml.display()));
+    assert_eq!(
+        body.model.dof_count() as u64,
+        reference["dofs"].as_u64().unwrap(),
+        "{name}"
+    );
+    let started = Instant::now();
+    let count = count_zero_energy_modes(&body.model, 12)
+        .unwrap_or_else(|e| panic!("{name}: the free-free solve failed: {e}"));
+    let seconds = started.elapsed().as_secs_f64();
+    assert_eq!(count.zero_modes, 6, "{name}: zero-energy modes");
+    let sturm = count
+        .modes
+        .sturm
+        .unwrap_or_else(|| panic!("{name}: no Sturm check"));
+    assert_eq!(sturm.missed(), 0, "{name}: {sturm:?}");
+    let expected = floats(&reference["free_free_hz"]);
+    let elastic = count.elastic_hz();
+    assert_relative(
+        &format!("{name} free-free Hz"),
+        &elastic[..12],
+        &expected[6..18],
+        tol,
+    );
+    assert!(
+        count.modes.max_residual() < 1e-6,
+        "{name}: worst residual {:.1e}",
+        count.modes.max_residual()
+    );
+    (elastic[..12].to_vec(), seconds)
+}
+
+/// The corpus bodies in `dir` (folders with a reference.json), sorted.
+pub fn corpus_bodies(dir: &Path) -> Vec<std::path::PathBuf> {
+    let mut bodies: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("reference.json").exists())
+        .collect();
+    bodies.sort();
+    bodies
+}
+
+/// A corpus body checked whole: its free-free pairs against SciPy's to 1e-6 and, for a
+/// CalculiX body, against CalculiX's printed frequencies to 2e-6 and its converted twin's to
+/// 1e-9. Returns the first elastic frequency and the solve's seconds.
+pub fn check_corpus_dir(dir: &Path) -> (f64, f64) {
+    let name = dir.file_name().unwrap().to_string_lossy().to_string();
+    let reference = corpus_reference(dir);
+    let (hz, seconds) = check_corpus_body(&name, &dir.join("body.toml"), &reference, 1e-6);
+    if let Some(ccx) = reference.get("calculix_hz") {
+        // CalculiX prints 7 digits; its first six are the rigid motions.
+        let ccx = floats(ccx);
+        assert_relative(&format!("{name} against CalculiX"), &hz, &ccx[6..18], 2e-6);
+        let (twin, _) =
+            check_corpus_body(&name, &dir.join("converted/body.toml"), &reference, 1e-6);
+        assert_relative(&format!("{name} direct vs converted"), &hz, &twin, 1e-9);
+    }
+    (hz[0], seconds)
 }
