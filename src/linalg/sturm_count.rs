@@ -18,6 +18,10 @@ use crate::{Error, Result, error::LinalgError};
 /// $\sigma'$ further into the gap).
 const SHIFT_TRIES: usize = 3;
 
+/// Largest backward error $\|b - A\hat x\| / \|\,|A||\hat x|\,\|$ of a solve with the
+/// $LDL^T$ factor whose inertia is counted ($10^6\varepsilon$).
+const STURM_BACKWARD_ERROR: f64 = 1e-10;
+
 /// The outcome of a Sturm sequence check.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SturmCount {
@@ -64,11 +68,21 @@ pub fn sturm_count(
         let shifted = k.shifted(m, shift);
         let attempt =
             IndefiniteFactor::factor(shifted, symbolic, "Sturm shift K - σ'M").and_then(|factor| {
-                // A factor that cannot solve to its tolerance may have the wrong inertia too.
+                // An unpivoted LDLᵀ that grew (a small pivot) may have the wrong inertia: its
+                // backward error must stay near round-off.
                 let probe = faer::Mat::from_fn(k.dim(), 1, |i, _| 1.0 + (i % 7) as f64);
-                factor
-                    .solve(probe.as_ref())
-                    .map(|_| factor.negative_pivots())
+                let backward = factor.backward_error(probe.as_ref());
+                if backward <= STURM_BACKWARD_ERROR {
+                    Ok(factor.negative_pivots())
+                } else {
+                    Err(Error::Linalg(LinalgError::SturmCheckFailed {
+                        shift,
+                        reason: format!(
+                            "its LDLᵀ solves with a backward error of {backward:.1e}, above \
+                             {STURM_BACKWARD_ERROR:.0e}"
+                        ),
+                    }))
+                }
             });
         match attempt {
             Ok(below) => {

@@ -40,6 +40,12 @@ use crate::{
     },
 };
 
+/// Multiple of the data's precision $\delta$ (the rigid-motion defect) times $\lambda_{max}$
+/// below which a refined null vector's eigenvalue counts as zero: 11-digit matrices (Nastran's
+/// large field) put the rigid eigenvalues at ~$10^{-10}\lambda_{max}$, above the round-off
+/// threshold [`ZERO_ENERGY_RATIO`] of exact data.
+const NULL_PRECISION_FACTOR: f64 = 16.0;
+
 /// Settings of [`free_body_pairs`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct FreeBodyParameters {
@@ -126,7 +132,8 @@ pub fn free_body_pairs(
         &factor0,
         geometric.as_ref().map(|r| r.as_ref()),
         model.dofs.rigid_body_count(),
-        scale,
+        // Matrices known to δ leave their rigid eigenvalues at ~δ λmax, not at round-off.
+        scale * ZERO_ENERGY_RATIO.max(NULL_PRECISION_FACTOR * data_precision),
         params,
     )?;
     let null_count = null.vectors.ncols().min(wanted);
@@ -313,14 +320,14 @@ struct NullSpace {
 
 /// Inverse subspace iteration on $(K - \sigma M)^{-1}M$ from the geometric rigid motions (or
 /// random vectors) and `extra` random columns, with Rayleigh–Ritz on $(K, M)$ after every step;
-/// the Ritz vectors whose values lie below the zero-energy threshold are the null space.
+/// the Ritz vectors whose values lie below `threshold` ((rad/s)²) are the null space.
 fn refined_null_space(
     k: &SparseSymmetric,
     m: &MassMatrix,
     factor: &SymmetricFactor,
     geometric: Option<MatRef<'_, f64>>,
     rigid_count: usize,
-    scale: f64,
+    threshold: f64,
     params: &FreeBodyParameters,
 ) -> Result<NullSpace> {
     let n = k.dim();
@@ -336,7 +343,6 @@ fn refined_null_space(
     } else {
         params.null_steps_from_random
     };
-    let threshold = ZERO_ENERGY_RATIO * scale;
     let mut values = Vec::new();
     for _ in 0..steps.max(1) {
         // The image is dominated by the null space (gain 1/|σ| against 1/λ): made

@@ -242,9 +242,24 @@ pub fn check_corpus_dir(dir: &Path) -> (f64, f64) {
     let reference = corpus_reference(dir);
     let (hz, seconds) = check_corpus_body(&name, &dir.join("body.toml"), &reference, 1e-6);
     if let Some(ccx) = reference.get("calculix_hz") {
-        // CalculiX prints 7 digits; its first six are the rigid motions.
+        // CalculiX prints 7 digits; its first six are the rigid motions. Its own solve is not
+        // always converged that far: where SciPy's pairs of the same matrices differ from
+        // CalculiX's print by more (2.7e-6 on the coarse block, mode 11), the tolerance is
+        // that measured disagreement, half again.
         let ccx = floats(ccx);
-        assert_relative(&format!("{name} against CalculiX"), &hz, &ccx[6..18], 2e-6);
+        let scipy = floats(&reference["free_free_hz"]);
+        let disagreement = scipy[6..18]
+            .iter()
+            .zip(&ccx[6..18])
+            .map(|(s, c)| (s - c).abs() / s)
+            .fold(0.0f64, f64::max);
+        if disagreement > 2e-6 {
+            println!(
+                "{name}: CalculiX's printed frequencies differ from SciPy's by {disagreement:.1e}"
+            );
+        }
+        let tol = (1.5 * disagreement).max(2e-6);
+        assert_relative(&format!("{name} against CalculiX"), &hz, &ccx[6..18], tol);
         let (twin, _) =
             check_corpus_body(&name, &dir.join("converted/body.toml"), &reference, 1e-6);
         assert_relative(&format!("{name} direct vs converted"), &hz, &twin, 1e-9);

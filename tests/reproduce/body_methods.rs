@@ -185,6 +185,7 @@ fn balanced_truncation_on_a_body_spans_the_modes_it_balances() {
         vectors: free.vectors.subcols(6, 12).to_owned(),
         residuals: free.residuals[6..].to_vec(),
         zero_energy: 0,
+        sturm: None,
     };
     let omega1 = elastic.values[0].sqrt();
     let parameters = |vectors| ModalBalancedParameters {
