@@ -12,6 +12,7 @@
 use std::path::PathBuf;
 
 #[path = "external/checks.rs"]
+#[allow(dead_code)]
 mod checks;
 
 fn large_body() -> PathBuf {
