@@ -34,9 +34,10 @@ use crate::{
     error::LinalgError,
     fem::{FeModel, RigidMotions},
     linalg::{
-        GeneralizedEigen, MassMatrix, PartialEigenParameters, SparseSymmetric, SturmCount,
-        SymbolicFactor, SymmetricFactor, ZERO_ENERGY_RATIO, eigenvalue_scale, generalized_eigen,
-        hz_from_eigenvalue, lowest_modes, negative_shift, nested_dissection, sturm_count,
+        GeneralizedEigen, MassMatrix, PartialEigenParameters, PartialEigenStatistics,
+        SparseSymmetric, SturmCount, SymbolicFactor, SymmetricFactor, ZERO_ENERGY_RATIO,
+        eigenvalue_scale, generalized_eigen, hz_from_eigenvalue, lowest_modes, negative_shift,
+        nested_dissection, sturm_count,
     },
 };
 
@@ -157,7 +158,7 @@ pub fn free_body_pairs(
         &symbolic,
         params,
     ) {
-        Ok(eigen) => {
+        Ok((eigen, _)) => {
             return Ok(FreeBodySolution {
                 eigen,
                 route: route1,
@@ -195,7 +196,7 @@ pub fn free_body_pairs(
                 )
             });
         match result {
-            Ok(eigen) => {
+            Ok((eigen, _)) => {
                 return Ok(FreeBodySolution {
                     eigen,
                     route: route2,
@@ -271,9 +272,10 @@ fn attempt(route: String, wanted: usize, e: Error) -> Result<RouteAttempt> {
 }
 
 /// [`lowest_modes`] followed by the Sturm count; a count above the pairs found retries with
-/// that many more pairs (and two to spare), up to `params.sturm_retries` times.
+/// that many more pairs (and two to spare), up to `params.sturm_retries` times. Returns the
+/// `wanted` pairs (their `sturm` set) and the statistics of the last solve.
 #[allow(clippy::too_many_arguments)]
-fn sturm_checked(
+pub(crate) fn sturm_checked(
     k: &SparseSymmetric,
     m: &MassMatrix,
     factor: &SymmetricFactor,
@@ -283,7 +285,7 @@ fn sturm_checked(
     partial: &PartialEigenParameters,
     symbolic: &SymbolicFactor,
     params: &FreeBodyParameters,
-) -> Result<GeneralizedEigen> {
+) -> Result<(GeneralizedEigen, PartialEigenStatistics)> {
     let mut asked = wanted;
     let mut last: Option<SturmCount> = None;
     for _ in 0..=params.sturm_retries {
@@ -292,7 +294,7 @@ fn sturm_checked(
         if count.missed() == 0 {
             let mut eigen = eigen.first(wanted);
             eigen.sturm = Some(count);
-            return Ok(eigen);
+            return Ok((eigen, stats));
         }
         asked += count.missed() + 2;
         last = Some(count);

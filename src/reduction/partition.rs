@@ -6,13 +6,16 @@ use std::time::Instant;
 
 use faer::{Mat, MatRef};
 
-use super::{ModeSelection, SolverPath};
+use super::{
+    ModeSelection, SolverPath,
+    free_body_solver::{FreeBodyParameters, sturm_checked},
+};
 use crate::{
     Error, Progress, Result,
     fem::{FeModel, RigidMotions},
     linalg::{
         GeneralizedEigen, MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor,
-        SymmetricFactor, generalized_eigen, lowest_modes, negative_shift, nested_dissection,
+        SymmetricFactor, generalized_eigen, negative_shift, nested_dissection,
     },
 };
 
@@ -161,6 +164,8 @@ pub struct InteriorProblem<'a> {
     m_ii: MassMatrix,
     k_ib: Mat<f64>,
     factor: Option<(SymmetricFactor, f64)>,
+    /// The pattern analysis of the factored matrix (sparse path), for the Sturm check.
+    symbolic: Option<SymbolicFactor>,
     free_motions: Option<Vec<String>>,
     partial_modes: Option<GeneralizedEigen>,
     /// Phase timings and sizes so far.
@@ -194,6 +199,7 @@ impl<'a> InteriorProblem<'a> {
             m_ii,
             k_ib,
             factor: None,
+            symbolic: None,
             free_motions: None,
             partial_modes: None,
             progress: Progress::default(),
@@ -262,12 +268,9 @@ impl<'a> InteriorProblem<'a> {
             } else {
                 negative_shift(&self.k_ii, &self.m_ii)
             };
-            let shifted = if sigma == 0.0 {
-                None
-            } else {
-                Some(self.k_ii.shifted(&self.m_ii, sigma))
-            };
-            let a = shifted.as_ref().unwrap_or(&self.k_ii);
+            // On the union of K_ii's and M_ii's patterns even for σ = 0, so the Sturm check's
+            // K_ii - σ'M_ii shares this analysis.
+            let a = &self.k_ii.shifted(&self.m_ii, sigma);
             let f = if self.sparse {
                 // Geometric nested dissection on the interior DOF's node positions.
                 let coords: Vec<[f64; 3]> = self
@@ -278,7 +281,9 @@ impl<'a> InteriorProblem<'a> {
                     .collect();
                 let order = nested_dissection(a.as_faer(), &coords);
                 let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), order.as_deref())?;
-                SymmetricFactor::sparse(a.as_faer(), &symbolic, "interior stiffness K_ii")?
+                let f = SymmetricFactor::sparse(a.as_faer(), &symbolic, "interior stiffness K_ii")?;
+                self.symbolic = Some(symbolic);
+                f
             } else {
                 SymmetricFactor::dense(a.to_dense().as_ref(), "interior stiffness K_ii")?
             };
@@ -378,14 +383,22 @@ impl<'a> InteriorProblem<'a> {
         self.progress.phase("fixed-interface eigensolve")?;
         let started = Instant::now();
         let (f, sigma) = self.factor.as_ref().expect("factored above");
-        let (eig, stats) = lowest_modes(
+        let symbolic = self
+            .symbolic
+            .as_ref()
+            .expect("the sparse path keeps its analysis");
+        // Every partial solve is Sturm-checked; a count above the pairs found retries with
+        // more pairs, then fails naming the modes missed.
+        let (eig, stats) = sturm_checked(
             &self.k_ii,
             &self.m_ii,
             f,
             *sigma,
             wanted,
-            None,
+            Mat::<f64>::zeros(self.k_ii.dim(), 0).as_ref(),
             &PartialEigenParameters::default(),
+            symbolic,
+            &FreeBodyParameters::default(),
         )?;
         self.statistics.eigen_s += started.elapsed().as_secs_f64();
         self.statistics.eigen_block_solves += stats.block_solves;
