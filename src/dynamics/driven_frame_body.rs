@@ -294,7 +294,9 @@ impl DrivenFrameBody {
         let coords = FrameCoordinates::new(n, ring, pins)?;
         let k_ff = coords.project(&model.k);
         let m_ff = coords.project_mass(&model.m);
-        let symbolic = SymbolicFactor::analyse(k_ff.as_faer())?;
+        // The pattern of K + cM, the union of K's and M's (an FE code's M may hold entries
+        // where its K holds none).
+        let symbolic = SymbolicFactor::analyse(k_ff.shifted(&m_ff, -1.0).as_faer())?;
         let s = positions(model, origin);
         let sparse = SparseDriven {
             coords,
