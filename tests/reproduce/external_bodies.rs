@@ -467,14 +467,15 @@ fn macneal_rubin_on_external_bodies_keeps_the_free_free_frequencies() {
 
 /// The committed corpus bodies (tests/corpus/, written by assets/generate/corpus.py): a FElupe
 /// block pair joined by a layer 1e5 times softer (a nearly free mechanism), scikit-fem's cube
-/// of uniform hexahedra (repeated frequencies) and a CalculiX C3D10 block whose K and M
+/// of uniform hexahedra (repeated frequencies), scikit-fem's carved eye-bar in mm-t-s (its mass
+/// pattern exceeds its stiffness's) and a CalculiX C3D10 block whose K and M
 /// CalculiX wrote (read directly and as its converted twin, against CalculiX's own frequencies).
 /// `.ci/run` checks the whole corpus, 30 k+-DOF bodies included (tests/corpus.rs).
 #[test]
 fn committed_corpus_bodies_import_with_their_reference_frequencies() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/corpus");
     let bodies = checks::corpus_bodies(&dir);
-    assert_eq!(bodies.len(), 3, "{bodies:?}");
+    assert_eq!(bodies.len(), 4, "{bodies:?}");
     for body in &bodies {
         checks::check_corpus_dir(body);
     }
