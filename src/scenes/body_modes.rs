@@ -213,8 +213,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     for &m in &methods {
         let model_of = match reducer.reduce(m, kept) {
             Ok(r) => r,
-            Err(Error::Reduction(e @ ReductionError::MethodNeedsContext { .. })) => {
-                // A method that cannot apply to this body: said in its row, not computed.
+            Err(
+                e @ (Error::Reduction(ReductionError::MethodNeedsContext { .. })
+                | Error::Linalg(crate::linalg::LinalgError::EigenCheckFailed { .. })),
+            ) => {
+                // A method that cannot apply to this body, or whose reduced pairs fail their
+                // check: said in its row, not computed, never printed as if right.
                 let mut row = vec![Cell::text(m.id().to_uppercase()), Cell::text("–")];
                 row.push(Cell::text(format!("not computed: {e}")));
                 row.extend((0..5).map(|_| Cell::text("–")));
