@@ -38,6 +38,17 @@ pub enum LinalgError {
         residual: f64,
     },
 
+    /// A matrix factored with the analysis of another sparsity pattern.
+    #[error(
+        "the {matrix} matrix has another sparsity pattern ({given} entries) than the one analysed \
+         for its factorisation ({analysed} entries)"
+    )]
+    PatternMismatch {
+        matrix: String,
+        analysed: usize,
+        given: usize,
+    },
+
     /// The Sturm sequence check could not factor $K - \sigma' M$ accurately at any shift tried.
     #[error(
         "the Sturm sequence check failed: K - σ'M at σ' = {shift:.6e} (rad/s)² could not be \

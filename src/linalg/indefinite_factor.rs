@@ -32,6 +32,7 @@ impl IndefiniteFactor {
     /// Factors `a` (its pattern analysed by `symbolic`). A zero pivot (`a` singular, or a
     /// frequency on a natural one) is [`LinalgError::SingularMatrix`].
     pub fn factor(a: SparseSymmetric, symbolic: &SymbolicFactor, what: &str) -> Result<Self> {
+        symbolic.check_pattern(a.as_faer(), what)?;
         let sym = symbolic.inner();
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {

@@ -35,6 +35,7 @@ pub use memory::{
     reset_peak_resident, resident_bytes,
 };
 pub use nested_dissection::nested_dissection;
+pub(crate) use partial_eigen::next_uniform;
 pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,
 };

@@ -375,8 +375,8 @@ fn m_norm(x: MatRef<'_, f64>, m: &MassMatrix) -> f64 {
     (x.col(0).transpose() * mx.col(0)).max(0.0).sqrt()
 }
 
-/// A uniform number in [−1, 1) from a xorshift64* state.
-fn next_uniform(state: &mut u64) -> f64 {
+/// A uniform number in [−1, 1) from a xorshift64* state (the deterministic start vectors).
+pub(crate) fn next_uniform(state: &mut u64) -> f64 {
     let mut s = *state;
     s ^= s >> 12;
     s ^= s << 25;
@@ -385,6 +385,9 @@ fn next_uniform(state: &mut u64) -> f64 {
     let bits = s.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
     bits as f64 / (1u64 << 52) as f64 - 1.0
 }
+
+/// Worst residual of a converged set below which [`refined_pairs`] spares the extra solve.
+const REFINEMENT_NOT_NEEDED: f64 = 1e-12;
 
 /// $\lambda = \sigma + 1/\theta$ of the Ritz values after the first `wanted`, ascending.
 fn ritz_values_above(sigma: f64, theta: &[f64], wanted: usize) -> Vec<f64> {
@@ -419,7 +422,7 @@ fn refined_pairs(
 ) -> Result<CheckedPairs> {
     let plain = checked_pairs(k, m, sigma, wanted, known, theta, ritz, params)?;
     let free = wanted - known;
-    if free == 0 || plain.converged == wanted && plain.max_residual <= 1e-12 {
+    if free == 0 || plain.converged == wanted && plain.max_residual <= REFINEMENT_NOT_NEEDED {
         return Ok(plain);
     }
     let u = ritz.subcols(known, free);

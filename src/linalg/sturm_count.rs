@@ -62,8 +62,9 @@ pub fn sturm_count(
     let next = ritz_above.first().copied().unwrap_or(f64::INFINITY);
     let mut offset = (0.5 * (next - top)).clamp(1e-5 * scale, 1e-2 * scale);
     let mut last_error = None;
+    let mut shift = top + offset;
     for _ in 0..SHIFT_TRIES {
-        let shift = top + offset;
+        shift = top + offset;
         let found = accepted.len() + ritz_above.iter().filter(|&&r| r < shift).count();
         let shifted = k.shifted(m, shift);
         let attempt =
@@ -97,7 +98,7 @@ pub fn sturm_count(
         offset *= 3.0;
     }
     Err(Error::Linalg(LinalgError::SturmCheckFailed {
-        shift: top + offset / 3.0,
+        shift,
         reason: last_error.map(|e| e.to_string()).unwrap_or_default(),
     }))
 }

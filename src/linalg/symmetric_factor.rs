@@ -31,6 +31,9 @@ const WIDE_SOLVE: usize = 64;
 #[derive(Debug, Clone)]
 pub struct SymbolicFactor {
     inner: Arc<SymbolicCholesky<usize>>,
+    /// Column pointers of the matrix analysed: a matrix factored with this analysis must have
+    /// them too (faer panics on another pattern; see [`SymbolicFactor::check_pattern`]).
+    col_ptr: Arc<Vec<usize>>,
 }
 
 impl SymbolicFactor {
@@ -64,7 +67,22 @@ impl SymbolicFactor {
                 })?;
         Ok(Self {
             inner: Arc::new(inner),
+            col_ptr: Arc::new(a.symbolic().col_ptr().to_vec()),
         })
+    }
+
+    /// [`LinalgError::PatternMismatch`] unless `a` has the pattern analysed (its entries per
+    /// column): a shift `K - σM` built on another pattern than the analysis would make faer
+    /// panic or factor garbage.
+    pub(super) fn check_pattern(&self, a: &SparseColMat<usize, f64>, what: &str) -> Result<()> {
+        if a.symbolic().col_ptr() == self.col_ptr.as_slice() {
+            return Ok(());
+        }
+        Err(Error::Linalg(LinalgError::PatternMismatch {
+            matrix: what.into(),
+            analysed: *self.col_ptr.last().unwrap_or(&0),
+            given: a.compute_nnz(),
+        }))
     }
 
     /// faer's analysis, for the other factorisations of the same pattern.
@@ -125,6 +143,7 @@ impl SymmetricFactor {
         symbolic: &SymbolicFactor,
         what: &str,
     ) -> Result<Self> {
+        symbolic.check_pattern(a, what)?;
         let sym = &symbolic.inner;
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {
@@ -217,6 +236,39 @@ impl SymmetricFactor {
                 );
                 x
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linalg::{MassMatrix, SparseSymmetric};
+
+    #[test]
+    fn a_matrix_of_another_pattern_is_refused_not_factored() {
+        for n in [4, 40] {
+            let mut k = Vec::new();
+            let mut m = Vec::new();
+            for i in 0..n {
+                k.push((i, i, 4.0));
+                m.push((i, i, 2.0));
+                if i + 1 < n {
+                    m.extend([(i, i + 1, 0.5), (i + 1, i, 0.5)]);
+                }
+            }
+            let k = SparseSymmetric::from_triplets(n, &k);
+            let m = MassMatrix::Consistent(SparseSymmetric::from_triplets(n, &m));
+            let symbolic = SymbolicFactor::analyse(k.as_faer()).unwrap();
+            let shifted = k.shifted(&m, -1.0);
+            let e = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "K - σM").unwrap_err();
+            assert!(
+                matches!(e, Error::Linalg(LinalgError::PatternMismatch { .. })),
+                "{e}"
+            );
+            // Analysed on the union, the same matrix factors.
+            let symbolic = SymbolicFactor::analyse(shifted.as_faer()).unwrap();
+            assert!(SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "K - σM").is_ok());
         }
     }
 }

@@ -37,7 +37,7 @@ use crate::{
         GeneralizedEigen, MassMatrix, PartialEigenParameters, PartialEigenStatistics,
         SparseSymmetric, SturmCount, SymbolicFactor, SymmetricFactor, ZERO_ENERGY_RATIO,
         eigenvalue_scale, generalized_eigen, hz_from_eigenvalue, lowest_modes, negative_shift,
-        nested_dissection, sturm_count,
+        nested_dissection, next_uniform, sturm_count,
     },
 };
 
@@ -75,39 +75,26 @@ impl Default for FreeBodyParameters {
     }
 }
 
-/// One route of [`free_body_pairs`] and how it ended.
+/// One failed route of [`free_body_pairs`], for its error.
 #[derive(Debug, Clone, PartialEq)]
-pub struct RouteAttempt {
+struct RouteAttempt {
     /// What the route was ("shift -7.5e3, null space refined", ...).
-    pub route: String,
+    route: String,
     /// Pairs that passed their residual check.
-    pub converged: usize,
+    converged: usize,
     /// Pairs wanted.
-    pub wanted: usize,
+    wanted: usize,
     /// Worst relative residual of the pairs as they stood.
-    pub residual: f64,
-}
-
-/// What [`free_body_pairs`] returns: the pairs, their Sturm check and how they were found.
-#[derive(Debug, Clone)]
-pub struct FreeBodySolution {
-    /// The lowest pairs, ascending, mass-normalised, each residual-checked; `sturm` set.
-    pub eigen: GeneralizedEigen,
-    /// The route that gave them.
-    pub route: String,
-    /// Routes tried before it (failed).
-    pub failed: Vec<RouteAttempt>,
-    /// Zero-energy vectors deflated (the refined null space).
-    pub null_vectors: usize,
+    residual: f64,
 }
 
 /// The `wanted` lowest pairs of `model`'s pencil (an unrestrained body: rigid motions first),
-/// by the routes of this module.
+/// by the routes of this module; `sturm` is set on the result of a partial solve.
 pub fn free_body_pairs(
     model: &FeModel,
     wanted: usize,
     params: &FreeBodyParameters,
-) -> Result<FreeBodySolution> {
+) -> Result<GeneralizedEigen> {
     let n = model.dof_count();
     let (k, m) = (&model.k, &model.m);
     let scale = eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
@@ -159,12 +146,7 @@ pub fn free_body_pairs(
         params,
     ) {
         Ok((eigen, _)) => {
-            return Ok(FreeBodySolution {
-                eigen,
-                route: route1,
-                failed,
-                null_vectors: null_count,
-            });
+            return Ok(eigen);
         }
         Err(e) => failed.push(attempt(route1, wanted, e)?),
     }
@@ -197,12 +179,7 @@ pub fn free_body_pairs(
             });
         match result {
             Ok((eigen, _)) => {
-                return Ok(FreeBodySolution {
-                    eigen,
-                    route: route2,
-                    failed,
-                    null_vectors: null_count,
-                });
+                return Ok(eigen);
             }
             Err(e) => failed.push(attempt(route2, wanted, e)?),
         }
@@ -216,12 +193,7 @@ pub fn free_body_pairs(
             "free-free",
         ) {
             Ok(all) => {
-                return Ok(FreeBodySolution {
-                    eigen: all.first(wanted),
-                    route: route3,
-                    failed,
-                    null_vectors: 0,
-                });
+                return Ok(all.first(wanted));
             }
             Err(e) => failed.push(attempt(route3, wanted, e)?),
         }
@@ -336,7 +308,7 @@ fn refined_null_space(
     let base = geometric.map_or(0, |r| r.ncols());
     let p = (rigid_count.max(base) + params.null_extra).min(n);
     let mut rng = params.seed;
-    let mut z = Mat::from_fn(n, p, |_, _| uniform(&mut rng));
+    let mut z = Mat::from_fn(n, p, |_, _| next_uniform(&mut rng));
     if let Some(r) = geometric {
         z.subcols_mut(0, base).copy_from(r);
     }
@@ -392,15 +364,4 @@ fn m_orthonormal(mut x: Mat<f64>, m: &MassMatrix) -> Mat<f64> {
         }
     }
     x
-}
-
-/// A uniform number in [−1, 1) from a xorshift64* state.
-fn uniform(state: &mut u64) -> f64 {
-    let mut s = *state;
-    s ^= s >> 12;
-    s ^= s << 25;
-    s ^= s >> 27;
-    *state = s;
-    let bits = s.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
-    bits as f64 / (1u64 << 52) as f64 - 1.0
 }

@@ -37,7 +37,7 @@ pub fn lowest_free_modes(model: &FeModel, elastic: usize) -> Result<GeneralizedE
 /// Lanczos with its null space refined and deflated, falling back on other shifts and the dense
 /// solve; every pair residual-checked and the set Sturm-checked ([`free_body_pairs`]).
 pub fn lowest_free_body_pairs(model: &FeModel, wanted: usize) -> Result<GeneralizedEigen> {
-    Ok(free_body_pairs(model, wanted, &FreeBodyParameters::default())?.eigen)
+    free_body_pairs(model, wanted, &FreeBodyParameters::default())
 }
 
 /// The free-interface modes a selection keeps: the rigid-body modes plus `Count(k)` elastic
