@@ -110,17 +110,16 @@ pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<Size
         progress(&format!("{dofs} DOF: Craig-Bampton"));
         let started = Instant::now();
         let mut problem = InteriorProblem::new(&model, &corners, SolverPath::Auto)?;
-        let cb = craig_bampton_from(&model, &mut problem, ModeSelection::Count(BENCH_MODES))?;
+        let cb = craig_bampton_from(&mut problem, ModeSelection::Count(BENCH_MODES))?;
         let cb_s = started.elapsed().as_secs_f64();
         let phases = cb.statistics;
         let hz = cb.normal_hz();
         let started = Instant::now();
-        modal_truncation_from(&model, &mut problem, ModeSelection::Count(BENCH_MODES))?;
+        modal_truncation_from(&mut problem, ModeSelection::Count(BENCH_MODES))?;
         // MT reuses CB's factor and modes: its own cost is the basis assembly on top.
         let mt_s = phases.factorization_s + phases.eigen_s + started.elapsed().as_secs_f64();
         let started = Instant::now();
         mode_condensation_from(
-            &model,
             &mut problem,
             ModeSelection::Count(BENCH_MODES),
             ModeCondensationRoute::KeptModes,

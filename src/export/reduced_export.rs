@@ -18,9 +18,10 @@ use crate::{
     linalg::generalized_eigen,
     models::{BodyInterfaces, BodyReducer},
     reduction::{
-        AveragingInterface, Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, MASTER_DOF_NAMES,
-        MacNealRubinParameters, Method, ModeSelection, ReducedMatrices, ReductionParameters,
-        RigidInterface, SolverPath, macneal_rubin, reduce, reduce_interface, tie_rigid_interfaces,
+        AveragingInterface, Basis, CONSTRAINT_COUPLING_TOLERANCE, ColumnKind, InteriorProblem,
+        MASTER_DOF_NAMES, MacNealRubinParameters, Method, ModeSelection, ReducedMatrices,
+        ReductionParameters, RigidInterface, SolverPath, macneal_rubin, reduce, reduce_interface,
+        reduce_interior, tie_rigid_interfaces,
     },
     report::sig_vec,
 };
@@ -140,7 +141,7 @@ pub fn export(
         Method::BenfieldHruda | Method::MomentMatching | Method::BalancedTruncation => None,
         // An averaging interface: BodyReducer says which methods it takes.
         _ if !parameters.averaging_interfaces.is_empty() => None,
-        _ => Some(reduce(
+        Method::NoReduction | Method::Eitelberg => Some(reduce(
             model,
             method,
             &ReductionParameters {
@@ -149,10 +150,25 @@ pub fn export(
                 solver: SolverPath::Auto,
             },
         )?),
+        // Rigid interfaces tied in the boundary coordinates: six constraint modes per master.
+        _ => Some(reduce_interior(
+            method,
+            &mut InteriorProblem::new(model, boundary, SolverPath::Auto)?
+                .with_rigid_interfaces(&parameters.rigid_interfaces)?,
+            ModeSelection::Count(modes),
+        )?),
     };
     let basis = match basis {
         Some(b) => {
-            let b = tie_rigid_interfaces(model, b, &parameters.rigid_interfaces)?;
+            // The others have no unit boundary columns: tying them names the DOF.
+            let b = if matches!(
+                method,
+                Method::MacNealRubin | Method::NoReduction | Method::Eitelberg
+            ) {
+                tie_rigid_interfaces(model, b, &parameters.rigid_interfaces)?
+            } else {
+                b
+            };
             Some(match parameters.interface_modes {
                 Some(count) => reduce_interface(model, b, count)?,
                 None => b,

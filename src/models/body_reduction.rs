@@ -17,10 +17,9 @@ use crate::{
     reduction::{
         AveragingInterface, Basis, ColumnKind, InterfaceLoads, InteriorProblem,
         MacNealRubinParameters, Method, ModalBalancedParameters, ModalInfluence, ModalModel,
-        ModeCondensationRoute, ModeSelection, MomentMatchingParameters, ReductionError,
-        RigidInterface, SolverPath, craig_bampton_from, guyan_from, lowest_free_modes,
-        macneal_rubin, modal_balanced_basis, modal_influence, modal_truncation_from,
-        mode_condensation_from, moment_matching, reduce_interface, tie_rigid_interfaces,
+        ModeSelection, MomentMatchingParameters, ReductionError, RigidInterface, SolverPath,
+        lowest_free_modes, macneal_rubin, modal_balanced_basis, modal_influence, moment_matching,
+        reduce_interface, reduce_interior,
     },
 };
 
@@ -190,6 +189,7 @@ impl<'a> BodyReducer<'a> {
         } else {
             Some(
                 InteriorProblem::new(model, &interfaces.boundary, SolverPath::Auto)?
+                    .with_rigid_interfaces(&interfaces.rigid)?
                     .with_progress(progress.clone()),
             )
         };
@@ -309,17 +309,12 @@ impl<'a> BodyReducer<'a> {
         let mut note = None;
         let mut shared_s = 0.0;
         let basis = match method {
-            Method::Guyan => guyan_from(model, self.problem()?)?,
-            Method::ModalTruncation => {
-                modal_truncation_from(model, self.problem()?, ModeSelection::Count(kept))?
-            }
-            Method::CraigBampton => {
-                craig_bampton_from(model, self.problem()?, ModeSelection::Count(kept))?
-            }
-            Method::ModeCondensation => {
-                let problem = self.problem()?;
-                let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
-                mode_condensation_from(model, problem, ModeSelection::Count(kept), route)?
+            // Rigid interfaces are tied in the problem's boundary coordinates.
+            Method::Guyan
+            | Method::ModalTruncation
+            | Method::CraigBampton
+            | Method::ModeCondensation => {
+                reduce_interior(method, self.problem()?, ModeSelection::Count(kept))?
             }
             Method::MacNealRubin => {
                 if !self.interfaces.rigid.is_empty() {
@@ -428,11 +423,6 @@ impl<'a> BodyReducer<'a> {
                 }
                 .into());
             }
-        };
-        let basis = if uses_interior {
-            tie_rigid_interfaces(model, basis, &self.interfaces.rigid)?
-        } else {
-            basis
         };
         let constraint_columns = basis.columns_of(|k| *k == ColumnKind::Constraint).len();
         let basis = match interface_modes {

@@ -403,7 +403,7 @@ pub fn witteveen_bases(
             Method::CraigBampton => {
                 let partition = Partition::from_dofs(model, &io.io(), &io.clamp)?;
                 let mut problem = InteriorProblem::on(model, partition, SolverPath::Auto)?;
-                craig_bampton_from(model, &mut problem, ModeSelection::Count(7))?
+                craig_bampton_from(&mut problem, ModeSelection::Count(7))?
             }
             Method::MomentMatching => {
                 let mm = moment_matching(

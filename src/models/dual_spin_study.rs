@@ -244,7 +244,7 @@ pub fn mode_set_bases(ds: &DualSpin, sets: &DualSpinSets, m: Method) -> Result<[
             let partition =
                 Partition::from_dofs(&ds.stator, &sets.stator_interface(), &sets.stator_base)?;
             let mut problem = InteriorProblem::on(&ds.stator, partition, SolverPath::Auto)?;
-            let stator = craig_bampton_from(&ds.stator, &mut problem, cut)?;
+            let stator = craig_bampton_from(&mut problem, cut)?;
             [rotor.psi, stator.psi]
         }
         Method::MacNealRubin => {

@@ -4,7 +4,7 @@ use faer::Mat;
 
 use super::{
     Basis, ColumnKind, Method, ModeSelection, SolverPath,
-    partition::{InteriorProblem, boundary_columns, normal_columns},
+    partition::{InteriorProblem, normal_columns},
 };
 use crate::{Result, fem::FeModel};
 
@@ -26,17 +26,12 @@ pub fn craig_bampton_on(
     modes: ModeSelection,
     path: SolverPath,
 ) -> Result<Basis> {
-    craig_bampton_from(
-        model,
-        &mut InteriorProblem::new(model, boundary, path)?,
-        modes,
-    )
+    craig_bampton_from(&mut InteriorProblem::new(model, boundary, path)?, modes)
 }
 
 /// [`craig_bampton`] on an interior problem whose factor and modes may be shared with other
 /// methods of the same boundary set.
 pub fn craig_bampton_from(
-    model: &FeModel,
     problem: &mut InteriorProblem<'_>,
     modes: ModeSelection,
 ) -> Result<Basis> {
@@ -44,7 +39,7 @@ pub fn craig_bampton_from(
     let fi = problem.kept_modes(modes)?;
     let kept = fi.values.len();
     let p = &problem.partition;
-    let nb = p.b.len();
+    let nb = problem.boundary_coordinates();
     let bottom = Mat::from_fn(p.i.len(), nb + kept, |r, c| {
         if c < nb {
             psi_s[(r, c)]
@@ -52,11 +47,11 @@ pub fn craig_bampton_from(
             fi.vectors[(r, c - nb)]
         }
     });
-    let mut columns = boundary_columns(model, p, ColumnKind::Constraint, "constraint");
+    let mut columns = problem.boundary_columns(ColumnKind::Constraint, "constraint");
     columns.extend(normal_columns(&fi.hz()));
     Ok(Basis {
         method: Method::CraigBampton,
-        psi: p.assemble(p.unit_top(kept).as_ref(), bottom.as_ref()),
+        psi: p.assemble(problem.boundary_top(kept).as_ref(), bottom.as_ref()),
         columns,
         statistics: problem.statistics,
     })

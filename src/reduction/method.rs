@@ -2,8 +2,8 @@
 
 use super::ReductionError;
 use super::{
-    Basis, craig_bampton, eitelberg::eitelberg, guyan, modal_truncation, mode_condensation,
-    no_reduction,
+    Basis, InteriorProblem, ModeCondensationRoute, craig_bampton, eitelberg::eitelberg, guyan,
+    modal_truncation, mode_condensation, no_reduction,
 };
 use crate::{Error, Result, fem::FeModel};
 
@@ -154,6 +154,30 @@ impl Default for ReductionParameters {
             modes: ModeSelection::Count(6),
             solver: SolverPath::Auto,
         }
+    }
+}
+
+/// Builds the basis of a fixed-interface method (Guyan, modal truncation, Craig–Bampton, mode
+/// condensation) on an interior problem already split, its boundary perhaps tied to rigid
+/// interfaces' masters ([`InteriorProblem::with_rigid_interfaces`]); another method is
+/// [`ReductionError::MethodNeedsContext`].
+pub fn reduce_interior(
+    method: Method,
+    problem: &mut InteriorProblem<'_>,
+    modes: ModeSelection,
+) -> Result<Basis> {
+    match method {
+        Method::Guyan => guyan::guyan_from(problem),
+        Method::ModalTruncation => modal_truncation::modal_truncation_from(problem, modes),
+        Method::CraigBampton => craig_bampton::craig_bampton_from(problem, modes),
+        Method::ModeCondensation => {
+            let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
+            mode_condensation::mode_condensation_from(problem, modes, route)
+        }
+        other => Err(Error::Reduction(ReductionError::MethodNeedsContext {
+            method: other.name().into(),
+            needs: "a fixed-interface basis is built by gr, mt, cb or mc".into(),
+        })),
     }
 }
 

@@ -4,7 +4,7 @@ use faer::Mat;
 
 use super::{
     Basis, ColumnKind, Method, ModeSelection, SolverPath,
-    partition::{InteriorProblem, boundary_columns, normal_columns},
+    partition::{InteriorProblem, normal_columns},
 };
 use crate::{Result, fem::FeModel};
 
@@ -26,31 +26,26 @@ pub fn modal_truncation_on(
     modes: ModeSelection,
     path: SolverPath,
 ) -> Result<Basis> {
-    modal_truncation_from(
-        model,
-        &mut InteriorProblem::new(model, boundary, path)?,
-        modes,
-    )
+    modal_truncation_from(&mut InteriorProblem::new(model, boundary, path)?, modes)
 }
 
 /// [`modal_truncation`] on an interior problem shared with other methods.
 pub fn modal_truncation_from(
-    model: &FeModel,
     problem: &mut InteriorProblem<'_>,
     modes: ModeSelection,
 ) -> Result<Basis> {
     let fi = problem.kept_modes(modes)?;
     let kept = fi.values.len();
     let p = &problem.partition;
-    let nb = p.b.len();
+    let nb = problem.boundary_coordinates();
     let bottom = Mat::from_fn(p.i.len(), nb + kept, |r, c| {
         if c < nb { 0.0 } else { fi.vectors[(r, c - nb)] }
     });
-    let mut columns = boundary_columns(model, p, ColumnKind::BoundaryMovement, "boundary");
+    let mut columns = problem.boundary_columns(ColumnKind::BoundaryMovement, "boundary");
     columns.extend(normal_columns(&fi.hz()));
     Ok(Basis {
         method: Method::ModalTruncation,
-        psi: p.assemble(p.unit_top(kept).as_ref(), bottom.as_ref()),
+        psi: p.assemble(problem.boundary_top(kept).as_ref(), bottom.as_ref()),
         columns,
         statistics: problem.statistics,
     })

@@ -4,7 +4,7 @@ use faer::Mat;
 
 use super::{
     Basis, ColumnKind, Method, ModeSelection, SolverPath,
-    partition::{COMPLETE_EIGEN_LIMIT, InteriorProblem, boundary_columns, normal_columns},
+    partition::{COMPLETE_EIGEN_LIMIT, InteriorProblem, normal_columns},
 };
 use crate::{Result, fem::FeModel};
 
@@ -73,7 +73,6 @@ pub fn mode_condensation_route(
     route: ModeCondensationRoute,
 ) -> Result<Basis> {
     mode_condensation_from(
-        model,
         &mut InteriorProblem::new(model, boundary, path)?,
         modes,
         route,
@@ -82,7 +81,6 @@ pub fn mode_condensation_route(
 
 /// [`mode_condensation`] on an interior problem shared with other methods.
 pub fn mode_condensation_from(
-    model: &FeModel,
     problem: &mut InteriorProblem<'_>,
     modes: ModeSelection,
     route: ModeCondensationRoute,
@@ -90,7 +88,7 @@ pub fn mode_condensation_from(
     // A zero fixed-interface eigenvalue would make K̄_n^d singular: refused even when that
     // mode would be kept, as Craig-Bampton refuses it.
     problem.check_restraint()?;
-    let nb = problem.partition.b.len();
+    let nb = problem.boundary_coordinates();
     let (psi_m, kept_vectors, kept_values) = match route {
         ModeCondensationRoute::Complete => {
             let fi = problem.complete_modes("mode condensation")?;
@@ -138,11 +136,11 @@ pub fn mode_condensation_from(
         .iter()
         .map(|&l| crate::linalg::hz_from_eigenvalue(l))
         .collect();
-    let mut columns = boundary_columns(model, p, ColumnKind::CondensedBoundary, "boundary");
+    let mut columns = problem.boundary_columns(ColumnKind::CondensedBoundary, "boundary");
     columns.extend(normal_columns(&hz));
     Ok(Basis {
         method: Method::ModeCondensation,
-        psi: p.assemble(p.unit_top(kept).as_ref(), bottom.as_ref()),
+        psi: p.assemble(problem.boundary_top(kept).as_ref(), bottom.as_ref()),
         columns,
         statistics: problem.statistics,
     })

@@ -4,10 +4,10 @@
 use super::ReductionError;
 use std::time::Instant;
 
-use faer::{Mat, MatRef};
+use faer::{Mat, MatRef, sparse::SparseColMat};
 
 use super::{
-    ModeSelection, SolverPath,
+    BoundaryCoordinates, Column, ColumnKind, ModeSelection, RigidInterface, SolverPath,
     free_body_solver::{FreeBodyParameters, sturm_checked},
 };
 use crate::{
@@ -162,7 +162,11 @@ pub struct InteriorProblem<'a> {
     sparse: bool,
     k_ii: SparseSymmetric,
     m_ii: MassMatrix,
-    k_ib: Mat<f64>,
+    k_ib: SparseColMat<usize, f64>,
+    /// The boundary coordinates $u_b = R\,q$.
+    boundary: BoundaryCoordinates,
+    /// $K_{ib}R$, dense, once needed.
+    k_ib_r: Option<Mat<f64>>,
     factor: Option<(SymmetricFactor, f64)>,
     /// The pattern analysis of the factored matrix (sparse path), for the Sturm check.
     symbolic: Option<SymbolicFactor>,
@@ -190,7 +194,8 @@ impl<'a> InteriorProblem<'a> {
         };
         let k_ii = model.k.principal_block(&partition.i);
         let m_ii = model.m.principal_block(&partition.i);
-        let k_ib = model.k.block(&partition.i, &partition.b).to_dense();
+        let k_ib = model.k.block(&partition.i, &partition.b);
+        let boundary = BoundaryCoordinates::plain(partition.b.len());
         Ok(Self {
             model,
             partition,
@@ -198,6 +203,8 @@ impl<'a> InteriorProblem<'a> {
             k_ii,
             m_ii,
             k_ib,
+            boundary,
+            k_ib_r: None,
             factor: None,
             symbolic: None,
             free_motions: None,
@@ -217,6 +224,35 @@ impl<'a> InteriorProblem<'a> {
         self
     }
 
+    /// Ties the nodes of each of `interfaces` (all boundary nodes) to its master's six DOF:
+    /// the boundary coordinates become the plain boundary DOF and six per master (see
+    /// [`BoundaryCoordinates`]), so their constraint modes take six right-hand sides per
+    /// interface instead of three per tied node.
+    pub fn with_rigid_interfaces(mut self, interfaces: &[RigidInterface]) -> Result<Self> {
+        if !interfaces.is_empty() {
+            self.boundary = BoundaryCoordinates::tied(self.model, &self.partition.b, interfaces)?;
+            self.k_ib_r = None;
+        }
+        Ok(self)
+    }
+
+    /// Number of boundary coordinates (boundary DOF when no rigid interface ties them).
+    pub fn boundary_coordinates(&self) -> usize {
+        self.boundary.count()
+    }
+
+    /// The boundary rows of a basis: $R$ followed by `extra` zero columns.
+    pub fn boundary_top(&self, extra: usize) -> Mat<f64> {
+        self.boundary.top(extra)
+    }
+
+    /// Column descriptions of the boundary coordinates: `kind` and `prefix` for plain
+    /// boundary DOF, `rbe2 NAME x … θz` for a master's.
+    pub fn boundary_columns(&self, kind: ColumnKind, prefix: &str) -> Vec<Column> {
+        self.boundary
+            .columns(self.model, &self.partition.b, kind, prefix)
+    }
+
     /// Whether the sparse path runs.
     pub fn is_sparse(&self) -> bool {
         self.sparse
@@ -227,9 +263,13 @@ impl<'a> InteriorProblem<'a> {
         self.partition.i.len()
     }
 
-    /// $K_{ib}$, dense (interior × boundary).
-    pub fn k_ib(&self) -> MatRef<'_, f64> {
-        self.k_ib.as_ref()
+    /// $K_{ib}R$, dense (interior × boundary coordinates; $K_{ib}$ itself when no rigid
+    /// interface ties the boundary).
+    pub fn k_ib(&mut self) -> MatRef<'_, f64> {
+        if self.k_ib_r.is_none() {
+            self.k_ib_r = Some(self.boundary.times(&self.k_ib));
+        }
+        self.k_ib_r.as_ref().expect("set above").as_ref()
     }
 
     /// Whether the boundary restrains every rigid-body motion, i.e. $K_{ii}$ is invertible;
@@ -294,15 +334,17 @@ impl<'a> InteriorProblem<'a> {
         Ok(self.factor.as_ref().expect("set above"))
     }
 
-    /// Static constraint modes' interior part $\Psi_s = -K_{ii}^{-1}K_{ib}$ (Eq. 6.3): one
-    /// factorisation, the boundary DOF as right-hand sides.
+    /// Static constraint modes' interior part $\Psi_s = -K_{ii}^{-1}K_{ib}R$ (Eq. 6.3): one
+    /// factorisation, the boundary coordinates as right-hand sides.
     pub fn constraint_modes(&mut self) -> Result<Mat<f64>> {
         self.check_restraint()?;
         self.factor()?;
         self.progress.phase("constraint modes")?;
         let started = Instant::now();
+        self.k_ib();
+        let k_ib_r = self.k_ib_r.as_ref().expect("formed above");
         let (f, _) = self.factor.as_ref().expect("factored above");
-        let psi_s = -f.solve(self.k_ib.as_ref());
+        let psi_s = -f.solve(k_ib_r.as_ref());
         self.statistics.constraint_modes_s += started.elapsed().as_secs_f64();
         Ok(psi_s)
     }

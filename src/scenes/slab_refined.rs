@@ -76,7 +76,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         .with_progress(opts.progress.clone());
     let psi_s = problem.constraint_modes()?;
     let fi = problem.kept_modes(ModeSelection::Count(kept.max(REPORTED_FIXED_INTERFACE)))?;
-    let cb = craig_bampton_from(&model, &mut problem, ModeSelection::Count(kept))?;
+    let cb = craig_bampton_from(&mut problem, ModeSelection::Count(kept))?;
     let reduction_s = started.elapsed().as_secs_f64();
     let phases = problem.statistics;
     let fixed_interface_hz = fi.hz();
@@ -92,11 +92,11 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         let basis = match m {
             Method::CraigBampton => cb.clone(),
             Method::ModalTruncation => {
-                modal_truncation_from(&model, &mut problem, ModeSelection::Count(kept))?
+                modal_truncation_from(&mut problem, ModeSelection::Count(kept))?
             }
             Method::ModeCondensation => {
                 let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
-                mode_condensation_from(&model, &mut problem, ModeSelection::Count(kept), route)?
+                mode_condensation_from(&mut problem, ModeSelection::Count(kept), route)?
             }
             _ => {
                 opts.progress.phase("Guyan reduction")?;

@@ -126,7 +126,9 @@ fn npy_files_read_back_exactly() {
 fn rigid_interfaces_match_scipys_transformed_body() {
     use flexmodes::{
         analysis::reduced_modes,
-        reduction::{ColumnKind, RigidInterface, tie_rigid_interfaces},
+        reduction::{
+            ColumnKind, InteriorProblem, RigidInterface, reduce_interior, tie_rigid_interfaces,
+        },
     };
     for name in ["steel-link", "flange-hub"] {
         let (body, _) = body(name);
@@ -161,14 +163,69 @@ fn rigid_interfaces_match_scipys_transformed_body() {
                     assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{what}");
                 }
             }
+            // Modal truncation and mode condensation have unit boundary columns too: the
+            // masters as coordinates give what tying the ring's columns gives.
+            for method in [Method::ModalTruncation, Method::ModeCondensation] {
+                let mut problem = InteriorProblem::new(model, &boundary, SolverPath::Auto)
+                    .unwrap()
+                    .with_rigid_interfaces(&interfaces)
+                    .unwrap();
+                let direct =
+                    reduce_interior(method, &mut problem, ModeSelection::Count(modes)).unwrap();
+                let parameters = ReductionParameters {
+                    boundary_nodes: boundary.clone(),
+                    modes: ModeSelection::Count(modes),
+                    solver: SolverPath::Auto,
+                };
+                let tied = tie_rigid_interfaces(
+                    model,
+                    reduce(model, method, &parameters).unwrap(),
+                    &interfaces,
+                )
+                .unwrap();
+                assert_eq!(
+                    direct.size(),
+                    6 * interfaces.len() + modes,
+                    "{what} {method}"
+                );
+                let scale = flexmodes::linalg::max_abs(tied.psi.as_ref());
+                let gap = flexmodes::linalg::max_abs_diff(direct.psi.as_ref(), tied.psi.as_ref());
+                assert!(
+                    gap <= 1e-10 * scale,
+                    "{what} {method}: Ψ differs by {gap:e}"
+                );
+            }
             for (method, key) in [(Method::CraigBampton, "cb_hz"), (Method::Guyan, "guyan_hz")] {
                 let parameters = ReductionParameters {
                     boundary_nodes: boundary.clone(),
                     modes: ModeSelection::Count(modes),
                     solver: SolverPath::Auto,
                 };
-                let basis = reduce(model, method, &parameters).unwrap();
-                let basis = tie_rigid_interfaces(model, basis, &interfaces).unwrap();
+                // The product's route: the masters are the boundary coordinates, six
+                // right-hand sides per interface.
+                let mut problem = InteriorProblem::new(model, &boundary, SolverPath::Auto)
+                    .unwrap()
+                    .with_rigid_interfaces(&interfaces)
+                    .unwrap();
+                let basis =
+                    reduce_interior(method, &mut problem, ModeSelection::Count(modes)).unwrap();
+                // The same basis as every ring DOF's constraint mode combined afterwards.
+                let tied = tie_rigid_interfaces(
+                    model,
+                    reduce(model, method, &parameters).unwrap(),
+                    &interfaces,
+                )
+                .unwrap();
+                let labels = |b: &flexmodes::reduction::Basis| -> Vec<String> {
+                    b.columns.iter().map(|c| c.label.clone()).collect()
+                };
+                assert_eq!(labels(&basis), labels(&tied), "{what} {method}");
+                let scale = flexmodes::linalg::max_abs(tied.psi.as_ref());
+                let gap = flexmodes::linalg::max_abs_diff(basis.psi.as_ref(), tied.psi.as_ref());
+                assert!(
+                    gap <= 1e-10 * scale,
+                    "{what} {method}: Ψ differs by {gap:e}"
+                );
                 let masters = basis.columns_of(|k| matches!(k, ColumnKind::RigidInterface { .. }));
                 assert_eq!(masters.len(), 6 * interfaces.len(), "{what}");
                 let expected_size = 6 * interfaces.len()
@@ -255,9 +312,22 @@ fn a_rigid_interface_needs_boundary_columns() {
         },
     )
     .unwrap();
-    let e = tie_rigid_interfaces(model, basis, &[interface]).unwrap_err();
+    let e = tie_rigid_interfaces(model, basis, std::slice::from_ref(&interface)).unwrap_err();
     assert!(
         matches!(&e, Error::Reduction(ReductionError::InvalidDofSet { set, .. }) if set.contains("bore_a")),
+        "{e}"
+    );
+    // The same as boundary coordinates of an interior problem: the DOF is named.
+    let problem = flexmodes::reduction::InteriorProblem::new(
+        model,
+        &body.node_sets["bore_b"],
+        SolverPath::Auto,
+    )
+    .unwrap();
+    let e = problem.with_rigid_interfaces(&[interface]).err().unwrap();
+    assert!(
+        matches!(&e, Error::Reduction(ReductionError::InvalidDofSet { set, reason })
+            if set.contains("bore_a") && reason.contains("not a boundary DOF")),
         "{e}"
     );
     // A node in two interfaces, and an unknown set, are named.
