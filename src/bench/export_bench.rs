@@ -37,11 +37,13 @@ pub struct ExportBenchParameters {
 struct Runs {
     seconds: Vec<f64>,
     stdout: String,
+    stderr: String,
 }
 
 fn run_timed(mut command: Command, repeats: usize, what: &str) -> Result<Runs> {
     let mut seconds = Vec::with_capacity(repeats);
     let mut stdout = String::new();
+    let mut stderr = String::new();
     for _ in 0..repeats {
         let started = Instant::now();
         let out = command.output().map_err(|source| Error::Io {
@@ -62,9 +64,26 @@ fn run_timed(mut command: Command, repeats: usize, what: &str) -> Result<Runs> {
             });
         }
         stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     }
     seconds.sort_by(f64::total_cmp);
-    Ok(Runs { seconds, stdout })
+    Ok(Runs {
+        seconds,
+        stdout,
+        stderr,
+    })
+}
+
+/// The phases `export --timings` printed (`  NAME: S s (P %)`), in order.
+fn phases(stderr: &str) -> Vec<(String, f64)> {
+    stderr
+        .lines()
+        .filter_map(|line| {
+            let (name, rest) = line.trim().rsplit_once(": ")?;
+            let seconds = rest.split_once(" s")?.0.parse().ok()?;
+            Some((name.to_string(), seconds))
+        })
+        .collect()
 }
 
 fn median(sorted: &[f64]) -> f64 {
@@ -79,8 +98,11 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
         path: "the flexmodes executable".into(),
         source,
     })?;
+    let threads = crate::linalg::threads();
     let mut own = Command::new(&exe);
-    own.args(["export", "--method", "cb", "--body"])
+    own.args(["export", "--timings", "--threads"])
+        .arg(threads.to_string())
+        .args(["--method", "cb", "--body"])
         .arg(&p.body)
         .arg("--boundary")
         .arg(p.boundary.join(","))
@@ -106,6 +128,7 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
         .unwrap_or_default();
     let peer = peer_runs(p);
     let ours_s = median(&ours.seconds);
+    let our_phases = phases(&ours.stderr);
     let mut value = json!({
         "bench": "export",
         "body": p.body.display().to_string(),
@@ -115,6 +138,11 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
         "flexmodes_s": ours.seconds.iter().map(|&s| sig(s)).collect::<Vec<_>>(),
         "flexmodes_median_s": sig(ours_s),
         "flexmodes_hz": our_hz.iter().take(10).map(|&f| sig(f)).collect::<Vec<_>>(),
+        "flexmodes_threads": threads,
+        "flexmodes_phases_s": our_phases
+            .iter()
+            .map(|(name, s)| json!({ "phase": name, "s": sig(*s) }))
+            .collect::<Vec<_>>(),
     });
     let mut text = format!(
         "# export bench: Craig–Bampton of {} on {} with {} modes, {} run(s) each\n\n\
@@ -168,6 +196,15 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
             text.push_str(&format!("\nSciPy peer not run: {reason}\n"));
         }
     }
+    text.push_str(&format!(
+        "\nflexmodes on {threads} thread(s), last run by phase: {}\n",
+        our_phases
+            .iter()
+            .filter(|(name, _)| name != "total")
+            .map(|(name, s)| format!("{name} {s:.2} s"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
     Ok((value, text))
 }
 

@@ -92,17 +92,35 @@ pub struct SizeBench {
     pub recording: RecordingContent,
 }
 
-/// Runs every size; returns the JSON object, a markdown table and the recording.
-pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<SizeBench> {
+/// Runs every size with each thread count of `threads` (none: the count in use); returns the
+/// JSON object, a markdown table and the recording.
+pub fn bench_sizes(
+    sizes: &[[usize; 3]],
+    threads: &[usize],
+    progress: &dyn Fn(&str),
+) -> Result<SizeBench> {
     let mut points = Vec::new();
     let mut rows = Vec::new();
     let mut series: Map<String, Value> = Map::new();
-    let mut totals: std::collections::BTreeMap<&str, Vec<(f64, f64)>> = Default::default();
-    for &bricks in sizes {
+    let mut totals: std::collections::BTreeMap<String, Vec<(f64, f64)>> = Default::default();
+    let before = crate::linalg::threads();
+    let counts = if threads.is_empty() {
+        vec![before]
+    } else {
+        threads.to_vec()
+    };
+    let several = counts.len() > 1;
+    for (&bricks, &wanted) in sizes
+        .iter()
+        .flat_map(|b| counts.iter().map(move |t| (b, t)))
+    {
+        let threads = crate::linalg::use_threads(wanted);
         let params = SlabParameters::refined(bricks)?;
         let dofs = params.dof_count();
         check_reduction_memory(dofs)?;
-        progress(&format!("{dofs} DOF ({bricks:?}): assembly"));
+        progress(&format!(
+            "{dofs} DOF ({bricks:?}), {threads} thread(s): assembly"
+        ));
         let started = Instant::now();
         let model = slab(&params);
         let assembly_s = started.elapsed().as_secs_f64();
@@ -154,12 +172,18 @@ pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<Size
             ("mc_complete", mc_complete_s),
         ] {
             if let Some(s) = s {
-                totals.entry(id).or_default().push((dofs as f64, s));
+                let key = if several {
+                    format!("{id}_{threads}t")
+                } else {
+                    id.to_string()
+                };
+                totals.entry(key).or_default().push((dofs as f64, s));
             }
         }
         rows.push(vec![
             format!("{}×{}×{}", bricks[0], bricks[1], bricks[2]),
             dofs.to_string(),
+            threads.to_string(),
             model.stiffness_nnz().to_string(),
             phases.factor_nnz.to_string(),
             format!("{assembly_s:.3}"),
@@ -176,8 +200,10 @@ pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<Size
         points.push(json!({
             "bricks": bricks,
             "dofs": dofs,
+            "threads": threads,
             "nnz": model.stiffness_nnz(),
             "factor_nnz": phases.factor_nnz,
+            "factor_flops": phases.factor_flops,
             "timing_s": {
                 "assembly": sig(assembly_s),
                 "factorization": sig(phases.factorization_s),
@@ -195,18 +221,21 @@ pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<Size
             "fixed_interface_hz": sig_vec(&hz),
         }));
     }
+    crate::linalg::use_threads(before);
     let mut exponents = Map::new();
     for (id, pts) in &totals {
         series.insert(
-            (*id).into(),
+            id.clone(),
             json!(pts.iter().map(|p| [p.0, sig(p.1)]).collect::<Vec<_>>()),
         );
-        exponents.insert((*id).into(), json!(growth_exponent(pts).map(sig)));
+        exponents.insert(id.clone(), json!(growth_exponent(pts).map(sig)));
     }
     let value = json!({
         "scene": "slab-modes",
         "modes": BENCH_MODES,
         "boundary": "four bottom corners (12 DOF)",
+        "threads": counts,
+        "machine_threads": crate::linalg::machine_threads(),
         "points": points,
         "offline_s_against_dofs": series,
         "growth_exponent": exponents,
@@ -216,12 +245,19 @@ pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<Size
          fixed-interface modes; wall seconds in one run. MT and MC reuse CB's factor and \
          modes (their times include CB's shared phases); MC complete is the thesis' route \
          (complete dense interior eigenproblem, up to {MC_COMPLETE_ROUTE_LIMIT} interior DOF). \
-         Peak memory is the process's peak so far (sizes run ascending).\n\n{}\nGrowth \
-         exponents (offline s ∝ DOF^p): {}\n",
+         Peak memory is the process's peak so far (sizes run ascending). Threads: what the \
+         kernels may use (`--threads`; this machine has {}); a factorisation of more than \
+         {:.0e} flops and products of more than {:.0e} use them all, smaller kernels one. \
+         Series keys `cb_2t`: CB with 2 threads.\n\n{}\nGrowth exponents (offline s ∝ DOF^p): \
+         {}\n",
+        crate::linalg::machine_threads(),
+        crate::linalg::PARALLEL_FACTOR_FLOPS,
+        crate::linalg::PARALLEL_FLOPS,
         markdown_table(
             &[
                 "mesh",
                 "DOF",
+                "threads",
                 "nnz K",
                 "nnz L",
                 "assembly",
@@ -254,29 +290,46 @@ pub fn bench_sizes(sizes: &[[usize; 3]], progress: &dyn Fn(&str)) -> Result<Size
 /// Log–log chart of offline time against DOF: x = log₁₀ DOF, y = log₁₀ s (drawn upward), one
 /// polyline per method labelled with its growth exponent, decade ticks labelled on the axes.
 fn log_log_chart(
-    totals: &std::collections::BTreeMap<&str, Vec<(f64, f64)>>,
+    totals: &std::collections::BTreeMap<String, Vec<(f64, f64)>>,
     exponents: &Map<String, Value>,
     table: String,
 ) -> RecordingContent {
     let series = totals
         .iter()
         .map(|(id, pts)| {
-            let color = match *id {
+            // `cb` or, comparing thread counts, `cb_2t`.
+            let (method, threads) = match id.split_once('_') {
+                Some((m, t)) => (m, t.trim_end_matches('t').parse::<usize>().ok()),
+                None => (id.as_str(), None),
+            };
+            let base = match method {
                 "gr" => method_color(Method::Guyan),
                 "mt" => method_color(Method::ModalTruncation),
                 "cb" => method_color(Method::CraigBampton),
                 "mc" => method_color(Method::ModeCondensation),
                 _ => [150, 150, 150, 255],
             };
+            // More threads, darker.
+            let shade = 1.0 / (threads.unwrap_or(1) as f64).sqrt();
+            let color = [
+                (base[0] as f64 * shade) as u8,
+                (base[1] as f64 * shade) as u8,
+                (base[2] as f64 * shade) as u8,
+                base[3],
+            ];
             let exponent = exponents
-                .get(*id)
+                .get(id)
                 .and_then(Value::as_f64)
                 .map_or("—".into(), |p| format!("{p:.2}"));
+            let name = match threads {
+                Some(t) => format!("{}, {t} thread(s)", method.to_uppercase()),
+                None => method.to_uppercase(),
+            };
             // Only the largest mesh is labelled (method and exponent); the table has every
             // value.
             LogLogSeries {
-                id: (*id).to_string(),
-                label: format!("{} ∝ DOF^{exponent}", id.to_uppercase()),
+                id: id.clone(),
+                label: format!("{name} ∝ DOF^{exponent}"),
                 color,
                 points: pts.clone(),
                 line: true,

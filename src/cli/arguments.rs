@@ -18,6 +18,18 @@ use crate::{
 pub struct Cli {
     #[command(subcommand)]
     pub(super) command: Command,
+    /// Threads for the numerics and for independent work (scenes, integrations); large
+    /// factorisations, wide solves and large products use them all, small kernels one
+    /// (default: the machine's cores). `bench slab-modes --sizes` takes several, `1,2`, and
+    /// times every size with each
+    #[arg(
+        long,
+        global = true,
+        value_name = "N",
+        value_delimiter = ',',
+        value_parser = clap::value_parser!(u16).range(1..)
+    )]
+    pub(super) threads: Vec<u16>,
 }
 
 #[derive(Debug, Subcommand)]

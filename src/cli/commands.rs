@@ -37,7 +37,23 @@ pub fn main() -> ExitCode {
 use super::stderr::progress;
 
 fn run(cli: Cli) -> Result<()> {
-    crate::linalg::use_sequential_kernels();
+    let threads: Vec<usize> = cli.threads.iter().map(|&t| usize::from(t)).collect();
+    let several = threads.len() > 1;
+    // The pool holds the most threads asked for; a bench lowers the count per run.
+    crate::linalg::set_threads(threads.iter().copied().max());
+    let compares_threads = matches!(
+        &cli.command,
+        Command::Bench { sizes: Some(_), scenes, .. } if scenes.iter().all(|s| s == "slab-modes")
+    );
+    if several && !compares_threads {
+        return Err(Error::InvalidOption {
+            scene: "--threads".into(),
+            reason: format!(
+                "{} thread counts given: only `bench slab-modes --sizes` times several",
+                threads.len()
+            ),
+        });
+    }
     match cli.command {
         Command::List => {
             let all = scenes::all();
@@ -233,7 +249,7 @@ fn run(cli: Cli) -> Result<()> {
                     drop(bar);
                     bench
                 }
-                None => crate::bench::bench_sizes(&meshes, &|s| progress(s))?,
+                None => crate::bench::bench_sizes(&meshes, &threads, &|s| progress(s))?,
             };
             let title = simulation.as_deref().unwrap_or("slab-modes");
             if let Some(path) = &save {
@@ -378,11 +394,20 @@ fn run(cli: Cli) -> Result<()> {
             let summary =
                 crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
             if timings {
-                eprintln!("read the body: {loaded_s:.3} s");
+                let total = started.elapsed().as_secs_f64();
+                eprintln!(
+                    "wall time by phase, {} thread(s) (--threads):",
+                    crate::linalg::threads()
+                );
+                let share = |s: f64| 100.0 * s / total.max(f64::MIN_POSITIVE);
+                eprintln!(
+                    "  read the body: {loaded_s:.3} s ({:.0} %)",
+                    share(loaded_s)
+                );
                 for (phase, s) in &summary.timings {
-                    eprintln!("{phase}: {s:.3} s");
+                    eprintln!("  {phase}: {s:.3} s ({:.0} %)", share(*s));
                 }
-                eprintln!("total: {:.3} s", started.elapsed().as_secs_f64());
+                eprintln!("  total: {total:.3} s");
             }
             for i in &parameters.rigid_interfaces {
                 println!(
@@ -494,9 +519,7 @@ fn record_scenes(
     save: Option<&std::path::Path>,
 ) -> Result<()> {
     let count = scenes.len();
-    let workers = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .clamp(1, RECORD_WORKERS);
+    let workers = crate::linalg::threads().clamp(1, RECORD_WORKERS);
     let group = TerminalProgress::group();
     let recorder = Recorder::default();
     crate::work_pool::run_in_order(

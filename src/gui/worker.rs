@@ -269,8 +269,7 @@ impl Worker {
         let progress = Progress::new();
         options.progress = progress.clone();
         options.cache = self.cache.clone();
-        options.concurrent_integrations =
-            std::thread::available_parallelism().map_or(1, |n| n.get());
+        options.concurrent_integrations = crate::linalg::threads();
         self.running = Some(progress.clone());
         let _ = self.jobs.send(Job {
             generation,

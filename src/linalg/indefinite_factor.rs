@@ -41,7 +41,7 @@ impl IndefiniteFactor {
             })
         })?;
         values.resize(sym.len_val(), 0.0);
-        let par = faer::get_global_parallelism();
+        let par = super::par_for_factor(symbolic.flops());
         let mut mem =
             MemBuffer::try_new(sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()))
                 .map_err(|_| {
@@ -115,8 +115,7 @@ impl IndefiniteFactor {
     fn solve_once(&self, rhs: MatRef<'_, f64>) -> Mat<f64> {
         let mut x = rhs.to_owned();
         let sym = self.symbolic.inner();
-        let par = faer::get_global_parallelism();
-        let mut mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(x.ncols(), par));
+        let mut mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(x.ncols(), Par::Seq));
         LdltRef::<'_, usize, f64>::new(sym, &self.values).solve_in_place_with_conj(
             Conj::No,
             x.as_mut(),

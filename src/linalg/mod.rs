@@ -16,6 +16,7 @@ mod sparse_symmetric;
 mod sturm_count;
 mod symmetric_eigen;
 mod symmetric_factor;
+mod threads;
 
 pub use crate::error::LinalgError;
 pub use dense::{
@@ -49,12 +50,7 @@ pub use symmetric_eigen::{
     symmetric_eigen_with,
 };
 pub use symmetric_factor::{SymbolicFactor, SymmetricFactor};
-
-/// Runs faer's kernels on the calling thread. On the 2-core machines flexmodes is measured on,
-/// faer's thread-pool parallelism cost more in wake-ups than it gained: the refined slab's
-/// Craig–Bampton took 0.68 s instead of 1.42 s at 6 825 DOF and 12.8 s instead of 18.8 s at
-/// 74 385 DOF sequentially (block solves of four right-hand sides and n × 64 products are
-/// too small to split). The command line calls this once at start.
-pub fn use_sequential_kernels() {
-    faer::set_global_parallelism(faer::Par::Seq);
-}
+pub use threads::{
+    PARALLEL_FACTOR_FLOPS, PARALLEL_FLOPS, machine_threads, par_for_factor, par_for_flops,
+    set_threads, threads, use_threads,
+};

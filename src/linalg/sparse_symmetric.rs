@@ -3,8 +3,8 @@
 
 use super::MassMatrix;
 use faer::{
-    Accum, Mat, MatRef, Par,
-    sparse::{SparseColMat, SymbolicSparseColMat, linalg::matmul::sparse_dense_matmul},
+    Mat, MatRef, Par,
+    sparse::{SparseColMat, SymbolicSparseColMat},
 };
 
 /// The sparsity pattern of a symmetric matrix whose DOF come in blocks of `block` per node
@@ -75,6 +75,74 @@ impl SparsityPattern {
         let node_c = col / self.block;
         let k = self.neighbours[node_c].binary_search(&node_r).ok()?;
         Some(self.col_ptr[col] + k * self.block + dr)
+    }
+}
+
+/// Columns of X gathered at once by [`SparseSymmetric::mul`].
+const GATHER_COLUMNS: usize = 8;
+
+/// Rows of a product below which [`gather_rows`] stops splitting.
+const GATHER_ROWS: usize = 4096;
+
+/// $Y = A^T X$ (= $AX$ for a symmetric A) for the rows of `y`, which start at row `first`:
+/// row j is $\sum_p a_{pj} x_p$ over column j's entries. Split in halves on two threads while
+/// `parallel` and the rows are many.
+fn gather_rows(
+    a: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    x: MatRef<'_, f64>,
+    y: faer::MatMut<'_, f64>,
+    first: usize,
+    parallel: bool,
+) {
+    assert!(
+        x.ncols() <= GATHER_COLUMNS,
+        "at most {GATHER_COLUMNS} columns at once"
+    );
+    let rows = y.nrows();
+    if parallel && rows > 2 * GATHER_ROWS {
+        let half = rows / 2;
+        let (top, bottom) = y.split_at_row_mut(half);
+        rayon::join(
+            || gather_rows(a, x, top, first, true),
+            || gather_rows(a, x, bottom, first + half, true),
+        );
+        return;
+    }
+    let mut y = y;
+    let (col_ptr, row_idx, val) = (a.col_ptr(), a.row_idx(), a.val());
+    let width = x.ncols();
+    // X's columns as slices (copied when X is not stored by columns).
+    let owned;
+    let x = match (0..width).all(|c| x.col(c).try_as_col_major().is_some()) {
+        true => x,
+        false => {
+            owned = x.to_owned();
+            owned.as_ref()
+        }
+    };
+    let columns: Vec<&[f64]> = (0..width)
+        .map(|c| {
+            x.col(c)
+                .try_as_col_major()
+                .expect("stored by columns")
+                .as_slice()
+        })
+        .collect();
+    let mut acc = [0.0f64; GATHER_COLUMNS];
+    for r in 0..rows {
+        let j = first + r;
+        acc[..width].fill(0.0);
+        for (&i, &v) in row_idx[col_ptr[j]..col_ptr[j + 1]]
+            .iter()
+            .zip(&val[col_ptr[j]..col_ptr[j + 1]])
+        {
+            for (sum, column) in acc[..width].iter_mut().zip(&columns) {
+                *sum += v * column[i];
+            }
+        }
+        for (c, &sum) in acc[..width].iter().enumerate() {
+            y[(r, c)] = sum;
+        }
     }
 }
 
@@ -174,15 +242,22 @@ impl SparseSymmetric {
 
     /// $A X$ for a dense block $X$.
     pub fn mul(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        assert_eq!(x.nrows(), self.dim(), "rows of X against the matrix");
         let mut y = Mat::zeros(self.dim(), x.ncols());
-        sparse_dense_matmul(
-            y.as_mut(),
-            Accum::Replace,
-            self.inner.as_ref(),
-            x,
-            1.0,
-            Par::Seq,
-        );
+        // Row j of AX is column j of A (both triangles are stored, symmetric) against X: a
+        // gather that reads A once per block of columns of X, and whose rows are independent.
+        let flops = 2.0 * self.inner.compute_nnz() as f64 * x.ncols() as f64;
+        let parallel = super::par_for_flops(flops) != Par::Seq;
+        for c0 in (0..x.ncols()).step_by(GATHER_COLUMNS) {
+            let width = GATHER_COLUMNS.min(x.ncols() - c0);
+            gather_rows(
+                self.inner.as_ref(),
+                x.subcols(c0, width),
+                y.as_mut().subcols_mut(c0, width),
+                0,
+                parallel,
+            );
+        }
         y
     }
 
@@ -370,6 +445,52 @@ impl SparseAssembly {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The row-wise gather against a dense product, for sizes that split across threads and
+    /// column counts around the gather's block of eight.
+    #[test]
+    fn the_gathered_product_is_the_dense_one() {
+        let mut seed = 7u64;
+        for n in [5, 300, 9000] {
+            let mut entries = Vec::new();
+            for i in 0..n {
+                entries.push((i, i, 4.0 + crate::linalg::next_uniform(&mut seed)));
+                for off in [1, 7, 31] {
+                    if i + off < n {
+                        let v = crate::linalg::next_uniform(&mut seed) - 0.5;
+                        entries.extend([(i, i + off, v), (i + off, i, v)]);
+                    }
+                }
+            }
+            let a = SparseSymmetric::from_triplets(n, &entries);
+            for cols in [1, 5, 8, 13] {
+                let x = Mat::from_fn(n, cols, |_, _| crate::linalg::next_uniform(&mut seed));
+                // A block stored by rows is copied first.
+                let by_rows = x.transpose().to_owned();
+                let mut expected = Mat::<f64>::zeros(n, cols);
+                for (i, j, v) in &entries {
+                    for c in 0..cols {
+                        expected[(*i, c)] += v * x[(*j, c)];
+                    }
+                }
+                let width = cols.min(GATHER_COLUMNS);
+                for parallel in [false, true] {
+                    let mut y = Mat::<f64>::zeros(n, width);
+                    let block = x.as_ref().subcols(0, width);
+                    gather_rows(a.inner.as_ref(), block, y.as_mut(), 0, parallel);
+                    let gap = crate::linalg::max_abs_diff(
+                        y.as_ref(),
+                        expected.as_ref().subcols(0, width),
+                    );
+                    assert!(gap <= 1e-13 * n as f64, "n {n} cols {cols}: {gap:e}");
+                }
+                for y in [a.mul(x.as_ref()), a.mul(by_rows.transpose())] {
+                    let gap = crate::linalg::max_abs_diff(y.as_ref(), expected.as_ref());
+                    assert!(gap <= 1e-13 * n as f64, "n {n} cols {cols}: {gap:e}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn a_shift_keeps_mass_entries_the_stiffness_pattern_lacks() {

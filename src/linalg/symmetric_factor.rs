@@ -34,6 +34,9 @@ pub struct SymbolicFactor {
     /// Column pointers of the matrix analysed: a matrix factored with this analysis must have
     /// them too (faer panics on another pattern; see [`SymbolicFactor::check_pattern`]).
     col_ptr: Arc<Vec<usize>>,
+    /// Flops of the numeric factorisation, $\sum_j c_j^2$ over the columns of $L$ ($c_j$ the
+    /// entries of column j).
+    flops: f64,
 }
 
 impl SymbolicFactor {
@@ -65,10 +68,22 @@ impl SymbolicFactor {
                         what: "symbolic Cholesky analysis".into(),
                     })
                 })?;
+        let flops = factor_flops(&inner);
         Ok(Self {
             inner: Arc::new(inner),
             col_ptr: Arc::new(a.symbolic().col_ptr().to_vec()),
+            flops,
         })
+    }
+
+    /// Flops of one numeric factorisation with this analysis.
+    pub fn flops(&self) -> f64 {
+        self.flops
+    }
+
+    /// Flops of one solve with `rhs` right-hand sides ($4\,\mathrm{nnz}(L)$ per column).
+    pub fn solve_flops(&self, rhs: usize) -> f64 {
+        4.0 * self.factor_nnz() as f64 * rhs as f64
     }
 
     /// [`LinalgError::PatternMismatch`] unless `a` has the pattern analysed (its entries per
@@ -93,6 +108,30 @@ impl SymbolicFactor {
     /// Entries of $L$ (the fill).
     pub fn factor_nnz(&self) -> usize {
         self.inner.len_val()
+    }
+}
+
+/// $\sum_j c_j^2$ over the columns of $L$: supernode by supernode (a supernode of $w$ columns
+/// and $r$ rows holds columns of $r, r-1, \dots, r-w+1$ entries) or column by column.
+fn factor_flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
+    let square_sum = |r: usize, w: usize| -> f64 { (0..w).map(|k| ((r - k) as f64).powi(2)).sum() };
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let (begin, end) = (s.supernode_begin(), s.supernode_end());
+            // A supernode's values are its r × w block, column-major.
+            let values = s.col_ptr_for_val();
+            (0..s.n_supernodes())
+                .map(|k| {
+                    let w = end[k] - begin[k];
+                    square_sum((values[k + 1] - values[k]) / w.max(1), w)
+                })
+                .sum()
+        }
+        SymbolicCholeskyRaw::Simplicial(s) => s
+            .col_ptr()
+            .windows(2)
+            .map(|c| ((c[1] - c[0]) as f64).powi(2))
+            .sum(),
     }
 }
 
@@ -152,7 +191,7 @@ impl SymmetricFactor {
             })
         })?;
         values.resize(sym.len_val(), 0.0);
-        let par = faer::get_global_parallelism();
+        let par = super::par_for_factor(symbolic.flops);
         let mut mem =
             MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
                 .map_err(|_| {
@@ -222,9 +261,9 @@ impl SymmetricFactor {
                 // supernodes' dense kernels enough work to share among the cores; the
                 // Lanczos blocks of four do not.
                 let par = if x.ncols() >= WIDE_SOLVE {
-                    Par::rayon(0)
+                    super::par_for_flops(symbolic.solve_flops(x.ncols()))
                 } else {
-                    faer::get_global_parallelism()
+                    Par::Seq
                 };
                 let sym = &symbolic.inner;
                 let mut mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(x.ncols(), par));

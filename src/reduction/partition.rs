@@ -137,6 +137,8 @@ pub struct ReductionStatistics {
     pub eigen_s: f64,
     /// Entries of the Cholesky factor (0 when none was formed).
     pub factor_nnz: usize,
+    /// Flops of the numeric factorisation (0 on the dense path).
+    pub factor_flops: f64,
     /// Block solves of the partial eigensolver.
     pub eigen_block_solves: usize,
     /// Largest residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ of the partial
@@ -322,6 +324,7 @@ impl<'a> InteriorProblem<'a> {
                 let order = nested_dissection(a.as_faer(), &coords);
                 let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), order.as_deref())?;
                 let f = SymmetricFactor::sparse(a.as_faer(), &symbolic, "interior stiffness K_ii")?;
+                self.statistics.factor_flops = symbolic.flops();
                 self.symbolic = Some(symbolic);
                 f
             } else {
@@ -347,6 +350,29 @@ impl<'a> InteriorProblem<'a> {
         let psi_s = -f.solve(k_ib_r.as_ref());
         self.statistics.constraint_modes_s += started.elapsed().as_secs_f64();
         Ok(psi_s)
+    }
+
+    /// The first `count` constraint modes as whole-body shapes $[R;\,-K_{ii}^{-1}K_{ib}R]$ (only
+    /// those are solved for, for a view), and the labels of every boundary coordinate (a
+    /// boundary DOF's, or `rbe2 NAME x … θz`).
+    pub fn constraint_shapes(&mut self, count: usize) -> Result<(Mat<f64>, Vec<String>)> {
+        self.check_restraint()?;
+        self.factor()?;
+        let count = count.min(self.boundary.count());
+        self.k_ib();
+        let k_ib_r = self.k_ib_r.as_ref().expect("formed above");
+        let (f, _) = self.factor.as_ref().expect("factored above");
+        let bottom = -f.solve(k_ib_r.subcols(0, count));
+        let top = self.boundary.top(0);
+        let shapes = self
+            .partition
+            .assemble(top.subcols(0, count), bottom.as_ref());
+        let labels = self
+            .boundary_columns(ColumnKind::Constraint, "")
+            .into_iter()
+            .map(|c| c.label.trim().to_string())
+            .collect();
+        Ok((shapes, labels))
     }
 
     /// Every fixed-interface normal mode, $[\Psi_n, \Lambda_n] = \mathrm{eig}(K_{ii}, M_{ii})$

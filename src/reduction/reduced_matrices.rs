@@ -1,7 +1,7 @@
 //! $K_r = \Psi^TK\Psi$ and $M_r = \Psi^TM\Psi$ of a large body at the cost its structure allows.
 
 use faer::{
-    Accum, Mat, MatRef, Par,
+    Accum, Mat, MatRef,
     linalg::matmul::triangular::{BlockStructure, matmul},
 };
 
@@ -106,19 +106,11 @@ fn unit_block(psi: MatRef<'_, f64>, b: &[usize], c: &[usize]) -> bool {
         })
 }
 
-/// Products of more flops than this run on every core (below it, waking the threads costs more
-/// than it gains on the 2-core machines flexmodes is measured on).
-const PARALLEL_FLOPS: f64 = 1e8;
-
 /// $\Psi^T A\Psi$ from $A\Psi$: the lower triangle by faer's triangular product, mirrored.
 pub(crate) fn symmetric_product(psi: MatRef<'_, f64>, a_psi: MatRef<'_, f64>) -> Mat<f64> {
     let r = psi.ncols();
     let flops = (r * r) as f64 * psi.nrows() as f64;
-    let par = if flops > PARALLEL_FLOPS {
-        Par::rayon(0)
-    } else {
-        Par::Seq
-    };
+    let par = crate::linalg::par_for_flops(flops);
     let mut out = Mat::<f64>::zeros(r, r);
     matmul(
         out.as_mut(),

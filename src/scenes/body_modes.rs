@@ -161,7 +161,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     } else {
         let problem = reducer.problem()?;
         Some((
-            problem.constraint_modes()?,
+            problem.constraint_shapes(super::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES)?,
             problem.kept_modes(ModeSelection::Count(kept))?,
         ))
     };
@@ -531,11 +531,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         freq_bars.caption(),
         report.table
     );
-    let layout = if let (true, Some((psi_s, fi))) = (body.has_coordinates, &held) {
+    let layout = if let (true, Some(((shapes, labels), fi))) = (body.has_coordinates, &held) {
         let (mode_visuals, l) = super::slab_mode_views::slab_mode_views(
             model,
             &reducer.problem()?.partition,
-            psi_s,
+            shapes,
+            labels,
             fi,
             &elastic,
             FULL_MODES,

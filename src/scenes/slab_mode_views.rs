@@ -11,8 +11,8 @@ use crate::{
     reduction::{Method, Partition},
 };
 
-/// Constraint modes drawn at most (all are computed).
-const MAX_DRAWN_CONSTRAINT_MODES: usize = 24;
+/// Constraint modes drawn at most (callers solve for these alone).
+pub const MAX_DRAWN_CONSTRAINT_MODES: usize = 24;
 
 /// The slab's mode views: free-free elastic modes (at most `shown_free_free`), the constraint
 /// modes $[I; \Psi_s]$ of the boundary DOF and the first `kept` fixed-interface modes, each
@@ -22,7 +22,8 @@ const MAX_DRAWN_CONSTRAINT_MODES: usize = 24;
 pub fn slab_mode_views(
     model: &FeModel,
     part: &Partition,
-    psi_s: &Mat<f64>,
+    constraint: &Mat<f64>,
+    constraint_labels: &[String],
     fixed_interface: &GeneralizedEigen,
     free_free: &GeneralizedEigen,
     shown_free_free: usize,
@@ -47,13 +48,13 @@ pub fn slab_mode_views(
         method_color(Method::NoReduction),
     ));
     let nb = part.b.len();
-    let constraint = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
+    let coordinates = constraint_labels.len();
     // Bodies with large interfaces (an imported body's bolt hole) show the first few.
-    let c_modes: Vec<(Vec<f64>, String)> = columns(&constraint)
+    let c_modes: Vec<(Vec<f64>, String)> = columns(constraint)
         .into_iter()
         .take(MAX_DRAWN_CONSTRAINT_MODES)
-        .zip(&part.b)
-        .map(|(u, &dof)| (u, model.dof_label(dof)))
+        .zip(constraint_labels)
+        .map(|(u, label)| (u, label.clone()))
         .collect();
     visuals.extend(mode_set(
         model,
@@ -79,8 +80,8 @@ pub fn slab_mode_views(
         method_color(Method::CraigBampton),
     ));
     // A view that shows a subset says so in its tab.
-    let constraint_tab = if nb > c_modes.len() {
-        format!("guyan_c ({} of {nb})", c_modes.len())
+    let constraint_tab = if coordinates > c_modes.len() {
+        format!("guyan_c ({} of {coordinates})", c_modes.len())
     } else {
         "guyan_c".to_string()
     };

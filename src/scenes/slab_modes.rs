@@ -170,10 +170,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     );
     visuals.extend(bars.visuals());
 
+    let shapes = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
+    let labels: Vec<String> = part.b.iter().map(|&d| model.dof_label(d)).collect();
     let (mode_visuals, layout) = slab_mode_views(
         &model,
         &part,
-        &psi_s,
+        &shapes,
+        &labels,
         &fi,
         &ff,
         SHOWN_FREE_FREE,

@@ -74,7 +74,6 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     let started = Instant::now();
     let mut problem = InteriorProblem::new(&model, &boundary, SolverPath::Auto)?
         .with_progress(opts.progress.clone());
-    let psi_s = problem.constraint_modes()?;
     let fi = problem.kept_modes(ModeSelection::Count(kept.max(REPORTED_FIXED_INTERFACE)))?;
     let cb = craig_bampton_from(&mut problem, ModeSelection::Count(kept))?;
     let reduction_s = started.elapsed().as_secs_f64();
@@ -211,10 +210,13 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         report.table
     );
 
+    let (shapes, labels) =
+        problem.constraint_shapes(super::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES)?;
     let (mode_visuals, layout) = super::slab_mode_views::slab_mode_views(
         &model,
         &problem.partition,
-        &psi_s,
+        &shapes,
+        &labels,
         &fi,
         &ff,
         FREE_FREE,
