@@ -1413,3 +1413,68 @@ fn simulate_and_import_a_part_whose_mass_pattern_exceeds_its_stiffness() {
         .collect();
     assert_eq!(models, ["NR", "CB 4"]);
 }
+
+/// `--threads 1,2` times each size with each count (the same frequencies either way), and
+/// only that bench takes several counts; `export --timings` names the threads it used.
+#[test]
+fn thread_counts_are_compared_and_reported() {
+    let v = json(&[
+        "--threads",
+        "1,2",
+        "bench",
+        "slab-modes",
+        "--sizes",
+        "12x6x3",
+        "--repeats",
+        "2",
+        "--json",
+    ]);
+    let points = v["points"].as_array().unwrap();
+    let threads: Vec<u64> = points
+        .iter()
+        .map(|p| p["threads"].as_u64().unwrap())
+        .collect();
+    assert_eq!(threads, [1, 2]);
+    assert_eq!(v["repeats"], 2);
+    assert_eq!(
+        points[0]["fixed_interface_hz"],
+        points[1]["fixed_interface_hz"]
+    );
+    assert!(points[0]["factor_flops"].as_f64().unwrap() > 0.0);
+    assert!(v["offline_s_against_dofs"]["cb_2t"].is_array());
+
+    let out = flexmodes(&["--threads", "1,2", "list"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("only `bench slab-modes --sizes`"), "{err}");
+    let out = flexmodes(&["--threads", "0", "list"]);
+    assert!(!out.status.success(), "zero threads is refused");
+
+    let dir = temp_dir("threads-export");
+    let out = flexmodes(&[
+        "--threads",
+        "1",
+        "export",
+        "--body",
+        "builtin:l-bracket",
+        "--method",
+        "cb",
+        "--modes",
+        "4",
+        "--timings",
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("1 thread(s)"), "{err}");
+    assert!(
+        err.contains("factorisation:") && err.contains(" %)"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

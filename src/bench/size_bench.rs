@@ -10,7 +10,7 @@ use serde_json::{Map, Value, json};
 
 use crate::{
     Error, Result,
-    fem::{SlabParameters, slab},
+    fem::{FeModel, SlabParameters, slab},
     linalg::{check_reduction_memory, peak_resident_bytes},
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::Method,
@@ -92,11 +92,109 @@ pub struct SizeBench {
     pub recording: RecordingContent,
 }
 
-/// Runs every size with each thread count of `threads` (none: the count in use); returns the
-/// JSON object, a markdown table and the recording.
+/// One run's wall times of every method on one mesh.
+struct Measured {
+    phases: crate::reduction::ReductionStatistics,
+    hz: Vec<f64>,
+    cb_s: f64,
+    mt_s: f64,
+    mc_kept_s: f64,
+    mc_complete_s: Option<f64>,
+    gr_s: f64,
+}
+
+impl Measured {
+    /// Each time the median of `runs` (phases too), the frequencies of the first.
+    fn median(mut runs: Vec<Measured>) -> Measured {
+        let median = |values: Vec<f64>| -> f64 {
+            let mut v = values;
+            v.sort_by(f64::total_cmp);
+            v[v.len() / 2]
+        };
+        let pick = |f: &dyn Fn(&Measured) -> f64| median(runs.iter().map(f).collect());
+        let mut phases = runs[0].phases;
+        phases.factorization_s = pick(&|m| m.phases.factorization_s);
+        phases.constraint_modes_s = pick(&|m| m.phases.constraint_modes_s);
+        phases.eigen_s = pick(&|m| m.phases.eigen_s);
+        let cb_s = pick(&|m| m.cb_s);
+        let mt_s = pick(&|m| m.mt_s);
+        let mc_kept_s = pick(&|m| m.mc_kept_s);
+        let gr_s = pick(&|m| m.gr_s);
+        let mc_complete_s = runs[0]
+            .mc_complete_s
+            .map(|_| pick(&|m| m.mc_complete_s.unwrap_or(f64::NAN)));
+        let first = runs.swap_remove(0);
+        Measured {
+            phases,
+            hz: first.hz,
+            cb_s,
+            mt_s,
+            mc_kept_s,
+            mc_complete_s,
+            gr_s,
+        }
+    }
+}
+
+/// Times CB (its phases), MT and MC on CB's factor and modes, MC's complete route where it
+/// applies, and Guyan on `model` held at `corners`.
+fn measure(model: &FeModel, corners: &[usize], progress: &dyn Fn(&str)) -> Result<Measured> {
+    let dofs = model.dof_count();
+    progress(&format!("{dofs} DOF: Craig-Bampton"));
+    let started = Instant::now();
+    let mut problem = InteriorProblem::new(model, corners, SolverPath::Auto)?;
+    let cb = craig_bampton_from(&mut problem, ModeSelection::Count(BENCH_MODES))?;
+    let cb_s = started.elapsed().as_secs_f64();
+    let phases = cb.statistics;
+    let hz = cb.normal_hz();
+    let started = Instant::now();
+    modal_truncation_from(&mut problem, ModeSelection::Count(BENCH_MODES))?;
+    // MT reuses CB's factor and modes: its own cost is the basis assembly on top.
+    let mt_s = phases.factorization_s + phases.eigen_s + started.elapsed().as_secs_f64();
+    let started = Instant::now();
+    mode_condensation_from(
+        &mut problem,
+        ModeSelection::Count(BENCH_MODES),
+        ModeCondensationRoute::KeptModes,
+    )?;
+    let mc_kept_s = cb_s + started.elapsed().as_secs_f64();
+    let interior = problem.interior_dofs();
+    drop(problem);
+    let mc_complete_s = if interior <= MC_COMPLETE_ROUTE_LIMIT {
+        progress(&format!("{dofs} DOF: mode condensation, complete route"));
+        let started = Instant::now();
+        mode_condensation_route(
+            model,
+            corners,
+            ModeSelection::Count(BENCH_MODES),
+            SolverPath::Auto,
+            ModeCondensationRoute::Complete,
+        )?;
+        Some(started.elapsed().as_secs_f64())
+    } else {
+        None
+    };
+    progress(&format!("{dofs} DOF: Guyan"));
+    let started = Instant::now();
+    guyan_on(model, corners, SolverPath::Auto)?;
+    let gr_s = started.elapsed().as_secs_f64();
+    Ok(Measured {
+        phases,
+        hz,
+        cb_s,
+        mt_s,
+        mc_kept_s,
+        mc_complete_s,
+        gr_s,
+    })
+}
+
+/// Runs every size with each thread count of `threads` (none: the count in use), `repeats`
+/// times (each time the median); returns the JSON object, a markdown table and the recording.
 pub fn bench_sizes(
     sizes: &[[usize; 3]],
     threads: &[usize],
+    repeats: usize,
     progress: &dyn Fn(&str),
 ) -> Result<SizeBench> {
     let mut points = Vec::new();
@@ -125,44 +223,18 @@ pub fn bench_sizes(
         let model = slab(&params);
         let assembly_s = started.elapsed().as_secs_f64();
         let corners = params.bottom_corners();
-        progress(&format!("{dofs} DOF: Craig-Bampton"));
-        let started = Instant::now();
-        let mut problem = InteriorProblem::new(&model, &corners, SolverPath::Auto)?;
-        let cb = craig_bampton_from(&mut problem, ModeSelection::Count(BENCH_MODES))?;
-        let cb_s = started.elapsed().as_secs_f64();
-        let phases = cb.statistics;
-        let hz = cb.normal_hz();
-        let started = Instant::now();
-        modal_truncation_from(&mut problem, ModeSelection::Count(BENCH_MODES))?;
-        // MT reuses CB's factor and modes: its own cost is the basis assembly on top.
-        let mt_s = phases.factorization_s + phases.eigen_s + started.elapsed().as_secs_f64();
-        let started = Instant::now();
-        mode_condensation_from(
-            &mut problem,
-            ModeSelection::Count(BENCH_MODES),
-            ModeCondensationRoute::KeptModes,
-        )?;
-        let mc_kept_s = cb_s + started.elapsed().as_secs_f64();
-        let interior = problem.interior_dofs();
-        drop(problem);
-        let mc_complete_s = if interior <= MC_COMPLETE_ROUTE_LIMIT {
-            progress(&format!("{dofs} DOF: mode condensation, complete route"));
-            let started = Instant::now();
-            mode_condensation_route(
-                &model,
-                &corners,
-                ModeSelection::Count(BENCH_MODES),
-                SolverPath::Auto,
-                ModeCondensationRoute::Complete,
-            )?;
-            Some(started.elapsed().as_secs_f64())
-        } else {
-            None
-        };
-        progress(&format!("{dofs} DOF: Guyan"));
-        let started = Instant::now();
-        guyan_on(&model, &corners, SolverPath::Auto)?;
-        let gr_s = started.elapsed().as_secs_f64();
+        let runs = (0..repeats.max(1))
+            .map(|_| measure(&model, &corners, progress))
+            .collect::<Result<Vec<_>>>()?;
+        let Measured {
+            phases,
+            hz,
+            cb_s,
+            mt_s,
+            mc_kept_s,
+            mc_complete_s,
+            gr_s,
+        } = Measured::median(runs);
         let peak = peak_resident_bytes();
         for (id, s) in [
             ("gr", Some(gr_s)),
@@ -236,13 +308,15 @@ pub fn bench_sizes(
         "boundary": "four bottom corners (12 DOF)",
         "threads": counts,
         "machine_threads": crate::linalg::machine_threads(),
+        "repeats": repeats.max(1),
         "points": points,
         "offline_s_against_dofs": series,
         "growth_exponent": exponents,
     });
     let table = format!(
         "Refined slab, Craig-Bampton with the four bottom corners (12 DOF) and {BENCH_MODES} kept \
-         fixed-interface modes; wall seconds in one run. MT and MC reuse CB's factor and \
+         fixed-interface modes; wall seconds, the median of {} run(s) per size and thread \
+         count (`--repeats`). MT and MC reuse CB's factor and \
          modes (their times include CB's shared phases); MC complete is the thesis' route \
          (complete dense interior eigenproblem, up to {MC_COMPLETE_ROUTE_LIMIT} interior DOF). \
          Peak memory is the process's peak so far (sizes run ascending). Threads: what the \
@@ -250,6 +324,7 @@ pub fn bench_sizes(
          {:.0e} flops and products of more than {:.0e} use them all, smaller kernels one. \
          Series keys `cb_2t`: CB with 2 threads.\n\n{}\nGrowth exponents (offline s ∝ DOF^p): \
          {}\n",
+        repeats.max(1),
         crate::linalg::machine_threads(),
         crate::linalg::PARALLEL_FACTOR_FLOPS,
         crate::linalg::PARALLEL_FLOPS,

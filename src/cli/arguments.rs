@@ -75,9 +75,10 @@ pub(super) enum Command {
         /// Integrators to compare, comma separated (default: dp5,gen-alpha).
         #[arg(long, value_delimiter = ',')]
         integrator: Vec<IntegrationScheme>,
-        /// Runs of each simulation; the online cost is their median.
-        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=100))]
-        repeats: u64,
+        /// Runs of each simulation or export (default 3), or of each size and thread count
+        /// with --sizes (default 1); the median is reported.
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100))]
+        repeats: Option<u64>,
         /// Simulations on the slab meshed with NX × NY × NZ bricks (App. B is 4,2,1).
         #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
         refine: Option<[usize; 3]>,

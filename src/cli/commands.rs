@@ -212,7 +212,7 @@ fn run(cli: Cli) -> Result<()> {
                 body,
                 boundary,
                 modes,
-                repeats: repeats as usize,
+                repeats: repeats.unwrap_or(3) as usize,
                 peer,
             })?;
             if json {
@@ -227,6 +227,7 @@ fn run(cli: Cli) -> Result<()> {
             json,
             sizes: Some(sizes),
             save,
+            repeats,
             ..
         } => {
             let simulation = match ids.as_slice() {
@@ -249,7 +250,12 @@ fn run(cli: Cli) -> Result<()> {
                     drop(bar);
                     bench
                 }
-                None => crate::bench::bench_sizes(&meshes, &threads, &|s| progress(s))?,
+                None => crate::bench::bench_sizes(
+                    &meshes,
+                    &threads,
+                    repeats.map_or(1, |r| r as usize),
+                    &|s| progress(s),
+                )?,
             };
             let title = simulation.as_deref().unwrap_or("slab-modes");
             if let Some(path) = &save {
@@ -313,7 +319,7 @@ fn run(cli: Cli) -> Result<()> {
                         &id,
                         &integrator,
                         refine,
-                        repeats as usize,
+                        repeats.unwrap_or(3) as usize,
                         &handle,
                     )?
                 };
