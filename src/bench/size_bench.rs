@@ -373,8 +373,11 @@ fn log_log_chart(
         .iter()
         .map(|(id, pts)| {
             // `cb` or, comparing thread counts, `cb_2t`.
-            let (method, threads) = match id.split_once('_') {
-                Some((m, t)) => (m, t.trim_end_matches('t').parse::<usize>().ok()),
+            let (method, threads) = match id.rsplit_once('_').and_then(|(m, t)| {
+                let count = t.strip_suffix('t')?.parse::<usize>().ok()?;
+                Some((m, count))
+            }) {
+                Some((m, count)) => (m, Some(count)),
                 None => (id.as_str(), None),
             };
             let base = match method {
@@ -396,9 +399,10 @@ fn log_log_chart(
                 .get(id)
                 .and_then(Value::as_f64)
                 .map_or("—".into(), |p| format!("{p:.2}"));
+            let method_name = method.replace('_', " ").to_uppercase();
             let name = match threads {
-                Some(t) => format!("{}, {t} thread(s)", method.to_uppercase()),
-                None => method.to_uppercase(),
+                Some(t) => format!("{method_name}, {t} thread(s)"),
+                None => method_name,
             };
             // Only the largest mesh is labelled (method and exponent); the table has every
             // value.
