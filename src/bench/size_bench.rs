@@ -322,7 +322,7 @@ pub fn bench_sizes(
          Peak memory is the process's peak so far (sizes run ascending). Threads: what the \
          kernels may use (`--threads`; this machine has {}); a factorisation of more than \
          {:.0e} flops and products of more than {:.0e} use them all, smaller kernels one. \
-         Series keys `cb_2t`: CB with 2 threads.\n\n{}\nGrowth exponents (offline s ∝ DOF^p): \
+         Series keys `cb_2t`: CB with 2 threads.\n\n{}\nGrowth exponents p (offline s grows as DOF^p): \
          {}\n",
         repeats.max(1),
         crate::linalg::machine_threads(),
@@ -408,7 +408,8 @@ fn log_log_chart(
             // value.
             LogLogSeries {
                 id: id.clone(),
-                label: format!("{name} ∝ DOF^{exponent}"),
+                // The viewer's font has no ∝: said in ASCII.
+                label: format!("{name}: s ~ DOF^{exponent}"),
                 color,
                 points: pts.clone(),
                 line: true,
