@@ -208,90 +208,81 @@ pub fn bench_sizes(
         threads.to_vec()
     };
     let several = counts.len() > 1;
-    for (&bricks, &wanted) in sizes
-        .iter()
-        .flat_map(|b| counts.iter().map(move |t| (b, t)))
-    {
-        let threads = crate::linalg::use_threads(wanted);
+    for &bricks in sizes {
         let params = SlabParameters::refined(bricks)?;
         let dofs = params.dof_count();
         check_reduction_memory(dofs)?;
-        progress(&format!(
-            "{dofs} DOF ({bricks:?}), {threads} thread(s): assembly"
-        ));
+        progress(&format!("{dofs} DOF ({bricks:?}): assembly"));
         let started = Instant::now();
         let model = slab(&params);
         let assembly_s = started.elapsed().as_secs_f64();
         let corners = params.bottom_corners();
-        let runs = (0..repeats.max(1))
-            .map(|_| measure(&model, &corners, progress))
-            .collect::<Result<Vec<_>>>()?;
-        let Measured {
-            phases,
-            hz,
-            cb_s,
-            mt_s,
-            mc_kept_s,
-            mc_complete_s,
-            gr_s,
-        } = Measured::median(runs);
-        let peak = peak_resident_bytes();
-        for (id, s) in [
-            ("gr", Some(gr_s)),
-            ("mt", Some(mt_s)),
-            ("cb", Some(cb_s)),
-            ("mc", Some(mc_kept_s)),
-            ("mc_complete", mc_complete_s),
-        ] {
-            if let Some(s) = s {
-                let key = if several {
-                    format!("{id}_{threads}t")
-                } else {
-                    id.to_string()
-                };
-                totals.entry(key).or_default().push((dofs as f64, s));
+        // One assembly per mesh; each thread count times the same model.
+        for &wanted in &counts {
+            let threads = crate::linalg::use_threads(wanted);
+            progress(&format!("{dofs} DOF, {threads} thread(s)"));
+            let runs = (0..repeats.max(1))
+                .map(|_| measure(&model, &corners, progress))
+                .collect::<Result<Vec<_>>>()?;
+            let m = Measured::median(runs);
+            let peak = peak_resident_bytes();
+            for (id, s) in [
+                ("gr", Some(m.gr_s)),
+                ("mt", Some(m.mt_s)),
+                ("cb", Some(m.cb_s)),
+                ("mc", Some(m.mc_kept_s)),
+                ("mc_complete", m.mc_complete_s),
+            ] {
+                if let Some(s) = s {
+                    let key = if several {
+                        format!("{id}_{threads}t")
+                    } else {
+                        id.to_string()
+                    };
+                    totals.entry(key).or_default().push((dofs as f64, s));
+                }
             }
+            rows.push(vec![
+                format!("{}×{}×{}", bricks[0], bricks[1], bricks[2]),
+                dofs.to_string(),
+                threads.to_string(),
+                model.stiffness_nnz().to_string(),
+                m.phases.factor_nnz.to_string(),
+                format!("{assembly_s:.3}"),
+                format!("{:.3}", m.phases.factorization_s),
+                format!("{:.3}", m.phases.constraint_modes_s),
+                format!("{:.3}", m.phases.eigen_s),
+                format!("{:.3}", m.cb_s),
+                format!("{:.3}", m.gr_s),
+                format!("{:.3}", m.mt_s),
+                format!("{:.3}", m.mc_kept_s),
+                m.mc_complete_s.map_or("—".into(), |s| format!("{s:.3}")),
+                peak.map_or("?".into(), |b| format!("{:.0}", b as f64 / 1e6)),
+            ]);
+            points.push(json!({
+                "bricks": bricks,
+                "dofs": dofs,
+                "threads": threads,
+                "nnz": model.stiffness_nnz(),
+                "factor_nnz": m.phases.factor_nnz,
+                "factor_flops": m.phases.factor_flops,
+                "timing_s": {
+                    "assembly": sig(assembly_s),
+                    "factorization": sig(m.phases.factorization_s),
+                    "constraint_modes": sig(m.phases.constraint_modes_s),
+                    "eigen": sig(m.phases.eigen_s),
+                    "reduction": sig(m.cb_s),
+                },
+                "offline_s": {
+                    "gr": sig(m.gr_s), "mt": sig(m.mt_s), "cb": sig(m.cb_s), "mc": sig(m.mc_kept_s),
+                    "mc_complete": m.mc_complete_s.map(sig),
+                },
+                "eigen_block_solves": m.phases.eigen_block_solves,
+                "eigen_max_residual": m.phases.eigen_max_residual,
+                "peak_memory_bytes": peak,
+                "fixed_interface_hz": sig_vec(&m.hz),
+            }));
         }
-        rows.push(vec![
-            format!("{}×{}×{}", bricks[0], bricks[1], bricks[2]),
-            dofs.to_string(),
-            threads.to_string(),
-            model.stiffness_nnz().to_string(),
-            phases.factor_nnz.to_string(),
-            format!("{assembly_s:.3}"),
-            format!("{:.3}", phases.factorization_s),
-            format!("{:.3}", phases.constraint_modes_s),
-            format!("{:.3}", phases.eigen_s),
-            format!("{cb_s:.3}"),
-            format!("{gr_s:.3}"),
-            format!("{mt_s:.3}"),
-            format!("{mc_kept_s:.3}"),
-            mc_complete_s.map_or("—".into(), |s| format!("{s:.3}")),
-            peak.map_or("?".into(), |b| format!("{:.0}", b as f64 / 1e6)),
-        ]);
-        points.push(json!({
-            "bricks": bricks,
-            "dofs": dofs,
-            "threads": threads,
-            "nnz": model.stiffness_nnz(),
-            "factor_nnz": phases.factor_nnz,
-            "factor_flops": phases.factor_flops,
-            "timing_s": {
-                "assembly": sig(assembly_s),
-                "factorization": sig(phases.factorization_s),
-                "constraint_modes": sig(phases.constraint_modes_s),
-                "eigen": sig(phases.eigen_s),
-                "reduction": sig(cb_s),
-            },
-            "offline_s": {
-                "gr": sig(gr_s), "mt": sig(mt_s), "cb": sig(cb_s), "mc": sig(mc_kept_s),
-                "mc_complete": mc_complete_s.map(sig),
-            },
-            "eigen_block_solves": phases.eigen_block_solves,
-            "eigen_max_residual": phases.eigen_max_residual,
-            "peak_memory_bytes": peak,
-            "fixed_interface_hz": sig_vec(&hz),
-        }));
     }
     crate::linalg::use_threads(before);
     let mut exponents = Map::new();

@@ -83,10 +83,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn small_kernels_stay_on_the_calling_thread() {
-        assert_eq!(par_for_flops(1e6), Par::Seq);
-        assert_eq!(par_for_factor(1e8), Par::Seq);
-        assert!(threads() >= 1);
-        assert!(machine_threads() >= 1);
+    fn kernels_go_parallel_only_above_their_thresholds_and_with_threads() {
+        // One thread: nothing is split, however large.
+        use_threads(1);
+        assert_eq!(par_for_flops(1e12), Par::Seq);
+        assert_eq!(par_for_factor(1e12), Par::Seq);
+        // Two threads (where the pool has them): the large kernels only.
+        if use_threads(2) == 2 {
+            assert_eq!(par_for_flops(2.0 * PARALLEL_FLOPS), Par::rayon(2));
+            assert_eq!(par_for_flops(0.5 * PARALLEL_FLOPS), Par::Seq);
+            assert_eq!(par_for_factor(2.0 * PARALLEL_FACTOR_FLOPS), Par::rayon(2));
+            assert_eq!(par_for_factor(0.5 * PARALLEL_FACTOR_FLOPS), Par::Seq);
+        }
+        use_threads(1);
     }
 }

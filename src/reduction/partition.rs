@@ -340,14 +340,9 @@ impl<'a> InteriorProblem<'a> {
     /// Static constraint modes' interior part $\Psi_s = -K_{ii}^{-1}K_{ib}R$ (Eq. 6.3): one
     /// factorisation, the boundary coordinates as right-hand sides.
     pub fn constraint_modes(&mut self) -> Result<Mat<f64>> {
-        self.check_restraint()?;
-        self.factor()?;
         self.progress.phase("constraint modes")?;
         let started = Instant::now();
-        self.k_ib();
-        let k_ib_r = self.k_ib_r.as_ref().expect("formed above");
-        let (f, _) = self.factor.as_ref().expect("factored above");
-        let psi_s = -f.solve(k_ib_r.as_ref());
+        let psi_s = self.solve_constraint_modes(usize::MAX)?;
         self.statistics.constraint_modes_s += started.elapsed().as_secs_f64();
         Ok(psi_s)
     }
@@ -356,23 +351,28 @@ impl<'a> InteriorProblem<'a> {
     /// those are solved for, for a view), and the labels of every boundary coordinate (a
     /// boundary DOF's, or `rbe2 NAME x … θz`).
     pub fn constraint_shapes(&mut self, count: usize) -> Result<(Mat<f64>, Vec<String>)> {
-        self.check_restraint()?;
-        self.factor()?;
-        let count = count.min(self.boundary.count());
-        self.k_ib();
-        let k_ib_r = self.k_ib_r.as_ref().expect("formed above");
-        let (f, _) = self.factor.as_ref().expect("factored above");
-        let bottom = -f.solve(k_ib_r.subcols(0, count));
+        let bottom = self.solve_constraint_modes(count)?;
         let top = self.boundary.top(0);
         let shapes = self
             .partition
-            .assemble(top.subcols(0, count), bottom.as_ref());
+            .assemble(top.subcols(0, bottom.ncols()), bottom.as_ref());
         let labels = self
             .boundary_columns(ColumnKind::Constraint, "")
             .into_iter()
             .map(|c| c.label.trim().to_string())
             .collect();
         Ok((shapes, labels))
+    }
+
+    /// $-K_{ii}^{-1}K_{ib}R$ for the first `count` boundary coordinates (all of them at most).
+    fn solve_constraint_modes(&mut self, count: usize) -> Result<Mat<f64>> {
+        self.check_restraint()?;
+        self.factor()?;
+        let count = count.min(self.boundary.count());
+        self.k_ib();
+        let k_ib_r = self.k_ib_r.as_ref().expect("formed above");
+        let (f, _) = self.factor.as_ref().expect("factored above");
+        Ok(-f.solve(k_ib_r.subcols(0, count)))
     }
 
     /// Every fixed-interface normal mode, $[\Psi_n, \Lambda_n] = \mathrm{eig}(K_{ii}, M_{ii})$
