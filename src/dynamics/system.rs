@@ -10,7 +10,7 @@ use super::{
 use crate::fem::NodeIndex;
 use crate::{
     Error, Result,
-    linalg::{REDUNDANT_PSD, pinv_solve, range_space_solve, saddle_point_solve},
+    linalg::{REDUNDANT_PSD, block_saddle_point_solve, pinv_solve},
 };
 
 /// Standard gravity, m/s² (App. B, §7.2).
@@ -282,8 +282,11 @@ impl System {
     /// Its size is 6 per body plus the constraint rows, whatever the bodies' modal
     /// coordinates (a full slab of 90 or a plank of 288). Its frame block is singular when Ψ
     /// holds the rigid motions (Eq. 3.38, no reduction on mean axes): the axis conditions
-    /// fix that through the multipliers. It is solved by a symmetric indefinite factorisation
-    /// after scaling, or a pseudo-inverse when constraints are redundant.
+    /// fix that through the multipliers. Every clearly definite frame block (a rigid link, a
+    /// body whose Ψ leaves out the rigid motions) is eliminated body by body; what is left is
+    /// solved by a scaled symmetric indefinite factorisation, or a pseudo-inverse when
+    /// constraints are redundant ([`block_saddle_point_solve`]). Only the constraint rows
+    /// that touch a body's modal coordinates enter its elimination.
     pub fn accelerations(&self, t: f64, s: &State) -> Result<DVector<f64>> {
         let rows = self.rows(t, s);
         self.saddle_point(s, &rows.c, &rows.gamma, true)
@@ -308,7 +311,7 @@ impl System {
         let mut kkt = DMatrix::zeros(n, n);
         let mut rhs = DVector::zeros(n);
         rhs.rows_mut(nf, nr).copy_from(g);
-        let mut eliminated: Vec<Option<DMatrix<f64>>> = Vec::with_capacity(nb);
+        let mut eliminated: Vec<Option<(DMatrix<f64>, Vec<usize>)>> = Vec::with_capacity(nb);
         // The largest diagonal entry of the frame blocks before elimination: the scale
         // the eliminated frame block's pivots are judged against.
         let mut frame_scale = 0.0f64;
@@ -327,37 +330,46 @@ impl System {
             };
             let k = fb.modes();
             let c_z = c.columns(vo + 6, k);
-            // W = [M_zf, C_z^T, Q_z] and X = M_zz^-1 W (k × (7 + nr)).
-            let mut w = DMatrix::zeros(k, 7 + nr);
+            // Only the constraint rows that touch the modal coordinates (a joint on another
+            // body has none here).
+            let active: Vec<usize> = (0..nr)
+                .filter(|&r| c_z.row(r).iter().any(|&x| x != 0.0))
+                .collect();
+            let na = active.len();
+            // W = [M_zf, C_z^T, Q_z] and X = M_zz^-1 W (k × (7 + active rows)).
+            let mut w = DMatrix::zeros(k, 7 + na);
             w.columns_mut(0, 6).tr_copy_from(&blocks.m_fz);
-            w.columns_mut(6, nr).tr_copy_from(&c_z);
-            w.column_mut(6 + nr).copy_from(&blocks.q.rows(6, k));
-            let x = fb.m_zz_inverse.solve(&w);
-            // [M_fz; C_z] X = W[:, ..6 + nr]^T X, subtracted from the frame and constraint
-            // rows (entry by entry as dot products: the factors are a few dozen long).
-            let product = w.columns(0, 6 + nr).tr_mul(&x);
-            // Rows and columns 0..6 of the product are the body's frame, 6.. the constraints.
-            for (p0, k0, len) in [(0, fo, 6), (6, nf, nr)] {
-                for (q0, l0, width) in [(0, fo, 6), (6, nf, nr)] {
-                    let mut block = kkt.view_mut((k0, l0), (len, width));
-                    block -= product.view((p0, q0), (len, width));
-                }
-                let mut r = rhs.rows_mut(k0, len);
-                r -= product.view((p0, 6 + nr), (len, 1));
+            for (i, &r) in active.iter().enumerate() {
+                w.column_mut(6 + i).tr_copy_from(&c_z.row(r));
             }
-            eliminated.push(Some(x));
+            w.column_mut(6 + na).copy_from(&blocks.q.rows(6, k));
+            let x = fb.m_zz_inverse.solve(&w);
+            // [M_fz; C_z] X = W[:, ..6 + na]^T X, subtracted from the frame and constraint
+            // rows and their right-hand side.
+            let product = w.columns(0, 6 + na).tr_mul(&x);
+            let place = |p: usize| if p < 6 { fo + p } else { nf + active[p - 6] };
+            for p in 0..6 + na {
+                let row = place(p);
+                for q in 0..6 + na {
+                    kkt[(row, place(q))] -= product[(p, q)];
+                }
+                rhs[row] -= product[(p, 6 + na)];
+            }
+            eliminated.push(Some((x, active)));
         }
-        let solution = range_space_solve(&kkt, &rhs, nf, frame_scale)
-            .unwrap_or_else(|| saddle_point_solve(&kkt, &rhs));
+        let solution = block_saddle_point_solve(&kkt, &rhs, nf, frame_scale);
         let lambda = solution.rows(nf, nr);
         let mut vdot = DVector::zeros(self.nv());
-        for (b, x) in eliminated.iter().enumerate() {
+        for (b, eliminated) in eliminated.iter().enumerate() {
             let (vo, fo) = (self.v_off[b], 6 * b);
             let a_f = solution.rows(fo, 6);
             vdot.rows_mut(vo, 6).copy_from(&a_f);
-            if let Some(x) = x {
-                let k = x.nrows();
-                let z_dd = x.column(6 + nr) - x.columns(0, 6) * a_f - x.columns(6, nr) * lambda;
+            if let Some((x, active)) = eliminated {
+                let (k, na) = (x.nrows(), active.len());
+                let mut z_dd = x.column(6 + na) - x.columns(0, 6) * a_f;
+                for (i, &r) in active.iter().enumerate() {
+                    z_dd.axpy(-lambda[r], &x.column(6 + i), 1.0);
+                }
                 vdot.rows_mut(vo + 6, k).copy_from(&z_dd);
             }
         }

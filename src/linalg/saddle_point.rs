@@ -4,7 +4,7 @@
 //! its blocks are definite, a scaled symmetric indefinite factorisation otherwise, and a
 //! checked pseudo-inverse for redundant constraints.
 
-use nalgebra::{DMatrix, DVector, Matrix6};
+use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
 /// Eigenvalues [`pinv_solve`] drops for a positive semi-definite matrix ($CC^T$,
 /// $C\tilde M^{-1}C^T$), as a fraction of the largest.
@@ -39,7 +39,8 @@ pub fn pinv_solve(a: &DMatrix<f64>, b: &DVector<f64>, drop_below: f64) -> DVecto
     x
 }
 
-/// Pivot ratio below which [`range_space_solve`] hands the system to the indefinite solver:
+/// Pivot ratio below which [`block_saddle_point_solve`] keeps a frame block, or hands $S$ to the
+/// indefinite solver:
 /// the smallest over the largest squared Cholesky pivot of $\hat M_{ff}$, and of the
 /// Jacobi-scaled $S$.
 const RANGE_SPACE_PIVOT: f64 = 1e-10;
@@ -48,45 +49,6 @@ const RANGE_SPACE_PIVOT: f64 = 1e-10;
 /// elimination (a mass or a moment of inertia of the whole body). Below it Ψ nearly holds a
 /// rigid motion and the frame block is round-off.
 const RANGE_SPACE_FRAME_PIVOT: f64 = 1e-8;
-
-/// The saddle-point system $\begin{bmatrix} A & B^T \\ B & -D\end{bmatrix}
-/// \begin{bmatrix} x \\ \lambda\end{bmatrix} = \begin{bmatrix} f \\ g\end{bmatrix}$
-/// ($A$ the leading `nf` × `nf` block) by the range-space method: with $A$ positive definite,
-/// $S = BA^{-1}B^T + D$ is too when the constraints are independent, and
-/// $\lambda = S^{-1}(BA^{-1}f - g)$, $x = A^{-1}(f - B^T\lambda)$ by two Cholesky
-/// factorisations of the blocks. That is the common case (the frame block
-/// $M_{ff} - M_{fz}M_{zz}^{-1}M_{zf}$ is a Schur complement of the positive definite mass
-/// matrix) and several times cheaper than an indefinite factorisation of the whole on these
-/// few dozen unknowns. `None` when either block is not clearly definite: Ψ holding the rigid
-/// motions (singular $A$) or redundant constraints (singular $S$); [`saddle_point_solve`]
-/// then solves the system.
-pub fn range_space_solve(
-    kkt: &DMatrix<f64>,
-    rhs: &DVector<f64>,
-    nf: usize,
-    frame_scale: f64,
-) -> Option<DVector<f64>> {
-    // A's squared pivots against the frame blocks' scale before elimination: when Ψ holds
-    // the rigid motions, all of A is round-off and its pivots compare well with each other.
-    let a_ok = |pivots: &[f64]| {
-        pivots
-            .iter()
-            .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale)
-            && pivots_ok(&DVector::from_column_slice(pivots))
-    };
-    if nf == 6 {
-        // One body: the frame block on the stack.
-        let a = Matrix6::from_fn(|i, j| kkt[(i, j)]).cholesky()?;
-        let pivots = a.l_dirty().diagonal();
-        a_ok(pivots.as_slice()).then_some(())?;
-        range_space_with(kkt, rhs, nf, |b| a.solve(b))
-    } else {
-        let a = kkt.view((0, 0), (nf, nf)).into_owned().cholesky()?;
-        let pivots = a.l_dirty().diagonal();
-        a_ok(pivots.as_slice()).then_some(())?;
-        range_space_with(kkt, rhs, nf, |b| a.solve(b))
-    }
-}
 
 /// Whether the squared Cholesky pivots `l_diagonal` stay above [`RANGE_SPACE_PIVOT`] of the
 /// largest.
@@ -97,51 +59,195 @@ fn pivots_ok<S: nalgebra::Storage<f64, nalgebra::Dyn>>(
     d.is_empty() || d.min() > RANGE_SPACE_PIVOT * d.max()
 }
 
-/// [`range_space_solve`] with $A^{-1}$ applied by `a_solve`.
-fn range_space_with(
+/// Rows and columns of one body's frame block in [`block_saddle_point_solve`].
+pub const FRAME_BLOCK: usize = 6;
+
+/// The saddle-point system $\begin{bmatrix} A & B^T \\ B & -D\end{bmatrix}
+/// \begin{bmatrix} x \\ \lambda\end{bmatrix} = \begin{bmatrix} f \\ g\end{bmatrix}$ whose
+/// leading `nf` × `nf` block $A$ is block diagonal in 6 × 6 blocks $A_b$ (a multibody system's
+/// frame blocks: bodies couple only through the constraints $B$), by the range-space method
+/// applied body by body. Every $A_b$ that is clearly positive definite is eliminated,
+/// $x_b = A_b^{-1}(f_b - B_b^T\lambda)$, which adds $-B_bA_b^{-1}B_b^T$ to the constraint block
+/// only on the rows $B_b$ touches (a link's two joints, not the whole system). What remains is
+/// solved whole:
+///
+/// - no block left: $S = D + \sum_b B_bA_b^{-1}B_b^T$ is positive definite when the
+///   constraints are independent, and $\lambda = S^{-1}(\sum_b B_bA_b^{-1}f_b - g)$ by a
+///   Jacobi-scaled Cholesky factorisation (the frame block $M_{ff} - M_{fz}M_{zz}^{-1}M_{zf}$
+///   is a Schur complement of the positive definite mass matrix: the common case);
+/// - blocks left (a frame block that is round-off because Ψ holds the rigid motions, Eq. 3.38
+///   on mean axes), or $S$ not clearly definite (redundant constraints): the reduced
+///   saddle-point system of those blocks and all constraint rows by [`saddle_point_solve`]
+///   (scaled $LBL^T$, or the pseudo-inverse).
+///
+/// A block is clearly definite when its Cholesky factor's squared pivots all exceed
+/// [`RANGE_SPACE_FRAME_PIVOT`] of `frame_scale` (the largest diagonal entry of the frame
+/// blocks before the modal coordinates were eliminated: a mass or a moment of inertia) and
+/// [`RANGE_SPACE_PIVOT`] of its largest one. The elimination is exact, so the solution is the
+/// one [`saddle_point_solve`] finds for the whole system (tested to round-off); it costs a few
+/// 6 × 6 solves per body where the indefinite factorisation of the whole costs
+/// $O((n_f + n_r)^3)$.
+pub fn block_saddle_point_solve(
     kkt: &DMatrix<f64>,
     rhs: &DVector<f64>,
     nf: usize,
-    a_solve: impl Fn(&DMatrix<f64>) -> DMatrix<f64>,
-) -> Option<DVector<f64>> {
+    frame_scale: f64,
+) -> DVector<f64> {
+    solve_by_blocks(kkt, rhs, nf, frame_scale).0
+}
+
+/// How [`block_saddle_point_solve`] solved a system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct BlockRoute {
+    /// Frame blocks left in the reduced system (not clearly definite).
+    kept: usize,
+    /// Whether the constraint block was solved by Cholesky (no block kept, $S$ definite).
+    definite_schur: bool,
+}
+
+/// [`block_saddle_point_solve`] and the route it took.
+fn solve_by_blocks(
+    kkt: &DMatrix<f64>,
+    rhs: &DVector<f64>,
+    nf: usize,
+    frame_scale: f64,
+) -> (DVector<f64>, BlockRoute) {
     let n = kkt.nrows();
+    assert!(
+        nf % FRAME_BLOCK == 0 && nf <= n && rhs.len() == n && kkt.ncols() == n,
+        "block_saddle_point_solve: {n} × {} system, {} right-hand side entries, {nf} frame rows",
+        kkt.ncols(),
+        rhs.len()
+    );
     let nr = n - nf;
-    // [A^-1 B^T, A^-1 f] in one solve.
-    let mut rhs_columns = DMatrix::zeros(nf, nr + 1);
-    rhs_columns
-        .columns_mut(0, nr)
-        .tr_copy_from(&kkt.view((nf, 0), (nr, nf)));
-    rhs_columns.column_mut(nr).copy_from(&rhs.rows(0, nf));
-    let solved = a_solve(&rhs_columns);
-    let (y, a_f) = (solved.columns(0, nr), solved.column(nr));
-    let mut out = DVector::zeros(n);
-    if nr == 0 {
-        out.copy_from(&a_f);
-        return Some(out);
+    // The constraint block after elimination (−D − Σ B_b A_b⁻¹ B_bᵀ) and its right-hand side.
+    let mut schur = kkt.view((nf, nf), (nr, nr)).into_owned();
+    let mut g = rhs.rows(nf, nr).into_owned();
+    let mut kept = Vec::new();
+    let mut eliminated = Vec::new();
+    for b in 0..nf / FRAME_BLOCK {
+        let o = FRAME_BLOCK * b;
+        let a = Matrix6::from_fn(|i, j| kkt[(o + i, o + j)]);
+        let Some(chol) = a.cholesky().filter(|c| {
+            let pivots = c.l_dirty().diagonal();
+            pivots
+                .iter()
+                .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale)
+                && pivots_ok(&DVector::from_column_slice(pivots.as_slice()))
+        }) else {
+            kept.push(b);
+            continue;
+        };
+        let row = |r: usize| Vector6::from_fn(|j, _| kkt[(nf + r, o + j)]);
+        let active: Vec<usize> = (0..nr)
+            .filter(|&r| (0..FRAME_BLOCK).any(|j| kkt[(nf + r, o + j)] != 0.0))
+            .collect();
+        let a_f = chol.solve(&Vector6::from_fn(|i, _| rhs[o + i]));
+        let y: Vec<Vector6<f64>> = active.iter().map(|&r| chol.solve(&row(r))).collect();
+        for &ri in &active {
+            let bi = row(ri);
+            g[ri] -= bi.dot(&a_f);
+            for (&rj, yj) in active.iter().zip(&y) {
+                schur[(ri, rj)] -= bi.dot(yj);
+            }
+        }
+        eliminated.push(EliminatedBlock {
+            first: o,
+            active,
+            y,
+            a_f,
+        });
     }
-    let b = kkt.view((nf, 0), (nr, nf));
-    let mut s = b * y - kkt.view((nf, nf), (nr, nr));
-    // Jacobi scaling, so constraint rows of different units compare in the pivot test.
+    let mut out = DVector::zeros(n);
+    let mut route = BlockRoute {
+        kept: kept.len(),
+        definite_schur: false,
+    };
+    if kept.is_empty() {
+        let lambda = match definite_schur_solve(&schur, &g) {
+            Some(lambda) => {
+                route.definite_schur = true;
+                lambda
+            }
+            None => saddle_point_solve(&schur, &g),
+        };
+        out.rows_mut(nf, nr).copy_from(&lambda);
+    } else {
+        // The kept frame blocks and every constraint row.
+        let top = FRAME_BLOCK * kept.len();
+        let m = top + nr;
+        let mut reduced = DMatrix::zeros(m, m);
+        let mut reduced_rhs = DVector::zeros(m);
+        for (i, &b) in kept.iter().enumerate() {
+            let (o, ko) = (FRAME_BLOCK * b, FRAME_BLOCK * i);
+            reduced
+                .view_mut((ko, ko), (FRAME_BLOCK, FRAME_BLOCK))
+                .copy_from(&kkt.view((o, o), (FRAME_BLOCK, FRAME_BLOCK)));
+            let coupling = kkt.view((nf, o), (nr, FRAME_BLOCK));
+            reduced
+                .view_mut((top, ko), (nr, FRAME_BLOCK))
+                .copy_from(&coupling);
+            reduced
+                .view_mut((ko, top), (FRAME_BLOCK, nr))
+                .tr_copy_from(&coupling);
+            reduced_rhs
+                .rows_mut(ko, FRAME_BLOCK)
+                .copy_from(&rhs.rows(o, FRAME_BLOCK));
+        }
+        reduced.view_mut((top, top), (nr, nr)).copy_from(&schur);
+        reduced_rhs.rows_mut(top, nr).copy_from(&g);
+        let solution = saddle_point_solve(&reduced, &reduced_rhs);
+        for (i, &b) in kept.iter().enumerate() {
+            out.rows_mut(FRAME_BLOCK * b, FRAME_BLOCK)
+                .copy_from(&solution.rows(FRAME_BLOCK * i, FRAME_BLOCK));
+        }
+        out.rows_mut(nf, nr).copy_from(&solution.rows(top, nr));
+    }
+    // x_b = A_b⁻¹ f_b − A_b⁻¹ B_bᵀ λ for every eliminated block.
+    for block in &eliminated {
+        let mut x = block.a_f;
+        for (&r, yr) in block.active.iter().zip(&block.y) {
+            x -= yr * out[nf + r];
+        }
+        out.rows_mut(block.first, FRAME_BLOCK).copy_from(&x);
+    }
+    (out, route)
+}
+
+/// A frame block eliminated by [`block_saddle_point_solve`].
+struct EliminatedBlock {
+    /// Its first row.
+    first: usize,
+    /// The constraint rows it couples to.
+    active: Vec<usize>,
+    /// $A_b^{-1}B_b^T$, one column per active row.
+    y: Vec<Vector6<f64>>,
+    /// $A_b^{-1}f_b$.
+    a_f: Vector6<f64>,
+}
+
+/// $\lambda$ of $-S\lambda = g$ for the constraint block `neg_s` $= -S$ of
+/// [`block_saddle_point_solve`] when $S$ is clearly positive definite after Jacobi scaling
+/// (squared pivots above [`RANGE_SPACE_PIVOT`] of the largest, so constraint rows of different
+/// units compare); `None` otherwise (redundant constraints).
+fn definite_schur_solve(neg_s: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
+    let nr = neg_s.nrows();
+    if nr == 0 {
+        return Some(DVector::zeros(0));
+    }
     let scale = DVector::from_fn(nr, |i, _| {
-        let d = s[(i, i)];
+        let d = -neg_s[(i, i)];
         if d > 0.0 { 1.0 / d.sqrt() } else { 1.0 }
     });
-    for j in 0..nr {
-        for i in 0..nr {
-            s[(i, j)] *= scale[i] * scale[j];
-        }
-    }
+    let s = DMatrix::from_fn(nr, nr, |i, j| -neg_s[(i, j)] * scale[i] * scale[j]);
     let s = s.cholesky()?;
     if !pivots_ok(&s.l_dirty().diagonal()) {
         return None;
     }
-    let mut lambda = (b * a_f - rhs.rows(nf, nr)).component_mul(&scale);
+    let mut lambda = (-g).component_mul(&scale);
     s.solve_mut(&mut lambda);
     lambda.component_mul_assign(&scale);
-    let x = a_f - y * &lambda;
-    out.rows_mut(0, nf).copy_from(&x);
-    out.rows_mut(nf, nr).copy_from(&lambda);
-    out.iter().all(|v| v.is_finite()).then_some(out)
+    lambda.iter().all(|v| v.is_finite()).then_some(lambda)
 }
 
 /// $x = A^{-1} b$, or $A^+ b$ when singular, for a small symmetric, possibly indefinite $A$
@@ -219,45 +325,122 @@ mod tests {
         (kkt, rhs)
     }
 
+    /// A seeded system whose frame block is block diagonal in `blocks` 6 × 6 blocks, each
+    /// coupled to a few of the `nr` constraint rows (as a link is to its two joints); the
+    /// blocks in `singular` have rank 3 and round-off size (Ψ holding the rigid motions).
+    fn block_system(
+        blocks: usize,
+        nr: usize,
+        singular: &[usize],
+        seed: u64,
+    ) -> (DMatrix<f64>, DVector<f64>) {
+        let (dense, rhs) = saddle_system(FRAME_BLOCK * blocks, nr, seed);
+        let nf = FRAME_BLOCK * blocks;
+        let mut kkt = dense.clone();
+        for b in 0..blocks {
+            let o = FRAME_BLOCK * b;
+            for i in 0..nf {
+                if i / FRAME_BLOCK != b {
+                    for j in o..o + FRAME_BLOCK {
+                        kkt[(i, j)] = 0.0;
+                        kkt[(j, i)] = 0.0;
+                    }
+                }
+            }
+            if singular.contains(&b) {
+                let g = dense.view((o, 0), (FRAME_BLOCK, 3)).into_owned();
+                let a = &g * g.transpose() * 1e-13;
+                kkt.view_mut((o, o), (FRAME_BLOCK, FRAME_BLOCK)).copy_from(&a);
+            }
+            // Each block touches the rows r with (r + b) % 3 != 0 (two rows in three), every
+            // row at least one block.
+            for r in 0..nr {
+                if (r + b) % 3 == 0 && blocks > 1 {
+                    for j in o..o + FRAME_BLOCK {
+                        kkt[(nf + r, j)] = 0.0;
+                        kkt[(j, nf + r)] = 0.0;
+                    }
+                }
+            }
+        }
+        (kkt, rhs)
+    }
+
     #[test]
-    fn range_space_solve_agrees_with_the_indefinite_factorisation() {
-        for (nf, nr) in [(6, 0), (6, 3), (6, 6), (12, 5), (18, 10)] {
-            for seed in 0..5 {
-                let (kkt, rhs) = saddle_system(nf, nr, seed + 100 * nf as u64);
-                let fast = range_space_solve(&kkt, &rhs, nf, 1.0).expect("definite blocks");
-                let reference = saddle_point_solve(&kkt, &rhs);
-                assert_eq!(fast.len(), reference.len());
-                // Both solve the same system: the residual of each is round-off.
-                let residual = (&kkt * &fast - &rhs).amax();
-                assert!(
-                    residual < 1e-9 * (nf + nr) as f64,
-                    "{nf}/{nr}: residual {residual:e}"
-                );
-                let gap = (&fast - &reference).amax() / reference.amax();
-                assert!(gap < 1e-8 * (nf + nr) as f64, "{nf}/{nr}: {gap:e}");
+    fn block_elimination_agrees_with_the_indefinite_factorisation() {
+        for blocks in [1, 2, 5] {
+            for nr in [0, 3, 6, 10] {
+                for seed in 0..4 {
+                    let (kkt, rhs) = block_system(blocks, nr, &[], seed + 10 * nr as u64);
+                    let nf = FRAME_BLOCK * blocks;
+                    let (fast, route) = solve_by_blocks(&kkt, &rhs, nf, 1.0);
+                    assert_eq!(
+                        route,
+                        BlockRoute {
+                            kept: 0,
+                            definite_schur: true
+                        },
+                        "{blocks}/{nr}"
+                    );
+                    let reference = saddle_point_solve(&kkt, &rhs);
+                    assert_eq!(fast.len(), reference.len());
+                    let n = (nf + nr) as f64;
+                    let residual = (&kkt * &fast - &rhs).amax();
+                    assert!(residual < 1e-9 * n, "{blocks}/{nr}: residual {residual:e}");
+                    let gap = (&fast - &reference).amax() / reference.amax();
+                    assert!(gap < 1e-8 * n, "{blocks}/{nr}: {gap:e}");
+                }
             }
         }
     }
 
     #[test]
-    fn range_space_solve_declines_singular_blocks() {
-        // A frame block that is round-off against the frame scale (Ψ holding the rigid
-        // motions) and a redundant constraint row each hand the system to LBLᵀ.
-        let (mut kkt, rhs) = saddle_system(6, 3, 7);
-        assert!(range_space_solve(&kkt, &rhs, 6, 1.0).is_some());
-        assert!(range_space_solve(&kkt, &rhs, 6, 1e12).is_none());
-        for j in 0..6 {
-            let v = kkt[(6, j)];
-            kkt[(7, j)] = v;
-            kkt[(j, 7)] = v;
+    fn singular_frame_blocks_stay_in_the_indefinite_solve() {
+        // One block of round-off against the frame scale (Ψ holding the rigid motions) among
+        // definite ones: it is kept, the others eliminated, and the solution is the whole
+        // system's.
+        for (blocks, singular) in [(1, vec![0]), (3, vec![1]), (4, vec![0, 3])] {
+            let nr = 8;
+            let (kkt, rhs) = block_system(blocks, nr, &singular, 3 + blocks as u64);
+            let nf = FRAME_BLOCK * blocks;
+            let (fast, route) = solve_by_blocks(&kkt, &rhs, nf, 1.0);
+            assert_eq!(route.kept, singular.len(), "{blocks}: {route:?}");
+            let reference = saddle_point_solve(&kkt, &rhs);
+            let residual = (&kkt * &fast - &rhs).amax() / rhs.amax();
+            assert!(residual < 1e-8, "{blocks}: residual {residual:e}");
+            let gap = (&fast - &reference).amax() / reference.amax();
+            assert!(gap < 1e-7, "{blocks}: {gap:e}");
         }
-        for j in 6..9 {
-            kkt[(7, j)] = 0.0;
-            kkt[(j, 7)] = 0.0;
+        // The frame scale decides what round-off is: the same definite block against a scale
+        // 1e12 times larger is kept.
+        let (kkt, rhs) = block_system(2, 4, &[], 5);
+        assert_eq!(solve_by_blocks(&kkt, &rhs, 12, 1e12).1.kept, 2);
+    }
+
+    #[test]
+    fn redundant_constraints_take_the_pseudo_inverse_with_the_same_motion() {
+        // A constraint row repeated: S is singular, the multipliers are not unique, the
+        // accelerations x are, and they satisfy every row.
+        let (mut kkt, mut rhs) = block_system(3, 6, &[], 9);
+        let nf = 18;
+        for j in 0..nf {
+            let v = kkt[(nf + 1, j)];
+            kkt[(nf + 4, j)] = v;
+            kkt[(j, nf + 4)] = v;
         }
-        kkt[(6, 6)] = 0.0;
-        kkt[(6, 8)] = 0.0;
-        kkt[(8, 6)] = 0.0;
-        assert!(range_space_solve(&kkt, &rhs, 6, 1.0).is_none());
+        for j in nf..nf + 6 {
+            kkt[(nf + 4, j)] = 0.0;
+            kkt[(j, nf + 4)] = 0.0;
+            kkt[(nf + 1, j)] = 0.0;
+            kkt[(j, nf + 1)] = 0.0;
+        }
+        rhs[nf + 4] = rhs[nf + 1];
+        let (fast, route) = solve_by_blocks(&kkt, &rhs, nf, 1.0);
+        assert!(!route.definite_schur, "{route:?}");
+        let reference = saddle_point_solve(&kkt, &rhs);
+        let gap = (fast.rows(0, nf) - reference.rows(0, nf)).amax() / reference.amax();
+        assert!(gap < 1e-8, "{gap:e}");
+        let residual = (&kkt * &fast - &rhs).amax() / rhs.amax();
+        assert!(residual < 1e-8, "{residual:e}");
     }
 }
