@@ -10,9 +10,9 @@ use crate::{
     Result,
     analysis::{FrequencyResponse, band_frequencies},
     fem::{DualSpin, DualSpinParameters, FeModel, add_lumped, dual_spin},
-    linalg::identity,
+    linalg::{GeneralizedEigen, generalized_eigen, identity},
     reduction::{
-        Component, InterfaceLoading, InteriorProblem, IoMap, LoadedInterface,
+        Basis, Component, InterfaceLoading, InteriorProblem, IoMap, LoadedInterface,
         MacNealRubinParameters, Method, ModalModel, ModeSelection, Partition, SolverPath,
         Synthesis, benfield_hruda, craig_bampton, craig_bampton_from, macneal_rubin,
         modal_influence,
@@ -94,7 +94,9 @@ pub fn dual_spin_study(methods: &[Method]) -> Result<DualSpinStudy> {
     let ds = dual_spin(&params)?;
     let dof_sets = DualSpinSets::of(&ds)?;
     let full_syn = full_synthesis(&ds, &dof_sets)?;
-    let full = io_model(&ds, &full_syn)?;
+    let full_eig = generalized_eigen(full_syn.k.as_ref(), full_syn.m.as_ref(), "assembly")?;
+    let full = io_model_of(&ds, &full_syn, &full_eig)?;
+    let cb = CbSets::of(&ds, &dof_sets)?;
     let full_hz = full.hz();
     let hz = band_frequencies(0.0, INTEREST_HZ, 600, &full_hz);
     let reference = response(&full, &hz);
@@ -113,7 +115,7 @@ pub fn dual_spin_study(methods: &[Method]) -> Result<DualSpinStudy> {
     };
     let sets = methods
         .iter()
-        .map(|&m| assembled(m, mode_set_bases(&ds, &dof_sets, m)?))
+        .map(|&m| assembled(m, mode_set_bases(&ds, &dof_sets, m, &cb)?))
         .collect::<Result<Vec<_>>>()?;
     let bh_truncated = if methods.contains(&Method::BenfieldHruda) {
         let cut = ModeSelection::UpToHz(TRUNCATION_HZ);
@@ -124,12 +126,11 @@ pub fn dual_spin_study(methods: &[Method]) -> Result<DualSpinStudy> {
     } else {
         None
     };
-    let ranking = rank_rotor(&ds, &dof_sets)?;
-    let [_, stator_cb] = mode_set_bases(&ds, &dof_sets, Method::CraigBampton)?;
+    let ranking = rank_rotor(&ds, &dof_sets, &cb)?;
     let rigid = ranking.modes.rigid;
     let select = |kept: &[usize]| -> Result<RotorSelection> {
         let keep: Vec<usize> = (0..rigid).chain(kept.iter().copied()).collect();
-        let syn = assemble(&ds, ranking.modes.keep(&keep).shapes, stator_cb.clone())?;
+        let syn = assemble(&ds, ranking.modes.keep(&keep).shapes, cb.stator.clone())?;
         let frf = response(&io_model(&ds, &syn)?, &hz);
         let error = frf.relative_magnitude_error(&reference)?;
         Ok(RotorSelection { frf, error })
@@ -148,7 +149,7 @@ pub fn dual_spin_study(methods: &[Method]) -> Result<DualSpinStudy> {
             Ok((degrees, sets, selected))
         })
         .collect::<Result<Vec<_>>>()?;
-    let shapes = expand_modes(&ds.assembly, &full_syn, in_band.min(DRAWN_MODES))?;
+    let shapes = expand_modes(&ds.assembly, &full_syn, &full_eig, in_band.min(DRAWN_MODES))?;
     Ok(DualSpinStudy {
         params,
         ds,
@@ -166,8 +167,12 @@ pub fn dual_spin_study(methods: &[Method]) -> Result<DualSpinStudy> {
 }
 
 /// The first `count` modes of a synthesis on every assembly DOF, with their frequencies.
-fn expand_modes(assembly: &FeModel, s: &Synthesis, count: usize) -> Result<Vec<(Vec<f64>, f64)>> {
-    let eig = crate::linalg::generalized_eigen(s.k.as_ref(), s.m.as_ref(), "assembly")?;
+fn expand_modes(
+    assembly: &FeModel,
+    s: &Synthesis,
+    eig: &GeneralizedEigen,
+    count: usize,
+) -> Result<Vec<(Vec<f64>, f64)>> {
     let hz = eig.hz();
     let per = assembly.dofs.per_node();
     let mut rows = Vec::with_capacity(assembly.node_count());
@@ -236,17 +241,41 @@ impl DualSpinSets {
 }
 
 /// Rotor and stator bases of one mode set, truncated at [`TRUNCATION_HZ`].
-pub fn mode_set_bases(ds: &DualSpin, sets: &DualSpinSets, m: Method) -> Result<[Mat<f64>; 2]> {
+/// One assembly's Craig–Bampton sets, solved once: the CB mode set itself, the size every
+/// Benfield–Hruda set matches, the stator set every rotor selection is assembled with, and
+/// the rotor modes Gregory's ranking diagonalises.
+#[derive(Debug, Clone)]
+pub struct CbSets {
+    /// The rotor's CB basis (hub node 1 as its interface), truncated at [`TRUNCATION_HZ`].
+    pub rotor: Basis,
+    /// The stator's CB basis (hub and platform as interface, base held), on its DOF.
+    pub stator: Mat<f64>,
+}
+
+impl CbSets {
+    /// Solves both components' CB sets of `ds`.
+    pub fn of(ds: &DualSpin, sets: &DualSpinSets) -> Result<Self> {
+        let cut = ModeSelection::UpToHz(TRUNCATION_HZ);
+        let rotor = craig_bampton(&ds.rotor, &[1], cut)?;
+        let partition =
+            Partition::from_dofs(&ds.stator, &sets.stator_interface(), &sets.stator_base)?;
+        let mut problem = InteriorProblem::on(&ds.stator, partition, SolverPath::Auto)?;
+        let stator = craig_bampton_from(&mut problem, cut)?.psi;
+        Ok(Self { rotor, stator })
+    }
+}
+
+/// The rotor and stator bases of method `m` (one of [`DUAL_SPIN_METHODS`]); `cb` are the
+/// assembly's CB sets.
+pub fn mode_set_bases(
+    ds: &DualSpin,
+    sets: &DualSpinSets,
+    m: Method,
+    cb: &CbSets,
+) -> Result<[Mat<f64>; 2]> {
     let cut = ModeSelection::UpToHz(TRUNCATION_HZ);
     Ok(match m {
-        Method::CraigBampton => {
-            let rotor = craig_bampton(&ds.rotor, &[1], cut)?;
-            let partition =
-                Partition::from_dofs(&ds.stator, &sets.stator_interface(), &sets.stator_base)?;
-            let mut problem = InteriorProblem::on(&ds.stator, partition, SolverPath::Auto)?;
-            let stator = craig_bampton_from(&mut problem, cut)?;
-            [rotor.psi, stator.psi]
-        }
+        Method::CraigBampton => [cb.rotor.psi.clone(), cb.stator.clone()],
         Method::MacNealRubin => {
             let rotor = macneal_rubin(
                 &ds.rotor,
@@ -273,12 +302,11 @@ pub fn mode_set_bases(ds: &DualSpin, sets: &DualSpinSets, m: Method) -> Result<[
             // eliminates the same number of DOF with every set (163 from the rotor, 35 from
             // the stator). A 20 Hz cut leaves the stiff stator five loaded modes, too few to
             // follow the hub and the platform (the scene shows that case too).
-            let [cb_rotor, cb_stator] = mode_set_bases(ds, sets, Method::CraigBampton)?;
             benfield_hruda_bases(
                 ds,
                 sets,
-                ModeSelection::Count(cb_rotor.ncols()),
-                ModeSelection::Count(cb_stator.ncols()),
+                ModeSelection::Count(cb.rotor.psi.ncols()),
+                ModeSelection::Count(cb.stator.ncols()),
             )?
         }
     })
@@ -365,6 +393,15 @@ pub fn full_synthesis(ds: &DualSpin, sets: &DualSpinSets) -> Result<Synthesis> {
 /// The motor-to-platform model: input the torque about z at the hub; outputs the platform's
 /// rotation about z (its attitude about the spin axis) and about x.
 pub fn io_model(ds: &DualSpin, s: &Synthesis) -> Result<ModalModel> {
+    io_model_of(
+        ds,
+        s,
+        &generalized_eigen(s.k.as_ref(), s.m.as_ref(), "reduced")?,
+    )
+}
+
+/// [`io_model`] from the synthesis' eigenpairs `eig`, already solved.
+fn io_model_of(ds: &DualSpin, s: &Synthesis, eig: &GeneralizedEigen) -> Result<ModalModel> {
     let hub = s.dof_row(ds.hub, 5)?;
     let yaw = s.dof_row(ds.platform, 5)?;
     let roll = s.dof_row(ds.platform, 3)?;
@@ -373,9 +410,8 @@ pub fn io_model(ds: &DualSpin, s: &Synthesis) -> Result<ModalModel> {
         1 => yaw[(0, c)],
         _ => roll[(0, c)],
     });
-    ModalModel::new(
-        s.k.as_ref(),
-        s.m.as_ref(),
+    ModalModel::of_eigen(
+        eig,
         rows.as_ref(),
         &IoMap {
             inputs: vec![0],
@@ -403,8 +439,8 @@ pub struct RotorRanking {
 }
 
 /// Ranks the rotor's CB set.
-pub fn rank_rotor(ds: &DualSpin, sets: &DualSpinSets) -> Result<RotorRanking> {
-    let cb = craig_bampton(&ds.rotor, &[1], ModeSelection::UpToHz(TRUNCATION_HZ))?;
+pub fn rank_rotor(ds: &DualSpin, sets: &DualSpinSets, cb: &CbSets) -> Result<RotorRanking> {
+    let cb = &cb.rotor;
     let k = cb.reduced_stiffness(&ds.rotor);
     let m = cb.reduced_mass(&ds.rotor);
     let modes = ModalModel::new(
@@ -440,6 +476,7 @@ fn errors_at(params: &DualSpinParameters, methods: &[Method]) -> Result<(Vec<f64
     let sets = DualSpinSets::of(&ds)?;
     let full = io_model(&ds, &full_synthesis(&ds, &sets)?)?;
     let hz = band_frequencies(0.0, INTEREST_HZ, 600, &full.hz());
+    let cb = CbSets::of(&ds, &sets)?;
     let reference = response(&full, &hz);
     let error = |rotor: Mat<f64>, stator: Mat<f64>| -> Result<f64> {
         let syn = assemble(&ds, rotor, stator)?;
@@ -447,11 +484,10 @@ fn errors_at(params: &DualSpinParameters, methods: &[Method]) -> Result<(Vec<f64
     };
     let mut sets_err = Vec::new();
     for &m in methods {
-        let [rotor, stator] = mode_set_bases(&ds, &sets, m)?;
+        let [rotor, stator] = mode_set_bases(&ds, &sets, m, &cb)?;
         sets_err.push(error(rotor, stator)?);
     }
-    let ranking = rank_rotor(&ds, &sets)?;
-    let [_, stator_cb] = mode_set_bases(&ds, &sets, Method::CraigBampton)?;
+    let ranking = rank_rotor(&ds, &sets, &cb)?;
     let rigid = ranking.modes.rigid;
     let mut sel = [0.0; 2];
     for (k, kept) in [&ranking.influence, &ranking.lowest]
@@ -459,7 +495,7 @@ fn errors_at(params: &DualSpinParameters, methods: &[Method]) -> Result<(Vec<f64
         .enumerate()
     {
         let keep: Vec<usize> = (0..rigid).chain(kept.iter().copied()).collect();
-        sel[k] = error(ranking.modes.keep(&keep).shapes, stator_cb.clone())?;
+        sel[k] = error(ranking.modes.keep(&keep).shapes, cb.stator.clone())?;
     }
     Ok((sets_err, sel))
 }

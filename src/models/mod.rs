@@ -33,7 +33,7 @@ pub use dual_spin_study::{
     ARTICULATION_DEG, AssembledSet, DUAL_SPIN_METHODS, DualSpinSets, DualSpinStudy,
     INFLUENCE_FRACTION, INTEREST_HZ as SPANOS_INTEREST_HZ, RotorRanking, RotorSelection,
     TRUNCATION_HZ, ZETA, assemble, benfield_hruda_bases, dual_spin_study, full_synthesis, io_model,
-    mode_set_bases, rank_rotor,
+    CbSets, mode_set_bases, rank_rotor,
 };
 pub use failure_studies::{
     ABOVE_CRITICAL, BELOW_CRITICAL, BELOW_RUN_S, BoundaryCase, BoundaryMotion, COST_MESHES,

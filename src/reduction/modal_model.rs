@@ -4,7 +4,10 @@
 use super::ReductionError;
 use faer::{Mat, MatRef, c64, linalg::solvers::Solve};
 
-use crate::{Error, Result, linalg::generalized_eigen};
+use crate::{
+    Error, Result,
+    linalg::{GeneralizedEigen, generalized_eigen},
+};
 
 /// Where a structure is driven and observed, as DOF indices (0-based) of the full body:
 /// unit forces at `inputs` (the columns of P, Eq. 30), displacements at
@@ -89,6 +92,18 @@ impl ModalModel {
     ) -> Result<Self> {
         io.check(phi.nrows())?;
         let eig = generalized_eigen(k_reduced, m_reduced, "reduced")?;
+        Self::of_eigen(&eig, phi, io, zeta)
+    }
+
+    /// [`Self::new`] from the reduced model's checked eigenpairs `eig`, when they are needed
+    /// for more than the I/O (the shapes drawn on every DOF): one eigensolution, not two.
+    pub fn of_eigen(
+        eig: &GeneralizedEigen,
+        phi: MatRef<'_, f64>,
+        io: &IoMap,
+        zeta: f64,
+    ) -> Result<Self> {
+        io.check(phi.nrows())?;
         let shapes = phi * &eig.vectors;
         let top = eig.values.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
         let rigid = eig

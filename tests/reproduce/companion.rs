@@ -17,7 +17,7 @@ use flexmodes::{
     },
     linalg::{generalized_eigen, identity, max_abs, solve_lyapunov},
     models::{
-        CantileverIo, DualSpinSets, assemble, full_synthesis, mode_set_bases, witteveen_bases,
+        CantileverIo, CbSets, DualSpinSets, assemble, full_synthesis, mode_set_bases, witteveen_bases,
     },
     reduction::{
         BalancedBasisParameters, InterfaceLoading, IoMap, LoadedInterface, MacNealRubinParameters,
@@ -640,8 +640,9 @@ fn component_synthesis_with_identity_bases_is_the_assembled_body() {
         assert!((a - b).abs() < 1e-8 * b, "mode {}: {a} vs {b}", i + 1);
     }
     // A reduced synthesis is a Ritz model of the same structure: it errs upwards.
+    let cb = CbSets::of(&ds, &sets).unwrap();
     let [rotor, stator] =
-        mode_set_bases(&ds, &sets, flexmodes::reduction::Method::CraigBampton).unwrap();
+        mode_set_bases(&ds, &sets, flexmodes::reduction::Method::CraigBampton, &cb).unwrap();
     let red = assemble(&ds, rotor, stator).unwrap();
     let red_eig = generalized_eigen(red.k.as_ref(), red.m.as_ref(), "cb").unwrap();
     assert!(!red_eig.values.is_empty() && red_eig.values.len() < direct.values.len());
