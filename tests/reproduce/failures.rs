@@ -86,7 +86,7 @@ fn every_failure_is_a_named_error_or_a_measured_effect() {
         .iter()
         .map(|v| v.as_u64().unwrap())
         .collect();
-    assert_eq!(dofs, [90, 405, 1092]);
+    assert_eq!(dofs, [90, 168, 594]);
     assert_eq!(interior, dofs.iter().map(|d| d - 12).collect::<Vec<_>>());
     for key in ["mc_s", "cb_s"] {
         let t = c[key].as_array().unwrap();
