@@ -15,7 +15,7 @@ use crate::{
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
     reduction::Method,
     reduction::{
-        InteriorProblem, MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, ModeSelection, SolverPath,
+        COMPLETE_EIGEN_LIMIT, InteriorProblem, ModeCondensationRoute, ModeSelection, SolverPath,
         craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
         mode_condensation_route,
     },
@@ -160,7 +160,7 @@ fn measure(model: &FeModel, corners: &[usize], progress: &dyn Fn(&str)) -> Resul
     let mc_kept_s = cb_s + started.elapsed().as_secs_f64();
     let interior = problem.interior_dofs();
     drop(problem);
-    let mc_complete_s = if interior <= MC_COMPLETE_ROUTE_LIMIT {
+    let mc_complete_s = if interior <= COMPLETE_EIGEN_LIMIT {
         progress(&format!("{dofs} DOF: mode condensation, complete route"));
         let started = Instant::now();
         mode_condensation_route(
@@ -309,7 +309,7 @@ pub fn bench_sizes(
          fixed-interface modes; wall seconds, the median of {} run(s) per size and thread \
          count (`--repeats`). MT and MC reuse CB's factor and \
          modes (their times include CB's shared phases); MC complete is the thesis' route \
-         (complete dense interior eigenproblem, up to {MC_COMPLETE_ROUTE_LIMIT} interior DOF). \
+         (complete dense interior eigenproblem, up to {COMPLETE_EIGEN_LIMIT} interior DOF). \
          Peak memory is the process's peak so far (sizes run ascending). Threads: what the \
          kernels may use (`--threads`; this machine has {}); a factorisation of more than \
          {:.0e} flops and products of more than {:.0e} use them all, smaller kernels one. \

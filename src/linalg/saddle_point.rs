@@ -350,7 +350,8 @@ mod tests {
             if singular.contains(&b) {
                 let g = dense.view((o, 0), (FRAME_BLOCK, 3)).into_owned();
                 let a = &g * g.transpose() * 1e-13;
-                kkt.view_mut((o, o), (FRAME_BLOCK, FRAME_BLOCK)).copy_from(&a);
+                kkt.view_mut((o, o), (FRAME_BLOCK, FRAME_BLOCK))
+                    .copy_from(&a);
             }
             // Each block touches the rows r with (r + b) % 3 != 0 (two rows in three), every
             // row at least one block.

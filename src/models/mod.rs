@@ -30,10 +30,10 @@ pub use driven_body::{
 pub use driven_measure::{FieldMap, history_error};
 pub use driven_stability::ExplicitCheck;
 pub use dual_spin_study::{
-    ARTICULATION_DEG, AssembledSet, DUAL_SPIN_METHODS, DualSpinSets, DualSpinStudy,
+    ARTICULATION_DEG, AssembledSet, CbSets, DUAL_SPIN_METHODS, DualSpinSets, DualSpinStudy,
     INFLUENCE_FRACTION, INTEREST_HZ as SPANOS_INTEREST_HZ, RotorRanking, RotorSelection,
     TRUNCATION_HZ, ZETA, assemble, benfield_hruda_bases, dual_spin_study, full_synthesis, io_model,
-    CbSets, mode_set_bases, rank_rotor,
+    mode_set_bases, rank_rotor,
 };
 pub use failure_studies::{
     ABOVE_CRITICAL, BELOW_CRITICAL, BELOW_RUN_S, BoundaryCase, BoundaryMotion, COST_MESHES,

@@ -17,7 +17,8 @@ use flexmodes::{
     },
     linalg::{generalized_eigen, identity, max_abs, solve_lyapunov},
     models::{
-        CantileverIo, CbSets, DualSpinSets, assemble, full_synthesis, mode_set_bases, witteveen_bases,
+        CantileverIo, CbSets, DualSpinSets, assemble, full_synthesis, mode_set_bases,
+        witteveen_bases,
     },
     reduction::{
         BalancedBasisParameters, InterfaceLoading, IoMap, LoadedInterface, MacNealRubinParameters,
