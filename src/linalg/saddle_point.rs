@@ -101,7 +101,8 @@ pub fn block_saddle_point_solve(
 struct BlockRoute {
     /// Frame blocks left in the reduced system (not clearly definite).
     kept: usize,
-    /// Whether the constraint block was solved by Cholesky (no block kept, $S$ definite).
+    /// Whether $S$ was definite, so only Cholesky factorisations were needed (with blocks
+    /// kept: the multipliers eliminated in turn, see `dual_schur_solve`).
     definite_schur: bool,
 }
 
@@ -164,44 +165,58 @@ fn solve_by_blocks(
         definite_schur: false,
     };
     if kept.is_empty() {
-        let lambda = match definite_schur_solve(&schur, &g) {
-            Some(lambda) => {
+        let lambda = match ScaledSchur::new(&schur) {
+            Some(s) => {
                 route.definite_schur = true;
-                lambda
+                let mut neg_g = DMatrix::zeros(nr, 1);
+                neg_g.column_mut(0).copy_from(&-&g);
+                s.solve(&neg_g).column(0).into_owned()
             }
             None => saddle_point_solve(&schur, &g),
         };
         out.rows_mut(nf, nr).copy_from(&lambda);
     } else {
-        // The kept frame blocks and every constraint row.
+        // The kept frame blocks, their coupling to every constraint row and their forces.
         let top = FRAME_BLOCK * kept.len();
-        let m = top + nr;
-        let mut reduced = DMatrix::zeros(m, m);
-        let mut reduced_rhs = DVector::zeros(m);
+        let mut a_s = DMatrix::zeros(top, top);
+        let mut b_s = DMatrix::zeros(nr, top);
+        let mut f_s = DVector::zeros(top);
         for (i, &b) in kept.iter().enumerate() {
             let (o, ko) = (FRAME_BLOCK * b, FRAME_BLOCK * i);
-            reduced
-                .view_mut((ko, ko), (FRAME_BLOCK, FRAME_BLOCK))
+            a_s.view_mut((ko, ko), (FRAME_BLOCK, FRAME_BLOCK))
                 .copy_from(&kkt.view((o, o), (FRAME_BLOCK, FRAME_BLOCK)));
-            let coupling = kkt.view((nf, o), (nr, FRAME_BLOCK));
-            reduced
-                .view_mut((top, ko), (nr, FRAME_BLOCK))
-                .copy_from(&coupling);
-            reduced
-                .view_mut((ko, top), (FRAME_BLOCK, nr))
-                .tr_copy_from(&coupling);
-            reduced_rhs
-                .rows_mut(ko, FRAME_BLOCK)
+            b_s.columns_mut(ko, FRAME_BLOCK)
+                .copy_from(&kkt.view((nf, o), (nr, FRAME_BLOCK)));
+            f_s.rows_mut(ko, FRAME_BLOCK)
                 .copy_from(&rhs.rows(o, FRAME_BLOCK));
         }
-        reduced.view_mut((top, top), (nr, nr)).copy_from(&schur);
-        reduced_rhs.rows_mut(top, nr).copy_from(&g);
-        let solution = saddle_point_solve(&reduced, &reduced_rhs);
+        let (x_s, lambda) = match dual_schur_solve(&a_s, &b_s, &f_s, &schur, &g) {
+            Some(solved) => {
+                route.definite_schur = true;
+                solved
+            }
+            None => {
+                let m = top + nr;
+                let mut reduced = DMatrix::zeros(m, m);
+                reduced.view_mut((0, 0), (top, top)).copy_from(&a_s);
+                reduced.view_mut((top, 0), (nr, top)).copy_from(&b_s);
+                reduced.view_mut((0, top), (top, nr)).tr_copy_from(&b_s);
+                reduced.view_mut((top, top), (nr, nr)).copy_from(&schur);
+                let mut reduced_rhs = DVector::zeros(m);
+                reduced_rhs.rows_mut(0, top).copy_from(&f_s);
+                reduced_rhs.rows_mut(top, nr).copy_from(&g);
+                let solution = saddle_point_solve(&reduced, &reduced_rhs);
+                (
+                    solution.rows(0, top).into_owned(),
+                    solution.rows(top, nr).into_owned(),
+                )
+            }
+        };
         for (i, &b) in kept.iter().enumerate() {
             out.rows_mut(FRAME_BLOCK * b, FRAME_BLOCK)
-                .copy_from(&solution.rows(FRAME_BLOCK * i, FRAME_BLOCK));
+                .copy_from(&x_s.rows(FRAME_BLOCK * i, FRAME_BLOCK));
         }
-        out.rows_mut(nf, nr).copy_from(&solution.rows(top, nr));
+        out.rows_mut(nf, nr).copy_from(&lambda);
     }
     // x_b = A_b⁻¹ f_b − A_b⁻¹ B_bᵀ λ for every eliminated block.
     for block in &eliminated {
@@ -226,28 +241,69 @@ struct EliminatedBlock {
     a_f: Vector6<f64>,
 }
 
-/// $\lambda$ of $-S\lambda = g$ for the constraint block `neg_s` $= -S$ of
-/// [`block_saddle_point_solve`] when $S$ is clearly positive definite after Jacobi scaling
-/// (squared pivots above [`RANGE_SPACE_PIVOT`] of the largest, so constraint rows of different
-/// units compare); `None` otherwise (redundant constraints).
-fn definite_schur_solve(neg_s: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
-    let nr = neg_s.nrows();
-    if nr == 0 {
-        return Some(DVector::zeros(0));
+/// The Jacobi-scaled Cholesky factor of $S$, given the constraint block `neg_s` $= -S$ of
+/// [`block_saddle_point_solve`], when $S$ is clearly positive definite (squared pivots above
+/// [`RANGE_SPACE_PIVOT`] of the largest after scaling, so constraint rows of different units
+/// compare); `None` otherwise (redundant constraints, or rows only a kept block touches).
+struct ScaledSchur {
+    cholesky: nalgebra::Cholesky<f64, nalgebra::Dyn>,
+    scale: DVector<f64>,
+}
+
+impl ScaledSchur {
+    fn new(neg_s: &DMatrix<f64>) -> Option<Self> {
+        let nr = neg_s.nrows();
+        let scale = DVector::from_fn(nr, |i, _| {
+            let d = -neg_s[(i, i)];
+            if d > 0.0 { 1.0 / d.sqrt() } else { 1.0 }
+        });
+        let s = DMatrix::from_fn(nr, nr, |i, j| -neg_s[(i, j)] * scale[i] * scale[j]);
+        let cholesky = s.cholesky()?;
+        (nr == 0 || pivots_ok(&cholesky.l_dirty().diagonal())).then_some(Self { cholesky, scale })
     }
-    let scale = DVector::from_fn(nr, |i, _| {
-        let d = -neg_s[(i, i)];
-        if d > 0.0 { 1.0 / d.sqrt() } else { 1.0 }
-    });
-    let s = DMatrix::from_fn(nr, nr, |i, j| -neg_s[(i, j)] * scale[i] * scale[j]);
-    let s = s.cholesky()?;
-    if !pivots_ok(&s.l_dirty().diagonal()) {
+
+    /// $S^{-1}B$, column by column.
+    fn solve(&self, b: &DMatrix<f64>) -> DMatrix<f64> {
+        let mut x = b.clone();
+        for mut column in x.column_iter_mut() {
+            column.component_mul_assign(&self.scale);
+        }
+        self.cholesky.solve_mut(&mut x);
+        for mut column in x.column_iter_mut() {
+            column.component_mul_assign(&self.scale);
+        }
+        x
+    }
+}
+
+/// The kept frame blocks' $x_S$ and the multipliers when $S$ is definite, by eliminating the
+/// multipliers instead (the dual range-space step): $\lambda = S^{-1}(B_Sx_S - g)$ and
+/// $(A_S + B_S^TS^{-1}B_S)\,x_S = f_S + B_S^TS^{-1}g$, a positive definite system of six rows
+/// per kept block even where $A_S$ is round-off (Ψ holding the rigid motions: the axis
+/// conditions, among the rows, fix the frame). `None` when either matrix is not clearly
+/// definite; the indefinite factorisation of the reduced system then decides.
+fn dual_schur_solve(
+    a_s: &DMatrix<f64>,
+    b_s: &DMatrix<f64>,
+    f_s: &DVector<f64>,
+    neg_s: &DMatrix<f64>,
+    g: &DVector<f64>,
+) -> Option<(DVector<f64>, DVector<f64>)> {
+    let schur = ScaledSchur::new(neg_s)?;
+    let (m, nr) = (a_s.nrows(), neg_s.nrows());
+    let mut columns = DMatrix::zeros(nr, m + 1);
+    columns.columns_mut(0, m).copy_from(b_s);
+    columns.column_mut(m).copy_from(g);
+    let solved = schur.solve(&columns);
+    let (s_b, s_g) = (solved.columns(0, m), solved.column(m));
+    let dual = a_s + b_s.tr_mul(&s_b);
+    let dual = dual.cholesky()?;
+    if !pivots_ok(&dual.l_dirty().diagonal()) {
         return None;
     }
-    let mut lambda = (-g).component_mul(&scale);
-    s.solve_mut(&mut lambda);
-    lambda.component_mul_assign(&scale);
-    lambda.iter().all(|v| v.is_finite()).then_some(lambda)
+    let x = dual.solve(&(f_s + b_s.tr_mul(&s_g)));
+    let lambda = s_b * &x - s_g;
+    (x.iter().chain(lambda.iter()).all(|v| v.is_finite())).then_some((x, lambda))
 }
 
 /// $x = A^{-1} b$, or $A^+ b$ when singular, for a small symmetric, possibly indefinite $A$
