@@ -19,6 +19,8 @@ struct Shared {
     end_bits: AtomicU64,
     phase: Mutex<Option<(String, Instant)>>,
     phases: AtomicUsize,
+    /// Every ended phase and its seconds, in order.
+    ended: Mutex<Vec<(String, f64)>>,
 }
 
 /// The phase a computation is in (a reduction's factorisation, constraint modes,
@@ -118,6 +120,11 @@ impl Progress {
         if let Some(s) = &self.0 {
             s.phases.fetch_add(1, Ordering::SeqCst);
             if let Ok(mut p) = s.phase.lock() {
+                if let Some((ended, started)) = p.take()
+                    && let Ok(mut list) = s.ended.lock()
+                {
+                    list.push((ended, started.elapsed().as_secs_f64()));
+                }
                 *p = Some((name.to_string(), Instant::now()));
             }
         }
@@ -134,6 +141,21 @@ impl Progress {
             number: s.phases.load(Ordering::SeqCst),
             elapsed_s: started.elapsed().as_secs_f64(),
         })
+    }
+
+    /// Every phase so far with its seconds, the current one until now; empty when detached.
+    /// A phase name that recurs (one per method) is listed each time.
+    pub fn phase_times(&self) -> Vec<(String, f64)> {
+        let Some(s) = &self.0 else {
+            return Vec::new();
+        };
+        let mut out = s.ended.lock().map(|l| l.clone()).unwrap_or_default();
+        if let Ok(p) = s.phase.lock()
+            && let Some((name, started)) = p.as_ref()
+        {
+            out.push((name.clone(), started.elapsed().as_secs_f64()));
+        }
+        out
     }
 
     /// What was recorded so far; `None` when detached or before any time integration.

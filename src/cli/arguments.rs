@@ -49,6 +49,10 @@ pub(super) enum Command {
         /// Write a single scene to this file.
         #[arg(long)]
         save: Option<PathBuf>,
+        /// Print each scene's wall time on stderr: computing (by phase, where the scene names
+        /// them) and writing its recording, with the worker threads used.
+        #[arg(long)]
+        timings: bool,
         #[command(flatten)]
         options: OptionArgs,
     },

@@ -1,6 +1,6 @@
 //! What each command does: parse, run, map errors to the exit code.
 
-use std::{path::PathBuf, process::ExitCode};
+use std::{path::PathBuf, process::ExitCode, time::Instant};
 
 use clap::Parser;
 
@@ -377,7 +377,7 @@ fn run(cli: Cli) -> Result<()> {
             exudyn,
             timings,
         } => {
-            let started = std::time::Instant::now();
+            let started = Instant::now();
             let body = ImportedBody::load(&body)?;
             let interfaces = match boundary {
                 Some(items) => scenes::body_modes::body_boundary(&body, &items)?,
@@ -485,6 +485,7 @@ fn run(cli: Cli) -> Result<()> {
             all,
             out,
             save,
+            timings,
             options,
         } => {
             let ids: Vec<String> = if all { scenes::all_ids() } else { ids };
@@ -509,7 +510,7 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(body) = &opts.body {
                 body.require_coordinates()?;
             }
-            record_scenes(found, &opts, &out, save.as_deref())
+            record_scenes(found, &opts, &out, save.as_deref(), timings)
         }
     }
 }
@@ -523,11 +524,14 @@ fn record_scenes(
     opts: &scenes::SceneOptions,
     out: &std::path::Path,
     save: Option<&std::path::Path>,
+    timings: bool,
 ) -> Result<()> {
     let count = scenes.len();
     let workers = crate::linalg::threads().clamp(1, RECORD_WORKERS);
     let group = TerminalProgress::group();
     let recorder = Recorder::default();
+    let started = Instant::now();
+    let mut rows = Vec::with_capacity(count);
     crate::work_pool::run_in_order(
         &scenes,
         workers,
@@ -539,15 +543,90 @@ fn record_scenes(
                 &opts.progress,
                 &format!("recording {} ({} of {count})", s.info.id, k + 1),
             );
+            let computing = Instant::now();
             let output = s.execute(&opts)?;
+            let timing = SceneTiming {
+                computing_s: computing.elapsed().as_secs_f64(),
+                phases: opts.progress.phase_times(),
+                writing_s: 0.0,
+            };
             let path = save
                 .map(std::path::Path::to_path_buf)
                 .unwrap_or_else(|| out.join(format!("{}.rrd", s.info.id)));
+            let writing = Instant::now();
             recorder.save(&output, &path)?;
-            Ok((path, output.report.table))
+            let timing = SceneTiming {
+                writing_s: writing.elapsed().as_secs_f64(),
+                ..timing
+            };
+            Ok((path, output.report.table, timing))
         },
-        |k, (path, table): (PathBuf, String)| {
+        |k, (path, table, timing): (PathBuf, String, SceneTiming)| {
             println!("# {} -> {}\n\n{}", scenes[k].info.id, path.display(), table);
+            rows.push((scenes[k].info.id, timing));
         },
-    )
+    )?;
+    if timings {
+        eprint!(
+            "{}",
+            timing_table(&rows, workers, started.elapsed().as_secs_f64())
+        );
+    }
+    Ok(())
+}
+
+/// One scene's wall time in `record --timings`.
+struct SceneTiming {
+    /// Running the scene (its models and visuals), s.
+    computing_s: f64,
+    /// The phases the scene named while computing, s each.
+    phases: Vec<(String, f64)>,
+    /// Encoding and writing its recording, s.
+    writing_s: f64,
+}
+
+/// The `record --timings` table: every scene's wall time, computing and writing, the phases
+/// it named with their shares; the worker threads and the whole run's wall time.
+fn timing_table(rows: &[(&str, SceneTiming)], workers: usize, wall_s: f64) -> String {
+    let mut out = format!(
+        "\nrecord timings: {} scene(s) on {workers} worker thread(s), {wall_s:.2} s wall\n\n\
+         | scene | wall s | computing s | writing s | phases (s, share of computing) |\n\
+         |---|---|---|---|---|\n",
+        rows.len()
+    );
+    let mut sorted: Vec<&(&str, SceneTiming)> = rows.iter().collect();
+    sorted.sort_by(|a, b| {
+        let total = |t: &SceneTiming| t.computing_s + t.writing_s;
+        total(&b.1).total_cmp(&total(&a.1))
+    });
+    for (id, t) in sorted {
+        let named: f64 = t.phases.iter().map(|(_, s)| s).sum();
+        let mut phases: Vec<String> = t
+            .phases
+            .iter()
+            .map(|(name, s)| format!("{name} {s:.2} ({:.0} %)", 100.0 * s / t.computing_s))
+            .collect();
+        if !t.phases.is_empty() && t.computing_s - named > 0.005 {
+            let rest = t.computing_s - named;
+            phases.insert(
+                0,
+                format!(
+                    "before the first {rest:.2} ({:.0} %)",
+                    100.0 * rest / t.computing_s
+                ),
+            );
+        }
+        out.push_str(&format!(
+            "| {id} | {:.2} | {:.2} | {:.2} | {} |\n",
+            t.computing_s + t.writing_s,
+            t.computing_s,
+            t.writing_s,
+            if phases.is_empty() {
+                "-".to_string()
+            } else {
+                phases.join(", ")
+            }
+        ));
+    }
+    out
 }
