@@ -76,9 +76,12 @@ pub const FRAME_BLOCK: usize = 6;
 ///   Jacobi-scaled Cholesky factorisation (the frame block $M_{ff} - M_{fz}M_{zz}^{-1}M_{zf}$
 ///   is a Schur complement of the positive definite mass matrix: the common case);
 /// - blocks left (a frame block that is round-off because Ψ holds the rigid motions, Eq. 3.38
-///   on mean axes), or $S$ not clearly definite (redundant constraints): the reduced
-///   saddle-point system of those blocks and all constraint rows by [`saddle_point_solve`]
-///   (scaled $LBL^T$, or the pseudo-inverse).
+///   on mean axes) and $S$ definite: the multipliers are eliminated in turn,
+///   $(A_S + B_S^TS^{-1}B_S)\,x_S = f_S + B_S^TS^{-1}g$ (the constraint rows, the axis
+///   conditions among them, fix the kept frames), again by Cholesky factorisations;
+/// - otherwise ($S$ or that matrix not clearly definite: redundant constraints, rows only a
+///   kept block touches): the reduced saddle-point system of the kept blocks and all
+///   constraint rows by [`saddle_point_solve`] (scaled $LBL^T$, or the pseudo-inverse).
 ///
 /// A block is clearly definite when its Cholesky factor's squared pivots all exceed
 /// [`RANGE_SPACE_FRAME_PIVOT`] of `frame_scale` (the largest diagonal entry of the frame
@@ -426,7 +429,11 @@ mod tests {
     #[test]
     fn block_elimination_agrees_with_the_indefinite_factorisation() {
         for blocks in [1, 2, 5] {
-            for nr in [0, 3, 6, 10] {
+            // Independent constraints: S is definite while B has rank nr (D has rank 2).
+            for nr in [0, 3, 6, 10]
+                .into_iter()
+                .filter(|&nr| nr <= FRAME_BLOCK * blocks)
+            {
                 for seed in 0..4 {
                     let (kkt, rhs) = block_system(blocks, nr, &[], seed + 10 * nr as u64);
                     let nf = FRAME_BLOCK * blocks;
@@ -453,19 +460,36 @@ mod tests {
 
     #[test]
     fn singular_frame_blocks_stay_in_the_indefinite_solve() {
-        // One block of round-off against the frame scale (Ψ holding the rigid motions) among
-        // definite ones: it is kept, the others eliminated, and the solution is the whole
-        // system's.
-        for (blocks, singular) in [(1, vec![0]), (3, vec![1]), (4, vec![0, 3])] {
-            let nr = 8;
+        // Blocks of round-off against the frame scale (Ψ holding the rigid motions) among
+        // definite ones: they are kept, the others eliminated, and the solution is the whole
+        // system's. The constraint rows fix the kept frames (at least six rows per kept block
+        // touch it, as the axis conditions do).
+        // Alone, the kept block leaves S = D of rank 2 (LBLᵀ); beside eliminated blocks S is
+        // definite and the multipliers are eliminated in turn.
+        for (blocks, singular, nr, definite) in [
+            (1, vec![0], 8, false),
+            (3, vec![1], 8, true),
+            (4, vec![0, 2], 12, true),
+        ] {
             let (kkt, rhs) = block_system(blocks, nr, &singular, 3 + blocks as u64);
             let nf = FRAME_BLOCK * blocks;
             let (fast, route) = solve_by_blocks(&kkt, &rhs, nf, 1.0);
-            assert_eq!(route.kept, singular.len(), "{blocks}: {route:?}");
+            assert_eq!(
+                route,
+                BlockRoute {
+                    kept: singular.len(),
+                    definite_schur: definite
+                },
+                "{blocks}"
+            );
             let reference = saddle_point_solve(&kkt, &rhs);
             let residual = (&kkt * &fast - &rhs).amax() / rhs.amax();
-            assert!(residual < 1e-8, "{blocks}: residual {residual:e}");
             let gap = (&fast - &reference).amax() / reference.amax();
+            assert!(
+                residual < 1e-8,
+                "{blocks}: residual {residual:e}, {route:?}, reference residual {:e}, gap {gap:e}",
+                (&kkt * &reference - &rhs).amax() / rhs.amax()
+            );
             assert!(gap < 1e-7, "{blocks}: {gap:e}");
         }
         // The frame scale decides what round-off is: the same definite block against a scale
