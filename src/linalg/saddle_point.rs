@@ -118,7 +118,7 @@ fn solve_by_blocks(
 ) -> (DVector<f64>, BlockRoute) {
     let n = kkt.nrows();
     assert!(
-        nf % FRAME_BLOCK == 0 && nf <= n && rhs.len() == n && kkt.ncols() == n,
+        nf.is_multiple_of(FRAME_BLOCK) && nf <= n && rhs.len() == n && kkt.ncols() == n,
         "block_saddle_point_solve: {n} × {} system, {} right-hand side entries, {nf} frame rows",
         kkt.ncols(),
         rhs.len()

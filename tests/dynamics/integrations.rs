@@ -145,9 +145,8 @@ fn reported_errors(
 /// CB and MC span one space, so the errors every simulation reports are one under every
 /// integrator (to 1e-4 of the error: an error is relative to its own direction's signal, which
 /// is small in ξ on mean axes, so history differences at the solver's tolerance show larger
-/// here; the history test above holds generalized-α to 1e-8).
-#[test]
-fn craig_bampton_and_mode_condensation_report_one_error_in_every_simulation() {
+/// here; the history test above holds generalized-α to 1e-8). Every simulation on `axes`.
+fn craig_bampton_and_mode_condensation_agree_on(axes: &[&str]) {
     let integrators = [
         (IntegrationScheme::DormandPrince, 1e-4),
         (
@@ -159,7 +158,7 @@ fn craig_bampton_and_mode_condensation_report_one_error_in_every_simulation() {
     ];
     for (integrator, tolerance) in integrators {
         for scene in ["slab-sim1", "slab-sim2", "slab-sim3"] {
-            for axes in ["nodal_fixed", "mean", "principal"] {
+            for &axes in axes {
                 let errors = reported_errors(scene, axes, integrator);
                 let (cb, mc) = (&errors["cb"], &errors["mc"]);
                 for direction in ["xi", "eta", "zeta"] {
@@ -181,7 +180,21 @@ fn craig_bampton_and_mode_condensation_report_one_error_in_every_simulation() {
     }
 }
 
+/// Mean axes, where the two bases' histories are most sensitive (ξ's small signal).
 #[test]
+fn craig_bampton_and_mode_condensation_report_one_error_in_every_simulation() {
+    craig_bampton_and_mode_condensation_agree_on(&["mean"]);
+}
+
+/// The other two axes (~25 s in the debug build).
+#[test]
+#[ignore = "slow: CI runs cargo test --test dynamics -- --ignored"]
+fn craig_bampton_and_mode_condensation_agree_on_nodal_fixed_and_principal_axes() {
+    craig_bampton_and_mode_condensation_agree_on(&["nodal_fixed", "principal"]);
+}
+
+#[test]
+#[ignore = "slow (~19 s in the debug build): CI runs cargo test --test dynamics -- --ignored"]
 fn the_reference_integration_error_is_a_hundred_times_below_the_reduction_errors() {
     let tight = |end: f64| IntegratorParameters {
         end_time: end,

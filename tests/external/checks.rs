@@ -13,6 +13,33 @@ use serde_json::Value;
 use std::time::Instant;
 
 /// The body in `dir` (its `body.toml`) and its `reference.json`.
+/// A committed external body (`tests/bodies/<name>`) and its reference values.
+pub fn committed_body(name: &str) -> (ImportedBody, Value) {
+    load(
+        &std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/bodies")
+            .join(name),
+    )
+}
+
+/// The rigid interface of a body's first reference case: its boundary set tied to a master at
+/// the set's centroid.
+pub fn first_rbe2_interface(
+    body: &ImportedBody,
+    reference: &Value,
+) -> flexmodes::models::BodyInterfaces {
+    let set = reference["cases"][0]["boundary"].as_str().unwrap();
+    let nodes = body.node_sets[set].clone();
+    flexmodes::models::BodyInterfaces {
+        boundary: nodes.clone(),
+        rigid: vec![
+            flexmodes::reduction::RigidInterface::at_centroid(&body.model, set, &nodes).unwrap(),
+        ],
+        averaging: Vec::new(),
+        interface_modes: None,
+    }
+}
+
 pub fn load(dir: &Path) -> (ImportedBody, Value) {
     let body = ImportedBody::load(dir.join("body.toml").to_str().unwrap())
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()));

@@ -6,7 +6,6 @@ mod body_methods;
 mod common;
 mod companion;
 mod dense_eigen;
-mod driven_body;
 mod errors;
 mod external_bodies;
 mod exudyn_export;
