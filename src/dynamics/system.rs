@@ -216,7 +216,7 @@ impl System {
                 m_ff.fixed_view_mut::<3, 3>(3, 0).copy_from(&rw.transpose());
                 m_ff.fixed_view_mut::<3, 3>(3, 3).copy_from(&j_bar);
                 let mut m_fz = DMatrix::zeros(6, k);
-                m_fz.rows_mut(0, 3).copy_from(&(f.a * &inv.p_sum));
+                m_fz.rows_mut(0, 3).gemm(1.0, &f.a, &inv.p_sum, 0.0);
                 m_fz.rows_mut(3, 3).copy_from(&wz);
                 let mut q = DVector::zeros(6 + k);
                 if forces {

@@ -171,12 +171,9 @@ impl System {
                     for k in 0..3 {
                         c[(row(i), vo + 3 + k)] += sign * arm[(i, k)];
                     }
-                    // Row i of A Ψ_j.
-                    let a_row = f.a.row(i);
-                    for k in 0..fb.modes() {
-                        let column = psi.column(k);
-                        c[(row(i), vo + 6 + k)] += sign * a_row.dot(&column.transpose());
-                    }
+                    // Row i of A Ψ_j, by one product into the row (no temporary).
+                    c.view_mut((row(i), vo + 6), (1, fb.modes()))
+                        .gemm(sign, &f.a.row(i), psi, 1.0);
                 }
                 let u = psi * f.zd;
                 PointKin {
