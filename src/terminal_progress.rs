@@ -81,7 +81,9 @@ impl TerminalProgress {
                 }
                 bar.set_message(message.join(" · "));
                 bar.tick();
-                std::thread::sleep(TICK);
+                // Parked, not asleep: dropping the bar unparks it, so the work it follows
+                // does not wait out the tick (it cost every scene up to 0.1 s).
+                std::thread::park_timeout(TICK);
             }
             bar.finish_and_clear();
         });
@@ -96,6 +98,7 @@ impl Drop for TerminalProgress {
     fn drop(&mut self) {
         self.stop.store(true, Ordering::Relaxed);
         if let Some(t) = self.thread.take() {
+            t.thread().unpark();
             let _ = t.join();
         }
     }

@@ -527,7 +527,11 @@ fn record_scenes(
     timings: bool,
 ) -> Result<()> {
     let count = scenes.len();
-    let workers = crate::linalg::threads().clamp(1, RECORD_WORKERS);
+    let threads = crate::linalg::threads();
+    let workers = threads.clamp(1, RECORD_WORKERS);
+    // The threads no other scene uses run a scene's independent integrations (one scene
+    // alone on two cores integrates two methods at once; `--all` keeps one per scene).
+    let integrations = (threads / workers.min(count).max(1)).max(1);
     let group = TerminalProgress::group();
     let recorder = Recorder::default();
     let started = Instant::now();
@@ -538,6 +542,7 @@ fn record_scenes(
         |k, s| {
             let mut opts = opts.clone();
             opts.progress = Progress::new();
+            opts.concurrent_integrations = integrations;
             let _bar = TerminalProgress::start_in(
                 Some(&group),
                 &opts.progress,

@@ -106,16 +106,24 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let deflection = opts.deformation_scale_or(INFO.id, || 1.0)?;
     let mut visuals = Vec::new();
     let mut plots = Vec::new();
-    for v in &variants {
-        let key = run_key(INFO.id, v.method, v.axes, &PLANK_BOUNDARY, modes, &params);
-        let run = opts.cache.get_or_run(key, || {
-            opts.progress
-                .phase(&format!("{} with {} axes", v.method.name(), v.axes.id()))?;
-            let body = plank_body(&model, *v, modes)?;
-            let (system, state) = plank_system(body)?;
-            let sim = simulate(&system, &state, &params, &opts.progress)?;
-            Ok((system, sim))
-        })?;
+    // The variants' integrations are independent: as many at once as the options allow.
+    let runs = crate::work_pool::run_concurrently(
+        &variants,
+        opts.concurrent_integrations,
+        &opts.progress,
+        |v, progress| {
+            let key = run_key(INFO.id, v.method, v.axes, &PLANK_BOUNDARY, modes, &params);
+            opts.cache.get_or_run(key, || {
+                progress.phase(&format!("{} with {} axes", v.method.name(), v.axes.id()))?;
+                let body = plank_body(&model, v, modes)?;
+                let (system, state) = plank_system(body)?;
+                let sim = simulate(&system, &state, &params, progress)?;
+                Ok((system, sim))
+            })
+        },
+    );
+    let runs = runs.into_iter().collect::<Result<Vec<_>>>()?;
+    for (v, run) in variants.iter().zip(&runs) {
         let (system, sim) = (&run.0, &run.1);
         let hist = symmetry_history(system, sim);
         let max_defect = max_until(sim, &hist[2], f64::INFINITY);
