@@ -88,9 +88,50 @@ impl DualSpinStudy {
     }
 }
 
-/// Runs the study for `methods` (a subset of [`DUAL_SPIN_METHODS`]).
-pub fn dual_spin_study(methods: &[Method]) -> Result<DualSpinStudy> {
+/// Runs the study for `methods` (a subset of [`DUAL_SPIN_METHODS`]); with `threads` above 1
+/// the other articulations ([`ARTICULATION_DEG`], independent assemblies) run on a second
+/// thread beside the first.
+pub fn dual_spin_study(methods: &[Method], threads: usize) -> Result<DualSpinStudy> {
     let params = DualSpinParameters::default();
+    let articulate = || {
+        ARTICULATION_DEG
+            .iter()
+            .map(|&degrees| {
+                let (sets, selected) = errors_at(
+                    &DualSpinParameters {
+                        rotor_angle: degrees.to_radians(),
+                        ..params.clone()
+                    },
+                    methods,
+                )?;
+                Ok((degrees, sets, selected))
+            })
+            .collect::<Result<Vec<_>>>()
+    };
+    if threads > 1 {
+        std::thread::scope(|scope| {
+            let articulation = scope.spawn(articulate);
+            let study = study_at_rest(&params, methods)?;
+            let articulation = articulation
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic))?;
+            Ok(DualSpinStudy {
+                articulation,
+                ..study
+            })
+        })
+    } else {
+        let study = study_at_rest(&params, methods)?;
+        Ok(DualSpinStudy {
+            articulation: articulate()?,
+            ..study
+        })
+    }
+}
+
+/// The study of the assembly at rest (rotor angle of `params`), without the articulations.
+fn study_at_rest(params: &DualSpinParameters, methods: &[Method]) -> Result<DualSpinStudy> {
+    let params = params.clone();
     let ds = dual_spin(&params)?;
     let dof_sets = DualSpinSets::of(&ds)?;
     let full_syn = full_synthesis(&ds, &dof_sets)?;
@@ -136,19 +177,6 @@ pub fn dual_spin_study(methods: &[Method]) -> Result<DualSpinStudy> {
         Ok(RotorSelection { frf, error })
     };
     let selections = [select(&ranking.influence)?, select(&ranking.lowest)?];
-    let articulation = ARTICULATION_DEG
-        .iter()
-        .map(|&degrees| {
-            let (sets, selected) = errors_at(
-                &DualSpinParameters {
-                    rotor_angle: degrees.to_radians(),
-                    ..params.clone()
-                },
-                methods,
-            )?;
-            Ok((degrees, sets, selected))
-        })
-        .collect::<Result<Vec<_>>>()?;
     let shapes = expand_modes(&ds.assembly, &full_syn, &full_eig, in_band.min(DRAWN_MODES))?;
     Ok(DualSpinStudy {
         params,
@@ -161,7 +189,7 @@ pub fn dual_spin_study(methods: &[Method]) -> Result<DualSpinStudy> {
         bh_truncated,
         ranking,
         selections,
-        articulation,
+        articulation: Vec::new(),
         shapes,
     })
 }

@@ -44,7 +44,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         });
     }
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
-    let study = dual_spin_study(&methods)?;
+    let study = dual_spin_study(&methods, opts.concurrent_integrations)?;
     let mut report = Report::new(INFO.id);
     report.parameters.insert("zeta".into(), json!(ZETA));
     report
