@@ -52,11 +52,16 @@ const RANGE_SPACE_FRAME_PIVOT: f64 = 1e-8;
 
 /// Whether the squared Cholesky pivots `l_diagonal` stay above [`RANGE_SPACE_PIVOT`] of the
 /// largest.
-fn pivots_ok<S: nalgebra::Storage<f64, nalgebra::Dyn>>(
-    l_diagonal: &nalgebra::Vector<f64, nalgebra::Dyn, S>,
-) -> bool {
-    let d = l_diagonal.map(|x| x * x);
-    d.is_empty() || d.min() > RANGE_SPACE_PIVOT * d.max()
+fn pivots_ok<'a>(l_diagonal: impl IntoIterator<Item = &'a f64>) -> bool {
+    let (mut smallest, mut largest) = (f64::INFINITY, 0.0f64);
+    for &x in l_diagonal {
+        if !x.is_finite() {
+            return false;
+        }
+        smallest = smallest.min(x * x);
+        largest = largest.max(x * x);
+    }
+    smallest > RANGE_SPACE_PIVOT * largest
 }
 
 /// Rows and columns of one body's frame block in [`block_saddle_point_solve`].
@@ -137,7 +142,7 @@ fn solve_by_blocks(
             pivots
                 .iter()
                 .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale)
-                && pivots_ok(&DVector::from_column_slice(pivots.as_slice()))
+                && pivots_ok(pivots.iter())
         }) else {
             kept.push(b);
             continue;
@@ -262,7 +267,8 @@ impl ScaledSchur {
         });
         let s = DMatrix::from_fn(nr, nr, |i, j| -neg_s[(i, j)] * scale[i] * scale[j]);
         let cholesky = s.cholesky()?;
-        (nr == 0 || pivots_ok(&cholesky.l_dirty().diagonal())).then_some(Self { cholesky, scale })
+        (nr == 0 || pivots_ok(cholesky.l_dirty().diagonal().iter()))
+            .then_some(Self { cholesky, scale })
     }
 
     /// $S^{-1}B$, column by column.
@@ -301,7 +307,7 @@ fn dual_schur_solve(
     let (s_b, s_g) = (solved.columns(0, m), solved.column(m));
     let dual = a_s + b_s.tr_mul(&s_b);
     let dual = dual.cholesky()?;
-    if !pivots_ok(&dual.l_dirty().diagonal()) {
+    if !pivots_ok(dual.l_dirty().diagonal().iter()) {
         return None;
     }
     let x = dual.solve(&(f_s + b_s.tr_mul(&s_g)));
