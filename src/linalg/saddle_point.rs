@@ -198,7 +198,7 @@ fn solve_by_blocks(
             f_s.rows_mut(ko, FRAME_BLOCK)
                 .copy_from(&rhs.rows(o, FRAME_BLOCK));
         }
-        let (x_s, lambda) = match dual_schur_solve(&a_s, &b_s, &f_s, &schur, &g) {
+        let (x_s, lambda) = match dual_schur_solve(&a_s, &b_s, &f_s, &schur, &g, frame_scale) {
             Some(solved) => {
                 route.definite_schur = true;
                 solved
@@ -290,13 +290,15 @@ impl ScaledSchur {
 /// $(A_S + B_S^TS^{-1}B_S)\,x_S = f_S + B_S^TS^{-1}g$, a positive definite system of six rows
 /// per kept block even where $A_S$ is round-off (Ψ holding the rigid motions: the axis
 /// conditions, among the rows, fix the frame). `None` when either matrix is not clearly
-/// definite; the indefinite factorisation of the reduced system then decides.
+/// definite (that of the kept frames also judged against `frame_scale`, as the blocks were);
+/// the indefinite factorisation of the reduced system then decides.
 fn dual_schur_solve(
     a_s: &DMatrix<f64>,
     b_s: &DMatrix<f64>,
     f_s: &DVector<f64>,
     neg_s: &DMatrix<f64>,
     g: &DVector<f64>,
+    frame_scale: f64,
 ) -> Option<(DVector<f64>, DVector<f64>)> {
     let schur = ScaledSchur::new(neg_s)?;
     let (m, nr) = (a_s.nrows(), neg_s.nrows());
@@ -307,7 +309,14 @@ fn dual_schur_solve(
     let (s_b, s_g) = (solved.columns(0, m), solved.column(m));
     let dual = a_s + b_s.tr_mul(&s_b);
     let dual = dual.cholesky()?;
-    if !pivots_ok(dual.l_dirty().diagonal().iter()) {
+    // A mass matrix of the kept frames: its pivots against the frame blocks' scale too, so
+    // frames the rows do not fix (round-off again) go to the indefinite solver.
+    let pivots = dual.l_dirty().diagonal();
+    if !pivots_ok(pivots.iter())
+        || pivots
+            .iter()
+            .any(|p| p * p <= RANGE_SPACE_FRAME_PIVOT * frame_scale)
+    {
         return None;
     }
     let x = dual.solve(&(f_s + b_s.tr_mul(&s_g)));
