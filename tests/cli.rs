@@ -137,11 +137,51 @@ fn errors_exit_1_with_the_cause_and_usage_errors_exit_2() {
 #[test]
 fn record_writes_every_scene_and_failures_write_nothing() {
     let dir = temp_dir("record");
-    let out = flexmodes(&["record", "--all", "--out", dir.to_str().unwrap()]);
+    let out = flexmodes(&[
+        "record",
+        "--all",
+        "--timings",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
+    );
+    // --timings: one row per scene on stderr, costliest first, wall = computing + writing.
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        stderr.contains(&format!("record timings: {} scene(s) on ", SCENES.len())),
+        "{stderr}"
+    );
+    let rows: Vec<(String, f64, f64, f64)> = stderr
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| scene"))
+        .map(|l| {
+            let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+            let number = |i: usize| {
+                cells[i]
+                    .parse::<f64>()
+                    .unwrap_or_else(|e| panic!("{l}: {e}"))
+            };
+            (cells[1].to_string(), number(2), number(3), number(4))
+        })
+        .collect();
+    assert_eq!(rows.len(), SCENES.len(), "{stderr}");
+    for id in SCENES {
+        assert!(rows.iter().any(|r| r.0 == id), "{id} timed: {stderr}");
+    }
+    for (id, wall, computing, writing) in &rows {
+        // Each printed to 0.01 s: the sum agrees within the rounding of three numbers.
+        assert!(
+            (wall - computing - writing).abs() <= 0.016,
+            "{id}: {wall} = {computing} + {writing}"
+        );
+    }
+    assert!(
+        rows.windows(2).all(|w| w[0].1 >= w[1].1),
+        "sorted by cost: {stderr}"
     );
     let stdout = String::from_utf8(out.stdout).unwrap();
     for id in SCENES {
