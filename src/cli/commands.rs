@@ -574,7 +574,12 @@ fn record_scenes(
     if timings {
         eprint!(
             "{}",
-            timing_table(&rows, workers, started.elapsed().as_secs_f64())
+            timing_table(
+                &rows,
+                workers.min(count),
+                integrations,
+                started.elapsed().as_secs_f64()
+            )
         );
     }
     Ok(())
@@ -591,10 +596,23 @@ struct SceneTiming {
 }
 
 /// The `record --timings` table: every scene's wall time, computing and writing, the phases
-/// it named with their shares; the worker threads and the whole run's wall time.
-fn timing_table(rows: &[(&str, SceneTiming)], workers: usize, wall_s: f64) -> String {
+/// it named with their shares; the worker threads and the whole run's wall time. With
+/// several integrations per scene at once, the phases are those of the first thread (the
+/// others report to muted handles), so their shares need not add up.
+fn timing_table(
+    rows: &[(&str, SceneTiming)],
+    workers: usize,
+    integrations: usize,
+    wall_s: f64,
+) -> String {
+    let concurrent = if integrations > 1 {
+        format!(", {integrations} integrations per scene at once (phases: the first thread's)")
+    } else {
+        String::new()
+    };
     let mut out = format!(
-        "\nrecord timings: {} scene(s) on {workers} worker thread(s), {wall_s:.2} s wall\n\n\
+        "\nrecord timings: {} scene(s) on {workers} worker thread(s){concurrent}, \
+         {wall_s:.2} s wall\n\n\
          | scene | wall s | computing s | writing s | phases (s, share of computing) |\n\
          |---|---|---|---|---|\n",
         rows.len()

@@ -65,7 +65,7 @@ fn pivots_ok<'a>(l_diagonal: impl IntoIterator<Item = &'a f64>) -> bool {
 }
 
 /// Rows and columns of one body's frame block in [`block_saddle_point_solve`].
-pub const FRAME_BLOCK: usize = 6;
+const FRAME_BLOCK: usize = 6;
 
 /// The saddle-point system $\begin{bmatrix} A & B^T \\ B & -D\end{bmatrix}
 /// \begin{bmatrix} x \\ \lambda\end{bmatrix} = \begin{bmatrix} f \\ g\end{bmatrix}$ whose

@@ -9,25 +9,16 @@ use faer::{Mat, linalg::solvers::Solve};
 use flexmodes::{
     Progress,
     analysis::count_zero_energy_modes,
-    body_file::ImportedBody,
     models::{BodyInterfaces, BodyReducer},
     reduction::{
         InterfaceLoads, Method, ModalBalancedParameters, MomentMatchingParameters, ReductionError,
         lowest_free_modes, modal_balanced_basis, moment_matching,
     },
 };
-use serde_json::Value;
 
-use super::external_bodies::checks;
-
-fn body(name: &str) -> (ImportedBody, Value) {
-    checks::committed_body(name)
-}
-
-/// The body's first reference boundary set tied rigidly to a master at its centroid.
-fn rbe2_interfaces(body: &ImportedBody, reference: &Value) -> BodyInterfaces {
-    checks::first_rbe2_interface(body, reference)
-}
+use super::external_bodies::checks::{
+    self, committed_body as body, first_rbe2_interface as rbe2_interfaces,
+};
 
 /// A free body's moment-matching basis about a real s0 > 0, led by its rigid-body modes,
 /// contains the exact response to the interface loads, $x = (K + s_0^2 M)^{-1} B$: the Galerkin

@@ -11,7 +11,6 @@ use flexmodes::{
     body_file::ImportedBody,
     reduction::{Method, ModeSelection, ReductionParameters, SolverPath, reduce},
 };
-use serde_json::Value;
 
 #[path = "../external/checks.rs"]
 #[allow(dead_code)]
@@ -19,9 +18,7 @@ pub(crate) mod checks;
 
 const BODIES: [&str; 3] = ["steel-link", "flange-hub", "steel-rod"];
 
-fn body(name: &str) -> (ImportedBody, Value) {
-    checks::committed_body(name)
-}
+use checks::committed_body as body;
 
 #[test]
 fn free_free_frequencies_and_zero_energy_modes_match_scipy() {

@@ -4,26 +4,12 @@
 use flexmodes::{
     Error, Progress,
     analysis::count_zero_energy_modes,
-    body_file::ImportedBody,
     models::{BODY_METHODS, BodyInterfaces, BodyReducer},
     reduction::{Method, ReductionError},
 };
-use serde_json::Value;
 
-use super::checks;
+use super::checks::{self, committed_body as body, first_rbe2_interface as rbe2_interfaces};
 
-fn body(name: &str) -> (ImportedBody, Value) {
-    checks::committed_body(name)
-}
-
-/// The body's first reference boundary set tied rigidly to a master at its centroid.
-fn rbe2_interfaces(body: &ImportedBody, reference: &Value) -> BodyInterfaces {
-    checks::first_rbe2_interface(body, reference)
-}
-
-/// A free body's moment-matching basis about a real s0 > 0, led by its rigid-body modes,
-/// contains the exact response to the interface loads, $x = (K + s_0^2 M)^{-1} B$: the Galerkin
-/// solution in the basis satisfies the full equations, checked by sparse products alone.
 /// Each method, ten kept modes, a rigid interface: exact zero-energy counts, every printed
 /// pair's residual below 1e-8, every elastic frequency at or above SciPy's full-body one of
 /// the same order (a Ritz value never lies below), Benfield–Hruda (free-interface modes for a

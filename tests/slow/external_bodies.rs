@@ -5,7 +5,6 @@
 use std::path::PathBuf;
 
 use flexmodes::{
-    body_file::ImportedBody,
     linalg::max_abs,
     reduction::{
         CONSTRAINT_COUPLING_TOLERANCE, Method, ModeSelection, ReducedMatrices, ReductionParameters,
@@ -18,9 +17,7 @@ use super::checks;
 
 const BODIES: [&str; 3] = ["steel-link", "flange-hub", "steel-rod"];
 
-fn body(name: &str) -> (ImportedBody, Value) {
-    checks::committed_body(name)
-}
+use super::checks::committed_body as body;
 
 #[test]
 fn reduced_frequencies_match_lapack_on_scipys_reduction() {
