@@ -22,8 +22,10 @@
 pub mod analysis;
 pub mod assets;
 pub mod atomic_file;
+#[cfg(feature = "cli")]
 pub mod bench;
 pub mod body_file;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod dynamics;
 pub mod error;
@@ -36,15 +38,19 @@ pub mod linalg;
 pub mod markdown_tables;
 pub mod models;
 mod progress;
+#[cfg(feature = "cli")]
 pub mod record;
 pub mod reduction;
 pub mod report;
+#[cfg(feature = "cli")]
 pub mod scenes;
 #[cfg(feature = "serve")]
 pub mod serve;
+#[cfg(feature = "cli")]
 mod terminal_progress;
 pub mod work_pool;
 
 pub use error::{Error, Result};
 pub use progress::{PhaseReading, Progress, ProgressReading};
+#[cfg(feature = "cli")]
 pub use terminal_progress::TerminalProgress;

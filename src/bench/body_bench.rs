@@ -7,302 +7,48 @@
 //!
 //! Timings are wall-clock, measured in one run on this machine; reported, never asserted.
 
-use std::time::Instant;
-
 use serde_json::{Value, json};
 
-use super::body_advice::{BodyAdvice, advise};
 use crate::{
-    Error, Progress, Result,
-    analysis::pair_modes,
-    bench::{pareto_flags, three_digits},
+    Progress, Result,
     body_file::ImportedBody,
-    linalg::{peak_resident_bytes, reset_peak_resident},
-    models::{
-        BODY_METHODS, BodyInterfaces, BodyReducer, InterfaceResponse, InterfaceStatics, modes_up_to,
-    },
+    models::{BodyAdvice, BodyComparisonParameters, BodyComparisonPoint, compare_body_methods},
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
-    reduction::{Method, ReductionError},
+    reduction::Method,
     report::{Report, markdown_table, sig},
-    scenes::{
-        body_modes::{body_boundary, default_boundary},
-        method_color,
-    },
+    scenes::method_color,
 };
 
-/// Kept-mode counts tried when none are given.
-pub const BODY_MODE_SWEEP: [usize; 4] = [4, 8, 16, 32];
-
-/// Frequency errors below this are round-off, equal for the Pareto front.
-pub const ROUND_OFF_ERROR: f64 = 1e-10;
-
-/// Elastic modes compared when no band is given.
-pub const BODY_COMPARED_MODES: usize = 6;
-
-/// What to measure.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BodyBenchParameters {
-    /// Interface items as `--boundary` takes them (set names, node numbers, `rbe2:SET`).
-    pub boundary: Option<Vec<String>>,
-    /// Characteristic constraint modes kept (None: all).
-    pub interface_modes: Option<usize>,
-    /// Methods (default: all eight).
-    pub methods: Vec<Method>,
-    /// Kept-mode counts (default [`BODY_MODE_SWEEP`]).
-    pub modes: Vec<usize>,
-    /// Top of the frequency band, Hz: every full-body elastic mode up to it is compared
-    /// (default: the lowest [`BODY_COMPARED_MODES`]).
-    pub band_hz: Option<f64>,
-    /// Largest relative frequency error a model may make in the band to be advised.
-    pub tolerance: f64,
-}
-
-impl Default for BodyBenchParameters {
-    fn default() -> Self {
-        Self {
-            boundary: None,
-            interface_modes: None,
-            methods: BODY_METHODS.to_vec(),
-            modes: BODY_MODE_SWEEP.to_vec(),
-            band_hz: None,
-            tolerance: 0.01,
-        }
-    }
-}
-
-/// One method and kept-mode count on the body.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BodyBenchPoint {
-    /// Method.
-    pub method: Method,
-    /// Kept modes (0 for Guyan).
-    pub modes: usize,
-    /// Reduced coordinates.
-    pub coordinates: usize,
-    /// Offline wall time, s (the shared interior factor charged once per method).
-    pub offline_s: f64,
-    /// Peak resident memory while the model was built, MB (None: not measurable here).
-    pub peak_mb: Option<f64>,
-    /// Largest relative error of the compared elastic frequencies (infinite when the model
-    /// has fewer elastic modes than compared).
-    pub freq_rel_error: f64,
-    /// Smallest MAC of the compared full modes against the model's (paired by best MAC).
-    pub min_mac: f64,
-    /// Relative error (Frobenius) of the elastic static compliance across the interfaces
-    /// ([`InterfaceStatics`]).
-    pub static_error: f64,
-    /// With a band: the largest error of the interface response's magnitude over it, per
-    /// channel relative to the channel's peak
-    /// ([`crate::analysis::FrequencyResponse::relative_magnitude_error`]).
-    pub frf_error: Option<f64>,
-    /// On the Pareto front of (offline s, frequency error).
-    pub pareto: bool,
-}
-
-/// The bench: JSON, the text table and the recording of the charts.
+/// The bench: JSON, the text table and the recording of the charts of
+/// [`compare_body_methods`].
 pub fn bench_body_modes(
     body: &ImportedBody,
-    p: &BodyBenchParameters,
+    p: &BodyComparisonParameters,
     progress: &Progress,
 ) -> Result<(Value, String, RecordingContent)> {
     let model = &body.model;
-    let items = match &p.boundary {
-        Some(b) => b.clone(),
-        None => default_boundary(body)?
-            .iter()
-            .map(|n| n.to_string())
-            .collect(),
-    };
-    let interfaces = BodyInterfaces {
-        interface_modes: p.interface_modes,
-        ..body_boundary(body, &items)?
-    };
-    if p.modes.is_empty() || p.modes.contains(&0) {
-        return Err(Error::InvalidOption {
-            scene: "bench modes".into(),
-            reason: "--modes takes counts of at least 1".into(),
-        });
-    }
-    progress.phase("full body's modes")?;
-    let started = Instant::now();
-    let full = modes_up_to(&body.model, p.band_hz, BODY_COMPARED_MODES, progress)?;
-    let reference_s = started.elapsed().as_secs_f64();
-    let full_hz = full.elastic_hz();
-    let compared = match p.band_hz {
-        Some(top) => full_hz.iter().take_while(|&&f| f <= top).count(),
-        None => BODY_COMPARED_MODES.min(full_hz.len()),
-    };
-    if compared == 0 {
-        return Err(ReductionError::EmptyBand {
-            low_hz: 0.0,
-            high_hz: p.band_hz.unwrap_or(0.0),
-            what: "full body's elastic modes".into(),
-        }
-        .into());
-    }
-    // The interface response over the band, of the full body once (sparse LDLᵀ per
-    // frequency, off its resonances), of each model below.
-    // The elastic static compliance across the interfaces, of the full body once.
-    let statics = {
-        let loads =
-            BodyReducer::new(model, interfaces.clone(), &full, 0.0, progress.clone())?.loads()?;
-        let zero = full.modes.vectors.subcols(0, full.zero_modes);
-        InterfaceStatics::of_full_body(
-            model,
-            loads,
-            zero,
-            full.modes.values[full.zero_modes],
-            progress,
-        )?
-    };
-    let frf = match p.band_hz {
-        Some(top) => {
-            let loads = BodyReducer::new(model, interfaces.clone(), &full, 0.0, progress.clone())?
-                .loads()?;
-            Some(InterfaceResponse::of_full_body(
-                model, loads, top, &full_hz, progress,
-            )?)
-        }
-        None => None,
-    };
-    let elastic_vectors = full
-        .modes
-        .vectors
-        .subcols(full.zero_modes, compared)
-        .to_owned();
-    let mut modes = p.modes.clone();
-    modes.sort_unstable();
-    modes.dedup();
-    let mut points = Vec::new();
-    let mut refused = Vec::new();
-    for &method in &p.methods {
-        let mut reducer = BodyReducer::new(
-            model,
-            interfaces.clone(),
-            &full,
-            reference_s,
-            progress.clone(),
-        )?;
-        // Largest count first: the partial eigensolvers then serve the smaller ones.
-        let counts: Vec<usize> = if method == Method::Guyan {
-            vec![0]
-        } else {
-            modes.iter().rev().copied().collect()
-        };
-        for k in counts {
-            progress.phase(&format!("{} with {k} modes", method.id()))?;
-            let reset = reset_peak_resident();
-            let reduced = match reducer.reduce(method, k) {
-                Ok(r) => r,
-                Err(Error::Reduction(e @ ReductionError::MethodNeedsContext { .. })) => {
-                    refused.push((method, e.to_string()));
-                    break;
-                }
-                // A reduced model whose pairs fail their check is said in its row, never
-                // charted, and the other methods still run.
-                Err(Error::Linalg(e @ crate::linalg::LinalgError::EigenCheckFailed { .. })) => {
-                    refused.push((method, format!("{k} modes: {e}")));
-                    continue;
-                }
-                Err(e) => return Err(e),
-            };
-            let peak_mb = if reset {
-                peak_resident_bytes().map(|b| b as f64 / 1e6)
-            } else {
-                None
-            };
-            let hz = reduced.elastic_hz();
-            let freq_rel_error = if hz.len() < compared {
-                f64::INFINITY
-            } else {
-                (0..compared)
-                    .map(|j| ((hz[j] - full_hz[j]) / full_hz[j]).abs())
-                    .fold(0.0, f64::max)
-            };
-            let candidates = hz.len().min(2 * compared);
-            let expanded = reduced.basis.psi.as_ref()
-                * reduced
-                    .modes
-                    .vectors
-                    .subcols(reduced.zero_modes, candidates);
-            let pairs = pair_modes(
-                elastic_vectors.as_ref(),
-                &full_hz[..compared],
-                &(0..compared).collect::<Vec<_>>(),
-                expanded.as_ref(),
-                &hz[..candidates],
-            );
-            let min_mac = if candidates == 0 {
-                0.0
-            } else {
-                pairs.iter().map(|q| q.mac).fold(1.0, f64::min)
-            };
-            let frf_error = match &frf {
-                Some(response) => Some(response.error_of(model, &reduced.basis)?),
-                None => None,
-            };
-            let static_error = statics.error_of(&reduced.basis, &reduced.modes, reduced.zero_modes);
-            points.push(BodyBenchPoint {
-                method,
-                modes: k,
-                coordinates: reduced.basis.size(),
-                offline_s: reduced.offline_s,
-                peak_mb,
-                freq_rel_error,
-                min_mac,
-                static_error,
-                frf_error,
-                pareto: false,
-            });
-        }
-    }
-    // Listed by method, then by kept modes ascending.
-    points.sort_by_key(|q| (p.methods.iter().position(|&m| m == q.method), q.modes));
-    // Errors below round-off are equal: a model exact to 1e-13 is not better than one exact
-    // to 2e-13.
-    let flags = pareto_flags(
-        &points
-            .iter()
-            .map(|q| {
-                (
-                    q.offline_s,
-                    three_digits(q.freq_rel_error.max(ROUND_OFF_ERROR)),
-                )
-            })
-            .collect::<Vec<_>>(),
-    );
-    for (q, f) in points.iter_mut().zip(flags) {
-        q.pareto = f && q.freq_rel_error.is_finite();
-    }
-    let advice = advise(
-        &points,
-        p,
-        &full_hz[..compared],
-        &mut BodyReducer::new(
-            model,
-            interfaces.clone(),
-            &full,
-            reference_s,
-            progress.clone(),
-        )?,
-    )?;
+    let c = compare_body_methods(body, p, progress)?;
+    let (items, points, refused, advice) = (&c.boundary, &c.points, &c.not_applicable, &c.advice);
+    let compared = c.reference_hz.len();
+    let (full_hz, reference_s) = (&c.reference_hz, c.reference_s);
     let frf_note = Some(format!(
         " Static error: the elastic static compliance across the interfaces, G = LᵀK⁺L with \
          the loads self-equilibrated by inertia relief (the full body by a fixed point on one \
          sparse Cholesky of K + σM, checked by ‖Kx − Lₑ‖ ≤ 1e-8‖Lₑ‖: {:.2} s; each model \
          from its own elastic modes), relative Frobenius difference.{}",
-        statics.full_s,
-        frf.as_ref()
-            .map(|response| format!(" FRF error: {}.", response.describe()))
+        c.statics_full_s,
+        c.frf_description
+            .as_ref()
+            .map(|d| format!(" FRF error: {d}."))
             .unwrap_or_default()
     ));
     let text = table_text(
         body,
-        &items,
+        items,
         (&full_hz[..compared], reference_s),
-        &points,
-        &refused,
-        &advice,
+        points,
+        refused,
+        advice,
         frf_note.as_deref(),
     );
     let json = json!({
@@ -311,9 +57,9 @@ pub fn bench_body_modes(
         "dofs": model.dof_count(),
         "boundary": items,
         "reference": {
-            "zero_energy_modes": full.zero_modes,
+            "zero_energy_modes": c.zero_modes,
             "hz": full_hz[..compared].iter().map(|&f| sig(f)).collect::<Vec<_>>(),
-            "residuals": full.elastic_residuals()[..compared].iter().map(|&r| sig(r)).collect::<Vec<_>>(),
+            "residuals": c.reference_residuals.iter().map(|&r| sig(r)).collect::<Vec<_>>(),
             "s": sig(reference_s),
         },
         "points": points.iter().map(|q| json!({
@@ -331,7 +77,7 @@ pub fn bench_body_modes(
         "not_applicable": refused.iter().map(|(m, why)| json!({"method": m.id(), "reason": why})).collect::<Vec<_>>(),
         "advice": advice.json(),
     });
-    let recording = charts(&points, &text);
+    let recording = charts(points, &text);
     Ok((json, text, recording))
 }
 
@@ -339,7 +85,7 @@ fn table_text(
     body: &ImportedBody,
     items: &[String],
     (compared_hz, reference_s): (&[f64], f64),
-    points: &[BodyBenchPoint],
+    points: &[BodyComparisonPoint],
     refused: &[(Method, String)],
     advice: &BodyAdvice,
     frf_note: Option<&str>,
@@ -449,7 +195,7 @@ fn table_text(
 
 /// Frequency error against offline cost (log–log) per method with the Pareto front, and
 /// frequency error against reduced coordinates.
-fn charts(points: &[BodyBenchPoint], text: &str) -> RecordingContent {
+fn charts(points: &[BodyComparisonPoint], text: &str) -> RecordingContent {
     let mut methods: Vec<Method> = Vec::new();
     for q in points {
         if !methods.contains(&q.method) {
@@ -457,7 +203,7 @@ fn charts(points: &[BodyBenchPoint], text: &str) -> RecordingContent {
         }
     }
     let of = |m: Method| points.iter().filter(move |q| q.method == m);
-    let series = |x: fn(&BodyBenchPoint) -> f64| -> Vec<LogLogSeries> {
+    let series = |x: fn(&BodyComparisonPoint) -> f64| -> Vec<LogLogSeries> {
         methods
             .iter()
             .map(|&m| {

@@ -1,7 +1,6 @@
 //! `flexmodes bench`: speed against accuracy, measured in one run on this machine against
 //! peers measured in the same run. Timings are reported, never asserted.
 
-mod body_advice;
 mod body_bench;
 mod driven_size_bench;
 mod export_bench;
@@ -12,10 +11,7 @@ mod simulation_size_bench;
 mod size_bench;
 
 pub use crate::analysis::{pareto_flags, three_digits};
-pub use body_advice::{AdvisedModel, BodyAdvice};
-pub use body_bench::{
-    BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyBenchParameters, BodyBenchPoint, bench_body_modes,
-};
+pub use body_bench::bench_body_modes;
 pub use driven_size_bench::{DrivenSizePoint, bench_driven_sizes, driven_size_parameters};
 pub use export_bench::{ExportBenchParameters, bench_export};
 pub use mode_bench::{COMPARED_MODES, ModeBenchPoint, bench_modes};

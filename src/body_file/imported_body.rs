@@ -161,6 +161,24 @@ fn line_of(text: &str, offset: usize) -> usize {
 }
 
 impl ImportedBody {
+    /// The interface used when none is named: the node set the file names
+    /// `default_interface`, else its set `interface`, else its first set (1-based node
+    /// numbers).
+    pub fn default_interface_nodes(&self) -> Result<&[usize]> {
+        self.default_interface
+            .iter()
+            .map(String::as_str)
+            .chain(["interface"])
+            .find_map(|name| self.node_sets.get(name))
+            .or_else(|| self.node_sets.values().next())
+            .map(Vec::as_slice)
+            .ok_or_else(|| {
+                Error::BodyFile(BodyFileError::NoNodeSets {
+                    body: self.model.name.clone(),
+                })
+            })
+    }
+
     /// Reads and checks a body file: `builtin:NAME` or a path.
     pub fn load(location: &str) -> Result<Self> {
         Self::load_from(BodyLocation::parse(location))

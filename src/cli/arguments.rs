@@ -503,7 +503,7 @@ impl OptionArgs {
         let (boundary, rigid_interfaces, averaging_interfaces) = match (&self.boundary, &body) {
             (None, _) => (None, Vec::new(), Vec::new()),
             (Some(items), Some(body)) => {
-                let i = crate::scenes::body_modes::body_boundary(body, items)?;
+                let i = crate::models::BodyInterfaces::of(body, items, None)?;
                 (Some(i.boundary), i.rigid, i.averaging)
             }
             (Some(items), None) => (Some(parse_nodes(items)?), Vec::new(), Vec::new()),

@@ -130,8 +130,8 @@ fn run(cli: Cli) -> Result<()> {
                 });
             }
             let loaded = ImportedBody::load(&body.display().to_string())?;
-            let defaults = crate::bench::BodyBenchParameters::default();
-            let parameters = crate::bench::BodyBenchParameters {
+            let defaults = crate::models::BodyComparisonParameters::default();
+            let parameters = crate::models::BodyComparisonParameters {
                 boundary,
                 interface_modes,
                 methods: if method.is_empty() {
@@ -194,7 +194,7 @@ fn run(cli: Cli) -> Result<()> {
                 Some(b) => b,
                 None => {
                     let loaded = ImportedBody::load(&body.display().to_string())?;
-                    let nodes = scenes::body_modes::default_boundary(&loaded)?;
+                    let nodes = loaded.default_interface_nodes()?.to_vec();
                     // The peer takes a set name: the body's default interface.
                     let name = loaded
                         .node_sets
@@ -380,9 +380,9 @@ fn run(cli: Cli) -> Result<()> {
             let started = Instant::now();
             let body = ImportedBody::load(&body)?;
             let interfaces = match boundary {
-                Some(items) => scenes::body_modes::body_boundary(&body, &items)?,
+                Some(items) => crate::models::BodyInterfaces::of(&body, &items, None)?,
                 None => crate::models::BodyInterfaces {
-                    boundary: scenes::body_modes::default_boundary(&body)?,
+                    boundary: body.default_interface_nodes()?.to_vec(),
                     rigid: Vec::new(),
                     averaging: Vec::new(),
                     interface_modes: None,

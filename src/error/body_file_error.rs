@@ -104,4 +104,11 @@ pub enum BodyFileError {
          [geometry] in its body file; `report` and `export` work without them)"
     )]
     NoCoordinates { body: String },
+
+    /// An interface was left to the body file, which names none.
+    #[error(
+        "the body `{body}` defines no node sets: name its interface (`--boundary` on the \
+         command line, `boundary=` in Python)"
+    )]
+    NoNodeSets { body: String },
 }

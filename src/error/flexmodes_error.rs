@@ -126,12 +126,14 @@ pub enum Error {
 /// Result alias used across the crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
+#[cfg(feature = "cli")]
 impl From<rerun::RecordingStreamError> for Error {
     fn from(e: rerun::RecordingStreamError) -> Self {
         Error::Rerun(e.to_string())
     }
 }
 
+#[cfg(feature = "cli")]
 impl From<rerun::SerializationError> for Error {
     fn from(e: rerun::SerializationError) -> Self {
         Error::Rerun(e.to_string())

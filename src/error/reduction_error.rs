@@ -61,6 +61,10 @@ pub enum ReductionError {
     #[error("{requested} normal modes requested but only {available} exist for this interior set")]
     TooManyModes { requested: usize, available: usize },
 
+    /// A comparison was asked for no kept modes (an empty list, or a count of 0).
+    #[error("kept-mode counts {counts:?}: give at least one count, each at least 1")]
+    NoKeptModes { counts: Vec<usize> },
+
     /// A frequency cut-off that keeps no mode where at least one is required.
     #[error("invalid mode selection: {reason}")]
     InvalidModeSelection { reason: String },

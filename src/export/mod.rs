@@ -18,4 +18,6 @@ mod exudyn_body;
 mod reduced_export;
 
 pub use exudyn_body::{EXUDYN_FORMAT, ExudynBody, exudyn_body};
-pub use reduced_export::{ExportParameters, ExportSummary, PsiFormat, export};
+pub use reduced_export::{
+    ExportParameters, ExportSummary, PsiFormat, ReducedExport, export, reduce_for_export,
+};

@@ -114,7 +114,7 @@ pub struct ExportSummary {
 }
 
 /// Reduces `body` by `method` on `boundary` (1-based nodes) keeping `modes` normal modes and
-/// writes the reduced model to `dir`.
+/// writes the reduced model to `dir` ([`reduce_for_export`], then [`ReducedExport::write`]).
 pub fn export(
     body: &ImportedBody,
     method: Method,
@@ -123,6 +123,62 @@ pub fn export(
     dir: &Path,
     parameters: &ExportParameters,
 ) -> Result<ExportSummary> {
+    let mut reduced = reduce_for_export(body, method, boundary, modes, parameters)?;
+    let files = reduced.write(body, dir)?;
+    Ok(ExportSummary {
+        dir: dir.to_path_buf(),
+        files,
+        shape: [reduced.basis.psi.nrows(), reduced.basis.psi.ncols()],
+        hz: reduced.hz,
+        residuals: reduced.residuals,
+        zero_energy: reduced.zero_energy,
+        timings: reduced.timings,
+        exudyn: reduced.exudyn,
+    })
+}
+
+/// A reduced model as [`export`] writes it, in memory: Ψ, $K_r$, $M_r$, the reduced model's
+/// checked elastic pairs and, when asked, the Exudyn body.
+#[derive(Debug, Clone)]
+pub struct ReducedExport {
+    /// The method.
+    pub method: Method,
+    /// The interface nodes, 1-based.
+    pub boundary: Vec<usize>,
+    /// Kept normal modes as asked.
+    pub kept_modes: usize,
+    /// The settings it was built with.
+    pub parameters: ExportParameters,
+    /// The basis: Ψ (full DOF × reduced coordinates) and its labelled columns.
+    pub basis: Basis,
+    /// $K_r = \Psi^TK\Psi$.
+    pub k_r: Mat<f64>,
+    /// $M_r = \Psi^TM\Psi$.
+    pub m_r: Mat<f64>,
+    /// Elastic frequencies of the reduced model, Hz.
+    pub hz: Vec<f64>,
+    /// The relative residual of each of [`Self::hz`].
+    pub residuals: Vec<f64>,
+    /// Zero-energy modes of the reduced model (judged against the body's own scale).
+    pub zero_energy: usize,
+    /// The zero-energy threshold, Hz.
+    pub zero_energy_threshold_hz: f64,
+    /// The body's free-free Sturm check, when the method needed free-free modes.
+    pub free_free_sturm: Option<Option<crate::linalg::SturmCount>>,
+    /// The Exudyn body, when asked for.
+    pub exudyn: Option<ExudynBody>,
+    /// Wall time of each phase, s, in order.
+    pub timings: Vec<(&'static str, f64)>,
+}
+
+/// Reduces `body` as [`export`] does, without writing anything.
+pub fn reduce_for_export(
+    body: &ImportedBody,
+    method: Method,
+    boundary: &[usize],
+    modes: usize,
+    parameters: &ExportParameters,
+) -> Result<ReducedExport> {
     let model = &body.model;
     let mut timings: Vec<(&'static str, f64)> = Vec::new();
     let started = Instant::now();
@@ -241,195 +297,256 @@ pub fn export(
     } else {
         None
     };
-
-    let columns: Vec<serde_json::Value> = basis
-        .columns
-        .iter()
-        .map(|c| {
-            json!({
-                "label": c.label,
-                "kind": kind_name(&c.kind),
-                "dof": c.dof.map(|d| {
-                    let (node, dof) = model.dof_node(d);
-                    json!({ "node": node, "dof": dof.name(), "index": d + 1 })
-                }),
-                "hz": match c.kind {
-                    ColumnKind::Normal { hz }
-                    | ColumnKind::FreeInterface { hz }
-                    | ColumnKind::Loaded { hz } => Some(hz),
-                    _ => None,
-                },
-            })
-        })
-        .collect();
-    let inertia = if body.has_coordinates {
-        Some(inertia_invariants(body, &basis))
-    } else {
-        None
-    };
-    let doc = json!({
-        "format": "flexmodes reduced model 1",
-        "body": body.location.display(),
-        "body_name": model.name,
-        "units": { "length": body.units.length, "mass": body.units.mass, "force": body.units.force },
-        "method": method.id(),
-        "method_name": method.name(),
-        "boundary_nodes": boundary,
-        "kept_modes": modes,
-        "dofs": model.dof_count(),
-        "dof_order": "node-major",
-        "dofs_per_node": model.dofs.node_dofs().iter().map(|d| d.name()).collect::<Vec<_>>(),
-        "size": basis.size(),
-        "columns": columns,
-        "interfaces": parameters.rigid_interfaces.iter().map(|i| {
-            let first = basis.columns.iter().position(|c| matches!(
-                &c.kind,
-                ColumnKind::RigidInterface { interface, .. } if *interface == i.name
-            ));
-            json!({
-                "name": i.name,
-                "kind": "rbe2",
-                "master": i.master,
-                "master_dofs": MASTER_DOF_NAMES,
-                "columns": first.map(|f| (f + 1..=f + 6).collect::<Vec<_>>()),
-                "tied_nodes": i.nodes,
-            })
-        }).collect::<Vec<_>>(),
-        // An averaging (RBE3) master is no coordinate of the reduced model: its motion is
-        // read as (A Ψ) z and a load on it enters as (A Ψ)ᵀ F (A: the weighted average).
-        "averaging_interfaces": parameters.averaging_interfaces.iter().map(|i| {
-            let a_psi = i
-                .averaging_matrix(model)
-                .map(|a| a * &basis.psi)
-                .map(|m| (0..6).map(|r| (0..m.ncols()).map(|c| m[(r, c)]).collect::<Vec<_>>()).collect::<Vec<_>>());
-            json!({
-                "name": i.name,
-                "kind": "rbe3",
-                "master": i.master,
-                "master_dofs": MASTER_DOF_NAMES,
-                "averaged_nodes": i.nodes,
-                "weights": i.weights,
-                "master_motion": a_psi.ok(),
-            })
-        }).collect::<Vec<_>>(),
-        "reduced_elastic_hz": sig_vec(&hz),
-        "reduced_elastic_residuals": sig_vec(&residuals),
-        "reduced_zero_energy_modes": zero_energy,
-        // The body's free-free solve, when the method needed one: modes it skipped below the
-        // highest pair, by the Sturm count (0 by construction for a complete dense solve).
-        "free_free_missed_modes": free_free_sturm.map(|s| s.map_or(0, |c| c.missed())),
-        "free_free_sturm_check": free_free_sturm.flatten().map(|c| json!({
-            "shift_hz": crate::linalg::hz_from_eigenvalue(c.shift),
-            "eigenvalues_below": c.below,
-            "found_below": c.found,
-        })),
-        "zero_energy_threshold_hz": threshold,
-        "files": {
-            "psi": parameters.psi_format.file_name(),
-            "stiffness": "k_r.mtx",
-            "mass": "m_r.mtx",
-        },
-        "inertia": inertia,
-        "exudyn": exudyn.as_ref().map(|e| json!({
-            "folder": "exudyn",
-            "frame": e.frame,
-            "modes": e.modes.ncols(),
-            "mode_type": e.mode_type,
-            "note": "load with assets/python/flexmodes_exudyn.py (numpy, scipy, exudyn)",
-        })),
-        "inertia_note": if inertia.is_none() {
-            "the body file gives no node coordinates, so the rigid-body motions and the inertia \
-             invariants are unknown"
-        } else {
-            "about the body file's origin; rigid motions R = [translations x y z, small \
-             rotations about x y z] (planar: x, y, rotation about z); mass_matrix = R^T M R, \
-             translation_coupling and rotation_coupling = rows of R^T M Psi"
-        },
-    });
-
-    // Write into a temporary folder, then rename it into place.
-    let io = |path: &Path| {
-        let path = path.display().to_string();
-        move |source| Error::Io { path, source }
-    };
-    let name = dir
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "export".into());
-    let parent = dir
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(parent).map_err(io(parent))?;
-    let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&tmp);
-    std::fs::create_dir(&tmp).map_err(io(&tmp))?;
-    let written = (|| -> Result<Vec<String>> {
-        let comment = format!(
-            "{} of {} ({}), interface {:?}, {} kept modes; flexmodes export",
-            method.name(),
-            model.name,
-            body.location.display(),
-            boundary,
-            modes
-        );
-        let psi_name = parameters.psi_format.file_name();
-        match parameters.psi_format {
-            PsiFormat::Npy => write_npy(&tmp.join(psi_name), basis.psi.as_ref())?,
-            PsiFormat::MatrixMarket => {
-                write_array(&tmp.join(psi_name), basis.psi.as_ref(), false, &comment)?
-            }
-        }
-        lap("write Ψ", &mut timings);
-        write_array(&tmp.join("k_r.mtx"), k_r.as_ref(), true, &comment)?;
-        write_array(&tmp.join("m_r.mtx"), m_r.as_ref(), true, &comment)?;
-        let text = serde_json::to_string_pretty(&doc).expect("JSON of plain values");
-        write_atomically(&tmp.join("model.json"), |w| w.write_all(text.as_bytes()))?;
-        lap("write K_r, M_r, model.json", &mut timings);
-        let mut files = vec![
-            psi_name.into(),
-            "k_r.mtx".into(),
-            "m_r.mtx".into(),
-            "model.json".into(),
-        ];
-        if let Some(e) = &exudyn {
-            files.extend(e.write(body, &tmp.join("exudyn"))?);
-            lap("write the Exudyn body", &mut timings);
-        }
-        Ok(files)
-    })();
-    let files = match written {
-        Ok(f) => f,
-        Err(e) => {
-            let _ = std::fs::remove_dir_all(&tmp);
-            return Err(e);
-        }
-    };
-    let old = parent.join(format!(".{name}.old-{}", std::process::id()));
-    let had_old = dir.exists();
-    if had_old {
-        std::fs::rename(dir, &old).map_err(io(dir))?;
-    }
-    if let Err(e) = std::fs::rename(&tmp, dir) {
-        if had_old {
-            let _ = std::fs::rename(&old, dir);
-        }
-        let _ = std::fs::remove_dir_all(&tmp);
-        return Err(io(dir)(e));
-    }
-    if had_old {
-        let _ = std::fs::remove_dir_all(&old);
-    }
-    Ok(ExportSummary {
-        dir: dir.to_path_buf(),
-        files,
-        shape: [basis.psi.nrows(), basis.psi.ncols()],
+    Ok(ReducedExport {
+        method,
+        boundary: boundary.to_vec(),
+        kept_modes: modes,
+        parameters: parameters.clone(),
+        basis,
+        k_r,
+        m_r,
         hz,
         residuals,
         zero_energy,
-        timings,
+        zero_energy_threshold_hz: threshold,
+        free_free_sturm,
         exudyn,
+        timings,
     })
+}
+
+impl ReducedExport {
+    /// Adds the Exudyn body ([`exudyn_body`]: the floating frame on the first rigid
+    /// interface) when it is not there yet.
+    pub fn with_exudyn(&mut self, body: &ImportedBody) -> Result<&ExudynBody> {
+        if self.exudyn.is_none() {
+            let started = Instant::now();
+            self.exudyn = Some(exudyn_body(
+                body,
+                &self.basis,
+                &self.parameters.rigid_interfaces,
+                &self.parameters.averaging_interfaces,
+            )?);
+            self.timings
+                .push(("Exudyn basis", started.elapsed().as_secs_f64()));
+            self.parameters.exudyn = true;
+        }
+        Ok(self.exudyn.as_ref().expect("set above"))
+    }
+
+    /// `model.json`: the columns, interfaces, inertia invariants and checked frequencies.
+    pub fn document(&self, body: &ImportedBody) -> serde_json::Value {
+        let model = &body.model;
+        let (method, boundary, modes, parameters) = (
+            self.method,
+            &self.boundary,
+            self.kept_modes,
+            &self.parameters,
+        );
+        let (basis, hz, residuals) = (&self.basis, &self.hz, &self.residuals);
+        let (zero_energy, threshold) = (self.zero_energy, self.zero_energy_threshold_hz);
+        let (free_free_sturm, exudyn) = (self.free_free_sturm, &self.exudyn);
+        let columns: Vec<serde_json::Value> = basis
+            .columns
+            .iter()
+            .map(|c| {
+                json!({
+                    "label": c.label,
+                    "kind": kind_name(&c.kind),
+                    "dof": c.dof.map(|d| {
+                        let (node, dof) = model.dof_node(d);
+                        json!({ "node": node, "dof": dof.name(), "index": d + 1 })
+                    }),
+                    "hz": match c.kind {
+                        ColumnKind::Normal { hz }
+                        | ColumnKind::FreeInterface { hz }
+                        | ColumnKind::Loaded { hz } => Some(hz),
+                        _ => None,
+                    },
+                })
+            })
+            .collect();
+        let inertia = if body.has_coordinates {
+            Some(inertia_invariants(body, basis))
+        } else {
+            None
+        };
+        let doc = json!({
+            "format": "flexmodes reduced model 1",
+            "body": body.location.display(),
+            "body_name": model.name,
+            "units": { "length": body.units.length, "mass": body.units.mass, "force": body.units.force },
+            "method": method.id(),
+            "method_name": method.name(),
+            "boundary_nodes": boundary,
+            "kept_modes": modes,
+            "dofs": model.dof_count(),
+            "dof_order": "node-major",
+            "dofs_per_node": model.dofs.node_dofs().iter().map(|d| d.name()).collect::<Vec<_>>(),
+            "size": basis.size(),
+            "columns": columns,
+            "interfaces": parameters.rigid_interfaces.iter().map(|i| {
+                let first = basis.columns.iter().position(|c| matches!(
+                    &c.kind,
+                    ColumnKind::RigidInterface { interface, .. } if *interface == i.name
+                ));
+                json!({
+                    "name": i.name,
+                    "kind": "rbe2",
+                    "master": i.master,
+                    "master_dofs": MASTER_DOF_NAMES,
+                    "columns": first.map(|f| (f + 1..=f + 6).collect::<Vec<_>>()),
+                    "tied_nodes": i.nodes,
+                })
+            }).collect::<Vec<_>>(),
+            // An averaging (RBE3) master is no coordinate of the reduced model: its motion is
+            // read as (A Ψ) z and a load on it enters as (A Ψ)ᵀ F (A: the weighted average).
+            "averaging_interfaces": parameters.averaging_interfaces.iter().map(|i| {
+                let a_psi = i
+                    .averaging_matrix(model)
+                    .map(|a| a * &basis.psi)
+                    .map(|m| (0..6).map(|r| (0..m.ncols()).map(|c| m[(r, c)]).collect::<Vec<_>>()).collect::<Vec<_>>());
+                json!({
+                    "name": i.name,
+                    "kind": "rbe3",
+                    "master": i.master,
+                    "master_dofs": MASTER_DOF_NAMES,
+                    "averaged_nodes": i.nodes,
+                    "weights": i.weights,
+                    "master_motion": a_psi.ok(),
+                })
+            }).collect::<Vec<_>>(),
+            "reduced_elastic_hz": sig_vec(hz),
+            "reduced_elastic_residuals": sig_vec(residuals),
+            "reduced_zero_energy_modes": zero_energy,
+            // The body's free-free solve, when the method needed one: modes it skipped below the
+            // highest pair, by the Sturm count (0 by construction for a complete dense solve).
+            "free_free_missed_modes": free_free_sturm.map(|s| s.map_or(0, |c| c.missed())),
+            "free_free_sturm_check": free_free_sturm.flatten().map(|c| json!({
+                "shift_hz": crate::linalg::hz_from_eigenvalue(c.shift),
+                "eigenvalues_below": c.below,
+                "found_below": c.found,
+            })),
+            "zero_energy_threshold_hz": threshold,
+            "files": {
+                "psi": parameters.psi_format.file_name(),
+                "stiffness": "k_r.mtx",
+                "mass": "m_r.mtx",
+            },
+            "inertia": inertia,
+            "exudyn": exudyn.as_ref().map(|e| json!({
+                "folder": "exudyn",
+                "frame": e.frame,
+                "modes": e.modes.ncols(),
+                "mode_type": e.mode_type,
+                "note": "load with assets/python/flexmodes_exudyn.py (numpy, scipy, exudyn)",
+            })),
+            "inertia_note": if inertia.is_none() {
+                "the body file gives no node coordinates, so the rigid-body motions and the inertia \
+                 invariants are unknown"
+            } else {
+                "about the body file's origin; rigid motions R = [translations x y z, small \
+                 rotations about x y z] (planar: x, y, rotation about z); mass_matrix = R^T M R, \
+                 translation_coupling and rotation_coupling = rows of R^T M Psi"
+            },
+        });
+        doc
+    }
+
+    /// Writes Ψ (`psi.npy` or `psi.mtx`), `k_r.mtx`, `m_r.mtx`, `model.json` and, when
+    /// present, `exudyn/` into `dir`: a temporary folder renamed into place, so `dir` is
+    /// either the old folder or the complete new one. Returns the files' names.
+    pub fn write(&mut self, body: &ImportedBody, dir: &Path) -> Result<Vec<String>> {
+        let doc = self.document(body);
+        let model = &body.model;
+        let (method, boundary, modes, parameters) = (
+            self.method,
+            &self.boundary,
+            self.kept_modes,
+            &self.parameters,
+        );
+        let (basis, k_r, m_r, exudyn) = (&self.basis, &self.k_r, &self.m_r, &self.exudyn);
+        let timings = &mut self.timings;
+        let mut phase = Instant::now();
+        let mut lap = |name: &'static str, timings: &mut Vec<(&'static str, f64)>| {
+            timings.push((name, phase.elapsed().as_secs_f64()));
+            phase = Instant::now();
+        };
+        // Write into a temporary folder, then rename it into place.
+        let io = |path: &Path| {
+            let path = path.display().to_string();
+            move |source| Error::Io { path, source }
+        };
+        let name = dir
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "export".into());
+        let parent = dir
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        std::fs::create_dir_all(parent).map_err(io(parent))?;
+        let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&tmp);
+        std::fs::create_dir(&tmp).map_err(io(&tmp))?;
+        let written = (|| -> Result<Vec<String>> {
+            let comment = format!(
+                "{} of {} ({}), interface {:?}, {} kept modes; flexmodes export",
+                method.name(),
+                model.name,
+                body.location.display(),
+                boundary,
+                modes
+            );
+            let psi_name = parameters.psi_format.file_name();
+            match parameters.psi_format {
+                PsiFormat::Npy => write_npy(&tmp.join(psi_name), basis.psi.as_ref())?,
+                PsiFormat::MatrixMarket => {
+                    write_array(&tmp.join(psi_name), basis.psi.as_ref(), false, &comment)?
+                }
+            }
+            lap("write Ψ", timings);
+            write_array(&tmp.join("k_r.mtx"), k_r.as_ref(), true, &comment)?;
+            write_array(&tmp.join("m_r.mtx"), m_r.as_ref(), true, &comment)?;
+            let text = serde_json::to_string_pretty(&doc).expect("JSON of plain values");
+            write_atomically(&tmp.join("model.json"), |w| w.write_all(text.as_bytes()))?;
+            lap("write K_r, M_r, model.json", timings);
+            let mut files = vec![
+                psi_name.into(),
+                "k_r.mtx".into(),
+                "m_r.mtx".into(),
+                "model.json".into(),
+            ];
+            if let Some(e) = &exudyn {
+                files.extend(e.write(body, &tmp.join("exudyn"))?);
+                lap("write the Exudyn body", timings);
+            }
+            Ok(files)
+        })();
+        let files = match written {
+            Ok(f) => f,
+            Err(e) => {
+                let _ = std::fs::remove_dir_all(&tmp);
+                return Err(e);
+            }
+        };
+        let old = parent.join(format!(".{name}.old-{}", std::process::id()));
+        let had_old = dir.exists();
+        if had_old {
+            std::fs::rename(dir, &old).map_err(io(dir))?;
+        }
+        if let Err(e) = std::fs::rename(&tmp, dir) {
+            if had_old {
+                let _ = std::fs::rename(&old, dir);
+            }
+            let _ = std::fs::remove_dir_all(&tmp);
+            return Err(io(dir)(e));
+        }
+        if had_old {
+            let _ = std::fs::remove_dir_all(&old);
+        }
+        Ok(files)
+    }
 }
 
 fn kind_name(k: &ColumnKind) -> &'static str {

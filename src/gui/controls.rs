@@ -101,7 +101,7 @@ impl Controls {
                 .collect();
             let (boundary, rigid, averaging) = match body {
                 Some(b) if !items.is_empty() => {
-                    let i = scenes::body_modes::body_boundary(b, &items)?;
+                    let i = crate::models::BodyInterfaces::of(b, &items, None)?;
                     (Some(i.boundary), i.rigid, i.averaging)
                 }
                 _ => (None, Vec::new(), Vec::new()),

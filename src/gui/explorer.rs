@@ -325,11 +325,14 @@ impl Explorer {
             let in_use = if self.controls.boundary.trim().is_empty() {
                 self.body
                     .as_ref()
-                    .and_then(|(_, b)| scenes::body_modes::default_boundary(b).ok())
+                    .and_then(|(_, b)| b.default_interface_nodes().ok())
                     .and_then(|nodes| {
                         sets.iter().map(|(name, _)| name.clone()).find(|name| {
-                            self.body.as_ref().and_then(|(_, b)| b.node_sets.get(name))
-                                == Some(&nodes)
+                            self.body
+                                .as_ref()
+                                .and_then(|(_, b)| b.node_sets.get(name))
+                                .map(Vec::as_slice)
+                                == Some(nodes)
                         })
                     })
                     .unwrap_or_default()

@@ -2,6 +2,8 @@
 //! typed results. Scenes wire them to visuals and tables; tests and benches use them for
 //! numbers. A model never imports a scene or the recorder.
 
+mod body_advice;
+mod body_comparison;
 mod body_reduction;
 mod cantilever_study;
 mod driven_body;
@@ -15,6 +17,12 @@ mod plank_simulation;
 mod slab_simulation;
 mod statically_determinate_support;
 
+pub(crate) use body_advice::advise;
+pub use body_advice::{AdvisedModel, BodyAdvice};
+pub use body_comparison::{
+    BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyComparison, BodyComparisonParameters,
+    BodyComparisonPoint, ROUND_OFF_ERROR, compare_body_methods,
+};
 pub use body_reduction::{
     BALANCED_MODES_PER_VECTOR, BALANCED_ZETA, BODY_METHODS, BodyInterfaces, BodyReducer,
     ReducedBody,

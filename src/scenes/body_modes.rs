@@ -68,38 +68,6 @@ pub fn body_of(opts: &SceneOptions) -> Result<BodyHandle> {
     }
 }
 
-/// The interfaces `items` name on `body` (set names, node numbers, `rbe2:SET`, `rbe3:SET`):
-/// see [`BodyInterfaces::of`].
-pub fn body_boundary(body: &ImportedBody, items: &[String]) -> Result<BodyInterfaces> {
-    BodyInterfaces::of(body, items, None)
-}
-
-/// The interface when `--boundary` is not given: the body file's `default_interface` set,
-/// else its set `interface`, else its first set.
-pub fn default_boundary(body: &ImportedBody) -> Result<Vec<usize>> {
-    for name in body
-        .default_interface
-        .iter()
-        .map(String::as_str)
-        .chain(["interface"])
-    {
-        if let Some(set) = body.node_sets.get(name) {
-            return Ok(set.clone());
-        }
-    }
-    body.node_sets
-        .values()
-        .next()
-        .cloned()
-        .ok_or_else(|| Error::InvalidOption {
-            scene: INFO.id.into(),
-            reason: format!(
-                "the body `{}` defines no node sets: give the interface with --boundary",
-                body.model.name
-            ),
-        })
-}
-
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
     let body = body_of(opts)?;
@@ -107,7 +75,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &DEFAULT_METHODS)?;
     let boundary = match &opts.boundary {
         Some(b) => b.clone(),
-        None => default_boundary(&body)?,
+        None => body.default_interface_nodes()?.to_vec(),
     };
     let kept = opts.modes_or_default(&INFO);
     let dofs = model.dof_count();

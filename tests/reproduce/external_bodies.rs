@@ -123,7 +123,7 @@ fn a_rigid_interface_needs_boundary_columns() {
 /// with the file, the line and the reason.
 #[test]
 fn interfaces_declared_in_the_body_file() {
-    use flexmodes::{Error, error::BodyFileError, scenes::body_modes::body_boundary};
+    use flexmodes::{Error, error::BodyFileError, models::BodyInterfaces};
     let source = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/bodies/steel-link");
     let dir = std::env::temp_dir().join(format!("flexmodes-interfaces-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -139,12 +139,14 @@ fn interfaces_declared_in_the_body_file() {
         "[interfaces.pin]\nkind = \"rbe2\"\nnode_set = \"bore_a\"\nmaster = [-0.04, 0.0, 0.01]\n",
     )
     .unwrap();
-    let pin = body_boundary(&body, &["pin".into()]).unwrap();
+    let pin = BodyInterfaces::of(&body, &["pin".into()], None).unwrap();
     let (nodes, interfaces) = (pin.boundary, pin.rigid);
     assert_eq!(nodes, body.node_sets["bore_a"]);
     assert_eq!(interfaces.len(), 1);
     assert_eq!(interfaces[0].master, [-0.04, 0.0, 0.01]);
-    let at_centroid = body_boundary(&body, &["rbe2:bore_a".into()]).unwrap().rigid;
+    let at_centroid = BodyInterfaces::of(&body, &["rbe2:bore_a".into()], None)
+        .unwrap()
+        .rigid;
     assert!(
         (at_centroid[0].master[2] - 0.01).abs() > 1e-4,
         "a different master point"
@@ -174,7 +176,7 @@ fn interfaces_declared_in_the_body_file() {
         weights.join(", ")
     ))
     .unwrap();
-    let load = body_boundary(&body, &["load".into(), "rbe2:bore_b".into()]).unwrap();
+    let load = BodyInterfaces::of(&body, &["load".into(), "rbe2:bore_b".into()], None).unwrap();
     assert_eq!(load.boundary, body.node_sets["bore_b"]);
     assert_eq!(load.averaging.len(), 1);
     assert_eq!(load.averaging[0].weights[..3], [1.0, 2.0, 3.0]);

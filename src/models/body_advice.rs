@@ -1,13 +1,12 @@
-//! The mode-count advice of `bench modes --body`: for a band and tolerance, the smallest
+//! The mode-count advice of the body comparison (`bench modes --body`): for a band and tolerance, the smallest
 //! measured model of each method that meets it, beside the rule of thumb (fixed-interface
 //! modes up to 1.5–2× the band's top).
 
 use serde_json::{Value, json};
 
-use super::{BodyBenchParameters, BodyBenchPoint};
+use super::{BodyComparisonParameters, BodyComparisonPoint, BodyReducer};
 use crate::{
     Result,
-    models::BodyReducer,
     reduction::{Method, ModeSelection},
     report::sig,
 };
@@ -31,7 +30,7 @@ pub struct BodyAdvice {
 }
 
 impl BodyAdvice {
-    pub(super) fn json(&self) -> Value {
+    pub fn json(&self) -> Value {
         json!({
             "band_hz": sig(self.band_hz),
             "tolerance": self.tolerance,
@@ -46,9 +45,9 @@ impl BodyAdvice {
     }
 }
 
-pub(super) fn advise(
-    points: &[BodyBenchPoint],
-    p: &BodyBenchParameters,
+pub(crate) fn advise(
+    points: &[BodyComparisonPoint],
+    p: &BodyComparisonParameters,
     compared_hz: &[f64],
     reducer: &mut BodyReducer<'_>,
 ) -> Result<BodyAdvice> {
