@@ -50,6 +50,9 @@ pub enum BodyLocation {
     Disk(PathBuf),
     /// A body embedded in the binary (`builtin:NAME`, from `assets/bodies/NAME/`).
     Builtin(String),
+    /// A body handed over in memory ([`ImportedBody::from_matrices`], Python's
+    /// `flexmodes.Body`): its name; it names no other file.
+    Memory(String),
 }
 
 impl BodyLocation {
@@ -66,6 +69,7 @@ impl BodyLocation {
         match self {
             Self::Disk(p) => p.display().to_string(),
             Self::Builtin(name) => format!("builtin:{name}"),
+            Self::Memory(name) => format!("<{name} in memory>"),
         }
     }
 
@@ -84,6 +88,14 @@ impl BodyLocation {
                 })?;
                 Ok((bytes, path.display().to_string()))
             }
+            Self::Memory(name) => Err(Error::BodyFile(BodyFileError::BodyFile {
+                path: format!("<{name} in memory>"),
+                line: None,
+                reason: format!(
+                    "a body in memory names no file (asked for `{}`)",
+                    relative.unwrap_or("its body file")
+                ),
+            })),
             Self::Builtin(name) => {
                 let file = relative.unwrap_or("body.toml");
                 let asset = format!("bodies/{name}/{file}");
@@ -143,7 +155,7 @@ impl std::ops::Deref for BodyHandle {
     }
 }
 
-fn node_dof(name: &str) -> Option<NodeDof> {
+pub(super) fn node_dof(name: &str) -> Option<NodeDof> {
     Some(match name.to_ascii_lowercase().as_str() {
         "x" | "ux" => NodeDof::Translation(Direction::X),
         "y" | "uy" => NodeDof::Translation(Direction::Y),
@@ -421,60 +433,16 @@ impl ImportedBody {
             model.rigid_motions = RigidMotions::FromGeometry;
         }
 
-        if let Some(set) = &spec.default_interface
-            && !spec.node_sets.contains_key(set)
-        {
-            return Err(body_error(
-                key_line("default_interface"),
-                format!(
-                    "`default_interface` names the node set `{set}`, which [node_sets] does not define"
-                ),
-            ));
-        }
-        for (set, members) in &spec.node_sets {
-            if let Some(&node) = members.iter().find(|&&x| x == 0 || x > node_count) {
-                return Err(Error::BodyFile(BodyFileError::NodeSetOutOfRange {
-                    path: name.clone(),
-                    set: set.clone(),
-                    node,
-                    count: node_count,
-                }));
-            }
-        }
-        let mut interfaces = BTreeMap::new();
-        for (iname, interface) in &spec.interfaces {
-            if !spec.node_sets.contains_key(&interface.node_set) {
-                return Err(body_error(
-                    key_line(iname),
-                    format!(
-                        "interface `{iname}` names the node set `{}`, which [node_sets] does not \
-                         define",
-                        interface.node_set
-                    ),
-                ));
-            }
-            if let Some(w) = &interface.weights {
-                let count = spec.node_sets[&interface.node_set].len();
-                if interface.kind == InterfaceKind::Rbe2 {
-                    return Err(body_error(
-                        key_line(iname),
-                        format!("interface `{iname}`: weights belong to kind \"rbe3\" only"),
-                    ));
-                }
-                if w.len() != count || w.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
-                    return Err(body_error(
-                        key_line(iname),
-                        format!(
-                            "interface `{iname}`: {} weights for the {count} nodes of `{}`; \
-                             each must be positive",
-                            w.len(),
-                            interface.node_set
-                        ),
-                    ));
-                }
-            }
-            interfaces.insert(iname.clone(), interface.clone());
-        }
+        let interfaces = checked_sets(
+            &SetsAndInterfaces {
+                node_sets: &spec.node_sets,
+                interfaces: &spec.interfaces,
+                default_interface: spec.default_interface.as_deref(),
+            },
+            node_count,
+            &name,
+            &key_line,
+        )?;
         Ok(Self {
             model,
             node_sets: spec.node_sets,
@@ -587,4 +555,83 @@ impl ImportedBody {
             }))
         }
     }
+}
+
+/// A body's node sets, interfaces and default interface, as a body file or a caller gives them.
+pub(super) struct SetsAndInterfaces<'a> {
+    pub(super) node_sets: &'a BTreeMap<String, Vec<usize>>,
+    pub(super) interfaces: &'a BTreeMap<String, InterfaceSpec>,
+    pub(super) default_interface: Option<&'a str>,
+}
+
+/// Checks the sets against `node_count` nodes and the interfaces against the sets; `name`
+/// and `key_line` place an error (the body file and the line of a key, when there is one).
+pub(super) fn checked_sets(
+    given: &SetsAndInterfaces<'_>,
+    node_count: usize,
+    name: &str,
+    key_line: &dyn Fn(&str) -> Option<usize>,
+) -> Result<BTreeMap<String, InterfaceSpec>> {
+    let body_error = |line: Option<usize>, reason: String| {
+        Error::BodyFile(BodyFileError::BodyFile {
+            path: name.to_string(),
+            line,
+            reason,
+        })
+    };
+    if let Some(set) = &given.default_interface
+        && !given.node_sets.contains_key(*set)
+    {
+        return Err(body_error(
+            key_line("default_interface"),
+            format!(
+                "`default_interface` names the node set `{set}`, which [node_sets] does not define"
+            ),
+        ));
+    }
+    for (set, members) in given.node_sets {
+        if let Some(&node) = members.iter().find(|&&x| x == 0 || x > node_count) {
+            return Err(Error::BodyFile(BodyFileError::NodeSetOutOfRange {
+                path: name.to_string(),
+                set: set.clone(),
+                node,
+                count: node_count,
+            }));
+        }
+    }
+    let mut interfaces = BTreeMap::new();
+    for (iname, interface) in given.interfaces {
+        if !given.node_sets.contains_key(&interface.node_set) {
+            return Err(body_error(
+                key_line(iname),
+                format!(
+                    "interface `{iname}` names the node set `{}`, which [node_sets] does not \
+                         define",
+                    interface.node_set
+                ),
+            ));
+        }
+        if let Some(w) = &interface.weights {
+            let count = given.node_sets[&interface.node_set].len();
+            if interface.kind == InterfaceKind::Rbe2 {
+                return Err(body_error(
+                    key_line(iname),
+                    format!("interface `{iname}`: weights belong to kind \"rbe3\" only"),
+                ));
+            }
+            if w.len() != count || w.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
+                return Err(body_error(
+                    key_line(iname),
+                    format!(
+                        "interface `{iname}`: {} weights for the {count} nodes of `{}`; \
+                             each must be positive",
+                        w.len(),
+                        interface.node_set
+                    ),
+                ));
+            }
+        }
+        interfaces.insert(iname.clone(), interface.clone());
+    }
+    Ok(interfaces)
 }

@@ -3,6 +3,7 @@
 //! exported to.
 
 mod abaqus_matrix;
+mod body_matrices;
 mod body_spec;
 mod body_writer;
 mod calculix_matrix;
@@ -21,6 +22,7 @@ mod npy;
 
 pub use crate::error::BodyFileError;
 pub use abaqus_matrix::parse_abaqus_matrix;
+pub use body_matrices::{BodyMatrices, MatrixEntries};
 pub use body_spec::{
     BodySpec, DofOrder, GeometrySpec, InterfaceKind, InterfaceSpec, MatrixFiles, MatrixFormat,
     TableOrFile, Units,

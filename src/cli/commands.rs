@@ -348,7 +348,7 @@ fn run(cli: Cli) -> Result<()> {
             crate::body_file::write_files(&out, &files)?;
             // What was read, as the written body reads back.
             let written = ImportedBody::load(&out.join("body.toml").display().to_string())?;
-            let (_, text) = scenes::body_import::import_summary(&written)?;
+            let (_, text) = crate::models::import_summary(&written)?;
             println!(
                 "wrote {} ({})\n\n{text}",
                 out.display(),
@@ -358,7 +358,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Import { body, json } => {
             let body = ImportedBody::load(&body)?;
-            let (value, text) = scenes::body_import::import_summary(&body)?;
+            let (value, text) = crate::models::import_summary(&body)?;
             if json {
                 println!("{value}");
             } else {

@@ -3,7 +3,7 @@
 use thiserror::Error;
 
 /// Errors of reading a body: the file, the line and what is wrong there.
-#[derive(Debug, Error)]
+#[derive(Debug, Error, serde::Serialize)]
 pub enum BodyFileError {
     /// A format flexmodes reads but does not write.
     #[error("{format} is read, not written: write matrix-market, abaqus or nastran-dmig")]

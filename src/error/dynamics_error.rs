@@ -3,7 +3,7 @@
 use thiserror::Error;
 
 /// Errors of a time integration: where and when it stopped.
-#[derive(Debug, Error)]
+#[derive(Debug, Error, serde::Serialize)]
 pub enum DynamicsError {
     /// A time integration that could not continue.
     #[error("the integration diverged at t = {time:.4} s: {reason}")]

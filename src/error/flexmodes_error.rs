@@ -4,7 +4,7 @@
 use thiserror::Error;
 
 /// Everything that can go wrong in flexmodes, from bad user input to a failed decomposition.
-#[derive(Debug, Error)]
+#[derive(Debug, Error, serde::Serialize)]
 pub enum Error {
     /// A scene id that is not in the registry.
     #[error("unknown scene `{id}` (known scenes: {known})")]
@@ -98,6 +98,7 @@ pub enum Error {
     Io {
         path: String,
         #[source]
+        #[serde(serialize_with = "as_text")]
         source: std::io::Error,
     },
 
@@ -121,6 +122,11 @@ pub enum Error {
     /// Errors of serving the classroom (`flexmodes serve`).
     #[error(transparent)]
     Serve(#[from] super::ServeError),
+}
+
+/// An error value as its message (the I/O error inside [`Error::Io`]).
+fn as_text<S: serde::Serializer>(e: &std::io::Error, s: S) -> std::result::Result<S::Ok, S::Error> {
+    s.collect_str(e)
 }
 
 /// Result alias used across the crate.

@@ -3,7 +3,7 @@
 use thiserror::Error;
 
 /// Errors of the linear algebra: factorisations, eigensolvers and their checks, memory.
-#[derive(Debug, Error)]
+#[derive(Debug, Error, serde::Serialize)]
 pub enum LinalgError {
     /// A Cholesky factorisation met a pivot that is not positive.
     #[error(

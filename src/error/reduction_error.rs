@@ -3,7 +3,7 @@
 use thiserror::Error;
 
 /// Errors of a reduction: which boundary, DOF set, mode selection or system does not fit the method.
-#[derive(Debug, Error)]
+#[derive(Debug, Error, serde::Serialize)]
 pub enum ReductionError {
     /// A boundary set that is empty or leaves no interior DOF.
     #[error("invalid boundary set {nodes:?}: {reason}")]

@@ -3,7 +3,7 @@
 use thiserror::Error;
 
 /// Errors of `flexmodes serve`: which address, port, file or asset.
-#[derive(Debug, Error)]
+#[derive(Debug, Error, serde::Serialize)]
 pub enum ServeError {
     /// The binary was built without the `serve` feature.
     #[error(

@@ -2,7 +2,7 @@
 //! or format.
 
 /// `id` is not one of the `known` ids of `what`.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error, serde::Serialize)]
 #[error("unknown {what} `{id}` (known: {known})")]
 pub struct UnknownId {
     /// What was named: `method`, `integrator`, `axis type`, `Ψ format`.

@@ -458,13 +458,15 @@ impl ReducedExport {
     /// either the old folder or the complete new one. Returns the files' names.
     pub fn write(&mut self, body: &ImportedBody, dir: &Path) -> Result<Vec<String>> {
         let doc = self.document(body);
-        let model = &body.model;
-        let (method, boundary, modes, parameters) = (
-            self.method,
-            &self.boundary,
-            self.kept_modes,
-            &self.parameters,
+        let comment = format!(
+            "{} of {} ({}), interface {:?}, {} kept modes; flexmodes export",
+            self.method.name(),
+            body.model.name,
+            body.location.display(),
+            self.boundary,
+            self.kept_modes
         );
+        let psi_format = self.parameters.psi_format;
         let (basis, k_r, m_r, exudyn) = (&self.basis, &self.k_r, &self.m_r, &self.exudyn);
         let timings = &mut self.timings;
         let mut phase = Instant::now();
@@ -490,16 +492,8 @@ impl ReducedExport {
         let _ = std::fs::remove_dir_all(&tmp);
         std::fs::create_dir(&tmp).map_err(io(&tmp))?;
         let written = (|| -> Result<Vec<String>> {
-            let comment = format!(
-                "{} of {} ({}), interface {:?}, {} kept modes; flexmodes export",
-                method.name(),
-                model.name,
-                body.location.display(),
-                boundary,
-                modes
-            );
-            let psi_name = parameters.psi_format.file_name();
-            match parameters.psi_format {
+            let psi_name = psi_format.file_name();
+            match psi_format {
                 PsiFormat::Npy => write_npy(&tmp.join(psi_name), basis.psi.as_ref())?,
                 PsiFormat::MatrixMarket => {
                     write_array(&tmp.join(psi_name), basis.psi.as_ref(), false, &comment)?

@@ -4,6 +4,7 @@
 
 mod body_advice;
 mod body_comparison;
+mod body_import;
 mod body_reduction;
 mod cantilever_study;
 mod driven_body;
@@ -23,6 +24,7 @@ pub use body_comparison::{
     BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyComparison, BodyComparisonParameters,
     BodyComparisonPoint, ROUND_OFF_ERROR, compare_body_methods,
 };
+pub use body_import::{FULL_MODES, import_summary, missed_note, refuse_mechanism};
 pub use body_reduction::{
     BALANCED_MODES_PER_VECTOR, BALANCED_ZETA, BODY_METHODS, BodyInterfaces, BodyReducer,
     ReducedBody,

@@ -9,8 +9,7 @@ use std::time::Instant;
 use serde_json::{Map, Value, json};
 
 use super::{
-    SceneInfo, SceneOptions, SceneOutput, body_import::FULL_MODES, frequency_bars::FrequencyBars,
-    mode_visuals::undeformed,
+    SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
 };
 use crate::analysis::pair_modes;
 use crate::models::{
@@ -23,6 +22,7 @@ use crate::{
     Error, Result,
     body_file::{BodyHandle, ImportedBody},
     linalg::{GeneralizedEigen, principal_angles},
+    models::FULL_MODES,
     record::Layout,
     reduction::{Method, ModeSelection},
     report::{Cell, Report, Table, fmt_hz, residual_note, sig, sig_vec},
@@ -84,7 +84,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let started = Instant::now();
     let full = modes_up_to(model, opts.band_hz, FULL_MODES, &opts.progress)?;
     let full_s = started.elapsed().as_secs_f64();
-    super::body_import::refuse_mechanism(model, &full)?;
+    crate::models::refuse_mechanism(model, &full)?;
     let full_hz = full.elastic_hz();
     let elastic = GeneralizedEigen {
         values: full.modes.values[full.zero_modes..].to_vec(),
@@ -149,7 +149,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         format!(
             "full body: {}; missed modes: {}",
             residual_note(&full_hz, &full.elastic_residuals()),
-            super::body_import::missed_note(&full.modes)
+            crate::models::missed_note(&full.modes)
         ),
         format!("fixed-interface: {}", residual_note(&fi_hz, &fi_residuals)),
     ];

@@ -4,7 +4,6 @@ mod beam_eitelberg;
 mod beam_mean_axes;
 mod beam_modes;
 mod beam_profiles;
-pub mod body_import;
 mod body_influence;
 pub mod body_modes;
 mod body_response;

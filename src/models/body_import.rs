@@ -1,4 +1,4 @@
-//! What `flexmodes import` says of a body file: its size, mass, zero-energy modes, lowest
+//! What `flexmodes import` (and Python's `Body.summary`) says of a body: its size, mass, zero-energy modes, lowest
 //! frequencies and node sets; and the refusal of a mechanism, shared with the `modes` scene.
 
 use serde_json::{Map, Value, json};
@@ -11,11 +11,11 @@ use crate::{
 };
 
 /// Elastic free-free modes computed for the summary and the `modes` scene.
-pub(super) const FULL_MODES: usize = 10;
+pub const FULL_MODES: usize = 10;
 
 /// [`Error::Mechanism`] when the body has more zero-energy modes than a free body's rigid
 /// motions.
-pub(super) fn refuse_mechanism(
+pub fn refuse_mechanism(
     model: &crate::fem::FeModel,
     full: &crate::analysis::ZeroEnergyCount,
 ) -> Result<()> {
@@ -33,7 +33,7 @@ pub(super) fn refuse_mechanism(
 
 /// "0 (Sturm count: …)": how many eigenvalues below the highest pair the solver skipped, as
 /// the inertia of $K - \sigma' M$ counts them, or that the solve was complete.
-pub(super) fn missed_note(modes: &crate::linalg::GeneralizedEigen) -> String {
+pub fn missed_note(modes: &crate::linalg::GeneralizedEigen) -> String {
     match modes.sturm {
         Some(c) => format!(
             "{} (Sturm count: {} eigenvalues below {} Hz, {} found)",

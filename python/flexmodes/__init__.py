@@ -1,0 +1,400 @@
+"""flexmodes: model order reduction of restrained deformable bodies, from Python.
+
+A body from SciPy matrices (scikit-fem, FElupe, pyNastran, ...) or a body file, reduced by
+any of the classical methods (Guyan, modal truncation, Craig-Bampton, mode condensation,
+Eitelberg, MacNeal-Rubin, Benfield-Hruda, moment matching, balanced truncation) on node
+sets and rigid (RBE2) or averaging (RBE3) interfaces; every eigenpair's residual checked,
+every check failure raised. The numerics run in Rust with the GIL released.
+
+Units are the body's own (say SI: m, kg, N, so Hz and s); node numbers in node sets are
+1-based, as in body files and on the command line.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Callable, Iterable, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from . import errors
+from ._flexmodes import RustBody, RustReducedModel, __version__
+from .errors import (
+    BodyFileError,
+    Cancelled,
+    DynamicsError,
+    FileError,
+    FlexmodesError,
+    InputError,
+    LinalgError,
+    MechanismError,
+    ReductionError,
+)
+
+#: Ids of the reduction methods (as ``flexmodes export --method`` takes them).
+METHODS = ("gr", "mt", "cb", "mc", "eit", "mr", "bh", "mm", "bt")
+
+Progress = Optional[Callable[[Optional[str], Optional[float]], Any]]
+
+
+def _entries(matrix: Any, what: str, vector_ok: bool) -> tuple:
+    """(shape, rows, cols, values) of a SciPy sparse matrix (any format), or of a 1-D NumPy
+    vector when ``vector_ok`` (a lumped mass)."""
+    import scipy.sparse as sp
+
+    if sp.issparse(matrix):
+        coo = matrix.tocoo()
+        if np.iscomplexobj(coo.data):
+            raise InputError(f"{what} is complex: flexmodes takes real matrices")
+        return (
+            tuple(int(x) for x in coo.shape),
+            np.ascontiguousarray(coo.row, dtype=np.int64),
+            np.ascontiguousarray(coo.col, dtype=np.int64),
+            np.ascontiguousarray(coo.data, dtype=np.float64),
+        )
+    array = np.asarray(matrix) if not isinstance(matrix, np.ndarray) else matrix
+    if array.ndim == 1 and vector_ok:
+        n = array.shape[0]
+        return (
+            (n, 1),
+            np.arange(n, dtype=np.int64),
+            np.zeros(n, dtype=np.int64),
+            np.ascontiguousarray(array, dtype=np.float64),
+        )
+    if array.ndim == 2:
+        raise InputError(
+            f"{what} is a dense {array.shape[0]} × {array.shape[1]} array: pass a SciPy sparse "
+            f"matrix (scipy.sparse.csr_array({what})){' or, for a lumped mass, a 1-D vector' if vector_ok else ''}"
+        )
+    raise InputError(
+        f"{what} is a {type(matrix).__name__} of {array.ndim} dimension(s): pass a SciPy sparse "
+        "matrix"
+    )
+
+
+def _items(boundary: Union[None, str, int, Iterable[Union[str, int]]]) -> Optional[list]:
+    """Interface items as ``--boundary`` takes them: set names, 1-based node numbers,
+    ``rbe2:SET``, ``rbe3:SET``."""
+    if boundary is None:
+        return None
+    if isinstance(boundary, (str, int, np.integer)):
+        return [str(boundary)]
+    return [str(b) for b in boundary]
+
+
+class Body:
+    """A deformable body, checked as ``flexmodes import`` checks a body file.
+
+    Parameters
+    ----------
+    K, M:
+        Stiffness and mass, SciPy sparse (CSR, CSC, COO, ...; the full matrix or one
+        triangle), node-major (node 1's DOF, then node 2's). ``M`` may be a 1-D NumPy vector
+        (lumped). Dense 2-D arrays are refused (``InputError``).
+    nodes:
+        Node coordinates, ``(nodes, 3)`` or ``(nodes, 2)``, in the length unit. Needed for
+        rigid interfaces, drawing, rigid-body motions and simulation.
+    node_sets:
+        ``{name: 1-based node numbers}``.
+    interfaces:
+        ``{name: {"kind": "rbe2" | "rbe3", "node_set": SET, "master": (x, y, z) or None,
+        "weights": [...] or None}}``.
+    units:
+        ``(length, mass, force)``, default ``("m", "kg", "N")``.
+    dofs:
+        DOF per node, of x, y, z, rx, ry, rz (default x, y, z).
+    default_interface:
+        The node set used when a call names no boundary.
+
+    Raises ``BodyFileError`` (not symmetric, mass not positive at a DOF, a NaN, nodes that
+    do not divide the DOF, a node set out of range) and ``InputError`` (shapes, types).
+    """
+
+    def __init__(
+        self,
+        K: Any,
+        M: Any,
+        nodes: Any = None,
+        node_sets: Optional[Mapping[str, Iterable[int]]] = None,
+        interfaces: Optional[Mapping[str, Mapping[str, Any]]] = None,
+        units: Optional[Sequence[str]] = None,
+        dofs: Sequence[str] = ("x", "y", "z"),
+        name: str = "body",
+        default_interface: Optional[str] = None,
+    ) -> None:
+        k_shape, k_rows, k_cols, k_values = _entries(K, "K", vector_ok=False)
+        m_shape, m_rows, m_cols, m_values = _entries(M, "M", vector_ok=True)
+        xyz = None
+        if nodes is not None:
+            array = np.asarray(nodes, dtype=np.float64)
+            if array.ndim != 2 or array.shape[1] not in (2, 3):
+                raise InputError(
+                    f"nodes has shape {array.shape}: give (nodes, 3) or (nodes, 2) coordinates"
+                )
+            if array.shape[1] == 2:
+                array = np.column_stack([array, np.zeros(array.shape[0])])
+            xyz = [tuple(row) for row in array.tolist()]
+        sets = {}
+        for set_name, members in (node_sets or {}).items():
+            numbers = np.asarray(list(members) if not isinstance(members, np.ndarray) else members)
+            if numbers.size and not np.issubdtype(numbers.dtype, np.integer):
+                raise InputError(f"node set `{set_name}` holds {numbers.dtype} values: give node numbers")
+            sets[str(set_name)] = [int(x) for x in numbers.ravel()]
+        given = {}
+        for iname, spec in (interfaces or {}).items():
+            master = spec.get("master")
+            weights = spec.get("weights")
+            given[str(iname)] = (
+                str(spec.get("kind", "rbe2")),
+                str(spec["node_set"]),
+                None if master is None else tuple(float(x) for x in master),
+                None if weights is None else [float(w) for w in weights],
+            )
+        length, mass, force = tuple(units) if units is not None else ("m", "kg", "N")
+        self._inner = RustBody.from_entries(
+            name,
+            k_shape,
+            k_rows,
+            k_cols,
+            k_values,
+            m_shape,
+            m_rows,
+            m_cols,
+            m_values,
+            [str(d) for d in dofs],
+            xyz,
+            sets,
+            given,
+            default_interface,
+            (str(length), str(mass), str(force)),
+        )
+
+    @classmethod
+    def from_file(cls, path: Union[str, "os.PathLike[str]"]) -> "Body":
+        """A body file (TOML naming Matrix Market, Harwell-Boeing, Abaqus, DMIG, OP4 or
+        CalculiX matrices), or ``builtin:NAME``, as ``flexmodes import`` reads it."""
+        body = cls.__new__(cls)
+        body._inner = RustBody.from_file(str(path))
+        return body
+
+    @property
+    def name(self) -> str:
+        return self._inner.name
+
+    @property
+    def dofs(self) -> int:
+        """Number of DOF."""
+        return self._inner.dofs
+
+    @property
+    def nodes(self) -> Optional[np.ndarray]:
+        """Node coordinates ``(nodes, 3)`` in the length unit, or None."""
+        return self._inner.nodes
+
+    @property
+    def node_sets(self) -> dict:
+        """``{name: 1-based node numbers}``."""
+        return self._inner.node_sets
+
+    @property
+    def units(self) -> tuple:
+        """``(length, mass, force)``."""
+        return self._inner.units
+
+    def summary(self) -> dict:
+        """What ``flexmodes import`` prints: DOF, mass and inertia, zero-energy modes, modes
+        the Sturm count says were missed, the lowest elastic Hz and their residuals. A
+        mechanism raises ``MechanismError``."""
+        return self._inner.summary()
+
+    def free_modes(self, n: int = 10) -> dict:
+        """The ``n`` lowest elastic free-free modes: ``hz``, ``residuals``, ``vectors``
+        (DOF × n, mass-normalised), the zero-energy ones and the Sturm count's
+        ``missed_modes``. Every pair's residual is checked; a failed check raises
+        ``LinalgError``."""
+        return self._inner.free_modes(int(n))
+
+    def reduce(
+        self,
+        method: str = "cb",
+        boundary: Union[None, str, int, Iterable[Union[str, int]]] = None,
+        modes: int = 10,
+        interface_modes: Optional[int] = None,
+        exudyn: bool = False,
+    ) -> "ReducedModel":
+        """Reduces the body as ``flexmodes export`` does.
+
+        ``method``: one of :data:`METHODS` (``"nr"``: no reduction). ``boundary``: set
+        names, 1-based node numbers, ``"rbe2:SET"`` (the set tied rigidly to one master at
+        its centroid: six coordinates), ``"rbe3:SET"`` (averaged); default the body's
+        default interface. ``modes``: kept normal modes. ``interface_modes``: reduce the
+        constraint modes to this many characteristic constraint modes. ``exudyn``: also
+        build the Exudyn body (floating frame on the first rigid interface)."""
+        return ReducedModel(
+            self._inner.reduce(
+                str(method), _items(boundary), int(modes), interface_modes, bool(exudyn)
+            )
+        )
+
+    def simulate(
+        self,
+        drive: str,
+        methods: Sequence[str] = ("nr", "cb"),
+        modes: Sequence[int] = (10,),
+        boundary: Sequence[str] = (),
+        outputs: Sequence[str] = (),
+        rate: float = 100.0,
+        ramp: float = 0.5,
+        axis: Sequence[float] = (0.0, 0.0, 1.0),
+        end: float = 1.0,
+        step: float = 1e-3,
+        output_every: int = 10,
+        progress: Progress = None,
+    ) -> dict:
+        """The driven body of ``flexmodes simulate --body``: the interface ``drive``
+        (``"rbe2:SET"`` or a declared rbe2 interface) spun up about ``axis`` to ``rate``
+        rad/s over ``ramp`` s, integrated by generalized-α with ``step`` s to ``end`` s.
+        ``methods``: ``"nr"`` (the full body, sparse) and reduction ids, each at every count
+        of ``modes``. Returns ``times`` (s) and ``runs``: per model its ``label``,
+        ``outputs`` (samples × output sets × 3, the sets' mean displacement in frame axes),
+        ``reaction`` (samples × 6 at the drive), costs and, against the full body, its
+        ``history_error`` and ``reaction_error``."""
+        ids = [str(m) for m in methods]
+        return self._inner.simulate(
+            str(drive),
+            [m for m in ids if m != "nr"],
+            [int(k) for k in modes],
+            "nr" in ids,
+            [str(b) for b in boundary],
+            [str(o) for o in outputs],
+            float(rate),
+            float(ramp),
+            tuple(float(a) for a in axis),
+            float(end),
+            float(step),
+            int(output_every),
+            progress,
+        )
+
+    def __repr__(self) -> str:
+        return f"flexmodes.Body({self.name!r}, {self.dofs} DOF)"
+
+
+class ReducedModel:
+    """A reduced model: ``psi`` (DOF × coordinates), ``k_r``, ``m_r``, the reduced model's
+    checked elastic ``hz`` and ``residuals``, column ``labels``, and ``save``."""
+
+    def __init__(self, inner: RustReducedModel) -> None:
+        self._inner = inner
+
+    @property
+    def psi(self) -> np.ndarray:
+        """Ψ, DOF × reduced coordinates (δ = Ψ z)."""
+        return self._inner.psi
+
+    @property
+    def k_r(self) -> np.ndarray:
+        """ΨᵀKΨ."""
+        return self._inner.k_r
+
+    @property
+    def m_r(self) -> np.ndarray:
+        """ΨᵀMΨ."""
+        return self._inner.m_r
+
+    @property
+    def hz(self) -> np.ndarray:
+        """Elastic frequencies of the reduced model, Hz (each pair's residual checked)."""
+        return self._inner.hz
+
+    @property
+    def residuals(self) -> np.ndarray:
+        """Relative residual of each of :attr:`hz`."""
+        return self._inner.residuals
+
+    @property
+    def zero_energy_modes(self) -> int:
+        return self._inner.zero_energy_modes
+
+    @property
+    def labels(self) -> list:
+        """One label per column of Ψ (``constraint node 5 x``, ``normal 2 (12.3 Hz)``,
+        ``rbe2 bore rx``, ...)."""
+        return self._inner.labels
+
+    @property
+    def method(self) -> str:
+        return self._inner.method
+
+    @property
+    def boundary(self) -> list:
+        """Interface nodes, 1-based."""
+        return self._inner.boundary
+
+    @property
+    def timings(self) -> list:
+        """``(phase, seconds)`` of the reduction."""
+        return self._inner.timings
+
+    def document(self) -> dict:
+        """What ``model.json`` holds: columns, interfaces and their masters, inertia
+        invariants, the free-free Sturm check."""
+        return self._inner.document()
+
+    def save(self, folder: Union[str, "os.PathLike[str]"], exudyn: bool = False) -> list:
+        """Writes what ``flexmodes export`` writes (``psi.npy``, ``k_r.mtx``, ``m_r.mtx``,
+        ``model.json`` and, with ``exudyn``, ``exudyn/``) into ``folder``, atomically: the
+        folder is the old one or the complete new one. Returns the files written."""
+        import os
+
+        return self._inner.save(os.fspath(folder), bool(exudyn))
+
+    def __repr__(self) -> str:
+        rows, cols = self._inner.psi.shape
+        return f"flexmodes.ReducedModel({self.method!r}, Ψ {rows} × {cols})"
+
+
+def compare(
+    body: Body,
+    methods: Optional[Sequence[str]] = None,
+    modes: Optional[Sequence[int]] = None,
+    boundary: Union[None, str, int, Iterable[Union[str, int]]] = None,
+    interface_modes: Optional[int] = None,
+    band_hz: Optional[float] = None,
+    tolerance: float = 0.01,
+    progress: Progress = None,
+) -> dict:
+    """What ``flexmodes bench modes --body`` measures: every method (default all eight) at
+    every kept-mode count (default 4, 8, 16, 32) against the full body's own checked modes.
+    Returns ``reference_hz``, ``points`` (per model: offline seconds, peak memory, largest
+    frequency error, smallest MAC, static-compliance error, FRF error with a band, Pareto
+    flag), ``not_applicable`` and ``advice``. ``progress(phase, fraction)`` is called about
+    every 0.2 s; if it raises, the work stops and its exception is re-raised."""
+    return body._inner.compare(
+        None if methods is None else [str(m) for m in methods],
+        None if modes is None else [int(k) for k in modes],
+        _items(boundary),
+        interface_modes,
+        band_hz,
+        float(tolerance),
+        progress,
+    )
+
+
+__all__ = [
+    "Body",
+    "ReducedModel",
+    "compare",
+    "METHODS",
+    "errors",
+    "FlexmodesError",
+    "InputError",
+    "BodyFileError",
+    "MechanismError",
+    "LinalgError",
+    "ReductionError",
+    "DynamicsError",
+    "FileError",
+    "Cancelled",
+    "__version__",
+]

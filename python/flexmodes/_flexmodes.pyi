@@ -1,0 +1,106 @@
+"""Type stubs of the Rust extension (flexmodes' own wrappers in __init__.py are typed inline)."""
+
+from typing import Any, Callable, Optional
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Progress = Optional[Callable[[Optional[str], Optional[float]], Any]]
+FloatArray = npt.NDArray[np.float64]
+IndexArray = npt.NDArray[np.int64]
+
+class RustBody:
+    @staticmethod
+    def from_entries(
+        name: str,
+        k_shape: tuple[int, int],
+        k_rows: IndexArray,
+        k_cols: IndexArray,
+        k_values: FloatArray,
+        m_shape: tuple[int, int],
+        m_rows: IndexArray,
+        m_cols: IndexArray,
+        m_values: FloatArray,
+        dofs: list[str],
+        nodes: Optional[list[tuple[float, float, float]]],
+        node_sets: dict[str, list[int]],
+        interfaces: dict[
+            str, tuple[str, str, Optional[tuple[float, float, float]], Optional[list[float]]]
+        ],
+        default_interface: Optional[str],
+        units: tuple[str, str, str],
+    ) -> RustBody: ...
+    @staticmethod
+    def from_file(path: str) -> RustBody: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def dofs(self) -> int: ...
+    @property
+    def nodes(self) -> Optional[FloatArray]: ...
+    @property
+    def node_sets(self) -> dict[str, list[int]]: ...
+    @property
+    def units(self) -> tuple[str, str, str]: ...
+    def summary(self) -> dict[str, Any]: ...
+    def free_modes(self, n: int) -> dict[str, Any]: ...
+    def reduce(
+        self,
+        method: str,
+        boundary: Optional[list[str]],
+        modes: int,
+        interface_modes: Optional[int],
+        exudyn: bool,
+    ) -> RustReducedModel: ...
+    def compare(
+        self,
+        methods: Optional[list[str]],
+        modes: Optional[list[int]],
+        boundary: Optional[list[str]],
+        interface_modes: Optional[int],
+        band_hz: Optional[float],
+        tolerance: float,
+        progress: Progress,
+    ) -> dict[str, Any]: ...
+    def simulate(
+        self,
+        drive: str,
+        methods: list[str],
+        modes: list[int],
+        full: bool,
+        boundary: list[str],
+        outputs: list[str],
+        rate: float,
+        ramp: float,
+        axis: tuple[float, float, float],
+        end: float,
+        step: float,
+        output_every: int,
+        progress: Progress,
+    ) -> dict[str, Any]: ...
+
+class RustReducedModel:
+    @property
+    def psi(self) -> FloatArray: ...
+    @property
+    def k_r(self) -> FloatArray: ...
+    @property
+    def m_r(self) -> FloatArray: ...
+    @property
+    def hz(self) -> FloatArray: ...
+    @property
+    def residuals(self) -> FloatArray: ...
+    @property
+    def zero_energy_modes(self) -> int: ...
+    @property
+    def labels(self) -> list[str]: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def boundary(self) -> list[int]: ...
+    @property
+    def timings(self) -> list[tuple[str, float]]: ...
+    def document(self) -> dict[str, Any]: ...
+    def save(self, folder: str, exudyn: bool) -> list[str]: ...

@@ -1,0 +1,645 @@
+//! `flexmodes._flexmodes`: the Rust side of the Python package. Bodies from entries (the
+//! Python side turns SciPy matrices into them) or body files, reductions as `export` builds
+//! them, the comparison of `bench modes --body` and the driven body of `simulate --body`.
+//! Every call releases the GIL while it computes; errors are raised as the exception classes
+//! of `flexmodes.errors`, carrying the error's data.
+
+use std::{
+    collections::BTreeMap,
+    str::FromStr,
+    sync::{
+        Arc, Mutex,
+        atomic::{AtomicBool, Ordering},
+    },
+    time::Duration,
+};
+
+use faer::MatRef;
+use flexmodes::{
+    Error, Progress,
+    analysis::count_zero_energy_modes,
+    body_file::{BodyMatrices, ImportedBody, InterfaceKind, InterfaceSpec, MatrixEntries, Units},
+    export::{ExportParameters, ReducedExport, reduce_for_export},
+    models::{
+        BodyComparisonParameters, BodyInterfaces, DrivenBodyParameters, compare_body_methods,
+        driven_body_study, import_summary, refuse_mechanism,
+    },
+    reduction::Method,
+};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, ndarray::Array2};
+use pyo3::{
+    prelude::*,
+    types::{PyDict, PyList},
+};
+
+/// Raises `err` as the `flexmodes.errors` class of its layer, with `kind` (the variant's path,
+/// e.g. `BodyFile.NotSymmetric`) and `data` (its fields) as attributes.
+fn raise(py: Python<'_>, err: Error) -> PyErr {
+    let class = match &err {
+        Error::BodyFile(_) => "BodyFileError",
+        Error::Linalg(_) => "LinalgError",
+        Error::Reduction(_) => "ReductionError",
+        Error::Dynamics(_) => "DynamicsError",
+        Error::Mechanism { .. } => "MechanismError",
+        Error::Cancelled => "Cancelled",
+        Error::Io { .. } => "FileError",
+        Error::InvalidOption { .. } => "InputError",
+        _ => "FlexmodesError",
+    };
+    let mut message = err.to_string();
+    let mut source = std::error::Error::source(&err);
+    while let Some(s) = source {
+        let text = s.to_string();
+        if !message.contains(&text) {
+            message.push_str(": ");
+            message.push_str(&text);
+        }
+        source = s.source();
+    }
+    let (kind, data) = variant_path(serde_json::to_value(&err).unwrap_or_default());
+    build_error(py, class, &message, &kind, &data.to_string())
+}
+
+/// The externally tagged variant names down to the fields: `{"BodyFile": {"NotSymmetric":
+/// {...}}}` is `("BodyFile.NotSymmetric", {...})`.
+fn variant_path(mut value: serde_json::Value) -> (String, serde_json::Value) {
+    let mut path = Vec::new();
+    loop {
+        match value {
+            serde_json::Value::String(s)
+                if path.is_empty() || s.starts_with(char::is_uppercase) =>
+            {
+                path.push(s);
+                return (path.join("."), serde_json::Value::Null);
+            }
+            serde_json::Value::Object(map)
+                if map.len() == 1 && map.keys().all(|k| k.starts_with(char::is_uppercase)) =>
+            {
+                let (k, v) = map.into_iter().next().expect("one entry");
+                path.push(k);
+                value = v;
+            }
+            other => return (path.join("."), other),
+        }
+    }
+}
+
+fn build_error(py: Python<'_>, class: &str, message: &str, kind: &str, data: &str) -> PyErr {
+    let made = (|| -> PyResult<PyErr> {
+        let errors = py.import("flexmodes.errors")?;
+        let value = errors.getattr(class)?.call1((message,))?;
+        value.setattr("kind", kind)?;
+        value.setattr("data", py.import("json")?.call_method1("loads", (data,))?)?;
+        Ok(PyErr::from_value(value))
+    })();
+    made.unwrap_or_else(|e| e)
+}
+
+/// A bad argument: `flexmodes.errors.InputError` (also a `ValueError`).
+fn input_error(py: Python<'_>, message: String) -> PyErr {
+    build_error(py, "InputError", &message, "Input", "null")
+}
+
+/// Runs `work` with the GIL released. With a callback, a second thread calls
+/// `callback(phase, fraction)` about every 0.2 s (`fraction`: of the current time
+/// integration, or None); if the callback raises, the work is cancelled and its exception
+/// re-raised.
+fn computing<T: Send>(
+    py: Python<'_>,
+    callback: Option<Py<PyAny>>,
+    work: impl FnOnce(&Progress) -> flexmodes::Result<T> + Send,
+) -> PyResult<T> {
+    let progress = if callback.is_some() {
+        Progress::new()
+    } else {
+        Progress::default()
+    };
+    let done = AtomicBool::new(false);
+    let raised: Mutex<Option<PyErr>> = Mutex::new(None);
+    let result = py.detach(|| {
+        std::thread::scope(|scope| {
+            if let Some(callback) = &callback {
+                let (progress, done, raised) = (&progress, &done, &raised);
+                scope.spawn(move || {
+                    let mut last = None;
+                    while !done.load(Ordering::SeqCst) {
+                        std::thread::sleep(Duration::from_millis(200));
+                        let phase = progress.phase_reading().map(|p| p.name);
+                        let fraction = progress
+                            .reading()
+                            .filter(|r| r.end_time > 0.0)
+                            .map(|r| (r.time / r.end_time).clamp(0.0, 1.0));
+                        let now = (phase.clone(), fraction.map(|f| (f * 1000.0) as i64));
+                        if last.as_ref() == Some(&now) || done.load(Ordering::SeqCst) {
+                            continue;
+                        }
+                        last = Some(now);
+                        Python::attach(|py| {
+                            if let Err(e) = callback.call1(py, (phase, fraction)) {
+                                *raised.lock().expect("not poisoned") = Some(e);
+                                progress.cancel();
+                            }
+                        });
+                    }
+                });
+            }
+            let out = work(&progress);
+            done.store(true, Ordering::SeqCst);
+            out
+        })
+    });
+    if let Some(e) = raised.lock().expect("not poisoned").take() {
+        return Err(e);
+    }
+    result.map_err(|e| raise(py, e))
+}
+
+fn matrix<'py>(py: Python<'py>, m: MatRef<'_, f64>) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((m.nrows(), m.ncols()), |(i, j)| m[(i, j)]).into_pyarray(py)
+}
+
+fn vector<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
+    v.to_vec().into_pyarray(py)
+}
+
+fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    py.import("json")?
+        .call_method1("loads", (value.to_string(),))
+}
+
+fn method(py: Python<'_>, id: &str) -> PyResult<Method> {
+    Method::from_str(id).map_err(|e| input_error(py, e.to_string()))
+}
+
+/// Entries from three NumPy arrays of equal length.
+fn entries(
+    py: Python<'_>,
+    what: &str,
+    shape: (usize, usize),
+    rows: PyReadonlyArray1<'_, i64>,
+    cols: PyReadonlyArray1<'_, i64>,
+    values: PyReadonlyArray1<'_, f64>,
+) -> PyResult<MatrixEntries> {
+    let (r, c, v) = (rows.as_slice()?, cols.as_slice()?, values.as_slice()?);
+    if r.len() != v.len() || c.len() != v.len() {
+        return Err(input_error(
+            py,
+            format!(
+                "{what}: {} row indices, {} column indices and {} values",
+                r.len(),
+                c.len(),
+                v.len()
+            ),
+        ));
+    }
+    if let Some(k) = r.iter().zip(c).position(|(&i, &j)| i < 0 || j < 0) {
+        return Err(input_error(
+            py,
+            format!(
+                "{what}: entry {k} has a negative index ({}, {})",
+                r[k], c[k]
+            ),
+        ));
+    }
+    Ok(MatrixEntries {
+        rows: shape.0,
+        cols: shape.1,
+        entries: r
+            .iter()
+            .zip(c)
+            .zip(v)
+            .map(|((&i, &j), &x)| (i as usize, j as usize, x))
+            .collect(),
+    })
+}
+
+/// An interface as Python hands it over: kind (`rbe2`, `rbe3`), node set, master point
+/// (None: the set's centroid), RBE3 weights.
+type GivenInterface = (String, String, Option<[f64; 3]>, Option<Vec<f64>>);
+
+/// A checked body (`flexmodes.Body` wraps it).
+#[pyclass(module = "flexmodes._flexmodes", name = "RustBody", frozen)]
+struct RustBody {
+    body: Arc<ImportedBody>,
+}
+
+#[pymethods]
+impl RustBody {
+    /// A body from stiffness and mass entries (0-based, node-major), checked as a body file.
+    #[staticmethod]
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (name, k_shape, k_rows, k_cols, k_values, m_shape, m_rows, m_cols, m_values, dofs, nodes, node_sets, interfaces, default_interface, units))]
+    fn from_entries(
+        py: Python<'_>,
+        name: String,
+        k_shape: (usize, usize),
+        k_rows: PyReadonlyArray1<'_, i64>,
+        k_cols: PyReadonlyArray1<'_, i64>,
+        k_values: PyReadonlyArray1<'_, f64>,
+        m_shape: (usize, usize),
+        m_rows: PyReadonlyArray1<'_, i64>,
+        m_cols: PyReadonlyArray1<'_, i64>,
+        m_values: PyReadonlyArray1<'_, f64>,
+        dofs: Vec<String>,
+        nodes: Option<Vec<[f64; 3]>>,
+        node_sets: BTreeMap<String, Vec<usize>>,
+        interfaces: BTreeMap<String, GivenInterface>,
+        default_interface: Option<String>,
+        units: (String, String, String),
+    ) -> PyResult<Self> {
+        let stiffness = entries(py, "K", k_shape, k_rows, k_cols, k_values)?;
+        let mass = entries(py, "M", m_shape, m_rows, m_cols, m_values)?;
+        let mut specs = BTreeMap::new();
+        for (iname, (kind, node_set, master, weights)) in interfaces {
+            let kind = match kind.as_str() {
+                "rbe2" => InterfaceKind::Rbe2,
+                "rbe3" => InterfaceKind::Rbe3,
+                other => {
+                    return Err(input_error(
+                        py,
+                        format!("interface `{iname}`: kind `{other}` (known: rbe2, rbe3)"),
+                    ));
+                }
+            };
+            specs.insert(
+                iname,
+                InterfaceSpec {
+                    kind,
+                    node_set,
+                    master,
+                    weights,
+                },
+            );
+        }
+        let given = BodyMatrices {
+            name,
+            stiffness,
+            mass,
+            dofs,
+            nodes,
+            node_sets,
+            interfaces: specs,
+            default_interface,
+            units: Units {
+                length: units.0,
+                mass: units.1,
+                force: units.2,
+            },
+        };
+        let body = computing(py, None, move |_| ImportedBody::from_matrices(given))?;
+        Ok(Self {
+            body: Arc::new(body),
+        })
+    }
+
+    /// A body file (`builtin:NAME` or a path), as `flexmodes import` reads it.
+    #[staticmethod]
+    fn from_file(py: Python<'_>, path: String) -> PyResult<Self> {
+        let body = computing(py, None, move |_| ImportedBody::load(&path))?;
+        Ok(Self {
+            body: Arc::new(body),
+        })
+    }
+
+    #[getter]
+    fn name(&self) -> String {
+        self.body.model.name.clone()
+    }
+
+    #[getter]
+    fn dofs(&self) -> usize {
+        self.body.model.dof_count()
+    }
+
+    #[getter]
+    fn nodes<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        let model = &self.body.model;
+        self.body.has_coordinates.then(|| {
+            Array2::from_shape_fn((model.nodes.len(), 3), |(i, j)| model.nodes[i][j])
+                .into_pyarray(py)
+        })
+    }
+
+    #[getter]
+    fn node_sets(&self) -> BTreeMap<String, Vec<usize>> {
+        self.body.node_sets.clone()
+    }
+
+    #[getter]
+    fn units(&self) -> (String, String, String) {
+        let u = &self.body.units;
+        (u.length.clone(), u.mass.clone(), u.force.clone())
+    }
+
+    /// What `flexmodes import` prints, as a dict.
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let body = &self.body;
+        let (value, _) = computing(py, None, |_| import_summary(body))?;
+        json_to_py(py, &value)
+    }
+
+    /// The lowest `n` elastic free-free modes and the zero-energy ones below them.
+    fn free_modes<'py>(&self, py: Python<'py>, n: usize) -> PyResult<Bound<'py, PyDict>> {
+        let model = &self.body.model;
+        let full = computing(py, None, |_| {
+            let full = count_zero_energy_modes(model, n)?;
+            refuse_mechanism(model, &full)?;
+            Ok(full)
+        })?;
+        let z = full.zero_modes;
+        let elastic = (full.modes.values.len() - z).min(n);
+        let d = PyDict::new(py);
+        d.set_item("zero_energy_modes", z)?;
+        d.set_item("hz", vector(py, &full.modes.hz()[z..z + elastic]))?;
+        d.set_item(
+            "residuals",
+            vector(py, &full.modes.residuals[z..z + elastic]),
+        )?;
+        d.set_item(
+            "vectors",
+            matrix(py, full.modes.vectors.as_ref().subcols(z, elastic)),
+        )?;
+        d.set_item(
+            "zero_energy_vectors",
+            matrix(py, full.modes.vectors.as_ref().subcols(0, z)),
+        )?;
+        d.set_item("threshold_hz", full.threshold_hz)?;
+        d.set_item("missed_modes", full.modes.sturm.map_or(0, |c| c.missed()))?;
+        Ok(d)
+    }
+
+    /// Reduces the body as `flexmodes export` does.
+    #[pyo3(signature = (method, boundary, modes, interface_modes, exudyn))]
+    fn reduce(
+        &self,
+        py: Python<'_>,
+        method: &str,
+        boundary: Option<Vec<String>>,
+        modes: usize,
+        interface_modes: Option<usize>,
+        exudyn: bool,
+    ) -> PyResult<RustReducedModel> {
+        let method = self::method(py, method)?;
+        let body = &self.body;
+        let reduced = computing(py, None, |_| {
+            let interfaces = match &boundary {
+                Some(items) => BodyInterfaces::of(body, items, interface_modes)?,
+                None => BodyInterfaces {
+                    boundary: body.default_interface_nodes()?.to_vec(),
+                    rigid: Vec::new(),
+                    averaging: Vec::new(),
+                    interface_modes,
+                },
+            };
+            let parameters = ExportParameters {
+                rigid_interfaces: interfaces.rigid,
+                averaging_interfaces: interfaces.averaging,
+                interface_modes,
+                exudyn,
+                ..ExportParameters::default()
+            };
+            reduce_for_export(body, method, &interfaces.boundary, modes, &parameters)
+        })?;
+        Ok(RustReducedModel {
+            body: body.clone(),
+            reduced: Mutex::new(reduced),
+        })
+    }
+
+    /// What `bench modes --body` measures, as a dict.
+    #[pyo3(signature = (methods, modes, boundary, interface_modes, band_hz, tolerance, progress))]
+    #[allow(clippy::too_many_arguments)]
+    fn compare<'py>(
+        &self,
+        py: Python<'py>,
+        methods: Option<Vec<String>>,
+        modes: Option<Vec<usize>>,
+        boundary: Option<Vec<String>>,
+        interface_modes: Option<usize>,
+        band_hz: Option<f64>,
+        tolerance: f64,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let defaults = BodyComparisonParameters::default();
+        let parameters = BodyComparisonParameters {
+            boundary,
+            interface_modes,
+            methods: match methods {
+                Some(ids) => ids
+                    .iter()
+                    .map(|m| method(py, m))
+                    .collect::<PyResult<Vec<_>>>()?,
+                None => defaults.methods,
+            },
+            modes: modes.unwrap_or(defaults.modes),
+            band_hz,
+            tolerance,
+        };
+        let body = &self.body;
+        let c = computing(py, progress, |p| compare_body_methods(body, &parameters, p))?;
+        let d = PyDict::new(py);
+        d.set_item("boundary", c.boundary)?;
+        d.set_item("zero_energy_modes", c.zero_modes)?;
+        d.set_item("reference_hz", c.reference_hz)?;
+        d.set_item("reference_residuals", c.reference_residuals)?;
+        d.set_item("reference_s", c.reference_s)?;
+        let points = PyList::empty(py);
+        for q in &c.points {
+            let p = PyDict::new(py);
+            p.set_item("method", q.method.id())?;
+            p.set_item("modes", q.modes)?;
+            p.set_item("coordinates", q.coordinates)?;
+            p.set_item("offline_s", q.offline_s)?;
+            p.set_item("peak_mb", q.peak_mb)?;
+            p.set_item("freq_rel_error", q.freq_rel_error)?;
+            p.set_item("min_mac", q.min_mac)?;
+            p.set_item("static_rel_error", q.static_error)?;
+            p.set_item("frf_rel_error", q.frf_error)?;
+            p.set_item("pareto", q.pareto)?;
+            points.append(p)?;
+        }
+        d.set_item("points", points)?;
+        let refused = PyList::empty(py);
+        for (m, why) in &c.not_applicable {
+            refused.append((m.id(), why))?;
+        }
+        d.set_item("not_applicable", refused)?;
+        d.set_item("advice", json_to_py(py, &c.advice.json())?)?;
+        Ok(d)
+    }
+
+    /// The driven body of `flexmodes simulate --body`: histories as NumPy arrays.
+    #[pyo3(signature = (drive, methods, modes, full, boundary, outputs, rate, ramp, axis, end, step, output_every, progress))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate<'py>(
+        &self,
+        py: Python<'py>,
+        drive: String,
+        methods: Vec<String>,
+        modes: Vec<usize>,
+        full: bool,
+        boundary: Vec<String>,
+        outputs: Vec<String>,
+        rate: f64,
+        ramp: f64,
+        axis: [f64; 3],
+        end: f64,
+        step: f64,
+        output_every: usize,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let methods = methods
+            .iter()
+            .map(|m| method(py, m))
+            .collect::<PyResult<Vec<_>>>()?;
+        let defaults = DrivenBodyParameters::default();
+        let parameters = DrivenBodyParameters {
+            drive,
+            boundary,
+            outputs,
+            axis,
+            rate,
+            ramp,
+            integration: flexmodes::dynamics::DrivenIntegration {
+                step,
+                end,
+                output_every,
+                ..defaults.integration
+            },
+            ..defaults
+        };
+        let body = &self.body;
+        let study = computing(py, progress, |p| {
+            driven_body_study(body, &parameters, &methods, &modes, full, p)
+        })?;
+        let d = PyDict::new(py);
+        d.set_item("times", vector(py, &study.times))?;
+        d.set_item("outputs", study.output_names.clone())?;
+        d.set_item("drive", study.drive.0.clone())?;
+        let runs = PyList::empty(py);
+        for run in &study.runs {
+            let r = PyDict::new(py);
+            r.set_item("label", run.label())?;
+            r.set_item("method", run.method.map(|m| m.id()).unwrap_or("nr"))?;
+            r.set_item("modes", run.modes)?;
+            r.set_item("coordinates", run.coordinates)?;
+            r.set_item("offline_s", run.offline_s)?;
+            r.set_item("online_s", run.cost.online_s)?;
+            r.set_item("steps", run.cost.steps)?;
+            let samples = run.outputs.first().map_or(0, Vec::len);
+            let sets = run.outputs.len();
+            let out =
+                Array2::from_shape_fn((samples, 3 * sets), |(t, k)| run.outputs[k / 3][t][k % 3])
+                    .into_shape_with_order((samples, sets, 3))
+                    .map_err(|e| input_error(py, e.to_string()))?;
+            r.set_item("outputs", out.into_pyarray(py))?;
+            let reaction =
+                Array2::from_shape_fn((run.reaction.len(), 6), |(t, k)| run.reaction[t][k]);
+            r.set_item("reaction", reaction.into_pyarray(py))?;
+            r.set_item("history_error", run.history_error)?;
+            r.set_item("reaction_error", run.reaction_error)?;
+            runs.append(r)?;
+        }
+        d.set_item("runs", runs)?;
+        Ok(d)
+    }
+}
+
+/// A reduced model (`flexmodes.ReducedModel` wraps it).
+#[pyclass(module = "flexmodes._flexmodes", name = "RustReducedModel", frozen)]
+struct RustReducedModel {
+    body: Arc<ImportedBody>,
+    reduced: Mutex<ReducedExport>,
+}
+
+impl RustReducedModel {
+    fn with<T>(&self, f: impl FnOnce(&ReducedExport) -> T) -> T {
+        f(&self.reduced.lock().expect("not poisoned"))
+    }
+}
+
+#[pymethods]
+impl RustReducedModel {
+    #[getter]
+    fn psi<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.with(|r| matrix(py, r.basis.psi.as_ref()))
+    }
+
+    #[getter]
+    fn k_r<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.with(|r| matrix(py, r.k_r.as_ref()))
+    }
+
+    #[getter]
+    fn m_r<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.with(|r| matrix(py, r.m_r.as_ref()))
+    }
+
+    #[getter]
+    fn hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.with(|r| vector(py, &r.hz))
+    }
+
+    #[getter]
+    fn residuals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.with(|r| vector(py, &r.residuals))
+    }
+
+    #[getter]
+    fn zero_energy_modes(&self) -> usize {
+        self.with(|r| r.zero_energy)
+    }
+
+    #[getter]
+    fn labels(&self) -> Vec<String> {
+        self.with(|r| r.basis.columns.iter().map(|c| c.label.clone()).collect())
+    }
+
+    #[getter]
+    fn method(&self) -> &'static str {
+        self.with(|r| r.method.id())
+    }
+
+    #[getter]
+    fn boundary(&self) -> Vec<usize> {
+        self.with(|r| r.boundary.clone())
+    }
+
+    #[getter]
+    fn timings(&self) -> Vec<(&'static str, f64)> {
+        self.with(|r| r.timings.clone())
+    }
+
+    /// `model.json` as a dict: columns, interfaces and their masters, inertia invariants.
+    fn document<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let doc = self.with(|r| r.document(&self.body));
+        json_to_py(py, &doc)
+    }
+
+    /// Writes what `flexmodes export` writes into `folder` (atomically); returns the files.
+    #[pyo3(signature = (folder, exudyn))]
+    fn save(
+        &self,
+        py: Python<'_>,
+        folder: std::path::PathBuf,
+        exudyn: bool,
+    ) -> PyResult<Vec<String>> {
+        let body = &self.body;
+        let reduced = &self.reduced;
+        computing(py, None, |_| {
+            let mut r = reduced.lock().expect("not poisoned");
+            if exudyn {
+                r.with_exudyn(body)?;
+            }
+            r.write(body, &folder)
+        })
+    }
+}
+
+#[pymodule]
+fn _flexmodes(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<RustBody>()?;
+    m.add_class::<RustReducedModel>()?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,239 @@
+//! A body handed over in memory (Python's `flexmodes.Body`): stiffness and mass as entries,
+//! optional node coordinates, node sets and interfaces, checked exactly as a body file is.
+
+use std::collections::BTreeMap;
+
+use super::{
+    BodyFileError, BodyLocation, ImportedBody, InterfaceSpec, MatrixMarket, MatrixMarketFormat,
+    Units,
+    imported_body::{SetsAndInterfaces, checked_sets, node_dof},
+    matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
+};
+use crate::{
+    Error, Result,
+    fem::{DofMap, FeModel, RigidMotions},
+};
+
+/// A sparse matrix as entries: `rows × cols`, `(row, col, value)` 0-based, duplicates summed.
+/// A square matrix whose off-diagonal entries all lie in one triangle is read as that
+/// triangle of a symmetric matrix; otherwise it must be symmetric (to
+/// [`super::SYMMETRY_TOLERANCE`] of its largest entry). A mass may also be a vector
+/// (`n × 1` or `1 × n`): lumped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MatrixEntries {
+    /// Rows.
+    pub rows: usize,
+    /// Columns.
+    pub cols: usize,
+    /// `(row, col, value)`, 0-based.
+    pub entries: Vec<(usize, usize, f64)>,
+}
+
+/// What [`ImportedBody::from_matrices`] takes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyMatrices {
+    /// The body's name, used in messages.
+    pub name: String,
+    /// The stiffness, node-major (node 1's DOF, then node 2's, ...), in the force and length
+    /// units of [`Self::units`].
+    pub stiffness: MatrixEntries,
+    /// The mass, same ordering, in the mass unit.
+    pub mass: MatrixEntries,
+    /// DOF per node, of x, y, z, rx, ry, rz (default: x, y, z).
+    pub dofs: Vec<String>,
+    /// Node coordinates in the length unit (`None`: unknown; drawing and rigid-body motions
+    /// need them).
+    pub nodes: Option<Vec<[f64; 3]>>,
+    /// Named node sets, 1-based node numbers.
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+    /// Rigid (RBE2) and averaging (RBE3) interfaces on the node sets.
+    pub interfaces: BTreeMap<String, InterfaceSpec>,
+    /// The node set used as interface unless another is named.
+    pub default_interface: Option<String>,
+    /// Units of the numbers.
+    pub units: Units,
+}
+
+impl Default for BodyMatrices {
+    fn default() -> Self {
+        Self {
+            name: "body".into(),
+            stiffness: MatrixEntries {
+                rows: 0,
+                cols: 0,
+                entries: Vec::new(),
+            },
+            mass: MatrixEntries {
+                rows: 0,
+                cols: 0,
+                entries: Vec::new(),
+            },
+            dofs: ["x", "y", "z"].map(String::from).to_vec(),
+            nodes: None,
+            node_sets: BTreeMap::new(),
+            interfaces: BTreeMap::new(),
+            default_interface: None,
+            units: Units::default(),
+        }
+    }
+}
+
+impl MatrixEntries {
+    /// The first entry that is not finite, or lies outside the matrix.
+    fn check(&self, path: &str) -> Result<()> {
+        for (k, &(i, j, v)) in self.entries.iter().enumerate() {
+            if i >= self.rows || j >= self.cols {
+                return Err(Error::BodyFile(BodyFileError::MatrixIndexOutOfRange {
+                    path: path.into(),
+                    line: k + 1,
+                    row: i + 1,
+                    col: j + 1,
+                    rows: self.rows,
+                    cols: self.cols,
+                }));
+            }
+            if !v.is_finite() {
+                return Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
+                    path: path.into(),
+                    line: k + 1,
+                    value: v.to_string(),
+                }));
+            }
+        }
+        Ok(())
+    }
+
+    /// As a Matrix Market file would give it: one triangle of a symmetric matrix when every
+    /// off-diagonal entry lies on one side.
+    fn into_matrix_market(self) -> MatrixMarket {
+        let square = self.rows == self.cols;
+        let lower = self.entries.iter().all(|&(i, j, _)| i >= j);
+        let upper = self.entries.iter().all(|&(i, j, _)| i <= j);
+        let symmetric = square && (lower || upper);
+        MatrixMarket {
+            rows: self.rows,
+            cols: self.cols,
+            format: MatrixMarketFormat::Coordinate,
+            symmetric,
+            entries: self.entries,
+        }
+    }
+}
+
+impl ImportedBody {
+    /// A body from matrices in memory, checked as [`ImportedBody::load`] checks a body
+    /// file: square symmetric stiffness, positive (semi-)definite mass located at a DOF,
+    /// nodes that divide the DOF, node sets within the nodes, interfaces on defined sets, and
+    /// the rigid motions found in the stiffness's null space when coordinates are given. An
+    /// error names the matrix (`K of NAME`, `M of NAME`) and, for an entry, its position in
+    /// the entry list as the line.
+    pub fn from_matrices(body: BodyMatrices) -> Result<Self> {
+        let k_name = format!("K of {}", body.name);
+        let m_name = format!("M of {}", body.name);
+        let body_error = |reason: String| {
+            Error::BodyFile(BodyFileError::BodyFile {
+                path: format!("<{} in memory>", body.name),
+                line: None,
+                reason,
+            })
+        };
+        if body.dofs.is_empty() {
+            return Err(body_error("`dofs` lists no DOF".into()));
+        }
+        let mut per_node = Vec::new();
+        for d in &body.dofs {
+            let dof = node_dof(d).ok_or_else(|| {
+                body_error(format!("unknown DOF `{d}` (known: x, y, z, rx, ry, rz)"))
+            })?;
+            if per_node.contains(&dof) {
+                return Err(body_error(format!("DOF `{d}` is listed twice")));
+            }
+            per_node.push(dof);
+        }
+        let dofs = DofMap::new(per_node);
+        let per = dofs.per_node();
+        body.stiffness.check(&k_name)?;
+        body.mass.check(&m_name)?;
+        let n = body.stiffness.rows;
+        if body.stiffness.cols != n || n == 0 {
+            return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+                path: k_name,
+                what: "stiffness".into(),
+                rows: n,
+                cols: body.stiffness.cols,
+                expected: "a stiffness must be square, with at least one DOF".into(),
+            }));
+        }
+        let node_count = match &body.nodes {
+            Some(nodes) => nodes.len(),
+            None => n / per,
+        };
+        if node_count * per != n {
+            return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+                path: k_name,
+                what: "stiffness".into(),
+                rows: n,
+                cols: n,
+                expected: format!(
+                    "{node_count} nodes with {per} DOF each ({}) make {} DOF",
+                    body.dofs.join(", "),
+                    node_count * per
+                ),
+            }));
+        }
+        if let Some((node, xyz)) = body
+            .nodes
+            .iter()
+            .flatten()
+            .enumerate()
+            .find(|(_, xyz)| xyz.iter().any(|x| !x.is_finite()))
+        {
+            return Err(body_error(format!(
+                "node {} has the coordinates {xyz:?}, which are not finite",
+                node + 1
+            )));
+        }
+        let interfaces = checked_sets(
+            &SetsAndInterfaces {
+                node_sets: &body.node_sets,
+                interfaces: &body.interfaces,
+                default_interface: body.default_interface.as_deref(),
+            },
+            node_count,
+            &format!("<{} in memory>", body.name),
+            &|_| None,
+        )?;
+        let node_major = |i: usize| i;
+        let k = symmetric_matrix(
+            &body.stiffness.into_matrix_market(),
+            &k_name,
+            "stiffness",
+            &node_major,
+        )?;
+        let m = mass_matrix(&body.mass.into_matrix_market(), &m_name, n, &node_major)?;
+        let has_coordinates = body.nodes.is_some();
+        let mut model = FeModel {
+            name: body.name.clone(),
+            dofs,
+            nodes: body.nodes.unwrap_or_else(|| vec![[0.0; 3]; node_count]),
+            edges: Vec::new(),
+            k,
+            m,
+            rigid_motions: RigidMotions::Unknown,
+        };
+        check_mass(&model, &m_name)?;
+        if has_coordinates && rigid_motions_are_null_space(&model) {
+            model.rigid_motions = RigidMotions::FromGeometry;
+        }
+        Ok(Self {
+            model,
+            node_sets: body.node_sets,
+            interfaces,
+            has_coordinates,
+            units: body.units,
+            description: format!("{} (in memory)", body.name),
+            default_interface: body.default_interface,
+            location: BodyLocation::Memory(body.name),
+        })
+    }
+}
