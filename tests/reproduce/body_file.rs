@@ -624,7 +624,7 @@ fn a_mechanism_is_named_with_its_zero_energy_count() {
     let dir = scratch("mechanism");
     write_files(&dir, &files).unwrap();
     let body = ImportedBody::load(dir.join("body.toml").to_str().unwrap()).unwrap();
-    let e = scenes::body_import::import_summary(&body).unwrap_err();
+    let e = flexmodes::models::import_summary(&body).unwrap_err();
     assert!(
         matches!(
             e,
@@ -828,4 +828,97 @@ fn a_body_written_back_keeps_its_units_and_interfaces() {
         a.iter().zip(&b).all(|(x, y)| x == y),
         "K written in round-trip form"
     );
+}
+
+/// A body handed over in memory (Python's `flexmodes.Body`) is the body its file gives: the
+/// L-bracket's K and M as one triangle, as the full symmetric matrix and in any entry order
+/// give its frequencies to round-off; each bad input is refused by name with its data.
+#[test]
+fn a_body_from_matrices_equals_its_body_file_and_is_checked_alike() {
+    use flexmodes::body_file::{BodyMatrices, MatrixEntries, lower_entries, mass_lower_entries};
+    let file = ImportedBody::load("builtin:l-bracket").unwrap();
+    let model = &file.model;
+    let n = model.dof_count();
+    let k_lower = lower_entries(&model.k);
+    let m_lower = mass_lower_entries(&model.m);
+    let full = |lower: &[(usize, usize, f64)]| -> Vec<(usize, usize, f64)> {
+        let mut out = Vec::new();
+        for &(i, j, v) in lower.iter().rev() {
+            out.push((j, i, v));
+            if i != j {
+                out.push((i, j, v));
+            }
+        }
+        out
+    };
+    let square = |entries: Vec<(usize, usize, f64)>| MatrixEntries {
+        rows: n,
+        cols: n,
+        entries,
+    };
+    let given = |k: Vec<_>, m: Vec<_>| BodyMatrices {
+        name: "bracket".into(),
+        stiffness: square(k),
+        mass: square(m),
+        nodes: Some(model.nodes.clone()),
+        node_sets: file.node_sets.clone(),
+        default_interface: file.default_interface.clone(),
+        ..BodyMatrices::default()
+    };
+    let reference = count_zero_energy_modes(model, 8).unwrap().elastic_hz();
+    for (k, m) in [
+        (k_lower.clone(), m_lower.clone()),
+        (full(&k_lower), full(&m_lower)),
+    ] {
+        let body = ImportedBody::from_matrices(given(k, m)).unwrap();
+        assert_eq!(body.model.dof_count(), n);
+        assert_eq!(body.model.rigid_motions, RigidMotions::FromGeometry);
+        assert_eq!(
+            body.default_interface_nodes().unwrap(),
+            file.default_interface_nodes().unwrap()
+        );
+        let hz = count_zero_energy_modes(&body.model, 8)
+            .unwrap()
+            .elastic_hz();
+        for (a, b) in hz.iter().zip(&reference) {
+            assert!((a - b).abs() <= 1e-10 * b, "{a} against {b}");
+        }
+    }
+    let kind = |e: Error| match e {
+        Error::BodyFile(b) => b,
+        other => panic!("not a body error: {other}"),
+    };
+    // A NaN, named by its place in the entry list.
+    let mut k = k_lower.clone();
+    k[9].2 = f64::NAN;
+    match kind(ImportedBody::from_matrices(given(k, m_lower.clone())).unwrap_err()) {
+        BodyFileError::NonFiniteEntry { line, path, .. } => {
+            assert_eq!(line, 10);
+            assert_eq!(path, "K of bracket");
+        }
+        other => panic!("{other}"),
+    }
+    // Both triangles, not symmetric: the worst entry, 1-based.
+    let mut k = full(&k_lower);
+    let at = k.iter().position(|&(i, j, _)| i == 40 && j == 3).unwrap();
+    k[at].2 += 1e-3 * k_lower.iter().fold(0.0f64, |a, e| a.max(e.2.abs()));
+    match kind(ImportedBody::from_matrices(given(k, m_lower.clone())).unwrap_err()) {
+        BodyFileError::NotSymmetric { row, col, .. } => {
+            assert_eq!((row.min(col), row.max(col)), (4, 41))
+        }
+        other => panic!("{other}"),
+    }
+    // A node set past the last node; an index past the matrix.
+    let mut sets = given(k_lower.clone(), m_lower.clone());
+    sets.node_sets.insert("far".into(), vec![1, n / 3 + 1]);
+    match kind(ImportedBody::from_matrices(sets).unwrap_err()) {
+        BodyFileError::NodeSetOutOfRange { node, .. } => assert_eq!(node, n / 3 + 1),
+        other => panic!("{other}"),
+    }
+    let mut k = k_lower.clone();
+    k.push((n, 0, 1.0));
+    assert!(matches!(
+        kind(ImportedBody::from_matrices(given(k, m_lower)).unwrap_err()),
+        BodyFileError::MatrixIndexOutOfRange { row, .. } if row == n + 1
+    ));
 }

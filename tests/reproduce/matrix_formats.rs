@@ -102,7 +102,7 @@ fn convert_writes_every_format_it_reads_back() {
 /// twin's frequencies, where the exact twin's pairs stay checked to round-off.
 #[test]
 fn a_dmig_body_of_eleven_digits_imports_with_its_precision_stated() {
-    let summary = |b: &ImportedBody| flexmodes::scenes::body_import::import_summary(b).unwrap();
+    let summary = |b: &ImportedBody| flexmodes::models::import_summary(b).unwrap();
     let (dmig, _) = summary(&bar("body-dmig.toml"));
     let (exact, _) = summary(&bar("body.toml"));
     let defect = dmig["rigid_motion_defect"].as_f64().unwrap();
