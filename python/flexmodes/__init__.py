@@ -6,6 +6,7 @@ Eitelberg, MacNeal-Rubin, Benfield-Hruda, moment matching, balanced truncation) 
 sets and rigid (RBE2) or averaging (RBE3) interfaces; every eigenpair's residual checked,
 every check failure raised. The numerics run in Rust with the GIL released.
 
+The kernels use every core (``flexmodes.threads()``; ``flexmodes.set_threads(n)`` lowers it).
 Units are the body's own (say SI: m, kg, N, so Hz and s); node numbers in node sets are
 1-based, as in body files and on the command line.
 """
@@ -18,7 +19,7 @@ from typing import Any, Callable, Iterable, Mapping, Optional, Sequence, Union
 import numpy as np
 
 from . import errors
-from ._flexmodes import RustBody, RustReducedModel, __version__
+from ._flexmodes import RustBody, RustReducedModel, __version__, set_threads, threads
 from .errors import (
     BodyFileError,
     Cancelled,
@@ -397,4 +398,6 @@ __all__ = [
     "FileError",
     "Cancelled",
     "__version__",
+    "set_threads",
+    "threads",
 ]

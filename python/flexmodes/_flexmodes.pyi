@@ -7,6 +7,9 @@ import numpy.typing as npt
 
 __version__: str
 
+def set_threads(threads: Optional[int] = None) -> int: ...
+def threads() -> int: ...
+
 Progress = Optional[Callable[[Optional[str], Optional[float]], Any]]
 FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.int64]

@@ -636,8 +636,27 @@ impl RustReducedModel {
     }
 }
 
+/// Threads for the dense and sparse kernels (None: every core); returns how many are used.
+/// The pool is built once per process: only the first call (the import's, with every core)
+/// can raise the count, later calls can only lower what the kernels use.
+#[pyfunction]
+#[pyo3(signature = (threads=None))]
+fn set_threads(threads: Option<usize>) -> usize {
+    flexmodes::linalg::set_threads(threads)
+}
+
+/// Threads the kernels use.
+#[pyfunction]
+fn threads() -> usize {
+    flexmodes::linalg::threads()
+}
+
 #[pymodule]
 fn _flexmodes(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // Every core, as the command line uses by default.
+    flexmodes::linalg::set_threads(None);
+    m.add_function(wrap_pyfunction!(set_threads, m)?)?;
+    m.add_function(wrap_pyfunction!(threads, m)?)?;
     m.add_class::<RustBody>()?;
     m.add_class::<RustReducedModel>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

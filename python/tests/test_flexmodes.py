@@ -320,3 +320,18 @@ def test_readme_example_runs_as_written():
     namespace: dict = {}
     exec(compile(script, "README.md", "exec"), namespace)
     assert len(namespace["model"].hz) >= 4
+
+
+def test_the_kernels_use_every_core_and_can_be_told_fewer(bar):
+    import os
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    assert flexmodes.threads() == cores
+    K, M, nodes, sets, reference = bar
+    body = flexmodes.Body(K, M, nodes=nodes, node_sets=sets)
+    try:
+        assert flexmodes.set_threads(1) == 1 and flexmodes.threads() == 1
+        one = body.reduce("cb", "rbe2:end_a", 8).hz
+    finally:
+        assert flexmodes.set_threads() == cores
+    np.testing.assert_allclose(body.reduce("cb", "rbe2:end_a", 8).hz, one, rtol=1e-10)
