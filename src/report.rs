@@ -9,7 +9,7 @@ pub struct Report {
     pub scene: String,
     /// The parameters the scene ran with.
     pub parameters: Map<String, Value>,
-    /// Results; the documented keys (README) are stable.
+    /// Results; the documented keys (docs/scenes.md, docs/bodies.md) are stable.
     pub results: Map<String, Value>,
     /// The result table in markdown (printed by `report`, shown in the `scene` panel).
     pub table: String,

@@ -13,10 +13,9 @@ use crate::{
     Progress, Result,
     body_file::ImportedBody,
     models::{BodyAdvice, BodyComparisonParameters, BodyComparisonPoint, compare_body_methods},
-    record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
+    record::{Layout, LogLogChart, LogLogSeries, RecordingContent, method_color},
     reduction::Method,
     report::{Report, markdown_table, sig},
-    scenes::method_color,
 };
 
 /// The bench: JSON, the text table and the recording of the charts of

@@ -21,10 +21,9 @@ use crate::{
     dynamics::STANDARD_GRAVITY,
     fem::{SlabParameters, slab},
     models::{default_boundary, held_at_six, reduction_nodes},
-    record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
+    record::{Layout, LogLogChart, LogLogSeries, RecordingContent, method_color},
     reduction::{Method, ModeSelection, ReductionParameters, reduce},
     report::{markdown_table, sig},
-    scenes::method_color,
 };
 
 /// Elastic free-free frequencies compared with the full model's.

@@ -22,10 +22,9 @@ use crate::{
     models::{
         PROBE_NODE, Scenario, default_boundary, probe_history, slab_body, slab_node, slab_system,
     },
-    record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
+    record::{Layout, LogLogChart, LogLogSeries, RecordingContent, method_color},
     reduction::{Method, NodalFixedAxes},
     report::{markdown_table, sig},
-    scenes::method_color,
 };
 
 /// Simulated interval of the fixed-step run below the critical step, s (the run above it

@@ -17,10 +17,9 @@ use crate::{
     dynamics::{AxisType, IntegratorParameters, simulate},
     fem::{SlabParameters, slab},
     models::{PROBE_NODE, default_boundary, probe_history, slab_body, slab_node, slab_system},
-    record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
+    record::{Layout, LogLogChart, LogLogSeries, RecordingContent, method_color},
     reduction::{Method, NodalFixedAxes},
     report::{Report, markdown_table, sig},
-    scenes::method_color,
 };
 
 /// Simulated interval of each run, s (the online cost is per simulated second).

@@ -12,7 +12,7 @@ use crate::{
     Error, Result,
     fem::{FeModel, SlabParameters, slab},
     linalg::{check_reduction_memory, peak_resident_bytes},
-    record::{Layout, LogLogChart, LogLogSeries, RecordingContent},
+    record::{Layout, LogLogChart, LogLogSeries, RecordingContent, method_color},
     reduction::Method,
     reduction::{
         COMPLETE_EIGEN_LIMIT, InteriorProblem, ModeCondensationRoute, ModeSelection, SolverPath,
@@ -20,7 +20,6 @@ use crate::{
         mode_condensation_route,
     },
     report::{Report, markdown_table, sig, sig_vec},
-    scenes::method_color,
 };
 
 /// Kept fixed-interface modes of the benchmark work (and the frequencies reported).

@@ -220,7 +220,7 @@ fn body_toml(
         .map(|d| format!("\"{}\"", d.name().replace('θ', "r")))
         .collect();
     let mut toml = format!(
-        "# flexmodes body file (see the README, \"Bring your own body\")\n\
+        "# flexmodes body file (see docs/bodies.md in flexmodes)\n\
          name = \"{}\"\n\
          description = \"{}\"\n\
          dofs = [{}]\n\

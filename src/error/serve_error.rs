@@ -8,7 +8,7 @@ pub enum ServeError {
     /// The binary was built without the `serve` feature.
     #[error(
         "this flexmodes was built without the `serve` feature: build it with \
-         `cargo build --release --features serve` (see the README, \"A classroom in the browser\")"
+         `cargo build --release --features serve` (see docs/classroom.md)"
     )]
     NotBuilt,
 

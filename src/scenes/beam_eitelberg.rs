@@ -1,11 +1,12 @@
 //! `beam-eitelberg`: Eitelberg's method on Guyan (a)'s masters (§6.6.4).
 
 use crate::linalg::LinalgError;
+use crate::record::method_color;
 use serde_json::json;
 
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{columns, method_color, mode_set, undeformed},
+    mode_visuals::{columns, mode_set, undeformed},
 };
 use crate::{
     Result,

@@ -1,10 +1,11 @@
 //! `beam-mean-axes`: §8.4–8.5, a reduced beam evaluated with mean axes against the full model.
 
+use crate::record::{REFERENCE, method_color};
 use serde_json::json;
 
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE, columns, method_color, mode_set, undeformed},
+    mode_visuals::{columns, mode_set, undeformed},
 };
 use crate::dynamics::AxisKind;
 use crate::{

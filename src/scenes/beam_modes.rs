@@ -1,10 +1,11 @@
 //! `beam-modes`: the App. A beam's mode sets of chapter 6 (Figs. 6-1 to 6-9).
 
+use crate::record::{REFERENCE, method_color};
 use serde_json::json;
 
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE, columns, method_color, mode_set, undeformed},
+    mode_visuals::{columns, mode_set, undeformed},
 };
 use crate::{
     Result,

@@ -1,11 +1,9 @@
 //! `beam-profiles`: the deformed-profile experiments of §7.1.
 
+use crate::record::{REFERENCE, method_color};
 use serde_json::{Map, Value, json};
 
-use super::{
-    SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE, method_color, undeformed},
-};
+use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed};
 use crate::{
     Result,
     analysis::{PROFILE_DELTA, fit_given_modal_coordinates, fit_least_squares},

@@ -378,7 +378,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 series: vec![LogLogSeries {
                     id: "cb".into(),
                     label: "CB, N characteristic constraint modes".into(),
-                    color: super::method_color(Method::CraigBampton),
+                    color: crate::record::method_color(Method::CraigBampton),
                     points: chart,
                     line: true,
                 }],

@@ -13,7 +13,7 @@ use crate::{
     report::{Cell, Table, sig},
 };
 
-use super::{method_color, mode_visuals::REFERENCE};
+use crate::record::{REFERENCE, method_color};
 
 /// The table, JSON, chart visuals, the chart's view and a sentence for the text, comparing
 /// each method's response (from [`InterfaceResponse::of_model`]) with the full body's.

@@ -11,7 +11,8 @@ use crate::{
     report::Report,
 };
 
-use super::{method_color, sim_visuals::display_scale};
+use super::sim_visuals::display_scale;
+use crate::record::method_color;
 
 /// Grey of the undeformed ghost in each lane.
 const GHOST: Color = [110, 110, 110, 255];

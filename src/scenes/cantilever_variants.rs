@@ -3,12 +3,10 @@
 //! and then used under boundary conditions changed on the reduced models only. The numbers
 //! are [`crate::models::cantilever_study`]'s; this scene draws and tabulates them.
 
+use crate::record::{REFERENCE, method_color};
 use serde_json::{Map, Value, json};
 
-use super::{
-    SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE, method_color, mode_set},
-};
+use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::mode_set};
 use crate::{
     Result,
     analysis::{MAC_ACCURATE, ModePair},

@@ -11,13 +11,11 @@
 //! - Modal truncation cannot carry boundary motion into the body (§6.3, §7.1).
 
 use crate::dynamics::DynamicsError;
+use crate::record::{REFERENCE, method_color};
 use crate::reduction::ReductionError;
 use serde_json::{Value, json};
 
-use super::{
-    SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE, method_color},
-};
+use super::{SceneInfo, SceneOptions, SceneOutput};
 use crate::{
     Error, Result,
     fem::{BeamParameters, FeModel, SlabParameters, beam, slab},

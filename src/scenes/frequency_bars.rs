@@ -2,7 +2,7 @@
 //! bar per model side by side, in the model's colour, with a legend; the view's title names
 //! the axes and the unit (the viewer's bar chart has no axis titles of its own).
 
-use super::mode_visuals::method_color;
+use crate::record::method_color;
 use crate::{
     record::{Layout, Visual},
     reduction::Method,

@@ -25,7 +25,6 @@ mod slab_modes;
 mod slab_refined;
 pub mod slab_sims;
 
-pub use mode_visuals::method_color;
 pub use options::{SceneOptions, SceneOutput};
 pub use registry::{Scene, all, all_ids, find, ids};
 pub use run_cache::{CacheWeight, RunCache};

@@ -2,37 +2,11 @@
 
 use crate::{
     fem::FeModel,
-    record::{Color, Geometry, Visual},
-    reduction::Method,
+    record::{Color, Geometry, REFERENCE, Visual},
 };
 
 /// Largest displayed displacement of an animated mode, as a fraction of the body's size.
 const MODE_AMPLITUDE: f64 = 0.15;
-
-/// A fixed colour per method so views compare at a glance: the same in the 3-D views, the bar
-/// charts and the charts of every scene. Each reads on the viewer's dark and light themes
-/// alike: its relative luminance lies between 0.08 and 0.37, a contrast of at least 2.5:1
-/// against black and against white (tested).
-pub fn method_color(m: Method) -> Color {
-    match m {
-        Method::NoReduction => [120, 120, 150, 255],
-        Method::Guyan => [230, 120, 0, 255],
-        Method::ModalTruncation => [210, 50, 50, 255],
-        Method::CraigBampton => [40, 110, 230, 255],
-        Method::ModeCondensation => [30, 150, 60, 255],
-        Method::Eitelberg => [160, 70, 200, 255],
-        Method::MacNealRubin => [220, 60, 140, 255],
-        Method::BenfieldHruda => [0, 150, 160, 255],
-        Method::MomentMatching => [150, 150, 0, 255],
-        Method::BalancedTruncation => [150, 90, 40, 255],
-    }
-}
-
-/// Colour of the undeformed bodies and references (mid grey: it reads on both themes).
-pub const REFERENCE: Color = [150, 150, 150, 255];
-
-/// Colour of the undeformed ghost beside a body drawn with magnified deflections.
-pub const REFERENCE_GHOST: Color = [150, 150, 150, 110];
 
 /// Per-node displacement of a DOF vector, scaled so its largest nodal displacement is
 /// [`MODE_AMPLITUDE`] of the body size (a zero vector stays zero).
@@ -139,69 +113,4 @@ pub fn columns(m: &faer::Mat<f64>) -> Vec<Vec<f64>> {
     (0..m.ncols())
         .map(|j| (0..m.nrows()).map(|i| m[(i, j)]).collect())
         .collect()
-}
-
-#[cfg(test)]
-mod palette_tests {
-    use super::*;
-
-    /// Relative luminance (WCAG) of an sRGB colour.
-    fn luminance(c: Color) -> f64 {
-        let lin = |v: u8| {
-            let v = f64::from(v) / 255.0;
-            if v <= 0.04045 {
-                v / 12.92
-            } else {
-                ((v + 0.055) / 1.055).powf(2.4)
-            }
-        };
-        0.2126 * lin(c[0]) + 0.7152 * lin(c[1]) + 0.0722 * lin(c[2])
-    }
-
-    const ALL: [Method; 10] = Method::ALL;
-
-    /// Contrast at least 2.5:1 against both black and white, and the methods told apart.
-    #[test]
-    fn every_colour_reads_on_both_themes_and_the_methods_differ() {
-        let contrast = |a: f64, b: f64| (a.max(b) + 0.05) / (a.min(b) + 0.05);
-        for c in ALL.map(method_color).into_iter().chain([REFERENCE]) {
-            let l = luminance(c);
-            assert!(
-                contrast(l, 0.0) >= 2.5 && contrast(l, 1.0) >= 2.5,
-                "{c:?}: {l}"
-            );
-        }
-        for (i, a) in ALL.iter().enumerate() {
-            for b in &ALL[i + 1..] {
-                let (x, y) = (method_color(*a), method_color(*b));
-                let d: i32 = (0..3)
-                    .map(|k| (i32::from(x[k]) - i32::from(y[k])).abs())
-                    .sum();
-                assert!(d >= 90, "{a:?} and {b:?} too alike: {x:?} {y:?}");
-            }
-        }
-    }
-
-    /// The browser check and the explorer's switch check count these colours: their tables
-    /// must be this one.
-    #[test]
-    fn the_screenshot_checks_count_these_colours() {
-        let scripts = [
-            (
-                "check_serve.py",
-                include_str!("../../assets/serve/check_serve.py"),
-            ),
-            (
-                "switch_frames.py",
-                include_str!("../../assets/gui/switch_frames.py"),
-            ),
-        ];
-        for (name, script) in scripts {
-            for m in ALL {
-                let c = method_color(m);
-                let line = format!("\"{}\": ({}, {}, {}),", m.id(), c[0], c[1], c[2]);
-                assert!(script.contains(&line), "{name} lacks {line}");
-            }
-        }
-    }
 }

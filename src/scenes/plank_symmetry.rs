@@ -1,11 +1,11 @@
 //! `plank-symmetry`: §5.3.3, the plank hung under four rigid links, nodal-fixed versus mean axes.
 
+use crate::record::method_color;
 use nalgebra::Vector3;
 use serde_json::{Map, json};
 
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::method_color,
     sim_visuals::{body_trajectory, frame_axes, health_series, simulation_layout, times},
     slab_sims::run_key,
 };

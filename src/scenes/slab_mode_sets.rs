@@ -5,12 +5,10 @@
 //! lowest-frequency modes. The numbers are [`crate::models::dual_spin_study`]'s; this scene
 //! draws and tabulates them.
 
+use crate::record::{REFERENCE, method_color};
 use serde_json::{Map, Value, json};
 
-use super::{
-    SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE, method_color, mode_set},
-};
+use super::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::mode_set};
 use crate::{
     Result,
     analysis::FrequencyResponse,

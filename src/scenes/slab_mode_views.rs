@@ -3,7 +3,8 @@
 
 use faer::Mat;
 
-use super::mode_visuals::{columns, method_color, mode_set};
+use super::mode_visuals::{columns, mode_set};
+use crate::record::method_color;
 use crate::{
     fem::FeModel,
     linalg::GeneralizedEigen,

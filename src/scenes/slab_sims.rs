@@ -1,10 +1,10 @@
 //! `slab-sim1`, `slab-sim2`, `slab-sim3`: the time simulations of §7.2 for every method.
 
+use crate::record::{REFERENCE_GHOST, method_color};
 use serde_json::{Map, Value, json};
 
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
-    mode_visuals::{REFERENCE_GHOST, method_color},
     sim_visuals::{
         body_trajectory, deformation_scale, frame_axes, ghost_trajectory, health_series,
         simulation_layout, times,
