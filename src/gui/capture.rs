@@ -348,12 +348,20 @@ fn report_memory(memory: &[MemorySample], e: &Explorer) {
 fn save_png(image: &egui::ColorImage, path: &std::path::Path, say: bool) {
     let [w, h] = image.size;
     let rgba: Vec<u8> = image.pixels.iter().flat_map(|p| p.to_array()).collect();
-    match image::RgbaImage::from_raw(w as u32, h as u32, rgba) {
-        Some(img) => match img.save(path) {
-            Ok(()) if say => eprintln!("screenshot saved to {}", path.display()),
-            Ok(()) => {}
-            Err(e) => eprintln!("error: could not save {}: {e}", path.display()),
-        },
-        None => eprintln!("error: screenshot buffer has the wrong size"),
+    let Some(img) = image::RgbaImage::from_raw(w as u32, h as u32, rgba) else {
+        eprintln!("error: screenshot buffer has the wrong size");
+        return;
+    };
+    // Encoded in memory, then written through the one atomic writer: a check reading the
+    // folder never sees half a PNG.
+    let mut png = std::io::Cursor::new(Vec::new());
+    if let Err(e) = img.write_to(&mut png, image::ImageFormat::Png) {
+        eprintln!("error: could not encode {}: {e}", path.display());
+        return;
+    }
+    match crate::atomic_file::write_atomically(path, |f| f.write_all(png.get_ref())) {
+        Ok(()) if say => eprintln!("screenshot saved to {}", path.display()),
+        Ok(()) => {}
+        Err(e) => eprintln!("error: could not save {}: {e}", path.display()),
     }
 }
