@@ -40,6 +40,7 @@ fn raise(py: Python<'_>, err: Error) -> PyErr {
         Error::Linalg(_) => "LinalgError",
         Error::Reduction(_) => "ReductionError",
         Error::Dynamics(_) => "DynamicsError",
+        Error::Mesh(_) => "InputError",
         Error::Mechanism { .. } => "MechanismError",
         Error::Cancelled => "Cancelled",
         Error::Io { .. } => "FileError",

@@ -1,5 +1,6 @@
 //! Actuator-to-sensor frequency responses over a band and their relative magnitude error.
 
+use crate::linalg::LinalgError;
 use crate::reduction::ReductionError;
 use faer::{Mat, c64};
 
@@ -80,14 +81,12 @@ impl FrequencyResponse {
         if self.hz.len() != reference.hz.len()
             || self.hz.iter().zip(&reference.hz).any(|(a, b)| a != b)
         {
-            return Err(Error::InvalidOption {
-                scene: "frequency response".into(),
-                reason: format!(
-                    "the responses are sampled at different frequencies ({} against {} points)",
-                    self.hz.len(),
-                    reference.hz.len()
-                ),
-            });
+            return Err(LinalgError::LengthMismatch {
+                what: "frequency responses' sample frequencies",
+                left: self.hz.len(),
+                right: reference.hz.len(),
+            }
+            .into());
         }
         let Some(first) = reference.values.first() else {
             return Ok(0.0);

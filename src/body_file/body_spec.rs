@@ -141,13 +141,10 @@ impl Units {
             "in" => 0.0254,
             "ft" => 0.3048,
             other => {
-                return Err(crate::Error::InvalidOption {
-                    scene: "body".into(),
-                    reason: format!(
-                        "the body's length unit `{other}` is not one SI quantities can be \
-                         converted to (m, cm, mm, in, ft)"
-                    ),
-                });
+                return Err(super::BodyFileError::UnknownLengthUnit {
+                    unit: other.to_string(),
+                }
+                .into());
             }
         })
     }

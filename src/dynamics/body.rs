@@ -1,5 +1,6 @@
 //! Rigid and deformable bodies with their mass matrices and generalised forces.
 
+use super::DynamicsError;
 use crate::linalg::LinalgError;
 use faer::Mat;
 use nalgebra::{DMatrix, DVector, Dyn, Matrix3, Matrix3xX, Storage, Vector3};
@@ -174,19 +175,18 @@ impl FlexibleBody {
     /// basis' columns; nodal-fixed axes remove theirs here).
     pub fn new(model: FeModel, basis: Basis, axes: AxisType) -> Result<Self> {
         if model.dofs != DofMap::solid() {
-            return Err(Error::InvalidOption {
-                scene: model.name.clone(),
-                reason: "the floating-frame body needs x, y, z translations per node and no \
-                         rotations"
-                    .into(),
-            });
+            return Err(DynamicsError::NotSolid {
+                body: model.name.clone(),
+                frame: "floating",
+            }
+            .into());
         }
         let n = model.node_count();
-        let not_lumped = || Error::InvalidOption {
-            scene: model.name.clone(),
-            reason: "the floating-frame body needs a lumped (diagonal, isotropic per node) mass \
-                     matrix"
-                .into(),
+        let not_lumped = || -> Error {
+            DynamicsError::MassNotLumped {
+                body: model.name.clone(),
+            }
+            .into()
         };
         let MassMatrix::Lumped(diagonal) = &model.m else {
             return Err(not_lumped());

@@ -158,10 +158,7 @@ pub(super) fn integrate(
     if let Some(dt) = p.fixed_step
         && !(dt > 0.0 && dt.is_finite())
     {
-        return Err(Error::InvalidOption {
-            scene: "integrator".into(),
-            reason: format!("the fixed step must be a positive number of seconds, not {dt}"),
-        });
+        return Err(DynamicsError::InvalidStep { step: dt }.into());
     }
     let (mut t, mut h) = (0.0f64, p.output_interval.min(1e-3));
     let (mut steps, mut rejected) = (0usize, 0usize);

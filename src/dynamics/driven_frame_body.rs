@@ -19,6 +19,7 @@
 //! $\Psi^T X \Psi$. [`DrivenFrameBody`] holds either: the full body sparse (no reduction,
 //! NR) or a reduced body dense.
 
+use super::DynamicsError;
 use faer::MatRef;
 use nalgebra::{DMatrix, DVector, Unit, Vector3};
 
@@ -98,25 +99,27 @@ pub struct DrivenFrameBody {
 
 /// Checks that `m` is $M_s \otimes I_3$ on a node-major solid DOF map.
 fn check_isotropic(model: &FeModel) -> Result<()> {
-    let bad = |reason: String| Error::InvalidOption {
-        scene: model.name.clone(),
-        reason,
-    };
     if model.dofs != DofMap::solid() {
-        return Err(bad(
-            "a driven body needs x, y, z translations per node and no rotations".into(),
-        ));
+        return Err(DynamicsError::NotSolid {
+            body: model.name.clone(),
+            frame: "driven",
+        }
+        .into());
     }
+    let unequal = |node: usize, other: Option<usize>| -> Error {
+        DynamicsError::MassNotIsotropic {
+            body: model.name.clone(),
+            node,
+            other,
+        }
+        .into()
+    };
     match &model.m {
         MassMatrix::Lumped(d) => {
             for j in 0..d.len() / 3 {
                 let m = d[3 * j];
                 if (1..3).any(|a| (d[3 * j + a] - m).abs() > ISOTROPIC_MASS_TOLERANCE * m.abs()) {
-                    return Err(bad(format!(
-                        "node {} has different masses in x, y, z; the driven frame's equations \
-                         need the same mass on every direction of a node",
-                        j + 1
-                    )));
+                    return Err(unequal(j + 1, None));
                 }
             }
         }
@@ -142,13 +145,7 @@ fn check_isotropic(model: &FeModel) -> Result<()> {
                         v.abs()
                     };
                     if twin > ISOTROPIC_MASS_TOLERANCE * scale {
-                        return Err(bad(format!(
-                            "the mass matrix couples node {} and node {} unequally across \
-                             directions (entry {i}, {j}: {v:e}); the driven frame's equations \
-                             need M = Mₛ ⊗ I₃",
-                            pi + 1,
-                            pj + 1
-                        )));
+                        return Err(unequal(pi + 1, Some(pj + 1)));
                     }
                 }
             }
@@ -240,10 +237,10 @@ impl SparseDriven {
         if !same {
             self.factor = None;
             let a = if c_k == 0.0 {
-                return Err(Error::InvalidOption {
-                    scene: "driven body".into(),
-                    reason: "the sparse effective matrix needs a stiffness part".into(),
-                });
+                return Err(DynamicsError::Misuse {
+                    what: "the sparse effective matrix needs a stiffness part",
+                }
+                .into());
             } else {
                 self.k_ff.shifted(&self.m_ff, -c_m / c_k)
             };
@@ -326,10 +323,10 @@ impl DrivenFrameBody {
     /// modal coordinates): every operator and load projected, $\Psi^T X \Psi$, $\Psi^T f$.
     pub fn reduced(full: &DrivenFrameBody, psi: MatRef<'_, f64>) -> Result<Self> {
         let Operators::Sparse(sparse) = &full.operators else {
-            return Err(Error::InvalidOption {
-                scene: "driven body".into(),
-                reason: "a reduced body is projected from the full one".into(),
-            });
+            return Err(DynamicsError::Misuse {
+                what: "a reduced body is projected from the full one",
+            }
+            .into());
         };
         let (rows, k) = (psi.nrows(), psi.ncols());
         assert_eq!(rows, sparse.coords.dim(), "Ψ has a row per coordinate");
@@ -375,13 +372,7 @@ impl DrivenFrameBody {
     /// the full body is refused.
     pub fn mass_inverse(&self) -> Result<DMatrix<f64>> {
         let Operators::Dense(d) = &self.operators else {
-            return Err(Error::InvalidOption {
-                scene: "driven body".into(),
-                reason: "the explicit scheme runs reduced bodies only: the full body's \
-                         consistent mass would need a sparse solve per stage at a step below \
-                         the mesh's highest frequency"
-                    .into(),
-            });
+            return Err(DynamicsError::ExplicitFullBody.into());
         };
         let n = d.m.nrows();
         let singular = || {

@@ -4,10 +4,11 @@
 //! $u_s = \theta_m \times (x_s - x_m)$. The map $u = Tx$ from coordinates to nodal
 //! displacements is sparse; operators become $T^T A T$.
 
+use super::DynamicsError;
 use faer::{Mat, MatRef};
 
 use crate::{
-    Error, Result,
+    Result,
     linalg::{MassMatrix, SparseSymmetric},
 };
 
@@ -51,14 +52,11 @@ impl FrameCoordinates {
             assert_eq!(pin.dofs.len(), pin.rows.len(), "one row per pinned DOF");
             for (r, &d) in pin.dofs.iter().enumerate() {
                 if roles[d] != Role::Free(0) {
-                    return Err(Error::InvalidOption {
-                        scene: "driven body".into(),
-                        reason: format!(
-                            "DOF {d} (0-based) of the pinned ring `{}` is also in the drive's \
-                             ring or in another pinned ring",
-                            pin.name
-                        ),
-                    });
+                    return Err(DynamicsError::RingsOverlap {
+                        ring: pin.name.clone(),
+                        dof: d + 1,
+                    }
+                    .into());
                 }
                 roles[d] = Role::Pinned { ring: p, row: r };
             }
@@ -210,16 +208,12 @@ impl FrameCoordinates {
                 .enumerate()
                 .find(|(_, (b, c))| (*b - *c).abs() > 1e-10 * scale.max(f64::MIN_POSITIVE))
             {
-                return Err(Error::InvalidOption {
-                    scene: "driven body".into(),
-                    reason: format!(
-                        "column {} of the basis moves DOF {i} (0-based) by {:.3e}, which the \
-                         frame holds (the drive's ring does not move; a pinned ring only turns \
-                         about its master)",
-                        c + 1,
-                        col[i]
-                    ),
-                });
+                return Err(DynamicsError::BasisMovesHeldDof {
+                    column: c + 1,
+                    dof: i + 1,
+                    motion: col[i],
+                }
+                .into());
             }
             for (i, v) in x.into_iter().enumerate() {
                 out[(i, c)] = v;

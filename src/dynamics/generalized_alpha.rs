@@ -166,16 +166,10 @@ pub(crate) fn integrate(
     progress: &Progress,
 ) -> Result<Simulation> {
     if !(step > 0.0 && step.is_finite()) {
-        return Err(Error::InvalidOption {
-            scene: "integrator".into(),
-            reason: format!("the step must be a positive number of seconds, not {step}"),
-        });
+        return Err(DynamicsError::InvalidStep { step }.into());
     }
     if !(0.0..=1.0).contains(&rho) {
-        return Err(Error::InvalidOption {
-            scene: "integrator".into(),
-            reason: format!("the spectral radius ρ∞ must lie in [0, 1], not {rho}"),
-        });
+        return Err(DynamicsError::InvalidSpectralRadius { rho }.into());
     }
     let c = GeneralizedAlphaCoefficients::from_spectral_radius(rho);
     let clock = Instant::now();

@@ -1,5 +1,6 @@
 //! The assembled multibody system: $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
 
+use super::DynamicsError;
 use crate::linalg::LinalgError;
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector4};
 
@@ -130,11 +131,8 @@ impl System {
 
     /// Checks indices of constraints and loads.
     pub fn validate(&self) -> Result<()> {
-        let bad = |reason: String| {
-            Err(Error::InvalidOption {
-                scene: "system".into(),
-                reason,
-            })
+        let bad = |what: &'static str, place: String| {
+            Err(DynamicsError::BadAttachment { what, place }.into())
         };
         let node_ok = |b: usize, n: NodeIndex| match self.bodies.get(b) {
             Some(Body::Flexible(f)) => n.get() < f.s_bar.len(),
@@ -146,12 +144,18 @@ impl System {
                     for att in [a, b] {
                         match *att {
                             Attachment::Node { body, node } if !node_ok(body, node) => {
-                                return bad(format!("joint on missing {node} of body {body}"));
+                                return bad(
+                                    "joint",
+                                    format!("{node} of body {body}, which it does not have"),
+                                );
                             }
                             Attachment::Point { body, .. }
                                 if !matches!(self.bodies.get(body), Some(Body::Rigid(_))) =>
                             {
-                                return bad(format!("joint point on body {body}, not rigid"));
+                                return bad(
+                                    "joint",
+                                    format!("a point of body {body}, which is not rigid"),
+                                );
                             }
                             _ => {}
                         }
@@ -161,14 +165,19 @@ impl System {
                     body, node, axis, ..
                 } => {
                     if !node_ok(*body, *node) || *axis > 2 {
-                        return bad(format!("prescribed motion of missing {node}"));
+                        return bad(
+                            "prescribed motion",
+                            format!(
+                                "{node} of body {body}, which it does not have (or axis {axis})"
+                            ),
+                        );
                     }
                 }
             }
         }
         for &(b, n, _) in &self.nodal_forces {
             if !node_ok(b, n) {
-                return bad(format!("force on missing node {n} of body {b}"));
+                return bad("force", format!("{n} of body {b}, which it does not have"));
             }
         }
         Ok(())

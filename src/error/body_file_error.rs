@@ -105,6 +105,13 @@ pub enum BodyFileError {
     )]
     NoCoordinates { body: String },
 
+    /// A length unit flexmodes cannot convert to metres (gravity, shaking amplitudes).
+    #[error(
+        "the body's length unit `{unit}` is not one SI quantities can be converted to (m, cm, \
+         mm, in, ft)"
+    )]
+    UnknownLengthUnit { unit: String },
+
     /// An interface was left to the body file, which names none.
     #[error(
         "the body `{body}` defines no node sets: name its interface (`--boundary` on the \

@@ -1,8 +1,10 @@
-//! Errors of a time integration: where and when it stopped.
+//! Errors of the dynamics layer: a body that cannot sit on a floating or driven frame, settings
+//! an integrator cannot run with, and where and when an integration stopped.
 
 use thiserror::Error;
 
-/// Errors of a time integration: where and when it stopped.
+/// Errors of the dynamics layer: a body that cannot sit on a floating or driven frame,
+/// settings an integrator cannot run with, and where and when an integration stopped.
 #[derive(Debug, Error, serde::Serialize)]
 pub enum DynamicsError {
     /// A time integration that could not continue.
@@ -20,4 +22,92 @@ pub enum DynamicsError {
         iterations: usize,
         residual: f64,
     },
+
+    /// A time step that is not a positive number of seconds.
+    #[error("the time step must be a positive number of seconds, not {step}")]
+    InvalidStep { step: f64 },
+
+    /// A spectral radius at infinite frequency outside [0, 1] (generalized-α).
+    #[error("the spectral radius ρ∞ must lie in [0, 1], not {rho}")]
+    InvalidSpectralRadius { rho: f64 },
+
+    /// A setting of a driven run that must be positive (the ramp time, s).
+    #[error("the {setting} must be positive, not {value}")]
+    NotPositive { setting: &'static str, value: f64 },
+
+    /// A direction given as the zero vector (the spin axis, the shaking direction).
+    #[error("the {setting} is the zero vector")]
+    ZeroDirection { setting: &'static str },
+
+    /// A body on a floating or driven frame needs x, y, z translations per node.
+    #[error(
+        "the body `{body}` on a {frame} frame needs x, y, z translations per node and no rotations"
+    )]
+    NotSolid { body: String, frame: &'static str },
+
+    /// A floating-frame body needs a lumped mass, the same in x, y and z at each node.
+    #[error(
+        "the floating-frame body `{body}` needs a lumped (diagonal, isotropic per node) mass matrix"
+    )]
+    MassNotLumped { body: String },
+
+    /// A driven body's mass is not $M_s \otimes I_3$: node `node` (1-based) differs by
+    /// direction, or couples to `other` unequally across directions.
+    #[error(
+        "the body `{body}`: the mass at node {node}{} is not the same in x, y and z; the driven \
+         frame's equations need M = Mₛ ⊗ I₃",
+        other.map(|o| format!(" coupled to node {o}")).unwrap_or_default()
+    )]
+    MassNotIsotropic {
+        body: String,
+        node: usize,
+        other: Option<usize>,
+    },
+
+    /// A DOF held twice: in two pinned rings, or in a pinned ring and the drive's.
+    #[error(
+        "DOF {dof} (1-based) of the pinned ring `{ring}` is also in the drive's ring or in another pinned ring"
+    )]
+    RingsOverlap { ring: String, dof: usize },
+
+    /// A basis column that moves a DOF the driven frame holds.
+    #[error(
+        "column {column} of the basis moves DOF {dof} (1-based) by {motion:.3e}, which the frame \
+         holds (the drive's ring does not move; a pinned ring only turns about its master)"
+    )]
+    BasisMovesHeldDof {
+        column: usize,
+        dof: usize,
+        motion: f64,
+    },
+
+    /// The explicit scheme was asked to run the full (sparse) body.
+    #[error(
+        "the explicit scheme runs reduced bodies only: the full body's consistent mass would \
+         need a sparse solve per stage at a step below the mesh's highest frequency"
+    )]
+    ExplicitFullBody,
+
+    /// An operation a driven body of another kind does (a projection of a reduced body; an
+    /// effective matrix without stiffness): a misuse inside flexmodes, said rather than
+    /// panicking.
+    #[error("driven body: {what}")]
+    Misuse { what: &'static str },
+
+    /// A constraint or load of a system names a node its body does not have, or a point of a
+    /// body that is not rigid.
+    #[error("the system's {what} names {place}")]
+    BadAttachment { what: &'static str, place: String },
+
+    /// The histories of a driven body are seen from the drive's frame or mean axes.
+    #[error(
+        "a driven body's histories are seen from the drive's frame (nodal_fixed) or from mean axes; {axes} axes are not offered"
+    )]
+    AxesNotOffered { axes: &'static str },
+
+    /// An output that names no node set (or `node:N` without a number).
+    #[error(
+        "no node set `{name}` to output (the body has: {known}; or node:N with a 1-based node number)"
+    )]
+    UnknownOutput { name: String, known: String },
 }

@@ -106,6 +106,10 @@ pub enum Error {
     #[error(transparent)]
     Linalg(#[from] super::LinalgError),
 
+    /// Errors of the mesh generators.
+    #[error(transparent)]
+    Mesh(#[from] super::MeshError),
+
     /// Errors of reading a body: the file, the line and what is wrong there.
     #[error(transparent)]
     BodyFile(#[from] super::BodyFileError),

@@ -112,6 +112,14 @@ pub enum LinalgError {
     #[error("the {what} decomposition did not converge")]
     DecompositionFailed { what: String },
 
+    /// Two sequences that must match (the same frequencies, the same length) do not.
+    #[error("{what} differ: {left} against {right}")]
+    LengthMismatch {
+        what: &'static str,
+        left: usize,
+        right: usize,
+    },
+
     /// The Lyapunov equation solve left a residual larger than its tolerance.
     /// A solve with a factor left a residual above its tolerance after refinement.
     #[error(

@@ -1,5 +1,5 @@
-//! Typed errors, one small enum per layer (linear algebra, body files, reductions, time
-//! integration), each variant carrying its data (which node, DOF, file and line, residual),
+//! Typed errors, one small enum per layer (linear algebra, meshes, body files, reductions,
+//! dynamics), each variant carrying its data (which node, DOF, file and line, residual),
 //! wrapped by the crate's [`Error`]. They live at the ground floor so every layer can name
 //! its own and the top-level one without importing upwards.
 
@@ -7,6 +7,7 @@ mod body_file_error;
 mod dynamics_error;
 mod flexmodes_error;
 mod linalg_error;
+mod mesh_error;
 mod reduction_error;
 mod serve_error;
 mod unknown_id;
@@ -15,6 +16,7 @@ pub use body_file_error::BodyFileError;
 pub use dynamics_error::DynamicsError;
 pub use flexmodes_error::{Error, Result};
 pub use linalg_error::LinalgError;
+pub use mesh_error::MeshError;
 pub use reduction_error::ReductionError;
 pub use serve_error::ServeError;
 pub use unknown_id::UnknownId;

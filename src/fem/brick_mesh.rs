@@ -1,12 +1,13 @@
 //! The App. B slab (and the same mesh standing as the §5.3.3 plank) from trilinear bricks.
 
+use crate::error::MeshError;
 use std::collections::BTreeSet;
 
 use faer::Mat;
 
 use super::{DofMap, FeModel, HEX8_EDGES, RigidMotions, hex8_consistent_mass, hex8_stiffness};
 use crate::{
-    Error, Result,
+    Result,
     linalg::{MassMatrix, SparseAssembly, SparsityPattern},
 };
 
@@ -63,16 +64,13 @@ impl Default for SlabParameters {
 impl SlabParameters {
     /// The App. B slab (same 4 × 2 × 1 m body, material and total mass) meshed with
     /// `bricks` = [NX, NY, NZ] bricks; `[4, 2, 1]` is App. B itself. A zero count is
-    /// [`Error::InvalidOption`].
+    /// [`MeshError::NoBricks`].
     pub fn refined(bricks: [usize; 3]) -> Result<Self> {
         if let Some(d) = (0..3).find(|&d| bricks[d] == 0) {
-            return Err(Error::InvalidOption {
-                scene: "slab".into(),
-                reason: format!(
-                    "--refine needs at least one brick along each axis, got 0 along {}",
-                    ["x", "y", "z"][d]
-                ),
-            });
+            return Err(MeshError::NoBricks {
+                axis: ["x", "y", "z"][d],
+            }
+            .into());
         }
         Ok(Self {
             bricks,

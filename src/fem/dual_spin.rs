@@ -5,7 +5,8 @@
 //! net force or moment on the hub and so are not seen from the actuator or the sensors.
 
 use super::{FeModel, FrameSection, frame_of_sections};
-use crate::{Error, Result, linalg::MassMatrix};
+use crate::error::MeshError;
+use crate::{Result, linalg::MassMatrix};
 
 /// Dimensions (m), sections and masses of the assembly, SI units.
 #[derive(Debug, Clone, PartialEq)]
@@ -95,10 +96,7 @@ pub struct DualSpin {
 pub fn dual_spin(p: &DualSpinParameters) -> Result<DualSpin> {
     let (e, g, rho) = (210e9, 80e9, 7800.0);
     if p.booms < 2 || p.boom_elements == 0 || p.column_elements < 2 || p.arm_elements == 0 {
-        return Err(Error::InvalidOption {
-            scene: "dual-spin assembly".into(),
-            reason: "at least two booms, one element per boom and arm, two on the column".into(),
-        });
+        return Err(MeshError::DualSpinTooSmall.into());
     }
     // Rotor: hub at the origin, booms in the x-y plane; local y of a boom is global z, so
     // `boom_section[0]` is its out-of-plane (flap) thickness.
@@ -207,14 +205,11 @@ pub fn add_lumped(model: &mut FeModel, node: usize, mass: &[f64; 6]) -> Result<(
             }
             Ok(())
         }
-        _ => Err(Error::InvalidOption {
-            scene: model.name.clone(),
-            reason: format!(
-                "a rigid body's mass can be lumped only on a 6-DOF node of a lumped-mass \
-                 body (node {} of {})",
-                node + 1,
-                model.nodes.len()
-            ),
-        }),
+        _ => Err(MeshError::NotALumpedFrameNode {
+            body: model.name.clone(),
+            node: node + 1,
+            nodes: model.nodes.len(),
+        }
+        .into()),
     }
 }

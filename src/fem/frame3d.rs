@@ -3,6 +3,7 @@
 //! mass (translational mass and the section's rotary inertia about the axis, half of each
 //! element at each end).
 
+use crate::error::MeshError;
 use faer::Mat;
 
 use super::{DofMap, FeModel, RigidMotions};
@@ -133,9 +134,13 @@ pub fn frame_stiffness(
 fn local_axes(a: [f64; 3], b: [f64; 3], up: [f64; 3]) -> Result<([[f64; 3]; 3], f64)> {
     let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    let bad = |reason: &str| Error::InvalidOption {
-        scene: "frame".into(),
-        reason: format!("element from {a:?} to {b:?}: {reason}"),
+    let bad = |why: &'static str| -> Error {
+        MeshError::DegenerateElement {
+            from: a,
+            to: b,
+            why,
+        }
+        .into()
     };
     if !(l > 0.0 && l.is_finite()) {
         return Err(bad("zero length"));
@@ -208,13 +213,12 @@ pub fn frame_of_sections(
     let n = nodes.len();
     for &([i, j], _, sec) in elements {
         if sec >= sections.len() {
-            return Err(Error::InvalidOption {
-                scene: name.into(),
-                reason: format!(
-                    "an element uses section {sec} of {} sections",
-                    sections.len()
-                ),
-            });
+            return Err(MeshError::SectionOutOfRange {
+                body: name.into(),
+                section: sec,
+                sections: sections.len(),
+            }
+            .into());
         }
         if i >= n || j >= n {
             return Err(Error::NodeOutOfRange {

@@ -12,13 +12,14 @@ use faer::Mat;
 use nalgebra::{Unit, Vector3};
 
 use crate::{
-    Error, Result,
+    Result,
     analysis::{MeanAxisView, count_zero_energy_modes},
     body_file::{ImportedBody, InterfaceKind},
     dynamics::{
         AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, PinnedRing, Shake,
         SpinUp, integrate_driven, positions,
     },
+    error::DynamicsError,
     progress::Progress,
     reduction::{ColumnKind, Method, ReductionError},
 };
@@ -215,17 +216,23 @@ pub fn driven_body_study(
             .into());
         }
     };
-    let axis = Unit::try_new(Vector3::from(parameters.axis), 1e-12).ok_or_else(|| {
-        Error::InvalidOption {
-            scene: "simulate".into(),
-            reason: "the spin axis is zero".into(),
+    let axis = Unit::try_new(Vector3::from(parameters.axis), 1e-12).ok_or(
+        DynamicsError::ZeroDirection {
+            setting: "spin axis",
+        },
+    )?;
+    if parameters.ramp.is_nan() || parameters.ramp <= 0.0 {
+        return Err(DynamicsError::NotPositive {
+            setting: "ramp time (s)",
+            value: parameters.ramp,
         }
-    })?;
-    if !(parameters.ramp > 0.0 && parameters.integration.step > 0.0) {
-        return Err(Error::InvalidOption {
-            scene: "simulate".into(),
-            reason: "the ramp time and the step must be positive".into(),
-        });
+        .into());
+    }
+    if parameters.integration.step.is_nan() || parameters.integration.step <= 0.0 {
+        return Err(DynamicsError::InvalidStep {
+            step: parameters.integration.step,
+        }
+        .into());
     }
     let gravity = match parameters.gravity {
         Some(g) => Vector3::from(g) / body.units.metres_per_length()?,
@@ -233,12 +240,11 @@ pub fn driven_body_study(
     };
     let shake = match parameters.shake {
         Some((direction, amplitude, frequency)) => Some(Shake {
-            direction: Unit::try_new(Vector3::from(direction), 1e-12).ok_or_else(|| {
-                Error::InvalidOption {
-                    scene: "simulate".into(),
-                    reason: "the shaking direction is zero".into(),
-                }
-            })?,
+            direction: Unit::try_new(Vector3::from(direction), 1e-12).ok_or(
+                DynamicsError::ZeroDirection {
+                    setting: "shaking direction",
+                },
+            )?,
             amplitude: amplitude / body.units.metres_per_length()?,
             frequency,
         }),
@@ -287,26 +293,22 @@ pub fn driven_body_study(
         parameters.outputs.clone()
     };
     let mut outputs = Vec::new();
+    let unknown = |name: &str| DynamicsError::UnknownOutput {
+        name: name.to_string(),
+        known: body
+            .node_sets
+            .keys()
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", "),
+    };
     for name in &output_names {
         let nodes = match name.strip_prefix("node:") {
-            Some(number) => vec![number.parse::<usize>().map_err(|_| Error::InvalidOption {
-                scene: "simulate".into(),
-                reason: format!("`{name}` names no node: node:N takes a 1-based node number"),
-            })?],
+            Some(number) => vec![number.parse::<usize>().map_err(|_| unknown(name))?],
             None => body
                 .node_sets
                 .get(name)
-                .ok_or_else(|| Error::InvalidOption {
-                    scene: "simulate".into(),
-                    reason: format!(
-                        "no node set `{name}` to output (the body has: {}; or node:N)",
-                        body.node_sets
-                            .keys()
-                            .cloned()
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ),
-                })?
+                .ok_or_else(|| unknown(name))?
                 .clone(),
         };
         outputs.push(model.dofs_of_nodes(&nodes)?);
@@ -319,12 +321,7 @@ pub fn driven_body_study(
             Some((view, rows))
         }
         AxisKind::Principal => {
-            return Err(Error::InvalidOption {
-                scene: "simulate".into(),
-                reason: "a driven body's histories are seen from the drive's frame (nodal_fixed) \
-                         or from mean axes; principal axes are not offered"
-                    .into(),
-            });
+            return Err(DynamicsError::AxesNotOffered { axes: "principal" }.into());
         }
     };
     let measure = Measure {
