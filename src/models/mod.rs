@@ -5,6 +5,7 @@
 mod body_advice;
 mod body_comparison;
 mod body_import;
+mod body_modes_study;
 mod body_reduction;
 mod cantilever_study;
 mod driven_body;
@@ -25,6 +26,10 @@ pub use body_comparison::{
     BodyComparisonPoint, ROUND_OFF_ERROR, compare_body_methods,
 };
 pub use body_import::{FULL_MODES, import_summary, missed_note, refuse_mechanism};
+pub use body_modes_study::{
+    BODY_MODES_COMPARED, BodyModesParameters, BodyModesStudy, HeldModes, MethodMeasure,
+    body_modes_study,
+};
 pub use body_reduction::{
     BALANCED_MODES_PER_VECTOR, BALANCED_ZETA, BODY_METHODS, BodyInterfaces, BodyReducer,
     ReducedBody,

@@ -5,10 +5,16 @@
 use serde_json::{Value, json};
 
 use crate::{
-    Result,
-    models::{BALANCED_MODES_PER_VECTOR, BALANCED_ZETA, BodyReducer},
+    models::{BALANCED_MODES_PER_VECTOR, BALANCED_ZETA},
+    reduction::ModalInfluence,
     report::{Cell, Table, sig},
 };
+
+/// Modes ranked for `kept` kept modes: as many as balanced truncation balances for `kept`
+/// vectors, so the solve is shared.
+pub fn influence_count(kept: usize) -> usize {
+    (BALANCED_MODES_PER_VECTOR * kept).max(kept + 8)
+}
 
 /// Modes listed in the table (all are in the JSON).
 const LISTED: usize = 12;
@@ -17,11 +23,10 @@ const LISTED: usize = 12;
 /// as balanced truncation balances for `kept` vectors, so the solve is shared) ranked by
 /// influence from the interface loads at ζ = [`BALANCED_ZETA`].
 pub fn influence_table(
-    reducer: &mut BodyReducer<'_>,
+    (hz, influence): &(Vec<f64>, ModalInfluence),
+    count: usize,
     kept: usize,
-) -> Result<(Table, Value, String)> {
-    let count = (BALANCED_MODES_PER_VECTOR * kept).max(kept + 8);
-    let (hz, influence) = reducer.interface_influence(count, BALANCED_ZETA)?;
+) -> (Table, Value, String) {
     let ranking = influence.ranking();
     let top = influence.sigma[ranking[0]];
     let mut table = Table::new(&["rank", "free-free mode", "Hz", "influence / largest"]);
@@ -50,5 +55,5 @@ pub fn influence_table(
          modes are among the {kept} lowest.",
         influence.closeness
     );
-    Ok((table, json, text))
+    (table, json, text)
 }

@@ -4,27 +4,23 @@
 //! moment matching and balanced truncation on request), each model's frequencies and MAC
 //! against the full body's, and the principal angles between the bases and its lowest modes.
 
-use std::time::Instant;
-
 use serde_json::{Map, Value, json};
 
+use super::body_influence::influence_count;
 use super::{
     SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
 };
-use crate::analysis::pair_modes;
 use crate::models::{
-    BODY_METHODS, BodyInterfaces, BodyReducer, INTERFACE_MODE_SWEEP, InterfaceResponse,
-    interface_reduction_sweep, modes_up_to,
+    BALANCED_ZETA, BODY_METHODS, BODY_MODES_COMPARED, BodyInterfaces, BodyModesParameters,
+    BodyModesStudy, body_modes_study,
 };
 use crate::record::{LogLogChart, LogLogSeries};
-use crate::reduction::{Basis, ColumnKind, ReductionError};
 use crate::{
-    Error, Result,
+    Result,
     body_file::{BodyHandle, ImportedBody},
-    linalg::{GeneralizedEigen, principal_angles},
     models::FULL_MODES,
     record::Layout,
-    reduction::{Method, ModeSelection},
+    reduction::Method,
     report::{Cell, Report, Table, fmt_hz, residual_note, sig, sig_vec},
 };
 
@@ -54,9 +50,6 @@ const DEFAULT_METHODS: [Method; 4] = [
     Method::CraigBampton,
     Method::ModeCondensation,
 ];
-/// The lowest elastic modes whose frequency error and subspace angle the table shows (every
-/// error is in the JSON, paired by order).
-const COMPARED_MODES: usize = 6;
 
 /// The body of a run: `--body`, or [`DEFAULT_BODY`].
 pub fn body_of(opts: &SceneOptions) -> Result<BodyHandle> {
@@ -80,63 +73,41 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let kept = opts.modes_or_default(&INFO);
     let dofs = model.dof_count();
 
-    opts.progress.phase("full body's lowest modes")?;
-    let started = Instant::now();
-    let full = modes_up_to(model, opts.band_hz, FULL_MODES, &opts.progress)?;
-    let full_s = started.elapsed().as_secs_f64();
-    crate::models::refuse_mechanism(model, &full)?;
-    let full_hz = full.elastic_hz();
-    let elastic = GeneralizedEigen {
-        values: full.modes.values[full.zero_modes..].to_vec(),
-        vectors: full
-            .modes
-            .vectors
-            .subcols(full.zero_modes, full_hz.len())
-            .to_owned(),
-        residuals: full.modes.residuals[full.zero_modes..].to_vec(),
-        zero_energy: 0,
-        sturm: None,
-    };
-
-    let mut reducer = BodyReducer::new(
+    let study = body_modes_study(
         model,
-        BodyInterfaces {
-            boundary: boundary.clone(),
-            rigid: opts.rigid_interfaces.clone(),
-            averaging: opts.averaging_interfaces.clone(),
-            interface_modes: opts.interface_modes,
+        &BodyModesParameters {
+            interfaces: BodyInterfaces {
+                boundary: boundary.clone(),
+                rigid: opts.rigid_interfaces.clone(),
+                averaging: opts.averaging_interfaces.clone(),
+                interface_modes: opts.interface_modes,
+            },
+            methods: methods.clone(),
+            kept,
+            band_hz: opts.band_hz,
+            full_modes: FULL_MODES,
+            drawn_constraint_modes: super::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES,
         },
-        &full,
-        full_s,
-        opts.progress.clone(),
+        (influence_count(kept), BALANCED_ZETA),
+        &opts.progress,
     )?;
-    // The full body's interface response over --band, and each model's below.
-    let response = match opts.band_hz {
-        Some(top) => Some(InterfaceResponse::of_full_body(
-            model,
-            reducer.loads()?,
-            top,
-            &full.elastic_hz(),
-            &opts.progress,
-        )?),
-        None => None,
-    };
-    let mut responses = Vec::new();
-    // The constraint and fixed-interface modes, when a boundary holds the body (rbe3
-    // interfaces alone hold nothing).
-    let held = if boundary.is_empty() {
-        None
-    } else {
-        let problem = reducer.problem()?;
-        Some((
-            problem.constraint_shapes(super::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES)?,
-            problem.kept_modes(ModeSelection::Count(kept))?,
-        ))
-    };
-    let fi_hz = held.as_ref().map_or(Vec::new(), |(_, fi)| fi.hz());
+    let BodyModesStudy {
+        full,
+        full_s,
+        elastic,
+        held,
+        methods: study_methods,
+        notes: study_notes,
+        sweep,
+        response,
+        influence,
+        influence_count: ranked,
+    } = study;
+    let full_hz = full.elastic_hz();
+    let fi_hz = held.as_ref().map_or(Vec::new(), |h| h.fixed_interface.hz());
     let fi_residuals = held
         .as_ref()
-        .map_or(Vec::new(), |(_, fi)| fi.residuals.clone());
+        .map_or(Vec::new(), |h| h.fixed_interface.residuals.clone());
 
     let mut reduced = Map::new();
     let mut errors = Map::new();
@@ -170,23 +141,15 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         visuals.push(undeformed(model));
     }
     let mut bars = Vec::new();
-    let mut freq_bars = FrequencyBars::new(COMPARED_MODES);
+    let mut freq_bars = FrequencyBars::new(BODY_MODES_COMPARED);
     freq_bars.push(Method::NoReduction, &full_hz);
-    // The full body's rigid and lowest elastic modes each basis should contain.
-    let compared =
-        (full.zero_modes + full_hz.len().min(COMPARED_MODES)).min(full.modes.vectors.ncols());
-    let target = full.modes.vectors.subcols(0, compared);
-    let mut cb_basis: Option<Basis> = None;
     let mut notes = Vec::new();
-    for &m in &methods {
-        let model_of = match reducer.reduce(m, kept) {
-            Ok(r) => r,
-            Err(
-                e @ (Error::Reduction(ReductionError::MethodNeedsContext { .. })
-                | Error::Linalg(crate::linalg::LinalgError::EigenCheckFailed { .. })),
-            ) => {
-                // A method that cannot apply to this body, or whose reduced pairs fail their
-                // check: said in its row, not computed, never printed as if right.
+    let mut responses = Vec::new();
+    for (m, measured) in &study_methods {
+        let m = *m;
+        let q = match measured {
+            Ok(q) => q,
+            Err(e) => {
                 let mut row = vec![Cell::text(m.id().to_uppercase()), Cell::text("–")];
                 row.push(Cell::text(format!("not computed: {e}")));
                 row.extend((0..5).map(|_| Cell::text("–")));
@@ -194,74 +157,32 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 notes.push(format!("{}: {e}", m.id().to_uppercase()));
                 continue;
             }
-            Err(e) => return Err(e),
         };
-        if let Some(note) = &model_of.note {
+        if let Some((_, note)) = study_notes.iter().find(|(n, _)| *n == m) {
             notes.push(format!("{}: {note}", m.id().to_uppercase()));
         }
-        if let Some(r) = &response {
-            responses.push((m, r.of_model(model, &model_of.basis)?));
+        if let Some(r) = &q.response {
+            responses.push((m, r.clone()));
         }
-        let elapsed = model_of.offline_s;
-        if m == Method::CraigBampton {
-            cb_basis = Some(if opts.interface_modes.is_some() {
-                reducer.reduce_keeping_constraint_modes(m, kept)?.basis
-            } else {
-                model_of.basis.clone()
-            });
-        }
-        let (basis, eig, skip) = (&model_of.basis, &model_of.modes, model_of.zero_modes);
-        let rigid_hz = model_of.rigid_hz_max();
-        let hz = model_of.elastic_hz();
-        let hz_residuals = model_of.elastic_residuals();
-        let rel = model_of.relative_errors(&full_hz);
-        // A model with fewer elastic modes than compared has no error over them: said, not
-        // ranked (a rigid interface under Guyan is a rigid body).
-        let compared_modes = COMPARED_MODES.min(full_hz.len());
-        let worst = if rel.len() >= compared_modes {
-            rel.iter()
-                .take(COMPARED_MODES)
-                .fold(0.0f64, |a, e| a.max(e.abs()))
-        } else {
-            f64::NAN
-        };
-        let angle = principal_angles(basis.psi.as_ref(), target)?
-            .into_iter()
-            .fold(0.0f64, f64::max);
-        // MAC of the full body's first elastic modes against the reduced model's expanded
-        // ones (the lowest 2 × compared of them, paired by best MAC).
-        let candidates = hz.len().min(2 * COMPARED_MODES);
-        let expanded = basis.psi.as_ref() * eig.vectors.subcols(skip, candidates);
-        let compared_full: Vec<usize> = (0..full_hz.len().min(COMPARED_MODES)).collect();
-        let pairs = pair_modes(
-            elastic.vectors.as_ref(),
-            &full_hz,
-            &compared_full,
-            expanded.as_ref(),
-            &hz[..candidates],
-        );
-        let macs: Vec<f64> = pairs.iter().map(|p| p.mac).collect();
-        let min_mac = if candidates == 0 {
-            f64::NAN
-        } else {
-            macs.iter().copied().fold(1.0, f64::min)
-        };
-        mac.insert(m.id().into(), json!(sig_vec(&macs)));
-        reduced.insert(m.id().into(), json!(sig_vec(&hz)));
-        reduced_residuals.insert(m.id().into(), json!(sig_vec(&hz_residuals)));
-        reduced_zero.insert(m.id().into(), json!(skip));
+        let (hz, hz_residuals) = (&q.hz, &q.residuals);
+        mac.insert(m.id().into(), json!(sig_vec(&q.macs)));
+        reduced.insert(m.id().into(), json!(sig_vec(hz)));
+        reduced_residuals.insert(m.id().into(), json!(sig_vec(hz_residuals)));
+        reduced_zero.insert(m.id().into(), json!(q.zero_modes));
         residual_lines.push(format!(
             "{}: {}",
             m.id().to_uppercase(),
-            residual_note(&hz, &hz_residuals)
+            residual_note(hz, hz_residuals)
         ));
-        errors.insert(m.id().into(), json!(sig_vec(&rel)));
-        angles.insert(m.id().into(), json!(sig(angle)));
-        rigid_max.insert(m.id().into(), json!(sig(rigid_hz)));
-        sizes.insert(m.id().into(), json!(basis.size()));
+        errors.insert(m.id().into(), json!(sig_vec(&q.rel_errors)));
+        angles.insert(m.id().into(), json!(sig(q.max_angle)));
+        rigid_max.insert(m.id().into(), json!(sig(q.rigid_hz_max)));
+        sizes.insert(m.id().into(), json!(q.size));
+        let (worst, min_mac, angle, rigid_hz) =
+            (q.worst_error, q.min_mac, q.max_angle, q.rigid_hz_max);
         table.push(vec![
             Cell::text(m.id().to_uppercase()),
-            Cell::number(basis.size() as f64, format!("{dofs} × {}", basis.size())),
+            Cell::number(q.size as f64, format!("{dofs} × {}", q.size)),
             Cell::text(fmt_hz(&hz[..hz.len().min(5)])),
             if worst.is_nan() {
                 Cell::text(format!("{} elastic mode(s) only", hz.len()))
@@ -275,9 +196,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             },
             Cell::number(angle, format!("{angle:.2e}")),
             Cell::number(rigid_hz, format!("{rigid_hz:.2e}")),
-            Cell::number(elapsed, format!("{elapsed:.3}")),
+            Cell::number(q.offline_s, format!("{:.3}", q.offline_s)),
         ]);
-        freq_bars.push(m, &hz);
+        freq_bars.push(m, hz);
     }
 
     visuals.extend(freq_bars.visuals());
@@ -337,14 +258,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     // How many characteristic constraint modes the interface needs (Castanier–Tan–Pierre).
     let mut sweep_md = String::new();
     let mut sweep_table = None;
-    if let Some(cb) = &cb_basis
-        && cb.columns_of(|k| *k == ColumnKind::Constraint).len() > INTERFACE_MODE_SWEEP[0]
-    {
-        opts.progress.phase("interface reduction sweep")?;
-        let points = interface_reduction_sweep(model, cb, &full, COMPARED_MODES)?;
+    if let Some(points) = &sweep {
         let mut sweep = Table::new(&["interface shapes", "size", "max rel. error, first 6 modes"]);
         let mut chart = Vec::new();
-        for p in &points {
+        for p in points {
             let shapes = p
                 .interface_modes
                 .map_or("all (plain CB)".to_string(), |n| n.to_string());
@@ -412,10 +329,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     r.insert("zero_energy_hz_max".into(), Value::Object(rigid_max));
     r.insert("full_modes_s".into(), json!(sig(full_s)));
     r.insert("method_notes".into(), json!(notes));
-    opts.progress
-        .phase("modal influence across the interfaces")?;
     let (influence, influence_json, influence_text) =
-        super::body_influence::influence_table(&mut reducer, kept)?;
+        super::body_influence::influence_table(&influence, ranked, kept);
     r.insert("interface_influence".into(), influence_json);
     let summary = table.markdown();
     report.add_table(table);
@@ -499,13 +414,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         freq_bars.caption(),
         report.table
     );
-    let layout = if let (true, Some(((shapes, labels), fi))) = (body.has_coordinates, &held) {
+    let layout = if let (true, Some(h)) = (body.has_coordinates, &held) {
         let (mode_visuals, l) = super::slab_mode_views::slab_mode_views(
             model,
-            &reducer.problem()?.partition,
-            shapes,
-            labels,
-            fi,
+            &h.partition,
+            &h.constraint_shapes.0,
+            &h.constraint_shapes.1,
+            &h.fixed_interface,
             &elastic,
             FULL_MODES,
             kept,
