@@ -251,6 +251,12 @@ class Body:
         step: float = 1e-3,
         output_every: int = 10,
         progress: Progress = None,
+        pinned: Sequence[str] = (),
+        axis_point: Optional[Sequence[float]] = None,
+        shake: Optional[tuple] = None,
+        gravity: Optional[Sequence[float]] = None,
+        spectral_radius: float = 0.9,
+        axes: str = "nodal_fixed",
     ) -> dict:
         """The driven body of ``flexmodes simulate --body``: the interface ``drive``
         (``"rbe2:SET"`` or a declared rbe2 interface) spun up about ``axis`` to ``rate``
@@ -259,7 +265,15 @@ class Body:
         of ``modes``. Returns ``times`` (s) and ``runs``: per model its ``label``,
         ``outputs`` (samples × output sets × 3, the sets' mean displacement in frame axes),
         ``reaction`` (samples × 6 at the drive), costs and, against the full body, its
-        ``history_error`` and ``reaction_error``."""
+        ``history_error`` and ``reaction_error``.
+
+        ``pinned``: rbe2 sets whose masters' translations the frame holds; ``axis_point``: a
+        point of the spin axis (length unit; default the drive's master, else the drive orbits);
+        ``shake``: ``((dx, dy, dz), amplitude m, frequency Hz)`` of the drive; ``gravity``:
+        m/s² in ground axes; ``spectral_radius``: generalized-α's ρ∞; ``axes``:
+        ``"nodal_fixed"`` (the drive's frame) or ``"mean"``."""
+        if axes not in ("nodal_fixed", "mean"):
+            raise InputError(f"axes {axes!r}: a driven body is seen from 'nodal_fixed' or 'mean' axes")
         ids = [str(m) for m in methods]
         return self._inner.simulate(
             str(drive),
@@ -275,6 +289,14 @@ class Body:
             float(step),
             int(output_every),
             progress,
+            [str(p) for p in pinned],
+            None if axis_point is None else tuple(float(x) for x in axis_point),
+            None
+            if shake is None
+            else (tuple(float(x) for x in shake[0]), float(shake[1]), float(shake[2])),
+            None if gravity is None else tuple(float(g) for g in gravity),
+            float(spectral_radius),
+            axes == "mean",
         )
 
     def __repr__(self) -> str:

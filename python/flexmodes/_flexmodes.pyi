@@ -82,6 +82,12 @@ class RustBody:
         step: float,
         output_every: int,
         progress: Progress,
+        pinned: list[str],
+        axis_point: Optional[tuple[float, float, float]],
+        shake: Optional[tuple[tuple[float, float, float], float, float]],
+        gravity: Optional[tuple[float, float, float]],
+        spectral_radius: float,
+        mean_axes: bool,
     ) -> dict[str, Any]: ...
 
 class RustReducedModel:

@@ -470,7 +470,7 @@ impl RustBody {
     }
 
     /// The driven body of `flexmodes simulate --body`: histories as NumPy arrays.
-    #[pyo3(signature = (drive, methods, modes, full, boundary, outputs, rate, ramp, axis, end, step, output_every, progress))]
+    #[pyo3(signature = (drive, methods, modes, full, boundary, outputs, rate, ramp, axis, end, step, output_every, progress, pinned, axis_point, shake, gravity, spectral_radius, mean_axes))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -488,6 +488,12 @@ impl RustBody {
         step: f64,
         output_every: usize,
         progress: Option<Py<PyAny>>,
+        pinned: Vec<String>,
+        axis_point: Option<[f64; 3]>,
+        shake: Option<([f64; 3], f64, f64)>,
+        gravity: Option<[f64; 3]>,
+        spectral_radius: f64,
+        mean_axes: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let methods = methods
             .iter()
@@ -498,14 +504,23 @@ impl RustBody {
             drive,
             boundary,
             outputs,
+            pinned,
             axis,
             rate,
             ramp,
+            axis_point,
+            shake,
+            gravity,
+            axes: if mean_axes {
+                flexmodes::dynamics::AxisKind::Mean
+            } else {
+                flexmodes::dynamics::AxisKind::NodalFixed
+            },
             integration: flexmodes::dynamics::DrivenIntegration {
                 step,
                 end,
                 output_every,
-                ..defaults.integration
+                spectral_radius,
             },
             ..defaults
         };

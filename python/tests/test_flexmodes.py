@@ -335,3 +335,19 @@ def test_the_kernels_use_every_core_and_can_be_told_fewer(bar):
     finally:
         assert flexmodes.set_threads() == cores
     np.testing.assert_allclose(body.reduce("cb", "rbe2:end_a", 8).hz, one, rtol=1e-10)
+
+
+def test_driven_link_on_mean_axes_with_a_shake():
+    body = flexmodes.Body.from_file(ROOT / "tests" / "bodies" / "steel-link" / "body.toml")
+    common = dict(methods=("cb",), modes=(6,), outputs=("bore_b",), rate=100.0, ramp=0.02,
+                  end=0.02, step=5e-4, output_every=4, shake=((1.0, 0.0, 0.0), 1e-4, 200.0))
+    nodal = body.simulate("rbe2:bore_a", **common)["runs"][0]["outputs"]
+    mean = body.simulate("rbe2:bore_a", axes="mean", **common)["runs"][0]["outputs"]
+    assert nodal.shape == mean.shape and np.isfinite(mean).all()
+    # The same motion seen from another frame: the rigid part taken out differs.
+    assert np.abs(nodal - mean).max() > 1e-3 * np.abs(nodal).max()
+    with pytest.raises(flexmodes.InputError, match="axes"):
+        body.simulate("rbe2:bore_a", axes="principal", **common)
+    with pytest.raises(flexmodes.DynamicsError) as caught:
+        body.simulate("rbe2:bore_a", methods=("cb",), modes=(6,), axis=(0, 0, 0))
+    assert caught.value.kind == "Dynamics.ZeroDirection"
