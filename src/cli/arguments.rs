@@ -261,8 +261,8 @@ pub(super) struct SimulateArgs {
     /// The motion: `spin-up` (about --axis through --axis-point, default the drive's
     /// master: elsewhere the drive orbits the axis) or `shake` (a harmonic translation of
     /// the drive along --direction, no turning).
-    #[arg(long, default_value = "spin-up", value_parser = ["spin-up", "shake"])]
-    pub(super) motion: String,
+    #[arg(long, value_enum, default_value_t = Motion::SpinUp)]
+    pub(super) motion: Motion,
     /// With spin-up: a point of the spin axis, X,Y,Z in the body's length unit.
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub(super) axis_point: Option<Vec<f64>>,
@@ -412,8 +412,8 @@ pub(super) struct ServeArgs {
     #[arg(long, default_value_t = 9876)]
     pub(super) grpc_port: u16,
     /// The viewer's theme in the shared URL: dark or light (default: each browser's own).
-    #[arg(long)]
-    pub(super) theme: Option<String>,
+    #[arg(long, value_enum)]
+    pub(super) theme: Option<Theme>,
     #[command(flatten)]
     pub(super) options: OptionArgs,
 }
@@ -566,4 +566,31 @@ pub(super) fn parse_nodes(items: &[String]) -> Result<Vec<usize>> {
         }
     }
     Ok(nodes)
+}
+
+/// How `simulate --body` drives its interface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Motion {
+    /// A spin-up about --axis through --axis-point.
+    SpinUp,
+    /// A harmonic translation along --direction, no turning.
+    Shake,
+}
+
+/// The viewer's theme in `serve`'s shared URL.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Theme {
+    Dark,
+    Light,
+}
+
+#[cfg(feature = "serve")]
+impl Theme {
+    /// As the web viewer's URL takes it.
+    pub fn id(self) -> &'static str {
+        match self {
+            Theme::Dark => "dark",
+            Theme::Light => "light",
+        }
+    }
 }

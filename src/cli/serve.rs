@@ -47,15 +47,6 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         theme,
         options,
     } = arguments;
-    if let Some(t) = &theme
-        && t != "dark"
-        && t != "light"
-    {
-        return Err(crate::Error::InvalidOption {
-            scene: "serve".into(),
-            reason: format!("--theme {t}: dark or light"),
-        });
-    }
     // Everything that can fail on the input fails before a port is taken.
     let ids: Vec<String> = if ids.is_empty() && files.is_empty() {
         scenes::all_ids()
@@ -115,7 +106,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     let data = data_url(shared, grpc_port);
     println!(
         "open in a browser: {}",
-        page_url(shared, port, &data, theme.as_deref())
+        page_url(shared, port, &data, theme.map(super::arguments::Theme::id))
     );
     if bind.is_loopback() {
         println!("(this machine only: --bind ADDRESS lets a classroom network in)");

@@ -34,8 +34,7 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         explicit,
         axes,
     } = arguments;
-    // clap admits the known motions only: spin-up, shake.
-    let shaking = motion == "shake";
+    let shaking = motion == super::arguments::Motion::Shake;
     let three = |name: &str, v: &[f64]| -> Result<[f64; 3]> {
         match v {
             [x, y, z] => Ok([*x, *y, *z]),
