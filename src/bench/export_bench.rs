@@ -52,15 +52,13 @@ fn run_timed(mut command: Command, repeats: usize, what: &str) -> Result<Runs> {
         })?;
         seconds.push(started.elapsed().as_secs_f64());
         if !out.status.success() {
-            return Err(Error::InvalidOption {
-                scene: "bench".into(),
-                reason: format!(
-                    "{what} failed: {}",
-                    String::from_utf8_lossy(&out.stderr)
-                        .lines()
-                        .last()
-                        .unwrap_or("")
-                ),
+            return Err(Error::PeerFailed {
+                peer: what.to_string(),
+                reason: String::from_utf8_lossy(&out.stderr)
+                    .lines()
+                    .last()
+                    .unwrap_or("")
+                    .to_string(),
             });
         }
         stdout = String::from_utf8_lossy(&out.stdout).into_owned();
@@ -117,9 +115,9 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
             source,
         },
     )?)
-    .map_err(|e| Error::InvalidOption {
-        scene: "bench".into(),
-        reason: format!("model.json: {e}"),
+    .map_err(|e| Error::PeerFailed {
+        peer: "flexmodes export".into(),
+        reason: format!("its model.json does not parse: {e}"),
     })?;
     let _ = std::fs::remove_dir_all(&out_dir);
     let our_hz: Vec<f64> = model["reduced_elastic_hz"]

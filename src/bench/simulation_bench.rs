@@ -100,10 +100,8 @@ pub(crate) fn bench_scenario(scene: &str) -> Result<Scenario> {
     match scene {
         "slab-sim1" => Ok(Scenario::HeldAtSix),
         "slab-sim2" => Ok(Scenario::Orbit),
-        other => Err(Error::InvalidOption {
+        other => Err(Error::NotBenchable {
             scene: other.into(),
-            reason: "bench measures slab-modes and the simulation scenes slab-sim1 and slab-sim2"
-                .into(),
         }),
     }
 }

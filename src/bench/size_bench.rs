@@ -45,12 +45,9 @@ pub fn parse_sizes(text: &str) -> Result<Vec<[usize; 3]>> {
             match parts.as_slice() {
                 [Some(a), Some(b), Some(c)] if *a > 0 && *b > 0 && *c > 0 => [*a, *b, *c],
                 _ => {
-                    return Err(Error::InvalidOption {
-                        scene: "slab-modes".into(),
-                        reason: format!(
-                            "size `{token}` is neither one of {} nor NXxNYxNZ with positive counts",
-                            NAMED_SIZES.map(|(n, _)| n).join(", ")
-                        ),
+                    return Err(Error::InvalidSize {
+                        token: token.to_string(),
+                        named: NAMED_SIZES.map(|(n, _)| n).join(", "),
                     });
                 }
             }

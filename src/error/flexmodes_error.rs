@@ -72,6 +72,20 @@ pub enum Error {
     #[error("invalid option for scene `{scene}`: {reason}")]
     InvalidOption { scene: String, reason: String },
 
+    /// `bench` asked of a scene it does not measure.
+    #[error(
+        "bench measures slab-modes and the simulation scenes slab-sim1 and slab-sim2, not `{scene}`"
+    )]
+    NotBenchable { scene: String },
+
+    /// A mesh size `bench --sizes` cannot read.
+    #[error("--sizes: `{token}` is neither one of {named} nor NXxNYxNZ with positive counts")]
+    InvalidSize { token: String, named: String },
+
+    /// A peer a bench runs (a process, or the file it wrote) failed.
+    #[error("{peer} failed: {reason}")]
+    PeerFailed { peer: String, reason: String },
+
     /// Writing a recording failed; the destination was left untouched.
     #[error("could not write recording {path}: {reason}")]
     RecordingWrite { path: String, reason: String },
