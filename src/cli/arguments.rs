@@ -59,75 +59,7 @@ pub(super) enum Command {
     /// Speed against accuracy of every method and kept-mode count: slab-modes (offline cost
     /// against frequency and static error) and the slab simulations (online cost against
     /// node 8's error, stability).
-    Bench {
-        /// Scenes: slab-modes, slab-sim1, slab-sim2 (default: slab-sim1).
-        scenes: Vec<String>,
-        /// Every scene bench measures: slab-modes, slab-sim1, slab-sim2.
-        #[arg(long, conflicts_with = "scenes")]
-        all: bool,
-        /// Print one JSON object per scene.
-        #[arg(long)]
-        json: bool,
-        /// Refined meshes to time, `1k,7k,28k,74k,150k` or `NXxNYxNZ,...`: slab-modes'
-        /// offline cost, or one simulation's online cost, against DOF.
-        #[arg(long)]
-        sizes: Option<String>,
-        /// Also write the charts to this `.rrd`: with --sizes time against DOF, else error
-        /// against cost and against kept modes of one simulation bench.
-        #[arg(long)]
-        save: Option<PathBuf>,
-        /// Integrators to compare, comma separated (default: dp5,gen-alpha).
-        #[arg(long, value_delimiter = ',')]
-        integrator: Vec<IntegrationScheme>,
-        /// Runs of each simulation or export (default 3), or of each size and thread count
-        /// with --sizes (default 1); the median is reported.
-        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100))]
-        repeats: Option<u64>,
-        /// Simulations on the slab meshed with NX × NY × NZ bricks (App. B is 4,2,1).
-        #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
-        refine: Option<[usize; 3]>,
-        /// A body file: with no scene, time `export --method cb` of it as a whole process
-        /// against SciPy's CHOLMOD route (the peer script) in the same run; with the scene
-        /// `modes`, chart every method and kept-mode count on it (offline time, peak memory,
-        /// frequency error, Pareto front, mode-count advice); with `simulate` (and --drive),
-        /// time the full body's driven spin-up per step against CB's.
-        #[arg(long, conflicts_with_all = ["all", "sizes", "refine"])]
-        body: Option<PathBuf>,
-        /// With --body: the interface (node set names, node numbers, `rbe2:SET`).
-        #[arg(long, value_delimiter = ',', requires = "body")]
-        boundary: Option<Vec<String>>,
-        /// With --body: kept modes (export: one count, default 10; modes: the counts to
-        /// chart, default 4,8,16,32).
-        #[arg(long, value_delimiter = ',', requires = "body")]
-        modes: Vec<usize>,
-        /// With `modes --body`: methods to chart (default: all eight).
-        #[arg(long, value_delimiter = ',', requires = "body")]
-        method: Vec<Method>,
-        /// With `modes --body`: top of the frequency band, Hz; every full-body mode up to it
-        /// is compared (default: the lowest six elastic modes).
-        #[arg(long, value_name = "HZ", requires = "body")]
-        band: Option<f64>,
-        /// With `modes --body`: the relative frequency error the advice asks of a model.
-        #[arg(long, default_value_t = 0.01, requires = "body")]
-        tolerance: f64,
-        /// With `modes --body`: reduce the interface to N characteristic constraint modes.
-        #[arg(long, value_name = "N", requires = "body")]
-        interface_modes: Option<usize>,
-        /// With `simulate --body`: the driven interface (`rbe2:SET`).
-        #[arg(long, requires = "body")]
-        drive: Option<String>,
-        /// With `simulate --body`: the same part meshed finer, each timed like --body to chart
-        /// the full body's cost against DOF.
-        #[arg(long, value_delimiter = ',', requires = "drive")]
-        larger: Vec<PathBuf>,
-        /// With --body: the SciPy peer script.
-        #[arg(
-            long,
-            default_value = "../shared/bench/peers_body_cb.py",
-            requires = "body"
-        )]
-        peer: PathBuf,
-    },
+    Bench(BenchArgs),
     /// The desktop explorer: the Rerun viewer beside live controls.
     #[cfg(feature = "gui")]
     Gui {
@@ -175,40 +107,7 @@ pub(super) enum Command {
     },
     /// Reduce a body and write Ψ (psi.npy), K_r, M_r (Matrix Market) and model.json to a
     /// folder.
-    Export {
-        /// The body file (TOML), or `builtin:NAME`.
-        #[arg(long)]
-        body: String,
-        /// The reduction: gr, mt, cb, mc.
-        #[arg(long)]
-        method: Method,
-        /// Interface: node set names or 1-based nodes, comma separated; `rbe2:SET` ties the
-        /// set rigidly to one 6-DOF master node at its centroid (default: the body's default
-        /// interface).
-        #[arg(long, value_delimiter = ',')]
-        boundary: Option<Vec<String>>,
-        /// Kept fixed-interface normal modes (mt, cb, mc).
-        #[arg(long, default_value_t = 10)]
-        modes: usize,
-        /// Destination folder (replaced as a whole once everything is written).
-        #[arg(long)]
-        out: PathBuf,
-        /// The format of Ψ: `npy` (binary, numpy.load) or `mtx` (Matrix Market array text).
-        #[arg(long, default_value = "npy")]
-        psi_format: crate::export::PsiFormat,
-        /// Reduce the interface to this many characteristic constraint modes (Castanier–Tan–
-        /// Pierre; CB and GR on plain node sets).
-        #[arg(long, value_name = "N")]
-        interface_modes: Option<usize>,
-        /// Also write the body for Exudyn in `OUT/exudyn/` (nodes, full M and K, the mode
-        /// basis without the first rbe2 interface's rigid motions: the floating frame is
-        /// attached there); `assets/python/flexmodes_exudyn.py` loads it.
-        #[arg(long)]
-        exudyn: bool,
-        /// Print the wall time of each phase on stderr.
-        #[arg(long)]
-        timings: bool,
-    },
+    Export(ExportArgs),
     /// Simulate a body driven through a rigid interface: the full body (NR, sparse) and
     /// reduced models (gr, mt, cb, mc) run the same spin-up; each model's history and reaction
     /// against the full body's, its offline and online time.
@@ -593,4 +492,113 @@ impl Theme {
             Theme::Light => "light",
         }
     }
+}
+
+/// `flexmodes bench`'s arguments.
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// Scenes: slab-modes, slab-sim1, slab-sim2 (default: slab-sim1).
+    pub(super) scenes: Vec<String>,
+    /// Every scene bench measures: slab-modes, slab-sim1, slab-sim2.
+    #[arg(long, conflicts_with = "scenes")]
+    pub(super) all: bool,
+    /// Print one JSON object per scene.
+    #[arg(long)]
+    pub(super) json: bool,
+    /// Refined meshes to time, `1k,7k,28k,74k,150k` or `NXxNYxNZ,...`: slab-modes'
+    /// offline cost, or one simulation's online cost, against DOF.
+    #[arg(long)]
+    pub(super) sizes: Option<String>,
+    /// Also write the charts to this `.rrd`: with --sizes time against DOF, else error
+    /// against cost and against kept modes of one simulation bench.
+    #[arg(long)]
+    pub(super) save: Option<PathBuf>,
+    /// Integrators to compare, comma separated (default: dp5,gen-alpha).
+    #[arg(long, value_delimiter = ',')]
+    pub(super) integrator: Vec<IntegrationScheme>,
+    /// Runs of each simulation or export (default 3), or of each size and thread count
+    /// with --sizes (default 1); the median is reported.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100))]
+    pub(super) repeats: Option<u64>,
+    /// Simulations on the slab meshed with NX × NY × NZ bricks (App. B is 4,2,1).
+    #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
+    pub(super) refine: Option<[usize; 3]>,
+    /// A body file: with no scene, time `export --method cb` of it as a whole process
+    /// against SciPy's CHOLMOD route (the peer script) in the same run; with the scene
+    /// `modes`, chart every method and kept-mode count on it (offline time, peak memory,
+    /// frequency error, Pareto front, mode-count advice); with `simulate` (and --drive),
+    /// time the full body's driven spin-up per step against CB's.
+    #[arg(long, conflicts_with_all = ["all", "sizes", "refine"])]
+    pub(super) body: Option<PathBuf>,
+    /// With --body: the interface (node set names, node numbers, `rbe2:SET`).
+    #[arg(long, value_delimiter = ',', requires = "body")]
+    pub(super) boundary: Option<Vec<String>>,
+    /// With --body: kept modes (export: one count, default 10; modes: the counts to
+    /// chart, default 4,8,16,32).
+    #[arg(long, value_delimiter = ',', requires = "body")]
+    pub(super) modes: Vec<usize>,
+    /// With `modes --body`: methods to chart (default: all eight).
+    #[arg(long, value_delimiter = ',', requires = "body")]
+    pub(super) method: Vec<Method>,
+    /// With `modes --body`: top of the frequency band, Hz; every full-body mode up to it
+    /// is compared (default: the lowest six elastic modes).
+    #[arg(long, value_name = "HZ", requires = "body")]
+    pub(super) band: Option<f64>,
+    /// With `modes --body`: the relative frequency error the advice asks of a model.
+    #[arg(long, default_value_t = 0.01, requires = "body")]
+    pub(super) tolerance: f64,
+    /// With `modes --body`: reduce the interface to N characteristic constraint modes.
+    #[arg(long, value_name = "N", requires = "body")]
+    pub(super) interface_modes: Option<usize>,
+    /// With `simulate --body`: the driven interface (`rbe2:SET`).
+    #[arg(long, requires = "body")]
+    pub(super) drive: Option<String>,
+    /// With `simulate --body`: the same part meshed finer, each timed like --body to chart
+    /// the full body's cost against DOF.
+    #[arg(long, value_delimiter = ',', requires = "drive")]
+    pub(super) larger: Vec<PathBuf>,
+    /// With --body: the SciPy peer script.
+    #[arg(
+        long,
+        default_value = "../shared/bench/peers_body_cb.py",
+        requires = "body"
+    )]
+    pub(super) peer: PathBuf,
+}
+
+/// `flexmodes export`'s arguments.
+#[derive(Debug, clap::Args)]
+pub struct ExportArgs {
+    /// The body file (TOML), or `builtin:NAME`.
+    #[arg(long)]
+    pub(super) body: String,
+    /// The reduction: gr, mt, cb, mc.
+    #[arg(long)]
+    pub(super) method: Method,
+    /// Interface: node set names or 1-based nodes, comma separated; `rbe2:SET` ties the
+    /// set rigidly to one 6-DOF master node at its centroid (default: the body's default
+    /// interface).
+    #[arg(long, value_delimiter = ',')]
+    pub(super) boundary: Option<Vec<String>>,
+    /// Kept fixed-interface normal modes (mt, cb, mc).
+    #[arg(long, default_value_t = 10)]
+    pub(super) modes: usize,
+    /// Destination folder (replaced as a whole once everything is written).
+    #[arg(long)]
+    pub(super) out: PathBuf,
+    /// The format of Ψ: `npy` (binary, numpy.load) or `mtx` (Matrix Market array text).
+    #[arg(long, default_value = "npy")]
+    pub(super) psi_format: crate::export::PsiFormat,
+    /// Reduce the interface to this many characteristic constraint modes (Castanier–Tan–
+    /// Pierre; CB and GR on plain node sets).
+    #[arg(long, value_name = "N")]
+    pub(super) interface_modes: Option<usize>,
+    /// Also write the body for Exudyn in `OUT/exudyn/` (nodes, full M and K, the mode
+    /// basis without the first rbe2 interface's rigid motions: the floating frame is
+    /// attached there); `assets/python/flexmodes_exudyn.py` loads it.
+    #[arg(long)]
+    pub(super) exudyn: bool,
+    /// Print the wall time of each phase on stderr.
+    #[arg(long)]
+    pub(super) timings: bool,
 }

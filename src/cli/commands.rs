@@ -4,7 +4,7 @@ use std::{path::PathBuf, process::ExitCode, time::Instant};
 
 use clap::Parser;
 
-use super::arguments::{Cli, Command};
+use super::arguments::{BenchArgs, Cli, Command, ExportArgs};
 use crate::{
     Error, Progress, Result, TerminalProgress, body_file::ImportedBody, record::Recorder, scenes,
 };
@@ -43,7 +43,7 @@ fn run(cli: Cli) -> Result<()> {
     crate::linalg::set_threads(threads.iter().copied().max());
     let compares_threads = matches!(
         &cli.command,
-        Command::Bench { sizes: Some(_), scenes, .. } if scenes.iter().all(|s| s == "slab-modes")
+        Command::Bench(b) if b.sizes.is_some() && b.scenes.iter().all(|s| s == "slab-modes")
     );
     if several && !compares_threads {
         return Err(Error::InvalidOption {
@@ -76,265 +76,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         #[cfg(feature = "gui")]
         Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),
-        Command::Bench {
-            scenes: ids,
-            body: Some(body),
-            drive,
-            larger,
-            modes,
-            json,
-            ..
-        } if ids.as_slice() == ["simulate"] => {
-            let drive = drive.ok_or_else(|| Error::InvalidOption {
-                scene: "simulate".into(),
-                reason: "bench simulate needs --drive rbe2:SET".into(),
-            })?;
-            let mut files = vec![body.display().to_string()];
-            files.extend(larger.iter().map(|p| p.display().to_string()));
-            let parameters = crate::bench::driven_size_parameters(drive);
-            let handle = Progress::new();
-            let bar = TerminalProgress::start(&handle, "bench simulate");
-            let (value, text) = crate::bench::bench_driven_sizes(
-                &files,
-                &parameters,
-                modes.first().copied().unwrap_or(10),
-                &handle,
-            )?;
-            drop(bar);
-            if json {
-                println!("{value}");
-            } else {
-                println!("# bench simulate --body {}\n\n{text}", files.join(","));
-            }
-            Ok(())
-        }
-        Command::Bench {
-            scenes: ids,
-            body: Some(body),
-            boundary,
-            modes,
-            method,
-            band,
-            tolerance,
-            interface_modes,
-            save,
-            json,
-            ..
-        } if !ids.is_empty() => {
-            if ids.as_slice() != ["modes"] {
-                return Err(Error::InvalidOption {
-                    scene: ids.join(","),
-                    reason: "with --body, bench takes the scene `modes` or `simulate` (or \
-                             none: the export bench)"
-                        .into(),
-                });
-            }
-            let loaded = ImportedBody::load(&body.display().to_string())?;
-            let defaults = crate::models::BodyComparisonParameters::default();
-            let parameters = crate::models::BodyComparisonParameters {
-                boundary,
-                interface_modes,
-                methods: if method.is_empty() {
-                    defaults.methods
-                } else {
-                    method
-                },
-                modes: if modes.is_empty() {
-                    defaults.modes
-                } else {
-                    modes
-                },
-                band_hz: band,
-                tolerance,
-            };
-            let handle = Progress::new();
-            let bar = TerminalProgress::start(&handle, "bench modes --body");
-            let (value, text, recording) =
-                crate::bench::bench_body_modes(&loaded, &parameters, &handle)?;
-            drop(bar);
-            if let Some(path) = &save {
-                Recorder::default().save(&recording, path)?;
-                progress(&format!("wrote {}", path.display()));
-            }
-            if json {
-                println!("{value}");
-            } else {
-                println!("# bench modes --body {}\n\n{text}", body.display());
-            }
-            Ok(())
-        }
-        Command::Bench {
-            body: Some(body),
-            boundary,
-            modes,
-            peer,
-            repeats,
-            json,
-            save,
-            ..
-        } => {
-            if save.is_some() {
-                return Err(Error::InvalidOption {
-                    scene: "bench".into(),
-                    reason: "the export bench writes no recording: --save goes with `bench modes --body`"
-                        .into(),
-                });
-            }
-            let modes = match modes.as_slice() {
-                [] => 10,
-                [k] => *k,
-                _ => {
-                    return Err(Error::InvalidOption {
-                        scene: "bench".into(),
-                        reason: "the export bench takes one --modes count".into(),
-                    });
-                }
-            };
-            let boundary = match boundary {
-                Some(b) => b,
-                None => {
-                    let loaded = ImportedBody::load(&body.display().to_string())?;
-                    let nodes = loaded.default_interface_nodes()?.to_vec();
-                    // The peer takes a set name: the body's default interface.
-                    let name = loaded
-                        .node_sets
-                        .iter()
-                        .find(|(_, v)| **v == nodes)
-                        .map(|(k, _)| k.clone())
-                        .ok_or_else(|| Error::InvalidOption {
-                            scene: "bench".into(),
-                            reason: "name the interface node set with --boundary".into(),
-                        })?;
-                    vec![name]
-                }
-            };
-            let (value, text) = crate::bench::bench_export(&crate::bench::ExportBenchParameters {
-                body,
-                boundary,
-                modes,
-                repeats: repeats.unwrap_or(3) as usize,
-                peer,
-            })?;
-            if json {
-                println!("{value}");
-            } else {
-                println!("{text}");
-            }
-            Ok(())
-        }
-        Command::Bench {
-            scenes: ids,
-            json,
-            sizes: Some(sizes),
-            save,
-            repeats,
-            ..
-        } => {
-            let simulation = match ids.as_slice() {
-                [id] if id == "slab-sim1" || id == "slab-sim2" => Some(id.clone()),
-                _ if ids.iter().all(|id| id == "slab-modes") => None,
-                _ => {
-                    return Err(Error::InvalidOption {
-                        scene: ids.join(","),
-                        reason: "--sizes times slab-modes, or one of slab-sim1 and slab-sim2"
-                            .into(),
-                    });
-                }
-            };
-            let meshes = crate::bench::parse_sizes(&sizes)?;
-            let bench = match &simulation {
-                Some(id) => {
-                    let handle = Progress::new();
-                    let bar = TerminalProgress::start(&handle, &format!("bench {id} --sizes"));
-                    let bench = crate::bench::bench_sim_sizes(id, &meshes, &handle)?;
-                    drop(bar);
-                    bench
-                }
-                None => crate::bench::bench_sizes(
-                    &meshes,
-                    &threads,
-                    repeats.map_or(1, |r| r as usize),
-                    &|s| progress(s),
-                )?,
-            };
-            let title = simulation.as_deref().unwrap_or("slab-modes");
-            if let Some(path) = &save {
-                Recorder::default().save(&bench.recording, path)?;
-                progress(&format!("wrote {}", path.display()));
-            }
-            if json {
-                println!("{}", bench.value);
-            } else {
-                println!("# bench {title} --sizes {sizes}\n\n{}", bench.table);
-            }
-            Ok(())
-        }
-        Command::Bench {
-            scenes: ids,
-            all,
-            json,
-            sizes: None,
-            save,
-            integrator,
-            refine,
-            repeats,
-            ..
-        } => {
-            let ids = if all {
-                BENCH_ALL.iter().map(|s| s.to_string()).collect()
-            } else {
-                ids
-            };
-            if !integrator.is_empty() && !ids.is_empty() && ids.iter().all(|id| id == "slab-modes")
-            {
-                return Err(Error::InvalidOption {
-                    scene: "slab-modes".into(),
-                    reason: "--integrator applies to the simulation benches only".into(),
-                });
-            }
-            if save.is_some() && ids.len() > 1 {
-                return Err(Error::InvalidOption {
-                    scene: ids.join(","),
-                    reason: "--save writes the charts of one simulation bench: name one scene"
-                        .into(),
-                });
-            }
-            let ids = if ids.is_empty() {
-                vec!["slab-sim1".to_string()]
-            } else {
-                ids
-            };
-            for id in &ids {
-                scenes::find(id)?;
-            }
-            let count = ids.len();
-            for (k, id) in ids.into_iter().enumerate() {
-                let handle = Progress::new();
-                let bar =
-                    TerminalProgress::start(&handle, &format!("bench {id} ({} of {count})", k + 1));
-                let (value, table, recording) = if id == "slab-modes" {
-                    crate::bench::bench_modes(refine, &handle)?
-                } else {
-                    crate::bench::bench_simulation(
-                        &id,
-                        &integrator,
-                        refine,
-                        repeats.unwrap_or(3) as usize,
-                        &handle,
-                    )?
-                };
-                drop(bar);
-                if let Some(path) = &save {
-                    Recorder::default().save(&recording, path)?;
-                }
-                if json {
-                    println!("{value}");
-                } else {
-                    println!("# bench {id}\n\n{table}");
-                }
-            }
-            Ok(())
-        }
+        Command::Bench(args) => bench(args, &threads),
         Command::Simulate(arguments) => super::simulate::run(arguments),
         Command::Serve(arguments) => super::serve::run(arguments),
         Command::Convert {
@@ -366,102 +108,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
-        Command::Export {
-            body,
-            method,
-            boundary,
-            modes,
-            out,
-            psi_format,
-            interface_modes,
-            exudyn,
-            timings,
-        } => {
-            let started = Instant::now();
-            let body = ImportedBody::load(&body)?;
-            let interfaces = match boundary {
-                Some(items) => crate::models::BodyInterfaces::of(&body, &items, None)?,
-                None => crate::models::BodyInterfaces {
-                    boundary: body.default_interface_nodes()?.to_vec(),
-                    rigid: Vec::new(),
-                    averaging: Vec::new(),
-                    interface_modes: None,
-                },
-            };
-            let boundary = interfaces.boundary;
-            let loaded_s = started.elapsed().as_secs_f64();
-            let parameters = crate::export::ExportParameters {
-                psi_format,
-                rigid_interfaces: interfaces.rigid,
-                averaging_interfaces: interfaces.averaging,
-                interface_modes,
-                exudyn,
-            };
-            let summary =
-                crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
-            if timings {
-                let total = started.elapsed().as_secs_f64();
-                eprintln!(
-                    "wall time by phase, {} thread(s) (--threads):",
-                    crate::linalg::threads()
-                );
-                let share = |s: f64| 100.0 * s / total.max(f64::MIN_POSITIVE);
-                eprintln!(
-                    "  read the body: {loaded_s:.3} s ({:.0} %)",
-                    share(loaded_s)
-                );
-                for (phase, s) in &summary.timings {
-                    eprintln!("  {phase}: {s:.3} s ({:.0} %)", share(*s));
-                }
-                eprintln!("  total: {total:.3} s");
-            }
-            for i in &parameters.rigid_interfaces {
-                println!(
-                    "rbe2 `{}`: {} nodes tied to a master at ({}) {}",
-                    i.name,
-                    i.nodes.len(),
-                    i.master
-                        .map(crate::report::sig)
-                        .map(|x| x.to_string())
-                        .join(", "),
-                    body.units.length
-                );
-            }
-            println!(
-                "{}: {} of `{}` on {} interface node(s), Ψ {} × {}; wrote {} in {}\n{} \
-                 zero-energy mode(s); reduced elastic Hz: {} ({})",
-                method.id(),
-                method.name(),
-                body.model.name,
-                boundary.len(),
-                summary.shape[0],
-                summary.shape[1],
-                summary.files.join(", "),
-                summary.dir.display(),
-                summary.zero_energy,
-                crate::report::fmt_hz(&summary.hz[..summary.hz.len().min(8)]),
-                crate::report::residual_note(
-                    &summary.hz[..summary.hz.len().min(8)],
-                    &summary.residuals[..summary.residuals.len().min(8)]
-                ),
-            );
-            if let Some(e) = &summary.exudyn {
-                let hz = e.hz();
-                println!(
-                    "Exudyn: {}/exudyn/, the floating frame on `{}`, {} {} (elastic Hz: {} ({}))",
-                    summary.dir.display(),
-                    e.frame,
-                    e.modes.ncols(),
-                    e.mode_type,
-                    crate::report::fmt_hz(&hz[..hz.len().min(8)]),
-                    crate::report::residual_note(
-                        &hz[..hz.len().min(8)],
-                        &e.residuals[..e.residuals.len().min(8)]
-                    ),
-                );
-            }
-            Ok(())
-        }
+        Command::Export(args) => export(args),
         Command::Report {
             scene,
             json,
@@ -652,4 +299,378 @@ fn timing_table(
         ));
     }
     out
+}
+
+/// `flexmodes bench`: the driven body's sizes, every method on a body, the export against
+/// SciPy's peer, meshes against DOF, or the scenes' speed against accuracy.
+fn bench(mut args: BenchArgs, threads: &[usize]) -> Result<()> {
+    let body = args.body.take();
+    let sizes = args.sizes.take();
+    match (body, sizes) {
+        (Some(body), _) if args.scenes.as_slice() == ["simulate"] => driven_sizes(args, body),
+        (Some(body), _) if !args.scenes.is_empty() => body_modes(args, body),
+        (Some(body), _) => export_peer(args, body),
+        (None, Some(sizes)) => size_bench(args, &sizes, threads),
+        (None, None) => scenes(args),
+    }
+}
+
+/// `bench simulate --body --drive`: the full driven body's cost against DOF.
+fn driven_sizes(args: BenchArgs, body: PathBuf) -> Result<()> {
+    let BenchArgs {
+        drive,
+        larger,
+        modes,
+        json,
+        ..
+    } = args;
+    let drive = drive.ok_or_else(|| Error::InvalidOption {
+        scene: "simulate".into(),
+        reason: "bench simulate needs --drive rbe2:SET".into(),
+    })?;
+    let mut files = vec![body.display().to_string()];
+    files.extend(larger.iter().map(|p| p.display().to_string()));
+    let parameters = crate::bench::driven_size_parameters(drive);
+    let handle = Progress::new();
+    let bar = TerminalProgress::start(&handle, "bench simulate");
+    let (value, text) = crate::bench::bench_driven_sizes(
+        &files,
+        &parameters,
+        modes.first().copied().unwrap_or(10),
+        &handle,
+    )?;
+    drop(bar);
+    if json {
+        println!("{value}");
+    } else {
+        println!("# bench simulate --body {}\n\n{text}", files.join(","));
+    }
+    Ok(())
+}
+
+/// `bench modes --body`: every method and kept-mode count on a user's body.
+fn body_modes(args: BenchArgs, body: PathBuf) -> Result<()> {
+    let BenchArgs {
+        scenes: ids,
+        boundary,
+        modes,
+        method,
+        band,
+        tolerance,
+        interface_modes,
+        save,
+        json,
+        ..
+    } = args;
+    if ids.as_slice() != ["modes"] {
+        return Err(Error::InvalidOption {
+            scene: ids.join(","),
+            reason: "with --body, bench takes the scene `modes` or `simulate` (or \
+                     none: the export bench)"
+                .into(),
+        });
+    }
+    let loaded = ImportedBody::load(&body.display().to_string())?;
+    let defaults = crate::models::BodyComparisonParameters::default();
+    let parameters = crate::models::BodyComparisonParameters {
+        boundary,
+        interface_modes,
+        methods: if method.is_empty() {
+            defaults.methods
+        } else {
+            method
+        },
+        modes: if modes.is_empty() {
+            defaults.modes
+        } else {
+            modes
+        },
+        band_hz: band,
+        tolerance,
+    };
+    let handle = Progress::new();
+    let bar = TerminalProgress::start(&handle, "bench modes --body");
+    let (value, text, recording) = crate::bench::bench_body_modes(&loaded, &parameters, &handle)?;
+    drop(bar);
+    if let Some(path) = &save {
+        Recorder::default().save(&recording, path)?;
+        progress(&format!("wrote {}", path.display()));
+    }
+    if json {
+        println!("{value}");
+    } else {
+        println!("# bench modes --body {}\n\n{text}", body.display());
+    }
+    Ok(())
+}
+
+/// `bench --body`: `export --method cb` as a whole process against SciPy's peer script.
+fn export_peer(args: BenchArgs, body: PathBuf) -> Result<()> {
+    let BenchArgs {
+        boundary,
+        modes,
+        peer,
+        repeats,
+        json,
+        save,
+        ..
+    } = args;
+    if save.is_some() {
+        return Err(Error::InvalidOption {
+            scene: "bench".into(),
+            reason: "the export bench writes no recording: --save goes with `bench modes --body`"
+                .into(),
+        });
+    }
+    let modes = match modes.as_slice() {
+        [] => 10,
+        [k] => *k,
+        _ => {
+            return Err(Error::InvalidOption {
+                scene: "bench".into(),
+                reason: "the export bench takes one --modes count".into(),
+            });
+        }
+    };
+    let boundary = match boundary {
+        Some(b) => b,
+        None => {
+            let loaded = ImportedBody::load(&body.display().to_string())?;
+            let nodes = loaded.default_interface_nodes()?.to_vec();
+            // The peer takes a set name: the body's default interface.
+            let name = loaded
+                .node_sets
+                .iter()
+                .find(|(_, v)| **v == nodes)
+                .map(|(k, _)| k.clone())
+                .ok_or_else(|| Error::InvalidOption {
+                    scene: "bench".into(),
+                    reason: "name the interface node set with --boundary".into(),
+                })?;
+            vec![name]
+        }
+    };
+    let (value, text) = crate::bench::bench_export(&crate::bench::ExportBenchParameters {
+        body,
+        boundary,
+        modes,
+        repeats: repeats.unwrap_or(3) as usize,
+        peer,
+    })?;
+    if json {
+        println!("{value}");
+    } else {
+        println!("{text}");
+    }
+    Ok(())
+}
+
+/// `bench slab-modes|slab-sim1|slab-sim2 --sizes`: cost against DOF.
+fn size_bench(args: BenchArgs, sizes: &str, threads: &[usize]) -> Result<()> {
+    let BenchArgs {
+        scenes: ids,
+        json,
+        save,
+        repeats,
+        ..
+    } = args;
+    let simulation = match ids.as_slice() {
+        [id] if id == "slab-sim1" || id == "slab-sim2" => Some(id.clone()),
+        _ if ids.iter().all(|id| id == "slab-modes") => None,
+        _ => {
+            return Err(Error::InvalidOption {
+                scene: ids.join(","),
+                reason: "--sizes times slab-modes, or one of slab-sim1 and slab-sim2".into(),
+            });
+        }
+    };
+    let meshes = crate::bench::parse_sizes(sizes)?;
+    let bench = match &simulation {
+        Some(id) => {
+            let handle = Progress::new();
+            let bar = TerminalProgress::start(&handle, &format!("bench {id} --sizes"));
+            let bench = crate::bench::bench_sim_sizes(id, &meshes, &handle)?;
+            drop(bar);
+            bench
+        }
+        None => {
+            crate::bench::bench_sizes(&meshes, threads, repeats.map_or(1, |r| r as usize), &|s| {
+                progress(s)
+            })?
+        }
+    };
+    let title = simulation.as_deref().unwrap_or("slab-modes");
+    if let Some(path) = &save {
+        Recorder::default().save(&bench.recording, path)?;
+        progress(&format!("wrote {}", path.display()));
+    }
+    if json {
+        println!("{}", bench.value);
+    } else {
+        println!("# bench {title} --sizes {sizes}\n\n{}", bench.table);
+    }
+    Ok(())
+}
+
+/// `bench [SCENES]`: speed against accuracy of the slab scenes.
+fn scenes(args: BenchArgs) -> Result<()> {
+    let BenchArgs {
+        scenes: ids,
+        all,
+        json,
+        save,
+        integrator,
+        refine,
+        repeats,
+        ..
+    } = args;
+    let ids = if all {
+        BENCH_ALL.iter().map(|s| s.to_string()).collect()
+    } else {
+        ids
+    };
+    if !integrator.is_empty() && !ids.is_empty() && ids.iter().all(|id| id == "slab-modes") {
+        return Err(Error::InvalidOption {
+            scene: "slab-modes".into(),
+            reason: "--integrator applies to the simulation benches only".into(),
+        });
+    }
+    if save.is_some() && ids.len() > 1 {
+        return Err(Error::InvalidOption {
+            scene: ids.join(","),
+            reason: "--save writes the charts of one simulation bench: name one scene".into(),
+        });
+    }
+    let ids = if ids.is_empty() {
+        vec!["slab-sim1".to_string()]
+    } else {
+        ids
+    };
+    for id in &ids {
+        scenes::find(id)?;
+    }
+    let count = ids.len();
+    for (k, id) in ids.into_iter().enumerate() {
+        let handle = Progress::new();
+        let bar = TerminalProgress::start(&handle, &format!("bench {id} ({} of {count})", k + 1));
+        let (value, table, recording) = if id == "slab-modes" {
+            crate::bench::bench_modes(refine, &handle)?
+        } else {
+            crate::bench::bench_simulation(
+                &id,
+                &integrator,
+                refine,
+                repeats.unwrap_or(3) as usize,
+                &handle,
+            )?
+        };
+        drop(bar);
+        if let Some(path) = &save {
+            Recorder::default().save(&recording, path)?;
+        }
+        if json {
+            println!("{value}");
+        } else {
+            println!("# bench {id}\n\n{table}");
+        }
+    }
+    Ok(())
+}
+
+/// `flexmodes export`: reduce a body and write the reduced model.
+fn export(args: ExportArgs) -> Result<()> {
+    let ExportArgs {
+        body,
+        method,
+        boundary,
+        modes,
+        out,
+        psi_format,
+        interface_modes,
+        exudyn,
+        timings,
+    } = args;
+    let started = Instant::now();
+    let body = ImportedBody::load(&body)?;
+    let interfaces = match boundary {
+        Some(items) => crate::models::BodyInterfaces::of(&body, &items, None)?,
+        None => crate::models::BodyInterfaces {
+            boundary: body.default_interface_nodes()?.to_vec(),
+            rigid: Vec::new(),
+            averaging: Vec::new(),
+            interface_modes: None,
+        },
+    };
+    let boundary = interfaces.boundary;
+    let loaded_s = started.elapsed().as_secs_f64();
+    let parameters = crate::export::ExportParameters {
+        psi_format,
+        rigid_interfaces: interfaces.rigid,
+        averaging_interfaces: interfaces.averaging,
+        interface_modes,
+        exudyn,
+    };
+    let summary = crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
+    if timings {
+        let total = started.elapsed().as_secs_f64();
+        eprintln!(
+            "wall time by phase, {} thread(s) (--threads):",
+            crate::linalg::threads()
+        );
+        let share = |s: f64| 100.0 * s / total.max(f64::MIN_POSITIVE);
+        eprintln!(
+            "  read the body: {loaded_s:.3} s ({:.0} %)",
+            share(loaded_s)
+        );
+        for (phase, s) in &summary.timings {
+            eprintln!("  {phase}: {s:.3} s ({:.0} %)", share(*s));
+        }
+        eprintln!("  total: {total:.3} s");
+    }
+    for i in &parameters.rigid_interfaces {
+        println!(
+            "rbe2 `{}`: {} nodes tied to a master at ({}) {}",
+            i.name,
+            i.nodes.len(),
+            i.master
+                .map(crate::report::sig)
+                .map(|x| x.to_string())
+                .join(", "),
+            body.units.length
+        );
+    }
+    println!(
+        "{}: {} of `{}` on {} interface node(s), Ψ {} × {}; wrote {} in {}\n{} \
+         zero-energy mode(s); reduced elastic Hz: {} ({})",
+        method.id(),
+        method.name(),
+        body.model.name,
+        boundary.len(),
+        summary.shape[0],
+        summary.shape[1],
+        summary.files.join(", "),
+        summary.dir.display(),
+        summary.zero_energy,
+        crate::report::fmt_hz(&summary.hz[..summary.hz.len().min(8)]),
+        crate::report::residual_note(
+            &summary.hz[..summary.hz.len().min(8)],
+            &summary.residuals[..summary.residuals.len().min(8)]
+        ),
+    );
+    if let Some(e) = &summary.exudyn {
+        let hz = e.hz();
+        println!(
+            "Exudyn: {}/exudyn/, the floating frame on `{}`, {} {} (elastic Hz: {} ({}))",
+            summary.dir.display(),
+            e.frame,
+            e.modes.ncols(),
+            e.mode_type,
+            crate::report::fmt_hz(&hz[..hz.len().min(8)]),
+            crate::report::residual_note(
+                &hz[..hz.len().min(8)],
+                &e.residuals[..e.residuals.len().min(8)]
+            ),
+        );
+    }
+    Ok(())
 }
