@@ -12,7 +12,7 @@ use super::{
 };
 use crate::models::{
     BALANCED_ZETA, BODY_METHODS, BODY_MODES_COMPARED, BodyInterfaces, BodyModesParameters,
-    BodyModesStudy, body_modes_study,
+    BodyModesStudy, MethodMeasure, body_modes_study,
 };
 use crate::record::{LogLogChart, LogLogSeries};
 use crate::{
@@ -109,13 +109,6 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .as_ref()
         .map_or(Vec::new(), |h| h.fixed_interface.residuals.clone());
 
-    let mut reduced = Map::new();
-    let mut errors = Map::new();
-    let mut angles = Map::new();
-    let mut mac = Map::new();
-    let mut rigid_max = Map::new();
-    let mut reduced_residuals = Map::new();
-    let mut reduced_zero = Map::new();
     let mut residual_lines = vec![
         format!(
             "full body: {}; missed modes: {}",
@@ -124,18 +117,6 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         ),
         format!("fixed-interface: {}", residual_note(&fi_hz, &fi_residuals)),
     ];
-    let mut sizes = Map::new();
-    let mut table = Table::new(&[
-        "model",
-        "size",
-        "lowest elastic Hz",
-        "max rel. error, first 6 modes",
-        "min MAC, first 6 modes",
-        "largest angle to full modes (rad)",
-        "rigid modes at ≤ Hz",
-        "s",
-    ])
-    .rank_lower(&[3, 5, 6]);
     let mut visuals = Vec::new();
     if body.has_coordinates {
         visuals.push(undeformed(model));
@@ -143,94 +124,16 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut bars = Vec::new();
     let mut freq_bars = FrequencyBars::new(BODY_MODES_COMPARED);
     freq_bars.push(Method::NoReduction, &full_hz);
-    let mut notes = Vec::new();
-    let mut responses = Vec::new();
-    for (m, measured) in &study_methods {
-        let m = *m;
-        let q = match measured {
-            Ok(q) => q,
-            Err(e) => {
-                let mut row = vec![Cell::text(m.id().to_uppercase()), Cell::text("–")];
-                row.push(Cell::text(format!("not computed: {e}")));
-                row.extend((0..5).map(|_| Cell::text("–")));
-                table.push(row);
-                notes.push(format!("{}: {e}", m.id().to_uppercase()));
-                continue;
-            }
-        };
-        if let Some((_, note)) = study_notes.iter().find(|(n, _)| *n == m) {
-            notes.push(format!("{}: {note}", m.id().to_uppercase()));
-        }
-        if let Some(r) = &q.response {
-            responses.push((m, r.clone()));
-        }
-        let (hz, hz_residuals) = (&q.hz, &q.residuals);
-        mac.insert(m.id().into(), json!(sig_vec(&q.macs)));
-        reduced.insert(m.id().into(), json!(sig_vec(hz)));
-        reduced_residuals.insert(m.id().into(), json!(sig_vec(hz_residuals)));
-        reduced_zero.insert(m.id().into(), json!(q.zero_modes));
-        residual_lines.push(format!(
-            "{}: {}",
-            m.id().to_uppercase(),
-            residual_note(hz, hz_residuals)
-        ));
-        errors.insert(m.id().into(), json!(sig_vec(&q.rel_errors)));
-        angles.insert(m.id().into(), json!(sig(q.max_angle)));
-        rigid_max.insert(m.id().into(), json!(sig(q.rigid_hz_max)));
-        sizes.insert(m.id().into(), json!(q.size));
-        let (worst, min_mac, angle, rigid_hz) =
-            (q.worst_error, q.min_mac, q.max_angle, q.rigid_hz_max);
-        table.push(vec![
-            Cell::text(m.id().to_uppercase()),
-            Cell::number(q.size as f64, format!("{dofs} × {}", q.size)),
-            Cell::text(fmt_hz(&hz[..hz.len().min(5)])),
-            if worst.is_nan() {
-                Cell::text(format!("{} elastic mode(s) only", hz.len()))
-            } else {
-                Cell::number(worst, format!("{worst:.2e}"))
-            },
-            if min_mac.is_nan() {
-                Cell::text("–")
-            } else {
-                Cell::number(min_mac, format!("{min_mac:.4}"))
-            },
-            Cell::number(angle, format!("{angle:.2e}")),
-            Cell::number(rigid_hz, format!("{rigid_hz:.2e}")),
-            Cell::number(q.offline_s, format!("{:.3}", q.offline_s)),
-        ]);
-        freq_bars.push(m, hz);
-    }
+    let rows = method_rows(&study_methods, &study_notes, dofs, &mut freq_bars);
+    residual_lines.extend(rows.residual_lines);
 
     visuals.extend(freq_bars.visuals());
     bars.insert(0, freq_bars.layout());
 
     let mut report = Report::new(INFO.id);
-    let p = &mut report.parameters;
-    p.insert("body".into(), json!(body.location.display()));
-    p.insert("boundary".into(), json!(boundary));
-    p.insert(
-        "rigid_interfaces".into(),
-        json!(
-            opts.rigid_interfaces
-                .iter()
-                .map(|i| json!({"name": i.name, "kind": "rbe2", "master": i.master, "nodes": i.nodes.len()}))
-                .collect::<Vec<_>>()
-        ),
-    );
-    p.insert(
-        "averaging_interfaces".into(),
-        json!(
-            opts.averaging_interfaces
-                .iter()
-                .map(|i| json!({"name": i.name, "kind": "rbe3", "master": i.master, "nodes": i.nodes.len()}))
-                .collect::<Vec<_>>()
-        ),
-    );
-    p.insert("modes".into(), json!(kept));
-    p.insert(
-        "methods".into(),
-        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
-    );
+    report
+        .parameters
+        .extend(run_parameters(&body, &boundary, opts, kept, &methods));
     let r = &mut report.results;
     r.insert("dofs".into(), json!(dofs));
     r.insert("nnz".into(), json!(model.stiffness_nnz()));
@@ -241,7 +144,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     );
     r.insert("free_free_hz".into(), json!(sig_vec(&full_hz)));
     r.insert("fixed_interface_hz".into(), json!(sig_vec(&fi_hz)));
-    r.insert("reduced_hz".into(), Value::Object(reduced));
+    r.insert("reduced_hz".into(), Value::Object(rows.reduced));
     r.insert(
         "free_free_residuals".into(),
         json!(sig_vec(&full.elastic_residuals())),
@@ -250,90 +153,37 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         "fixed_interface_residuals".into(),
         json!(sig_vec(&fi_residuals)),
     );
-    r.insert("reduced_residuals".into(), Value::Object(reduced_residuals));
+    r.insert(
+        "reduced_residuals".into(),
+        Value::Object(rows.reduced_residuals),
+    );
     r.insert(
         "reduced_zero_energy_modes".into(),
-        Value::Object(reduced_zero),
+        Value::Object(rows.reduced_zero),
     );
     // How many characteristic constraint modes the interface needs (Castanier–Tan–Pierre).
     let mut sweep_md = String::new();
     let mut sweep_table = None;
     if let Some(points) = &sweep {
-        let mut sweep = Table::new(&["interface shapes", "size", "max rel. error, first 6 modes"]);
-        let mut chart = Vec::new();
-        for p in points {
-            let shapes = p
-                .interface_modes
-                .map_or("all (plain CB)".to_string(), |n| n.to_string());
-            sweep.push(vec![
-                Cell::text(shapes),
-                Cell::number(p.size as f64, format!("{}", p.size)),
-                Cell::number(p.worst_error, format!("{:.3e}", p.worst_error)),
-            ]);
-            if p.worst_error.is_finite() && p.worst_error > 0.0 {
-                chart.push((p.size as f64, p.worst_error));
-            }
-        }
-        r.insert(
-            "interface_reduction".into(),
-            json!(
-                points
-                    .iter()
-                    .map(|p| json!({
-                        "interface_modes": p.interface_modes,
-                        "size": p.size,
-                        "max_rel_error": sig(p.worst_error),
-                    }))
-                    .collect::<Vec<_>>()
-            ),
-        );
-        visuals.extend(
-            LogLogChart {
-                path: "charts/interface_reduction".into(),
-                x_unit: "coordinates".into(),
-                y_unit: "max rel. error".into(),
-                series: vec![LogLogSeries {
-                    id: "cb".into(),
-                    label: "CB, N characteristic constraint modes".into(),
-                    color: crate::record::method_color(Method::CraigBampton),
-                    points: chart,
-                    line: true,
-                }],
-                x_linear: false,
-            }
-            .visuals(),
-        );
-        bars.push(Layout::Spatial2D {
-            name: "interface shapes: error against size".into(),
-            origin: "/charts/interface_reduction".into(),
-        });
-        sweep_md = format!(
-            "\nInterface reduction (Craig–Bampton with the interface's constraint modes \
-             replaced by N characteristic constraint modes, Castanier–Tan–Pierre; \
-             `--interface-modes N`{}):\n\n{}",
-            match opts.interface_modes {
-                Some(n) => format!(
-                    "; the models above use N = {n} where they have constraint modes (GR, CB), \
-                     MT and MC keep their boundary columns"
-                ),
-                None => String::new(),
-            },
-            sweep.markdown()
-        );
-        sweep_table = Some(sweep);
+        let section = sweep_section(points, opts.interface_modes);
+        r.insert("interface_reduction".into(), section.json);
+        visuals.extend(section.visuals);
+        bars.push(section.view);
+        sweep_md = section.markdown;
+        sweep_table = Some(section.table);
     }
-    r.insert("rel_error".into(), Value::Object(errors));
-    r.insert("max_principal_angle_rad".into(), Value::Object(angles));
-    r.insert("mac".into(), Value::Object(mac));
-    r.insert("basis_size".into(), Value::Object(sizes));
-    r.insert("zero_energy_hz_max".into(), Value::Object(rigid_max));
+    r.insert("rel_error".into(), Value::Object(rows.errors));
+    r.insert("max_principal_angle_rad".into(), Value::Object(rows.angles));
+    r.insert("mac".into(), Value::Object(rows.mac));
+    r.insert("basis_size".into(), Value::Object(rows.sizes));
+    r.insert("zero_energy_hz_max".into(), Value::Object(rows.rigid_max));
     r.insert("full_modes_s".into(), json!(sig(full_s)));
-    r.insert("method_notes".into(), json!(notes));
+    r.insert("method_notes".into(), json!(rows.notes));
     let (influence, influence_json, influence_text) =
         super::body_influence::influence_table(&influence, ranked, kept);
     r.insert("interface_influence".into(), influence_json);
-    let summary = table.markdown();
-    report.add_table(table);
+    let summary = rows.table.markdown();
+    report.add_table(rows.table);
     if let Some(sweep) = sweep_table {
         report.add_table(sweep);
     }
@@ -342,7 +192,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let response_md = match &response {
         Some(r) => {
             let (table, json, chart, view, text) =
-                super::body_response::response_table(r, &responses)?;
+                super::body_response::response_table(r, &rows.responses)?;
             report.results.insert("interface_response".into(), json);
             visuals.extend(chart);
             bars.push(view);
@@ -393,7 +243,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         fmt_hz(&full_hz),
         fmt_hz(&fi_hz[..fi_hz.len().min(8)]),
         residual_lines.join("; "),
-        notes.iter().map(|n| format!("\n- {n}")).collect::<String>(),
+        rows.notes
+            .iter()
+            .map(|n| format!("\n- {n}"))
+            .collect::<String>(),
     );
     let markdown = format!(
         "# modes: {}\n\n{}\n\nEvery method reduces the same body on the same interface: \
@@ -445,4 +298,238 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         timeline: Some("phase".into()),
         y_up: false,
     })
+}
+
+/// The interface-reduction sweep as the `modes` scene shows it.
+struct SweepSection {
+    table: Table,
+    json: Value,
+    visuals: Vec<crate::record::Visual>,
+    view: Layout,
+    markdown: String,
+}
+
+/// The sweep's table, JSON, log–log chart and text; `interface_modes` is the count the
+/// scene's models use, if any.
+fn sweep_section(
+    points: &[crate::models::InterfaceReductionPoint],
+    interface_modes: Option<usize>,
+) -> SweepSection {
+    let mut sweep = Table::new(&["interface shapes", "size", "max rel. error, first 6 modes"]);
+    let mut chart = Vec::new();
+    for p in points {
+        let shapes = p
+            .interface_modes
+            .map_or("all (plain CB)".to_string(), |n| n.to_string());
+        sweep.push(vec![
+            Cell::text(shapes),
+            Cell::number(p.size as f64, format!("{}", p.size)),
+            Cell::number(p.worst_error, format!("{:.3e}", p.worst_error)),
+        ]);
+        if p.worst_error.is_finite() && p.worst_error > 0.0 {
+            chart.push((p.size as f64, p.worst_error));
+        }
+    }
+    let json = json!(
+        points
+            .iter()
+            .map(|p| json!({
+                "interface_modes": p.interface_modes,
+                "size": p.size,
+                "max_rel_error": sig(p.worst_error),
+            }))
+            .collect::<Vec<_>>()
+    );
+    let visuals = LogLogChart {
+        path: "charts/interface_reduction".into(),
+        x_unit: "coordinates".into(),
+        y_unit: "max rel. error".into(),
+        series: vec![LogLogSeries {
+            id: "cb".into(),
+            label: "CB, N characteristic constraint modes".into(),
+            color: crate::record::method_color(Method::CraigBampton),
+            points: chart,
+            line: true,
+        }],
+        x_linear: false,
+    }
+    .visuals();
+    let view = Layout::Spatial2D {
+        name: "interface shapes: error against size".into(),
+        origin: "/charts/interface_reduction".into(),
+    };
+    let markdown = format!(
+        "\nInterface reduction (Craig–Bampton with the interface's constraint modes \
+         replaced by N characteristic constraint modes, Castanier–Tan–Pierre; \
+         `--interface-modes N`{}):\n\n{}",
+        match interface_modes {
+            Some(n) => format!(
+                "; the models above use N = {n} where they have constraint modes (GR, CB), \
+                 MT and MC keep their boundary columns"
+            ),
+            None => String::new(),
+        },
+        sweep.markdown()
+    );
+    SweepSection {
+        table: sweep,
+        json,
+        visuals,
+        view,
+        markdown,
+    }
+}
+
+/// The run's parameters as the report shows them: the body, its interface (plain, rbe2 and
+/// rbe3 items), the kept modes and the methods.
+fn run_parameters(
+    body: &ImportedBody,
+    boundary: &[usize],
+    opts: &SceneOptions,
+    kept: usize,
+    methods: &[Method],
+) -> Map<String, Value> {
+    let mut p = Map::new();
+    p.insert("body".into(), json!(body.location.display()));
+    p.insert("boundary".into(), json!(boundary));
+    p.insert(
+        "rigid_interfaces".into(),
+        json!(
+            opts.rigid_interfaces
+                .iter()
+                .map(|i| json!({"name": i.name, "kind": "rbe2", "master": i.master, "nodes": i.nodes.len()}))
+                .collect::<Vec<_>>()
+        ),
+    );
+    p.insert(
+        "averaging_interfaces".into(),
+        json!(
+            opts.averaging_interfaces
+                .iter()
+                .map(|i| json!({"name": i.name, "kind": "rbe3", "master": i.master, "nodes": i.nodes.len()}))
+                .collect::<Vec<_>>()
+        ),
+    );
+    p.insert("modes".into(), json!(kept));
+    p.insert(
+        "methods".into(),
+        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
+    );
+    p
+}
+
+/// The per-method part of the `modes` scene's report: its table rows, JSON maps, residual
+/// lines, notes and responses; each model's frequencies added to `freq_bars`.
+struct MethodRows {
+    table: Table,
+    reduced: Map<String, Value>,
+    errors: Map<String, Value>,
+    angles: Map<String, Value>,
+    mac: Map<String, Value>,
+    rigid_max: Map<String, Value>,
+    reduced_residuals: Map<String, Value>,
+    reduced_zero: Map<String, Value>,
+    sizes: Map<String, Value>,
+    residual_lines: Vec<String>,
+    notes: Vec<String>,
+    responses: Vec<(Method, crate::analysis::FrequencyResponse)>,
+}
+
+fn method_rows(
+    methods: &[(Method, std::result::Result<MethodMeasure, String>)],
+    model_notes: &[(Method, String)],
+    dofs: usize,
+    freq_bars: &mut FrequencyBars,
+) -> MethodRows {
+    let mut reduced = Map::new();
+    let mut errors = Map::new();
+    let mut angles = Map::new();
+    let mut mac = Map::new();
+    let mut rigid_max = Map::new();
+    let mut reduced_residuals = Map::new();
+    let mut reduced_zero = Map::new();
+    let mut sizes = Map::new();
+    let mut residual_lines = Vec::new();
+    let mut table = Table::new(&[
+        "model",
+        "size",
+        "lowest elastic Hz",
+        "max rel. error, first 6 modes",
+        "min MAC, first 6 modes",
+        "largest angle to full modes (rad)",
+        "rigid modes at ≤ Hz",
+        "s",
+    ])
+    .rank_lower(&[3, 5, 6]);
+    let mut notes = Vec::new();
+    let mut responses = Vec::new();
+    for (m, measured) in methods {
+        let m = *m;
+        let q = match measured {
+            Ok(q) => q,
+            Err(e) => {
+                let mut row = vec![Cell::text(m.id().to_uppercase()), Cell::text("–")];
+                row.push(Cell::text(format!("not computed: {e}")));
+                row.extend((0..5).map(|_| Cell::text("–")));
+                table.push(row);
+                notes.push(format!("{}: {e}", m.id().to_uppercase()));
+                continue;
+            }
+        };
+        if let Some((_, note)) = model_notes.iter().find(|(n, _)| *n == m) {
+            notes.push(format!("{}: {note}", m.id().to_uppercase()));
+        }
+        if let Some(r) = &q.response {
+            responses.push((m, r.clone()));
+        }
+        let (hz, hz_residuals) = (&q.hz, &q.residuals);
+        mac.insert(m.id().into(), json!(sig_vec(&q.macs)));
+        reduced.insert(m.id().into(), json!(sig_vec(hz)));
+        reduced_residuals.insert(m.id().into(), json!(sig_vec(hz_residuals)));
+        reduced_zero.insert(m.id().into(), json!(q.zero_modes));
+        residual_lines.push(format!(
+            "{}: {}",
+            m.id().to_uppercase(),
+            residual_note(hz, hz_residuals)
+        ));
+        errors.insert(m.id().into(), json!(sig_vec(&q.rel_errors)));
+        angles.insert(m.id().into(), json!(sig(q.max_angle)));
+        rigid_max.insert(m.id().into(), json!(sig(q.rigid_hz_max)));
+        sizes.insert(m.id().into(), json!(q.size));
+        let (worst, min_mac, angle, rigid_hz) =
+            (q.worst_error, q.min_mac, q.max_angle, q.rigid_hz_max);
+        table.push(vec![
+            Cell::text(m.id().to_uppercase()),
+            Cell::number(q.size as f64, format!("{dofs} × {}", q.size)),
+            Cell::text(fmt_hz(&hz[..hz.len().min(5)])),
+            if worst.is_nan() {
+                Cell::text(format!("{} elastic mode(s) only", hz.len()))
+            } else {
+                Cell::number(worst, format!("{worst:.2e}"))
+            },
+            if min_mac.is_nan() {
+                Cell::text("–")
+            } else {
+                Cell::number(min_mac, format!("{min_mac:.4}"))
+            },
+            Cell::number(angle, format!("{angle:.2e}")),
+            Cell::number(rigid_hz, format!("{rigid_hz:.2e}")),
+            Cell::number(q.offline_s, format!("{:.3}", q.offline_s)),
+        ]);
+        freq_bars.push(m, hz);
+    }
+    MethodRows {
+        table,
+        reduced,
+        errors,
+        angles,
+        mac,
+        rigid_max,
+        reduced_residuals,
+        reduced_zero,
+        sizes,
+        residual_lines,
+        notes,
+        responses,
+    }
 }
