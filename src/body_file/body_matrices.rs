@@ -6,12 +6,12 @@ use std::collections::BTreeMap;
 use super::{
     BodyFileError, BodyLocation, ImportedBody, InterfaceSpec, MatrixMarket, MatrixMarketFormat,
     Units,
-    imported_body::{SetsAndInterfaces, checked_sets, node_dof},
+    imported_body::{SetsAndInterfaces, check_node_count, checked_sets, dof_map},
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
 };
 use crate::{
     Error, Result,
-    fem::{DofMap, FeModel, RigidMotions},
+    fem::{FeModel, RigidMotions},
 };
 
 /// A sparse matrix as entries: `rows × cols`, `(row, col, value)` 0-based, duplicates summed.
@@ -137,20 +137,7 @@ impl ImportedBody {
                 reason,
             })
         };
-        if body.dofs.is_empty() {
-            return Err(body_error("`dofs` lists no DOF".into()));
-        }
-        let mut per_node = Vec::new();
-        for d in &body.dofs {
-            let dof = node_dof(d).ok_or_else(|| {
-                body_error(format!("unknown DOF `{d}` (known: x, y, z, rx, ry, rz)"))
-            })?;
-            if per_node.contains(&dof) {
-                return Err(body_error(format!("DOF `{d}` is listed twice")));
-            }
-            per_node.push(dof);
-        }
-        let dofs = DofMap::new(per_node);
+        let dofs = dof_map(&body.dofs).map_err(body_error)?;
         let per = dofs.per_node();
         body.stiffness.check(&k_name)?;
         body.mass.check(&m_name)?;
@@ -168,19 +155,7 @@ impl ImportedBody {
             Some(nodes) => nodes.len(),
             None => n / per,
         };
-        if node_count * per != n {
-            return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-                path: k_name,
-                what: "stiffness".into(),
-                rows: n,
-                cols: n,
-                expected: format!(
-                    "{node_count} nodes with {per} DOF each ({}) make {} DOF",
-                    body.dofs.join(", "),
-                    node_count * per
-                ),
-            }));
-        }
+        check_node_count(&k_name, n, node_count, &body.dofs)?;
         if let Some((node, xyz)) = body
             .nodes
             .iter()

@@ -155,7 +155,7 @@ impl std::ops::Deref for BodyHandle {
     }
 }
 
-pub(super) fn node_dof(name: &str) -> Option<NodeDof> {
+fn node_dof(name: &str) -> Option<NodeDof> {
     Some(match name.to_ascii_lowercase().as_str() {
         "x" | "ux" => NodeDof::Translation(Direction::X),
         "y" | "uy" => NodeDof::Translation(Direction::Y),
@@ -219,26 +219,7 @@ impl ImportedBody {
         };
 
         // DOF map.
-        if spec.dofs.is_empty() {
-            return Err(body_error(key_line("dofs"), "`dofs` lists no DOF".into()));
-        }
-        let mut per_node = Vec::new();
-        for d in &spec.dofs {
-            let dof = node_dof(d).ok_or_else(|| {
-                body_error(
-                    key_line("dofs"),
-                    format!("unknown DOF `{d}` (known: x, y, z, rx, ry, rz)"),
-                )
-            })?;
-            if per_node.contains(&dof) {
-                return Err(body_error(
-                    key_line("dofs"),
-                    format!("DOF `{d}` is listed twice"),
-                ));
-            }
-            per_node.push(dof);
-        }
-        let dofs = DofMap::new(per_node);
+        let dofs = dof_map(&spec.dofs).map_err(|reason| body_error(key_line("dofs"), reason))?;
         let per = dofs.per_node();
 
         // Matrices.
@@ -319,18 +300,7 @@ impl ImportedBody {
                 n / per
             }
         };
-        if node_count * per != n {
-            return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-                path: k_name,
-                what: "stiffness".into(),
-                rows: n,
-                cols: n,
-                expected: format!(
-                    "{node_count} nodes with {per} DOF each make {} DOF",
-                    node_count * per
-                ),
-            }));
-        }
+        check_node_count(&k_name, n, node_count, &spec.dofs)?;
         let nodes = match coordinates {
             None => vec![[0.0; 3]; node_count],
             Some((rows, table_name)) => {
@@ -634,4 +604,46 @@ pub(super) fn checked_sets(
         interfaces.insert(iname.clone(), interface.clone());
     }
     Ok(interfaces)
+}
+
+/// The per-node DOF a body names (of x, y, z, rx, ry, rz, each once); the reason when they
+/// are not.
+pub(super) fn dof_map(names: &[String]) -> std::result::Result<DofMap, String> {
+    if names.is_empty() {
+        return Err("`dofs` lists no DOF".into());
+    }
+    let mut per_node = Vec::new();
+    for d in names {
+        let dof =
+            node_dof(d).ok_or_else(|| format!("unknown DOF `{d}` (known: x, y, z, rx, ry, rz)"))?;
+        if per_node.contains(&dof) {
+            return Err(format!("DOF `{d}` is listed twice"));
+        }
+        per_node.push(dof);
+    }
+    Ok(DofMap::new(per_node))
+}
+
+/// `node_count` nodes of the DOF `dofs` names must make the stiffness' `n` DOF.
+pub(super) fn check_node_count(
+    k_name: &str,
+    n: usize,
+    node_count: usize,
+    dofs: &[String],
+) -> Result<()> {
+    let per = dofs.len();
+    if node_count * per == n {
+        return Ok(());
+    }
+    Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+        path: k_name.to_string(),
+        what: "stiffness".into(),
+        rows: n,
+        cols: n,
+        expected: format!(
+            "{node_count} nodes with {per} DOF each ({}) make {} DOF",
+            dofs.join(", "),
+            node_count * per
+        ),
+    }))
 }
