@@ -47,16 +47,7 @@ fn raise(py: Python<'_>, err: Error) -> PyErr {
         Error::InvalidOption { .. } => "InputError",
         _ => "FlexmodesError",
     };
-    let mut message = err.to_string();
-    let mut source = std::error::Error::source(&err);
-    while let Some(s) = source {
-        let text = s.to_string();
-        if !message.contains(&text) {
-            message.push_str(": ");
-            message.push_str(&text);
-        }
-        source = s.source();
-    }
+    let message = err.cause_chain();
     let (kind, data) = variant_path(serde_json::to_value(&err).unwrap_or_default());
     build_error(py, class, &message, &kind, &data.to_string())
 }
@@ -102,9 +93,10 @@ fn input_error(py: Python<'_>, message: String) -> PyErr {
 }
 
 /// Runs `work` with the GIL released. With a callback, a second thread calls
-/// `callback(phase, fraction)` about every 0.2 s (`fraction`: of the current time
-/// integration, or None); if the callback raises, the work is cancelled and its exception
-/// re-raised.
+/// `callback(phase, fraction)` about every 0.2 s while the reading changes (`fraction`: of
+/// the current time integration, or None); if the callback raises, the work is cancelled and
+/// its exception re-raised. The watcher is woken when the work ends, so a call never waits
+/// out its tick.
 fn computing<T: Send>(
     py: Python<'_>,
     callback: Option<Py<PyAny>>,
@@ -119,12 +111,12 @@ fn computing<T: Send>(
     let raised: Mutex<Option<PyErr>> = Mutex::new(None);
     let result = py.detach(|| {
         std::thread::scope(|scope| {
-            if let Some(callback) = &callback {
+            let watcher = callback.as_ref().map(|callback| {
                 let (progress, done, raised) = (&progress, &done, &raised);
                 scope.spawn(move || {
                     let mut last = None;
                     while !done.load(Ordering::SeqCst) {
-                        std::thread::sleep(Duration::from_millis(200));
+                        std::thread::park_timeout(Duration::from_millis(200));
                         let phase = progress.phase_reading().map(|p| p.name);
                         let fraction = progress
                             .reading()
@@ -135,17 +127,21 @@ fn computing<T: Send>(
                             continue;
                         }
                         last = Some(now);
-                        Python::attach(|py| {
-                            if let Err(e) = callback.call1(py, (phase, fraction)) {
-                                *raised.lock().expect("not poisoned") = Some(e);
-                                progress.cancel();
-                            }
-                        });
+                        let failed =
+                            Python::attach(|py| callback.call1(py, (phase, fraction)).err());
+                        if let Some(e) = failed {
+                            *raised.lock().expect("not poisoned") = Some(e);
+                            progress.cancel();
+                            break;
+                        }
                     }
-                });
-            }
+                })
+            });
             let out = work(&progress);
             done.store(true, Ordering::SeqCst);
+            if let Some(w) = &watcher {
+                w.thread().unpark();
+            }
             out
         })
     });
@@ -383,15 +379,8 @@ impl RustBody {
         let method = self::method(py, method)?;
         let body = &self.body;
         let reduced = computing(py, None, |_| {
-            let interfaces = match &boundary {
-                Some(items) => BodyInterfaces::of(body, items, interface_modes)?,
-                None => BodyInterfaces {
-                    boundary: body.default_interface_nodes()?.to_vec(),
-                    rigid: Vec::new(),
-                    averaging: Vec::new(),
-                    interface_modes,
-                },
-            };
+            let interfaces =
+                BodyInterfaces::named_or_default(body, boundary.as_deref(), interface_modes)?;
             let parameters = ExportParameters {
                 rigid_interfaces: interfaces.rigid,
                 averaging_interfaces: interfaces.averaging,
@@ -647,7 +636,7 @@ impl RustReducedModel {
             if exudyn {
                 r.with_exudyn(body)?;
             }
-            r.write(body, &folder)
+            Ok(r.write(body, &folder)?.files)
         })
     }
 }

@@ -22,13 +22,7 @@ pub fn main() -> ExitCode {
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            let mut msg = format!("error: {e}");
-            let mut src = std::error::Error::source(&e);
-            while let Some(s) = src {
-                msg.push_str(&format!(": {s}"));
-                src = s.source();
-            }
-            eprintln!("{msg}");
+            eprintln!("error: {}", e.cause_chain());
             ExitCode::from(1)
         }
     }
@@ -592,15 +586,8 @@ fn export(args: ExportArgs) -> Result<()> {
     } = args;
     let started = Instant::now();
     let body = ImportedBody::load(&body)?;
-    let interfaces = match boundary {
-        Some(items) => crate::models::BodyInterfaces::of(&body, &items, None)?,
-        None => crate::models::BodyInterfaces {
-            boundary: body.default_interface_nodes()?.to_vec(),
-            rigid: Vec::new(),
-            averaging: Vec::new(),
-            interface_modes: None,
-        },
-    };
+    let interfaces =
+        crate::models::BodyInterfaces::named_or_default(&body, boundary.as_deref(), None)?;
     let boundary = interfaces.boundary;
     let loaded_s = started.elapsed().as_secs_f64();
     let parameters = crate::export::ExportParameters {

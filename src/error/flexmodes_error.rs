@@ -142,6 +142,25 @@ pub enum Error {
     Serve(#[from] super::ServeError),
 }
 
+impl Error {
+    /// The message and its causes on one line, `cause: cause: …`, as the command line, the
+    /// explorer and Python show it; a cause the message already quotes (an I/O error behind
+    /// its path) is not repeated.
+    pub fn cause_chain(&self) -> String {
+        let mut message = self.to_string();
+        let mut source = std::error::Error::source(self);
+        while let Some(s) = source {
+            let text = s.to_string();
+            if !message.contains(&text) {
+                message.push_str(": ");
+                message.push_str(&text);
+            }
+            source = s.source();
+        }
+        message
+    }
+}
+
 /// An error value as its message (the I/O error inside [`Error::Io`]).
 fn as_text<S: serde::Serializer>(e: &std::io::Error, s: S) -> std::result::Result<S::Ok, S::Error> {
     s.collect_str(e)

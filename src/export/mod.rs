@@ -19,5 +19,5 @@ mod reduced_export;
 
 pub use exudyn_body::{EXUDYN_FORMAT, ExudynBody, exudyn_body};
 pub use reduced_export::{
-    ExportParameters, ExportSummary, PsiFormat, ReducedExport, export, reduce_for_export,
+    ExportParameters, ExportSummary, PsiFormat, ReducedExport, Written, export, reduce_for_export,
 };

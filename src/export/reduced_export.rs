@@ -124,10 +124,11 @@ pub fn export(
     parameters: &ExportParameters,
 ) -> Result<ExportSummary> {
     let mut reduced = reduce_for_export(body, method, boundary, modes, parameters)?;
-    let files = reduced.write(body, dir)?;
+    let written = reduced.write(body, dir)?;
+    reduced.timings.extend(written.timings);
     Ok(ExportSummary {
         dir: dir.to_path_buf(),
-        files,
+        files: written.files,
         shape: [reduced.basis.psi.nrows(), reduced.basis.psi.ncols()],
         hz: reduced.hz,
         residuals: reduced.residuals,
@@ -135,6 +136,15 @@ pub fn export(
         timings: reduced.timings,
         exudyn: reduced.exudyn,
     })
+}
+
+/// What [`ReducedExport::write`] wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Written {
+    /// Files written, by name.
+    pub files: Vec<String>,
+    /// Wall time of each writing phase, s, in order.
+    pub timings: Vec<(&'static str, f64)>,
 }
 
 /// A reduced model as [`export`] writes it, in memory: Ψ, $K_r$, $M_r$, the reduced model's
@@ -455,8 +465,9 @@ impl ReducedExport {
 
     /// Writes Ψ (`psi.npy` or `psi.mtx`), `k_r.mtx`, `m_r.mtx`, `model.json` and, when
     /// present, `exudyn/` into `dir`: a temporary folder renamed into place, so `dir` is
-    /// either the old folder or the complete new one. Returns the files' names.
-    pub fn write(&mut self, body: &ImportedBody, dir: &Path) -> Result<Vec<String>> {
+    /// either the old folder or the complete new one. Returns the files' names and the wall
+    /// time of each writing phase, s.
+    pub fn write(&self, body: &ImportedBody, dir: &Path) -> Result<Written> {
         let doc = self.document(body);
         let comment = format!(
             "{} of {} ({}), interface {:?}, {} kept modes; flexmodes export",
@@ -468,7 +479,8 @@ impl ReducedExport {
         );
         let psi_format = self.parameters.psi_format;
         let (basis, k_r, m_r, exudyn) = (&self.basis, &self.k_r, &self.m_r, &self.exudyn);
-        let timings = &mut self.timings;
+        let mut laps = Vec::new();
+        let timings = &mut laps;
         let mut phase = Instant::now();
         let mut lap = |name: &'static str, timings: &mut Vec<(&'static str, f64)>| {
             timings.push((name, phase.elapsed().as_secs_f64()));
@@ -539,7 +551,10 @@ impl ReducedExport {
         if had_old {
             let _ = std::fs::remove_dir_all(&old);
         }
-        Ok(files)
+        Ok(Written {
+            files,
+            timings: laps,
+        })
     }
 }
 

@@ -308,15 +308,7 @@ fn lower_priority() {
 
 fn compute(job: &Job) -> Result<Computed, String> {
     let (scene, options, generation) = (&job.scene, &job.options, job.generation);
-    let chain = |e: crate::Error| {
-        let mut msg = e.to_string();
-        let mut src = std::error::Error::source(&e);
-        while let Some(s) = src {
-            msg.push_str(&format!(": {s}"));
-            src = s.source();
-        }
-        msg
-    };
+    let chain = |e: crate::Error| e.cause_chain();
     let s = scenes::find(scene).map_err(chain)?;
     let start = Instant::now();
     let out = s.execute(options).map_err(chain)?;

@@ -61,6 +61,24 @@ pub struct BodyInterfaces {
 }
 
 impl BodyInterfaces {
+    /// The interfaces `items` name on `body` ([`Self::of`]), or, with none named, the body's
+    /// default interface as plain boundary nodes ([`ImportedBody::default_interface_nodes`]).
+    pub fn named_or_default(
+        body: &ImportedBody,
+        items: Option<&[String]>,
+        interface_modes: Option<usize>,
+    ) -> Result<Self> {
+        match items {
+            Some(items) => Self::of(body, items, interface_modes),
+            None => Ok(Self {
+                boundary: body.default_interface_nodes()?.to_vec(),
+                rigid: Vec::new(),
+                averaging: Vec::new(),
+                interface_modes,
+            }),
+        }
+    }
+
     /// The interfaces `items` name on `body` (set names, node numbers, `rbe2:SET`, `rbe3:SET`,
     /// interfaces the body file declares), each master at its set's centroid unless the file
     /// gives it.
