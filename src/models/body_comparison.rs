@@ -159,29 +159,22 @@ pub fn compare_body_methods(
         }
         .into());
     }
-    // The interface response over the band, of the full body once (sparse LDLᵀ per
-    // frequency, off its resonances), of each model below.
-    // The elastic static compliance across the interfaces, of the full body once.
-    let statics = {
-        let loads =
-            BodyReducer::new(model, interfaces.clone(), &full, 0.0, progress.clone())?.loads()?;
-        let zero = full.modes.vectors.subcols(0, full.zero_modes);
-        InterfaceStatics::of_full_body(
-            model,
-            loads,
-            zero,
-            full.modes.values[full.zero_modes],
-            progress,
-        )?
-    };
+    // The interface loads, built once; with them the elastic static compliance across the
+    // interfaces and, over a band, the interface response (sparse LDLᵀ per frequency, off
+    // its resonances), of the full body once, of each model below.
+    let loads =
+        BodyReducer::new(model, interfaces.clone(), &full, 0.0, progress.clone())?.loads()?;
+    let statics = InterfaceStatics::of_full_body(
+        model,
+        loads.clone(),
+        full.modes.vectors.subcols(0, full.zero_modes),
+        full.modes.values[full.zero_modes],
+        progress,
+    )?;
     let frf = match p.band_hz {
-        Some(top) => {
-            let loads = BodyReducer::new(model, interfaces.clone(), &full, 0.0, progress.clone())?
-                .loads()?;
-            Some(InterfaceResponse::of_full_body(
-                model, loads, top, &full_hz, progress,
-            )?)
-        }
+        Some(top) => Some(InterfaceResponse::of_full_body(
+            model, loads, top, &full_hz, progress,
+        )?),
         None => None,
     };
     let elastic_vectors = full
