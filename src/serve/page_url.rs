@@ -37,23 +37,3 @@ pub fn page_url(address: IpAddr, port: u16, data_url: &str, theme: Option<&str>)
     }
     url
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_data_address_is_one_query_value() {
-        let u = page_url(
-            "127.0.0.2".parse().unwrap(),
-            9090,
-            "rerun+http://127.0.0.2:9876/proxy",
-            Some("light"),
-        );
-        assert_eq!(
-            u,
-            "http://127.0.0.2:9090/?url=rerun%2Bhttp%3A%2F%2F127.0.0.2%3A9876%2Fproxy\
-             &renderer=webgl&theme=light"
-        );
-    }
-}

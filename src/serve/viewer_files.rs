@@ -165,29 +165,3 @@ impl ViewerFiles {
             .fold((0, 0), |(p, g), f| (p + f.plain.len(), g + f.gzip.len()))
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_page_loses_its_font_links_and_nothing_else() {
-        let page = r#"<head>
-    <link rel="icon" href="favicon.ico" />
-    <link rel="preconnect" href="https://fonts.googleapis.com" />
-    <link rel="preconnect" href="https://fonts.gstatic.com" crossorigin />
-    <link
-      href="https://fonts.googleapis.com/css2?family=Inter:wght@100;500&display=swap"
-      rel="stylesheet"
-    />
-    <title>Rerun Viewer</title>
-        let handle = new wasm_bindgen.WebHandle(options);
-        function on_app_started(handle) { window._handle = handle; }"#;
-        let out = offline_index(page).unwrap();
-        assert!(out.contains("WebHandle(options); window._handle = handle;"));
-        assert!(out.contains("{ window._handle = handle || window._handle; }"));
-        assert!(!out.contains("fonts."), "{out}");
-        assert!(out.contains(r#"<link rel="icon" href="favicon.ico" />"#));
-        assert!(out.contains("<title>Rerun Viewer</title>"));
-    }
-}
