@@ -68,6 +68,10 @@ pub struct FlexibleBody {
     pub masses: Vec<f64>,
     /// Per-node rows of Ψ, $\Psi_j$ (3 × k).
     pub psi_nodes: Vec<Matrix3xX<f64>>,
+    /// For each node, the columns where $\Psi_j$ is nonzero when they are at most a quarter of
+    /// k (no reduction: a node's own three), `None` when $\Psi_j$ is dense. A point's
+    /// kinematics then cost its nonzero columns, not k, at every evaluation.
+    psi_support: Vec<Option<Box<[usize]>>>,
     /// $\Psi^T M \Psi$.
     pub m_zz: DMatrix<f64>,
     /// $\Psi^T K \Psi$.
@@ -216,6 +220,15 @@ impl FlexibleBody {
         let psi_nodes: Vec<Matrix3xX<f64>> = (0..n)
             .map(|j| Matrix3xX::from_fn(k, |a, c| psi[(3 * j + a, c)]))
             .collect();
+        let psi_support = psi_nodes
+            .iter()
+            .map(|p| {
+                let columns: Vec<usize> = (0..k)
+                    .filter(|&c| p.column(c).iter().any(|&x| x != 0.0))
+                    .collect();
+                (4 * columns.len() <= k).then(|| columns.into_boxed_slice())
+            })
+            .collect();
         let to_na = |m: &Mat<f64>| DMatrix::from_fn(m.nrows(), m.ncols(), |i, j| m[(i, j)]);
         let m_zz = to_na(&basis.reduced_mass(&model));
         let k_zz = to_na(&basis.reduced_stiffness(&model));
@@ -237,6 +250,7 @@ impl FlexibleBody {
             s_bar,
             masses,
             psi_nodes,
+            psi_support,
             m_zz,
             k_zz,
             k_zz_sparse,
@@ -247,13 +261,32 @@ impl FlexibleBody {
 
     /// The elastic force $K_{zz} z$ (N in modal units).
     pub fn elastic_force<S: Storage<f64, Dyn>>(&self, z: &Modal<S>) -> DVector<f64> {
+        let mut f = DVector::zeros(z.len());
+        self.subtract_elastic_force(z, &mut f);
+        -f
+    }
+
+    /// `out` $\mathrel{-}= K_{zz} z$: the sparse $K_{zz}$ (no reduction) by its stored entries,
+    /// without a temporary.
+    pub fn subtract_elastic_force<S: Storage<f64, Dyn>>(
+        &self,
+        z: &Modal<S>,
+        out: &mut DVector<f64>,
+    ) {
         match &self.k_zz_sparse {
             Some(k) => {
-                let z: Vec<f64> = z.iter().copied().collect();
-                let f = k.mul(faer::MatRef::from_column_major_slice(&z, z.len(), 1));
-                DVector::from_fn(z.len(), |i, _| f[(i, 0)])
+                // Row j of the symmetric K_zz is its column j (both triangles stored).
+                let a = k.as_faer().as_ref();
+                for j in 0..z.len() {
+                    let dot: f64 = a
+                        .row_idx_of_col(j)
+                        .zip(a.val_of_col(j))
+                        .map(|(i, &v)| v * z[i])
+                        .sum();
+                    out[j] -= dot;
+                }
             }
-            None => &self.k_zz * z,
+            None => out.gemv(-1.0, &self.k_zz, z, 1.0),
         }
     }
 
@@ -272,9 +305,36 @@ impl FlexibleBody {
         &self.invariants.p_sum
     }
 
-    /// Local deflection of node `j`, $\Psi_j z$.
+    /// The columns where node `j`'s $\Psi_j$ is nonzero, when they are few (see
+    /// `psi_support`); `None` when $\Psi_j$ is dense.
+    pub fn psi_columns(&self, j: usize) -> Option<&[usize]> {
+        self.psi_support[j].as_deref()
+    }
+
+    /// Local deflection of node `j`, $\Psi_j z$ (over its nonzero columns only when they are
+    /// few: the same sum, without its zero terms).
     pub fn deflection<S: Storage<f64, Dyn>>(&self, j: usize, z: &Modal<S>) -> Vector3<f64> {
-        &self.psi_nodes[j] * z
+        let psi = &self.psi_nodes[j];
+        match self.psi_columns(j) {
+            Some(columns) => columns
+                .iter()
+                .fold(Vector3::zeros(), |u, &c| u + psi.column(c) * z[c]),
+            None => psi * z,
+        }
+    }
+
+    /// $\Psi_j^T f$ for a force $f$ on node `j` in body axes, added to `out` (k): only the
+    /// nonzero columns when they are few.
+    pub fn add_nodal_force(&self, j: usize, force: &Vector3<f64>, out: &mut DVector<f64>) {
+        let psi = &self.psi_nodes[j];
+        match self.psi_columns(j) {
+            Some(columns) => {
+                for &c in columns {
+                    out[c] += psi.column(c).dot(force);
+                }
+            }
+            None => out.gemv_tr(1.0, psi, force, 1.0),
+        }
     }
 
     /// $\bar b_j = \bar s_j + \Psi_j z$.

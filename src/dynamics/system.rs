@@ -186,8 +186,9 @@ impl System {
     /// Body `b`'s rows of $M(q)$ and $Q(q, v)$ (Kane's form with body-axis angular
     /// velocities): the frame block, the frame–modal coupling and, when `forces`, the forces
     /// (zero otherwise: the mass-weighted projection and the kinetic energy need only $M$).
-    /// The modal block is the body's constant $M_{zz}$.
-    fn body_blocks(&self, b: usize, s: &State, forces: bool) -> BodyBlocks {
+    /// The modal block is the body's constant $M_{zz}$. `h` is the body's $H_c(z)$ at `s`
+    /// ([`Self::modal_moments`]; empty for a rigid body).
+    fn body_blocks(&self, b: usize, s: &State, h: &[Matrix3<f64>], forces: bool) -> BodyBlocks {
         let f = self.frame(b, s);
         match &self.bodies[b] {
             Body::Rigid(rb) => {
@@ -212,10 +213,9 @@ impl System {
             Body::Flexible(fb) => {
                 let k = fb.modes();
                 let inv = &fb.invariants;
-                let h = inv.h(&f.z);
                 let first = inv.first_moment(&f.z);
-                let j_bar = InertiaInvariants::inertia_from(&inv.second_moment(&f.z, &h));
-                let wz = inv.rotation_coupling(&h);
+                let j_bar = InertiaInvariants::inertia_from(&inv.second_moment(&f.z, h));
+                let wz = inv.rotation_coupling(h);
                 let rw = -f.a * skew(&first);
                 let mut m_ff = Matrix6::zeros();
                 for i in 0..3 {
@@ -240,13 +240,13 @@ impl System {
                             let local = at * force;
                             q_r += local;
                             q_w += fb.b(n.get(), &f.z).cross(&local);
-                            q_z += fb.psi_nodes[n.get()].transpose() * local;
+                            fb.add_nodal_force(n.get(), &local, &mut q_z);
                         }
                     }
-                    let (ar, aw, az) = inv.velocity_forces(&f.w, &f.z, &f.zd, &h, &j_bar);
+                    let (ar, aw, az) = inv.velocity_forces(&f.w, &f.z, &f.zd, h, &j_bar);
                     q_w -= aw;
                     q_z -= az;
-                    q_z -= fb.elastic_force(&f.z);
+                    fb.subtract_elastic_force(&f.z, &mut q_z);
                     q.fixed_rows_mut::<3>(0).copy_from(&(f.a * (q_r - ar)));
                     q.fixed_rows_mut::<3>(3).copy_from(&q_w);
                     q.rows_mut(6, k).copy_from(&q_z);
@@ -256,15 +256,30 @@ impl System {
         }
     }
 
+    /// Every deformable body's $H_c(z) = \sum_j m_j \psi_{jc} b_j^T$ at `s`
+    /// ([`InertiaInvariants::h`]), which its mass matrix, forces and axis conditions share;
+    /// empty for a rigid body. Computed once per evaluation.
+    pub(super) fn modal_moments(&self, s: &State) -> Vec<Vec<Matrix3<f64>>> {
+        self.bodies
+            .iter()
+            .enumerate()
+            .map(|(b, body)| match body {
+                Body::Flexible(fb) => fb.invariants.h(&self.frame(b, s).z),
+                Body::Rigid(_) => Vec::new(),
+            })
+            .collect()
+    }
+
     /// $M(q)$ and $Q(q, v)$, assembled dense: the reference the block elimination of
     /// [`Self::accelerations`] is tested against.
     pub(crate) fn mass_and_forces(&self, s: &State) -> (DMatrix<f64>, DVector<f64>) {
         let nv = self.nv();
         let mut m = DMatrix::zeros(nv, nv);
         let mut q = DVector::zeros(nv);
+        let moments = self.modal_moments(s);
         for (b, body) in self.bodies.iter().enumerate() {
             let o = self.v_off[b];
-            let blocks = self.body_blocks(b, s, true);
+            let blocks = self.body_blocks(b, s, &moments[b], true);
             let k = blocks.m_fz.ncols();
             m.view_mut((o, o), (6, 6)).copy_from(&blocks.m_ff);
             m.view_mut((o, o + 6), (6, k)).copy_from(&blocks.m_fz);
@@ -298,17 +313,18 @@ impl System {
     /// that touch a body's modal coordinates enter its elimination.
     pub fn accelerations(&self, t: f64, s: &State) -> Result<DVector<f64>> {
         let rows = self.rows(t, s);
-        self.saddle_point(s, &rows.c, &rows.gamma, true)
+        self.saddle_point(s, &rows.moments, &rows.c, &rows.gamma, true)
     }
 
     /// $x$ of $\begin{bmatrix} M & C^T \\ C & 0\end{bmatrix}
     /// \begin{bmatrix} x \\ \lambda\end{bmatrix} = \begin{bmatrix} f \\ g\end{bmatrix}$
     /// with $f = Q$ when `forces` (the accelerations) or $f = 0$ (the mass-weighted
     /// correction of [`Self::project`]), by the block elimination of
-    /// [`Self::accelerations`].
+    /// [`Self::accelerations`]; `moments` are the bodies' $H_c$ at `s` ([`Self::modal_moments`]).
     pub(super) fn saddle_point(
         &self,
         s: &State,
+        moments: &[Vec<Matrix3<f64>>],
         c: &DMatrix<f64>,
         g: &DVector<f64>,
         forces: bool,
@@ -325,7 +341,7 @@ impl System {
         // the eliminated frame block's pivots are judged against.
         let mut frame_scale = 0.0f64;
         for (b, body) in self.bodies.iter().enumerate() {
-            let blocks = self.body_blocks(b, s, forces);
+            let blocks = self.body_blocks(b, s, &moments[b], forces);
             frame_scale = frame_scale.max(blocks.m_ff.diagonal().max());
             let (vo, fo) = (self.v_off[b], 6 * b);
             kkt.view_mut((fo, fo), (6, 6)).copy_from(&blocks.m_ff);
@@ -455,8 +471,9 @@ impl System {
     /// $n_v \times n_v$ matrix).
     pub fn kinetic_energy(&self, s: &State) -> f64 {
         let mut e = 0.0;
+        let moments = self.modal_moments(s);
         for (b, body) in self.bodies.iter().enumerate() {
-            let blocks = self.body_blocks(b, s, false);
+            let blocks = self.body_blocks(b, s, &moments[b], false);
             let o = self.v_off[b];
             let k = blocks.m_fz.ncols();
             let v_f = s.v.fixed_rows::<6>(o);

@@ -1,7 +1,7 @@
 //! The system's constraint rows $C\dot v = \gamma$ (joints, prescribed nodes, axis
 //! conditions), their violation, and the projection of a state onto them.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Matrix3};
 
 use super::{Attachment, AxisType, Constraint, FlexibleBody, State, System};
 use crate::Result;
@@ -18,6 +18,9 @@ pub(crate) struct Rows {
     pub phi: DVector<f64>,
     /// Whether each row is holonomic.
     pub holonomic: Vec<bool>,
+    /// The bodies' $H_c(z)$ at the state the rows are of ([`System::modal_moments`]): the axis
+    /// conditions need them, and so do the mass matrix and forces at the same state.
+    pub moments: Vec<Vec<Matrix3<f64>>>,
 }
 
 impl System {
@@ -31,6 +34,7 @@ impl System {
             target: DVector::zeros(nr),
             phi: DVector::zeros(nr),
             holonomic: vec![true; nr],
+            moments: self.modal_moments(s),
         };
         let mut r = 0;
         for c in &self.constraints {
@@ -68,21 +72,30 @@ impl System {
             }
             r += c.rows();
         }
+        let moments = std::mem::take(&mut out.moments);
         for (body, fb) in self.axis_condition_bodies() {
-            self.axis_rows(body, fb, s, r, &mut out);
+            self.axis_rows(body, fb, s, &moments[body], r, &mut out);
             r += 6;
         }
+        out.moments = moments;
         out
     }
 
     /// The six rows of mean axes (Table 4-2) or principal axes (§4.3) of body `body` from row
-    /// `r` on.
-    fn axis_rows(&self, body: usize, fb: &FlexibleBody, s: &State, r: usize, out: &mut Rows) {
+    /// `r` on; `h` is the body's $H_c(z)$ at `s`.
+    fn axis_rows(
+        &self,
+        body: usize,
+        fb: &FlexibleBody,
+        s: &State,
+        h: &[Matrix3<f64>],
+        r: usize,
+        out: &mut Rows,
+    ) {
         let f = self.frame(body, s);
         let o = self.v_off[body] + 6;
         let k = fb.modes();
         let inv = &fb.invariants;
-        let h = inv.h(&f.z);
         // Translational: sum m_j Psi_j z = 0 (Eq. 4.20), holonomic.
         out.c.view_mut((r, o), (3, k)).copy_from(&inv.p_sum);
         out.phi.rows_mut(r, 3).copy_from(&(&inv.p_sum * f.z));
@@ -91,7 +104,7 @@ impl System {
             // no quadratic term for a lumped M (Eq. 4.17).
             out.c
                 .view_mut((r + 3, o), (3, k))
-                .copy_from(&inv.rotation_coupling(&h));
+                .copy_from(&inv.rotation_coupling(h));
             for i in 3..6 {
                 out.holonomic[r + i] = false;
             }
@@ -100,7 +113,7 @@ impl System {
             // values -S_ab: gradient -(H_c[a,b] + H_c[b,a]), quadratic term
             // -2 sum m (Psi zd)_a (Psi zd)_b.
             let pairs = [(0, 1), (1, 2), (2, 0)];
-            let b_z = inv.second_moment(&f.z, &h);
+            let b_z = inv.second_moment(&f.z, h);
             let udot = inv.modal_outer(&f.zd, &f.zd);
             for (i, &(a, b)) in pairs.iter().enumerate() {
                 for (c, hc) in h.iter().enumerate() {
@@ -145,13 +158,13 @@ impl System {
             }
             let c = rows.c.select_rows(idx.iter());
             let phi = rows.phi.select_rows(idx.iter());
-            let dq = -self.saddle_point(s, &c, &phi, false)?;
+            let dq = -self.saddle_point(s, &rows.moments, &c, &phi, false)?;
             self.apply_increment(s, &dq);
             rows = self.rows(t, s);
         }
         if rows.c.nrows() > 0 {
             let r = &rows.c * &s.v - &rows.target;
-            s.v -= self.saddle_point(s, &rows.c, &r, false)?;
+            s.v -= self.saddle_point(s, &rows.moments, &rows.c, &r, false)?;
         }
         Ok(())
     }

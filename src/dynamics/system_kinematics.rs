@@ -171,11 +171,25 @@ impl System {
                     for k in 0..3 {
                         c[(row(i), vo + 3 + k)] += sign * arm[(i, k)];
                     }
-                    // Row i of A Ψ_j, by one product into the row (no temporary).
-                    c.view_mut((row(i), vo + 6), (1, fb.modes()))
-                        .gemm(sign, &f.a.row(i), psi, 1.0);
+                    // Row i of A Ψ_j: over Ψ_j's nonzero columns when they are few (no
+                    // reduction), else by one product into the row (no temporary).
+                    match fb.psi_columns(node.get()) {
+                        Some(columns) => {
+                            let a_i = f.a.row(i);
+                            for &col in columns {
+                                c[(row(i), vo + 6 + col)] +=
+                                    sign * a_i.dot(&psi.column(col).transpose());
+                            }
+                        }
+                        None => c.view_mut((row(i), vo + 6), (1, fb.modes())).gemm(
+                            sign,
+                            &f.a.row(i),
+                            psi,
+                            1.0,
+                        ),
+                    }
                 }
-                let u = psi * f.zd;
+                let u = fb.deflection(node.get(), &f.zd);
                 PointKin {
                     d: f.r + f.a * bj,
                     aq: f.a * (f.w.cross(&f.w.cross(&bj)) + 2.0 * f.w.cross(&u)),
