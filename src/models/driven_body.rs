@@ -16,12 +16,13 @@ use crate::{
     analysis::{MeanAxisView, count_zero_energy_modes},
     body_file::{ImportedBody, InterfaceKind},
     dynamics::{
-        AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, PinnedRing, Shake,
-        SpinUp, integrate_driven, positions,
+        AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, FrameCoordinates,
+        PinnedRing, Shake, SpinUp, integrate_driven, positions,
     },
     error::DynamicsError,
+    fem::FeModel,
     progress::Progress,
-    reduction::{ColumnKind, Method, ReductionError},
+    reduction::{ColumnKind, Method, ReductionError, RigidInterface},
 };
 
 use super::{
@@ -197,25 +198,150 @@ pub fn driven_body_study(
     items.extend(parameters.boundary.iter().cloned());
     items.extend(pinned_items.iter().cloned());
     let interfaces = BodyInterfaces::of(body, &items, None)?;
-    // The drive is the first rigid interface the items name.
-    let drive_set = body.boundary_with_interfaces(std::slice::from_ref(&parameters.drive))?;
-    let drive = match drive_set.1.first() {
-        Some(set) if set.kind == InterfaceKind::Rbe2 && drive_set.1.len() == 1 => interfaces
+    let drive = drive_interface(body, &parameters.drive, &interfaces)?;
+    let driving = driving_of(body, parameters)?;
+    // The frame turns about the axis point; the drive's ring is clamped in it wherever it is.
+    let origin = parameters.axis_point.unwrap_or(drive.master);
+    let pinned_names: Vec<&str> = pinned_items
+        .iter()
+        .map(|p| p.split_once(':').map_or(p.as_str(), |(_, n)| n))
+        .collect();
+    let output_names = output_names(body, parameters, &drive, &pinned_names);
+    let mut outputs = Vec::new();
+    for name in &output_names {
+        outputs.push(model.dofs_of_nodes(&output_nodes(body, name)?)?);
+    }
+    let measure = Measure {
+        mean_axes: mean_axes_of(model, parameters.axes, &outputs)?,
+        model,
+        s: positions(model, origin),
+        arm: Vector3::from(drive.master) - Vector3::from(origin),
+        axis: driving.spin.axis.into_inner(),
+        outputs,
+        driving: driving.clone(),
+    };
+    let ring = model.dofs_of_nodes(&drive.nodes)?;
+    let pins = pinned_rings(model, &interfaces, &pinned_items)?;
+
+    progress.phase("full body on the driven frame")?;
+    let started = Instant::now();
+    let mut full_body =
+        DrivenFrameBody::full(model, &ring, pins.clone(), origin, driving.spin.axis)?;
+    let full_offline = started.elapsed().as_secs_f64();
+    let coords = full_body
+        .coordinates()
+        .cloned()
+        .expect("the full body has coordinates");
+    let full_map = FieldMap::Full(Arc::new(coords.clone()));
+
+    // The eigen solve the reduced models need comes first: a body whose free-free modes
+    // cannot be found fails here, not after minutes of integrating the full body.
+    let needs_reducer = !methods.is_empty() && !modes.is_empty();
+    let zero_energy = if needs_reducer {
+        progress.phase("the body's zero-energy modes (free-free eigen solve)")?;
+        let started = Instant::now();
+        let zero = count_zero_energy_modes(model, 1)?;
+        Some((zero, started.elapsed().as_secs_f64()))
+    } else {
+        None
+    };
+
+    let mut times = Vec::new();
+    let mut runs = Vec::new();
+    let mut stability = Vec::new();
+    if full {
+        progress.phase("NR: the full body, sparse")?;
+        let sampled = sample_run(
+            &mut full_body,
+            &full_map,
+            &measure,
+            &parameters.integration,
+            progress,
+        )?;
+        times = sampled.times;
+        runs.push(DrivenRun {
+            method: None,
+            modes: 0,
+            coordinates: full_body.dim(),
+            hz_range: None,
+            offline_s: full_offline,
+            cost: sampled.cost,
+            explicit_step: None,
+            states: sampled.states,
+            field_map: full_map.clone(),
+            outputs: transpose(sampled.outputs, measure.outputs.len()),
+            reaction: sampled.reaction,
+            history_error: None,
+            reaction_error: None,
+        });
+    }
+
+    if let Some((zero, zero_s)) = zero_energy {
+        let mut reducer = BodyReducer::new(model, interfaces, &zero, zero_s, progress.clone())?;
+        let reduced = ReducedRuns {
+            full_body: &full_body,
+            coords: &coords,
+            drive: &drive,
+            pins: &pins,
+            measure: &measure,
+            parameters,
+            progress,
+        };
+        for &method in methods {
+            let counts: &[usize] = if method == Method::Guyan { &[0] } else { modes };
+            for &kept in counts {
+                reduced.run(
+                    &mut reducer,
+                    method,
+                    kept,
+                    &mut times,
+                    &mut runs,
+                    &mut stability,
+                )?;
+            }
+        }
+    }
+    if full {
+        compare_with_full(&mut runs, &measure, &times);
+    }
+    Ok(DrivenStudy {
+        times,
+        output_names,
+        drive: (drive.name.clone(), drive.master, drive.nodes.len()),
+        dof: model.dof_count(),
+        runs,
+        stability,
+    })
+}
+
+/// The drive: the one rigid interface `item` names (`rbe2:SET` or an rbe2 interface of the
+/// body file).
+fn drive_interface(
+    body: &ImportedBody,
+    item: &str,
+    interfaces: &BodyInterfaces,
+) -> Result<RigidInterface> {
+    let (_, sets) = body.boundary_with_interfaces(&[item.to_string()])?;
+    match sets.first() {
+        Some(set) if set.kind == InterfaceKind::Rbe2 && sets.len() == 1 => Ok(interfaces
             .rigid
             .iter()
             .find(|i| i.name == set.name)
             .cloned()
-            .expect("named above"),
-        _ => {
-            return Err(ReductionError::InvalidDofSet {
-                set: parameters.drive.clone(),
-                reason: "the drive must be one rigid interface: rbe2:SET or an rbe2 interface \
-                         of the body file"
-                    .into(),
-            }
-            .into());
+            .expect("named above")),
+        _ => Err(ReductionError::InvalidDofSet {
+            set: item.to_string(),
+            reason: "the drive must be one rigid interface: rbe2:SET or an rbe2 interface of \
+                     the body file"
+                .into(),
         }
-    };
+        .into()),
+    }
+}
+
+/// The prescribed motion of the parameters, checked: a nonzero spin axis, a positive ramp
+/// (s) and step (s), gravity and shaking in the body's length unit.
+fn driving_of(body: &ImportedBody, parameters: &DrivenBodyParameters) -> Result<Driving> {
     let axis = Unit::try_new(Vector3::from(parameters.axis), 1e-12).ok_or(
         DynamicsError::ZeroDirection {
             setting: "spin axis",
@@ -250,7 +376,7 @@ pub fn driven_body_study(
         }),
         None => None,
     };
-    let driving = Driving {
+    Ok(Driving {
         spin: SpinUp {
             axis,
             rate: parameters.rate,
@@ -258,42 +384,47 @@ pub fn driven_body_study(
         },
         shake,
         gravity,
-    };
-    // The frame turns about the axis point; the drive's ring is clamped in it wherever it is.
-    let origin = parameters.axis_point.unwrap_or(drive.master);
-    let pinned_names: Vec<&str> = pinned_items
-        .iter()
-        .map(|p| p.split_once(':').map_or(p.as_str(), |(_, n)| n))
+    })
+}
+
+/// The outputs asked for; by default every node set but the drive and the pinned rings, or,
+/// when there is none, the node farthest from the drive's master (`node:N`, 1-based).
+fn output_names(
+    body: &ImportedBody,
+    parameters: &DrivenBodyParameters,
+    drive: &RigidInterface,
+    pinned_names: &[&str],
+) -> Vec<String> {
+    if !parameters.outputs.is_empty() {
+        return parameters.outputs.clone();
+    }
+    let sets: Vec<String> = body
+        .node_sets
+        .keys()
+        .filter(|k| **k != drive.name && !pinned_names.contains(&k.as_str()))
+        .cloned()
         .collect();
-    let output_names: Vec<String> = if parameters.outputs.is_empty() {
-        let sets: Vec<String> = body
-            .node_sets
-            .keys()
-            .filter(|k| **k != drive.name && !pinned_names.contains(&k.as_str()))
-            .cloned()
-            .collect();
-        if sets.is_empty() {
-            // The node farthest from the drive's master.
-            let far = (0..model.node_count())
-                .max_by(|&a, &b| {
-                    let d = |j: usize| {
-                        let p = model.nodes[j];
-                        (0..3)
-                            .map(|k| (p[k] - drive.master[k]).powi(2))
-                            .sum::<f64>()
-                    };
-                    d(a).total_cmp(&d(b))
-                })
-                .unwrap_or(0);
-            vec![format!("node:{}", far + 1)]
-        } else {
-            sets
-        }
-    } else {
-        parameters.outputs.clone()
-    };
-    let mut outputs = Vec::new();
-    let unknown = |name: &str| DynamicsError::UnknownOutput {
+    if !sets.is_empty() {
+        return sets;
+    }
+    let model = &body.model;
+    let far = (0..model.node_count())
+        .max_by(|&a, &b| {
+            let d = |j: usize| {
+                let p = model.nodes[j];
+                (0..3)
+                    .map(|k| (p[k] - drive.master[k]).powi(2))
+                    .sum::<f64>()
+            };
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap_or(0);
+    vec![format!("node:{}", far + 1)]
+}
+
+/// The nodes (1-based) of output `name`: a node set, or `node:N`.
+fn output_nodes(body: &ImportedBody, name: &str) -> Result<Vec<usize>> {
+    let unknown = || DynamicsError::UnknownOutput {
         name: name.to_string(),
         known: body
             .node_sets
@@ -302,41 +433,39 @@ pub fn driven_body_study(
             .collect::<Vec<_>>()
             .join(", "),
     };
-    for name in &output_names {
-        let nodes = match name.strip_prefix("node:") {
-            Some(number) => vec![number.parse::<usize>().map_err(|_| unknown(name))?],
-            None => body
-                .node_sets
-                .get(name)
-                .ok_or_else(|| unknown(name))?
-                .clone(),
-        };
-        outputs.push(model.dofs_of_nodes(&nodes)?);
-    }
-    let mean_axes = match parameters.axes {
-        AxisKind::NodalFixed => None,
+    Ok(match name.strip_prefix("node:") {
+        Some(number) => vec![number.parse::<usize>().map_err(|_| unknown())?],
+        None => body.node_sets.get(name).ok_or_else(unknown)?.clone(),
+    })
+}
+
+/// The histories' mean-axis view and, per output set, its rigid rows' mean (`None` on
+/// nodal-fixed axes; principal axes are not offered for a driven body).
+#[allow(clippy::type_complexity)]
+fn mean_axes_of(
+    model: &FeModel,
+    axes: AxisKind,
+    outputs: &[Vec<usize>],
+) -> Result<Option<(MeanAxisView, Vec<Vec<Vec<f64>>>)>> {
+    match axes {
+        AxisKind::NodalFixed => Ok(None),
         AxisKind::Mean => {
             let view = MeanAxisView::of(model)?;
             let rows = outputs.iter().map(|dofs| view.mean_rows(dofs)).collect();
-            Some((view, rows))
+            Ok(Some((view, rows)))
         }
-        AxisKind::Principal => {
-            return Err(DynamicsError::AxesNotOffered { axes: "principal" }.into());
-        }
-    };
-    let measure = Measure {
-        mean_axes,
-        model,
-        s: positions(model, origin),
-        arm: Vector3::from(drive.master) - Vector3::from(origin),
-        axis: axis.into_inner(),
-        outputs,
-        driving,
-    };
-    let ring = model.dofs_of_nodes(&drive.nodes)?;
-    // Pinned rings: their masters' translations held in the frame, rotations free.
+        AxisKind::Principal => Err(DynamicsError::AxesNotOffered { axes: "principal" }.into()),
+    }
+}
+
+/// Pinned rings: their masters' translations held in the frame, rotations free.
+fn pinned_rings(
+    model: &FeModel,
+    interfaces: &BodyInterfaces,
+    pinned_items: &[String],
+) -> Result<Vec<PinnedRing>> {
     let mut pins = Vec::new();
-    for item in &pinned_items {
+    for item in pinned_items {
         let name = item.split_once(':').map_or(item.as_str(), |(_, n)| n);
         let interface = interfaces
             .rigid
@@ -353,211 +482,194 @@ pub fn driven_body_study(
             rows: rows.iter().map(|(_, r)| [r[3], r[4], r[5]]).collect(),
         });
     }
+    Ok(pins)
+}
 
-    progress.phase("full body on the driven frame")?;
-    let started = Instant::now();
-    let mut full_body = DrivenFrameBody::full(model, &ring, pins.clone(), origin, axis)?;
-    let full_offline = started.elapsed().as_secs_f64();
-    let coords = full_body
-        .coordinates()
-        .cloned()
-        .expect("the full body has coordinates");
-    let full_map = FieldMap::Full(Arc::new(coords.clone()));
+/// One integration's samples: times (s), states, output histories and reactions.
+struct Sampled {
+    times: Vec<f64>,
+    states: Vec<Vec<f64>>,
+    outputs: Vec<Vec<[f64; 3]>>,
+    reaction: Vec<[f64; 6]>,
+    cost: DrivenCost,
+}
 
-    // The eigen solve the reduced models need comes first: a body whose free-free modes
-    // cannot be found fails here, not after minutes of integrating the full body.
-    let needs_reducer = !methods.is_empty() && !modes.is_empty();
-    let zero_energy = if needs_reducer {
-        progress.phase("the body's zero-energy modes (free-free eigen solve)")?;
+/// Integrates `body` (full or reduced, its coordinates mapped to the full field by `map`)
+/// and measures every sample.
+fn sample_run(
+    body: &mut DrivenFrameBody,
+    map: &FieldMap,
+    measure: &Measure,
+    integration: &DrivenIntegration,
+    progress: &Progress,
+) -> Result<Sampled> {
+    let (mut outputs, mut reaction) = (Vec::new(), Vec::new());
+    let (mut times, mut states) = (Vec::new(), Vec::new());
+    let cost = integrate_driven(
+        body,
+        &measure.driving,
+        integration,
+        progress,
+        |t, x, xd, xdd| {
+            let (u, v, a) = (map.field(x), map.field(xd), map.field(xdd));
+            states.push(x.to_vec());
+            times.push(t);
+            outputs.push(measure.output(&u));
+            reaction.push(measure.reaction(t, &u, &v, &a));
+            Ok(())
+        },
+    )?;
+    Ok(Sampled {
+        times,
+        states,
+        outputs,
+        reaction,
+        cost,
+    })
+}
+
+/// What every reduced run of one study shares.
+struct ReducedRuns<'a> {
+    full_body: &'a DrivenFrameBody,
+    coords: &'a FrameCoordinates,
+    drive: &'a RigidInterface,
+    pins: &'a [PinnedRing],
+    measure: &'a Measure<'a>,
+    parameters: &'a DrivenBodyParameters,
+    progress: &'a Progress,
+}
+
+impl ReducedRuns<'_> {
+    /// `method` with `kept` modes: reduced, its drive's and pins' held columns removed,
+    /// integrated (and, when asked, integrated explicitly beside), appended to `runs`.
+    fn run(
+        &self,
+        reducer: &mut BodyReducer,
+        method: Method,
+        kept: usize,
+        times: &mut Vec<f64>,
+        runs: &mut Vec<DrivenRun>,
+        stability: &mut Vec<ExplicitCheck>,
+    ) -> Result<()> {
+        if !DRIVEN_METHODS.contains(&method) {
+            return Err(ReductionError::MethodNeedsContext {
+                method: method.name().into(),
+                needs: "a basis whose boundary columns are unit interface motions, so the \
+                        driven ring can be held still on the frame (gr, mt, cb, mc)"
+                    .into(),
+            }
+            .into());
+        }
+        let progress = self.progress;
+        progress.phase(&format!("{} {kept}", method.name()))?;
         let started = Instant::now();
-        let zero = count_zero_energy_modes(model, 1)?;
-        Some((zero, started.elapsed().as_secs_f64()))
-    } else {
-        None
-    };
-
-    let mut times = Vec::new();
-    let mut runs = Vec::new();
-    let mut stability = Vec::new();
-    if full {
-        progress.phase("NR: the full body, sparse")?;
-        let (mut outs, mut reaction) = (Vec::new(), Vec::new());
-        let (mut t_samples, mut states) = (Vec::new(), Vec::new());
-        let cost = integrate_driven(
-            &mut full_body,
-            &driving,
-            &parameters.integration,
-            progress,
-            |t, x, v, a| {
-                let (u, v, a) = (full_map.field(x), full_map.field(v), full_map.field(a));
-                states.push(x.to_vec());
-                t_samples.push(t);
-                outs.push(measure.output(&u));
-                reaction.push(measure.reaction(t, &u, &v, &a));
-                Ok(())
-            },
-        )?;
-        times = t_samples;
-        runs.push(DrivenRun {
-            method: None,
-            modes: 0,
-            coordinates: full_body.dim(),
-            hz_range: None,
-            offline_s: full_offline,
-            cost,
+        let reduced = reducer.reduce(method, kept)?;
+        let keep: Vec<usize> = reduced
+            .basis
+            .columns
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| {
+                !matches!(&c.kind, ColumnKind::RigidInterface { interface, dof }
+                    if *interface == self.drive.name
+                        || (*dof < 3 && self.pins.iter().any(|p| p.name == *interface)))
+            })
+            .map(|(j, _)| j)
+            .collect();
+        if keep.is_empty() {
+            return Err(ReductionError::MethodNeedsContext {
+                method: method.name().into(),
+                needs: "a coordinate besides the drive: Guyan keeps only the interfaces' \
+                        constraint modes, and with the drive the only interface the body \
+                        would be rigid (add --boundary)"
+                    .into(),
+            }
+            .into());
+        }
+        let psi_all = &reduced.basis.psi;
+        let psi = Arc::new(Mat::from_fn(psi_all.nrows(), keep.len(), |i, j| {
+            psi_all[(i, keep[j])]
+        }));
+        let map = FieldMap::Basis(psi.clone());
+        let psi_free = self.coords.coordinates_of(psi.as_ref().as_ref())?;
+        let mut reduced_body = DrivenFrameBody::reduced(self.full_body, psi_free.as_ref())?;
+        let hz_range = frame_frequencies(&reduced_body)?;
+        let offline_s = reduced.offline_s + started.elapsed().as_secs_f64();
+        let integration = &self.parameters.integration;
+        let sampled = sample_run(&mut reduced_body, &map, self.measure, integration, progress)?;
+        if times.is_empty() {
+            *times = sampled.times;
+        }
+        let modes = if method == Method::Guyan { 0 } else { kept };
+        let outputs = self.measure.outputs.len();
+        let run = DrivenRun {
+            method: Some(method),
+            modes,
+            coordinates: keep.len(),
+            hz_range,
+            offline_s,
+            cost: sampled.cost,
             explicit_step: None,
-            states,
-            field_map: full_map.clone(),
-            outputs: transpose(outs, measure.outputs.len()),
-            reaction,
+            states: sampled.states,
+            field_map: map.clone(),
+            outputs: transpose(sampled.outputs, outputs),
+            reaction: sampled.reaction,
             history_error: None,
             reaction_error: None,
-        });
+        };
+        let label = run.label();
+        runs.push(run);
+        if let (true, Some((_, highest))) = (self.parameters.explicit, hz_range) {
+            progress.phase(&format!("{label} explicit"))?;
+            let (explicit, check) = explicit_runs(
+                &mut reduced_body,
+                &map,
+                self.measure,
+                &self.measure.driving,
+                (label, highest),
+                (
+                    integration.step * integration.output_every.max(1) as f64,
+                    integration.end,
+                ),
+                self.measure.model.size(),
+                progress,
+            )?;
+            stability.push(check);
+            runs.push(DrivenRun {
+                method: Some(method),
+                modes,
+                coordinates: keep.len(),
+                hz_range,
+                offline_s,
+                cost: explicit.cost,
+                explicit_step: Some(explicit.step),
+                states: explicit.states,
+                field_map: map,
+                outputs: transpose(explicit.outputs, outputs),
+                reaction: explicit.reaction,
+                history_error: None,
+                reaction_error: None,
+            });
+        }
+        Ok(())
     }
+}
 
-    if let Some((zero, zero_s)) = zero_energy {
-        let mut reducer = BodyReducer::new(model, interfaces, &zero, zero_s, progress.clone())?;
-        for &method in methods {
-            if !DRIVEN_METHODS.contains(&method) {
-                return Err(ReductionError::MethodNeedsContext {
-                    method: method.name().into(),
-                    needs: "a basis whose boundary columns are unit interface motions, so the \
-                            driven ring can be held still on the frame (gr, mt, cb, mc)"
-                        .into(),
-                }
-                .into());
-            }
-            let counts: &[usize] = if method == Method::Guyan { &[0] } else { modes };
-            for &kept in counts {
-                progress.phase(&format!("{} {kept}", method.name()))?;
-                let started = Instant::now();
-                let reduced = reducer.reduce(method, kept)?;
-                let keep: Vec<usize> = reduced
-                    .basis
-                    .columns
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, c)| {
-                        !matches!(&c.kind, ColumnKind::RigidInterface { interface, dof }
-                            if *interface == drive.name
-                                || (*dof < 3 && pins.iter().any(|p| p.name == *interface)))
-                    })
-                    .map(|(j, _)| j)
-                    .collect();
-                if keep.is_empty() {
-                    return Err(ReductionError::MethodNeedsContext {
-                        method: method.name().into(),
-                        needs: "a coordinate besides the drive: Guyan keeps only the \
-                                interfaces' constraint modes, and with the drive the only \
-                                interface the body would be rigid (add --boundary)"
-                            .into(),
-                    }
-                    .into());
-                }
-                let psi_all = &reduced.basis.psi;
-                let psi = Arc::new(Mat::from_fn(psi_all.nrows(), keep.len(), |i, j| {
-                    psi_all[(i, keep[j])]
-                }));
-                let map = FieldMap::Basis(psi.clone());
-                let psi_free = coords.coordinates_of(psi.as_ref().as_ref())?;
-                let mut reduced_body = DrivenFrameBody::reduced(&full_body, psi_free.as_ref())?;
-                let hz_range = frame_frequencies(&reduced_body)?;
-                let offline_s = reduced.offline_s + started.elapsed().as_secs_f64();
-                let (mut outs, mut reaction) = (Vec::new(), Vec::new());
-                let (mut t_samples, mut states) = (Vec::new(), Vec::new());
-                let cost = integrate_driven(
-                    &mut reduced_body,
-                    &driving,
-                    &parameters.integration,
-                    progress,
-                    |t, z, zd, zdd| {
-                        let (u, v, a) = (map.field(z), map.field(zd), map.field(zdd));
-                        states.push(z.to_vec());
-                        t_samples.push(t);
-                        outs.push(measure.output(&u));
-                        reaction.push(measure.reaction(t, &u, &v, &a));
-                        Ok(())
-                    },
-                )?;
-                if times.is_empty() {
-                    times = t_samples;
-                }
-                let run = DrivenRun {
-                    method: Some(method),
-                    modes: if method == Method::Guyan { 0 } else { kept },
-                    coordinates: keep.len(),
-                    hz_range,
-                    offline_s,
-                    cost,
-                    explicit_step: None,
-                    states,
-                    field_map: map.clone(),
-                    outputs: transpose(outs, measure.outputs.len()),
-                    reaction,
-                    history_error: None,
-                    reaction_error: None,
-                };
-                let label = run.label();
-                runs.push(run);
-                if let (true, Some((_, highest))) = (parameters.explicit, hz_range) {
-                    progress.phase(&format!("{label} explicit"))?;
-                    let integration = &parameters.integration;
-                    let (explicit, check) = explicit_runs(
-                        &mut reduced_body,
-                        &map,
-                        &measure,
-                        &driving,
-                        (label, highest),
-                        (
-                            integration.step * integration.output_every.max(1) as f64,
-                            integration.end,
-                        ),
-                        model.size(),
-                        progress,
-                    )?;
-                    stability.push(check);
-                    runs.push(DrivenRun {
-                        method: Some(method),
-                        modes: if method == Method::Guyan { 0 } else { kept },
-                        coordinates: keep.len(),
-                        hz_range,
-                        offline_s,
-                        cost: explicit.cost,
-                        explicit_step: Some(explicit.step),
-                        states: explicit.states,
-                        field_map: map,
-                        outputs: transpose(explicit.outputs, measure.outputs.len()),
-                        reaction: explicit.reaction,
-                        history_error: None,
-                        reaction_error: None,
-                    });
-                }
-            }
+/// Every run's history and reaction error against the full body's (the first run).
+fn compare_with_full(runs: &mut [DrivenRun], measure: &Measure, times: &[f64]) {
+    let (reference, rest) = runs.split_first_mut().expect("the full body ran first");
+    let rigid_force = rigid_reaction(measure, times);
+    for run in rest {
+        // An explicit run sampled otherwise (an end the samples do not divide) is not
+        // compared.
+        if run.reaction.len() != reference.reaction.len() {
+            continue;
         }
+        run.history_error = Some(history_error(&reference.outputs, &run.outputs));
+        run.reaction_error = Some(reaction_error(
+            &reference.reaction,
+            &run.reaction,
+            &rigid_force,
+        ));
     }
-    if full {
-        let (reference, rest) = runs.split_first_mut().expect("the full body ran first");
-        let rigid_force = rigid_reaction(&measure, &times);
-        for run in rest {
-            // An explicit run sampled otherwise (an end the samples do not divide) is not
-            // compared.
-            if run.reaction.len() != reference.reaction.len() {
-                continue;
-            }
-            run.history_error = Some(history_error(&reference.outputs, &run.outputs));
-            run.reaction_error = Some(reaction_error(
-                &reference.reaction,
-                &run.reaction,
-                &rigid_force,
-            ));
-        }
-    }
-    Ok(DrivenStudy {
-        times,
-        output_names,
-        drive: (drive.name.clone(), drive.master, drive.nodes.len()),
-        dof: model.dof_count(),
-        runs,
-        stability,
-    })
 }
