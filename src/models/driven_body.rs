@@ -218,7 +218,7 @@ pub fn driven_body_study(
         arm: Vector3::from(drive.master) - Vector3::from(origin),
         axis: driving.spin.axis.into_inner(),
         outputs,
-        driving: driving.clone(),
+        driving,
     };
     let ring = model.dofs_of_nodes(&drive.nodes)?;
     let pins = pinned_rings(model, &interfaces, &pinned_items)?;
