@@ -4,7 +4,7 @@ use crate::dynamics::AxisKind;
 use serde::{Deserialize, Serialize};
 
 use crate::{
-    Error, Result,
+    Result,
     body_file::BodyHandle,
     dynamics::IntegrationScheme,
     reduction::Method,
@@ -130,17 +130,7 @@ impl Controls {
         let boundary = if c.boundary.is_empty() || (refined && self.boundary == join(c.boundary)) {
             None
         } else {
-            let nodes = self
-                .boundary
-                .split([',', ' '])
-                .filter(|t| !t.trim().is_empty())
-                .map(|t| {
-                    t.trim().parse::<usize>().map_err(|_| Error::InvalidOption {
-                        scene: self.scene.clone(),
-                        reason: format!("boundary `{}`: `{t}` is not a node number", self.boundary),
-                    })
-                })
-                .collect::<Result<Vec<_>>>()?;
+            let nodes = SceneOptions::boundary_from_text(&self.scene, &self.boundary)?;
             Some(nodes)
         };
         let methods = self
@@ -149,12 +139,7 @@ impl Controls {
             .filter_map(|id| Method::from_id(id))
             .collect::<Vec<_>>();
         // A scene without method choices (the failures scene) runs with its own settings.
-        if methods.is_empty() && !c.methods.is_empty() {
-            return Err(Error::InvalidOption {
-                scene: self.scene.clone(),
-                reason: "select at least one method".into(),
-            });
-        }
+        SceneOptions::require_a_method(&info, &methods)?;
         Ok(SceneOptions {
             methods: (!c.methods.is_empty()).then_some(methods),
             modes: c.modes.map(|_| self.modes),

@@ -5,7 +5,11 @@ use std::time::{Duration, Instant};
 
 use rerun::external::egui;
 
-use crate::{dynamics::IntegrationScheme, fem::SlabParameters, scenes};
+use crate::{
+    dynamics::IntegrationScheme,
+    fem::SlabParameters,
+    scenes::{self, SceneInfo},
+};
 
 use super::{
     Change, Command, Computed, Controls, Worker, report_view::table_ui,
@@ -272,6 +276,18 @@ impl Explorer {
         ui.label(egui::RichText::new(info.summary).small());
         ui.separator();
 
+        self.methods_ui(ui, &info, &mut out);
+        self.body_ui(ui, &mut out);
+        self.boundary_ui(ui, &info, &mut out);
+        self.model_ui(ui, &info, &mut out);
+        self.simulation_ui(ui, &info, &mut out);
+        self.status_ui(ui);
+        self.results_ui(ui, &mut out);
+        out
+    }
+
+    /// The scene's method checkboxes and the kept modes.
+    fn methods_ui(&mut self, ui: &mut egui::Ui, info: &SceneInfo, out: &mut Vec<Command>) {
         ui.label("methods");
         ui.horizontal_wrapped(|ui| {
             for m in info.controls.methods {
@@ -296,6 +312,10 @@ impl Explorer {
                 }
             });
         }
+    }
+
+    /// A body scene's file, built-in bodies and interfaces (node sets, plain, rigid or averaged).
+    fn body_ui(&mut self, ui: &mut egui::Ui, out: &mut Vec<Command>) {
         if self.controls.takes_body() {
             ui.horizontal(|ui| {
                 ui.label("body file");
@@ -388,6 +408,10 @@ impl Explorer {
                 });
             }
         }
+    }
+
+    /// The boundary nodes typed, applied or reset.
+    fn boundary_ui(&mut self, ui: &mut egui::Ui, info: &SceneInfo, out: &mut Vec<Command>) {
         if !info.controls.boundary.is_empty() || self.controls.takes_body() {
             ui.horizontal(|ui| {
                 ui.label("boundary nodes");
@@ -406,6 +430,10 @@ impl Explorer {
                 }
             });
         }
+    }
+
+    /// Axes, the slab's mesh and the integrator.
+    fn model_ui(&mut self, ui: &mut egui::Ui, info: &SceneInfo, out: &mut Vec<Command>) {
         if !info.controls.axes.is_empty() {
             ui.horizontal_wrapped(|ui| {
                 ui.label("axes");
@@ -465,6 +493,10 @@ impl Explorer {
                 }
             });
         }
+    }
+
+    /// A simulation's deflection factor and end time.
+    fn simulation_ui(&mut self, ui: &mut egui::Ui, info: &SceneInfo, out: &mut Vec<Command>) {
         if info.controls.end_time.is_some() {
             // The factor in use: the typed one, else the scene's automatic one.
             let shown = self
@@ -505,6 +537,10 @@ impl Explorer {
             });
         }
         ui.separator();
+    }
+
+    /// What is computing, the last error and the last update's latency.
+    fn status_ui(&mut self, ui: &mut egui::Ui) {
         if let Some(since) = self.computing_since {
             ui.horizontal(|ui| {
                 ui.spinner();
@@ -544,6 +580,10 @@ impl Explorer {
             };
             ui.label(egui::RichText::new(text).small());
         }
+    }
+
+    /// The results table of the recording on screen and the save field.
+    fn results_ui(&mut self, ui: &mut egui::Ui, out: &mut Vec<Command>) {
         // The table of the recording on screen: the viewer may still show the previous one.
         if let Some(report) = self
             .on_screen
@@ -566,6 +606,5 @@ impl Explorer {
         if !self.status.is_empty() {
             ui.label(egui::RichText::new(&self.status).small());
         }
-        out
     }
 }

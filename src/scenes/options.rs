@@ -99,6 +99,32 @@ impl SceneOptions {
             .unwrap_or_else(|| info.controls.boundary.to_vec())
     }
 
+    /// Boundary nodes (1-based) typed as text, separated by commas or spaces (the explorer's
+    /// boundary field); a token that is not a node number is named.
+    pub fn boundary_from_text(scene: &str, text: &str) -> Result<Vec<usize>> {
+        text.split([',', ' '])
+            .filter(|t| !t.trim().is_empty())
+            .map(|t| {
+                t.trim().parse::<usize>().map_err(|_| Error::InvalidOption {
+                    scene: scene.into(),
+                    reason: format!("boundary `{text}`: `{t}` is not a node number"),
+                })
+            })
+            .collect()
+    }
+
+    /// Refuses an empty choice of methods for a scene that offers some (a scene without
+    /// method choices, the failures scene, runs with its own settings).
+    pub fn require_a_method(info: &SceneInfo, methods: &[Method]) -> Result<()> {
+        if methods.is_empty() && !info.controls.methods.is_empty() {
+            return Err(Error::InvalidOption {
+                scene: info.id.into(),
+                reason: "select at least one method".into(),
+            });
+        }
+        Ok(())
+    }
+
     /// `--modes`, or the scene's default (0 when it keeps none).
     pub fn modes_or_default(&self, info: &SceneInfo) -> usize {
         self.modes.or(info.controls.modes).unwrap_or(0)
