@@ -4,7 +4,7 @@
 //! Timings are wall-clock ratios measured in one run on this machine; they are reported, never
 //! asserted.
 
-use crate::dynamics::DynamicsError;
+use crate::dynamics::{DynamicsError, Simulation, State, System};
 use std::time::Instant;
 
 use serde_json::{Map, Value, json};
@@ -167,47 +167,15 @@ pub fn bench_simulation(
         let highest_hz = hz.last().copied().unwrap_or(0.0);
         let dofs = body.modes();
         let (system, state) = slab_system(&scenario, body)?;
-        let mut runs = Vec::new();
-        // Each scheme at the scenes' settings; Dormand–Prince also at the loose tolerances.
-        let defaults = IntegratorParameters::default();
-        let settings: Vec<(IntegrationScheme, Option<(f64, f64)>)> = schemes
-            .iter()
-            .flat_map(|&scheme| match scheme {
-                IntegrationScheme::DormandPrince => vec![
-                    (scheme, Some((defaults.rtol, defaults.atol))),
-                    (scheme, Some((LOOSE_RTOL, LOOSE_ATOL))),
-                ],
-                _ => vec![(scheme, None)],
-            })
-            .collect();
-        for (scheme, tolerances) in settings {
-            let (rtol, atol) = tolerances.unwrap_or((defaults.rtol, defaults.atol));
-            let rtol_reported = tolerances.map(|(r, _)| r);
-            let params = IntegratorParameters {
-                scheme,
-                end_time: t_end,
-                rtol,
-                atol,
-                ..defaults.clone()
-            };
-            let sim = simulate(&system, &state, &params, progress)?;
-            // The online cost is the median wall time of `repeats` identical runs.
-            let mut walls = vec![sim.wall_time_s];
-            for _ in 1..repeats.max(1) {
-                walls.push(simulate(&system, &state, &params, progress)?.wall_time_s);
-            }
-            walls.sort_by(f64::total_cmp);
-            let online_wall_s = walls[walls.len() / 2];
-            let hist = probe_history(&system, &sim, probe);
-            if m == Method::NoReduction && reference.is_none() {
-                reference = Some(hist.clone());
-            }
-            let err = match &reference {
-                Some(r) => (0..3).map(|d| relative_rms(&hist[d], &r[d])).sum::<f64>() / 3.0,
-                None => f64::NAN,
-            };
-            runs.push((scheme, rtol_reported, sim, err, online_wall_s));
-        }
+        let runs = scheme_runs(
+            &system,
+            &state,
+            &schemes,
+            (t_end, repeats),
+            probe,
+            (m, &mut reference),
+            progress,
+        )?;
         let key = if m.keeps_normal_modes() {
             format!("{}_{k}", m.id())
         } else {
@@ -219,64 +187,20 @@ pub fn bench_simulation(
         } else {
             f64::INFINITY
         };
-        // The prediction checked by fixed-step runs without error control.
-        let (below_ok, above_diverged) = if critical.is_finite() {
-            let fixed = |factor: f64, end_time: f64| {
-                simulate(
-                    &system,
-                    &state,
-                    &IntegratorParameters {
-                        end_time,
-                        output_interval: end_time / 10.0,
-                        fixed_step: Some(factor * critical),
-                        ..Default::default()
-                    },
-                    progress,
-                )
-            };
-            progress.phase(&format!("point {} of {count}: fixed steps", i + 1))?;
-            let below = fixed(BELOW_CRITICAL, t_end.min(STABILITY_RUN_S));
-            if let Err(Error::Cancelled) = below {
-                return Err(Error::Cancelled);
-            }
-            let above = fixed(ABOVE_CRITICAL, t_end);
-            if let Err(Error::Cancelled) = above {
-                return Err(Error::Cancelled);
-            }
-            (
-                below.is_ok(),
-                matches!(above, Err(Error::Dynamics(DynamicsError::Diverged { .. }))),
-            )
-        } else {
-            (true, false)
-        };
-        // What the implicit scheme does with the step that breaks the explicit one.
-        let implicit = schemes
-            .iter()
-            .copied()
-            .find(|s| matches!(s, IntegrationScheme::GeneralizedAlpha { .. }));
-        let implicit_above_bounded = match implicit {
-            Some(scheme) if critical.is_finite() => {
-                progress.phase(&format!("point {} of {count}: implicit, large step", i + 1))?;
-                let run = simulate(
-                    &system,
-                    &state,
-                    &IntegratorParameters {
-                        scheme,
-                        end_time: t_end,
-                        output_interval: ABOVE_CRITICAL * critical,
-                        fixed_step: Some(ABOVE_CRITICAL * critical),
-                        ..Default::default()
-                    },
-                    progress,
-                );
-                if let Err(Error::Cancelled) = run {
-                    return Err(Error::Cancelled);
-                }
-                Some(run.is_ok())
-            }
-            _ => None,
-        };
+        let checks = StabilityChecks::run(
+            &system,
+            &state,
+            critical,
+            t_end,
+            &schemes,
+            (i + 1, count),
+            progress,
+        )?;
+        let (below_ok, above_diverged, implicit_above_bounded) = (
+            checks.below_ok,
+            checks.above_diverged,
+            checks.implicit_above_bounded,
+        );
         let mut entry = json!({
             "highest_hz": sig(highest_hz),
             "critical_dt_s": if critical.is_finite() { sig(critical) } else { f64::INFINITY },
@@ -339,32 +263,207 @@ pub fn bench_simulation(
             ]
         })
         .collect();
+    let table = bench_text(&schemes, repeats, &rows, &stability_rows);
+    let json = json!({
+        "scene": scene,
+        "dofs": model.dof_count(),
+        "points": points.iter().map(|p| json!({
+            "method": p.method.id(),
+            "modes": p.modes,
+            "dofs": p.dofs,
+            "offline_s": sig(p.offline_s),
+            "online_s_per_sim_s": sig(p.online_s_per_sim_s),
+            "rel_rms_error": sig(p.rel_rms_error),
+            "steps": p.steps,
+            "integrator": p.integrator.id(),
+            "rtol": p.rtol,
+            "pareto": p.pareto,
+        })).collect::<Vec<_>>(),
+        "stability": Value::Object(stability),
+    });
+    let recording = speed_accuracy_charts(scene, &points, &table);
+    Ok((json, table, recording))
+}
+
+/// One run of a bench point: the scheme, its rtol when it is Dormand–Prince, the simulation,
+/// node 8's mean relative RMS error against NR and the median online wall time (s).
+type SchemeRun = (IntegrationScheme, Option<f64>, Simulation, f64, f64);
+
+/// Every scheme at the scenes' settings (Dormand–Prince also at the loose tolerances) on one
+/// reduced system, each timed `repeats` times (median); the first NR run becomes `reference`.
+fn scheme_runs(
+    system: &System,
+    state: &State,
+    schemes: &[IntegrationScheme],
+    timing: (f64, usize),
+    probe: usize,
+    case: (Method, &mut Option<[Vec<f64>; 3]>),
+    progress: &Progress,
+) -> Result<Vec<SchemeRun>> {
+    let (m, reference) = case;
+    let (t_end, repeats) = timing;
+    let mut runs = Vec::new();
+    // Each scheme at the scenes' settings; Dormand–Prince also at the loose tolerances.
+    let defaults = IntegratorParameters::default();
+    let settings: Vec<(IntegrationScheme, Option<(f64, f64)>)> = schemes
+        .iter()
+        .flat_map(|&scheme| match scheme {
+            IntegrationScheme::DormandPrince => vec![
+                (scheme, Some((defaults.rtol, defaults.atol))),
+                (scheme, Some((LOOSE_RTOL, LOOSE_ATOL))),
+            ],
+            _ => vec![(scheme, None)],
+        })
+        .collect();
+    for (scheme, tolerances) in settings {
+        let (rtol, atol) = tolerances.unwrap_or((defaults.rtol, defaults.atol));
+        let rtol_reported = tolerances.map(|(r, _)| r);
+        let params = IntegratorParameters {
+            scheme,
+            end_time: t_end,
+            rtol,
+            atol,
+            ..defaults.clone()
+        };
+        let sim = simulate(system, state, &params, progress)?;
+        // The online cost is the median wall time of `repeats` identical runs.
+        let mut walls = vec![sim.wall_time_s];
+        for _ in 1..repeats.max(1) {
+            walls.push(simulate(system, state, &params, progress)?.wall_time_s);
+        }
+        walls.sort_by(f64::total_cmp);
+        let online_wall_s = walls[walls.len() / 2];
+        let hist = probe_history(system, &sim, probe);
+        if m == Method::NoReduction && reference.is_none() {
+            *reference = Some(hist.clone());
+        }
+        let err = match reference {
+            Some(r) => (0..3).map(|d| relative_rms(&hist[d], &r[d])).sum::<f64>() / 3.0,
+            None => f64::NAN,
+        };
+        runs.push((scheme, rtol_reported, sim, err, online_wall_s));
+    }
+    Ok(runs)
+}
+
+/// The stability bound checked: fixed-step runs without error control just below and above
+/// the critical step, and the implicit scheme at the step that breaks the explicit one.
+struct StabilityChecks {
+    below_ok: bool,
+    above_diverged: bool,
+    implicit_above_bounded: Option<bool>,
+}
+
+impl StabilityChecks {
+    fn run(
+        system: &System,
+        state: &State,
+        critical: f64,
+        t_end: f64,
+        schemes: &[IntegrationScheme],
+        (point, count): (usize, usize),
+        progress: &Progress,
+    ) -> Result<Self> {
+        // The prediction checked by fixed-step runs without error control.
+        let (below_ok, above_diverged) = if critical.is_finite() {
+            let fixed = |factor: f64, end_time: f64| {
+                simulate(
+                    system,
+                    state,
+                    &IntegratorParameters {
+                        end_time,
+                        output_interval: end_time / 10.0,
+                        fixed_step: Some(factor * critical),
+                        ..Default::default()
+                    },
+                    progress,
+                )
+            };
+            progress.phase(&format!("point {point} of {count}: fixed steps"))?;
+            let below = fixed(BELOW_CRITICAL, t_end.min(STABILITY_RUN_S));
+            if let Err(Error::Cancelled) = below {
+                return Err(Error::Cancelled);
+            }
+            let above = fixed(ABOVE_CRITICAL, t_end);
+            if let Err(Error::Cancelled) = above {
+                return Err(Error::Cancelled);
+            }
+            (
+                below.is_ok(),
+                matches!(above, Err(Error::Dynamics(DynamicsError::Diverged { .. }))),
+            )
+        } else {
+            (true, false)
+        };
+        // What the implicit scheme does with the step that breaks the explicit one.
+        let implicit = schemes
+            .iter()
+            .copied()
+            .find(|s| matches!(s, IntegrationScheme::GeneralizedAlpha { .. }));
+        let implicit_above_bounded = match implicit {
+            Some(scheme) if critical.is_finite() => {
+                progress.phase(&format!("point {point} of {count}: implicit, large step"))?;
+                let run = simulate(
+                    system,
+                    state,
+                    &IntegratorParameters {
+                        scheme,
+                        end_time: t_end,
+                        output_interval: ABOVE_CRITICAL * critical,
+                        fixed_step: Some(ABOVE_CRITICAL * critical),
+                        ..Default::default()
+                    },
+                    progress,
+                );
+                if let Err(Error::Cancelled) = run {
+                    return Err(Error::Cancelled);
+                }
+                Some(run.is_ok())
+            }
+            _ => None,
+        };
+        Ok(Self {
+            below_ok,
+            above_diverged,
+            implicit_above_bounded,
+        })
+    }
+}
+
+/// The bench's text: how it measured, the points' table and the stability table.
+fn bench_text(
+    schemes: &[IntegrationScheme],
+    repeats: usize,
+    rows: &[Vec<String>],
+    stability_rows: &[Vec<String>],
+) -> String {
+    let y_star = imaginary_stability_limit();
     let defaults = IntegratorParameters::default();
     let (scene_rtol, scene_atol, output_ms) =
         (defaults.rtol, defaults.atol, defaults.output_interval * 1e3);
-    let table = format!(
+    format!(
         "Errors are node 8's mean relative RMS against the full model integrated by {}; online \
-         cost is the median of {repeats} runs; speed-up is against the first row. `dp5` runs \
-         at the scenes' tolerances (rtol {scene_rtol:.0e}, atol {scene_atol:.0e}), `dp5 rtol \
-         {LOOSE_RTOL:.0e}` at rtol {LOOSE_RTOL:.0e}, atol {LOOSE_ATOL:.0e}: there the error \
-         control no longer binds and the step grows to the stability bound (or to the \
-         {output_ms} ms output interval), \
-         which is where a reduced model's lower highest frequency buys an explicit scheme \
-         fewer steps. ★ marks the Pareto front: no other point is both faster \
-         online and more accurate (errors equal to three digits count as equal).\n\n{}\nUndamped modes sit on the imaginary axis, where Dormand-Prince 5(4) keeps \
-         |R(iωh)| ≤ 1 only for ωh ≤ {y_star:.3} (beyond it the growth per step stays below \
-         1e-4 up to ωh ≈ 1.1, so at the scenes' tolerances the error control, not stability, \
-         sets the step). \
-         `stability.<method>.critical_dt_s` = {y_star:.3} / ω_max of the reduced model held \
-         by the nodal-fixed frame: Guyan's and the full model's stiff high modes bound the \
-         step most. Checked by fixed-step runs without error control, at {BELOW_CRITICAL}× \
-         the critical step over {STABILITY_RUN_S} s (must stay bounded) and at \
-         {ABOVE_CRITICAL}× over the whole interval (must diverge, `Error::Diverged`). The \
-         implicit generalized-α scheme is unconditionally stable for linear systems; the last \
-         column runs it with the step that breaks the explicit one \
-         (`stability.<method>.implicit_above_bounded`; FAILED: it diverged or its Newton \
-         iterations did not converge, a named error). Reduction buys the implicit scheme \
-         cheaper steps, not larger ones:\n\n{}",
+     cost is the median of {repeats} runs; speed-up is against the first row. `dp5` runs \
+     at the scenes' tolerances (rtol {scene_rtol:.0e}, atol {scene_atol:.0e}), `dp5 rtol \
+     {LOOSE_RTOL:.0e}` at rtol {LOOSE_RTOL:.0e}, atol {LOOSE_ATOL:.0e}: there the error \
+     control no longer binds and the step grows to the stability bound (or to the \
+     {output_ms} ms output interval), \
+     which is where a reduced model's lower highest frequency buys an explicit scheme \
+     fewer steps. ★ marks the Pareto front: no other point is both faster \
+     online and more accurate (errors equal to three digits count as equal).\n\n{}\nUndamped modes sit on the imaginary axis, where Dormand-Prince 5(4) keeps \
+     |R(iωh)| ≤ 1 only for ωh ≤ {y_star:.3} (beyond it the growth per step stays below \
+     1e-4 up to ωh ≈ 1.1, so at the scenes' tolerances the error control, not stability, \
+     sets the step). \
+     `stability.<method>.critical_dt_s` = {y_star:.3} / ω_max of the reduced model held \
+     by the nodal-fixed frame: Guyan's and the full model's stiff high modes bound the \
+     step most. Checked by fixed-step runs without error control, at {BELOW_CRITICAL}× \
+     the critical step over {STABILITY_RUN_S} s (must stay bounded) and at \
+     {ABOVE_CRITICAL}× over the whole interval (must diverge, `Error::Diverged`). The \
+     implicit generalized-α scheme is unconditionally stable for linear systems; the last \
+     column runs it with the step that breaks the explicit one \
+     (`stability.<method>.implicit_above_bounded`; FAILED: it diverged or its Newton \
+     iterations did not converge, a named error). Reduction buys the implicit scheme \
+     cheaper steps, not larger ones:\n\n{}",
         schemes[0].name(),
         markdown_table(
             &[
@@ -392,26 +491,7 @@ pub fn bench_simulation(
             ],
             &stability_rows,
         )
-    );
-    let json = json!({
-        "scene": scene,
-        "dofs": model.dof_count(),
-        "points": points.iter().map(|p| json!({
-            "method": p.method.id(),
-            "modes": p.modes,
-            "dofs": p.dofs,
-            "offline_s": sig(p.offline_s),
-            "online_s_per_sim_s": sig(p.online_s_per_sim_s),
-            "rel_rms_error": sig(p.rel_rms_error),
-            "steps": p.steps,
-            "integrator": p.integrator.id(),
-            "rtol": p.rtol,
-            "pareto": p.pareto,
-        })).collect::<Vec<_>>(),
-        "stability": Value::Object(stability),
-    });
-    let recording = speed_accuracy_charts(scene, &points, &table);
-    Ok((json, table, recording))
+    )
 }
 
 /// The recording of a simulation bench: error against online cost (log–log), one line per
