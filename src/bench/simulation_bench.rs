@@ -478,7 +478,7 @@ fn bench_text(
                 "steps",
                 "Pareto",
             ],
-            &rows,
+            rows,
         ),
         markdown_table(
             &[
@@ -489,7 +489,7 @@ fn bench_text(
                 &format!("{ABOVE_CRITICAL}× step"),
                 &format!("gen-alpha at {ABOVE_CRITICAL}×"),
             ],
-            &stability_rows,
+            stability_rows,
         )
     )
 }
