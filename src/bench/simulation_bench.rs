@@ -245,42 +245,9 @@ pub fn bench_simulation(
         }
     }
     mark_pareto(&mut points);
-    let nr_online = points[0].online_s_per_sim_s;
-    let rows: Vec<Vec<String>> = points
-        .iter()
-        .map(|p| {
-            vec![
-                p.method.id().into(),
-                p.integrator_label(),
-                p.modes.to_string(),
-                p.dofs.to_string(),
-                format!("{:.2e}", p.offline_s),
-                format!("{:.3}", p.online_s_per_sim_s),
-                format!("{:.1}", nr_online / p.online_s_per_sim_s),
-                format!("{:.4}", p.rel_rms_error),
-                p.steps.to_string(),
-                if p.pareto { "★" } else { "" }.to_string(),
-            ]
-        })
-        .collect();
+    let rows = point_rows(&points);
     let table = bench_text(&schemes, repeats, &rows, &stability_rows);
-    let json = json!({
-        "scene": scene,
-        "dofs": model.dof_count(),
-        "points": points.iter().map(|p| json!({
-            "method": p.method.id(),
-            "modes": p.modes,
-            "dofs": p.dofs,
-            "offline_s": sig(p.offline_s),
-            "online_s_per_sim_s": sig(p.online_s_per_sim_s),
-            "rel_rms_error": sig(p.rel_rms_error),
-            "steps": p.steps,
-            "integrator": p.integrator.id(),
-            "rtol": p.rtol,
-            "pareto": p.pareto,
-        })).collect::<Vec<_>>(),
-        "stability": Value::Object(stability),
-    });
+    let json = bench_json(scene, model.dof_count(), &points, stability);
     let recording = speed_accuracy_charts(scene, &points, &table);
     Ok((json, table, recording))
 }
@@ -428,6 +395,54 @@ impl StabilityChecks {
             implicit_above_bounded,
         })
     }
+}
+
+/// The points' table rows; the speed-up is against the first point (NR).
+fn point_rows(points: &[BenchPoint]) -> Vec<Vec<String>> {
+    let nr_online = points[0].online_s_per_sim_s;
+    points
+        .iter()
+        .map(|p| {
+            vec![
+                p.method.id().into(),
+                p.integrator_label(),
+                p.modes.to_string(),
+                p.dofs.to_string(),
+                format!("{:.2e}", p.offline_s),
+                format!("{:.3}", p.online_s_per_sim_s),
+                format!("{:.1}", nr_online / p.online_s_per_sim_s),
+                format!("{:.4}", p.rel_rms_error),
+                p.steps.to_string(),
+                if p.pareto { "★" } else { "" }.to_string(),
+            ]
+        })
+        .collect()
+}
+
+/// The bench as JSON: every point and the stability checks per model.
+fn bench_json(
+    scene: &str,
+    dofs: usize,
+    points: &[BenchPoint],
+    stability: Map<String, Value>,
+) -> Value {
+    json!({
+        "scene": scene,
+        "dofs": dofs,
+        "points": points.iter().map(|p| json!({
+            "method": p.method.id(),
+            "modes": p.modes,
+            "dofs": p.dofs,
+            "offline_s": sig(p.offline_s),
+            "online_s_per_sim_s": sig(p.online_s_per_sim_s),
+            "rel_rms_error": sig(p.rel_rms_error),
+            "steps": p.steps,
+            "integrator": p.integrator.id(),
+            "rtol": p.rtol,
+            "pareto": p.pareto,
+        })).collect::<Vec<_>>(),
+        "stability": Value::Object(stability),
+    })
 }
 
 /// The bench's text: how it measured, the points' table and the stability table.
