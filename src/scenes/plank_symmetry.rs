@@ -1,5 +1,6 @@
 //! `plank-symmetry`: §5.3.3, the plank hung under four rigid links, nodal-fixed versus mean axes.
 
+use crate::dynamics::{IntegratorParameters, Simulation, System};
 use crate::record::method_color;
 use nalgebra::Vector3;
 use serde_json::{Map, json};
@@ -44,35 +45,7 @@ const END_TIME: f64 = 1.5;
 const SNAP_TIME: f64 = 0.45;
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    let nodal = AxisType::NodalFixed(plank_nodal_fixed());
-    let mut variants = vec![
-        Variant {
-            method: Method::NoReduction,
-            axes: nodal,
-        },
-        Variant {
-            method: Method::NoReduction,
-            axes: AxisType::Mean,
-        },
-        Variant {
-            method: Method::CraigBampton,
-            axes: AxisType::Mean,
-        },
-    ];
-    if let Some(ms) = &opts.methods {
-        variants.retain(|v| ms.contains(&v.method));
-    }
-    if let Some(a) = opts.axes {
-        variants.retain(|v| v.axes.kind() == a);
-    }
-    if variants.is_empty() {
-        return Err(crate::Error::InvalidOption {
-            scene: INFO.id.into(),
-            reason: "the study runs nr with nodal_fixed and mean axes and cb with mean axes; \
-                     the --method/--axes filter left none"
-                .into(),
-        });
-    }
+    let variants = study_variants(opts)?;
     let modes = opts.modes_or_default(&INFO);
     let model = plank(&SlabParameters::default());
     let params = opts.integrator_parameters(&INFO)?;
@@ -155,68 +128,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             Cell::number(viol, format!("{viol:.1e}")),
             Cell::number(sim.wall_time_s, format!("{:.2}", sim.wall_time_s)),
         ]);
-        let times = times(sim);
-        let color = if v.method == Method::NoReduction {
-            match v.axes {
-                AxisType::Mean => [60, 200, 110, 255],
-                _ => [220, 60, 60, 255],
-            }
-        } else {
-            method_color(v.method)
-        };
-        let suffix = format!("{}/{}", v.method.id(), v.axes.id());
-        for (q, name) in [(0, "x_node3"), (1, "x_node15"), (2, "symmetry_defect")] {
-            visuals.push(Visual::Series {
-                path: format!("plots/plank/{name}/{suffix}"),
-                times: times.clone(),
-                values: hist[q].clone(),
-                name: suffix.clone(),
-                color,
-            });
-        }
-        visuals.extend(health_series(sim, &suffix, color));
-        visuals.push(body_trajectory(
-            system,
-            sim,
-            0,
-            format!("world/plank/{suffix}"),
-            &geometry,
-            color,
-            deflection,
-        ));
-        let link_geometry = Geometry {
-            nodes: vec![[0.0; 3]; 8],
-            strips: vec![vec![0, 1], vec![2, 3], vec![4, 5], vec![6, 7]],
-        };
-        let link_positions = sim
-            .samples
-            .iter()
-            .map(|s| {
-                let mut pts = Vec::new();
-                for b in 1..5 {
-                    let (r, a) = system.placement(b, &s.state);
-                    for end in [-1.0, 1.0] {
-                        let p =
-                            r + a * Vector3::new(end * plank_setup().link_length / 2.0, 0.0, 0.0);
-                        pts.push([p.x, p.y, p.z]);
-                    }
-                }
-                pts
-            })
-            .collect();
-        visuals.push(Visual::Trajectory {
-            path: format!("world/links/{suffix}"),
-            geometry: link_geometry,
-            times: times.clone(),
-            positions: link_positions,
-            color: [200, 200, 200, 255],
-        });
-        visuals.push(frame_axes(
-            system,
-            sim,
-            0,
-            format!("world/plank/frame/{suffix}"),
-            0.8,
+        visuals.extend(variant_visuals(
+            v, system, sim, &hist, &geometry, deflection,
         ));
     }
     for name in ["x_node3", "x_node15", "symmetry_defect"] {
@@ -248,7 +161,138 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .results
         .insert("wall_time_s".into(), serde_json::Value::Object(walls));
     report.table = report.add_table(table);
-    let markdown = format!(
+    let markdown = plank_text(&params, &report.table);
+    let mut top = vec![Layout::Spatial3D {
+        name: "plank".into(),
+        origin: "/world".into(),
+        contents: vec!["$origin/**".into()],
+    }];
+    top.extend(health);
+    let layout = simulation_layout(Layout::Tabs(top), plots);
+    Ok(SceneOutput {
+        report,
+        markdown,
+        visuals,
+        layout,
+        timeline: Some("sim_time".into()),
+        y_up: false,
+    })
+}
+
+/// The study's variants (NR on nodal-fixed and mean axes, CB on mean axes) that `--method`
+/// and `--axes` leave; none left is a named error.
+fn study_variants(opts: &SceneOptions) -> Result<Vec<Variant>> {
+    let nodal = AxisType::NodalFixed(plank_nodal_fixed());
+    let mut variants = vec![
+        Variant {
+            method: Method::NoReduction,
+            axes: nodal,
+        },
+        Variant {
+            method: Method::NoReduction,
+            axes: AxisType::Mean,
+        },
+        Variant {
+            method: Method::CraigBampton,
+            axes: AxisType::Mean,
+        },
+    ];
+    if let Some(ms) = &opts.methods {
+        variants.retain(|v| ms.contains(&v.method));
+    }
+    if let Some(a) = opts.axes {
+        variants.retain(|v| v.axes.kind() == a);
+    }
+    if variants.is_empty() {
+        return Err(crate::Error::InvalidOption {
+            scene: INFO.id.into(),
+            reason: "the study runs nr with nodal_fixed and mean axes and cb with mean axes; \
+                     the --method/--axes filter left none"
+                .into(),
+        });
+    }
+    Ok(variants)
+}
+
+/// One variant's plots (node 3's and 15's x and the defect), health series, plank, links and
+/// frame.
+fn variant_visuals(
+    v: &Variant,
+    system: &System,
+    sim: &Simulation,
+    hist: &[Vec<f64>; 3],
+    geometry: &Geometry,
+    deflection: f64,
+) -> Vec<Visual> {
+    let mut visuals = Vec::new();
+    let times = times(sim);
+    let color = if v.method == Method::NoReduction {
+        match v.axes {
+            AxisType::Mean => [60, 200, 110, 255],
+            _ => [220, 60, 60, 255],
+        }
+    } else {
+        method_color(v.method)
+    };
+    let suffix = format!("{}/{}", v.method.id(), v.axes.id());
+    for (q, name) in [(0, "x_node3"), (1, "x_node15"), (2, "symmetry_defect")] {
+        visuals.push(Visual::Series {
+            path: format!("plots/plank/{name}/{suffix}"),
+            times: times.clone(),
+            values: hist[q].clone(),
+            name: suffix.clone(),
+            color,
+        });
+    }
+    visuals.extend(health_series(sim, &suffix, color));
+    visuals.push(body_trajectory(
+        system,
+        sim,
+        0,
+        format!("world/plank/{suffix}"),
+        &geometry,
+        color,
+        deflection,
+    ));
+    let link_geometry = Geometry {
+        nodes: vec![[0.0; 3]; 8],
+        strips: vec![vec![0, 1], vec![2, 3], vec![4, 5], vec![6, 7]],
+    };
+    let link_positions = sim
+        .samples
+        .iter()
+        .map(|s| {
+            let mut pts = Vec::new();
+            for b in 1..5 {
+                let (r, a) = system.placement(b, &s.state);
+                for end in [-1.0, 1.0] {
+                    let p = r + a * Vector3::new(end * plank_setup().link_length / 2.0, 0.0, 0.0);
+                    pts.push([p.x, p.y, p.z]);
+                }
+            }
+            pts
+        })
+        .collect();
+    visuals.push(Visual::Trajectory {
+        path: format!("world/links/{suffix}"),
+        geometry: link_geometry,
+        times: times.clone(),
+        positions: link_positions,
+        color: [200, 200, 200, 255],
+    });
+    visuals.push(frame_axes(
+        system,
+        sim,
+        0,
+        format!("world/plank/frame/{suffix}"),
+        0.8,
+    ));
+    visuals
+}
+
+/// The scene's text: the setup the thesis leaves out, what the defect measures, the table.
+fn plank_text(params: &IntegratorParameters, table: &str) -> String {
+    format!(
         "# plank-symmetry\n\n§5.3.3: the App. B mesh standing as a plank (4 m wide, 2 m high, \
          1 m deep) hangs from its top front corners, nodes 3 and 15, each by a chain of two \
          rigid links (2 m, 1 kg) from fixed points; 250 N pull down at node 22 and gravity acts. \
@@ -265,26 +309,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          plot checks the integrator: {}, Euler parameters renormalised and joint positions \
          and velocities projected after every step.\n\n{}",
         params.describe(),
-        report.table,
+        table,
         height = 2.0 * plank_setup().link_length - plank_setup().drop,
         out = (plank_setup().link_length.powi(2)
             - (plank_setup().link_length - plank_setup().drop / 2.0).powi(2))
         .sqrt(),
         drop = plank_setup().drop,
-    );
-    let mut top = vec![Layout::Spatial3D {
-        name: "plank".into(),
-        origin: "/world".into(),
-        contents: vec!["$origin/**".into()],
-    }];
-    top.extend(health);
-    let layout = simulation_layout(Layout::Tabs(top), plots);
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("sim_time".into()),
-        y_up: false,
-    })
+    )
 }
