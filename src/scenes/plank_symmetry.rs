@@ -250,7 +250,7 @@ fn variant_visuals(
         sim,
         0,
         format!("world/plank/{suffix}"),
-        &geometry,
+        geometry,
         color,
         deflection,
     ));
