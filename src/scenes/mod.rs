@@ -23,6 +23,8 @@ pub mod slab_mode_sets;
 mod slab_mode_views;
 mod slab_modes;
 mod slab_refined;
+mod slab_sim_report;
+mod slab_sim_views;
 pub mod slab_sims;
 
 pub use options::{SceneOptions, SceneOutput};

@@ -1,32 +1,29 @@
 //! `slab-sim1`, `slab-sim2`, `slab-sim3`: the time simulations of §7.2 for every method.
 
-use crate::record::{REFERENCE_GHOST, method_color};
-use serde_json::{Map, Value, json};
+use serde_json::json;
 
 use super::{
     SceneInfo, SceneOptions, SceneOutput,
-    sim_visuals::{
-        body_trajectory, deformation_scale, frame_axes, ghost_trajectory, health_series,
-        simulation_layout, times,
-    },
+    sim_visuals::{deformation_scale, simulation_layout},
 };
 use crate::dynamics::AxisKind;
-use crate::fem::NodeIndex;
 use crate::models::{
     DrivenTables, PROBE_NODE, SIM1_END, SIM2_END, SIM3_END, SLAB_BOUNDARY, Scenario,
     default_boundary, probe_history, record_driving_tables, slab_body, slab_node, slab_system,
 };
 use crate::{
     Progress, Result,
-    analysis::{max_position_violation, relative_rms},
     dynamics::{AxisType, IntegrationScheme, IntegratorParameters, Simulation, System, simulate},
-    fem::{FeModel, SlabParameters, slab},
+    fem::{SlabParameters, slab},
     record::{Geometry, Layout, Visual},
     reduction::{Method, NodalFixedAxes},
-    report::{Cell, Report, Table, sig},
+    report::Report,
 };
 
 /// The options of the three slab simulations; `end` is the default interval, s.
+use super::slab_sim_report::{errors_table, scenario_parameters, scenario_text};
+use super::slab_sim_views::{lanes, speed_accuracy};
+
 const fn sim_controls(end: f64) -> super::scene_info::SceneControls {
     super::scene_info::SceneControls {
         methods: &METHODS,
@@ -73,7 +70,7 @@ pub const INFO_3: SceneInfo = SceneInfo {
 };
 
 /// Node 8's local directions, as entity paths and report keys name them.
-const DIRECTIONS: [&str; 3] = ["xi", "eta", "zeta"];
+pub(super) const DIRECTIONS: [&str; 3] = ["xi", "eta", "zeta"];
 
 const METHODS: [Method; 5] = [
     Method::NoReduction,
@@ -301,269 +298,4 @@ pub fn run_sim3(opts: &SceneOptions) -> Result<SceneOutput> {
         || record_driving_tables(axes, end, &opts.progress),
     )?;
     run_scenario(&INFO_3, Scenario::Driven((*tables).clone()), opts)
-}
-
-/// One run of a scenario: the method, its system and simulation (borrowed from the run cache)
-/// and node 8's local deflection history along ξ, η, ζ.
-type Run<'a> = (Method, &'a System, &'a Simulation, [Vec<f64>; 3]);
-
-/// Node 8's relative RMS errors against NR and each run's cost, into `report`'s results and
-/// its table.
-fn errors_table(
-    report: &mut Report,
-    runs: &[Run],
-    reference: Option<&[Vec<f64>; 3]>,
-    params: &IntegratorParameters,
-) {
-    let mut errors = Map::new();
-    let mut walls = Map::new();
-    let mut table = Table::new(&[
-        "method",
-        "rel. RMS ξ",
-        "rel. RMS η",
-        "rel. RMS ζ",
-        "coordinates",
-        "wall s",
-        if matches!(params.scheme, IntegrationScheme::DormandPrince) {
-            "steps / rejected"
-        } else {
-            "steps / Newton its"
-        },
-        "max Φ violation",
-    ])
-    .rank_lower(&[1, 2, 3]);
-    for (m, system, sim, hist) in runs {
-        walls.insert(m.id().into(), json!(sig(sim.wall_time_s)));
-        let mut e = Map::new();
-        let mut cells = vec![Cell::text(m.id().to_uppercase())];
-        if let Some(r) = reference {
-            for a in 0..3 {
-                let v = relative_rms(&hist[a], &r[a]);
-                e.insert(DIRECTIONS[a].into(), json!(sig(v)));
-                // NR is the reference: its zero is not ranked.
-                cells.push(if *m == Method::NoReduction {
-                    Cell::text(format!("{v:.4}"))
-                } else {
-                    Cell::number(v, format!("{v:.4}"))
-                });
-            }
-            errors.insert(m.id().into(), Value::Object(e));
-        } else {
-            cells.extend([Cell::text("-"), Cell::text("-"), Cell::text("-")]);
-        }
-        let max_pos = max_position_violation(sim);
-        cells.push(Cell::text(format!("{}", system.nv())));
-        cells.push(Cell::number(
-            sim.wall_time_s,
-            format!("{:.3}", sim.wall_time_s),
-        ));
-        cells.push(Cell::text(match params.scheme {
-            IntegrationScheme::DormandPrince => format!("{} / {}", sim.steps, sim.rejected),
-            _ => format!("{} / {}", sim.steps, sim.newton_iterations),
-        }));
-        cells.push(Cell::number(max_pos, format!("{max_pos:.1e}")));
-        table.push(cells);
-    }
-    report
-        .results
-        .insert("rel_rms_error".into(), Value::Object(errors));
-    report
-        .results
-        .insert("wall_time_s".into(), Value::Object(walls));
-    report.table = report.add_table(table);
-}
-
-/// The scene's text: what was integrated and how, and the table.
-fn scenario_text(
-    info: &SceneInfo,
-    model: &FeModel,
-    bricks: [usize; 3],
-    params: &IntegratorParameters,
-    opts: &SceneOptions,
-    methods: usize,
-    table: &str,
-) -> String {
-    let probe = slab_node(model, PROBE_NODE);
-    format!(
-        "# {}\n\n{}\n\nThe slab: {} bricks, {} DOF{}. Every method is integrated by {}, Euler \
-         parameters renormalised and positions and velocities projected onto the \
-         constraints after each step (velocities by the correction of least kinetic energy, \
-         which no choice of basis changes), so differences come from the bases alone: CB and \
-         MC span one space, and on the App. B slab their errors agree to 1e-4 in every \
-         simulation and axis type. There, with the default explicit scheme, the NR \
-         reference's own integration error (against a rerun at rtol 1e-10) stays at least 100 \
-         times below the smallest error these tables print; tests check both. The implicit \
-         generalized-α scheme is second order: its integration error falls fourfold when \
-         --dt is halved, and at 0.25 ms it stays within 5e-4 of the explicit histories of \
-         simulation 1 (tested). Coordinates are the six of the frame plus the modal ones. \
-         Errors are \
-         the relative RMS of node 8's local deflection against NR over the interval.{}\n\n{}",
-        info.id,
-        info.summary,
-        bricks.map(|b| b.to_string()).join(" × "),
-        model.dof_count(),
-        if bricks == super::slab_modes::APP_B_BRICKS {
-            " (App. B)".to_string()
-        } else {
-            format!(
-                " (refined; nodes {} are App. B's 16, 18, 28, 30 and node {probe} is App. B's \
-                 node 8, the top-face centre)",
-                default_boundary(model)
-                    .iter()
-                    .map(ToString::to_string)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-        },
-        params.describe(),
-        match opts.concurrent_integrations.min(methods) {
-            0 | 1 => String::new(),
-            n => format!(
-                " The integrations ran up to {n} at a time, one thread each: a wall time is \
-                 its own thread's (`flexmodes bench` times them one after the other)."
-            ),
-        },
-        table
-    )
-}
-
-/// Speed against accuracy: x = wall time relative to NR, y = mean relative RMS error of node
-/// 8 (a 2D view grows y downward: the fast, accurate corner is top left). `None` without NR.
-fn speed_accuracy(runs: &[Run], reference: Option<&[Vec<f64>; 3]>) -> Option<Visual> {
-    let (Some(r), Some(nr)) = (reference, runs.iter().find(|r| r.0 == Method::NoReduction)) else {
-        return None;
-    };
-    {
-        let nr_wall = nr.2.wall_time_s.max(1e-9);
-        let (mut points, mut labels, mut colors) = (Vec::new(), Vec::new(), Vec::new());
-        for (m, _, sim, hist) in runs {
-            let err = (0..3).map(|a| relative_rms(&hist[a], &r[a])).sum::<f64>() / 3.0;
-            let speed = sim.wall_time_s / nr_wall;
-            points.push([speed, err]);
-            labels.push(format!("{}: {speed:.2}× NR time, error {err:.3}", m.id()));
-            colors.push(method_color(*m));
-        }
-        // Both axes on [0, 1] (time relative to NR, error relative to the worst method), so
-        // the chart is square whatever the magnitudes; the labels carry the values.
-        let worst = points.iter().map(|p| p[1]).fold(1e-12, f64::max);
-        for p in &mut points {
-            p[1] /= worst;
-        }
-        Some(Visual::Scatter {
-            path: "metrics/speed_accuracy".into(),
-            points,
-            labels,
-            colors,
-        })
-    }
-}
-
-/// One lane per method, then each method's body, histories and health series.
-#[allow(clippy::too_many_arguments)]
-fn lanes(
-    visuals: &mut Vec<Visual>,
-    runs: &[Run],
-    model: &FeModel,
-    geometry: &Geometry,
-    methods: &[Method],
-    axes: AxisType,
-    scale: f64,
-) -> Result<()> {
-    // One lane per method, side by side along y (1.5 slab widths apart), each with its own
-    // undeformed ghost carried by its frame and a label above App. B node 16's starting place:
-    // bodies of different methods never hide one another.
-    let width = {
-        let ys = geometry.nodes.iter().map(|p| p[1]);
-        ys.clone().fold(f64::MIN, f64::max) - ys.fold(f64::MAX, f64::min)
-    };
-    let label_node = model.node_index(slab_node(model, 16))?;
-    for (k, (m, system, sim, _)) in runs.iter().enumerate() {
-        let lane = format!("world/slab/{}", m.id());
-        visuals.push(Visual::Offset {
-            path: lane.clone(),
-            translation: [0.0, -1.5 * width * k as f64, 0.0],
-        });
-        visuals.push(ghost_trajectory(
-            system,
-            sim,
-            0,
-            format!("{lane}/undeformed_ghost"),
-            geometry,
-            REFERENCE_GHOST,
-        ));
-        if let Some(first) = sim.samples.first() {
-            // Above the body's highest point at the start, over node 16's corner.
-            let p = system.node_position(0, label_node, &first.state);
-            let top = (0..geometry.nodes.len())
-                .map(|j| system.node_position(0, NodeIndex(j), &first.state).z)
-                .fold(f64::MIN, f64::max);
-            visuals.push(Visual::Label3D {
-                path: format!("{lane}/label"),
-                position: [p.x, p.y, top + 0.3 * width],
-                text: m.id().to_uppercase(),
-                color: method_color(*m),
-            });
-        }
-    }
-    for (m, system, sim, hist) in runs {
-        let times = times(sim);
-        visuals.extend(health_series(sim, m.id(), method_color(*m)));
-        visuals.push(body_trajectory(
-            system,
-            sim,
-            0,
-            format!("world/slab/{}/{}", m.id(), axes.id()),
-            geometry,
-            method_color(*m),
-            scale,
-        ));
-        for (a, dir) in DIRECTIONS.iter().enumerate() {
-            visuals.push(Visual::Series {
-                path: format!("plots/node8/delta_{dir}/{}", m.id()),
-                times: times.clone(),
-                values: hist[a].clone(),
-                name: m.id().into(),
-                color: method_color(*m),
-            });
-        }
-        if *m == methods[0] {
-            visuals.push(frame_axes(
-                system,
-                sim,
-                0,
-                format!("world/slab/frame/{}", axes.id()),
-                1.0,
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// What the scenario ran with, into `report`'s parameters.
-#[allow(clippy::too_many_arguments)]
-fn scenario_parameters(
-    report: &mut Report,
-    boundary: &[usize],
-    modes: usize,
-    axes: AxisType,
-    params: &IntegratorParameters,
-    bricks: [usize; 3],
-    model: &FeModel,
-    methods: &[Method],
-) {
-    report.parameters.insert("boundary".into(), json!(boundary));
-    report.parameters.insert("modes".into(), json!(modes));
-    report.parameters.insert("axes".into(), json!(axes.id()));
-    report
-        .parameters
-        .insert("end_time_s".into(), json!(params.end_time));
-    insert_integrator(report, params);
-    report.parameters.insert("bricks".into(), json!(bricks));
-    report
-        .parameters
-        .insert("dofs".into(), json!(model.dof_count()));
-    report.parameters.insert(
-        "methods".into(),
-        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
-    );
 }
