@@ -10,6 +10,8 @@ mod body_response;
 pub mod body_simulation;
 mod body_simulation_visuals;
 pub mod cantilever_variants;
+mod failure_cases;
+mod failure_motion_cases;
 mod failures;
 mod frequency_bars;
 mod mode_visuals;
