@@ -4,24 +4,24 @@
 //! moment matching and balanced truncation on request), each model's frequencies and MAC
 //! against the full body's, and the principal angles between the bases and its lowest modes.
 
-use serde_json::{Map, Value, json};
+use serde_json::{Value, json};
 
 use super::body_influence::influence_count;
+use super::body_modes_report::{method_rows, run_parameters, sweep_section};
 use super::{
     SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
 };
 use crate::models::{
     BALANCED_ZETA, BODY_METHODS, BODY_MODES_COMPARED, BodyInterfaces, BodyModesParameters,
-    BodyModesStudy, MethodMeasure, body_modes_study,
+    BodyModesStudy, body_modes_study,
 };
-use crate::record::{LogLogChart, LogLogSeries};
 use crate::{
     Result,
     body_file::{BodyHandle, ImportedBody},
     models::FULL_MODES,
     record::Layout,
     reduction::Method,
-    report::{Cell, Report, Table, fmt_hz, residual_note, sig, sig_vec},
+    report::{Report, fmt_hz, residual_note, sig, sig_vec},
 };
 
 /// The body shown when no `--body` is given.
@@ -298,238 +298,4 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         timeline: Some("phase".into()),
         y_up: false,
     })
-}
-
-/// The interface-reduction sweep as the `modes` scene shows it.
-struct SweepSection {
-    table: Table,
-    json: Value,
-    visuals: Vec<crate::record::Visual>,
-    view: Layout,
-    markdown: String,
-}
-
-/// The sweep's table, JSON, log–log chart and text; `interface_modes` is the count the
-/// scene's models use, if any.
-fn sweep_section(
-    points: &[crate::models::InterfaceReductionPoint],
-    interface_modes: Option<usize>,
-) -> SweepSection {
-    let mut sweep = Table::new(&["interface shapes", "size", "max rel. error, first 6 modes"]);
-    let mut chart = Vec::new();
-    for p in points {
-        let shapes = p
-            .interface_modes
-            .map_or("all (plain CB)".to_string(), |n| n.to_string());
-        sweep.push(vec![
-            Cell::text(shapes),
-            Cell::number(p.size as f64, format!("{}", p.size)),
-            Cell::number(p.worst_error, format!("{:.3e}", p.worst_error)),
-        ]);
-        if p.worst_error.is_finite() && p.worst_error > 0.0 {
-            chart.push((p.size as f64, p.worst_error));
-        }
-    }
-    let json = json!(
-        points
-            .iter()
-            .map(|p| json!({
-                "interface_modes": p.interface_modes,
-                "size": p.size,
-                "max_rel_error": sig(p.worst_error),
-            }))
-            .collect::<Vec<_>>()
-    );
-    let visuals = LogLogChart {
-        path: "charts/interface_reduction".into(),
-        x_unit: "coordinates".into(),
-        y_unit: "max rel. error".into(),
-        series: vec![LogLogSeries {
-            id: "cb".into(),
-            label: "CB, N characteristic constraint modes".into(),
-            color: crate::record::method_color(Method::CraigBampton),
-            points: chart,
-            line: true,
-        }],
-        x_linear: false,
-    }
-    .visuals();
-    let view = Layout::Spatial2D {
-        name: "interface shapes: error against size".into(),
-        origin: "/charts/interface_reduction".into(),
-    };
-    let markdown = format!(
-        "\nInterface reduction (Craig–Bampton with the interface's constraint modes \
-         replaced by N characteristic constraint modes, Castanier–Tan–Pierre; \
-         `--interface-modes N`{}):\n\n{}",
-        match interface_modes {
-            Some(n) => format!(
-                "; the models above use N = {n} where they have constraint modes (GR, CB), \
-                 MT and MC keep their boundary columns"
-            ),
-            None => String::new(),
-        },
-        sweep.markdown()
-    );
-    SweepSection {
-        table: sweep,
-        json,
-        visuals,
-        view,
-        markdown,
-    }
-}
-
-/// The run's parameters as the report shows them: the body, its interface (plain, rbe2 and
-/// rbe3 items), the kept modes and the methods.
-fn run_parameters(
-    body: &ImportedBody,
-    boundary: &[usize],
-    opts: &SceneOptions,
-    kept: usize,
-    methods: &[Method],
-) -> Map<String, Value> {
-    let mut p = Map::new();
-    p.insert("body".into(), json!(body.location.display()));
-    p.insert("boundary".into(), json!(boundary));
-    p.insert(
-        "rigid_interfaces".into(),
-        json!(
-            opts.rigid_interfaces
-                .iter()
-                .map(|i| json!({"name": i.name, "kind": "rbe2", "master": i.master, "nodes": i.nodes.len()}))
-                .collect::<Vec<_>>()
-        ),
-    );
-    p.insert(
-        "averaging_interfaces".into(),
-        json!(
-            opts.averaging_interfaces
-                .iter()
-                .map(|i| json!({"name": i.name, "kind": "rbe3", "master": i.master, "nodes": i.nodes.len()}))
-                .collect::<Vec<_>>()
-        ),
-    );
-    p.insert("modes".into(), json!(kept));
-    p.insert(
-        "methods".into(),
-        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
-    );
-    p
-}
-
-/// The per-method part of the `modes` scene's report: its table rows, JSON maps, residual
-/// lines, notes and responses; each model's frequencies added to `freq_bars`.
-struct MethodRows {
-    table: Table,
-    reduced: Map<String, Value>,
-    errors: Map<String, Value>,
-    angles: Map<String, Value>,
-    mac: Map<String, Value>,
-    rigid_max: Map<String, Value>,
-    reduced_residuals: Map<String, Value>,
-    reduced_zero: Map<String, Value>,
-    sizes: Map<String, Value>,
-    residual_lines: Vec<String>,
-    notes: Vec<String>,
-    responses: Vec<(Method, crate::analysis::FrequencyResponse)>,
-}
-
-fn method_rows(
-    methods: &[(Method, std::result::Result<MethodMeasure, String>)],
-    model_notes: &[(Method, String)],
-    dofs: usize,
-    freq_bars: &mut FrequencyBars,
-) -> MethodRows {
-    let mut reduced = Map::new();
-    let mut errors = Map::new();
-    let mut angles = Map::new();
-    let mut mac = Map::new();
-    let mut rigid_max = Map::new();
-    let mut reduced_residuals = Map::new();
-    let mut reduced_zero = Map::new();
-    let mut sizes = Map::new();
-    let mut residual_lines = Vec::new();
-    let mut table = Table::new(&[
-        "model",
-        "size",
-        "lowest elastic Hz",
-        "max rel. error, first 6 modes",
-        "min MAC, first 6 modes",
-        "largest angle to full modes (rad)",
-        "rigid modes at ≤ Hz",
-        "s",
-    ])
-    .rank_lower(&[3, 5, 6]);
-    let mut notes = Vec::new();
-    let mut responses = Vec::new();
-    for (m, measured) in methods {
-        let m = *m;
-        let q = match measured {
-            Ok(q) => q,
-            Err(e) => {
-                let mut row = vec![Cell::text(m.id().to_uppercase()), Cell::text("–")];
-                row.push(Cell::text(format!("not computed: {e}")));
-                row.extend((0..5).map(|_| Cell::text("–")));
-                table.push(row);
-                notes.push(format!("{}: {e}", m.id().to_uppercase()));
-                continue;
-            }
-        };
-        if let Some((_, note)) = model_notes.iter().find(|(n, _)| *n == m) {
-            notes.push(format!("{}: {note}", m.id().to_uppercase()));
-        }
-        if let Some(r) = &q.response {
-            responses.push((m, r.clone()));
-        }
-        let (hz, hz_residuals) = (&q.hz, &q.residuals);
-        mac.insert(m.id().into(), json!(sig_vec(&q.macs)));
-        reduced.insert(m.id().into(), json!(sig_vec(hz)));
-        reduced_residuals.insert(m.id().into(), json!(sig_vec(hz_residuals)));
-        reduced_zero.insert(m.id().into(), json!(q.zero_modes));
-        residual_lines.push(format!(
-            "{}: {}",
-            m.id().to_uppercase(),
-            residual_note(hz, hz_residuals)
-        ));
-        errors.insert(m.id().into(), json!(sig_vec(&q.rel_errors)));
-        angles.insert(m.id().into(), json!(sig(q.max_angle)));
-        rigid_max.insert(m.id().into(), json!(sig(q.rigid_hz_max)));
-        sizes.insert(m.id().into(), json!(q.size));
-        let (worst, min_mac, angle, rigid_hz) =
-            (q.worst_error, q.min_mac, q.max_angle, q.rigid_hz_max);
-        table.push(vec![
-            Cell::text(m.id().to_uppercase()),
-            Cell::number(q.size as f64, format!("{dofs} × {}", q.size)),
-            Cell::text(fmt_hz(&hz[..hz.len().min(5)])),
-            if worst.is_nan() {
-                Cell::text(format!("{} elastic mode(s) only", hz.len()))
-            } else {
-                Cell::number(worst, format!("{worst:.2e}"))
-            },
-            if min_mac.is_nan() {
-                Cell::text("–")
-            } else {
-                Cell::number(min_mac, format!("{min_mac:.4}"))
-            },
-            Cell::number(angle, format!("{angle:.2e}")),
-            Cell::number(rigid_hz, format!("{rigid_hz:.2e}")),
-            Cell::number(q.offline_s, format!("{:.3}", q.offline_s)),
-        ]);
-        freq_bars.push(m, hz);
-    }
-    MethodRows {
-        table,
-        reduced,
-        errors,
-        angles,
-        mac,
-        rigid_max,
-        reduced_residuals,
-        reduced_zero,
-        sizes,
-        residual_lines,
-        notes,
-        responses,
-    }
 }
