@@ -24,6 +24,7 @@ mod registry;
 mod run_cache;
 mod scene_info;
 mod sim_visuals;
+mod slab_mode_set_views;
 pub mod slab_mode_sets;
 mod slab_mode_views;
 mod slab_modes;
