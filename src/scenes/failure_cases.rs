@@ -1,7 +1,6 @@
 //! The failures scene's cases of reduction, each computed and drawn: too few boundary DOF for
 //! Craig–Bampton, Eitelberg without feedback, mode condensation's cost, Guyan (b)'s symmetry.
 
-use super::failure_motion_cases::standing;
 use crate::record::{REFERENCE, method_color};
 use crate::reduction::ReductionError;
 use crate::{
@@ -209,4 +208,9 @@ pub(super) fn guyan_symmetry_failure(model: &FeModel) -> Result<Failure> {
         ],
         visuals,
     })
+}
+
+/// A 2-D beam's (x, y) turned into the x–z plane, so the z-up views face it.
+pub(super) fn standing(points: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    points.iter().map(|p| [p[0], -p[2], p[1]]).collect()
 }

@@ -146,11 +146,6 @@ pub(super) fn explicit_step_failure(model: &FeModel, opts: &SceneOptions) -> Res
     })
 }
 
-/// A 2-D beam's (x, y) turned into the x–z plane, so the z-up views face it.
-pub(super) fn standing(points: &[[f64; 3]]) -> Vec<[f64; 3]> {
-    points.iter().map(|p| [p[0], -p[2], p[1]]).collect()
-}
-
 /// Modal truncation and Craig–Bampton following a boundary displacement of the slab.
 pub(super) fn boundary_motion_failure(model: &FeModel) -> Result<Failure> {
     let study = boundary_motion(model)?;

@@ -1,13 +1,16 @@
 //! The slab mode sets' views: the kept sets, the frequency series and the layout.
 
 use super::mode_visuals::mode_set;
-use super::slab_mode_sets::SELECTIONS;
 use crate::record::{REFERENCE, method_color};
 use crate::{
     analysis::FrequencyResponse,
     models::DualSpinStudy,
     record::{Color, Geometry, Layout, LogLogChart, LogLogSeries, Visual},
 };
+
+/// The two rotor selections: report key and label.
+pub(super) const SELECTIONS: [(&str, &str); 2] =
+    [("influence", "by influence"), ("lowest", "lowest")];
 
 /// The assembly, its modes, the FRF charts and the influence bars.
 pub(super) fn visuals(study: &DualSpinStudy) -> Vec<Visual> {

@@ -7,7 +7,7 @@
 
 use serde_json::{Map, Value, json};
 
-use super::slab_mode_set_views::{layout, visuals};
+use super::slab_mode_set_views::{SELECTIONS, layout, visuals};
 use super::{SceneInfo, SceneOptions, SceneOutput};
 use crate::{
     Result,
@@ -172,10 +172,6 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         y_up: false,
     })
 }
-
-/// The two rotor selections: report key and label.
-pub(super) const SELECTIONS: [(&str, &str); 2] =
-    [("influence", "by influence"), ("lowest", "lowest")];
 
 /// The scene's text above its tables.
 fn scene_text(study: &DualSpinStudy, tables: &str) -> String {

@@ -13,8 +13,8 @@ use crate::{
     report::{Cell, Report, Table, sig},
 };
 
-/// The options of the three slab simulations; `end` is the default interval, s.
-use super::slab_sims::{DIRECTIONS, insert_integrator};
+/// Node 8's local directions, as entity paths and report keys name them.
+pub(super) const DIRECTIONS: [&str; 3] = ["xi", "eta", "zeta"];
 
 /// One run of a scenario: the method, its system and simulation (borrowed from the run cache)
 /// and node 8's local deflection history along ξ, η, ζ.
@@ -167,4 +167,21 @@ pub(super) fn scenario_parameters(
         "methods".into(),
         json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
     );
+}
+
+/// The integrator a simulation ran with, in the report's parameters: `integrator` (`dp5` or
+/// `gen-alpha`), `dt_s` (the fixed step, or null for adaptive steps) and, for generalized-α,
+/// `rho_inf`.
+pub fn insert_integrator(report: &mut Report, params: &IntegratorParameters) {
+    report
+        .parameters
+        .insert("integrator".into(), json!(params.scheme.id()));
+    report
+        .parameters
+        .insert("dt_s".into(), json!(params.step()));
+    if let IntegrationScheme::GeneralizedAlpha { spectral_radius } = params.scheme {
+        report
+            .parameters
+            .insert("rho_inf".into(), json!(spectral_radius));
+    }
 }

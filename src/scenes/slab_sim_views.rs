@@ -15,9 +15,7 @@ use crate::{
     reduction::Method,
 };
 
-use super::slab_sim_report::Run;
-/// The options of the three slab simulations; `end` is the default interval, s.
-use super::slab_sims::DIRECTIONS;
+use super::slab_sim_report::{DIRECTIONS, Run};
 
 /// Speed against accuracy: x = wall time relative to NR, y = mean relative RMS error of node
 /// 8 (a 2D view grows y downward: the fast, accurate corner is top left). `None` without NR.

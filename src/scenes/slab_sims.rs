@@ -13,7 +13,7 @@ use crate::models::{
 };
 use crate::{
     Progress, Result,
-    dynamics::{AxisType, IntegrationScheme, IntegratorParameters, Simulation, System, simulate},
+    dynamics::{AxisType, IntegratorParameters, Simulation, System, simulate},
     fem::{SlabParameters, slab},
     record::{Geometry, Layout, Visual},
     reduction::{Method, NodalFixedAxes},
@@ -21,7 +21,8 @@ use crate::{
 };
 
 /// The options of the three slab simulations; `end` is the default interval, s.
-use super::slab_sim_report::{errors_table, scenario_parameters, scenario_text};
+pub use super::slab_sim_report::insert_integrator;
+use super::slab_sim_report::{DIRECTIONS, errors_table, scenario_parameters, scenario_text};
 use super::slab_sim_views::{lanes, speed_accuracy};
 
 const fn sim_controls(end: f64) -> super::scene_info::SceneControls {
@@ -69,9 +70,6 @@ pub const INFO_3: SceneInfo = SceneInfo {
     controls: sim_controls(SIM3_END),
 };
 
-/// Node 8's local directions, as entity paths and report keys name them.
-pub(super) const DIRECTIONS: [&str; 3] = ["xi", "eta", "zeta"];
-
 const METHODS: [Method; 5] = [
     Method::NoReduction,
     Method::ModalTruncation,
@@ -115,23 +113,6 @@ pub fn run_key(
         params.scheme,
         params.fixed_step.map(f64::to_bits)
     )
-}
-
-/// The integrator a simulation ran with, in the report's parameters: `integrator` (`dp5` or
-/// `gen-alpha`), `dt_s` (the fixed step, or null for adaptive steps) and, for generalized-α,
-/// `rho_inf`.
-pub fn insert_integrator(report: &mut Report, params: &IntegratorParameters) {
-    report
-        .parameters
-        .insert("integrator".into(), json!(params.scheme.id()));
-    report
-        .parameters
-        .insert("dt_s".into(), json!(params.step()));
-    if let IntegrationScheme::GeneralizedAlpha { spectral_radius } = params.scheme {
-        report
-            .parameters
-            .insert("rho_inf".into(), json!(spectral_radius));
-    }
 }
 
 /// Runs every requested method of a scenario.
