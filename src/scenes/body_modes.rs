@@ -7,7 +7,9 @@
 use serde_json::{Value, json};
 
 use super::body_influence::influence_count;
-use super::body_modes_report::{method_rows, run_parameters, sweep_section};
+use super::body_modes_report::{
+    BodyTables, body_text, method_rows, run_parameters, scene_text, sweep_section,
+};
 use super::{
     SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
 };
@@ -21,7 +23,7 @@ use crate::{
     models::FULL_MODES,
     record::Layout,
     reduction::Method,
-    report::{Report, fmt_hz, residual_note, sig, sig_vec},
+    report::{Report, residual_note, sig, sig_vec},
 };
 
 /// The body shown when no `--body` is given.
@@ -202,71 +204,24 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         }
         None => String::new(),
     };
-    let units = &body.units;
-    report.table = format!(
-        "Body `{}` ({}): {dofs} DOF, {} stiffness entries, {} zero-energy mode(s); units {}, \
-         {}, {}. Interface {} node(s) {}{}, {kept} kept modes.\n\n{summary}\nFull body, \
-         lowest elastic: {}\n\nFixed-interface: {}\n\nEigen residuals \
-         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n{}{sweep_md}{influence_md}{response_md}",
-        model.name,
-        body.location.display(),
-        model.stiffness_nnz(),
-        full.zero_modes,
-        units.length,
-        units.mass,
-        units.force,
-        boundary.len(),
-        if boundary.len() <= 12 {
-            format!("{boundary:?}")
-        } else {
-            format!(
-                "{:?} … {:?}",
-                &boundary[..6],
-                &boundary[boundary.len() - 3..]
-            )
-        },
-        opts.rigid_interfaces
-            .iter()
-            .map(|i| format!(
-                "; rbe2 `{}`: {} nodes tied to a master at ({})",
-                i.name,
-                i.nodes.len(),
-                i.master.map(|x| format!("{}", sig(x))).join(", ")
-            ))
-            .chain(opts.averaging_interfaces.iter().map(|i| format!(
-                "; rbe3 `{}`: {} nodes averaged into a master at ({}), loading it and free",
-                i.name,
-                i.nodes.len(),
-                i.master.map(|x| format!("{}", sig(x))).join(", ")
-            )))
-            .collect::<String>(),
-        fmt_hz(&full_hz),
-        fmt_hz(&fi_hz[..fi_hz.len().min(8)]),
-        residual_lines.join("; "),
-        rows.notes
-            .iter()
-            .map(|n| format!("\n- {n}"))
-            .collect::<String>(),
+    let tables = BodyTables {
+        summary: &summary,
+        sweep: &sweep_md,
+        influence: &influence_md,
+        response: &response_md,
+    };
+    report.table = body_text(
+        &body,
+        &boundary,
+        opts,
+        kept,
+        &full,
+        (&full_hz, &fi_hz),
+        &residual_lines,
+        &rows.notes,
+        &tables,
     );
-    let markdown = format!(
-        "# modes: {}\n\n{}\n\nEvery method reduces the same body on the same interface: \
-         Guyan keeps only the interface (static constraint modes), modal truncation the \
-         interface movements and the {kept} lowest fixed-interface modes, Craig–Bampton the \
-         constraint modes and those modes, mode condensation the same space in its own \
-         coordinates. MacNeal–Rubin keeps free-interface modes and the residual flexibility of the \
-         interface DOF; Benfield–Hruda the modes of the body with its interfaces loaded; moment \
-         matching Krylov vectors of the interface loads; balanced truncation the dominant \
-         vectors of the interface loads' position gramian (each says below what it took). \
-         \"max rel. error\" compares each model's six lowest elastic frequencies \
-         with the full body's, paired by order; the angle is the largest principal angle between the basis \
-         and the full body's zero-energy and six lowest elastic modes (0: contained). \"rigid \
-         modes at\" is the highest frequency a reduced model gives its rigid-body motions, \
-         which should be zero: round-off in the method's coordinates lifts it. {}\n\n{}",
-        model.name,
-        body.description,
-        freq_bars.caption(),
-        report.table
-    );
+    let markdown = scene_text(&body, kept, &freq_bars.caption(), &report.table);
     let layout = if let (true, Some(h)) = (body.has_coordinates, &held) {
         let (mode_visuals, l) = super::slab_mode_views::slab_mode_views(
             model,
