@@ -4,12 +4,9 @@
 //! moment matching and balanced truncation on request), each model's frequencies and MAC
 //! against the full body's, and the principal angles between the bases and its lowest modes.
 
-use serde_json::{Value, json};
-
 use super::body_influence::influence_count;
-use super::body_modes_report::{
-    BodyTables, body_text, method_rows, run_parameters, scene_text, sweep_section,
-};
+use super::body_modes_report::{method_rows, run_parameters, sweep_section};
+use super::body_modes_text::{BodyTables, body_text, scene_text};
 use super::{
     SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
 };
@@ -23,7 +20,7 @@ use crate::{
     models::FULL_MODES,
     record::Layout,
     reduction::Method,
-    report::{Report, residual_note, sig, sig_vec},
+    report::{Report, residual_note},
 };
 
 /// The body shown when no `--body` is given.
@@ -126,8 +123,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut bars = Vec::new();
     let mut freq_bars = FrequencyBars::new(BODY_MODES_COMPARED);
     freq_bars.push(Method::NoReduction, &full_hz);
-    let rows = method_rows(&study_methods, &study_notes, dofs, &mut freq_bars);
-    residual_lines.extend(rows.residual_lines);
+    let mut rows = method_rows(&study_methods, &study_notes, dofs, &mut freq_bars);
+    residual_lines.append(&mut rows.residual_lines);
 
     visuals.extend(freq_bars.visuals());
     bars.insert(0, freq_bars.layout());
@@ -137,32 +134,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .parameters
         .extend(run_parameters(&body, &boundary, opts, kept, &methods));
     let r = &mut report.results;
-    r.insert("dofs".into(), json!(dofs));
-    r.insert("nnz".into(), json!(model.stiffness_nnz()));
-    r.insert("zero_energy_modes".into(), json!(full.zero_modes));
-    r.insert(
-        "missed_modes".into(),
-        json!(full.modes.sturm.map_or(0, |c| c.missed())),
-    );
-    r.insert("free_free_hz".into(), json!(sig_vec(&full_hz)));
-    r.insert("fixed_interface_hz".into(), json!(sig_vec(&fi_hz)));
-    r.insert("reduced_hz".into(), Value::Object(rows.reduced));
-    r.insert(
-        "free_free_residuals".into(),
-        json!(sig_vec(&full.elastic_residuals())),
-    );
-    r.insert(
-        "fixed_interface_residuals".into(),
-        json!(sig_vec(&fi_residuals)),
-    );
-    r.insert(
-        "reduced_residuals".into(),
-        Value::Object(rows.reduced_residuals),
-    );
-    r.insert(
-        "reduced_zero_energy_modes".into(),
-        Value::Object(rows.reduced_zero),
-    );
+    rows.insert_frequencies(r, &full, (&full_hz, &fi_hz), &fi_residuals, model);
     // How many characteristic constraint modes the interface needs (Castanier–Tan–Pierre).
     let mut sweep_md = String::new();
     let mut sweep_table = None;
@@ -174,13 +146,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         sweep_md = section.markdown;
         sweep_table = Some(section.table);
     }
-    r.insert("rel_error".into(), Value::Object(rows.errors));
-    r.insert("max_principal_angle_rad".into(), Value::Object(rows.angles));
-    r.insert("mac".into(), Value::Object(rows.mac));
-    r.insert("basis_size".into(), Value::Object(rows.sizes));
-    r.insert("zero_energy_hz_max".into(), Value::Object(rows.rigid_max));
-    r.insert("full_modes_s".into(), json!(sig(full_s)));
-    r.insert("method_notes".into(), json!(rows.notes));
+    rows.insert_measures(r, full_s);
     let (influence, influence_json, influence_text) =
         super::body_influence::influence_table(&influence, ranked, kept);
     r.insert("interface_influence".into(), influence_json);
@@ -222,29 +188,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         &tables,
     );
     let markdown = scene_text(&body, kept, &freq_bars.caption(), &report.table);
-    let layout = if let (true, Some(h)) = (body.has_coordinates, &held) {
-        let (mode_visuals, l) = super::slab_mode_views::slab_mode_views(
-            model,
-            &h.partition,
-            &h.constraint_shapes.0,
-            &h.constraint_shapes.1,
-            &h.fixed_interface,
-            &elastic,
-            FULL_MODES,
-            kept,
-            "free_free",
-            bars,
-        );
-        visuals.extend(mode_visuals);
-        l
-    } else {
-        // No geometry to draw: the charts (the frequencies, and the interface sweep and
-        // response where asked for) stacked at full width beside the text.
-        Layout::Horizontal(
-            vec![Layout::Vertical(bars, vec![]), Layout::scene_text()],
-            vec![3.0, 2.0],
-        )
-    };
+    let (mode_visuals, layout) = views(&body, held.as_ref(), &elastic, kept, bars);
+    visuals.extend(mode_visuals);
     Ok(SceneOutput {
         report,
         markdown,
@@ -253,4 +198,42 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         timeline: Some("phase".into()),
         y_up: false,
     })
+}
+
+/// The body's mode shapes drawn beside the charts when it has coordinates and a boundary
+/// holds it; otherwise the charts (the frequencies, and the interface sweep and response where
+/// asked for) at full width beside the text.
+fn views(
+    body: &ImportedBody,
+    held: Option<&crate::models::HeldModes>,
+    elastic: &crate::linalg::GeneralizedEigen,
+    kept: usize,
+    bars: Vec<Layout>,
+) -> (Vec<crate::record::Visual>, Layout) {
+    let model = &body.model;
+    if let (true, Some(h)) = (body.has_coordinates, held) {
+        let (mode_visuals, l) = super::slab_mode_views::slab_mode_views(
+            model,
+            &h.partition,
+            &h.constraint_shapes.0,
+            &h.constraint_shapes.1,
+            &h.fixed_interface,
+            elastic,
+            FULL_MODES,
+            kept,
+            "free_free",
+            bars,
+        );
+        (mode_visuals, l)
+    } else {
+        // No geometry to draw: the charts (the frequencies, and the interface sweep and
+        // response where asked for) stacked at full width beside the text.
+        (
+            Vec::new(),
+            Layout::Horizontal(
+                vec![Layout::Vertical(bars, vec![]), Layout::scene_text()],
+                vec![3.0, 2.0],
+            ),
+        )
+    }
 }

@@ -146,6 +146,73 @@ pub(super) struct MethodRows {
     pub(super) responses: Vec<(Method, crate::analysis::FrequencyResponse)>,
 }
 
+impl MethodRows {
+    /// The body's size and the frequencies, residuals and zero-energy modes of the full body,
+    /// the fixed interface and every method, moved into the report's results.
+    pub(super) fn insert_frequencies(
+        &mut self,
+        r: &mut Map<String, Value>,
+        full: &crate::analysis::ZeroEnergyCount,
+        (full_hz, fi_hz): (&[f64], &[f64]),
+        fi_residuals: &[f64],
+        model: &crate::fem::FeModel,
+    ) {
+        r.insert("dofs".into(), json!(model.dof_count()));
+        r.insert("nnz".into(), json!(model.stiffness_nnz()));
+        r.insert("zero_energy_modes".into(), json!(full.zero_modes));
+        r.insert(
+            "missed_modes".into(),
+            json!(full.modes.sturm.map_or(0, |c| c.missed())),
+        );
+        r.insert("free_free_hz".into(), json!(sig_vec(full_hz)));
+        r.insert("fixed_interface_hz".into(), json!(sig_vec(fi_hz)));
+        r.insert(
+            "reduced_hz".into(),
+            Value::Object(std::mem::take(&mut self.reduced)),
+        );
+        r.insert(
+            "free_free_residuals".into(),
+            json!(sig_vec(&full.elastic_residuals())),
+        );
+        r.insert(
+            "fixed_interface_residuals".into(),
+            json!(sig_vec(fi_residuals)),
+        );
+        r.insert(
+            "reduced_residuals".into(),
+            Value::Object(std::mem::take(&mut self.reduced_residuals)),
+        );
+        r.insert(
+            "reduced_zero_energy_modes".into(),
+            Value::Object(std::mem::take(&mut self.reduced_zero)),
+        );
+    }
+
+    /// Every method's errors, angles, MAC, size and rigid-mode frequencies, the full body's
+    /// solve time (s) and the notes, moved into the report's results.
+    pub(super) fn insert_measures(&mut self, r: &mut Map<String, Value>, full_s: f64) {
+        r.insert(
+            "rel_error".into(),
+            Value::Object(std::mem::take(&mut self.errors)),
+        );
+        r.insert(
+            "max_principal_angle_rad".into(),
+            Value::Object(std::mem::take(&mut self.angles)),
+        );
+        r.insert("mac".into(), Value::Object(std::mem::take(&mut self.mac)));
+        r.insert(
+            "basis_size".into(),
+            Value::Object(std::mem::take(&mut self.sizes)),
+        );
+        r.insert(
+            "zero_energy_hz_max".into(),
+            Value::Object(std::mem::take(&mut self.rigid_max)),
+        );
+        r.insert("full_modes_s".into(), json!(sig(full_s)));
+        r.insert("method_notes".into(), json!(self.notes));
+    }
+}
+
 pub(super) fn method_rows(
     methods: &[(Method, std::result::Result<MethodMeasure, String>)],
     model_notes: &[(Method, String)],
@@ -243,98 +310,4 @@ pub(super) fn method_rows(
         notes,
         responses,
     }
-}
-
-/// The tables and sections of the body modes scene's text, already written.
-pub(super) struct BodyTables<'a> {
-    pub(super) summary: &'a str,
-    pub(super) sweep: &'a str,
-    pub(super) influence: &'a str,
-    pub(super) response: &'a str,
-}
-
-/// The scene's report text: the body and its interface, the methods' table, the full body's
-/// and the fixed interface's frequencies, every residual, the notes and the sections.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn body_text(
-    body: &ImportedBody,
-    boundary: &[usize],
-    opts: &SceneOptions,
-    kept: usize,
-    full: &crate::analysis::ZeroEnergyCount,
-    (full_hz, fi_hz): (&[f64], &[f64]),
-    residual_lines: &[String],
-    notes: &[String],
-    tables: &BodyTables,
-) -> String {
-    let model = &body.model;
-    let dofs = model.dof_count();
-    let units = &body.units;
-    format!(
-        "Body `{}` ({}): {dofs} DOF, {} stiffness entries, {} zero-energy mode(s); units {}, \
-         {}, {}. Interface {} node(s) {}{}, {kept} kept modes.\n\n{}\nFull body, \
-         lowest elastic: {}\n\nFixed-interface: {}\n\nEigen residuals \
-         (‖Kφ − λMφ‖/‖Kφ‖ of every printed frequency): {}\n{}{}{}{}",
-        model.name,
-        body.location.display(),
-        model.stiffness_nnz(),
-        full.zero_modes,
-        units.length,
-        units.mass,
-        units.force,
-        boundary.len(),
-        if boundary.len() <= 12 {
-            format!("{boundary:?}")
-        } else {
-            format!(
-                "{:?} … {:?}",
-                &boundary[..6],
-                &boundary[boundary.len() - 3..]
-            )
-        },
-        opts.rigid_interfaces
-            .iter()
-            .map(|i| format!(
-                "; rbe2 `{}`: {} nodes tied to a master at ({})",
-                i.name,
-                i.nodes.len(),
-                i.master.map(|x| format!("{}", sig(x))).join(", ")
-            ))
-            .chain(opts.averaging_interfaces.iter().map(|i| format!(
-                "; rbe3 `{}`: {} nodes averaged into a master at ({}), loading it and free",
-                i.name,
-                i.nodes.len(),
-                i.master.map(|x| format!("{}", sig(x))).join(", ")
-            )))
-            .collect::<String>(),
-        tables.summary,
-        fmt_hz(full_hz),
-        fmt_hz(&fi_hz[..fi_hz.len().min(8)]),
-        residual_lines.join("; "),
-        notes.iter().map(|n| format!("\n- {n}")).collect::<String>(),
-        tables.sweep,
-        tables.influence,
-        tables.response,
-    )
-}
-
-/// The scene's text: what every method keeps and what the columns mean, then the report.
-pub(super) fn scene_text(body: &ImportedBody, kept: usize, caption: &str, table: &str) -> String {
-    let model = &body.model;
-    format!(
-        "# modes: {}\n\n{}\n\nEvery method reduces the same body on the same interface: \
-         Guyan keeps only the interface (static constraint modes), modal truncation the \
-         interface movements and the {kept} lowest fixed-interface modes, Craig–Bampton the \
-         constraint modes and those modes, mode condensation the same space in its own \
-         coordinates. MacNeal–Rubin keeps free-interface modes and the residual flexibility of the \
-         interface DOF; Benfield–Hruda the modes of the body with its interfaces loaded; moment \
-         matching Krylov vectors of the interface loads; balanced truncation the dominant \
-         vectors of the interface loads' position gramian (each says below what it took). \
-         \"max rel. error\" compares each model's six lowest elastic frequencies \
-         with the full body's, paired by order; the angle is the largest principal angle between the basis \
-         and the full body's zero-energy and six lowest elastic modes (0: contained). \"rigid \
-         modes at\" is the highest frequency a reduced model gives its rigid-body motions, \
-         which should be zero: round-off in the method's coordinates lifts it. {}\n\n{}",
-        model.name, body.description, caption, table
-    )
 }

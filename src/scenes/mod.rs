@@ -7,6 +7,7 @@ mod beam_profiles;
 mod body_influence;
 pub mod body_modes;
 mod body_modes_report;
+mod body_modes_text;
 mod body_response;
 pub mod body_simulation;
 mod body_simulation_visuals;
