@@ -3,7 +3,7 @@
 use super::DynamicsError;
 use crate::linalg::LinalgError;
 use faer::Mat;
-use nalgebra::{DMatrix, DVector, Dyn, Matrix3, Matrix3xX, Storage, Vector3};
+use nalgebra::{DMatrix, DVector, Dyn, IsContiguous, Matrix3, Matrix3xX, Storage, Vector3};
 
 use super::{AxisType, InertiaInvariants, inertia_invariants::Modal};
 use crate::{
@@ -260,7 +260,7 @@ impl FlexibleBody {
     }
 
     /// The elastic force $K_{zz} z$ (N in modal units).
-    pub fn elastic_force<S: Storage<f64, Dyn>>(&self, z: &Modal<S>) -> DVector<f64> {
+    pub fn elastic_force<S: Storage<f64, Dyn> + IsContiguous>(&self, z: &Modal<S>) -> DVector<f64> {
         let mut f = DVector::zeros(z.len());
         self.subtract_elastic_force(z, &mut f);
         -f
@@ -268,24 +268,13 @@ impl FlexibleBody {
 
     /// `out` $\mathrel{-}= K_{zz} z$: the sparse $K_{zz}$ (no reduction) by its stored entries,
     /// without a temporary.
-    pub fn subtract_elastic_force<S: Storage<f64, Dyn>>(
+    pub fn subtract_elastic_force<S: Storage<f64, Dyn> + IsContiguous>(
         &self,
         z: &Modal<S>,
         out: &mut DVector<f64>,
     ) {
         match &self.k_zz_sparse {
-            Some(k) => {
-                // Row j of the symmetric K_zz is its column j (both triangles stored).
-                let a = k.as_faer().as_ref();
-                for j in 0..z.len() {
-                    let dot: f64 = a
-                        .row_idx_of_col(j)
-                        .zip(a.val_of_col(j))
-                        .map(|(i, &v)| v * z[i])
-                        .sum();
-                    out[j] -= dot;
-                }
-            }
+            Some(k) => k.sub_mul_vector(z.as_slice(), out.as_mut_slice()),
             None => out.gemv(-1.0, &self.k_zz, z, 1.0),
         }
     }

@@ -261,6 +261,31 @@ impl SparseSymmetric {
         y
     }
 
+    /// `out` $\mathrel{-}= A x$ for one vector, without temporaries: row $j$ of the
+    /// symmetric $A$ is its column $j$ (both triangles are stored), so each entry of the
+    /// product is one gather over a stored column. For the small sparse blocks a step
+    /// applies at every evaluation (a body's $K_{zz}$ without reduction), where [`Self::mul`]'s
+    /// blocked, possibly parallel gather and its output matrix cost more than the product.
+    pub fn sub_mul_vector(&self, x: &[f64], out: &mut [f64]) {
+        assert!(
+            x.len() == self.dim() && out.len() == self.dim(),
+            "sub_mul_vector: {} × {} matrix, x of {}, out of {}",
+            self.dim(),
+            self.dim(),
+            x.len(),
+            out.len()
+        );
+        let a = self.inner.as_ref();
+        for (j, o) in out.iter_mut().enumerate() {
+            let dot: f64 = a
+                .row_idx_of_col(j)
+                .zip(a.val_of_col(j))
+                .map(|(i, &v)| v * x[i])
+                .sum();
+            *o -= dot;
+        }
+    }
+
     /// $|A|\,|x|$ for a dense block $x$ (entrywise absolute values): the scale of the
     /// round-off in $Ax$.
     pub fn abs_mul(&self, x: MatRef<'_, f64>) -> Mat<f64> {
@@ -444,6 +469,34 @@ impl SparseAssembly {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn subtracting_a_product_in_place_equals_the_blocked_product() {
+        for n in [1usize, 5, 40] {
+            let mut entries = Vec::new();
+            for i in 0..n {
+                entries.push((i, i, 4.0 + i as f64));
+                if i + 3 < n {
+                    entries.push((i, i + 3, -1.0 - 0.1 * i as f64));
+                    entries.push((i + 3, i, -1.0 - 0.1 * i as f64));
+                }
+            }
+            let a = SparseSymmetric::from_triplets(n, &entries);
+            let x: Vec<f64> = (0..n).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect();
+            let mut out: Vec<f64> = (0..n).map(|i| i as f64).collect();
+            a.sub_mul_vector(&x, &mut out);
+            let ax = a.mul(faer::MatRef::from_column_major_slice(&x, n, 1));
+            for i in 0..n {
+                let expected = i as f64 - ax[(i, 0)];
+                assert!(
+                    (out[i] - expected).abs() <= 1e-14 * (1.0 + expected.abs()),
+                    "n = {n}, row {i}: {} against {expected}",
+                    out[i]
+                );
+            }
+        }
+    }
+
     use super::*;
 
     /// The row-wise gather against a dense product, for sizes that split across threads and
