@@ -58,7 +58,12 @@ pub fn selected_free_modes(model: &FeModel, selection: ModeSelection) -> Result<
         }
         ModeSelection::UpToHz(_) => {
             selection.count(&[])?;
-            let mut wanted = 8usize;
+            // A dense body's solve yields every pair at once: asking for more would repeat it.
+            let mut wanted = if n <= DENSE_INTERIOR_LIMIT {
+                n - rigid
+            } else {
+                8usize
+            };
             loop {
                 let wanted_now = wanted.min(n - rigid);
                 let eig = lowest_free_modes(model, wanted_now)?;
