@@ -85,22 +85,24 @@ pub fn stability_polynomial() -> Vec<f64> {
 }
 
 fn derivative(sys: &System, t: f64, y: &DVector<f64>) -> Result<DVector<f64>> {
+    let mut out = DVector::zeros(y.len());
+    derivative_into(sys, t, y, &mut out)?;
+    Ok(out)
+}
+
+/// [`derivative`] into `out` (the state's length), whose storage is reused.
+fn derivative_into(sys: &System, t: f64, y: &DVector<f64>, out: &mut DVector<f64>) -> Result<()> {
     let nq = sys.nq();
     let s = State {
         q: y.rows(0, nq).into_owned(),
         v: y.rows(nq, y.len() - nq).into_owned(),
     };
-    let qd = sys.qdot(&s);
     let vd = sys.accelerations(t, &s)?;
-    let mut out = DVector::zeros(y.len());
-    out.rows_mut(0, nq).copy_from(&qd);
+    sys.qdot_into(&s, &mut out.rows_mut(0, nq));
     out.rows_mut(nq, vd.len()).copy_from(&vd);
-    Ok(out)
+    Ok(())
 }
 
-/// Where the stability region of the 5th-order solution ends on the imaginary axis: the first
-/// $y > 0$ with $|R(iy)| > 1$ ($y \approx 0.997$; beyond it the growth per step is slow at
-/// first, $|R(1.5i)| \approx 1.003$, and $|R(3i)| \approx 1.44$).
 pub fn imaginary_stability_limit() -> f64 {
     let c = stability_polynomial();
     let modulus = |y: f64| {
@@ -164,6 +166,8 @@ pub(super) fn integrate(
     let (mut steps, mut rejected) = (0usize, 0usize);
     let mut next_output = p.output_interval;
     let mut k1 = derivative(sys, t, &y)?;
+    let mut stages = vec![DVector::zeros(y.len()); 7];
+    let (mut ys, mut err) = (DVector::zeros(y.len()), DVector::zeros(y.len()));
     while t < p.end_time - 1e-12 {
         if !y.iter().all(|v| v.abs() <= p.divergence_bound) {
             return Err(Error::Dynamics(DynamicsError::Diverged {
@@ -183,22 +187,21 @@ pub(super) fn integrate(
         }
         h = h.min(target - t);
         let within = |v: &DVector<f64>| v.iter().all(|x| x.abs() <= p.divergence_bound);
-        let mut k = vec![k1.clone()];
+        // The stages' derivatives k_1 … k_7 in buffers kept over the run.
+        stages[0].copy_from(&k1);
+        let mut filled = 1;
         for stage in 1..7 {
-            let mut ys = y.clone();
-            for (j, kj) in k.iter().enumerate() {
+            ys.copy_from(&y);
+            for (j, kj) in stages[..stage].iter().enumerate() {
                 if A[stage][j] != 0.0 {
-                    ys += kj * (h * A[stage][j]);
+                    ys.axpy(h * A[stage][j], kj, 1.0);
                 }
             }
-            // A stage far outside the bound is the step blowing up, not a state to evaluate.
             if !within(&ys) {
                 break;
             }
-            match derivative(sys, t + C[stage] * h, &ys) {
-                Ok(d) => k.push(d),
-                // Without error control a blown-up step reaches states whose mass matrix has
-                // lost definiteness in floating point: that is the divergence.
+            match derivative_into(sys, t + C[stage] * h, &ys, &mut stages[stage]) {
+                Ok(()) => filled += 1,
                 Err(Error::Linalg(LinalgError::SingularMatrix { matrix, .. }))
                     if p.fixed_step.is_some() =>
                 {
@@ -212,14 +215,12 @@ pub(super) fn integrate(
                 Err(e) => return Err(e),
             }
         }
-        // The 5th-order solution and the error norm, unless a stage or the result blew up
-        // (beyond the bound, or not finite).
-        let step = (k.len() == 7).then(|| {
+        let step = (filled == 7).then(|| {
             let mut y5 = y.clone();
-            let mut err = DVector::zeros(y.len());
-            for (j, kj) in k.iter().enumerate() {
-                y5 += kj * (h * B5[j]);
-                err += kj * (h * (B5[j] - B4[j]));
+            err.fill(0.0);
+            for (j, kj) in stages.iter().enumerate() {
+                y5.axpy(h * B5[j], kj, 1.0);
+                err.axpy(h * (B5[j] - B4[j]), kj, 1.0);
             }
             let mut norm = 0.0;
             for i in 0..y.len() {
@@ -268,10 +269,11 @@ pub(super) fn integrate(
             let reuse = (correction / y.len() as f64).sqrt() <= FSAL_CORRECTION;
             y.rows_mut(0, nq).copy_from(&s.q);
             y.rows_mut(nq, sys.nv()).copy_from(&s.v);
-            k1 = match k.pop() {
-                Some(last) if reuse => last,
-                _ => derivative(sys, t, &y)?,
-            };
+            if reuse {
+                k1.copy_from(&stages[6]);
+            } else {
+                derivative_into(sys, t, &y, &mut k1)?;
+            }
             if (t - target).abs() < 1e-12 {
                 samples.push(sample(sys, target, &s));
                 progress.advance(t)?;

@@ -452,9 +452,9 @@ impl System {
         Ok(v0 - minv_ct * mu)
     }
 
-    /// $\dot q$ from $v$: $\dot r$, $\dot p = \tfrac12 L^T\bar\omega$, $\dot z$.
-    pub(crate) fn qdot(&self, s: &State) -> DVector<f64> {
-        let mut qd = DVector::zeros(self.nq());
+    /// $\dot q$ from $v$ into `qd` (the first $n_q$ rows of the state derivative): $\dot r$,
+    /// $\dot p = \tfrac12 L^T\bar\omega$, $\dot z$.
+    pub(crate) fn qdot_into(&self, s: &State, qd: &mut nalgebra::DVectorViewMut<'_, f64>) {
         for b in 0..self.bodies.len() {
             let qo = self.q_off[b];
             let f = self.frame(b, s);
@@ -464,7 +464,6 @@ impl System {
             let k = f.z.len();
             qd.rows_mut(qo + 7, k).copy_from(&f.zd);
         }
-        qd
     }
 
     /// Kinetic energy $\tfrac12 v^T M v$, J, body by body from the blocks of $M$ (no
