@@ -142,6 +142,76 @@ pub fn critical_step(omega_max: f64) -> f64 {
     imaginary_stability_limit() / omega_max
 }
 
+/// The stages' derivatives $k_1 \dots k_7$ and the stage state, in buffers kept over a run.
+struct Stages {
+    k: Vec<DVector<f64>>,
+    ys: DVector<f64>,
+    err: DVector<f64>,
+}
+
+impl Stages {
+    fn new(n: usize) -> Self {
+        Self {
+            k: vec![DVector::zeros(n); 7],
+            ys: DVector::zeros(n),
+            err: DVector::zeros(n),
+        }
+    }
+
+    /// One step of `h` from `(t, y)` whose derivative is `k1`: the fifth-order solution and
+    /// the scaled error norm, or `None` when a stage state left the divergence bound. A
+    /// singular system at a fixed step is divergence, reported with the step.
+    fn attempt(
+        &mut self,
+        sys: &System,
+        p: &IntegratorParameters,
+        t: f64,
+        h: f64,
+        y: &DVector<f64>,
+        k1: &DVector<f64>,
+    ) -> Result<Option<(DVector<f64>, f64)>> {
+        let within = |v: &DVector<f64>| v.iter().all(|x| x.abs() <= p.divergence_bound);
+        self.k[0].copy_from(k1);
+        for stage in 1..7 {
+            self.ys.copy_from(y);
+            for (j, kj) in self.k[..stage].iter().enumerate() {
+                if A[stage][j] != 0.0 {
+                    self.ys.axpy(h * A[stage][j], kj, 1.0);
+                }
+            }
+            if !within(&self.ys) {
+                return Ok(None);
+            }
+            match derivative_into(sys, t + C[stage] * h, &self.ys, &mut self.k[stage]) {
+                Ok(()) => {}
+                Err(Error::Linalg(LinalgError::SingularMatrix { matrix, .. }))
+                    if p.fixed_step.is_some() =>
+                {
+                    return Err(Error::Dynamics(DynamicsError::Diverged {
+                        time: t,
+                        reason: format!(
+                            "with the fixed step {h:.4e} s the {matrix} became singular"
+                        ),
+                    }));
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        let mut y5 = y.clone();
+        self.err.fill(0.0);
+        for (j, kj) in self.k.iter().enumerate() {
+            y5.axpy(h * B5[j], kj, 1.0);
+            self.err.axpy(h * (B5[j] - B4[j]), kj, 1.0);
+        }
+        let mut norm = 0.0;
+        for i in 0..y.len() {
+            let sc = p.atol + p.rtol * y[i].abs().max(y5[i].abs());
+            norm += (self.err[i] / sc).powi(2);
+        }
+        Ok(Some((y5, (norm / y.len() as f64).sqrt())))
+    }
+}
+
 /// Integrates `sys` from `initial` with Dormand–Prince 5(4) (see [`super::simulate`]).
 pub(super) fn integrate(
     sys: &System,
@@ -166,8 +236,7 @@ pub(super) fn integrate(
     let (mut steps, mut rejected) = (0usize, 0usize);
     let mut next_output = p.output_interval;
     let mut k1 = derivative(sys, t, &y)?;
-    let mut stages = vec![DVector::zeros(y.len()); 7];
-    let (mut ys, mut err) = (DVector::zeros(y.len()), DVector::zeros(y.len()));
+    let mut stages = Stages::new(y.len());
     while t < p.end_time - 1e-12 {
         if !y.iter().all(|v| v.abs() <= p.divergence_bound) {
             return Err(Error::Dynamics(DynamicsError::Diverged {
@@ -187,48 +256,7 @@ pub(super) fn integrate(
         }
         h = h.min(target - t);
         let within = |v: &DVector<f64>| v.iter().all(|x| x.abs() <= p.divergence_bound);
-        // The stages' derivatives k_1 … k_7 in buffers kept over the run.
-        stages[0].copy_from(&k1);
-        let mut filled = 1;
-        for stage in 1..7 {
-            ys.copy_from(&y);
-            for (j, kj) in stages[..stage].iter().enumerate() {
-                if A[stage][j] != 0.0 {
-                    ys.axpy(h * A[stage][j], kj, 1.0);
-                }
-            }
-            if !within(&ys) {
-                break;
-            }
-            match derivative_into(sys, t + C[stage] * h, &ys, &mut stages[stage]) {
-                Ok(()) => filled += 1,
-                Err(Error::Linalg(LinalgError::SingularMatrix { matrix, .. }))
-                    if p.fixed_step.is_some() =>
-                {
-                    return Err(Error::Dynamics(DynamicsError::Diverged {
-                        time: t,
-                        reason: format!(
-                            "with the fixed step {h:.4e} s the {matrix} became singular"
-                        ),
-                    }));
-                }
-                Err(e) => return Err(e),
-            }
-        }
-        let step = (filled == 7).then(|| {
-            let mut y5 = y.clone();
-            err.fill(0.0);
-            for (j, kj) in stages.iter().enumerate() {
-                y5.axpy(h * B5[j], kj, 1.0);
-                err.axpy(h * (B5[j] - B4[j]), kj, 1.0);
-            }
-            let mut norm = 0.0;
-            for i in 0..y.len() {
-                let sc = p.atol + p.rtol * y[i].abs().max(y5[i].abs());
-                norm += (err[i] / sc).powi(2);
-            }
-            (y5, (norm / y.len() as f64).sqrt())
-        });
+        let step = stages.attempt(sys, p, t, h, &y, &k1)?;
         let Some((y5, norm)) = step.filter(|(y5, norm)| norm.is_finite() && within(y5)) else {
             let what = format!(
                 "the state grew beyond {:e} or became non-finite",
@@ -270,7 +298,7 @@ pub(super) fn integrate(
             y.rows_mut(0, nq).copy_from(&s.q);
             y.rows_mut(nq, sys.nv()).copy_from(&s.v);
             if reuse {
-                k1.copy_from(&stages[6]);
+                k1.copy_from(&stages.k[6]);
             } else {
                 derivative_into(sys, t, &y, &mut k1)?;
             }
