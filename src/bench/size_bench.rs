@@ -238,46 +238,9 @@ pub fn bench_sizes(
                     totals.entry(key).or_default().push((dofs as f64, s));
                 }
             }
-            rows.push(vec![
-                format!("{}×{}×{}", bricks[0], bricks[1], bricks[2]),
-                dofs.to_string(),
-                threads.to_string(),
-                model.stiffness_nnz().to_string(),
-                m.phases.factor_nnz.to_string(),
-                format!("{assembly_s:.3}"),
-                format!("{:.3}", m.phases.factorization_s),
-                format!("{:.3}", m.phases.constraint_modes_s),
-                format!("{:.3}", m.phases.eigen_s),
-                format!("{:.3}", m.cb_s),
-                format!("{:.3}", m.gr_s),
-                format!("{:.3}", m.mt_s),
-                format!("{:.3}", m.mc_kept_s),
-                m.mc_complete_s.map_or("—".into(), |s| format!("{s:.3}")),
-                peak.map_or("?".into(), |b| format!("{:.0}", b as f64 / 1e6)),
-            ]);
-            points.push(json!({
-                "bricks": bricks,
-                "dofs": dofs,
-                "threads": threads,
-                "nnz": model.stiffness_nnz(),
-                "factor_nnz": m.phases.factor_nnz,
-                "factor_flops": m.phases.factor_flops,
-                "timing_s": {
-                    "assembly": sig(assembly_s),
-                    "factorization": sig(m.phases.factorization_s),
-                    "constraint_modes": sig(m.phases.constraint_modes_s),
-                    "eigen": sig(m.phases.eigen_s),
-                    "reduction": sig(m.cb_s),
-                },
-                "offline_s": {
-                    "gr": sig(m.gr_s), "mt": sig(m.mt_s), "cb": sig(m.cb_s), "mc": sig(m.mc_kept_s),
-                    "mc_complete": m.mc_complete_s.map(sig),
-                },
-                "eigen_block_solves": m.phases.eigen_block_solves,
-                "eigen_max_residual": m.phases.eigen_max_residual,
-                "peak_memory_bytes": peak,
-                "fixed_interface_hz": sig_vec(&m.hz),
-            }));
+            let (row, point) = size_entry(bricks, threads, &model, assembly_s, &m, peak);
+            rows.push(row);
+            points.push(point);
         }
     }
     crate::linalg::use_threads(before);
@@ -347,6 +310,59 @@ pub fn bench_sizes(
         table,
         recording,
     })
+}
+
+/// One size and thread count's table row and JSON point.
+fn size_entry(
+    bricks: [usize; 3],
+    threads: usize,
+    model: &FeModel,
+    assembly_s: f64,
+    m: &Measured,
+    peak: Option<u64>,
+) -> (Vec<String>, Value) {
+    let dofs = model.dof_count();
+    let row = vec![
+        format!("{}×{}×{}", bricks[0], bricks[1], bricks[2]),
+        dofs.to_string(),
+        threads.to_string(),
+        model.stiffness_nnz().to_string(),
+        m.phases.factor_nnz.to_string(),
+        format!("{assembly_s:.3}"),
+        format!("{:.3}", m.phases.factorization_s),
+        format!("{:.3}", m.phases.constraint_modes_s),
+        format!("{:.3}", m.phases.eigen_s),
+        format!("{:.3}", m.cb_s),
+        format!("{:.3}", m.gr_s),
+        format!("{:.3}", m.mt_s),
+        format!("{:.3}", m.mc_kept_s),
+        m.mc_complete_s.map_or("—".into(), |s| format!("{s:.3}")),
+        peak.map_or("?".into(), |b| format!("{:.0}", b as f64 / 1e6)),
+    ];
+    let point = json!({
+        "bricks": bricks,
+        "dofs": dofs,
+        "threads": threads,
+        "nnz": model.stiffness_nnz(),
+        "factor_nnz": m.phases.factor_nnz,
+        "factor_flops": m.phases.factor_flops,
+        "timing_s": {
+            "assembly": sig(assembly_s),
+            "factorization": sig(m.phases.factorization_s),
+            "constraint_modes": sig(m.phases.constraint_modes_s),
+            "eigen": sig(m.phases.eigen_s),
+            "reduction": sig(m.cb_s),
+        },
+        "offline_s": {
+            "gr": sig(m.gr_s), "mt": sig(m.mt_s), "cb": sig(m.cb_s), "mc": sig(m.mc_kept_s),
+            "mc_complete": m.mc_complete_s.map(sig),
+        },
+        "eigen_block_solves": m.phases.eigen_block_solves,
+        "eigen_max_residual": m.phases.eigen_max_residual,
+        "peak_memory_bytes": peak,
+        "fixed_interface_hz": sig_vec(&m.hz),
+    });
+    (row, point)
 }
 
 /// Log–log chart of offline time against DOF: x = log₁₀ DOF, y = log₁₀ s (drawn upward), one

@@ -146,21 +146,10 @@ fn header_int(line: &str, field: usize, path: &str, number: usize, what: &str) -
     })
 }
 
-/// Parses Harwell–Boeing bytes (plain or gzip) named `path` in error messages.
-pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
-    let text = plain_text(bytes, path)?;
-    let lines: Vec<&str> = text.lines().collect();
-    if lines.len() < 4 {
-        return Err(error(
-            path,
-            lines.len(),
-            "a Harwell-Boeing file has four header lines",
-        ));
-    }
-    let cards = |field| header_int(lines[1], field, path, 2, "card count");
-    let (ptr_cards, ind_cards, val_cards) = (cards(1)?, cards(2)?, cards(3)?);
-    let rhs_cards = if lines[1].len() > 56 { cards(4)? } else { 0 };
-    let kind = lines[2].get(..3).unwrap_or("").to_ascii_uppercase();
+/// Whether the type field (line 3, columns 1–3) of a Harwell–Boeing file names a symmetric
+/// matrix; only real (R..) assembled (..A) matrices describe a body.
+fn symmetric_kind(line: &str, path: &str) -> Result<bool> {
+    let kind = line.get(..3).unwrap_or("").to_ascii_uppercase();
     let mut chars = kind.chars();
     let (value_type, structure, assembly) = (chars.next(), chars.next(), chars.next());
     if value_type != Some('R') {
@@ -188,6 +177,24 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
             format!("type `{kind}`: only assembled matrices (..A) are read, not elemental"),
         ));
     }
+    Ok(symmetric)
+}
+
+/// Parses Harwell–Boeing bytes (plain or gzip) named `path` in error messages.
+pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
+    let text = plain_text(bytes, path)?;
+    let lines: Vec<&str> = text.lines().collect();
+    if lines.len() < 4 {
+        return Err(error(
+            path,
+            lines.len(),
+            "a Harwell-Boeing file has four header lines",
+        ));
+    }
+    let cards = |field| header_int(lines[1], field, path, 2, "card count");
+    let (ptr_cards, ind_cards, val_cards) = (cards(1)?, cards(2)?, cards(3)?);
+    let rhs_cards = if lines[1].len() > 56 { cards(4)? } else { 0 };
+    let symmetric = symmetric_kind(lines[2], path)?;
     let dims = |field| header_int(&lines[2][..lines[2].len().min(70)], field, path, 3, "size");
     let (rows, cols, nnz) = (dims(1)?, dims(2)?, dims(3)?);
     let format = |from: usize, to: usize, what: &str| {

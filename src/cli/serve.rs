@@ -12,14 +12,7 @@ pub(super) fn run(_arguments: ServeArgs) -> Result<()> {
 
 #[cfg(feature = "serve")]
 pub(super) fn run(arguments: ServeArgs) -> Result<()> {
-    use std::{
-        io::BufRead as _,
-        net::{IpAddr, Ipv4Addr},
-        sync::{Arc, mpsc},
-        time::Instant,
-    };
-
-    use clap::Parser as _;
+    use std::{sync::Arc, time::Instant};
 
     use crate::{
         scenes,
@@ -28,15 +21,6 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
             page_url, scene_messages,
         },
     };
-
-    /// A teacher's command: `show SCENE [options]`.
-    #[derive(clap::Parser)]
-    #[command(no_binary_name = true)]
-    struct Show {
-        scene: String,
-        #[command(flatten)]
-        options: super::arguments::OptionArgs,
-    }
 
     let ServeArgs {
         scenes: ids,
@@ -74,17 +58,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         gzipped as f64 / 1e6,
         started.elapsed().as_secs_f64()
     );
-    // The address students reach: the bound one, or for 0.0.0.0 this machine's address on
-    // its default route (a UDP "connect" sends nothing).
-    let shared: IpAddr = if bind.is_unspecified() {
-        std::net::UdpSocket::bind((Ipv4Addr::UNSPECIFIED, 0))
-            .and_then(|s| s.connect((Ipv4Addr::new(192, 0, 2, 1), 9)).map(|_| s))
-            .and_then(|s| s.local_addr())
-            .map(|a| a.ip())
-            .unwrap_or(IpAddr::V4(Ipv4Addr::LOCALHOST))
-    } else {
-        bind
-    };
+    let shared = shared_address(bind);
     let mut origins = vec![origin(shared, port), origin(bind, port)];
     if bind.is_unspecified() {
         origins.push(format!("http://*:{port}"));
@@ -112,6 +86,48 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         println!("(this machine only: --bind ADDRESS lets a classroom network in)");
     }
     println!("commands: show SCENE [--method cb,mc] [--modes N] …, list, quit (or Ctrl-C)");
+
+    read_commands(&classroom)?;
+    web.stop();
+    drop(classroom);
+    eprintln!("stopped");
+    Ok(())
+}
+
+/// A teacher's command: `show SCENE [options]`.
+#[cfg(feature = "serve")]
+#[derive(clap::Parser)]
+#[command(no_binary_name = true)]
+struct Show {
+    scene: String,
+    #[command(flatten)]
+    options: super::arguments::OptionArgs,
+}
+
+/// The address students reach: the bound one, or for 0.0.0.0 this machine's address on its
+/// default route (a UDP "connect" sends nothing).
+#[cfg(feature = "serve")]
+fn shared_address(bind: std::net::IpAddr) -> std::net::IpAddr {
+    use std::net::{IpAddr, Ipv4Addr};
+    if bind.is_unspecified() {
+        std::net::UdpSocket::bind((Ipv4Addr::UNSPECIFIED, 0))
+            .and_then(|s| s.connect((Ipv4Addr::new(192, 0, 2, 1), 9)).map(|_| s))
+            .and_then(|s| s.local_addr())
+            .map(|a| a.ip())
+            .unwrap_or(IpAddr::V4(Ipv4Addr::LOCALHOST))
+    } else {
+        bind
+    }
+}
+
+/// The teacher's commands read line by line from the terminal (`show`, `list`, `quit`) until
+/// `quit`, Ctrl-C, SIGTERM; each `show` publishes its scene to every viewer.
+#[cfg(feature = "serve")]
+fn read_commands(classroom: &crate::serve::Classroom) -> Result<()> {
+    use clap::Parser as _;
+    use std::{io::BufRead as _, sync::mpsc};
+
+    use crate::{scenes, serve::scene_messages};
 
     enum Event {
         Line(String),
@@ -174,8 +190,5 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
             Some(other) => eprintln!("unknown command `{other}`: show, list, quit"),
         }
     }
-    web.stop();
-    drop(classroom);
-    eprintln!("stopped");
     Ok(())
 }

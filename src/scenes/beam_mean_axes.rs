@@ -10,10 +10,10 @@ use super::{
 use crate::dynamics::AxisKind;
 use crate::{
     Result,
-    analysis::evaluate_with_mean_axes,
-    fem::{BeamParameters, beam},
+    analysis::{MeanAxesEvaluation, evaluate_with_mean_axes},
+    fem::{BeamParameters, FeModel, beam},
     linalg::{identity, max_abs_diff, principal_angles},
-    record::Layout,
+    record::{Layout, Visual},
     reduction::{
         Method, ModeSelection, Partition, ReductionParameters, constraint_modes,
         fixed_interface_modes, reduce,
@@ -132,27 +132,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             Cell::text(crate::report::fmt_hz(&ev.normal_hz)),
             Cell::number(angle, format!("{angle:.1e}")),
         ]);
-        let color = method_color(m);
-        let cm_modes: Vec<(Vec<f64>, String)> = columns(&ev.constraint_modes)
-            .into_iter()
-            .zip(&part.b)
-            .map(|(u, &dof)| (u, format!("constraint {}", model.dof_label(dof))))
-            .collect();
-        let set_c = format!("{}_mean_constraint", m.id());
-        visuals.extend(mode_set(&model, &set_c, &cm_modes, color));
-        let nm: Vec<(Vec<f64>, String)> = columns(&ev.normal_modes)
-            .into_iter()
-            .zip(&ev.normal_hz)
-            .enumerate()
-            .map(|(k, (u, f))| (u, format!("normal {}: {f:.6} Hz", k + 1)))
-            .collect();
-        let set_n = format!("{}_mean_normal", m.id());
-        visuals.extend(mode_set(&model, &set_n, &nm, color));
-        // Titles short enough for a 1280 × 800 window: constraint modes above, normal modes
-        // below (the entity paths keep the full set names).
-        let id = m.id().to_uppercase();
-        tabs.push(Layout::view3d(&id, &format!("/modes/{set_c}")));
-        normal_tabs.push(Layout::view3d(&id, &format!("/modes/{set_n}")));
+        let (sets, [constraint_tab, normal_tab]) = method_views(&model, &part, m, &ev);
+        visuals.extend(sets);
+        tabs.push(constraint_tab);
+        normal_tabs.push(normal_tab);
     }
     let full_modes: Vec<(Vec<f64>, String)> = columns(&full_c)
         .into_iter()
@@ -200,4 +183,39 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         timeline: Some("phase".into()),
         y_up: true,
     })
+}
+
+/// One method's constraint modes and normal modes on the mean axes, drawn in its colour, and
+/// their two tabs (constraint modes above, normal modes below). Titles are short enough for a
+/// 1280 × 800 window; the entity paths keep the full set names.
+fn method_views(
+    model: &FeModel,
+    part: &Partition,
+    m: Method,
+    ev: &MeanAxesEvaluation,
+) -> (Vec<Visual>, [Layout; 2]) {
+    let color = method_color(m);
+    let cm_modes: Vec<(Vec<f64>, String)> = columns(&ev.constraint_modes)
+        .into_iter()
+        .zip(&part.b)
+        .map(|(u, &dof)| (u, format!("constraint {}", model.dof_label(dof))))
+        .collect();
+    let set_c = format!("{}_mean_constraint", m.id());
+    let mut visuals = mode_set(model, &set_c, &cm_modes, color);
+    let nm: Vec<(Vec<f64>, String)> = columns(&ev.normal_modes)
+        .into_iter()
+        .zip(&ev.normal_hz)
+        .enumerate()
+        .map(|(k, (u, f))| (u, format!("normal {}: {f:.6} Hz", k + 1)))
+        .collect();
+    let set_n = format!("{}_mean_normal", m.id());
+    visuals.extend(mode_set(model, &set_n, &nm, color));
+    let id = m.id().to_uppercase();
+    (
+        visuals,
+        [
+            Layout::view3d(&id, &format!("/modes/{set_c}")),
+            Layout::view3d(&id, &format!("/modes/{set_n}")),
+        ],
+    )
 }
