@@ -28,6 +28,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import urllib.error
 import urllib.request
 
 import websocket
@@ -118,6 +119,84 @@ def bad_input(binary, address):
         refused(binary, ["--file", corrupt, "--bind", address], "corrupt.rrd")
 
 
+ACTIVE = "window._handle.get_active_recording_id() ?? null"
+
+
+def http_status(request):
+    """The HTTP status and body of `request` (urllib raises on 4xx: caught)."""
+    try:
+        with urllib.request.urlopen(request, timeout=30) as r:
+            return r.status, r.read().decode()
+    except urllib.error.HTTPError as e:
+        return e.code, e.read().decode()
+
+
+def check_control(args, control_url, debug_port, cdp):
+    """The teacher's control page: without the token 403 and the view unchanged; requests that
+    do not parse named on the page; with the token, the form filled and submitted in a second
+    tab of the same browser and the viewer following within `--control-within` seconds."""
+    base = control_url.split("?", 1)[0]
+    before = cdp.evaluate(ACTIVE)
+    for what, request in [
+        ("GET without the token", urllib.request.Request(base)),
+        ("GET with a wrong token", urllib.request.Request(base + "?token=0123456789abcdef0123")),
+        ("POST without the token", urllib.request.Request(
+            base, data=b"scene=beam-modes&method=cb", method="POST")),
+    ]:
+        status, _ = http_status(request)
+        if status != 403:
+            fail(f"control page, {what}: HTTP {status}, wanted 403")
+    time.sleep(3.0)
+    if cdp.evaluate(ACTIVE) != before:
+        fail(f"the view changed after requests without the token ({before} -> "
+             f"{cdp.evaluate(ACTIVE)})")
+    print("control page without the token: 403 (GET, a wrong token, POST), the view unchanged")
+    token = control_url.split("token=", 1)[1]
+    for form, says in [("scene=no-such-scene", "unknown scene `no-such-scene`"),
+                       ("scene=beam-modes&modes=x", "invalid value"),
+                       ("scene=beam-modes&colour=red", "unknown field `colour`")]:
+        status, page = http_status(urllib.request.Request(
+            base, data=f"token={token}&{form}".encode(), method="POST"))
+        if status != 400 or says not in page.replace("&#39;", "'"):
+            fail(f"control page, `{form}`: HTTP {status}, wanted 400 naming {says!r}")
+    time.sleep(1.0)
+    if cdp.evaluate(ACTIVE) != before:
+        fail("the view changed after requests that do not parse")
+    print("control page refuses by name: an unknown scene, a bad value, an unknown field")
+    tab = json.load(urllib.request.urlopen(urllib.request.Request(
+        f"http://127.0.0.1:{debug_port}/json/new?{control_url}", method="PUT")))
+    control = Cdp(tab["webSocketDebuggerUrl"])
+    for _ in range(100):
+        if control.evaluate("document.readyState === 'complete' && !!document.querySelector('form')"):
+            break
+        time.sleep(0.1)
+    else:
+        fail("the control page did not load in Chromium")
+    control.evaluate(
+        f"document.querySelector('select[name=scene]').value = {json.dumps(args.control_scene)};"
+        "document.querySelector('input[name=method]').value = 'cb';"
+        "document.querySelector('form').submit(); true")
+    submitted = time.time()
+    cdp.call("Page.bringToFront")
+    followed = None
+    while time.time() - submitted < 60:
+        now = cdp.evaluate(ACTIVE)
+        if now and now != before and args.control_scene in now:
+            followed = time.time() - submitted
+            break
+        time.sleep(0.1)
+    answer = control.evaluate(
+        "(document.querySelector('.ok') || document.querySelector('.error') || {}).textContent")
+    if followed is None:
+        fail(f"the viewer did not follow the control page within 60 s (the page says {answer!r})")
+    print(f"control page in Chromium: {answer!r}; the viewer followed to {now} in {followed:.1f} s")
+    shot = base64.b64decode(control.call("Page.captureScreenshot", format="png")["data"])
+    stem = os.path.splitext(args.out)[0]
+    open(f"{stem}-control.png", "wb").write(shot)
+    if followed > args.control_within:
+        fail(f"the viewer followed after {followed:.1f} s, more than {args.control_within} s")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--binary", required=True, help="flexmodes built with --features serve")
@@ -132,6 +211,13 @@ def main():
     p.add_argument("--out", default="serve-check.png")
     p.add_argument("--timeout", type=float, default=240.0)
     p.add_argument("--chromium", default=shutil.which("chromium") or "/usr/bin/chromium")
+    p.add_argument("--control", action="store_true",
+                   help="also drive the teacher's control page: refused without the token, "
+                        "followed with it")
+    p.add_argument("--control-scene", default="beam-modes",
+                   help="the scene the control page shows")
+    p.add_argument("--control-within", type=float, default=2.0,
+                   help="most seconds from the form's submission to the viewer showing it")
     p.add_argument("--every-scene", action="store_true",
                    help="serve every scene and show each in turn: active, no panic")
     p.add_argument("--bad-input", action="store_true",
@@ -158,6 +244,13 @@ def main():
             url = line.split(": ", 1)[1].strip()
     served = time.time() - started
     print(f"serve: {url} after {served:.1f} s")
+    control_url = None
+    while control_url is None:
+        line = server.stdout.readline()
+        if not line:
+            fail(f"the server stopped before printing its control page: {server.stderr.read()}")
+        if line.startswith("control page"):
+            control_url = line.rsplit(" ", 1)[1].strip()
 
     profile = tempfile.mkdtemp(prefix="check-serve-")
     debug_port = free_port("127.0.0.1")
@@ -309,6 +402,8 @@ def main():
             time.sleep(0.5)
         else:
             fail("the viewer did not follow the teacher's `show` within 60 s")
+        if args.control:
+            check_control(args, control_url, debug_port, cdp)
     finally:
         chromium.kill()
         chromium.wait()

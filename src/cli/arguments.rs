@@ -313,6 +313,11 @@ pub(super) struct ServeArgs {
     /// The viewer's theme in the shared URL: dark or light (default: each browser's own).
     #[arg(long, value_enum)]
     pub(super) theme: Option<Theme>,
+    /// The token of the teacher's control page (`/control?token=…`), at least 16 URL-safe
+    /// characters (default: a random one, printed at start). Without it the page answers 403
+    /// and changes nothing.
+    #[arg(long, value_name = "TOKEN")]
+    pub(super) control_token: Option<String>,
     #[command(flatten)]
     pub(super) options: OptionArgs,
 }

@@ -12,13 +12,16 @@ pub(super) fn run(_arguments: ServeArgs) -> Result<()> {
 
 #[cfg(feature = "serve")]
 pub(super) fn run(arguments: ServeArgs) -> Result<()> {
-    use std::{sync::Arc, time::Instant};
+    use std::{
+        sync::{Arc, atomic::AtomicUsize},
+        time::Instant,
+    };
 
     use crate::{
         scenes,
         serve::{
-            Classroom, ViewerFiles, WebServer, check_port, data_url, file_messages, origin,
-            page_url, scene_messages,
+            Classroom, ControlPage, Publisher, ViewerFiles, WebServer, check_port, data_url,
+            file_messages, new_control_token, origin, page_url, scene_messages,
         },
     };
 
@@ -29,6 +32,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         port,
         grpc_port,
         theme,
+        control_token,
         options,
     } = arguments;
     // Everything that can fail on the input fails before a port is taken.
@@ -46,6 +50,13 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         .map(|f| file_messages(f))
         .collect::<Result<Vec<_>>>()?;
     let opts = options.into_scene_options()?;
+    let token = match control_token {
+        Some(t) => checked_token(t)?,
+        None => new_control_token().map_err(|e| crate::Error::InvalidOption {
+            scene: "serve".into(),
+            reason: format!("no random control token from the operating system: {e}"),
+        })?,
+    };
     check_port(bind, grpc_port, "data server", "grpc-port")?;
     check_port(bind, port, "web page", "port")?;
 
@@ -63,8 +74,25 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     if bind.is_unspecified() {
         origins.push(format!("http://*:{port}"));
     }
-    let classroom = Classroom::start(bind, grpc_port, origins)?;
-    let web = WebServer::start(bind, port, viewer)?;
+    let classroom = Arc::new(Classroom::start(bind, grpc_port, origins)?);
+    let publisher = {
+        let classroom = classroom.clone();
+        Arc::new(Publisher::start(move |m| classroom.publish(m)))
+    };
+    let shown = Arc::new(AtomicUsize::new(0));
+    let control = {
+        let (apply_to, status_of, shown) = (publisher.clone(), publisher.clone(), shown.clone());
+        Arc::new(ControlPage::new(
+            token.clone(),
+            scenes::all()
+                .iter()
+                .map(|s| (s.info.id.to_string(), s.info.summary.to_string()))
+                .collect(),
+            Box::new(move |words| show_request(&apply_to, &shown, words)),
+            Box::new(move || status_text(&status_of)),
+        ))
+    };
+    let web = WebServer::start(bind, port, viewer, Some(control.clone()))?;
     for messages in recordings {
         classroom.publish(messages);
     }
@@ -85,10 +113,17 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     if bind.is_loopback() {
         println!("(this machine only: --bind ADDRESS lets a classroom network in)");
     }
+    println!(
+        "control page (the teacher's: whoever has the token steers every viewer): \
+         http://{}:{port}/control?token={token}",
+        page_host(shared)
+    );
     println!("commands: show SCENE [--method cb,mc] [--modes N] …, list, quit (or Ctrl-C)");
 
-    read_commands(&classroom)?;
+    read_commands(&publisher, &shown)?;
     web.stop();
+    drop(control);
+    drop(publisher);
     drop(classroom);
     eprintln!("stopped");
     Ok(())
@@ -121,13 +156,15 @@ fn shared_address(bind: std::net::IpAddr) -> std::net::IpAddr {
 }
 
 /// The teacher's commands read line by line from the terminal (`show`, `list`, `quit`) until
-/// `quit`, Ctrl-C, SIGTERM; each `show` publishes its scene to every viewer.
+/// `quit`, Ctrl-C, SIGTERM; each `show` is queued like the control page's requests.
 #[cfg(feature = "serve")]
-fn read_commands(classroom: &crate::serve::Classroom) -> Result<()> {
-    use clap::Parser as _;
+fn read_commands(
+    publisher: &crate::serve::Publisher,
+    shown: &std::sync::atomic::AtomicUsize,
+) -> Result<()> {
     use std::{io::BufRead as _, sync::mpsc};
 
-    use crate::{scenes, serve::scene_messages};
+    use crate::scenes;
 
     enum Event {
         Line(String),
@@ -151,7 +188,6 @@ fn read_commands(classroom: &crate::serve::Classroom) -> Result<()> {
         }
         // End of input (a server started without a terminal) keeps serving.
     });
-    let mut shown = 0;
     while let Ok(event) = rx.recv() {
         let line = match event {
             Event::Stop => break,
@@ -167,23 +203,9 @@ fn read_commands(classroom: &crate::serve::Classroom) -> Result<()> {
                 }
             }
             Some("show") => {
-                let result = Show::try_parse_from(&words[1..])
-                    .map_err(|e| e.to_string())
-                    .and_then(|show| {
-                        let scene = scenes::find(&show.scene).map_err(|e| e.to_string())?;
-                        let opts = show
-                            .options
-                            .into_scene_options()
-                            .map_err(|e| e.to_string())?;
-                        shown += 1;
-                        scene_messages(&scene, &opts, Some(format!("shown-{shown}")))
-                            .map_err(|e| e.to_string())
-                    });
-                match result {
-                    Ok(messages) => {
-                        classroom.publish(messages);
-                        println!("showing: {}", words[1..].join(" "));
-                    }
+                let words: Vec<String> = words[1..].iter().map(|w| w.to_string()).collect();
+                match show_request(publisher, shown, &words) {
+                    Ok(queued) => println!("{queued}"),
                     Err(e) => eprintln!("error: {e}"),
                 }
             }
@@ -191,4 +213,84 @@ fn read_commands(classroom: &crate::serve::Classroom) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// A teacher's `show` request (the scene, then options), checked and queued: it replaces a
+/// request still waiting, never stacks. Returns what was queued, or why not.
+#[cfg(feature = "serve")]
+fn show_request(
+    publisher: &crate::serve::Publisher,
+    shown: &std::sync::atomic::AtomicUsize,
+    words: &[String],
+) -> std::result::Result<String, String> {
+    use clap::Parser as _;
+
+    use crate::{
+        scenes,
+        serve::{PublishJob, scene_messages},
+    };
+
+    // clap's first line names the problem; the rest points at `--help`, which a page has not.
+    let show = Show::try_parse_from(words)
+        .map_err(|e| e.to_string().lines().next().unwrap_or_default().to_string())?;
+    let scene = scenes::find(&show.scene).map_err(|e| e.to_string())?;
+    let opts = show
+        .options
+        .into_scene_options()
+        .map_err(|e| e.to_string())?;
+    let n = shown.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+    let label = words.join(" ");
+    let replaced = publisher.submit(PublishJob {
+        label: label.clone(),
+        compute: Box::new(move || scene_messages(&scene, &opts, Some(format!("shown-{n}")))),
+    });
+    Ok(match replaced {
+        Some(old) => format!("queued: {label} (instead of the waiting `{old}`)"),
+        None => format!("queued: {label}"),
+    })
+}
+
+/// What the class sees, or is about to, in words.
+#[cfg(feature = "serve")]
+fn status_text(publisher: &crate::serve::Publisher) -> String {
+    use crate::serve::PublishStatus;
+
+    let now = match publisher.status() {
+        PublishStatus::Idle => "the scenes published at start".to_string(),
+        PublishStatus::Computing(l) => format!("computing `{l}`"),
+        PublishStatus::Published(l) => format!("showing `{l}`"),
+        PublishStatus::Failed(l, e) => format!("`{l}` failed: {e}"),
+    };
+    match publisher.queued() {
+        Some(next) => format!("{now}; next: `{next}`"),
+        None => now,
+    }
+}
+
+/// A control token given on the command line: URL-safe characters, at least 16 of them.
+#[cfg(feature = "serve")]
+fn checked_token(token: String) -> Result<String> {
+    if token.len() >= 16
+        && token
+            .bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b"-_.~".contains(&b))
+    {
+        Ok(token)
+    } else {
+        Err(crate::Error::InvalidOption {
+            scene: "serve".into(),
+            reason: format!(
+                "--control-token `{token}`: at least 16 characters of A-Z, a-z, 0-9, -, _, ., ~"
+            ),
+        })
+    }
+}
+
+/// The host part of a URL for `address` (IPv6 in brackets).
+#[cfg(feature = "serve")]
+fn page_host(address: std::net::IpAddr) -> String {
+    match address {
+        std::net::IpAddr::V4(a) => a.to_string(),
+        std::net::IpAddr::V6(a) => format!("[{a}]"),
+    }
 }
