@@ -32,7 +32,7 @@ use crate::{
         ImportedBody, lower_entries, mass_lower_entries, write_coordinate_symmetric, write_npy,
     },
     error::ReductionError,
-    fem::{Direction, NodeDof},
+    fem::{Direction, FeModel, NodeDof},
     linalg::{generalized_eigen, hz_from_eigenvalue},
     reduction::{AveragingInterface, Basis, ColumnKind, RigidInterface},
     report::sig_vec,
@@ -68,17 +68,9 @@ fn refuse(reason: impl Into<String>) -> crate::Error {
     .into()
 }
 
-/// Builds the Exudyn body of `basis` (see the module): the frame on `rigid[0]`.
-pub fn exudyn_body(
-    body: &ImportedBody,
-    basis: &Basis,
-    rigid: &[RigidInterface],
-    averaging: &[AveragingInterface],
-) -> Result<ExudynBody> {
-    let model = &body.model;
-    if !body.has_coordinates {
-        return Err(refuse("the body file gives no node coordinates"));
-    }
+/// The body's DOF indices node by node, x y z (Exudyn's order); a body whose nodes carry
+/// other than the three translations is refused by name.
+fn translation_order(model: &FeModel) -> Result<Vec<usize>> {
     let per_node = model.dofs.node_dofs();
     let translations = [Direction::X, Direction::Y, Direction::Z].map(NodeDof::Translation);
     if per_node.len() != 3 || !translations.iter().all(|d| per_node.contains(d)) {
@@ -92,14 +84,8 @@ pub fn exudyn_body(
                 .join(" ")
         )));
     }
-    let frame = rigid.first().ok_or_else(|| {
-        refuse(
-            "the floating frame is attached to a rigid interface: give one as `rbe2:SET` \
-             (the first is the frame)",
-        )
-    })?;
     let nodes = model.node_count();
-    let order: Vec<usize> = (0..nodes)
+    Ok((0..nodes)
         .flat_map(|node| {
             translations.map(|d| {
                 model
@@ -108,7 +94,52 @@ pub fn exudyn_body(
                     .expect("checked: x y z translations")
             })
         })
-        .collect();
+        .collect())
+}
+
+/// Refuses a kept basis that moves a node of the frame's ring (beyond 1e-12 of its largest
+/// entry): the frame would not be attached to the ring.
+fn frame_ring_still(frame: &RigidInterface, modes: &Mat<f64>) -> Result<()> {
+    let largest = (0..modes.ncols())
+        .flat_map(|j| (0..modes.nrows()).map(move |i| (i, j)))
+        .fold(0.0f64, |m, (i, j)| m.max(modes[(i, j)].abs()));
+    for &node in &frame.nodes {
+        for axis in 0..3 {
+            let row = 3 * (node - 1) + axis;
+            let moved = (0..modes.ncols())
+                .map(|j| modes[(row, j)].abs())
+                .fold(0.0, f64::max);
+            if moved > 1e-12 * largest {
+                return Err(refuse(format!(
+                    "the kept basis moves node {node} of the frame's ring `{}` by {moved:.2e} \
+                     (largest entry {largest:.2e}): the frame would not be attached to it",
+                    frame.name
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Builds the Exudyn body of `basis` (see the module): the frame on `rigid[0]`.
+pub fn exudyn_body(
+    body: &ImportedBody,
+    basis: &Basis,
+    rigid: &[RigidInterface],
+    averaging: &[AveragingInterface],
+) -> Result<ExudynBody> {
+    let model = &body.model;
+    if !body.has_coordinates {
+        return Err(refuse("the body file gives no node coordinates"));
+    }
+    let order = translation_order(model)?;
+    let frame = rigid.first().ok_or_else(|| {
+        refuse(
+            "the floating frame is attached to a rigid interface: give one as `rbe2:SET` \
+             (the first is the frame)",
+        )
+    })?;
+    let nodes = model.node_count();
 
     let keep: Vec<usize> = (0..basis.size())
         .filter(|&j| {
@@ -134,24 +165,7 @@ pub fn exudyn_body(
     let modes = Mat::from_fn(order.len(), keep.len(), |i, j| {
         basis.psi[(order[i], keep[j])]
     });
-    let largest = (0..modes.ncols())
-        .flat_map(|j| (0..modes.nrows()).map(move |i| (i, j)))
-        .fold(0.0f64, |m, (i, j)| m.max(modes[(i, j)].abs()));
-    for &node in &frame.nodes {
-        for axis in 0..3 {
-            let row = 3 * (node - 1) + axis;
-            let moved = (0..modes.ncols())
-                .map(|j| modes[(row, j)].abs())
-                .fold(0.0, f64::max);
-            if moved > 1e-12 * largest {
-                return Err(refuse(format!(
-                    "the kept basis moves node {node} of the frame's ring `{}` by {moved:.2e} \
-                     (largest entry {largest:.2e}): the frame would not be attached to it",
-                    frame.name
-                )));
-            }
-        }
-    }
+    frame_ring_still(frame, &modes)?;
 
     let kept = Basis {
         method: basis.method,
