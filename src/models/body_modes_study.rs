@@ -108,6 +108,38 @@ pub struct BodyModesStudy {
     pub influence_count: usize,
 }
 
+/// MAC of the full body's first elastic modes against a reduced model's expanded ones (the
+/// lowest 2 × compared of them, paired by best MAC), and the smallest of them (NaN with none);
+/// `eig` are the reduced model's modes, `skip` of them zero-energy, `hz` its elastic ones.
+fn paired_macs(
+    elastic: &GeneralizedEigen,
+    full_hz: &[f64],
+    basis: &Basis,
+    eig: &GeneralizedEigen,
+    skip: usize,
+    hz: &[f64],
+) -> (Vec<f64>, f64) {
+    let candidates = hz.len().min(2 * BODY_MODES_COMPARED);
+    let expanded = basis.psi.as_ref() * eig.vectors.subcols(skip, candidates);
+    let compared_full: Vec<usize> = (0..full_hz.len().min(BODY_MODES_COMPARED)).collect();
+    let macs: Vec<f64> = pair_modes(
+        elastic.vectors.as_ref(),
+        full_hz,
+        &compared_full,
+        expanded.as_ref(),
+        &hz[..candidates],
+    )
+    .iter()
+    .map(|pair| pair.mac)
+    .collect();
+    let min_mac = if candidates == 0 {
+        f64::NAN
+    } else {
+        macs.iter().copied().fold(1.0, f64::min)
+    };
+    (macs, min_mac)
+}
+
 /// Solves and measures everything the `modes` scene shows. `influence_count` modes are ranked
 /// by their influence (damping ratio `zeta`).
 pub fn body_modes_study(
@@ -205,26 +237,7 @@ pub fn body_modes_study(
         let max_angle = principal_angles(basis.psi.as_ref(), target)?
             .into_iter()
             .fold(0.0f64, f64::max);
-        // MAC of the full body's first elastic modes against the reduced model's expanded
-        // ones (the lowest 2 × compared of them, paired by best MAC).
-        let candidates = hz.len().min(2 * BODY_MODES_COMPARED);
-        let expanded = basis.psi.as_ref() * eig.vectors.subcols(skip, candidates);
-        let compared_full: Vec<usize> = (0..full_hz.len().min(BODY_MODES_COMPARED)).collect();
-        let macs: Vec<f64> = pair_modes(
-            elastic.vectors.as_ref(),
-            &full_hz,
-            &compared_full,
-            expanded.as_ref(),
-            &hz[..candidates],
-        )
-        .iter()
-        .map(|pair| pair.mac)
-        .collect();
-        let min_mac = if candidates == 0 {
-            f64::NAN
-        } else {
-            macs.iter().copied().fold(1.0, f64::min)
-        };
+        let (macs, min_mac) = paired_macs(&elastic, &full_hz, basis, eig, skip, &hz);
         let model_response = match &response {
             Some(r) => Some(r.of_model(model, basis)?),
             None => None,
