@@ -108,6 +108,9 @@ mod control {
             ok.html
                 .contains("queued: slab-modes --method cb,mc --modes 4")
         );
+        // The form comes back filled in with what was submitted.
+        assert!(ok.html.contains(r#"<option value="slab-modes" selected>"#));
+        assert!(ok.html.contains(r#"value="cb,mc">"#), "{}", ok.html);
         assert_eq!(
             asked.lock().unwrap().as_slice(),
             [["slab-modes", "--method", "cb,mc", "--modes", "4"].map(String::from)]

@@ -120,13 +120,25 @@ impl ControlPage {
             };
         }
         if !post {
-            return self.form(200, "");
+            return self.form(200, "", &[]);
         }
         match self.words(&fields) {
-            Err(e) => self.form(400, &format!("<p class=\"error\">{}</p>", html_escape(&e))),
+            Err(e) => self.form(
+                400,
+                &format!("<p class=\"error\">{}</p>", html_escape(&e)),
+                &fields,
+            ),
             Ok(words) => match (self.apply)(&words) {
-                Ok(done) => self.form(200, &format!("<p class=\"ok\">{}</p>", html_escape(&done))),
-                Err(e) => self.form(400, &format!("<p class=\"error\">{}</p>", html_escape(&e))),
+                Ok(done) => self.form(
+                    200,
+                    &format!("<p class=\"ok\">{}</p>", html_escape(&done)),
+                    &fields,
+                ),
+                Err(e) => self.form(
+                    400,
+                    &format!("<p class=\"error\">{}</p>", html_escape(&e)),
+                    &fields,
+                ),
             },
         }
     }
@@ -165,7 +177,15 @@ impl ControlPage {
         }
     }
 
-    fn form(&self, status: u16, message: &str) -> ControlAnswer {
+    /// The form, filled in with the request just submitted (`submitted`), so the teacher
+    /// changes one control at a time.
+    fn form(&self, status: u16, message: &str, submitted: &[(String, String)]) -> ControlAnswer {
+        let value = |name: &str| {
+            submitted
+                .iter()
+                .find(|(k, _)| k == name)
+                .map_or("", |(_, v)| v.as_str())
+        };
         let mut html = String::new();
         let _ = write!(
             html,
@@ -176,9 +196,14 @@ impl ControlPage {
             html_escape(&self.token)
         );
         for (id, summary) in &self.scenes {
+            let selected = if value("scene") == id {
+                " selected"
+            } else {
+                ""
+            };
             let _ = write!(
                 html,
-                "<option value=\"{0}\">{0} — {1}</option>",
+                "<option value=\"{0}\"{selected}>{0} — {1}</option>",
                 html_escape(id),
                 html_escape(summary)
             );
@@ -187,8 +212,9 @@ impl ControlPage {
         for (field, hint) in CONTROL_FIELDS {
             let _ = write!(
                 html,
-                "<label>{field} <input name=\"{field}\" placeholder=\"{}\"></label>",
-                html_escape(hint)
+                "<label>{field} <input name=\"{field}\" placeholder=\"{}\" value=\"{}\"></label>",
+                html_escape(hint),
+                html_escape(value(field))
             );
         }
         html.push_str("<button type=\"submit\">show to the class</button></form>");
