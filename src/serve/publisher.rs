@@ -73,8 +73,9 @@ impl Publisher {
                 };
                 let status = match (job.compute)() {
                     Ok(messages) => {
+                        let count = messages.len();
                         publish(messages);
-                        println!("showing: {}", job.label);
+                        println!("showing: {} ({count} messages)", job.label);
                         PublishStatus::Published(job.label)
                     }
                     Err(e) => {
