@@ -96,7 +96,8 @@ def refused(binary, args, says, code_wanted=True):
 
 
 def bad_input(binary, address):
-    """A port in use, an unknown scene, a missing and a corrupt recording."""
+    """A port in use, an unknown scene, a control token too short, a missing and a corrupt
+    recording."""
     with socket.socket() as held:
         held.bind((address, 0))
         held.listen()
@@ -104,6 +105,8 @@ def bad_input(binary, address):
         refused(binary, ["slab-modes", "--bind", address, "--port", str(port),
                          "--grpc-port", str(free_port(address))], "in use")
     refused(binary, ["no-such-scene", "--bind", address], "no-such-scene")
+    refused(binary, ["slab-modes", "--bind", address, "--control-token", "short"],
+            "--control-token")
     with tempfile.TemporaryDirectory() as tmp:
         missing = os.path.join(tmp, "missing.rrd")
         refused(binary, ["--file", missing, "--bind", address], "missing.rrd")

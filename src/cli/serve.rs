@@ -18,6 +18,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     };
 
     use crate::{
+        error::ServeError,
         scenes,
         serve::{
             Classroom, ControlPage, Publisher, ViewerFiles, WebServer, check_port, data_url,
@@ -52,8 +53,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     let opts = options.into_scene_options()?;
     let token = match control_token {
         Some(t) => checked_token(t)?,
-        None => new_control_token().map_err(|e| crate::Error::InvalidOption {
-            scene: "serve".into(),
+        None => new_control_token().map_err(|e| ServeError::System {
             reason: format!("no random control token from the operating system: {e}"),
         })?,
     };
@@ -175,8 +175,7 @@ fn read_commands(
     ctrlc::set_handler(move || {
         let _ = stop.send(Event::Stop);
     })
-    .map_err(|e| crate::Error::InvalidOption {
-        scene: "serve".into(),
+    .map_err(|e| crate::error::ServeError::System {
         reason: format!("cannot catch Ctrl-C: {e}"),
     })?;
     std::thread::spawn(move || {
@@ -277,12 +276,10 @@ fn checked_token(token: String) -> Result<String> {
     {
         Ok(token)
     } else {
-        Err(crate::Error::InvalidOption {
-            scene: "serve".into(),
-            reason: format!(
-                "--control-token `{token}`: at least 16 characters of A-Z, a-z, 0-9, -, _, ., ~"
-            ),
-        })
+        Err(crate::error::ServeError::ControlToken {
+            length: token.chars().count(),
+        }
+        .into())
     }
 }
 

@@ -29,6 +29,18 @@ pub enum ServeError {
     #[error("{path}: not a Rerun recording flexmodes can serve: {reason}")]
     Recording { path: String, reason: String },
 
+    /// A `--control-token` too short or with characters a URL would change (not echoed: it is
+    /// the teacher's secret).
+    #[error(
+        "--control-token: the token given ({length} characters) needs at least 16 characters, \
+         each of A-Z, a-z, 0-9, -, _, ., ~"
+    )]
+    ControlToken { length: usize },
+
+    /// No random control token from the operating system, or no Ctrl-C handler.
+    #[error("the classroom server cannot start: {reason}")]
+    System { reason: String },
+
     /// The embedded web viewer's files.
     #[error("the embedded web viewer: {reason}")]
     Viewer { reason: String },
