@@ -15,8 +15,10 @@ use crate::{
     analysis::relative_rms,
     bench::{SizeBench, growth_exponent},
     dynamics::{AxisType, IntegratorParameters, simulate},
-    fem::{SlabParameters, slab},
-    models::{PROBE_NODE, default_boundary, probe_history, slab_body, slab_node, slab_system},
+    fem::{FeModel, SlabParameters, slab},
+    models::{
+        PROBE_NODE, Scenario, default_boundary, probe_history, slab_body, slab_node, slab_system,
+    },
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent, method_color},
     reduction::{Method, NodalFixedAxes},
     report::{Report, markdown_table, sig},
@@ -46,6 +48,58 @@ struct SizePoint {
     steps: usize,
 }
 
+/// Every method of [`METHODS`] simulated on one mesh, NR first (the others' reference);
+/// `(first, count)` number the points in the progress messages.
+fn points_on_mesh(
+    scenario: &Scenario,
+    model: &FeModel,
+    params: &IntegratorParameters,
+    (first, count): (usize, usize),
+    progress: &Progress,
+) -> Result<Vec<SizePoint>> {
+    let axes = AxisType::NodalFixed(NodalFixedAxes::slab_default());
+    let boundary = default_boundary(model);
+    let probe = slab_node(model, PROBE_NODE);
+    let mut reference: Option<[Vec<f64>; 3]> = None;
+    let mut points = Vec::new();
+    for (j, &method) in METHODS.iter().enumerate() {
+        progress.phase(&format!(
+            "point {} of {count}: {} on {} DOF",
+            first + j + 1,
+            method.id(),
+            model.dof_count()
+        ))?;
+        let start = Instant::now();
+        let body = slab_body(model, method, axes, &boundary, KEPT_MODES)?;
+        let offline_s = start.elapsed().as_secs_f64();
+        let coordinates = body.modes();
+        let (system, state) = slab_system(scenario, body)?;
+        let sim = simulate(&system, &state, params, progress)?;
+        let history = probe_history(&system, &sim, probe);
+        let rel_rms_error = match &reference {
+            Some(r) => {
+                (0..3)
+                    .map(|d| relative_rms(&history[d], &r[d]))
+                    .sum::<f64>()
+                    / 3.0
+            }
+            None => 0.0,
+        };
+        if reference.is_none() {
+            reference = Some(history);
+        }
+        points.push(SizePoint {
+            method,
+            coordinates,
+            offline_s,
+            online_s_per_sim_s: sim.wall_time_s / SIZES_RUN_S,
+            rel_rms_error,
+            steps: sim.steps,
+        });
+    }
+    Ok(points)
+}
+
 /// Runs `scene` (slab-sim1 or slab-sim2) on every mesh of `sizes` with the explicit scheme
 /// (adaptive steps) over [`SIZES_RUN_S`].
 pub fn bench_sim_sizes(
@@ -54,7 +108,6 @@ pub fn bench_sim_sizes(
     progress: &Progress,
 ) -> Result<SizeBench> {
     let scenario = super::bench_scenario(scene)?;
-    let axes = AxisType::NodalFixed(NodalFixedAxes::slab_default());
     let params = IntegratorParameters {
         end_time: SIZES_RUN_S,
         ..Default::default()
@@ -63,45 +116,8 @@ pub fn bench_sim_sizes(
     let count = sizes.len() * METHODS.len();
     for (s, &bricks) in sizes.iter().enumerate() {
         let model = slab(&SlabParameters::refined(bricks)?);
-        let boundary = default_boundary(&model);
-        let probe = slab_node(&model, PROBE_NODE);
-        let mut reference: Option<[Vec<f64>; 3]> = None;
-        let mut points = Vec::new();
-        for (j, &method) in METHODS.iter().enumerate() {
-            progress.phase(&format!(
-                "point {} of {count}: {} on {} DOF",
-                s * METHODS.len() + j + 1,
-                method.id(),
-                model.dof_count()
-            ))?;
-            let start = Instant::now();
-            let body = slab_body(&model, method, axes, &boundary, KEPT_MODES)?;
-            let offline_s = start.elapsed().as_secs_f64();
-            let coordinates = body.modes();
-            let (system, state) = slab_system(&scenario, body)?;
-            let sim = simulate(&system, &state, &params, progress)?;
-            let history = probe_history(&system, &sim, probe);
-            let rel_rms_error = match &reference {
-                Some(r) => {
-                    (0..3)
-                        .map(|d| relative_rms(&history[d], &r[d]))
-                        .sum::<f64>()
-                        / 3.0
-                }
-                None => 0.0,
-            };
-            if reference.is_none() {
-                reference = Some(history);
-            }
-            points.push(SizePoint {
-                method,
-                coordinates,
-                offline_s,
-                online_s_per_sim_s: sim.wall_time_s / SIZES_RUN_S,
-                rel_rms_error,
-                steps: sim.steps,
-            });
-        }
+        let first = s * METHODS.len();
+        let points = points_on_mesh(&scenario, &model, &params, (first, count), progress)?;
         per_size.push((model.dof_count(), bricks, points));
     }
     let series_of = |m: Method| -> Vec<(f64, f64)> {
