@@ -292,6 +292,77 @@ impl<'a> BodyReducer<'a> {
         self.reduce_with(method, kept, None)
     }
 
+    /// Moment matching about the lowest elastic ω of the interface loads made
+    /// self-equilibrated, beside the zero-energy modes; and what the row says of it.
+    fn moment_matching_basis(&mut self, kept: usize) -> Result<(Basis, String)> {
+        let loads = self.loads()?;
+        let lowest = self.lowest_elastic_omega()?;
+        let blocks = kept.div_ceil(loads.count()).max(1);
+        let note = format!(
+            "Krylov blocks about s0 = {:.4e} rad/s (the lowest elastic ω) of the {} \
+             interface loads made self-equilibrated, {blocks} block(s), beside the \
+             zero-energy modes",
+            lowest,
+            loads.count()
+        );
+        self.progress.phase("moment matching")?;
+        let zero = self.zero_energy_modes();
+        let labels = (1..=zero.ncols())
+            .map(|k| format!("zero-energy {k}"))
+            .collect();
+        let basis = moment_matching(
+            self.model,
+            &MomentMatchingParameters {
+                inputs: Vec::new(),
+                held: Vec::new(),
+                blocks,
+                s0: lowest,
+                loads: Some((loads.matrix, loads.labels)),
+                leading: Some((zero, labels)),
+                ..Default::default()
+            },
+        )?
+        .basis;
+        Ok((basis, note))
+    }
+
+    /// Balanced truncation of the lowest elastic free-free modes driven by the interface
+    /// loads, beside the zero-energy modes; what the row says of it, and the shared free-mode
+    /// solve's time, s.
+    fn balanced_basis(&mut self, kept: usize) -> Result<(Basis, String, f64)> {
+        let loads = self.loads()?;
+        let count = (BALANCED_MODES_PER_VECTOR * kept).max(kept + 8);
+        let (modes, solve_s) = self.free_modes(count)?;
+        let z = self.full.zero_modes;
+        // A small body has fewer modes than asked.
+        let count = count.min(modes.values.len().saturating_sub(z));
+        let lowest = self.lowest_elastic_omega()?;
+        let elastic = GeneralizedEigen {
+            values: modes.values[z..].to_vec(),
+            vectors: modes.vectors.subcols(z, count).to_owned(),
+            residuals: modes.residuals[z..].to_vec(),
+            zero_energy: 0,
+            sturm: None,
+        };
+        let note = format!(
+            "position gramian of the {count} lowest elastic free-free modes driven by \
+             the {} interface loads, damping ζ = {BALANCED_ZETA} at the lowest, beside \
+             the zero-energy modes",
+            loads.count()
+        );
+        self.progress.phase("balanced truncation")?;
+        let basis = modal_balanced_basis(
+            modes.vectors.subcols(0, z),
+            &elastic,
+            &loads,
+            &ModalBalancedParameters {
+                vectors: kept,
+                alpha: 2.0 * BALANCED_ZETA / lowest,
+            },
+        )?;
+        Ok((basis, note, solve_s))
+    }
+
     fn reduce_with(
         &mut self,
         method: Method,
@@ -372,67 +443,15 @@ impl<'a> BodyReducer<'a> {
                 loaded_modes_basis(modes)
             }
             Method::MomentMatching => {
-                let loads = self.loads()?;
-                let lowest = self.lowest_elastic_omega()?;
-                let blocks = kept.div_ceil(loads.count()).max(1);
-                note = Some(format!(
-                    "Krylov blocks about s0 = {:.4e} rad/s (the lowest elastic ω) of the {} \
-                     interface loads made self-equilibrated, {blocks} block(s), beside the \
-                     zero-energy modes",
-                    lowest,
-                    loads.count()
-                ));
-                self.progress.phase("moment matching")?;
-                let zero = self.zero_energy_modes();
-                let labels = (1..=zero.ncols())
-                    .map(|k| format!("zero-energy {k}"))
-                    .collect();
-                moment_matching(
-                    model,
-                    &MomentMatchingParameters {
-                        inputs: Vec::new(),
-                        held: Vec::new(),
-                        blocks,
-                        s0: lowest,
-                        loads: Some((loads.matrix, loads.labels)),
-                        leading: Some((zero, labels)),
-                        ..Default::default()
-                    },
-                )?
-                .basis
+                let (basis, says) = self.moment_matching_basis(kept)?;
+                note = Some(says);
+                basis
             }
             Method::BalancedTruncation => {
-                let loads = self.loads()?;
-                let count = (BALANCED_MODES_PER_VECTOR * kept).max(kept + 8);
-                let (modes, solve_s) = self.free_modes(count)?;
+                let (basis, says, solve_s) = self.balanced_basis(kept)?;
+                note = Some(says);
                 shared_s = solve_s;
-                let z = self.full.zero_modes;
-                // A small body has fewer modes than asked.
-                let count = count.min(modes.values.len().saturating_sub(z));
-                let lowest = self.lowest_elastic_omega()?;
-                let elastic = GeneralizedEigen {
-                    values: modes.values[z..].to_vec(),
-                    vectors: modes.vectors.subcols(z, count).to_owned(),
-                    residuals: modes.residuals[z..].to_vec(),
-                    zero_energy: 0,
-                    sturm: None,
-                };
-                note = Some(format!(
-                    "position gramian of the {count} lowest elastic free-free modes driven by \
-                     the {} interface loads, damping ζ = {BALANCED_ZETA} at the lowest, beside \
-                     the zero-energy modes",
-                    loads.count()
-                ));
-                self.progress.phase("balanced truncation")?;
-                modal_balanced_basis(
-                    modes.vectors.subcols(0, z),
-                    &elastic,
-                    &loads,
-                    &ModalBalancedParameters {
-                        vectors: kept,
-                        alpha: 2.0 * BALANCED_ZETA / lowest,
-                    },
-                )?
+                basis
             }
             other => {
                 return Err(ReductionError::MethodNeedsContext {
