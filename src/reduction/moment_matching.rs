@@ -87,18 +87,7 @@ pub struct MomentMatching {
 /// A free body (nothing held) needs $s_0 > 0$, $K$ being singular; with its zero-energy modes
 /// as `leading` vectors the basis is those modes and the Krylov space of its elastic response.
 pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<MomentMatching> {
-    // Free DOF: inputs and interior, in the body's order. Loads alone need no input DOF.
-    let mut free: Vec<usize> = if p.inputs.is_empty() && p.loads.is_some() {
-        let mut role = vec![0u8; model.dof_count()];
-        if !p.held.is_empty() {
-            super::partition::check_dof_set(model, "held", &p.held, &mut role, 2)?;
-        }
-        (0..model.dof_count()).filter(|&d| role[d] == 0).collect()
-    } else {
-        let partition = Partition::from_dofs(model, &p.inputs, &p.held)?;
-        partition.b.iter().chain(&partition.i).copied().collect()
-    };
-    free.sort_unstable();
+    let free = free_dofs(model, p)?;
     let nf = free.len();
     let mut statistics = ReductionStatistics::default();
     let started = std::time::Instant::now();
@@ -130,20 +119,8 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
         map
     };
     let extra = p.loads.as_ref().map_or(0, |(l, _)| l.ncols());
-    if let Some((l, labels)) = &p.loads
-        && (l.nrows() != model.dof_count() || labels.len() != l.ncols())
-    {
-        return Err(ReductionError::InvalidDofSet {
-            set: "moment-matching loads".into(),
-            reason: format!(
-                "{} × {} loads with {} labels for a body of {} DOF",
-                l.nrows(),
-                l.ncols(),
-                labels.len(),
-                model.dof_count()
-            ),
-        }
-        .into());
+    if let Some((l, labels)) = &p.loads {
+        check_vectors(model, "loads", l, labels)?;
     }
     let b1 = Mat::from_fn(nf, p.inputs.len() + extra, |r, c| {
         if c < p.inputs.len() {
@@ -158,19 +135,7 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
     let mut mv = Mat::<f64>::zeros(nf, 0);
     let mut columns = Vec::new();
     if let Some((lead, labels)) = &p.leading {
-        if lead.nrows() != model.dof_count() || labels.len() != lead.ncols() {
-            return Err(ReductionError::InvalidDofSet {
-                set: "moment-matching leading vectors".into(),
-                reason: format!(
-                    "{} × {} vectors with {} labels for a body of {} DOF",
-                    lead.nrows(),
-                    lead.ncols(),
-                    labels.len(),
-                    model.dof_count()
-                ),
-            }
-            .into());
-        }
+        check_vectors(model, "leading vectors", lead, labels)?;
         v = Mat::from_fn(nf, lead.ncols(), |r, c| lead[(free[r], c)]);
         mv = m_ff.mul(v.as_ref());
         columns.extend(labels.iter().map(|label| Column {
@@ -267,6 +232,42 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
         },
         deflated,
     })
+}
+
+/// The free DOF, ascending: inputs and interior (loads alone need no input DOF).
+fn free_dofs(model: &FeModel, p: &MomentMatchingParameters) -> Result<Vec<usize>> {
+    let mut free: Vec<usize> = if p.inputs.is_empty() && p.loads.is_some() {
+        let mut role = vec![0u8; model.dof_count()];
+        if !p.held.is_empty() {
+            super::partition::check_dof_set(model, "held", &p.held, &mut role, 2)?;
+        }
+        (0..model.dof_count()).filter(|&d| role[d] == 0).collect()
+    } else {
+        let partition = Partition::from_dofs(model, &p.inputs, &p.held)?;
+        partition.b.iter().chain(&partition.i).copied().collect()
+    };
+    free.sort_unstable();
+    Ok(free)
+}
+
+/// Refuses `vectors` (the loads or the leading vectors) without a row per DOF of the body or
+/// a label per column.
+fn check_vectors(model: &FeModel, what: &str, vectors: &Mat<f64>, labels: &[String]) -> Result<()> {
+    if vectors.nrows() != model.dof_count() || labels.len() != vectors.ncols() {
+        return Err(ReductionError::InvalidDofSet {
+            set: format!("moment-matching {what}"),
+            reason: format!(
+                "{} × {} {} with {} labels for a body of {} DOF",
+                vectors.nrows(),
+                vectors.ncols(),
+                if what == "loads" { "loads" } else { "vectors" },
+                labels.len(),
+                model.dof_count()
+            ),
+        }
+        .into());
+    }
+    Ok(())
 }
 
 fn m_norm(m: &crate::linalg::MassMatrix, x: faer::ColRef<'_, f64>) -> f64 {
