@@ -10,9 +10,11 @@
 
 use std::time::Instant;
 
+use faer::MatRef;
+
 use super::{
     BODY_METHODS, BodyAdvice, BodyInterfaces, BodyReducer, InterfaceResponse, InterfaceStatics,
-    advise, modes_up_to,
+    ReducedBody, advise, modes_up_to,
 };
 use crate::{
     Error, Progress, Result,
@@ -116,14 +118,69 @@ pub struct BodyComparison {
     pub frf_description: Option<String>,
 }
 
-/// Reduces `body` by every method and kept-mode count of `p` and measures each model against
-/// the full body's own checked modes.
-pub fn compare_body_methods(
+/// A reduced model's largest relative error over the `full_hz.len()` compared elastic
+/// frequencies (infinite with fewer modes) and the smallest MAC of the full body's modes
+/// (`elastic_vectors`) against its expanded ones, paired by best MAC among twice as many.
+fn frequency_and_mac(
+    reduced: &ReducedBody,
+    full_hz: &[f64],
+    elastic_vectors: MatRef<'_, f64>,
+) -> (f64, f64) {
+    let compared = full_hz.len();
+    let hz = reduced.elastic_hz();
+    let freq_rel_error = if hz.len() < compared {
+        f64::INFINITY
+    } else {
+        (0..compared)
+            .map(|j| ((hz[j] - full_hz[j]) / full_hz[j]).abs())
+            .fold(0.0, f64::max)
+    };
+    let candidates = hz.len().min(2 * compared);
+    let expanded = reduced.basis.psi.as_ref()
+        * reduced
+            .modes
+            .vectors
+            .subcols(reduced.zero_modes, candidates);
+    let pairs = pair_modes(
+        elastic_vectors,
+        full_hz,
+        &(0..compared).collect::<Vec<_>>(),
+        expanded.as_ref(),
+        &hz[..candidates],
+    );
+    let min_mac = if candidates == 0 {
+        0.0
+    } else {
+        pairs.iter().map(|q| q.mac).fold(1.0, f64::min)
+    };
+    (freq_rel_error, min_mac)
+}
+
+/// Marks the points on the front of offline time against frequency error. Errors below
+/// round-off are equal: a model exact to 1e-13 is not better than one exact to 2e-13.
+fn mark_pareto(points: &mut [BodyComparisonPoint]) {
+    let flags = pareto_flags(
+        &points
+            .iter()
+            .map(|q| {
+                (
+                    q.offline_s,
+                    three_digits(q.freq_rel_error.max(ROUND_OFF_ERROR)),
+                )
+            })
+            .collect::<Vec<_>>(),
+    );
+    for (q, f) in points.iter_mut().zip(flags) {
+        q.pareto = f && q.freq_rel_error.is_finite();
+    }
+}
+
+/// The interfaces compared across: `p.boundary`, or the body's own default interface nodes;
+/// the items as given (node numbers or set names) and the interfaces they make.
+fn comparison_interfaces(
     body: &ImportedBody,
     p: &BodyComparisonParameters,
-    progress: &Progress,
-) -> Result<BodyComparison> {
-    let model = &body.model;
+) -> Result<(Vec<String>, BodyInterfaces)> {
     let items = match &p.boundary {
         Some(b) => b.clone(),
         None => body
@@ -136,6 +193,18 @@ pub fn compare_body_methods(
         interface_modes: p.interface_modes,
         ..BodyInterfaces::of(body, &items, None)?
     };
+    Ok((items, interfaces))
+}
+
+/// Reduces `body` by every method and kept-mode count of `p` and measures each model against
+/// the full body's own checked modes.
+pub fn compare_body_methods(
+    body: &ImportedBody,
+    p: &BodyComparisonParameters,
+    progress: &Progress,
+) -> Result<BodyComparison> {
+    let model = &body.model;
+    let (items, interfaces) = comparison_interfaces(body, p)?;
     if p.modes.is_empty() || p.modes.contains(&0) {
         return Err(ReductionError::NoKeptModes {
             counts: p.modes.clone(),
@@ -223,32 +292,8 @@ pub fn compare_body_methods(
             } else {
                 None
             };
-            let hz = reduced.elastic_hz();
-            let freq_rel_error = if hz.len() < compared {
-                f64::INFINITY
-            } else {
-                (0..compared)
-                    .map(|j| ((hz[j] - full_hz[j]) / full_hz[j]).abs())
-                    .fold(0.0, f64::max)
-            };
-            let candidates = hz.len().min(2 * compared);
-            let expanded = reduced.basis.psi.as_ref()
-                * reduced
-                    .modes
-                    .vectors
-                    .subcols(reduced.zero_modes, candidates);
-            let pairs = pair_modes(
-                elastic_vectors.as_ref(),
-                &full_hz[..compared],
-                &(0..compared).collect::<Vec<_>>(),
-                expanded.as_ref(),
-                &hz[..candidates],
-            );
-            let min_mac = if candidates == 0 {
-                0.0
-            } else {
-                pairs.iter().map(|q| q.mac).fold(1.0, f64::min)
-            };
+            let (freq_rel_error, min_mac) =
+                frequency_and_mac(&reduced, &full_hz[..compared], elastic_vectors.as_ref());
             let frf_error = match &frf {
                 Some(response) => Some(response.error_of(model, &reduced.basis)?),
                 None => None,
@@ -270,22 +315,7 @@ pub fn compare_body_methods(
     }
     // Listed by method, then by kept modes ascending.
     points.sort_by_key(|q| (p.methods.iter().position(|&m| m == q.method), q.modes));
-    // Errors below round-off are equal: a model exact to 1e-13 is not better than one exact
-    // to 2e-13.
-    let flags = pareto_flags(
-        &points
-            .iter()
-            .map(|q| {
-                (
-                    q.offline_s,
-                    three_digits(q.freq_rel_error.max(ROUND_OFF_ERROR)),
-                )
-            })
-            .collect::<Vec<_>>(),
-    );
-    for (q, f) in points.iter_mut().zip(flags) {
-        q.pareto = f && q.freq_rel_error.is_finite();
-    }
+    mark_pareto(&mut points);
     let advice = advise(
         &points,
         p,
