@@ -13,11 +13,11 @@ use super::{
 use crate::{
     Error, Result,
     analysis::{elastic_hz, lowest_free_free_modes, reduced_modes},
-    fem::{SlabParameters, slab},
+    fem::{FeModel, SlabParameters, slab},
     linalg::{check_reduction_memory, peak_resident_bytes},
     reduction::{
-        InteriorProblem, Method, ModeCondensationRoute, ModeSelection, SolverPath,
-        craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
+        Basis, InteriorProblem, Method, ModeCondensationRoute, ModeSelection, ReductionStatistics,
+        SolverPath, craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
     },
     report::{Report, Table, fmt_hz, sig, sig_vec},
 };
@@ -56,13 +56,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         .clone()
         .unwrap_or_else(|| params.bottom_corners().to_vec());
     let kept = opts.modes_or_default(info);
-    let mut gr_masters = boundary.clone();
-    for p in EXTRA_GUYAN_MASTER_POSITIONS {
-        let node = params.nearest_node(p);
-        if !gr_masters.contains(&node) {
-            gr_masters.push(node);
-        }
-    }
+    let gr_masters = guyan_masters(&params, &boundary);
 
     opts.progress.phase("assembly")?;
     let started = Instant::now();
@@ -88,20 +82,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     let mut bars = FrequencyBars::new(SHOWN_MODES);
     for &m in &methods {
         let started = Instant::now();
-        let basis = match m {
-            Method::CraigBampton => cb.clone(),
-            Method::ModalTruncation => {
-                modal_truncation_from(&mut problem, ModeSelection::Count(kept))?
-            }
-            Method::ModeCondensation => {
-                let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
-                mode_condensation_from(&mut problem, ModeSelection::Count(kept), route)?
-            }
-            _ => {
-                opts.progress.phase("Guyan reduction")?;
-                guyan_on(&model, &gr_masters, SolverPath::Auto)?
-            }
-        };
+        let basis = refined_basis(m, &model, &mut problem, &cb, kept, &gr_masters, opts)?;
         let elapsed = if m == Method::CraigBampton {
             reduction_s
         } else {
@@ -146,23 +127,8 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     r.insert("total_mass_kg".into(), json!(sig(model.total_mass())));
     r.insert("dofs".into(), json!(dofs));
     r.insert("nnz".into(), json!(model.stiffness_nnz()));
-    r.insert("factor_nnz".into(), json!(phases.factor_nnz));
-    r.insert("sparse".into(), json!(phases.sparse));
-    r.insert(
-        "timing_s".into(),
-        json!({
-            "assembly": sig(assembly_s),
-            "factorization": sig(phases.factorization_s),
-            "constraint_modes": sig(phases.constraint_modes_s),
-            "eigen": sig(phases.eigen_s),
-            "reduction": sig(reduction_s),
-        }),
-    );
+    insert_phases(r, &phases, assembly_s, reduction_s);
     r.insert("method_time_s".into(), Value::Object(method_s));
-    r.insert(
-        "eigen_max_residual".into(),
-        json!(phases.eigen_max_residual),
-    );
     r.insert("peak_memory_bytes".into(), json!(peak));
     r.insert("estimated_memory_bytes".into(), json!(needed));
     report.table = format!(
@@ -190,25 +156,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         fmt_hz(&fixed_interface_hz[..fixed_interface_hz.len().min(8)]),
         fmt_hz(&free_free_hz),
     );
-    let markdown = format!(
-        "# slab-modes, refined\n\nThe App. B slab (4 × 2 × 1 m, E = 0.2e6 Pa, ν = 0.33, 62.4 \
-         kg lumped equally per brick corner) meshed with {}×{}×{} trilinear bricks. The \
-         interface defaults to the four bottom corners, nodes 16, 18, 28, 30 of App. B. K is \
-         assembled sparse; Craig-Bampton factors K_ii once (sparse Cholesky, nested-dissection ordering), \
-         takes the constraint modes as right-hand sides and the kept fixed-interface modes \
-         from shift-invert block Lanczos on the same factor; MT and MC reuse both (MC from \
-         the kept modes above {} interior DOF). Four point supports soften as the mesh \
-         refines, so the fixed-interface frequencies do not converge; the free-free ones \
-         converge from above. Views: the surface wireframe (grid lines thinned to at most 8 \
-         per face), free-free modes, constraint modes and fixed-interface modes drawn on it. \
-         {}\n\n{}",
-        bricks[0],
-        bricks[1],
-        bricks[2],
-        crate::reduction::MC_COMPLETE_ROUTE_LIMIT,
-        bars.caption(),
-        report.table
-    );
+    let markdown = scene_text(bricks, &bars.caption(), &report.table);
 
     let (shapes, labels) =
         problem.constraint_shapes(super::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES)?;
@@ -233,4 +181,90 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         timeline: Some("phase".into()),
         y_up: false,
     })
+}
+
+/// The Guyan masters: the boundary and the nodes nearest App. B's extra masters.
+fn guyan_masters(params: &SlabParameters, boundary: &[usize]) -> Vec<usize> {
+    let mut masters = boundary.to_vec();
+    for p in EXTRA_GUYAN_MASTER_POSITIONS {
+        let node = params.nearest_node(p);
+        if !masters.contains(&node) {
+            masters.push(node);
+        }
+    }
+    masters
+}
+
+/// One method's basis on the refined slab: CB's (already computed), MT and MC from the same
+/// interior problem, Guyan on its masters.
+fn refined_basis(
+    m: Method,
+    model: &FeModel,
+    problem: &mut InteriorProblem,
+    cb: &Basis,
+    kept: usize,
+    gr_masters: &[usize],
+    opts: &SceneOptions,
+) -> Result<Basis> {
+    match m {
+        Method::CraigBampton => Ok(cb.clone()),
+        Method::ModalTruncation => modal_truncation_from(problem, ModeSelection::Count(kept)),
+        Method::ModeCondensation => {
+            let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
+            mode_condensation_from(problem, ModeSelection::Count(kept), route)
+        }
+        _ => {
+            opts.progress.phase("Guyan reduction")?;
+            guyan_on(model, gr_masters, SolverPath::Auto)
+        }
+    }
+}
+
+/// The scene's text around its `table`.
+fn scene_text(bricks: [usize; 3], caption: &str, table: &str) -> String {
+    format!(
+        "# slab-modes, refined\n\nThe App. B slab (4 × 2 × 1 m, E = 0.2e6 Pa, ν = 0.33, 62.4 \
+         kg lumped equally per brick corner) meshed with {}×{}×{} trilinear bricks. The \
+         interface defaults to the four bottom corners, nodes 16, 18, 28, 30 of App. B. K is \
+         assembled sparse; Craig-Bampton factors K_ii once (sparse Cholesky, nested-dissection ordering), \
+         takes the constraint modes as right-hand sides and the kept fixed-interface modes \
+         from shift-invert block Lanczos on the same factor; MT and MC reuse both (MC from \
+         the kept modes above {} interior DOF). Four point supports soften as the mesh \
+         refines, so the fixed-interface frequencies do not converge; the free-free ones \
+         converge from above. Views: the surface wireframe (grid lines thinned to at most 8 \
+         per face), free-free modes, constraint modes and fixed-interface modes drawn on it. \
+         {}\n\n{}",
+        bricks[0],
+        bricks[1],
+        bricks[2],
+        crate::reduction::MC_COMPLETE_ROUTE_LIMIT,
+        caption,
+        table
+    )
+}
+
+/// The Craig–Bampton work's phases into the results: the factor's size and path, each phase's
+/// time and the largest eigenpair residual.
+fn insert_phases(
+    r: &mut Map<String, Value>,
+    phases: &ReductionStatistics,
+    assembly_s: f64,
+    reduction_s: f64,
+) {
+    r.insert("factor_nnz".into(), json!(phases.factor_nnz));
+    r.insert("sparse".into(), json!(phases.sparse));
+    r.insert(
+        "timing_s".into(),
+        json!({
+            "assembly": sig(assembly_s),
+            "factorization": sig(phases.factorization_s),
+            "constraint_modes": sig(phases.constraint_modes_s),
+            "eigen": sig(phases.eigen_s),
+            "reduction": sig(reduction_s),
+        }),
+    );
+    r.insert(
+        "eigen_max_residual".into(),
+        json!(phases.eigen_max_residual),
+    );
 }
