@@ -121,43 +121,19 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     r.insert("principal_angle_cb_mc_max_rad".into(), json!(max_angle));
 
     let b = format!("{boundary:?}");
-    let rows = vec![
-        vec![
-            "free-free (Fig. 6-1)".into(),
-            fmt_hz(&free_free_hz),
-            "5.94776, 66.7191, 123.281 (bending 1, axial 1, 2)".into(),
+    let rows = mode_set_rows(
+        &b,
+        kept,
+        [
+            &free_free_hz,
+            &guyan_a_hz,
+            &guyan_b_hz,
+            &guyan_c_hz,
+            &fixed_interface_hz,
+            &cb_hz,
+            &mc_hz,
         ],
-        vec![
-            "Guyan (a), masters 1, 3, 5".into(),
-            fmt_hz(&guyan_a_hz),
-            "5.95823, 71.1763, 123.281".into(),
-        ],
-        vec![
-            "Guyan (b), masters 1, 2, 5".into(),
-            fmt_hz(&guyan_b_hz),
-            "6.33897, 69.5245, ...".into(),
-        ],
-        vec![
-            format!("Guyan (c), masters {b}"),
-            fmt_hz(&guyan_c_hz),
-            "-".into(),
-        ],
-        vec![
-            format!("fixed-interface, interface {b}"),
-            fmt_hz(&fixed_interface_hz),
-            "3.10366, 12.3283, ... (§8.5.2, nodes 1, 5)".into(),
-        ],
-        vec![
-            format!("Craig-Bampton, {kept} modes"),
-            fmt_hz(&cb_hz),
-            "-".into(),
-        ],
-        vec![
-            format!("mode condensation, {kept} modes"),
-            fmt_hz(&mc_hz),
-            "-".into(),
-        ],
-    ];
+    );
     report.table = format!(
         "{}\nLargest principal angle between span(Ψ_CB) and span(Ψ_MC): {:.2e} rad (§6.5.4: they \
          span one space).\n",
@@ -168,22 +144,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         sig(max_angle)
     );
 
-    let markdown = format!(
-        "# beam-modes\n\nThe App. A beam (1 m, E = 30e5 Pa, I = 1.0417e-6 m⁴, A = 0.005 m², \
-         four Euler-Bernoulli elements, rotations Guyan-condensed, lumped masses 0.1, 0.2, 0.2, \
-         0.2, 0.1 kg) and the mode sets of chapter 6. Each view animates one set over the \
-         `phase` timeline (one period in 32 steps); labels carry frequencies.\n\n\
-         * **free_free**: the seven elastic free-free modes (Fig. 6-1).\n\
-         * **guyan_a / guyan_b**: free-free modes of the Guyan models with masters 1, 3, 5 and \
-         1, 2, 5 (Fig. 6-3): Guyan raises frequencies, and the lopsided masters of (b) break the \
-         axial symmetry.\n\
-         * **guyan_c**: constraint modes for masters {b} (Fig. 6-5).\n\
-         * **boundary / fixed_interface** (tab \"fixed\"): modal truncation's boundary movements (no interior \
-         motion, Fig. 6-6) and the fixed-interface normal modes (Fig. 6-7).\n\
-         * **craig_bampton / mode_condensation** (tabs \"CB\", \"MC\"): Ψ_CB and Ψ_MC with {kept} kept modes \
-         (Figs. 6-8, 6-9); different columns, one column space.\n\n{}",
-        report.table
-    );
+    let markdown = scene_text(&b, kept, &report.table);
 
     let mut visuals = vec![undeformed(&model)];
     let mut tabs = Vec::new();
@@ -281,4 +242,66 @@ fn tab_title(set: &str) -> &str {
         "mode_condensation" => "MC",
         other => other,
     }
+}
+
+/// The mode sets' table rows against the published values: free-free, Guyan (a), (b), (c),
+/// fixed-interface, Craig–Bampton and mode condensation, Hz; `b` is the boundary as written.
+fn mode_set_rows(
+    b: &str,
+    kept: usize,
+    [ff, ga, gb, gc, fi, cb, mc]: [&[f64]; 7],
+) -> Vec<Vec<String>> {
+    vec![
+        vec![
+            "free-free (Fig. 6-1)".into(),
+            fmt_hz(ff),
+            "5.94776, 66.7191, 123.281 (bending 1, axial 1, 2)".into(),
+        ],
+        vec![
+            "Guyan (a), masters 1, 3, 5".into(),
+            fmt_hz(ga),
+            "5.95823, 71.1763, 123.281".into(),
+        ],
+        vec![
+            "Guyan (b), masters 1, 2, 5".into(),
+            fmt_hz(gb),
+            "6.33897, 69.5245, ...".into(),
+        ],
+        vec![format!("Guyan (c), masters {b}"), fmt_hz(gc), "-".into()],
+        vec![
+            format!("fixed-interface, interface {b}"),
+            fmt_hz(fi),
+            "3.10366, 12.3283, ... (§8.5.2, nodes 1, 5)".into(),
+        ],
+        vec![
+            format!("Craig-Bampton, {kept} modes"),
+            fmt_hz(cb),
+            "-".into(),
+        ],
+        vec![
+            format!("mode condensation, {kept} modes"),
+            fmt_hz(mc),
+            "-".into(),
+        ],
+    ]
+}
+
+/// The scene's text around its `table`; `b` is the boundary as written.
+fn scene_text(b: &str, kept: usize, table: &str) -> String {
+    format!(
+        "# beam-modes\n\nThe App. A beam (1 m, E = 30e5 Pa, I = 1.0417e-6 m⁴, A = 0.005 m², \
+         four Euler-Bernoulli elements, rotations Guyan-condensed, lumped masses 0.1, 0.2, 0.2, \
+         0.2, 0.1 kg) and the mode sets of chapter 6. Each view animates one set over the \
+         `phase` timeline (one period in 32 steps); labels carry frequencies.\n\n\
+         * **free_free**: the seven elastic free-free modes (Fig. 6-1).\n\
+         * **guyan_a / guyan_b**: free-free modes of the Guyan models with masters 1, 3, 5 and \
+         1, 2, 5 (Fig. 6-3): Guyan raises frequencies, and the lopsided masters of (b) break the \
+         axial symmetry.\n\
+         * **guyan_c**: constraint modes for masters {b} (Fig. 6-5).\n\
+         * **boundary / fixed_interface** (tab \"fixed\"): modal truncation's boundary movements (no interior \
+         motion, Fig. 6-6) and the fixed-interface normal modes (Fig. 6-7).\n\
+         * **craig_bampton / mode_condensation** (tabs \"CB\", \"MC\"): Ψ_CB and Ψ_MC with {kept} kept modes \
+         (Figs. 6-8, 6-9); different columns, one column space.\n\n{}",
+        table
+    )
 }
