@@ -108,16 +108,17 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
     );
     let r = &mut report.results;
-    r.insert("free_free_hz".into(), json!(sig_vec(&free_free_hz)));
-    r.insert("guyan_a_hz".into(), json!(sig_vec(&guyan_a_hz)));
-    r.insert("guyan_b_hz".into(), json!(sig_vec(&guyan_b_hz)));
-    r.insert("guyan_c_hz".into(), json!(sig_vec(&guyan_c_hz)));
-    r.insert(
-        "fixed_interface_hz".into(),
-        json!(sig_vec(&fixed_interface_hz)),
-    );
-    r.insert("cb_hz".into(), json!(sig_vec(&cb_hz)));
-    r.insert("mc_hz".into(), json!(sig_vec(&mc_hz)));
+    for (key, hz) in [
+        ("free_free_hz", &free_free_hz),
+        ("guyan_a_hz", &guyan_a_hz),
+        ("guyan_b_hz", &guyan_b_hz),
+        ("guyan_c_hz", &guyan_c_hz),
+        ("fixed_interface_hz", &fixed_interface_hz),
+        ("cb_hz", &cb_hz),
+        ("mc_hz", &mc_hz),
+    ] {
+        r.insert(key.into(), json!(sig_vec(hz)));
+    }
     r.insert("principal_angle_cb_mc_max_rad".into(), json!(max_angle));
 
     let b = format!("{boundary:?}");
@@ -162,18 +163,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     add("free_free", ff_modes, REFERENCE, &mut visuals);
     if methods.contains(&Method::Guyan) {
         let c = method_color(Method::Guyan);
-        add(
-            "guyan_a",
-            expanded_modes(&model, &g_a, "Guyan (a)")?,
-            c,
-            &mut visuals,
-        );
-        add(
-            "guyan_b",
-            expanded_modes(&model, &g_b, "Guyan (b)")?,
-            c,
-            &mut visuals,
-        );
+        for (set, basis, name) in [
+            ("guyan_a", &g_a, "Guyan (a)"),
+            ("guyan_b", &g_b, "Guyan (b)"),
+        ] {
+            add(set, expanded_modes(&model, basis, name)?, c, &mut visuals);
+        }
         add("guyan_c", labelled_columns(&g_c), c, &mut visuals);
     }
     if methods.contains(&Method::ModalTruncation) {
@@ -194,21 +189,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .collect();
         add("fixed_interface", fi_modes, c, &mut visuals);
     }
-    if methods.contains(&Method::CraigBampton) {
-        add(
-            "craig_bampton",
-            labelled_columns(&cb),
-            method_color(Method::CraigBampton),
-            &mut visuals,
-        );
-    }
-    if methods.contains(&Method::ModeCondensation) {
-        add(
-            "mode_condensation",
-            labelled_columns(&mc),
-            method_color(Method::ModeCondensation),
-            &mut visuals,
-        );
+    for (m, set, basis) in [
+        (Method::CraigBampton, "craig_bampton", &cb),
+        (Method::ModeCondensation, "mode_condensation", &mc),
+    ] {
+        if methods.contains(&m) {
+            add(set, labelled_columns(basis), method_color(m), &mut visuals);
+        }
     }
     // Two rows of tabs: the free-free and Guyan sets above, the rest below (eight tabs in one
     // row do not fit a 1280 × 800 window).
