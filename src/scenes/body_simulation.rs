@@ -6,7 +6,7 @@ use serde_json::json;
 pub use super::body_simulation_visuals::recording;
 use crate::{
     body_file::ImportedBody,
-    models::{DrivenBodyParameters, DrivenStudy},
+    models::{DrivenBodyParameters, DrivenRun, DrivenStudy},
     report::{markdown_table, sig},
 };
 
@@ -61,29 +61,7 @@ pub fn summary(
     );
     let (drive, master, ring) = &study.drive;
     let steps = study.runs.first().map_or(0, |r| r.cost.steps);
-    let list = |v: [f64; 3]| v.map(|x| x.to_string()).join(", ");
-    let mut motion = Vec::new();
-    if parameters.rate != 0.0 {
-        motion.push(format!(
-            "spun up about ({}){} to {} rad/s over {} s",
-            list(parameters.axis),
-            parameters.axis_point.map_or(String::new(), |p| format!(
-                " through ({}) {length}",
-                list(p)
-            )),
-            parameters.rate,
-            parameters.ramp
-        ));
-    }
-    if let Some((d, a, f)) = parameters.shake {
-        motion.push(format!("shaken along ({}) by {a} m at {f} Hz", list(d)));
-    }
-    if let Some(g) = parameters.gravity {
-        motion.push(format!("gravity ({}) m/s²", list(g)));
-    }
-    if motion.is_empty() {
-        motion.push("held still".into());
-    }
+    let motion = motion_words(parameters, length);
     let mut text = format!(
         "# simulate `{}` ({} DOF): `{drive}` ({ring} nodes, master at ({}) {length}) {}, \
          generalized-α ρ∞ = {}, {steps} steps of {} s\n\n{table}\n",
@@ -134,56 +112,8 @@ pub fn summary(
             parameters.boundary.join(", ")
         );
     }
-    if let Some(last) = study.times.last() {
-        for run in &study.runs {
-            let finals: Vec<String> = study
-                .output_names
-                .iter()
-                .zip(&run.outputs)
-                .map(|(name, h)| {
-                    let u = h.last().copied().unwrap_or([0.0; 3]);
-                    format!("{name} ({})", u.map(|x| format!("{x:.6e}")).join(", "))
-                })
-                .collect();
-            let r = run.reaction.last().copied().unwrap_or([0.0; 6]);
-            text += &format!(
-                "\n{} at t = {last} s: {}; reaction force ({}) {force}",
-                run.label(),
-                finals.join("; "),
-                r[..3]
-                    .iter()
-                    .map(|x| format!("{x:.6e}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            );
-        }
-        text.push('\n');
-    }
-    let runs: Vec<serde_json::Value> = study
-        .runs
-        .iter()
-        .map(|r| {
-            json!({
-                "model": r.label(),
-                "method": r.method.map(|m| m.id()).unwrap_or("nr"),
-                "modes": r.modes,
-                "coordinates": r.coordinates,
-                "lowest_hz": r.hz_range.map(|h| h.0),
-                "highest_hz": r.hz_range.map(|h| h.1),
-                "offline_s": r.offline_s,
-                "online_s": r.cost.online_s,
-                "steps": r.cost.steps,
-                "scheme": if r.explicit_step.is_some() { "dp5" } else { "gen-alpha" },
-                "explicit_step_s": r.explicit_step,
-                "solves": r.cost.solves,
-                "krylov_iterations": r.cost.iterations,
-                "history_error": r.history_error,
-                "reaction_error": r.reaction_error,
-                "outputs": r.outputs,
-                "reaction": r.reaction,
-            })
-        })
-        .collect();
+    text += &final_values(study, force);
+    let runs: Vec<serde_json::Value> = study.runs.iter().map(run_json).collect();
     let value = json!({
         "body": body.model.name,
         "dof": study.dof,
@@ -210,4 +140,86 @@ pub fn summary(
         "runs": runs,
     });
     (value, text)
+}
+
+/// What moves the drive, in words: spun up, shaken, gravity, or held still.
+fn motion_words(parameters: &DrivenBodyParameters, length: &str) -> Vec<String> {
+    let list = |v: [f64; 3]| v.map(|x| x.to_string()).join(", ");
+    let mut motion = Vec::new();
+    if parameters.rate != 0.0 {
+        motion.push(format!(
+            "spun up about ({}){} to {} rad/s over {} s",
+            list(parameters.axis),
+            parameters.axis_point.map_or(String::new(), |p| format!(
+                " through ({}) {length}",
+                list(p)
+            )),
+            parameters.rate,
+            parameters.ramp
+        ));
+    }
+    if let Some((d, a, f)) = parameters.shake {
+        motion.push(format!("shaken along ({}) by {a} m at {f} Hz", list(d)));
+    }
+    if let Some(g) = parameters.gravity {
+        motion.push(format!("gravity ({}) m/s²", list(g)));
+    }
+    if motion.is_empty() {
+        motion.push("held still".into());
+    }
+    motion
+}
+
+/// Each run's outputs and reaction force at the last time.
+fn final_values(study: &DrivenStudy, force: &str) -> String {
+    let mut text = String::new();
+    if let Some(last) = study.times.last() {
+        for run in &study.runs {
+            let finals: Vec<String> = study
+                .output_names
+                .iter()
+                .zip(&run.outputs)
+                .map(|(name, h)| {
+                    let u = h.last().copied().unwrap_or([0.0; 3]);
+                    format!("{name} ({})", u.map(|x| format!("{x:.6e}")).join(", "))
+                })
+                .collect();
+            let r = run.reaction.last().copied().unwrap_or([0.0; 6]);
+            text += &format!(
+                "\n{} at t = {last} s: {}; reaction force ({}) {force}",
+                run.label(),
+                finals.join("; "),
+                r[..3]
+                    .iter()
+                    .map(|x| format!("{x:.6e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        }
+        text.push('\n');
+    }
+    text
+}
+
+/// One run's row of the JSON value.
+fn run_json(r: &DrivenRun) -> serde_json::Value {
+    json!({
+        "model": r.label(),
+        "method": r.method.map(|m| m.id()).unwrap_or("nr"),
+        "modes": r.modes,
+        "coordinates": r.coordinates,
+        "lowest_hz": r.hz_range.map(|h| h.0),
+        "highest_hz": r.hz_range.map(|h| h.1),
+        "offline_s": r.offline_s,
+        "online_s": r.cost.online_s,
+        "steps": r.cost.steps,
+        "scheme": if r.explicit_step.is_some() { "dp5" } else { "gen-alpha" },
+        "explicit_step_s": r.explicit_step,
+        "solves": r.cost.solves,
+        "krylov_iterations": r.cost.iterations,
+        "history_error": r.history_error,
+        "reaction_error": r.reaction_error,
+        "outputs": r.outputs,
+        "reaction": r.reaction,
+    })
 }
