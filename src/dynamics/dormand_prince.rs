@@ -84,13 +84,8 @@ pub fn stability_polynomial() -> Vec<f64> {
     out
 }
 
-fn derivative(sys: &System, t: f64, y: &DVector<f64>) -> Result<DVector<f64>> {
-    let mut out = DVector::zeros(y.len());
-    derivative_into(sys, t, y, &mut out)?;
-    Ok(out)
-}
-
-/// [`derivative`] into `out` (the state's length), whose storage is reused.
+/// The state derivative $(\dot q, \dot v)$ at `(t, y)` into `out` (the state's length),
+/// whose storage is reused.
 fn derivative_into(sys: &System, t: f64, y: &DVector<f64>, out: &mut DVector<f64>) -> Result<()> {
     let nq = sys.nq();
     let s = State {
@@ -103,6 +98,9 @@ fn derivative_into(sys: &System, t: f64, y: &DVector<f64>, out: &mut DVector<f64
     Ok(())
 }
 
+/// Where the stability region of the 5th-order solution ends on the imaginary axis: the first
+/// $y > 0$ with $|R(iy)| > 1$ ($y \approx 0.997$; beyond it the growth per step is slow at
+/// first, $|R(1.5i)| \approx 1.003$, and $|R(3i)| \approx 1.44$).
 pub fn imaginary_stability_limit() -> f64 {
     let c = stability_polynomial();
     let modulus = |y: f64| {
@@ -142,6 +140,11 @@ pub fn critical_step(omega_max: f64) -> f64 {
     imaginary_stability_limit() / omega_max
 }
 
+/// Whether every entry of `v` lies within the divergence bound of `p`.
+fn within(v: &DVector<f64>, p: &IntegratorParameters) -> bool {
+    v.iter().all(|x| x.abs() <= p.divergence_bound)
+}
+
 /// The stages' derivatives $k_1 \dots k_7$ and the stage state, in buffers kept over a run.
 struct Stages {
     k: Vec<DVector<f64>>,
@@ -170,7 +173,6 @@ impl Stages {
         y: &DVector<f64>,
         k1: &DVector<f64>,
     ) -> Result<Option<(DVector<f64>, f64)>> {
-        let within = |v: &DVector<f64>| v.iter().all(|x| x.abs() <= p.divergence_bound);
         self.k[0].copy_from(k1);
         for stage in 1..7 {
             self.ys.copy_from(y);
@@ -179,11 +181,14 @@ impl Stages {
                     self.ys.axpy(h * A[stage][j], kj, 1.0);
                 }
             }
-            if !within(&self.ys) {
+            // A stage far outside the bound is the step blowing up, not a state to evaluate.
+            if !within(&self.ys, p) {
                 return Ok(None);
             }
             match derivative_into(sys, t + C[stage] * h, &self.ys, &mut self.k[stage]) {
                 Ok(()) => {}
+                // Without error control a blown-up step reaches states whose mass matrix has
+                // lost definiteness in floating point: that is the divergence.
                 Err(Error::Linalg(LinalgError::SingularMatrix { matrix, .. }))
                     if p.fixed_step.is_some() =>
                 {
@@ -197,6 +202,8 @@ impl Stages {
                 Err(e) => return Err(e),
             }
         }
+        // The 5th-order solution and the error norm (the caller refuses a result beyond the
+        // bound or not finite).
         let mut y5 = y.clone();
         self.err.fill(0.0);
         for (j, kj) in self.k.iter().enumerate() {
@@ -235,10 +242,11 @@ pub(super) fn integrate(
     let (mut t, mut h) = (0.0f64, p.output_interval.min(1e-3));
     let (mut steps, mut rejected) = (0usize, 0usize);
     let mut next_output = p.output_interval;
-    let mut k1 = derivative(sys, t, &y)?;
+    let mut k1 = DVector::zeros(y.len());
+    derivative_into(sys, t, &y, &mut k1)?;
     let mut stages = Stages::new(y.len());
     while t < p.end_time - 1e-12 {
-        if !y.iter().all(|v| v.abs() <= p.divergence_bound) {
+        if !within(&y, p) {
             return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t,
                 reason: format!("the state grew beyond {:e}", p.divergence_bound),
@@ -255,9 +263,8 @@ pub(super) fn integrate(
             h = dt;
         }
         h = h.min(target - t);
-        let within = |v: &DVector<f64>| v.iter().all(|x| x.abs() <= p.divergence_bound);
         let step = stages.attempt(sys, p, t, h, &y, &k1)?;
-        let Some((y5, norm)) = step.filter(|(y5, norm)| norm.is_finite() && within(y5)) else {
+        let Some((y5, norm)) = step.filter(|(y5, norm)| norm.is_finite() && within(y5, p)) else {
             let what = format!(
                 "the state grew beyond {:e} or became non-finite",
                 p.divergence_bound
