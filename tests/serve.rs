@@ -143,7 +143,7 @@ mod control {
     fn a_request_replaces_the_waiting_one_and_never_stacks() {
         let published = Arc::new(Mutex::new(0usize));
         let count = published.clone();
-        let publisher = Publisher::start(move |_| *count.lock().unwrap() += 1);
+        let publisher = Publisher::start(move |_| *count.lock().unwrap() += 1, |_| {});
         let (open, gate) = mpsc::channel();
         assert_eq!(publisher.submit(job("first", Some(gate))), None);
         // The first computes (held at its gate); the next ones wait, each replacing the last.
@@ -158,7 +158,11 @@ mod control {
         open.send(()).unwrap();
         let done = (0..200).any(|_| {
             std::thread::sleep(Duration::from_millis(10));
-            publisher.status() == PublishStatus::Published("third".into())
+            publisher.status()
+                == PublishStatus::Published {
+                    label: "third".into(),
+                    messages: 0,
+                }
         });
         assert!(done, "{:?}", publisher.status());
         assert_eq!(

@@ -122,6 +122,16 @@ def bad_input(binary, address):
         refused(binary, ["--file", corrupt, "--bind", address], "corrupt.rrd")
 
 
+def printed_url(server, prefix):
+    """The URL ending the first line the server prints that starts with `prefix`."""
+    while True:
+        line = server.stdout.readline()
+        if not line:
+            fail(f"the server stopped before printing `{prefix}`: {server.stderr.read()}")
+        if line.startswith(prefix):
+            return line.rsplit(" ", 1)[1].strip()
+
+
 ACTIVE = "window._handle.get_active_recording_id() ?? null"
 
 
@@ -238,22 +248,10 @@ def main():
          "--bind", args.bind, "--port", str(port), "--grpc-port", str(grpc_port),
          "--theme", args.theme],
         stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    url = None
-    while url is None:
-        line = server.stdout.readline()
-        if not line:
-            fail(f"the server stopped: {server.stderr.read()}")
-        if line.startswith("open in a browser: "):
-            url = line.split(": ", 1)[1].strip()
+    url = printed_url(server, "open in a browser: ")
     served = time.time() - started
     print(f"serve: {url} after {served:.1f} s")
-    control_url = None
-    while control_url is None:
-        line = server.stdout.readline()
-        if not line:
-            fail(f"the server stopped before printing its control page: {server.stderr.read()}")
-        if line.startswith("control page"):
-            control_url = line.rsplit(" ", 1)[1].strip()
+    control_url = printed_url(server, "control page")
 
     profile = tempfile.mkdtemp(prefix="check-serve-")
     debug_port = free_port("127.0.0.1")

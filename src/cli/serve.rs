@@ -21,8 +21,8 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         error::ServeError,
         scenes,
         serve::{
-            Classroom, ControlPage, Publisher, ViewerFiles, WebServer, check_port, data_url,
-            file_messages, new_control_token, origin, page_url, scene_messages,
+            Classroom, ControlPage, PublishStatus, Publisher, ViewerFiles, WebServer, check_port,
+            data_url, file_messages, new_control_token, origin, page_url, scene_messages,
         },
     };
 
@@ -77,7 +77,16 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     let classroom = Arc::new(Classroom::start(bind, grpc_port, origins)?);
     let publisher = {
         let classroom = classroom.clone();
-        Arc::new(Publisher::start(move |m| classroom.publish(m)))
+        Arc::new(Publisher::start(
+            move |m| classroom.publish(m),
+            |status| match status {
+                PublishStatus::Published { label, messages } => {
+                    println!("showing: {label} ({messages} messages)")
+                }
+                PublishStatus::Failed(label, e) => eprintln!("error: {label}: {e}"),
+                _ => {}
+            },
+        ))
     };
     let shown = Arc::new(AtomicUsize::new(0));
     let control = {
@@ -115,8 +124,8 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     }
     println!(
         "control page (the teacher's: whoever has the token steers every viewer): \
-         http://{}:{port}/control?token={token}",
-        page_host(shared)
+         {}/control?token={token}",
+        origin(shared, port)
     );
     println!("commands: show SCENE [--method cb,mc] [--modes N] …, list, quit (or Ctrl-C)");
 
@@ -257,7 +266,7 @@ fn status_text(publisher: &crate::serve::Publisher) -> String {
     let now = match publisher.status() {
         PublishStatus::Idle => "the scenes published at start".to_string(),
         PublishStatus::Computing(l) => format!("computing `{l}`"),
-        PublishStatus::Published(l) => format!("showing `{l}`"),
+        PublishStatus::Published { label, .. } => format!("showing `{label}`"),
         PublishStatus::Failed(l, e) => format!("`{l}` failed: {e}"),
     };
     match publisher.queued() {
@@ -280,14 +289,5 @@ fn checked_token(token: String) -> Result<String> {
             length: token.chars().count(),
         }
         .into())
-    }
-}
-
-/// The host part of a URL for `address` (IPv6 in brackets).
-#[cfg(feature = "serve")]
-fn page_host(address: std::net::IpAddr) -> String {
-    match address {
-        std::net::IpAddr::V4(a) => a.to_string(),
-        std::net::IpAddr::V6(a) => format!("[{a}]"),
     }
 }

@@ -469,6 +469,7 @@ impl SparseAssembly {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
 
     #[test]
     fn subtracting_a_product_in_place_equals_the_blocked_product() {
@@ -496,8 +497,6 @@ mod tests {
             }
         }
     }
-
-    use super::*;
 
     /// The row-wise gather against a dense product, for sizes that split across threads and
     /// column counts around the gather's block of eight.

@@ -28,8 +28,8 @@ pub enum PublishStatus {
     Idle,
     /// This request is being computed.
     Computing(String),
-    /// This request was published to every viewer.
-    Published(String),
+    /// This request was published to every viewer, in this many messages.
+    Published { label: String, messages: usize },
     /// This request failed: the label and the error.
     Failed(String, String),
 }
@@ -52,8 +52,12 @@ fn lock(m: &Mutex<Slot>) -> std::sync::MutexGuard<'_, Slot> {
 }
 
 impl Publisher {
-    /// Starts the worker; `publish` sends a computed recording to the viewers.
-    pub fn start(publish: impl Fn(Vec<LogMsg>) + Send + 'static) -> Self {
+    /// Starts the worker; `publish` sends a computed recording to the viewers, `announce`
+    /// hears of each request's end (published or failed), for the teacher's terminal.
+    pub fn start(
+        publish: impl Fn(Vec<LogMsg>) + Send + 'static,
+        announce: impl Fn(&PublishStatus) + Send + 'static,
+    ) -> Self {
         let shared = Arc::new((Mutex::new(Slot::default()), Condvar::new()));
         let inner = shared.clone();
         let worker = std::thread::spawn(move || {
@@ -75,14 +79,14 @@ impl Publisher {
                     Ok(messages) => {
                         let count = messages.len();
                         publish(messages);
-                        println!("showing: {} ({count} messages)", job.label);
-                        PublishStatus::Published(job.label)
+                        PublishStatus::Published {
+                            label: job.label,
+                            messages: count,
+                        }
                     }
-                    Err(e) => {
-                        eprintln!("error: {}: {e}", job.label);
-                        PublishStatus::Failed(job.label, e.to_string())
-                    }
+                    Err(e) => PublishStatus::Failed(job.label, e.to_string()),
                 };
+                announce(&status);
                 lock(slot).status = status;
             }
         });
