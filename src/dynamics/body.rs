@@ -135,15 +135,21 @@ impl ModalMassInverse {
 
     /// $M_{zz}^{-1} B$.
     pub fn solve(&self, b: &DMatrix<f64>) -> DMatrix<f64> {
+        let mut out = DMatrix::zeros(b.nrows(), b.ncols());
+        self.solve_into(b, &mut out);
+        out
+    }
+
+    /// $M_{zz}^{-1} B$ into `out`, of `b`'s shape.
+    pub fn solve_into(&self, b: &DMatrix<f64>, out: &mut DMatrix<f64>) {
         match self {
             Self::Diagonal(d) => {
-                let mut out = b.clone();
+                out.copy_from(b);
                 for mut col in out.column_iter_mut() {
                     col.component_mul_assign(d);
                 }
-                out
             }
-            Self::Dense(inverse) => inverse * b,
+            Self::Dense(inverse) => inverse.mul_to(b, out),
         }
     }
 }

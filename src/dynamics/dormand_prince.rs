@@ -7,7 +7,10 @@ use std::time::Instant;
 
 use nalgebra::DVector;
 
-use super::{IntegratorParameters, Simulation, State, System, simulation::sample};
+use super::{
+    IntegratorParameters, Simulation, State, System, evaluation_workspace::EvaluationWorkspace,
+    simulation::sample,
+};
 use crate::{Error, Progress, Result};
 
 // Dormand–Prince 5(4) tableau.
@@ -86,16 +89,40 @@ pub fn stability_polynomial() -> Vec<f64> {
 
 /// The state derivative $(\dot q, \dot v)$ at `(t, y)` into `out` (the state's length),
 /// whose storage is reused.
-fn derivative_into(sys: &System, t: f64, y: &DVector<f64>, out: &mut DVector<f64>) -> Result<()> {
+fn derivative_into(
+    sys: &System,
+    t: f64,
+    y: &DVector<f64>,
+    out: &mut DVector<f64>,
+    buffers: &mut Buffers,
+) -> Result<()> {
     let nq = sys.nq();
-    let s = State {
-        q: y.rows(0, nq).into_owned(),
-        v: y.rows(nq, y.len() - nq).into_owned(),
-    };
-    let vd = sys.accelerations(t, &s)?;
-    sys.qdot_into(&s, &mut out.rows_mut(0, nq));
-    out.rows_mut(nq, vd.len()).copy_from(&vd);
+    let s = &mut buffers.state;
+    s.q.copy_from(&y.rows(0, nq));
+    s.v.copy_from(&y.rows(nq, y.len() - nq));
+    sys.accelerations_in(t, s, &mut buffers.evaluation)?;
+    sys.qdot_into(s, &mut out.rows_mut(0, nq));
+    let vd = buffers.evaluation.solution();
+    out.rows_mut(nq, vd.len()).copy_from(vd);
     Ok(())
+}
+
+/// The state an evaluation reads and the equations of motion's buffers, kept over a run.
+struct Buffers {
+    state: State,
+    evaluation: EvaluationWorkspace,
+}
+
+impl Buffers {
+    fn new(sys: &System) -> Self {
+        Self {
+            state: State {
+                q: DVector::zeros(sys.nq()),
+                v: DVector::zeros(sys.nv()),
+            },
+            evaluation: EvaluationWorkspace::new(sys),
+        }
+    }
 }
 
 /// Where the stability region of the 5th-order solution ends on the imaginary axis: the first
@@ -150,19 +177,26 @@ struct Stages {
     k: Vec<DVector<f64>>,
     ys: DVector<f64>,
     err: DVector<f64>,
+    /// The fifth-order solution of the last attempt.
+    y5: DVector<f64>,
+    buffers: Buffers,
 }
 
 impl Stages {
-    fn new(n: usize) -> Self {
+    fn new(sys: &System) -> Self {
+        let n = sys.nq() + sys.nv();
         Self {
             k: vec![DVector::zeros(n); 7],
             ys: DVector::zeros(n),
             err: DVector::zeros(n),
+            y5: DVector::zeros(n),
+            buffers: Buffers::new(sys),
         }
     }
 
-    /// One step of `h` from `(t, y)` whose derivative is `k1`: the fifth-order solution and
-    /// the scaled error norm, or `None` when a stage state left the divergence bound. A
+    /// One step of `h` from `(t, y)` whose derivative is `k1`: the scaled error norm (the
+    /// fifth-order solution is left in `y5`), or `None` when a stage state left the
+    /// divergence bound. A
     /// singular system at a fixed step is divergence, reported with the step.
     fn attempt(
         &mut self,
@@ -172,7 +206,7 @@ impl Stages {
         h: f64,
         y: &DVector<f64>,
         k1: &DVector<f64>,
-    ) -> Result<Option<(DVector<f64>, f64)>> {
+    ) -> Result<Option<f64>> {
         self.k[0].copy_from(k1);
         for stage in 1..7 {
             self.ys.copy_from(y);
@@ -185,7 +219,8 @@ impl Stages {
             if !within(&self.ys, p) {
                 return Ok(None);
             }
-            match derivative_into(sys, t + C[stage] * h, &self.ys, &mut self.k[stage]) {
+            let (ys, k) = (&self.ys, &mut self.k[stage]);
+            match derivative_into(sys, t + C[stage] * h, ys, k, &mut self.buffers) {
                 Ok(()) => {}
                 // Without error control a blown-up step reaches states whose mass matrix has
                 // lost definiteness in floating point: that is the divergence.
@@ -204,7 +239,8 @@ impl Stages {
         }
         // The 5th-order solution and the error norm (the caller refuses a result beyond the
         // bound or not finite).
-        let mut y5 = y.clone();
+        let y5 = &mut self.y5;
+        y5.copy_from(y);
         self.err.fill(0.0);
         for (j, kj) in self.k.iter().enumerate() {
             y5.axpy(h * B5[j], kj, 1.0);
@@ -215,7 +251,7 @@ impl Stages {
             let sc = p.atol + p.rtol * y[i].abs().max(y5[i].abs());
             norm += (self.err[i] / sc).powi(2);
         }
-        Ok(Some((y5, (norm / y.len() as f64).sqrt())))
+        Ok(Some((norm / y.len() as f64).sqrt()))
     }
 }
 
@@ -243,8 +279,9 @@ pub(super) fn integrate(
     let (mut steps, mut rejected) = (0usize, 0usize);
     let mut next_output = p.output_interval;
     let mut k1 = DVector::zeros(y.len());
-    derivative_into(sys, t, &y, &mut k1)?;
-    let mut stages = Stages::new(y.len());
+    let mut stages = Stages::new(sys);
+    derivative_into(sys, t, &y, &mut k1, &mut stages.buffers)?;
+    let mut s = initial.clone();
     while t < p.end_time - 1e-12 {
         if !within(&y, p) {
             return Err(Error::Dynamics(DynamicsError::Diverged {
@@ -264,7 +301,7 @@ pub(super) fn integrate(
         }
         h = h.min(target - t);
         let step = stages.attempt(sys, p, t, h, &y, &k1)?;
-        let Some((y5, norm)) = step.filter(|(y5, norm)| norm.is_finite() && within(y5, p)) else {
+        let Some(norm) = step.filter(|norm| norm.is_finite() && within(&stages.y5, p)) else {
             let what = format!(
                 "the state grew beyond {:e} or became non-finite",
                 p.divergence_bound
@@ -288,11 +325,10 @@ pub(super) fn integrate(
         if norm <= 1.0 || p.fixed_step.is_some() {
             t += h;
             steps += 1;
-            let mut s = State {
-                q: y5.rows(0, nq).into_owned(),
-                v: y5.rows(nq, sys.nv()).into_owned(),
-            };
-            sys.project(t, &mut s)?;
+            let y5 = &stages.y5;
+            s.q.copy_from(&y5.rows(0, nq));
+            s.v.copy_from(&y5.rows(nq, sys.nv()));
+            sys.project_in(t, &mut s, &mut stages.buffers.evaluation)?;
             // First same as last: the last stage is the derivative at y5. The projection
             // moves y5 by round-off after every step; only a correction within
             // FSAL_CORRECTION of the error tolerance keeps it, a larger one is re-evaluated.
@@ -307,7 +343,7 @@ pub(super) fn integrate(
             if reuse {
                 k1.copy_from(&stages.k[6]);
             } else {
-                derivative_into(sys, t, &y, &mut k1)?;
+                derivative_into(sys, t, &y, &mut k1, &mut stages.buffers)?;
             }
             if (t - target).abs() < 1e-12 {
                 samples.push(sample(sys, target, &s));

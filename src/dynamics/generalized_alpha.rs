@@ -33,7 +33,10 @@ use faer::{
 };
 use nalgebra::DVector;
 
-use super::{IntegratorParameters, Simulation, State, System, simulation::sample};
+use super::{
+    IntegratorParameters, Simulation, State, System, evaluation_workspace::EvaluationWorkspace,
+    simulation::sample,
+};
 use crate::{Error, Progress, Result};
 
 /// Newton iterations per step before the iteration matrix is rebuilt (and, with a fresh one,
@@ -130,9 +133,15 @@ fn to_faer(v: &DVector<f64>) -> Mat<f64> {
 /// Finite-difference derivatives of the accelerations at `(t, s)` with respect to position
 /// increments and velocities. The base point is evaluated here: after a projection the state
 /// is no longer the one the step's accelerations belong to.
-fn derivatives(sys: &System, t: f64, s: &State) -> Result<(Mat<f64>, Mat<f64>)> {
+fn derivatives(
+    sys: &System,
+    t: f64,
+    s: &State,
+    ws: &mut EvaluationWorkspace,
+) -> Result<(Mat<f64>, Mat<f64>)> {
     let nv = sys.nv();
-    let f0 = sys.accelerations(t, s)?;
+    sys.accelerations_in(t, s, ws)?;
+    let f0 = ws.solution().clone();
     let mut f_q = Mat::zeros(nv, nv);
     let mut f_v = Mat::zeros(nv, nv);
     for j in 0..nv {
@@ -141,14 +150,16 @@ fn derivatives(sys: &System, t: f64, s: &State) -> Result<(Mat<f64>, Mat<f64>)> 
         dx[j] = eps;
         let mut moved = s.clone();
         sys.apply_increment(&mut moved, &dx);
-        let fq = sys.accelerations(t, &moved)?;
+        sys.accelerations_in(t, &moved, ws)?;
+        for i in 0..nv {
+            f_q[(i, j)] = (ws.solution()[i] - f0[i]) / eps;
+        }
         let eps_v = 1e-7 * s.v[j].abs().max(1.0);
         let mut faster = s.clone();
         faster.v[j] += eps_v;
-        let fv = sys.accelerations(t, &faster)?;
+        sys.accelerations_in(t, &faster, ws)?;
         for i in 0..nv {
-            f_q[(i, j)] = (fq[i] - f0[i]) / eps;
-            f_v[(i, j)] = (fv[i] - f0[i]) / eps_v;
+            f_v[(i, j)] = (ws.solution()[i] - f0[i]) / eps_v;
         }
     }
     Ok((f_q, f_v))
@@ -173,13 +184,15 @@ pub(crate) fn integrate(
     }
     let c = GeneralizedAlphaCoefficients::from_spectral_radius(rho);
     let clock = Instant::now();
+    let mut ws = EvaluationWorkspace::new(sys);
     let mut s = initial.clone();
-    sys.project(0.0, &mut s)?;
+    sys.project_in(0.0, &mut s, &mut ws)?;
     let mut samples = vec![sample(sys, 0.0, &s)];
     let mut t = 0.0f64;
-    let mut vdot = sys.accelerations(t, &s)?;
+    sys.accelerations_in(t, &s, &mut ws)?;
+    let mut vdot = ws.solution().clone();
     let mut a = vdot.clone();
-    let (f_q, f_v) = derivatives(sys, t, &s)?;
+    let (f_q, f_v) = derivatives(sys, t, &s, &mut ws)?;
     let mut matrix = IterationMatrix::new(f_q, f_v);
     let (mut steps, mut rebuilt, mut newton) = (0usize, 0usize, 0usize);
     let mut next_output = p.output_interval;
@@ -200,11 +213,12 @@ pub(crate) fn integrate(
         };
         let mut fresh = false;
         let end = loop {
-            match start.solve(sys, t1, h, &c, matrix.for_step(h, &c), &mut newton) {
+            let lu = matrix.for_step(h, &c);
+            match start.solve(sys, t1, h, &c, lu, &mut newton, &mut ws) {
                 Ok(end) => break end,
                 Err(_) if !fresh => {
                     // Rebuild the iteration matrix at the start of the step and try again.
-                    let (f_q, f_v) = derivatives(sys, t, &s)?;
+                    let (f_q, f_v) = derivatives(sys, t, &s, &mut ws)?;
                     matrix = IterationMatrix::new(f_q, f_v);
                     rebuilt += 1;
                     fresh = true;
@@ -230,7 +244,7 @@ pub(crate) fn integrate(
                 reason: format!("the state grew beyond {:e}", p.divergence_bound),
             }));
         }
-        sys.project(t1, &mut s1)?;
+        sys.project_in(t1, &mut s1, &mut ws)?;
         t = t1;
         steps += 1;
         s = s1;
@@ -293,16 +307,18 @@ impl StepStart<'_> {
         c: &GeneralizedAlphaCoefficients,
         lu: &PartialPivLu<f64>,
         count: &mut usize,
+        ws: &mut EvaluationWorkspace,
     ) -> std::result::Result<StepEnd, f64> {
         let mut x = self.vdot.clone();
         let mut correction = f64::INFINITY;
         for _ in 0..MAX_NEWTON_ITERATIONS {
             *count += 1;
             let (s1, _) = self.advance(sys, &x, h, c);
-            let Ok(f) = sys.accelerations(t1, &s1) else {
+            if sys.accelerations_in(t1, &s1, ws).is_err() {
                 return Err(f64::INFINITY);
-            };
-            let dx = lu.solve(to_faer(&(&x - &f)));
+            }
+            let f = ws.solution();
+            let dx = lu.solve(to_faer(&(&x - f)));
             let scale = x.amax().max(f.amax()).max(1e-12);
             correction = (0..x.len()).map(|i| dx[(i, 0)].abs()).fold(0.0, f64::max) / scale;
             if !correction.is_finite() {

@@ -127,17 +127,23 @@ impl InertiaInvariants {
 
     /// $H_c(z) = \sum_j m_j \psi_{jc} b_j^T = L_c^T + \sum_d z_d Q_{cd}$ for every mode $c$.
     pub fn h<S: Storage<f64, Dyn>>(&self, z: &Modal<S>) -> Vec<Matrix3<f64>> {
-        (0..self.modes)
-            .map(|c| {
-                let mut h = self.l[c].transpose();
-                for &(d, ref q) in &self.q[c] {
-                    if z[d] != 0.0 {
-                        h += q * z[d];
-                    }
+        let mut out = Vec::with_capacity(self.modes);
+        self.h_into(z, &mut out);
+        out
+    }
+
+    /// [`Self::h`] into `out`, whose storage is reused.
+    pub fn h_into<S: Storage<f64, Dyn>>(&self, z: &Modal<S>, out: &mut Vec<Matrix3<f64>>) {
+        out.clear();
+        out.extend((0..self.modes).map(|c| {
+            let mut h = self.l[c].transpose();
+            for &(d, ref q) in &self.q[c] {
+                if z[d] != 0.0 {
+                    h += q * z[d];
                 }
-                h
-            })
-            .collect()
+            }
+            h
+        }));
     }
 
     /// $\sum_j m_j b_j b_j^T = S + \sum_c z_c (L_c + H_c)$, kg m², from $H$ of [`Self::h`].
@@ -170,10 +176,18 @@ impl InertiaInvariants {
     /// $\sum_j m_j b_j \times \psi_{jd}$, the axial vector of $H_d$.
     pub fn rotation_coupling(&self, h: &[Matrix3<f64>]) -> Matrix3xX<f64> {
         let mut out = Matrix3xX::zeros(self.modes);
+        Self::rotation_coupling_into(h, &mut out.as_view_mut());
+        out
+    }
+
+    /// [`Self::rotation_coupling`] into a 3 × k view (rows of a larger matrix).
+    pub fn rotation_coupling_into(
+        h: &[Matrix3<f64>],
+        out: &mut nalgebra::MatrixViewMut<'_, f64, nalgebra::U3, Dyn, nalgebra::U1, Dyn>,
+    ) {
         for (d, hd) in h.iter().enumerate() {
             out.set_column(d, &axial(hd));
         }
-        out
     }
 
     /// $\sum_j m_j (\Psi_j a)(\Psi_j b)^T = \sum_{cd} a_c b_d Q_{cd}$.
@@ -201,7 +215,8 @@ impl InertiaInvariants {
     /// $(\sum_j m_j\alpha_j,\ \sum_j m_j\, b_j\times\alpha_j,\ \sum_j m_j \Psi_j^T\alpha_j)$ with
     /// $\alpha_j = \bar\omega\times(\bar\omega\times b_j) + 2\bar\omega\times\Psi_j\dot z$
     /// (body axes; the generalised forces subtract them). `h` and `inertia` are those of the
-    /// same `z` ([`Self::h`], [`Self::inertia_from`]), which the mass matrix needs too.
+    /// same `z` ([`Self::h`], [`Self::inertia_from`]), which the mass matrix needs too. The
+    /// modal forces are written into `modal` (k entries); the other two are returned.
     pub fn velocity_forces<S: Storage<f64, Dyn>, T: Storage<f64, Dyn>>(
         &self,
         w: &Vector3<f64>,
@@ -209,7 +224,8 @@ impl InertiaInvariants {
         zd: &Modal<T>,
         h: &[Matrix3<f64>],
         inertia: &Matrix3<f64>,
-    ) -> (Vector3<f64>, Vector3<f64>, DVector<f64>) {
+        modal: &mut DVector<f64>,
+    ) -> (Vector3<f64>, Vector3<f64>) {
         let first = self.first_moment(z);
         let u_sum = &self.p_sum * zd;
         let translational = w.cross(&w.cross(&first)) + 2.0 * w.cross(&u_sum);
@@ -224,7 +240,6 @@ impl InertiaInvariants {
         // w^T H_c w - |w|^2 tr H_c. And psi_c . (w x u) = w . (u x psi_c), summed:
         // w . axial(sum m psi_c u^T) = w . axial(sum_d zd_d Q_cd).
         let w2 = w.norm_squared();
-        let mut modal = DVector::zeros(self.modes);
         for c in 0..self.modes {
             let centrifugal = (w.transpose() * h[c] * w)[0] - w2 * h[c].trace();
             let mut qc = Matrix3::zeros();
@@ -235,6 +250,6 @@ impl InertiaInvariants {
             }
             modal[c] = centrifugal + 2.0 * w.dot(&axial(&qc));
         }
-        (translational, rotational, modal)
+        (translational, rotational)
     }
 }

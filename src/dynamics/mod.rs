@@ -10,6 +10,7 @@ mod dormand_prince;
 mod driven_explicit;
 mod driven_frame_body;
 mod driven_integration;
+mod evaluation_workspace;
 mod frame_coordinates;
 mod generalized_alpha;
 mod inertia_invariants;

@@ -2,10 +2,13 @@
 
 use super::DynamicsError;
 use crate::linalg::LinalgError;
-use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector4};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector4};
 
 use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
+    evaluation_workspace::{
+        BodyBlocks, EvaluationWorkspace, SaddlePointWorkspace, reshape, resize,
+    },
     rotation::{l_matrix, rotate_body, skew},
 };
 use crate::fem::NodeIndex;
@@ -38,16 +41,6 @@ pub struct System {
     pub nodal_forces: Vec<(usize, NodeIndex, Vector3<f64>)>,
     pub(super) q_off: Vec<usize>,
     pub(super) v_off: Vec<usize>,
-}
-
-/// One body's rows of the mass matrix and forces (see [`System::accelerations`]).
-struct BodyBlocks {
-    /// Frame block $M_{ff}$ (translations, then body-axis rotations).
-    m_ff: Matrix6<f64>,
-    /// Frame–modal coupling $M_{fz}$, 6 × k (6 × 0 for a rigid body).
-    m_fz: DMatrix<f64>,
-    /// Generalised forces $Q$, frame then modal.
-    q: DVector<f64>,
 }
 
 impl System {
@@ -189,69 +182,87 @@ impl System {
     /// The modal block is the body's constant $M_{zz}$. `h` is the body's $H_c(z)$ at `s`
     /// ([`Self::modal_moments`]; empty for a rigid body).
     fn body_blocks(&self, b: usize, s: &State, h: &[Matrix3<f64>], forces: bool) -> BodyBlocks {
+        let mut out = BodyBlocks::zeros(self.bodies[b].velocity_count() - 6);
+        self.body_blocks_into(b, s, h, forces, &mut out);
+        out
+    }
+
+    /// [`Self::body_blocks`] into `out`, whose storage is reused.
+    fn body_blocks_into(
+        &self,
+        b: usize,
+        s: &State,
+        h: &[Matrix3<f64>],
+        forces: bool,
+        out: &mut BodyBlocks,
+    ) {
         let f = self.frame(b, s);
+        let k = self.bodies[b].velocity_count() - 6;
+        reshape(&mut out.m_fz, 6, k);
+        resize(&mut out.q, 6 + k);
+        resize(&mut out.q_z, k);
+        resize(&mut out.a_z, k);
+        out.q.fill(0.0);
+        let m_ff = &mut out.m_ff;
+        m_ff.fill(0.0);
         match &self.bodies[b] {
             Body::Rigid(rb) => {
-                let mut m_ff = Matrix6::zeros();
                 for i in 0..3 {
                     m_ff[(i, i)] = rb.mass;
                 }
                 m_ff.fixed_view_mut::<3, 3>(3, 3).copy_from(&rb.inertia);
-                let mut q = DVector::zeros(6);
                 if forces {
-                    q.fixed_rows_mut::<3>(0)
+                    out.q
+                        .fixed_rows_mut::<3>(0)
                         .copy_from(&(self.gravity * rb.mass));
-                    q.fixed_rows_mut::<3>(3)
+                    out.q
+                        .fixed_rows_mut::<3>(3)
                         .copy_from(&-f.w.cross(&(rb.inertia * f.w)));
-                }
-                BodyBlocks {
-                    m_ff,
-                    m_fz: DMatrix::zeros(6, 0),
-                    q,
                 }
             }
             Body::Flexible(fb) => {
-                let k = fb.modes();
                 let inv = &fb.invariants;
                 let first = inv.first_moment(&f.z);
                 let j_bar = InertiaInvariants::inertia_from(&inv.second_moment(&f.z, h));
-                let wz = inv.rotation_coupling(h);
                 let rw = -f.a * skew(&first);
-                let mut m_ff = Matrix6::zeros();
                 for i in 0..3 {
                     m_ff[(i, i)] = inv.mass;
                 }
                 m_ff.fixed_view_mut::<3, 3>(0, 3).copy_from(&rw);
                 m_ff.fixed_view_mut::<3, 3>(3, 0).copy_from(&rw.transpose());
                 m_ff.fixed_view_mut::<3, 3>(3, 3).copy_from(&j_bar);
-                let mut m_fz = DMatrix::zeros(6, k);
-                m_fz.rows_mut(0, 3).gemm(1.0, &f.a, &inv.p_sum, 0.0);
-                m_fz.rows_mut(3, 3).copy_from(&wz);
-                let mut q = DVector::zeros(6 + k);
+                out.m_fz.rows_mut(0, 3).gemm(1.0, &f.a, &inv.p_sum, 0.0);
+                InertiaInvariants::rotation_coupling_into(
+                    h,
+                    &mut out
+                        .m_fz
+                        .generic_view_mut((3, 0), (nalgebra::U3, nalgebra::Dyn(k))),
+                );
                 if forces {
                     // Gravity acts on every node: sum m_j A^T g, its moment and modal force.
                     let at = f.a.transpose();
                     let g_local = at * self.gravity;
                     let mut q_r = g_local * inv.mass;
                     let mut q_w = first.cross(&g_local);
-                    let mut q_z = inv.p_sum.transpose() * g_local;
+                    let q_z = &mut out.q_z;
+                    q_z.gemv_tr(1.0, &inv.p_sum, &g_local, 0.0);
                     for &(bb, n, force) in &self.nodal_forces {
                         if bb == b {
                             let local = at * force;
                             q_r += local;
                             q_w += fb.b(n.get(), &f.z).cross(&local);
-                            fb.add_nodal_force(n.get(), &local, &mut q_z);
+                            fb.add_nodal_force(n.get(), &local, q_z);
                         }
                     }
-                    let (ar, aw, az) = inv.velocity_forces(&f.w, &f.z, &f.zd, h, &j_bar);
+                    let a_z = &mut out.a_z;
+                    let (ar, aw) = inv.velocity_forces(&f.w, &f.z, &f.zd, h, &j_bar, a_z);
                     q_w -= aw;
-                    q_z -= az;
-                    fb.subtract_elastic_force(&f.z, &mut q_z);
-                    q.fixed_rows_mut::<3>(0).copy_from(&(f.a * (q_r - ar)));
-                    q.fixed_rows_mut::<3>(3).copy_from(&q_w);
-                    q.rows_mut(6, k).copy_from(&q_z);
+                    *q_z -= &*a_z;
+                    fb.subtract_elastic_force(&f.z, q_z);
+                    out.q.fixed_rows_mut::<3>(0).copy_from(&(f.a * (q_r - ar)));
+                    out.q.fixed_rows_mut::<3>(3).copy_from(&q_w);
+                    out.q.rows_mut(6, k).copy_from(q_z);
                 }
-                BodyBlocks { m_ff, m_fz, q }
             }
         }
     }
@@ -260,14 +271,20 @@ impl System {
     /// ([`InertiaInvariants::h`]), which its mass matrix, forces and axis conditions share;
     /// empty for a rigid body. Computed once per evaluation.
     pub(super) fn modal_moments(&self, s: &State) -> Vec<Vec<Matrix3<f64>>> {
-        self.bodies
-            .iter()
-            .enumerate()
-            .map(|(b, body)| match body {
-                Body::Flexible(fb) => fb.invariants.h(&self.frame(b, s).z),
-                Body::Rigid(_) => Vec::new(),
-            })
-            .collect()
+        let mut out = Vec::new();
+        self.modal_moments_into(s, &mut out);
+        out
+    }
+
+    /// [`Self::modal_moments`] into `out`, whose storage is reused.
+    pub(super) fn modal_moments_into(&self, s: &State, out: &mut Vec<Vec<Matrix3<f64>>>) {
+        out.resize_with(self.bodies.len(), Vec::new);
+        for (b, (body, h)) in self.bodies.iter().zip(out.iter_mut()).enumerate() {
+            match body {
+                Body::Flexible(fb) => fb.invariants.h_into(&self.frame(b, s).z, h),
+                Body::Rigid(_) => h.clear(),
+            }
+        }
     }
 
     /// $M(q)$ and $Q(q, v)$, assembled dense: the reference the block elimination of
@@ -312,15 +329,30 @@ impl System {
     /// constraints are redundant ([`block_saddle_point_solve`]). Only the constraint rows
     /// that touch a body's modal coordinates enter its elimination.
     pub fn accelerations(&self, t: f64, s: &State) -> Result<DVector<f64>> {
-        let rows = self.rows(t, s);
-        self.saddle_point(s, &rows.moments, &rows.c, &rows.gamma, true)
+        let mut ws = EvaluationWorkspace::new(self);
+        self.accelerations_in(t, s, &mut ws)?;
+        Ok(ws.saddle.x)
+    }
+
+    /// [`Self::accelerations`] with the buffers of `ws` (sized for this system), into
+    /// `ws.saddle.x`: an integration allocates nothing per evaluation.
+    pub(super) fn accelerations_in(
+        &self,
+        t: f64,
+        s: &State,
+        ws: &mut EvaluationWorkspace,
+    ) -> Result<()> {
+        self.rows_into(t, s, &mut ws.rows);
+        let rows = &ws.rows;
+        self.saddle_point(s, &rows.moments, &rows.c, &rows.gamma, true, &mut ws.saddle)
     }
 
     /// $x$ of $\begin{bmatrix} M & C^T \\ C & 0\end{bmatrix}
     /// \begin{bmatrix} x \\ \lambda\end{bmatrix} = \begin{bmatrix} f \\ g\end{bmatrix}$
     /// with $f = Q$ when `forces` (the accelerations) or $f = 0$ (the mass-weighted
     /// correction of [`Self::project`]), by the block elimination of
-    /// [`Self::accelerations`]; `moments` are the bodies' $H_c$ at `s` ([`Self::modal_moments`]).
+    /// [`Self::accelerations`], into `ws.x`; `moments` are the bodies' $H_c$ at `s`
+    /// ([`Self::modal_moments`]).
     pub(super) fn saddle_point(
         &self,
         s: &State,
@@ -328,20 +360,24 @@ impl System {
         c: &DMatrix<f64>,
         g: &DVector<f64>,
         forces: bool,
-    ) -> Result<DVector<f64>> {
+        ws: &mut SaddlePointWorkspace,
+    ) -> Result<()> {
         let nb = self.bodies.len();
         let nr = c.nrows();
         let nf = 6 * nb;
         let n = nf + nr;
-        let mut kkt = DMatrix::zeros(n, n);
-        let mut rhs = DVector::zeros(n);
+        reshape(&mut ws.kkt, n, n);
+        ws.kkt.fill(0.0);
+        resize(&mut ws.rhs, n);
+        ws.rhs.fill(0.0);
+        let (kkt, rhs) = (&mut ws.kkt, &mut ws.rhs);
         rhs.rows_mut(nf, nr).copy_from(g);
-        let mut eliminated: Vec<Option<(DMatrix<f64>, Vec<usize>)>> = Vec::with_capacity(nb);
         // The largest diagonal entry of the frame blocks before elimination: the scale
         // the eliminated frame block's pivots are judged against.
         let mut frame_scale = 0.0f64;
-        for (b, body) in self.bodies.iter().enumerate() {
-            let blocks = self.body_blocks(b, s, &moments[b], forces);
+        for (b, (body, work)) in self.bodies.iter().zip(ws.bodies.iter_mut()).enumerate() {
+            self.body_blocks_into(b, s, &moments[b], forces, &mut work.blocks);
+            let blocks = &work.blocks;
             frame_scale = frame_scale.max(blocks.m_ff.diagonal().max());
             let (vo, fo) = (self.v_off[b], 6 * b);
             kkt.view_mut((fo, fo), (6, 6)).copy_from(&blocks.m_ff);
@@ -349,44 +385,59 @@ impl System {
             let c_f = c.columns(vo, 6);
             kkt.view_mut((nf, fo), (nr, 6)).copy_from(&c_f);
             kkt.view_mut((fo, nf), (6, nr)).copy_from(&c_f.transpose());
+            work.eliminated = false;
             let Body::Flexible(fb) = body else {
-                eliminated.push(None);
                 continue;
             };
+            work.eliminated = true;
             let k = fb.modes();
             let c_z = c.columns(vo + 6, k);
             // Only the constraint rows that touch the modal coordinates (a joint on another
-            // body has none here).
-            let active: Vec<usize> = (0..nr)
-                .filter(|&r| c_z.row(r).iter().any(|&x| x != 0.0))
-                .collect();
+            // body has none here), found column by column (the storage order).
+            work.touches.clear();
+            work.touches.resize(nr, false);
+            for column in c_z.column_iter() {
+                for (touch, &x) in work.touches.iter_mut().zip(column.iter()) {
+                    *touch |= x != 0.0;
+                }
+            }
+            work.active.clear();
+            work.active.extend((0..nr).filter(|&r| work.touches[r]));
+            let active = &work.active;
             let na = active.len();
             // W = [M_zf, C_z^T, Q_z] and X = M_zz^-1 W (k × (7 + active rows)).
-            let mut w = DMatrix::zeros(k, 7 + na);
+            reshape(&mut work.w, k, 7 + na);
+            let w = &mut work.w;
             w.columns_mut(0, 6).tr_copy_from(&blocks.m_fz);
             for (i, &r) in active.iter().enumerate() {
                 w.column_mut(6 + i).tr_copy_from(&c_z.row(r));
             }
             w.column_mut(6 + na).copy_from(&blocks.q.rows(6, k));
-            let x = fb.m_zz_inverse.solve(&w);
+            reshape(&mut work.x, k, 7 + na);
+            fb.m_zz_inverse.solve_into(w, &mut work.x);
+            let x = &work.x;
             // [M_fz; C_z] X = W[:, ..6 + na]^T X, subtracted from the frame and constraint
             // rows and their right-hand side.
             // One SIMD product (faer's kernels): nalgebra's `tr_mul` takes a dot product per
             // entry, which dominated the elimination on the plank's 90 modal coordinates.
-            let product = {
+            reshape(&mut work.product, 6 + na, 7 + na);
+            let product = &mut work.product;
+            {
                 let wf = faer::MatRef::from_column_major_slice(w.as_slice(), k, 7 + na);
                 let xf = faer::MatRef::from_column_major_slice(x.as_slice(), k, 7 + na);
-                let mut product = faer::Mat::<f64>::zeros(6 + na, 7 + na);
                 faer::linalg::matmul::matmul(
-                    product.as_mut(),
+                    faer::MatMut::from_column_major_slice_mut(
+                        product.as_mut_slice(),
+                        6 + na,
+                        7 + na,
+                    ),
                     faer::Accum::Replace,
                     wf.subcols(0, 6 + na).transpose(),
                     xf,
                     1.0,
                     faer::Par::Seq,
                 );
-                product
-            };
+            }
             let place = |p: usize| if p < 6 { fo + p } else { nf + active[p - 6] };
             for p in 0..6 + na {
                 let row = place(p);
@@ -395,26 +446,33 @@ impl System {
                 }
                 rhs[row] -= product[(p, 6 + na)];
             }
-            eliminated.push(Some((x, active)));
         }
-        let solution = block_saddle_point_solve(&kkt, &rhs, nf, frame_scale);
+        let solution = block_saddle_point_solve(kkt, rhs, nf, frame_scale, &mut ws.blocks);
         let lambda = solution.rows(nf, nr);
-        let mut vdot = DVector::zeros(self.nv());
-        for (b, eliminated) in eliminated.iter().enumerate() {
+        resize(&mut ws.x, self.nv());
+        let vdot = &mut ws.x;
+        for (b, work) in ws.bodies.iter_mut().enumerate() {
             let (vo, fo) = (self.v_off[b], 6 * b);
             let a_f = solution.rows(fo, 6);
             vdot.rows_mut(vo, 6).copy_from(&a_f);
-            if let Some((x, active)) = eliminated {
+            if work.eliminated {
+                let (x, active) = (&work.x, &work.active);
                 let (k, na) = (x.nrows(), active.len());
-                let mut z_dd = x.column(6 + na) - x.columns(0, 6) * a_f;
+                let z_dd = &mut work.frame_part;
+                resize(z_dd, k);
+                // X_{:, 6 + na} - X_{:, ..6} a_f, then minus λ_r times each active column.
+                z_dd.gemv(1.0, &x.columns(0, 6), &a_f, 0.0);
+                for (z, &xr) in z_dd.iter_mut().zip(x.column(6 + na).iter()) {
+                    *z = xr - *z;
+                }
                 for (i, &r) in active.iter().enumerate() {
                     z_dd.axpy(-lambda[r], &x.column(6 + i), 1.0);
                 }
-                vdot.rows_mut(vo + 6, k).copy_from(&z_dd);
+                vdot.rows_mut(vo + 6, k).copy_from(z_dd);
             }
         }
         if vdot.iter().all(|v| v.is_finite()) {
-            Ok(vdot)
+            Ok(())
         } else {
             Err(Error::Linalg(LinalgError::SingularMatrix {
                 matrix: "system mass and constraints".into(),

@@ -3,10 +3,14 @@
 
 use nalgebra::{DMatrix, DVector, Matrix3};
 
-use super::{Attachment, AxisType, Constraint, FlexibleBody, State, System};
+use super::{
+    Attachment, AxisType, Constraint, FlexibleBody, InertiaInvariants, State, System,
+    evaluation_workspace::{EvaluationWorkspace, reshape, resize},
+};
 use crate::Result;
 
 /// Constraint rows at one instant.
+#[derive(Debug, Clone)]
 pub(crate) struct Rows {
     /// Jacobian, rows × nv.
     pub c: DMatrix<f64>,
@@ -23,19 +27,41 @@ pub(crate) struct Rows {
     pub moments: Vec<Vec<Matrix3<f64>>>,
 }
 
+impl Rows {
+    /// No rows: buffers for [`System::rows_into`].
+    pub(crate) fn empty() -> Self {
+        Self {
+            c: DMatrix::zeros(0, 0),
+            gamma: DVector::zeros(0),
+            target: DVector::zeros(0),
+            phi: DVector::zeros(0),
+            holonomic: Vec::new(),
+            moments: Vec::new(),
+        }
+    }
+}
+
 impl System {
     /// Constraint rows at time `t`.
     pub(crate) fn rows(&self, t: f64, s: &State) -> Rows {
+        let mut out = Rows::empty();
+        self.rows_into(t, s, &mut out);
+        out
+    }
+
+    /// [`Self::rows`] into `out`, whose storage is reused.
+    pub(crate) fn rows_into(&self, t: f64, s: &State, out: &mut Rows) {
         let nv = self.nv();
         let nr = self.constraint_rows();
-        let mut out = Rows {
-            c: DMatrix::zeros(nr, nv),
-            gamma: DVector::zeros(nr),
-            target: DVector::zeros(nr),
-            phi: DVector::zeros(nr),
-            holonomic: vec![true; nr],
-            moments: self.modal_moments(s),
-        };
+        reshape(&mut out.c, nr, nv);
+        out.c.fill(0.0);
+        for v in [&mut out.gamma, &mut out.target, &mut out.phi] {
+            resize(v, nr);
+            v.fill(0.0);
+        }
+        out.holonomic.clear();
+        out.holonomic.resize(nr, true);
+        self.modal_moments_into(s, &mut out.moments);
         let mut r = 0;
         for c in &self.constraints {
             match c {
@@ -74,11 +100,10 @@ impl System {
         }
         let moments = std::mem::take(&mut out.moments);
         for (body, fb) in self.axis_condition_bodies() {
-            self.axis_rows(body, fb, s, &moments[body], r, &mut out);
+            self.axis_rows(body, fb, s, &moments[body], r, out);
             r += 6;
         }
         out.moments = moments;
-        out
     }
 
     /// The six rows of mean axes (Table 4-2) or principal axes (§4.3) of body `body` from row
@@ -102,9 +127,12 @@ impl System {
         if matches!(fb.axes, AxisType::Mean) {
             // Rotational: sum m_j b_j x (Psi_j zdot) = 0 (Eq. 4.15); its acceleration form has
             // no quadratic term for a lumped M (Eq. 4.17).
-            out.c
-                .view_mut((r + 3, o), (3, k))
-                .copy_from(&inv.rotation_coupling(h));
+            InertiaInvariants::rotation_coupling_into(
+                h,
+                &mut out
+                    .c
+                    .generic_view_mut((r + 3, o), (nalgebra::U3, nalgebra::Dyn(k))),
+            );
             for i in 3..6 {
                 out.holonomic[r + i] = false;
             }
@@ -144,27 +172,63 @@ impl System {
     /// their models are one (slab-sim3), and Simulation 2's orbit start with velocities the
     /// constraints do not allow.
     pub(crate) fn project(&self, t: f64, s: &mut State) -> Result<()> {
+        self.project_in(t, s, &mut EvaluationWorkspace::new(self))
+    }
+
+    /// [`Self::project`] with the buffers of `ws`.
+    pub(crate) fn project_in(
+        &self,
+        t: f64,
+        s: &mut State,
+        ws: &mut EvaluationWorkspace,
+    ) -> Result<()> {
         for b in 0..self.bodies.len() {
             let qo = self.q_off[b];
             let n = s.q.rows(qo + 3, 4).norm();
             s.q.rows_mut(qo + 3, 4).scale_mut(1.0 / n);
         }
         // The rows at the current positions, for the next correction and the velocities.
-        let mut rows = self.rows(t, s);
+        self.rows_into(t, s, &mut ws.rows);
         for _ in 0..3 {
-            let idx: Vec<usize> = (0..rows.phi.len()).filter(|&i| rows.holonomic[i]).collect();
-            if idx.is_empty() || rows.phi.amax() < 1e-13 {
+            let rows = &ws.rows;
+            let held = rows.holonomic.iter().filter(|&&h| h).count();
+            if held == 0 || rows.phi.amax() < 1e-13 {
                 break;
             }
-            let c = rows.c.select_rows(idx.iter());
-            let phi = rows.phi.select_rows(idx.iter());
-            let dq = -self.saddle_point(s, &rows.moments, &c, &phi, false)?;
-            self.apply_increment(s, &dq);
-            rows = self.rows(t, s);
+            let nv = rows.c.ncols();
+            reshape(&mut ws.holonomic_c, held, nv);
+            resize(&mut ws.holonomic_phi, held);
+            let kept = (0..rows.phi.len()).filter(|&i| rows.holonomic[i]);
+            for (to, from) in kept.enumerate() {
+                ws.holonomic_c.row_mut(to).copy_from(&rows.c.row(from));
+                ws.holonomic_phi[to] = rows.phi[from];
+            }
+            self.saddle_point(
+                s,
+                &rows.moments,
+                &ws.holonomic_c,
+                &ws.holonomic_phi,
+                false,
+                &mut ws.saddle,
+            )?;
+            ws.saddle.x.neg_mut();
+            self.apply_increment(s, &ws.saddle.x);
+            self.rows_into(t, s, &mut ws.rows);
         }
+        let rows = &ws.rows;
         if rows.c.nrows() > 0 {
-            let r = &rows.c * &s.v - &rows.target;
-            s.v -= self.saddle_point(s, &rows.moments, &rows.c, &r, false)?;
+            resize(&mut ws.residual, rows.c.nrows());
+            rows.c.mul_to(&s.v, &mut ws.residual);
+            ws.residual -= &rows.target;
+            self.saddle_point(
+                s,
+                &rows.moments,
+                &rows.c,
+                &ws.residual,
+                false,
+                &mut ws.saddle,
+            )?;
+            s.v -= &ws.saddle.x;
         }
         Ok(())
     }

@@ -41,7 +41,8 @@ pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,
 };
 pub use saddle_point::{
-    REDUNDANT_PSD, REDUNDANT_SADDLE, block_saddle_point_solve, pinv_solve, saddle_point_solve,
+    BlockSaddlePointWorkspace, REDUNDANT_PSD, REDUNDANT_SADDLE, block_saddle_point_solve,
+    pinv_solve, saddle_point_solve,
 };
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
 pub use sturm_count::{SturmCount, sturm_count};

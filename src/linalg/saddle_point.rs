@@ -95,13 +95,32 @@ const FRAME_BLOCK: usize = 6;
 /// one [`saddle_point_solve`] finds for the whole system (tested to round-off); it costs a few
 /// 6 × 6 solves per body where the indefinite factorisation of the whole costs
 /// $O((n_f + n_r)^3)$.
-pub fn block_saddle_point_solve(
+///
+/// The solution is written into `ws` (buffers kept from one call to the next) and returned.
+pub fn block_saddle_point_solve<'w>(
     kkt: &DMatrix<f64>,
     rhs: &DVector<f64>,
     nf: usize,
     frame_scale: f64,
-) -> DVector<f64> {
-    solve_by_blocks(kkt, rhs, nf, frame_scale).0
+    ws: &'w mut BlockSaddlePointWorkspace,
+) -> &'w DVector<f64> {
+    solve_by_blocks(kkt, rhs, nf, frame_scale, ws);
+    &ws.out
+}
+
+/// Buffers [`block_saddle_point_solve`] reuses from one call to the next.
+#[derive(Debug, Clone, Default)]
+pub struct BlockSaddlePointWorkspace {
+    /// The constraint block after elimination and its right-hand side.
+    schur: DMatrix<f64>,
+    g: DVector<f64>,
+    /// The frame blocks kept in the reduced system.
+    kept: Vec<usize>,
+    /// The eliminated frame blocks: the first `eliminated` of `blocks`.
+    blocks: Vec<EliminatedBlock>,
+    eliminated: usize,
+    /// The solution.
+    out: DVector<f64>,
 }
 
 /// How [`block_saddle_point_solve`] solved a system.
@@ -120,7 +139,8 @@ fn solve_by_blocks(
     rhs: &DVector<f64>,
     nf: usize,
     frame_scale: f64,
-) -> (DVector<f64>, BlockRoute) {
+    ws: &mut BlockSaddlePointWorkspace,
+) -> BlockRoute {
     let n = kkt.nrows();
     assert!(
         nf.is_multiple_of(FRAME_BLOCK) && nf <= n && rhs.len() == n && kkt.ncols() == n,
@@ -130,10 +150,18 @@ fn solve_by_blocks(
     );
     let nr = n - nf;
     // The constraint block after elimination (−D − Σ B_b A_b⁻¹ B_bᵀ) and its right-hand side.
-    let mut schur = kkt.view((nf, nf), (nr, nr)).into_owned();
-    let mut g = rhs.rows(nf, nr).into_owned();
-    let mut kept = Vec::new();
-    let mut eliminated = Vec::new();
+    if ws.schur.shape() != (nr, nr) {
+        ws.schur = DMatrix::zeros(nr, nr);
+    }
+    ws.schur.copy_from(&kkt.view((nf, nf), (nr, nr)));
+    if ws.g.len() != nr {
+        ws.g = DVector::zeros(nr);
+    }
+    ws.g.copy_from(&rhs.rows(nf, nr));
+    let (schur, g) = (&mut ws.schur, &mut ws.g);
+    let kept = &mut ws.kept;
+    kept.clear();
+    ws.eliminated = 0;
     for b in 0..nf / FRAME_BLOCK {
         let o = FRAME_BLOCK * b;
         let a = Matrix6::from_fn(|i, j| kkt[(o + i, o + j)]);
@@ -148,26 +176,36 @@ fn solve_by_blocks(
             continue;
         };
         let row = |r: usize| Vector6::from_fn(|j, _| kkt[(nf + r, o + j)]);
-        let active: Vec<usize> = (0..nr)
-            .filter(|&r| (0..FRAME_BLOCK).any(|j| kkt[(nf + r, o + j)] != 0.0))
-            .collect();
-        let a_f = chol.solve(&Vector6::from_fn(|i, _| rhs[o + i]));
-        let y: Vec<Vector6<f64>> = active.iter().map(|&r| chol.solve(&row(r))).collect();
-        for &ri in &active {
+        if ws.blocks.len() == ws.eliminated {
+            ws.blocks.push(EliminatedBlock::default());
+        }
+        let block = &mut ws.blocks[ws.eliminated];
+        ws.eliminated += 1;
+        block.first = o;
+        block.active.clear();
+        block
+            .active
+            .extend((0..nr).filter(|&r| (0..FRAME_BLOCK).any(|j| kkt[(nf + r, o + j)] != 0.0)));
+        block.a_f = chol.solve(&Vector6::from_fn(|i, _| rhs[o + i]));
+        block.y.clear();
+        block
+            .y
+            .extend(block.active.iter().map(|&r| chol.solve(&row(r))));
+        for &ri in &block.active {
             let bi = row(ri);
-            g[ri] -= bi.dot(&a_f);
-            for (&rj, yj) in active.iter().zip(&y) {
+            g[ri] -= bi.dot(&block.a_f);
+            for (&rj, yj) in block.active.iter().zip(&block.y) {
                 schur[(ri, rj)] -= bi.dot(yj);
             }
         }
-        eliminated.push(EliminatedBlock {
-            first: o,
-            active,
-            y,
-            a_f,
-        });
     }
-    let mut out = DVector::zeros(n);
+    if ws.out.len() != n {
+        ws.out = DVector::zeros(n);
+    }
+    ws.out.fill(0.0);
+    let out = &mut ws.out;
+    let (schur, g) = (&ws.schur, &ws.g);
+    let kept = &ws.kept;
     let mut route = BlockRoute {
         kept: kept.len(),
         definite_schur: false,
@@ -177,7 +215,7 @@ fn solve_by_blocks(
             Some(s) => {
                 route.definite_schur = true;
                 let mut neg_g = DMatrix::zeros(nr, 1);
-                neg_g.column_mut(0).copy_from(&-&g);
+                neg_g.column_mut(0).copy_from(&-g);
                 s.solve(&neg_g).column(0).into_owned()
             }
             None => saddle_point_solve(&schur, &g),
@@ -227,17 +265,18 @@ fn solve_by_blocks(
         out.rows_mut(nf, nr).copy_from(&lambda);
     }
     // x_b = A_b⁻¹ f_b − A_b⁻¹ B_bᵀ λ for every eliminated block.
-    for block in &eliminated {
+    for block in &ws.blocks[..ws.eliminated] {
         let mut x = block.a_f;
         for (&r, yr) in block.active.iter().zip(&block.y) {
             x -= yr * out[nf + r];
         }
         out.rows_mut(block.first, FRAME_BLOCK).copy_from(&x);
     }
-    (out, route)
+    route
 }
 
 /// A frame block eliminated by [`block_saddle_point_solve`].
+#[derive(Debug, Clone, Default)]
 struct EliminatedBlock {
     /// Its first row.
     first: usize,
@@ -376,6 +415,18 @@ mod tests {
     use super::*;
 
     /// A seeded saddle-point system: A = GGᵀ + I·a_shift (nf × nf), B (nr × nf), D = HHᵀ.
+    /// [`solve_by_blocks`] with a fresh workspace: the solution and the route.
+    fn solved_by_blocks(
+        kkt: &DMatrix<f64>,
+        rhs: &DVector<f64>,
+        nf: usize,
+        frame_scale: f64,
+    ) -> (DVector<f64>, BlockRoute) {
+        let mut ws = BlockSaddlePointWorkspace::default();
+        let route = solve_by_blocks(kkt, rhs, nf, frame_scale, &mut ws);
+        (ws.out, route)
+    }
+
     fn saddle_system(nf: usize, nr: usize, seed: u64) -> (DMatrix<f64>, DVector<f64>) {
         let mut state = seed;
         let mut next = || {
@@ -452,7 +503,7 @@ mod tests {
                 for seed in 0..4 {
                     let (kkt, rhs) = block_system(blocks, nr, &[], seed + 10 * nr as u64);
                     let nf = FRAME_BLOCK * blocks;
-                    let (fast, route) = solve_by_blocks(&kkt, &rhs, nf, 1.0);
+                    let (fast, route) = solved_by_blocks(&kkt, &rhs, nf, 1.0);
                     assert_eq!(
                         route,
                         BlockRoute {
@@ -488,7 +539,7 @@ mod tests {
         ] {
             let (kkt, rhs) = block_system(blocks, nr, &singular, 3 + blocks as u64);
             let nf = FRAME_BLOCK * blocks;
-            let (fast, route) = solve_by_blocks(&kkt, &rhs, nf, 1.0);
+            let (fast, route) = solved_by_blocks(&kkt, &rhs, nf, 1.0);
             assert_eq!(
                 route,
                 BlockRoute {
@@ -510,7 +561,7 @@ mod tests {
         // The frame scale decides what round-off is: the same definite block against a scale
         // 1e12 times larger is kept.
         let (kkt, rhs) = block_system(2, 4, &[], 5);
-        assert_eq!(solve_by_blocks(&kkt, &rhs, 12, 1e12).1.kept, 2);
+        assert_eq!(solved_by_blocks(&kkt, &rhs, 12, 1e12).1.kept, 2);
     }
 
     #[test]
@@ -531,7 +582,7 @@ mod tests {
             kkt[(j, nf + 1)] = 0.0;
         }
         rhs[nf + 4] = rhs[nf + 1];
-        let (fast, route) = solve_by_blocks(&kkt, &rhs, nf, 1.0);
+        let (fast, route) = solved_by_blocks(&kkt, &rhs, nf, 1.0);
         assert!(!route.definite_schur, "{route:?}");
         let reference = saddle_point_solve(&kkt, &rhs);
         let gap = (fast.rows(0, nf) - reference.rows(0, nf)).amax() / reference.amax();

@@ -1,0 +1,135 @@
+//! Buffers an integration reuses from one evaluation of the equations of motion to the next,
+//! so that a step allocates nothing whose size the system already fixes.
+
+use nalgebra::{DMatrix, DVector, Matrix6};
+
+use super::{System, system_constraints::Rows};
+use crate::linalg::BlockSaddlePointWorkspace;
+
+/// One body's rows of the mass matrix and forces (see [`System::accelerations`]).
+#[derive(Debug, Clone)]
+pub(super) struct BodyBlocks {
+    /// Frame block $M_{ff}$ (translations, then body-axis rotations).
+    pub(super) m_ff: Matrix6<f64>,
+    /// Frame–modal coupling $M_{fz}$, 6 × k (6 × 0 for a rigid body).
+    pub(super) m_fz: DMatrix<f64>,
+    /// Generalised forces $Q$, frame then modal.
+    pub(super) q: DVector<f64>,
+    /// The modal forces as they are summed (k entries).
+    pub(super) q_z: DVector<f64>,
+    /// The modal velocity-dependent inertia forces (k entries).
+    pub(super) a_z: DVector<f64>,
+}
+
+impl BodyBlocks {
+    /// Blocks of a body with `k` modal coordinates, zero.
+    pub(super) fn zeros(k: usize) -> Self {
+        Self {
+            m_ff: Matrix6::zeros(),
+            m_fz: DMatrix::zeros(6, k),
+            q: DVector::zeros(6 + k),
+            q_z: DVector::zeros(k),
+            a_z: DVector::zeros(k),
+        }
+    }
+}
+
+/// One body's part of the block elimination of [`System::accelerations`].
+#[derive(Debug, Clone)]
+pub(super) struct BodyElimination {
+    pub(super) blocks: BodyBlocks,
+    /// Whether the body's modal coordinates were eliminated (a deformable body).
+    pub(super) eliminated: bool,
+    /// The constraint rows that touch its modal coordinates.
+    pub(super) active: Vec<usize>,
+    /// Whether each constraint row touches them, while `active` is found.
+    pub(super) touches: Vec<bool>,
+    /// $W = [M_{zf}, C_z^T, Q_z]$, k × (7 + active rows).
+    pub(super) w: DMatrix<f64>,
+    /// $X = M_{zz}^{-1} W$.
+    pub(super) x: DMatrix<f64>,
+    /// $W_{:, :6+n_a}^T X$, (6 + active rows) × (7 + active rows).
+    pub(super) product: DMatrix<f64>,
+    /// $X_{:, :6}\,\dot v_f$, then the modal accelerations.
+    pub(super) frame_part: DVector<f64>,
+}
+
+/// Buffers of [`System::accelerations`]' block elimination.
+#[derive(Debug, Clone)]
+pub(super) struct SaddlePointWorkspace {
+    pub(super) kkt: DMatrix<f64>,
+    pub(super) rhs: DVector<f64>,
+    pub(super) bodies: Vec<BodyElimination>,
+    pub(super) blocks: BlockSaddlePointWorkspace,
+    /// The solution $x$ (accelerations, or a correction in velocity coordinates).
+    pub(super) x: DVector<f64>,
+}
+
+/// Everything one integration reuses between evaluations: the constraint rows, the block
+/// elimination's matrices and its solution.
+#[derive(Debug, Clone)]
+pub struct EvaluationWorkspace {
+    pub(super) rows: Rows,
+    /// The holonomic rows of `rows` and their residuals (the position projection).
+    pub(super) holonomic_c: DMatrix<f64>,
+    pub(super) holonomic_phi: DVector<f64>,
+    pub(super) residual: DVector<f64>,
+    pub(super) saddle: SaddlePointWorkspace,
+}
+
+impl EvaluationWorkspace {
+    /// Buffers sized for `system`.
+    pub fn new(system: &System) -> Self {
+        let bodies = system
+            .bodies
+            .iter()
+            .map(|body| {
+                let k = body.velocity_count() - 6;
+                BodyElimination {
+                    blocks: BodyBlocks::zeros(k),
+                    eliminated: false,
+                    active: Vec::new(),
+                    touches: Vec::new(),
+                    w: DMatrix::zeros(0, 0),
+                    x: DMatrix::zeros(0, 0),
+                    product: DMatrix::zeros(0, 0),
+                    frame_part: DVector::zeros(k),
+                }
+            })
+            .collect();
+        Self {
+            rows: Rows::empty(),
+            holonomic_c: DMatrix::zeros(0, 0),
+            holonomic_phi: DVector::zeros(0),
+            residual: DVector::zeros(0),
+            saddle: SaddlePointWorkspace {
+                kkt: DMatrix::zeros(0, 0),
+                rhs: DVector::zeros(0),
+                bodies,
+                blocks: BlockSaddlePointWorkspace::default(),
+                x: DVector::zeros(system.nv()),
+            },
+        }
+    }
+
+    /// The last solution: accelerations after [`System::accelerations`], the correction after
+    /// a projection step.
+    pub(super) fn solution(&self) -> &DVector<f64> {
+        &self.saddle.x
+    }
+}
+
+/// `m` as an `r` × `c` matrix, reallocated only when its shape differs; its entries are
+/// left as they are when it is not.
+pub(crate) fn reshape(m: &mut DMatrix<f64>, r: usize, c: usize) {
+    if m.shape() != (r, c) {
+        *m = DMatrix::zeros(r, c);
+    }
+}
+
+/// `v` with `n` entries, reallocated only when its length differs.
+pub(crate) fn resize(v: &mut DVector<f64>, n: usize) {
+    if v.len() != n {
+        *v = DVector::zeros(n);
+    }
+}
