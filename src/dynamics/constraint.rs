@@ -59,4 +59,15 @@ impl Constraint {
             Constraint::PrescribedNode { .. } => 1,
         }
     }
+
+    /// The points it holds (a prescribed node is its node).
+    pub fn attachments(&self) -> impl Iterator<Item = Attachment> {
+        let (a, b) = match *self {
+            Constraint::Spherical(a, b) => (a, Some(b)),
+            Constraint::PrescribedNode { body, node, .. } => {
+                (Attachment::Node { body, node }, None)
+            }
+        };
+        std::iter::once(a).chain(b)
+    }
 }

@@ -241,7 +241,7 @@ impl Stages {
         // bound or not finite).
         let y5 = &mut self.y5;
         y5.copy_from(y);
-        self.err.fill(0.0);
+        self.err.as_mut_slice().fill(0.0);
         for (j, kj) in self.k.iter().enumerate() {
             y5.axpy(h * B5[j], kj, 1.0);
             self.err.axpy(h * (B5[j] - B4[j]), kj, 1.0);

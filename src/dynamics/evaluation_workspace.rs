@@ -42,8 +42,6 @@ pub(super) struct BodyElimination {
     pub(super) eliminated: bool,
     /// The constraint rows that touch its modal coordinates.
     pub(super) active: Vec<usize>,
-    /// Whether each constraint row touches them, while `active` is found.
-    pub(super) touches: Vec<bool>,
     /// $W = [M_{zf}, C_z^T, Q_z]$, k × (7 + active rows).
     pub(super) w: DMatrix<f64>,
     /// $X = M_{zz}^{-1} W$.
@@ -52,6 +50,15 @@ pub(super) struct BodyElimination {
     pub(super) product: DMatrix<f64>,
     /// $X_{:, :6}\,\dot v_f$, then the modal accelerations.
     pub(super) frame_part: DVector<f64>,
+}
+
+/// The constraint rows $C$ a block elimination is of, their right-hand side $g$, and per
+/// body the rows that may touch its modal coordinates ([`Rows::modal_rows`]).
+#[derive(Clone, Copy)]
+pub(super) struct ConstraintRows<'a> {
+    pub(super) c: &'a DMatrix<f64>,
+    pub(super) g: &'a DVector<f64>,
+    pub(super) modal_rows: &'a [Vec<usize>],
 }
 
 /// Buffers of [`System::accelerations`]' block elimination.
@@ -73,6 +80,9 @@ pub struct EvaluationWorkspace {
     /// The holonomic rows of `rows` and their residuals (the position projection).
     pub(super) holonomic_c: DMatrix<f64>,
     pub(super) holonomic_phi: DVector<f64>,
+    pub(super) holonomic_modal_rows: Vec<Vec<usize>>,
+    /// Each row's position among the holonomic rows.
+    pub(super) position: Vec<usize>,
     pub(super) residual: DVector<f64>,
     pub(super) saddle: SaddlePointWorkspace,
 }
@@ -89,7 +99,6 @@ impl EvaluationWorkspace {
                     blocks: BodyBlocks::zeros(k),
                     eliminated: false,
                     active: Vec::new(),
-                    touches: Vec::new(),
                     w: DMatrix::zeros(0, 0),
                     x: DMatrix::zeros(0, 0),
                     product: DMatrix::zeros(0, 0),
@@ -101,6 +110,8 @@ impl EvaluationWorkspace {
             rows: Rows::empty(),
             holonomic_c: DMatrix::zeros(0, 0),
             holonomic_phi: DVector::zeros(0),
+            holonomic_modal_rows: Vec::new(),
+            position: Vec::new(),
             residual: DVector::zeros(0),
             saddle: SaddlePointWorkspace {
                 kkt: DMatrix::zeros(0, 0),

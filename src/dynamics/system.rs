@@ -7,7 +7,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector4};
 use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
     evaluation_workspace::{
-        BodyBlocks, EvaluationWorkspace, SaddlePointWorkspace, reshape, resize,
+        BodyBlocks, ConstraintRows, EvaluationWorkspace, SaddlePointWorkspace, reshape, resize,
     },
     rotation::{l_matrix, rotate_body, skew},
 };
@@ -202,7 +202,7 @@ impl System {
         resize(&mut out.q, 6 + k);
         resize(&mut out.q_z, k);
         resize(&mut out.a_z, k);
-        out.q.fill(0.0);
+        out.q.as_mut_slice().fill(0.0);
         let m_ff = &mut out.m_ff;
         m_ff.fill(0.0);
         match &self.bodies[b] {
@@ -344,7 +344,12 @@ impl System {
     ) -> Result<()> {
         self.rows_into(t, s, &mut ws.rows);
         let rows = &ws.rows;
-        self.saddle_point(s, &rows.moments, &rows.c, &rows.gamma, true, &mut ws.saddle)
+        let all = ConstraintRows {
+            c: &rows.c,
+            g: &rows.gamma,
+            modal_rows: &rows.modal_rows,
+        };
+        self.saddle_point(s, &rows.moments, all, true, &mut ws.saddle)
     }
 
     /// $x$ of $\begin{bmatrix} M & C^T \\ C & 0\end{bmatrix}
@@ -357,19 +362,19 @@ impl System {
         &self,
         s: &State,
         moments: &[Vec<Matrix3<f64>>],
-        c: &DMatrix<f64>,
-        g: &DVector<f64>,
+        rows: ConstraintRows<'_>,
         forces: bool,
         ws: &mut SaddlePointWorkspace,
     ) -> Result<()> {
+        let (c, g) = (rows.c, rows.g);
         let nb = self.bodies.len();
         let nr = c.nrows();
         let nf = 6 * nb;
         let n = nf + nr;
         reshape(&mut ws.kkt, n, n);
-        ws.kkt.fill(0.0);
+        ws.kkt.as_mut_slice().fill(0.0);
         resize(&mut ws.rhs, n);
-        ws.rhs.fill(0.0);
+        ws.rhs.as_mut_slice().fill(0.0);
         let (kkt, rhs) = (&mut ws.kkt, &mut ws.rhs);
         rhs.rows_mut(nf, nr).copy_from(g);
         // The largest diagonal entry of the frame blocks before elimination: the scale
@@ -393,16 +398,14 @@ impl System {
             let k = fb.modes();
             let c_z = c.columns(vo + 6, k);
             // Only the constraint rows that touch the modal coordinates (a joint on another
-            // body has none here), found column by column (the storage order).
-            work.touches.clear();
-            work.touches.resize(nr, false);
-            for column in c_z.column_iter() {
-                for (touch, &x) in work.touches.iter_mut().zip(column.iter()) {
-                    *touch |= x != 0.0;
-                }
-            }
+            // body has none here), looked for among those that may.
             work.active.clear();
-            work.active.extend((0..nr).filter(|&r| work.touches[r]));
+            work.active.extend(
+                rows.modal_rows[b]
+                    .iter()
+                    .copied()
+                    .filter(|&r| c_z.row(r).iter().any(|&x| x != 0.0)),
+            );
             let active = &work.active;
             let na = active.len();
             // W = [M_zf, C_z^T, Q_z] and X = M_zz^-1 W (k × (7 + active rows)).

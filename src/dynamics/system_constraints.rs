@@ -5,7 +5,7 @@ use nalgebra::{DMatrix, DVector, Matrix3};
 
 use super::{
     Attachment, AxisType, Constraint, FlexibleBody, InertiaInvariants, State, System,
-    evaluation_workspace::{EvaluationWorkspace, reshape, resize},
+    evaluation_workspace::{ConstraintRows, EvaluationWorkspace, reshape, resize},
 };
 use crate::Result;
 
@@ -25,6 +25,10 @@ pub(crate) struct Rows {
     /// The bodies' $H_c(z)$ at the state the rows are of ([`System::modal_moments`]): the axis
     /// conditions need them, and so do the mass matrix and forces at the same state.
     pub moments: Vec<Vec<Matrix3<f64>>>,
+    /// Per body, the rows that may touch its modal coordinates (a joint at one of its nodes,
+    /// its axis conditions), ascending: the block elimination looks for nonzero modal
+    /// entries only there.
+    pub modal_rows: Vec<Vec<usize>>,
 }
 
 impl Rows {
@@ -37,6 +41,7 @@ impl Rows {
             phi: DVector::zeros(0),
             holonomic: Vec::new(),
             moments: Vec::new(),
+            modal_rows: Vec::new(),
         }
     }
 }
@@ -54,14 +59,16 @@ impl System {
         let nv = self.nv();
         let nr = self.constraint_rows();
         reshape(&mut out.c, nr, nv);
-        out.c.fill(0.0);
+        out.c.as_mut_slice().fill(0.0);
         for v in [&mut out.gamma, &mut out.target, &mut out.phi] {
             resize(v, nr);
-            v.fill(0.0);
+            v.as_mut_slice().fill(0.0);
         }
         out.holonomic.clear();
         out.holonomic.resize(nr, true);
         self.modal_moments_into(s, &mut out.moments);
+        out.modal_rows.resize_with(self.bodies.len(), Vec::new);
+        out.modal_rows.iter_mut().for_each(Vec::clear);
         let mut r = 0;
         for c in &self.constraints {
             match c {
@@ -96,11 +103,20 @@ impl System {
                     out.phi[r] = p.d[*axis] - x;
                 }
             }
+            for attachment in c.attachments() {
+                if let Attachment::Node { body, .. } = attachment {
+                    let list = &mut out.modal_rows[body];
+                    // Both ends on one body's nodes: its rows once.
+                    let from = list.last().map_or(r, |&last| (last + 1).max(r));
+                    list.extend(from..r + c.rows());
+                }
+            }
             r += c.rows();
         }
         let moments = std::mem::take(&mut out.moments);
         for (body, fb) in self.axis_condition_bodies() {
             self.axis_rows(body, fb, s, &moments[body], r, out);
+            out.modal_rows[body].extend(r..r + 6);
             r += 6;
         }
         out.moments = moments;
@@ -198,19 +214,33 @@ impl System {
             let nv = rows.c.ncols();
             reshape(&mut ws.holonomic_c, held, nv);
             resize(&mut ws.holonomic_phi, held);
-            let kept = (0..rows.phi.len()).filter(|&i| rows.holonomic[i]);
-            for (to, from) in kept.enumerate() {
-                ws.holonomic_c.row_mut(to).copy_from(&rows.c.row(from));
-                ws.holonomic_phi[to] = rows.phi[from];
+            // Row i of the full set is row position[i] of the holonomic one.
+            ws.position.clear();
+            let mut to = 0;
+            for (from, &holonomic) in rows.holonomic.iter().enumerate() {
+                ws.position.push(to);
+                if holonomic {
+                    ws.holonomic_c.row_mut(to).copy_from(&rows.c.row(from));
+                    ws.holonomic_phi[to] = rows.phi[from];
+                    to += 1;
+                }
             }
-            self.saddle_point(
-                s,
-                &rows.moments,
-                &ws.holonomic_c,
-                &ws.holonomic_phi,
-                false,
-                &mut ws.saddle,
-            )?;
+            ws.holonomic_modal_rows
+                .resize_with(rows.modal_rows.len(), Vec::new);
+            for (held, all) in ws.holonomic_modal_rows.iter_mut().zip(&rows.modal_rows) {
+                held.clear();
+                held.extend(
+                    all.iter()
+                        .filter(|&&r| rows.holonomic[r])
+                        .map(|&r| ws.position[r]),
+                );
+            }
+            let held = ConstraintRows {
+                c: &ws.holonomic_c,
+                g: &ws.holonomic_phi,
+                modal_rows: &ws.holonomic_modal_rows,
+            };
+            self.saddle_point(s, &rows.moments, held, false, &mut ws.saddle)?;
             ws.saddle.x.neg_mut();
             self.apply_increment(s, &ws.saddle.x);
             self.rows_into(t, s, &mut ws.rows);
@@ -220,14 +250,12 @@ impl System {
             resize(&mut ws.residual, rows.c.nrows());
             rows.c.mul_to(&s.v, &mut ws.residual);
             ws.residual -= &rows.target;
-            self.saddle_point(
-                s,
-                &rows.moments,
-                &rows.c,
-                &ws.residual,
-                false,
-                &mut ws.saddle,
-            )?;
+            let all = ConstraintRows {
+                c: &rows.c,
+                g: &ws.residual,
+                modal_rows: &rows.modal_rows,
+            };
+            self.saddle_point(s, &rows.moments, all, false, &mut ws.saddle)?;
             s.v -= &ws.saddle.x;
         }
         Ok(())

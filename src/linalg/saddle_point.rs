@@ -202,7 +202,7 @@ fn solve_by_blocks(
     if ws.out.len() != n {
         ws.out = DVector::zeros(n);
     }
-    ws.out.fill(0.0);
+    ws.out.as_mut_slice().fill(0.0);
     let out = &mut ws.out;
     let (schur, g) = (&ws.schur, &ws.g);
     let kept = &ws.kept;
