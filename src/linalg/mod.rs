@@ -10,6 +10,7 @@ mod lyapunov;
 mod mass_matrix;
 mod memory;
 mod nested_dissection;
+mod orthonormality;
 mod partial_eigen;
 mod saddle_point;
 mod sparse_symmetric;
@@ -36,6 +37,7 @@ pub use memory::{
     reset_peak_resident, resident_bytes,
 };
 pub use nested_dissection::nested_dissection;
+pub use orthonormality::orthonormality_defect;
 pub(crate) use partial_eigen::next_uniform;
 pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,

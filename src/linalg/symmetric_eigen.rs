@@ -13,7 +13,7 @@
 //! 4. falls back to nalgebra's implicit QL (`SymmetricEigen`) when the check fails,
 //! 5. and returns `LinalgError::EigenCheckFailed` with the worst residual when neither passes.
 
-use super::LinalgError;
+use super::{LinalgError, orthonormality_defect};
 use faer::{Mat, MatRef, Side};
 
 use crate::{Error, Result};
@@ -125,6 +125,28 @@ pub fn symmetric_eigen_with(
     }))
 }
 
+/// One kernel's ascending eigenpairs of the symmetric `c`, whose entries the caller has found
+/// finite, scaled by $\max|C_{ij}|$ as [`symmetric_eigen`] does but **not checked**: for a
+/// caller that checks every pair against the problem `c` came from (the generalised
+/// problem's pencil, [`super::check_pencil`]) and falls back to the next kernel itself, where
+/// checking the standard problem as well would repeat the work. `None` when the kernel
+/// failed.
+pub(crate) fn unchecked_symmetric_eigen(
+    c: MatRef<'_, f64>,
+    kernel: SymmetricEigenKernel,
+) -> Option<(Vec<f64>, Mat<f64>)> {
+    let n = c.nrows();
+    let scale = (0..n)
+        .flat_map(|j| (0..n).map(move |i| (i, j)))
+        .fold(0.0f64, |a, (i, j)| a.max(c[(i, j)].abs()));
+    if scale == 0.0 {
+        return Some((vec![0.0; n], Mat::identity(n, n)));
+    }
+    let scaled = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]) / scale);
+    let (values, vectors) = solve_with(kernel, scaled.as_ref())?;
+    Some((values.into_iter().map(|v| v * scale).collect(), vectors))
+}
+
 /// One kernel's ascending eigenpairs of the (scaled, symmetric) `c`; `None` when it failed.
 fn solve_with(kernel: SymmetricEigenKernel, c: MatRef<'_, f64>) -> Option<(Vec<f64>, Mat<f64>)> {
     let n = c.nrows();
@@ -178,18 +200,6 @@ fn check(c: MatRef<'_, f64>, values: &[f64], u: MatRef<'_, f64>) -> (f64, f64) {
             residual.max(r)
         };
     }
-    let gram = u.transpose() * u;
-    let mut orthonormality = 0.0f64;
-    for j in 0..n {
-        for i in 0..n {
-            let target = if i == j { 1.0 } else { 0.0 };
-            let d = (gram[(i, j)] - target).abs();
-            orthonormality = if d.is_nan() {
-                f64::INFINITY
-            } else {
-                orthonormality.max(d)
-            };
-        }
-    }
+    let orthonormality = orthonormality_defect(u, u);
     (residual, orthonormality)
 }

@@ -1,0 +1,82 @@
+//! How far a basis is from orthonormal in a metric: $\max|A^TB - I|$ for $B = A$ or
+//! $B = MA$, from the lower triangle of the product only.
+
+use faer::{
+    Accum, Mat, MatRef,
+    linalg::matmul::triangular::{BlockStructure, matmul},
+};
+
+use super::par_for_flops;
+
+/// $\max_{i \ge j} |(A^TB)_{ij} - \delta_{ij}|$ for $A^TB$ symmetric in exact arithmetic
+/// ($U^TU$, or $\Psi^TM\Psi$ with `b` $= M\Psi$): half the flops of the whole product; the
+/// upper triangle differs from the lower by round-off only. NaN counts as infinitely far.
+pub fn orthonormality_defect(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> f64 {
+    let n = a.ncols();
+    assert_eq!(
+        (b.nrows(), b.ncols()),
+        (a.nrows(), n),
+        "orthonormality_defect: A and B of one shape"
+    );
+    let mut gram = Mat::<f64>::zeros(n, n);
+    matmul(
+        gram.as_mut(),
+        BlockStructure::TriangularLower,
+        Accum::Replace,
+        a.transpose(),
+        BlockStructure::Rectangular,
+        b,
+        BlockStructure::Rectangular,
+        1.0,
+        par_for_flops((n * n * a.nrows()) as f64),
+    );
+    let mut worst = 0.0f64;
+    for j in 0..n {
+        for i in j..n {
+            let target = if i == j { 1.0 } else { 0.0 };
+            let d = (gram[(i, j)] - target).abs();
+            worst = if d.is_nan() {
+                f64::INFINITY
+            } else {
+                worst.max(d)
+            };
+        }
+    }
+    worst
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The lower triangle's defect equals the whole product's for symmetric products, over
+    /// sizes; a NaN anywhere in the lower triangle is infinitely far.
+    #[test]
+    fn lower_triangle_defect_matches_the_whole_product() {
+        for n in [1usize, 2, 5, 17, 64] {
+            // A slightly perturbed orthonormal basis: a rotation plus a known defect.
+            let mut a = Mat::<f64>::identity(n + 3, n);
+            for j in 0..n {
+                for i in 0..n + 3 {
+                    a[(i, j)] += 1e-6 * ((i * 7 + j * 3) % 11) as f64;
+                }
+            }
+            let whole = a.transpose() * &a;
+            let mut expected = 0.0f64;
+            for j in 0..n {
+                for i in 0..n {
+                    let target = if i == j { 1.0 } else { 0.0 };
+                    expected = expected.max((whole[(i, j)] - target).abs());
+                }
+            }
+            let got = orthonormality_defect(a.as_ref(), a.as_ref());
+            assert!(
+                (got - expected).abs() <= 4.0 * n as f64 * f64::EPSILON,
+                "n = {n}: {got:e} against {expected:e}"
+            );
+            assert!(expected > 1e-12, "the test basis has a defect to find");
+            a[(n - 1, 0)] = f64::NAN;
+            assert_eq!(orthonormality_defect(a.as_ref(), a.as_ref()), f64::INFINITY);
+        }
+    }
+}
