@@ -8,7 +8,7 @@ use rerun::{
 };
 
 use super::{
-    Bounds, Eye, Geometry, Layout, PHASE_STEPS, RecordingContent, Visual,
+    Bounds, Color, Eye, Geometry, Layout, PHASE_STEPS, RecordingContent, Visual,
     blueprint::{BlueprintParameters, send_blueprint},
 };
 use crate::{Error, Result};
@@ -280,46 +280,7 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
             shape,
             label,
             color: c,
-        } => {
-            let r = radius(geometry);
-            let undeformed = Lines {
-                strips: strips(geometry, &geometry.nodes),
-                color: rerun::Color::from_unmultiplied_rgba(150, 150, 150, 120),
-                radius: r * 0.5,
-                label: None,
-            };
-            rec.log_static(
-                format!("{path}/undeformed"),
-                undeformed.archetype(planar).as_ref(),
-            )?;
-            // Colour, radius and label once; the strips of all phase steps in one call.
-            let frames: Vec<Vec<Vec<[f32; 3]>>> = (0..PHASE_STEPS)
-                .map(|s| {
-                    let a = (2.0 * std::f64::consts::PI * s as f64 / PHASE_STEPS as f64).sin();
-                    let nodes: Vec<[f64; 3]> = geometry
-                        .nodes
-                        .iter()
-                        .zip(shape)
-                        .map(|(p, u)| [p[0] + a * u[0], p[1] + a * u[1], p[2] + a * u[2]])
-                        .collect();
-                    strips(geometry, &nodes)
-                })
-                .collect();
-            let style = Lines {
-                strips: Vec::new(),
-                color: color(*c),
-                radius: r,
-                label: Some(label.clone()),
-            };
-            rec.log_static(path.as_str(), style.style(planar).as_ref())?;
-            send_strip_frames(
-                rec,
-                path,
-                rerun::TimeColumn::new_sequence("phase", 0..PHASE_STEPS as i64),
-                frames,
-                planar,
-            )?;
-        }
+        } => log_mode(rec, path, geometry, shape, label, *c, planar)?,
         Visual::Offset { path, translation } => {
             rec.log_static(
                 path.as_str(),
@@ -336,30 +297,7 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
             times,
             positions,
             color: c,
-        } => {
-            let r = positions
-                .first()
-                .map(|p| radius(&geometry.with_nodes(p.clone())))
-                .unwrap_or(1e-3);
-            let style = Lines {
-                strips: Vec::new(),
-                color: color(*c),
-                radius: r,
-                label: None,
-            };
-            rec.log_static(path.as_str(), style.style(false).as_ref())?;
-            let n = times.len().min(positions.len());
-            send_strip_frames(
-                rec,
-                path,
-                rerun::TimeColumn::new_duration_secs("sim_time", times[..n].iter().copied()),
-                positions[..n]
-                    .iter()
-                    .map(|nodes| strips(geometry, nodes))
-                    .collect(),
-                false,
-            )?;
-        }
+        } => log_trajectory(rec, path, geometry, times, positions, *c)?,
         Visual::RigidTrajectory {
             path,
             geometry,
@@ -367,33 +305,7 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
             translations,
             rotations,
             color: c,
-        } => {
-            let lines = Lines {
-                strips: strips(geometry, &geometry.nodes),
-                color: color(*c),
-                radius: radius(geometry),
-                label: None,
-            };
-            rec.log_static(path.as_str(), lines.archetype(false).as_ref())?;
-            let n = times.len().min(translations.len()).min(rotations.len());
-            rec.send_columns(
-                path.as_str(),
-                [rerun::TimeColumn::new_duration_secs(
-                    "sim_time",
-                    times[..n].iter().copied(),
-                )],
-                rerun::Transform3D::update_fields()
-                    .with_many_translation(translations[..n].iter().map(|t| t.map(|x| x as f32)))
-                    .with_many_mat3x3(rotations[..n].iter().map(|r| {
-                        rerun::datatypes::Mat3x3::from([
-                            r[0].map(|x| x as f32),
-                            r[1].map(|x| x as f32),
-                            r[2].map(|x| x as f32),
-                        ])
-                    }))
-                    .columns_of_unit_batches()?,
-            )?;
-        }
+        } => log_rigid_trajectory(rec, path, geometry, times, translations, rotations, *c)?,
         Visual::Series {
             path,
             times,
@@ -422,24 +334,7 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
             origins,
             axes,
             length,
-        } => {
-            let colors = [
-                rerun::Color::from_rgb(230, 60, 60),
-                rerun::Color::from_rgb(60, 200, 60),
-                rerun::Color::from_rgb(60, 110, 240),
-            ];
-            for ((t, o), a) in times.iter().zip(origins).zip(axes) {
-                rec.set_duration_secs("sim_time", *t);
-                let o32 = o.map(|x| x as f32);
-                rec.log(
-                    path.as_str(),
-                    &rerun::Arrows3D::from_vectors(a.map(|v| v.map(|x| (x * length) as f32)))
-                        .with_origins([o32, o32, o32])
-                        .with_colors(colors),
-                )?;
-            }
-            rec.reset_time();
-        }
+        } => log_frame_axes(rec, path, times, origins, axes, *length)?,
         Visual::Label3D {
             path,
             position,
@@ -501,5 +396,156 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
             )?;
         }
     }
+    Ok(())
+}
+
+/// A mode shape: the undeformed body in grey, then the deformed one over a phase cycle.
+fn log_mode(
+    rec: &RecordingStream,
+    path: &str,
+    geometry: &Geometry,
+    shape: &[[f64; 3]],
+    label: &str,
+    c: Color,
+    planar: bool,
+) -> Result<()> {
+    let r = radius(geometry);
+    let undeformed = Lines {
+        strips: strips(geometry, &geometry.nodes),
+        color: rerun::Color::from_unmultiplied_rgba(150, 150, 150, 120),
+        radius: r * 0.5,
+        label: None,
+    };
+    rec.log_static(
+        format!("{path}/undeformed"),
+        undeformed.archetype(planar).as_ref(),
+    )?;
+    // Colour, radius and label once; the strips of all phase steps in one call.
+    let frames: Vec<Vec<Vec<[f32; 3]>>> = (0..PHASE_STEPS)
+        .map(|s| {
+            let a = (2.0 * std::f64::consts::PI * s as f64 / PHASE_STEPS as f64).sin();
+            let nodes: Vec<[f64; 3]> = geometry
+                .nodes
+                .iter()
+                .zip(shape)
+                .map(|(p, u)| [p[0] + a * u[0], p[1] + a * u[1], p[2] + a * u[2]])
+                .collect();
+            strips(geometry, &nodes)
+        })
+        .collect();
+    let style = Lines {
+        strips: Vec::new(),
+        color: color(c),
+        radius: r,
+        label: Some(label.to_string()),
+    };
+    rec.log_static(path, style.style(planar).as_ref())?;
+    send_strip_frames(
+        rec,
+        path,
+        rerun::TimeColumn::new_sequence("phase", 0..PHASE_STEPS as i64),
+        frames,
+        planar,
+    )?;
+    Ok(())
+}
+
+/// A deformable body's drawn history over simulated time.
+fn log_trajectory(
+    rec: &RecordingStream,
+    path: &str,
+    geometry: &Geometry,
+    times: &[f64],
+    positions: &[Vec<[f64; 3]>],
+    c: Color,
+) -> Result<()> {
+    let r = positions
+        .first()
+        .map(|p| radius(&geometry.with_nodes(p.clone())))
+        .unwrap_or(1e-3);
+    let style = Lines {
+        strips: Vec::new(),
+        color: color(c),
+        radius: r,
+        label: None,
+    };
+    rec.log_static(path, style.style(false).as_ref())?;
+    let n = times.len().min(positions.len());
+    send_strip_frames(
+        rec,
+        path,
+        rerun::TimeColumn::new_duration_secs("sim_time", times[..n].iter().copied()),
+        positions[..n]
+            .iter()
+            .map(|nodes| strips(geometry, nodes))
+            .collect(),
+        false,
+    )?;
+    Ok(())
+}
+
+/// A rigid body's drawing, placed over simulated time by one transform per instant.
+fn log_rigid_trajectory(
+    rec: &RecordingStream,
+    path: &str,
+    geometry: &Geometry,
+    times: &[f64],
+    translations: &[[f64; 3]],
+    rotations: &[[[f64; 3]; 3]],
+    c: Color,
+) -> Result<()> {
+    let lines = Lines {
+        strips: strips(geometry, &geometry.nodes),
+        color: color(c),
+        radius: radius(geometry),
+        label: None,
+    };
+    rec.log_static(path, lines.archetype(false).as_ref())?;
+    let n = times.len().min(translations.len()).min(rotations.len());
+    rec.send_columns(
+        path,
+        [rerun::TimeColumn::new_duration_secs(
+            "sim_time",
+            times[..n].iter().copied(),
+        )],
+        rerun::Transform3D::update_fields()
+            .with_many_translation(translations[..n].iter().map(|t| t.map(|x| x as f32)))
+            .with_many_mat3x3(rotations[..n].iter().map(|r| {
+                rerun::datatypes::Mat3x3::from([
+                    r[0].map(|x| x as f32),
+                    r[1].map(|x| x as f32),
+                    r[2].map(|x| x as f32),
+                ])
+            }))
+            .columns_of_unit_batches()?,
+    )?;
+    Ok(())
+}
+
+/// A frame's axes over simulated time, red, green and blue for x, y and z.
+fn log_frame_axes(
+    rec: &RecordingStream,
+    path: &str,
+    times: &[f64],
+    origins: &[[f64; 3]],
+    axes: &[[[f64; 3]; 3]],
+    length: f64,
+) -> Result<()> {
+    let colors = [
+        rerun::Color::from_rgb(230, 60, 60),
+        rerun::Color::from_rgb(60, 200, 60),
+        rerun::Color::from_rgb(60, 110, 240),
+    ];
+    for ((t, o), a) in times.iter().zip(origins).zip(axes) {
+        rec.set_duration_secs("sim_time", *t);
+        let o32 = o.map(|x| x as f32);
+        rec.log(
+            path,
+            &rerun::Arrows3D::from_vectors(a.map(|v| v.map(|x| (x * length) as f32)))
+                .with_origins([o32, o32, o32])
+                .with_colors(colors),
+        )?;
+    }
+    rec.reset_time();
     Ok(())
 }
