@@ -8,16 +8,10 @@ use std::{
 };
 
 use super::{
-    BodySpec, DofOrder, InterfaceKind, InterfaceSpec, MatrixFormat, Units,
-    abaqus_matrix::parse_abaqus_matrix,
-    calculix_matrix::{calculix_equation_count, parse_calculix_dof_map, parse_calculix_matrix},
-    csv_table::{edges, read_table},
-    dof_map_file::parse_dof_map,
-    harwell_boeing::parse_harwell_boeing,
+    BodySpec, DofOrder, InterfaceKind, InterfaceSpec, Units,
+    csv_table::edges,
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
-    nastran_dmig::parse_nastran_dmig,
-    nastran_op4::parse_op4,
-    parse_matrix_market,
+    spec_matrices::{SpecMatrices, SpecText, place_equations, read_matrices, read_nodes},
 };
 use crate::{
     Error, Result,
@@ -199,196 +193,52 @@ impl ImportedBody {
     /// Reads and checks the body file at `location`.
     pub fn load_from(location: BodyLocation) -> Result<Self> {
         let (bytes, name) = location.read(None)?;
-        let body_error = |line: Option<usize>, reason: String| {
-            Error::BodyFile(BodyFileError::BodyFile {
-                path: name.clone(),
-                line,
-                reason,
-            })
+        let text = String::from_utf8(bytes).map_err(|e| {
+            SpecText {
+                name: &name,
+                text: "",
+            }
+            .error(None, format!("not UTF-8 text: {e}"))
+        })?;
+        let spec_text = SpecText {
+            name: &name,
+            text: &text,
         };
-        let text = String::from_utf8(bytes)
-            .map_err(|e| body_error(None, format!("not UTF-8 text: {e}")))?;
         let spec: BodySpec = toml::from_str(&text).map_err(|e| {
             let line = e.span().map(|s| line_of(&text, s.start));
-            body_error(line, e.message().trim().to_string())
+            spec_text.error(line, e.message().trim().to_string())
         })?;
-        let key_line = |key: &str| {
-            text.lines()
-                .position(|l| l.trim_start().starts_with(key))
-                .map(|k| k + 1)
-        };
-
-        // DOF map.
-        let dofs = dof_map(&spec.dofs).map_err(|reason| body_error(key_line("dofs"), reason))?;
+        let dofs = dof_map(&spec.dofs)
+            .map_err(|reason| spec_text.error(spec_text.key_line("dofs"), reason))?;
+        let mut matrices = read_matrices(&location, &spec, &dofs, &spec_text)?;
+        let (nodes, node_count) = read_nodes(&location, &spec, &dofs, &matrices, &name)?;
+        place_equations(
+            &location,
+            &spec,
+            &dofs,
+            node_count,
+            &mut matrices,
+            &spec_text,
+        )?;
         let per = dofs.per_node();
-
-        // Matrices.
-        let matrices = &spec.matrices;
-        if !matches!(
-            matrices.format,
-            MatrixFormat::NastranDmig | MatrixFormat::Op4
-        ) && (matrices.stiffness_matrix.is_some() || matrices.mass_matrix.is_some())
-        {
-            return Err(body_error(
-                key_line("stiffness_matrix").max(key_line("mass_matrix")),
-                "stiffness_matrix and mass_matrix name DMIG or OP4 matrices: they need format = \
-                 \"nastran-dmig\" or \"op4\""
-                    .into(),
-            ));
-        }
-        // CalculiX numbers its equations by the lines of its `.dof` file.
-        let calculix_equations = if matrices.format == MatrixFormat::Calculix {
-            let Some(map_file) = &matrices.dof_map else {
-                return Err(body_error(
-                    key_line("format"),
-                    "format = \"calculix\" needs dof_map = \"job.dof\" (the equations' nodes \
-                     and DOF, written beside job.sti and job.mas)"
-                        .into(),
-                ));
-            };
-            let (bytes, map_name) = location.read(Some(map_file))?;
-            calculix_equation_count(&bytes, &map_name)?
-        } else {
-            0
-        };
-        let parse = |bytes: &[u8], name: &str, dmig: &str| match matrices.format {
-            MatrixFormat::Calculix => parse_calculix_matrix(bytes, name, calculix_equations),
-            MatrixFormat::MatrixMarket => parse_matrix_market(bytes, name),
-            MatrixFormat::HarwellBoeing => parse_harwell_boeing(bytes, name),
-            MatrixFormat::Abaqus => parse_abaqus_matrix(bytes, name, &dofs),
-            MatrixFormat::NastranDmig => parse_nastran_dmig(bytes, name, dmig, &dofs),
-            MatrixFormat::Op4 => parse_op4(bytes, name, dmig),
-        };
-        let (k_bytes, k_name) = location.read(Some(&matrices.stiffness))?;
-        let k_dmig = matrices.stiffness_matrix.as_deref().unwrap_or("KAAX");
-        let mut k_file = parse(&k_bytes, &k_name, k_dmig)?;
-        drop(k_bytes);
-        let (m_bytes, m_name) = location.read(Some(&matrices.mass))?;
-        let m_dmig = matrices.mass_matrix.as_deref().unwrap_or("MAAX");
-        let mut m_file = parse(&m_bytes, &m_name, m_dmig)?;
-        drop(m_bytes);
-        if k_file.rows != k_file.cols {
-            return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-                path: k_name,
-                what: "stiffness".into(),
-                rows: k_file.rows,
-                cols: k_file.cols,
-                expected: "a stiffness must be square".into(),
-            }));
-        }
-        let n = k_file.rows;
-
-        // Nodes.
-        let coordinates = match &spec.geometry.nodes {
-            Some(table) => Some(read_table(&location, table, "nodes", &name)?),
-            None => None,
-        };
-        let node_count = match &coordinates {
-            Some((rows, _)) => rows.len(),
-            None => {
-                if n % per != 0 {
-                    return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-                        path: k_name,
-                        what: "stiffness".into(),
-                        rows: n,
-                        cols: n,
-                        expected: format!(
-                            "{n} DOF do not divide into nodes of {per} DOF (`dofs` in {name})"
-                        ),
-                    }));
-                }
-                n / per
-            }
-        };
-        check_node_count(&k_name, n, node_count, &spec.dofs)?;
-        let nodes = match coordinates {
-            None => vec![[0.0; 3]; node_count],
-            Some((rows, table_name)) => {
-                let mut out = Vec::with_capacity(rows.len());
-                for (k, (line, row)) in rows.into_iter().enumerate() {
-                    let xyz: &[f64] = match row.len() {
-                        2 | 3 => &row,
-                        4 if row[0] == (k + 1) as f64 => &row[1..],
-                        4 => {
-                            return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
-                                path: table_name,
-                                line,
-                                reason: format!(
-                                    "a leading node number must count 1, 2, 3, ... in order: \
-                                     expected {}, got {}",
-                                    k + 1,
-                                    row[0]
-                                ),
-                            }));
-                        }
-                        c => {
-                            return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
-                                path: table_name,
-                                line,
-                                reason: format!(
-                                    "a node needs 2 or 3 coordinates (optionally after its \
-                                     number), got {c} values"
-                                ),
-                            }));
-                        }
-                    };
-                    out.push([xyz[0], xyz[1], xyz.get(2).copied().unwrap_or(0.0)]);
-                }
-                out
-            }
-        };
-        let has_coordinates = spec.geometry.nodes.is_some();
-
-        // Node-major permutation of a file index.
-        // A DOF map places the FE code's equations on the body's nodes (node-major).
-        if let Some(map_file) = &spec.matrices.dof_map {
-            if spec.dof_order != DofOrder::NodeMajor {
-                return Err(body_error(
-                    key_line("dof_order"),
-                    "with a dof_map the map says where each equation goes: leave dof_order \
-                     node-major"
-                        .into(),
-                ));
-            }
-            let (bytes, map_name) = location.read(Some(map_file))?;
-            let equations = if matrices.format == MatrixFormat::Calculix {
-                parse_calculix_dof_map(&bytes, &map_name, &dofs, node_count)?
-            } else {
-                parse_dof_map(&bytes, &map_name, &dofs, node_count)?
-            };
-            for (file, name) in [(&mut k_file, &k_name), (&mut m_file, &m_name)] {
-                if file.rows != equations.len() {
-                    return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-                        path: name.clone(),
-                        what: "matrix".into(),
-                        rows: file.rows,
-                        cols: file.cols,
-                        expected: format!(
-                            "the DOF map {map_name} has {} equations",
-                            equations.len()
-                        ),
-                    }));
-                }
-                let square = file.cols == file.rows;
-                for entry in &mut file.entries {
-                    entry.0 = equations[entry.0];
-                    if square {
-                        entry.1 = equations[entry.1];
-                    }
-                }
-            }
-        }
         let to_node_major = |i: usize| match spec.dof_order {
             DofOrder::NodeMajor => i,
             DofOrder::DofMajor => (i % node_count) * per + i / node_count,
         };
+        let SpecMatrices {
+            k_file,
+            k_name,
+            m_file,
+            m_name,
+        } = matrices;
         let k = symmetric_matrix(&k_file, &k_name, "stiffness", &to_node_major)?;
-        let m = mass_matrix(&m_file, &m_name, n, &to_node_major)?;
+        let m = mass_matrix(&m_file, &m_name, k_file.rows, &to_node_major)?;
 
         let edges = match &spec.geometry.edges {
             None => Vec::new(),
             Some(table) => edges(&location, table, node_count, &name)?,
         };
+        let has_coordinates = spec.geometry.nodes.is_some();
         let mut model = FeModel {
             name: spec.name.clone(),
             dofs,
@@ -411,7 +261,7 @@ impl ImportedBody {
             },
             node_count,
             &name,
-            &key_line,
+            &|key| spec_text.key_line(key),
         )?;
         Ok(Self {
             model,

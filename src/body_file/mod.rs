@@ -19,6 +19,7 @@ mod nastran_dmig;
 mod nastran_op4;
 mod node_dof_placement;
 mod npy;
+mod spec_matrices;
 
 pub use crate::error::BodyFileError;
 pub use abaqus_matrix::parse_abaqus_matrix;

@@ -1,0 +1,243 @@
+//! The steps of reading a body file's matrices and nodes: the stiffness and mass files in
+//! their format, the nodes (a coordinate table or a count), and where a DOF map places the
+//! FE code's equations.
+
+use super::{
+    BodyFileError, BodySpec, DofOrder, MatrixFormat,
+    abaqus_matrix::parse_abaqus_matrix,
+    calculix_matrix::{calculix_equation_count, parse_calculix_dof_map, parse_calculix_matrix},
+    csv_table::read_table,
+    dof_map_file::parse_dof_map,
+    harwell_boeing::parse_harwell_boeing,
+    imported_body::{BodyLocation, check_node_count},
+    matrix_market::MatrixMarket,
+    nastran_dmig::parse_nastran_dmig,
+    nastran_op4::parse_op4,
+    parse_matrix_market,
+};
+use crate::{Error, Result, fem::DofMap};
+
+/// A body file's text and name, for errors that point at its lines.
+#[derive(Clone, Copy)]
+pub(super) struct SpecText<'a> {
+    pub(super) name: &'a str,
+    pub(super) text: &'a str,
+}
+
+impl SpecText<'_> {
+    /// The body file's error at `line` (1-based).
+    pub(super) fn error(&self, line: Option<usize>, reason: String) -> Error {
+        Error::BodyFile(BodyFileError::BodyFile {
+            path: self.name.to_string(),
+            line,
+            reason,
+        })
+    }
+
+    /// The 1-based line that sets `key`.
+    pub(super) fn key_line(&self, key: &str) -> Option<usize> {
+        self.text
+            .lines()
+            .position(|l| l.trim_start().starts_with(key))
+            .map(|k| k + 1)
+    }
+}
+
+/// The stiffness and mass files as read, with their names.
+pub(super) struct SpecMatrices {
+    pub(super) k_file: MatrixMarket,
+    pub(super) k_name: String,
+    pub(super) m_file: MatrixMarket,
+    pub(super) m_name: String,
+}
+
+/// Reads the stiffness and mass files of `spec` in its format; the stiffness must be square.
+pub(super) fn read_matrices(
+    location: &BodyLocation,
+    spec: &BodySpec,
+    dofs: &DofMap,
+    text: &SpecText<'_>,
+) -> Result<SpecMatrices> {
+    let matrices = &spec.matrices;
+    if !matches!(
+        matrices.format,
+        MatrixFormat::NastranDmig | MatrixFormat::Op4
+    ) && (matrices.stiffness_matrix.is_some() || matrices.mass_matrix.is_some())
+    {
+        return Err(text.error(
+            text.key_line("stiffness_matrix")
+                .max(text.key_line("mass_matrix")),
+            "stiffness_matrix and mass_matrix name DMIG or OP4 matrices: they need format = \
+             \"nastran-dmig\" or \"op4\""
+                .into(),
+        ));
+    }
+    // CalculiX numbers its equations by the lines of its `.dof` file.
+    let calculix_equations = if matrices.format == MatrixFormat::Calculix {
+        let Some(map_file) = &matrices.dof_map else {
+            return Err(text.error(
+                text.key_line("format"),
+                "format = \"calculix\" needs dof_map = \"job.dof\" (the equations' nodes \
+                 and DOF, written beside job.sti and job.mas)"
+                    .into(),
+            ));
+        };
+        let (bytes, map_name) = location.read(Some(map_file))?;
+        calculix_equation_count(&bytes, &map_name)?
+    } else {
+        0
+    };
+    let parse = |bytes: &[u8], name: &str, dmig: &str| match matrices.format {
+        MatrixFormat::Calculix => parse_calculix_matrix(bytes, name, calculix_equations),
+        MatrixFormat::MatrixMarket => parse_matrix_market(bytes, name),
+        MatrixFormat::HarwellBoeing => parse_harwell_boeing(bytes, name),
+        MatrixFormat::Abaqus => parse_abaqus_matrix(bytes, name, dofs),
+        MatrixFormat::NastranDmig => parse_nastran_dmig(bytes, name, dmig, dofs),
+        MatrixFormat::Op4 => parse_op4(bytes, name, dmig),
+    };
+    let (k_bytes, k_name) = location.read(Some(&matrices.stiffness))?;
+    let k_dmig = matrices.stiffness_matrix.as_deref().unwrap_or("KAAX");
+    let k_file = parse(&k_bytes, &k_name, k_dmig)?;
+    drop(k_bytes);
+    let (m_bytes, m_name) = location.read(Some(&matrices.mass))?;
+    let m_dmig = matrices.mass_matrix.as_deref().unwrap_or("MAAX");
+    let m_file = parse(&m_bytes, &m_name, m_dmig)?;
+    drop(m_bytes);
+    if k_file.rows != k_file.cols {
+        return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+            path: k_name,
+            what: "stiffness".into(),
+            rows: k_file.rows,
+            cols: k_file.cols,
+            expected: "a stiffness must be square".into(),
+        }));
+    }
+    Ok(SpecMatrices {
+        k_file,
+        k_name,
+        m_file,
+        m_name,
+    })
+}
+
+/// The nodes' coordinates (zero without a coordinate table) and their count, which must
+/// account for the stiffness' DOF. `name` is the body file's.
+pub(super) fn read_nodes(
+    location: &BodyLocation,
+    spec: &BodySpec,
+    dofs: &DofMap,
+    matrices: &SpecMatrices,
+    name: &str,
+) -> Result<(Vec<[f64; 3]>, usize)> {
+    let n = matrices.k_file.rows;
+    let per = dofs.per_node();
+    let coordinates = match &spec.geometry.nodes {
+        Some(table) => Some(read_table(location, table, "nodes", name)?),
+        None => None,
+    };
+    let node_count = match &coordinates {
+        Some((rows, _)) => rows.len(),
+        None => {
+            if n % per != 0 {
+                return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+                    path: matrices.k_name.clone(),
+                    what: "stiffness".into(),
+                    rows: n,
+                    cols: n,
+                    expected: format!(
+                        "{n} DOF do not divide into nodes of {per} DOF (`dofs` in {name})"
+                    ),
+                }));
+            }
+            n / per
+        }
+    };
+    check_node_count(&matrices.k_name, n, node_count, &spec.dofs)?;
+    let Some((rows, table_name)) = coordinates else {
+        return Ok((vec![[0.0; 3]; node_count], node_count));
+    };
+    let mut out = Vec::with_capacity(rows.len());
+    for (k, (line, row)) in rows.into_iter().enumerate() {
+        let xyz: &[f64] = match row.len() {
+            2 | 3 => &row,
+            4 if row[0] == (k + 1) as f64 => &row[1..],
+            4 => {
+                return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
+                    path: table_name,
+                    line,
+                    reason: format!(
+                        "a leading node number must count 1, 2, 3, ... in order: expected {}, \
+                         got {}",
+                        k + 1,
+                        row[0]
+                    ),
+                }));
+            }
+            c => {
+                return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
+                    path: table_name,
+                    line,
+                    reason: format!(
+                        "a node needs 2 or 3 coordinates (optionally after its number), got {c} \
+                         values"
+                    ),
+                }));
+            }
+        };
+        out.push([xyz[0], xyz[1], xyz.get(2).copied().unwrap_or(0.0)]);
+    }
+    Ok((out, node_count))
+}
+
+/// With a DOF map, the FE code's equations moved to the body's node-major DOF in both
+/// matrices (each must have as many rows as the map has equations).
+pub(super) fn place_equations(
+    location: &BodyLocation,
+    spec: &BodySpec,
+    dofs: &DofMap,
+    node_count: usize,
+    matrices: &mut SpecMatrices,
+    text: &SpecText<'_>,
+) -> Result<()> {
+    let Some(map_file) = &spec.matrices.dof_map else {
+        return Ok(());
+    };
+    if spec.dof_order != DofOrder::NodeMajor {
+        return Err(text.error(
+            text.key_line("dof_order"),
+            "with a dof_map the map says where each equation goes: leave dof_order node-major"
+                .into(),
+        ));
+    }
+    let (bytes, map_name) = location.read(Some(map_file))?;
+    let equations = if spec.matrices.format == MatrixFormat::Calculix {
+        parse_calculix_dof_map(&bytes, &map_name, dofs, node_count)?
+    } else {
+        parse_dof_map(&bytes, &map_name, dofs, node_count)?
+    };
+    let SpecMatrices {
+        k_file,
+        k_name,
+        m_file,
+        m_name,
+    } = matrices;
+    for (file, name) in [(k_file, &*k_name), (m_file, &*m_name)] {
+        if file.rows != equations.len() {
+            return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+                path: name.clone(),
+                what: "matrix".into(),
+                rows: file.rows,
+                cols: file.cols,
+                expected: format!("the DOF map {map_name} has {} equations", equations.len()),
+            }));
+        }
+        let square = file.cols == file.rows;
+        for entry in &mut file.entries {
+            entry.0 = equations[entry.0];
+            if square {
+                entry.1 = equations[entry.1];
+            }
+        }
+    }
+    Ok(())
+}
