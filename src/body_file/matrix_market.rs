@@ -93,19 +93,54 @@ fn parse_value(token: &str) -> Option<f64> {
 
 fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
     let mut lines = reader.lines().enumerate().map(|(k, l)| (k + 1, l));
-    let next = |lines: &mut dyn Iterator<Item = (usize, std::io::Result<String>)>| {
-        for (no, line) in &mut *lines {
-            let line = line.map_err(|e| line_error(name, no, format!("unreadable: {e}")))?;
-            let t = line.trim();
-            if t.is_empty() || t.starts_with('%') {
-                continue;
-            }
-            return Ok(Some((no, line)));
-        }
-        Ok::<_, Error>(None)
+    let (header_no, format, symmetric) = parse_header(&mut lines, name)?;
+    let size = parse_size_line(&mut lines, name, header_no, format, symmetric)?;
+    let entries = match format {
+        MatrixMarketFormat::Coordinate => coordinate_entries(&mut lines, name, &size, symmetric)?,
+        MatrixMarketFormat::Array => array_entries(&mut lines, name, &size, symmetric)?,
     };
+    if let Some((no, line)) = next_data_line(&mut lines, name)? {
+        return Err(line_error(
+            name,
+            no,
+            format!(
+                "`{}` follows the {} entries the size line promises",
+                line.trim(),
+                size.count
+            ),
+        ));
+    }
+    Ok(MatrixMarket {
+        rows: size.rows,
+        cols: size.cols,
+        format,
+        symmetric,
+        entries,
+    })
+}
 
-    // Header: the first line, `%%MatrixMarket matrix <format> <field> <symmetry>`.
+/// A Matrix Market file's numbered lines.
+type NumberedLines<'a> = dyn Iterator<Item = (usize, std::io::Result<String>)> + 'a;
+
+/// The next line that is neither blank nor a comment, with its number.
+fn next_data_line(lines: &mut NumberedLines<'_>, name: &str) -> Result<Option<(usize, String)>> {
+    for (no, line) in lines {
+        let line = line.map_err(|e| line_error(name, no, format!("unreadable: {e}")))?;
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('%') {
+            continue;
+        }
+        return Ok(Some((no, line)));
+    }
+    Ok(None)
+}
+
+/// The header, the first line: `%%MatrixMarket matrix <format> <field> <symmetry>`; its line
+/// number, the format and whether the matrix is symmetric.
+fn parse_header(
+    lines: &mut NumberedLines<'_>,
+    name: &str,
+) -> Result<(usize, MatrixMarketFormat, bool)> {
     let (header_no, header) = match lines.next() {
         Some((no, Ok(l))) => (no, l),
         Some((no, Err(e))) => return Err(line_error(name, no, format!("unreadable: {e}"))),
@@ -159,8 +194,28 @@ fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
             )));
         }
     };
+    Ok((header_no, format, symmetric))
+}
 
-    let (size_no, size_line) = next(&mut lines)?
+/// What the size line says: the matrix' rows and columns and the entries that follow.
+struct SizeLine {
+    /// Its line number.
+    line: usize,
+    rows: usize,
+    cols: usize,
+    /// Entries (coordinate) or values (array) that follow.
+    count: usize,
+}
+
+/// The size line after the header: `rows cols entries` (coordinate) or `rows cols` (array).
+fn parse_size_line(
+    lines: &mut NumberedLines<'_>,
+    name: &str,
+    header_no: usize,
+    format: MatrixMarketFormat,
+    symmetric: bool,
+) -> Result<SizeLine> {
+    let (size_no, size_line) = next_data_line(lines, name)?
         .ok_or_else(|| line_error(name, header_no + 1, "the size line is missing"))?;
     let sizes: Vec<usize> = size_line
         .split_whitespace()
@@ -199,112 +254,118 @@ fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
         MatrixMarketFormat::Array if symmetric => rows * (rows + 1) / 2,
         MatrixMarketFormat::Array => rows * cols,
     };
-    let mut entries = Vec::with_capacity(count);
-    let finite = |v: f64, no: usize, token: &str| {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
-                path: name.into(),
-                line: no,
-                value: token.into(),
-            }))
-        }
-    };
-    match format {
-        MatrixMarketFormat::Coordinate => {
-            while entries.len() < count {
-                let Some((no, line)) = next(&mut lines)? else {
-                    return Err(line_error(
-                        name,
-                        size_no,
-                        format!(
-                            "the size line promises {count} entries, the file ends after {}",
-                            entries.len()
-                        ),
-                    ));
-                };
-                let t: Vec<&str> = line.split_whitespace().collect();
-                if t.len() != 3 {
-                    return Err(line_error(
-                        name,
-                        no,
-                        format!("expected `row col value`, got `{}`", line.trim()),
-                    ));
-                }
-                let index = |s: &str| {
-                    s.parse::<usize>().map_err(|_| {
-                        line_error(name, no, format!("index `{s}` is not a positive integer"))
-                    })
-                };
-                let (i, j) = (index(t[0])?, index(t[1])?);
-                if i == 0 || j == 0 || i > rows || j > cols {
-                    return Err(Error::BodyFile(BodyFileError::MatrixIndexOutOfRange {
-                        path: name.into(),
-                        line: no,
-                        row: i,
-                        col: j,
-                        rows,
-                        cols,
-                    }));
-                }
-                let v = parse_value(t[2]).ok_or_else(|| {
-                    line_error(name, no, format!("value `{}` is not a number", t[2]))
-                })?;
-                let v = finite(v, no, t[2])?;
-                // Some writers store the upper triangle of a `symmetric` file: the same matrix.
-                let (i, j) = if symmetric && j > i { (j, i) } else { (i, j) };
-                entries.push((i - 1, j - 1, v));
-            }
-        }
-        MatrixMarketFormat::Array => {
-            // Column-major; a symmetric array lists column j from row j down.
-            let (mut i, mut j) = (0usize, 0usize);
-            while entries.len() < count {
-                let Some((no, line)) = next(&mut lines)? else {
-                    return Err(line_error(
-                        name,
-                        size_no,
-                        format!(
-                            "the size line promises {count} values, the file ends after {}",
-                            entries.len()
-                        ),
-                    ));
-                };
-                for token in line.split_whitespace() {
-                    if entries.len() == count {
-                        return Err(line_error(name, no, "more values than the size line says"));
-                    }
-                    let v = parse_value(token).ok_or_else(|| {
-                        line_error(name, no, format!("value `{token}` is not a number"))
-                    })?;
-                    entries.push((i, j, finite(v, no, token)?));
-                    i += 1;
-                    if i == rows {
-                        j += 1;
-                        i = if symmetric { j } else { 0 };
-                    }
-                }
-            }
-        }
-    }
-    if let Some((no, line)) = next(&mut lines)? {
-        return Err(line_error(
-            name,
-            no,
-            format!(
-                "`{}` follows the {count} entries the size line promises",
-                line.trim()
-            ),
-        ));
-    }
-    Ok(MatrixMarket {
+    Ok(SizeLine {
+        line: size_no,
         rows,
         cols,
-        format,
-        symmetric,
-        entries,
+        count,
     })
+}
+
+/// `v` read from `token` on line `no`, when finite.
+fn finite_value(v: f64, name: &str, no: usize, token: &str) -> Result<f64> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
+            path: name.into(),
+            line: no,
+            value: token.into(),
+        }))
+    }
+}
+
+/// The `row col value` lines of a coordinate file, 0-based; an upper-triangle entry of a
+/// symmetric file is stored as its lower-triangle twin.
+fn coordinate_entries(
+    lines: &mut NumberedLines<'_>,
+    name: &str,
+    size: &SizeLine,
+    symmetric: bool,
+) -> Result<Vec<(usize, usize, f64)>> {
+    let (rows, cols, count) = (size.rows, size.cols, size.count);
+    let mut entries = Vec::with_capacity(count);
+    while entries.len() < count {
+        let Some((no, line)) = next_data_line(lines, name)? else {
+            return Err(line_error(
+                name,
+                size.line,
+                format!(
+                    "the size line promises {count} entries, the file ends after {}",
+                    entries.len()
+                ),
+            ));
+        };
+        let t: Vec<&str> = line.split_whitespace().collect();
+        if t.len() != 3 {
+            return Err(line_error(
+                name,
+                no,
+                format!("expected `row col value`, got `{}`", line.trim()),
+            ));
+        }
+        let index = |s: &str| {
+            s.parse::<usize>()
+                .map_err(|_| line_error(name, no, format!("index `{s}` is not a positive integer")))
+        };
+        let (i, j) = (index(t[0])?, index(t[1])?);
+        if i == 0 || j == 0 || i > rows || j > cols {
+            return Err(Error::BodyFile(BodyFileError::MatrixIndexOutOfRange {
+                path: name.into(),
+                line: no,
+                row: i,
+                col: j,
+                rows,
+                cols,
+            }));
+        }
+        let v = parse_value(t[2])
+            .ok_or_else(|| line_error(name, no, format!("value `{}` is not a number", t[2])))?;
+        let v = finite_value(v, name, no, t[2])?;
+        // Some writers store the upper triangle of a `symmetric` file: the same matrix.
+        let (i, j) = if symmetric && j > i { (j, i) } else { (i, j) };
+        entries.push((i - 1, j - 1, v));
+    }
+    Ok(entries)
+}
+
+/// The values of an array file, column-major; a symmetric array lists column j from row j
+/// down.
+fn array_entries(
+    lines: &mut NumberedLines<'_>,
+    name: &str,
+    size: &SizeLine,
+    symmetric: bool,
+) -> Result<Vec<(usize, usize, f64)>> {
+    let (rows, count) = (size.rows, size.count);
+    let mut entries = Vec::with_capacity(count);
+    let (mut i, mut j) = (0usize, 0usize);
+    while entries.len() < count {
+        let Some((no, line)) = next_data_line(lines, name)? else {
+            return Err(line_error(
+                name,
+                size.line,
+                format!(
+                    "the size line promises {count} values, the file ends after {}",
+                    entries.len()
+                ),
+            ));
+        };
+        for token in line.split_whitespace() {
+            if entries.len() == count {
+                return Err(line_error(name, no, "more values than the size line says"));
+            }
+            let v = parse_value(token)
+                .ok_or_else(|| line_error(name, no, format!("value `{token}` is not a number")))?;
+            entries.push((i, j, finite_value(v, name, no, token)?));
+            i += 1;
+            if i == rows {
+                j += 1;
+                i = if symmetric { j } else { 0 };
+            }
+        }
+    }
+    Ok(entries)
 }
 
 /// Writes a dense matrix as `array real general` (column-major), or `array real symmetric`
