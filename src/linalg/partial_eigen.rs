@@ -145,86 +145,30 @@ pub fn lowest_modes(
         * f64::EPSILON
         * eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
 
-    // V (M-orthonormal), MV = M V and AV = A V for the first `with_a` columns.
-    let mut v = Mat::<f64>::zeros(n, max_basis + b);
-    let mut mv = Mat::<f64>::zeros(n, max_basis + b);
-    let mut av = Mat::<f64>::zeros(n, max_basis);
     let mut rng = params.seed;
-    let mut cols = 0;
-    let mut with_a = 0;
-    let mut known = 0;
+    let mut basis = Basis::new(n, max_basis, b);
     if let Some(r) = null_space {
-        let q = r.ncols().min(wanted).min(max_basis - 2 * b);
-        cols = append_orthonormal(&mut v, &mut mv, 0, r.subcols(0, q).to_owned(), m, &mut rng);
-        for c in 0..cols {
-            for i in 0..n {
-                av[(i, c)] = v[(i, c)] / (0.0 - sigma);
-            }
-        }
-        with_a = cols;
-        known = cols;
+        basis.seed_null_space(
+            r.subcols(0, r.ncols().min(wanted).min(max_basis - 2 * b)),
+            sigma,
+            m,
+            &mut rng,
+        );
     }
     let start = Mat::from_fn(n, b, |_, _| next_uniform(&mut rng));
-    cols += append_orthonormal(&mut v, &mut mv, cols, start, m, &mut rng);
-    let mut theta: Vec<f64>;
+    basis.append(start, m, &mut rng);
+    let known = basis.known;
     let mut ritz_tolerance = params.ritz_tolerance;
     let mut ritz_history: Vec<f64> = Vec::new();
     let result;
-    let mut ritz: Mat<f64>;
     loop {
-        // Expand: A applied to the newest block, orthogonalised against everything.
-        while with_a + b <= max_basis {
-            let block = v.subcols(with_a, b).to_owned();
-            let mut w = apply(block.as_ref());
-            stats.block_solves += 1;
-            if known > 0 {
-                // A maps the M-orthogonal complement of the null space onto itself; what the
-                // solve puts into the null space is round-off, amplified by 1/|σ| (the
-                // factor of K - σM is least accurate there). Removing it keeps the elastic
-                // Ritz residuals from stalling at ε λ_max / |σ|.
-                let coeffs = mv.subcols(0, known).transpose() * &w;
-                w -= v.subcols(0, known) * &coeffs;
-            }
-            for j in 0..b {
-                av.col_mut(with_a + j).copy_from(w.col(j));
-            }
-            with_a += b;
-            if cols < max_basis + b {
-                cols += append_orthonormal(&mut v, &mut mv, cols, w, m, &mut rng);
-            }
-        }
-        // Rayleigh-Ritz on the columns whose images are known. The known null vectors are
-        // exact pairs (θ = 1/(0 - σ)) and the rest of the basis is M-orthogonal to them under
-        // the deflated A, so they stay out of the small eigenproblem: their θ, 1/|σ|, is
-        // λ/|σ| (1e5–1e8) times the elastic ones' and would cost those their accuracy.
-        let vb = v.subcols(0, with_a);
-        let free = with_a - known;
-        let t = mv.subcols(known, free).transpose() * av.subcols(known, free);
-        let t = Mat::from_fn(free, free, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
-        let evd = symmetric_eigen(t.as_ref(), "Lanczos Rayleigh quotient")?;
-        // Descending θ: the known pairs first, then the others.
-        theta = (0..known)
-            .map(|_| 1.0 / (0.0 - sigma))
-            .chain((0..free).rev().map(|i| evd.values[i]))
-            .collect();
-        let y = Mat::from_fn(with_a, with_a, |r, c| match (r < known, c < known) {
-            (true, true) if r == c => 1.0,
-            (false, false) => evd.vectors[(r - known, free - 1 - (c - known))],
-            _ => 0.0,
-        });
-        ritz = vb * &y;
-        let a_ritz = av.subcols(0, with_a) * &y;
-        let residual = Mat::from_fn(n, wanted, |r, c| a_ritz[(r, c)] - theta[c] * ritz[(r, c)]);
-        let m_residual = m.mul(residual.as_ref());
-        let relative: Vec<f64> = (0..wanted)
-            .map(|c| {
-                let norm = residual.col(c).transpose() * m_residual.col(c);
-                norm.max(0.0).sqrt() / theta[c].abs()
-            })
-            .collect();
+        stats.block_solves += basis.expand(b, max_basis, &apply, m, &mut rng);
+        let step = basis.rayleigh_ritz(sigma)?;
+        let (theta, ritz) = (&step.theta, &step.ritz);
+        let relative = step.relative_residuals(m, wanted);
         let converged = relative
             .iter()
-            .zip(&theta)
+            .zip(theta)
             .take_while(|&(&r, &t)| r <= ritz_tolerance.max(attainable * t.abs()))
             .count();
         let worst_ritz = relative.iter().copied().fold(0.0f64, f64::max);
@@ -238,21 +182,21 @@ pub fn lowest_modes(
                 .all(|&previous| worst_ritz > 0.5 * previous);
         ritz_history.push(worst_ritz);
         if stalled && converged < wanted {
-            let checked = refined_pairs(k, m, factor, sigma, wanted, known, &theta, &ritz, params)?;
+            let checked = refined_pairs(k, m, factor, sigma, wanted, known, theta, ritz, params)?;
             if checked.converged == wanted {
                 stats.max_residual = checked.max_residual;
                 stats.block_solves += 1;
-                stats.ritz_above = ritz_values_above(sigma, &theta, wanted);
+                stats.ritz_above = ritz_values_above(sigma, theta, wanted);
                 result = (checked.eigen, stats);
                 break;
             }
         }
         if converged == wanted {
-            let checked = refined_pairs(k, m, factor, sigma, wanted, known, &theta, &ritz, params)?;
+            let checked = refined_pairs(k, m, factor, sigma, wanted, known, theta, ritz, params)?;
             stats.block_solves += 1;
             if checked.converged == wanted {
                 stats.max_residual = checked.max_residual;
-                stats.ritz_above = ritz_values_above(sigma, &theta, wanted);
+                stats.ritz_above = ritz_values_above(sigma, theta, wanted);
                 result = (checked.eigen, stats);
                 break;
             }
@@ -268,7 +212,7 @@ pub fn lowest_modes(
         if stats.restarts == params.max_restarts {
             // The error names the residual users know, ‖Kφ − λMφ‖/‖Kφ‖ of the pairs as they
             // stand, and how many of them meet the tolerance.
-            let checked = refined_pairs(k, m, factor, sigma, wanted, known, &theta, &ritz, params)?;
+            let checked = refined_pairs(k, m, factor, sigma, wanted, known, theta, ritz, params)?;
             return Err(Error::Linalg(LinalgError::EigenNotConverged {
                 converged: checked.converged,
                 wanted,
@@ -277,24 +221,167 @@ pub fn lowest_modes(
         }
         stats.restarts += 1;
         // Thick restart: keep the best Ritz vectors and their images, then the pending block.
-        let keep = (wanted + (max_basis - wanted) / 2).min(max_basis - b) / b * b;
-        let pending = v.subcols(with_a, cols - with_a).to_owned();
-        let pending_m = mv.subcols(with_a, cols - with_a).to_owned();
-        let m_ritz = mv.subcols(0, with_a) * &y;
-        for c in 0..keep {
-            v.col_mut(c).copy_from(ritz.col(c));
-            mv.col_mut(c).copy_from(m_ritz.col(c));
-            av.col_mut(c).copy_from(a_ritz.col(c));
-        }
-        for c in 0..pending.ncols() {
-            v.col_mut(keep + c).copy_from(pending.col(c));
-            mv.col_mut(keep + c).copy_from(pending_m.col(c));
-        }
-        with_a = keep;
-        cols = keep + pending.ncols();
+        basis.restart(
+            (wanted + (max_basis - wanted) / 2).min(max_basis - b) / b * b,
+            &step,
+        );
     }
 
     Ok(result)
+}
+
+/// The Lanczos basis $V$ ($M$-orthonormal), $MV$, and $AV$ for its first `with_a` columns;
+/// the first `known` columns are known null vectors.
+struct Basis {
+    v: Mat<f64>,
+    mv: Mat<f64>,
+    av: Mat<f64>,
+    cols: usize,
+    with_a: usize,
+    known: usize,
+}
+
+/// One Rayleigh–Ritz step: the Ritz values θ (descending, the known pairs first), the small
+/// problem's vectors $Y$, the Ritz vectors $VY$ and their images $AVY$.
+struct RitzStep {
+    theta: Vec<f64>,
+    y: Mat<f64>,
+    ritz: Mat<f64>,
+    a_ritz: Mat<f64>,
+}
+
+impl Basis {
+    /// An empty basis of `max_basis` columns with images and a block of `b` beyond.
+    fn new(n: usize, max_basis: usize, b: usize) -> Self {
+        Self {
+            v: Mat::zeros(n, max_basis + b),
+            mv: Mat::zeros(n, max_basis + b),
+            av: Mat::zeros(n, max_basis),
+            cols: 0,
+            with_a: 0,
+            known: 0,
+        }
+    }
+
+    /// The known null vectors `r` first, exact pairs with $AR = R/(0 - \sigma)$.
+    fn seed_null_space(&mut self, r: MatRef<'_, f64>, sigma: f64, m: &MassMatrix, rng: &mut u64) {
+        let n = self.v.nrows();
+        self.cols = append_orthonormal(&mut self.v, &mut self.mv, 0, r.to_owned(), m, rng);
+        for c in 0..self.cols {
+            for i in 0..n {
+                self.av[(i, c)] = self.v[(i, c)] / (0.0 - sigma);
+            }
+        }
+        self.with_a = self.cols;
+        self.known = self.cols;
+    }
+
+    /// `x` made $M$-orthonormal to the basis and appended.
+    fn append(&mut self, x: Mat<f64>, m: &MassMatrix, rng: &mut u64) {
+        self.cols += append_orthonormal(&mut self.v, &mut self.mv, self.cols, x, m, rng);
+    }
+
+    /// $A$ applied to the newest blocks of `b` columns, each image orthogonalised and appended,
+    /// until `max_basis` columns have images; returns the block solves.
+    fn expand(
+        &mut self,
+        b: usize,
+        max_basis: usize,
+        apply: &dyn Fn(MatRef<'_, f64>) -> Mat<f64>,
+        m: &MassMatrix,
+        rng: &mut u64,
+    ) -> usize {
+        let mut solves = 0;
+        while self.with_a + b <= max_basis {
+            let block = self.v.subcols(self.with_a, b).to_owned();
+            let mut w = apply(block.as_ref());
+            solves += 1;
+            let known = self.known;
+            if known > 0 {
+                // A maps the M-orthogonal complement of the null space onto itself; what the
+                // solve puts into the null space is round-off, amplified by 1/|σ| (the
+                // factor of K - σM is least accurate there). Removing it keeps the elastic
+                // Ritz residuals from stalling at ε λ_max / |σ|.
+                let coeffs = self.mv.subcols(0, known).transpose() * &w;
+                w -= self.v.subcols(0, known) * &coeffs;
+            }
+            for j in 0..b {
+                self.av.col_mut(self.with_a + j).copy_from(w.col(j));
+            }
+            self.with_a += b;
+            if self.cols < max_basis + b {
+                self.append(w, m, rng);
+            }
+        }
+        solves
+    }
+
+    /// Rayleigh–Ritz on the columns whose images are known. The known null vectors are
+    /// exact pairs (θ = 1/(0 - σ)) and the rest of the basis is M-orthogonal to them under
+    /// the deflated A, so they stay out of the small eigenproblem: their θ, 1/|σ|, is
+    /// λ/|σ| (1e5–1e8) times the elastic ones' and would cost those their accuracy.
+    fn rayleigh_ritz(&self, sigma: f64) -> Result<RitzStep> {
+        let (with_a, known) = (self.with_a, self.known);
+        let vb = self.v.subcols(0, with_a);
+        let free = with_a - known;
+        let t = self.mv.subcols(known, free).transpose() * self.av.subcols(known, free);
+        let t = Mat::from_fn(free, free, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
+        let evd = symmetric_eigen(t.as_ref(), "Lanczos Rayleigh quotient")?;
+        // Descending θ: the known pairs first, then the others.
+        let theta = (0..known)
+            .map(|_| 1.0 / (0.0 - sigma))
+            .chain((0..free).rev().map(|i| evd.values[i]))
+            .collect();
+        let y = Mat::from_fn(with_a, with_a, |r, c| match (r < known, c < known) {
+            (true, true) if r == c => 1.0,
+            (false, false) => evd.vectors[(r - known, free - 1 - (c - known))],
+            _ => 0.0,
+        });
+        let ritz = vb * &y;
+        let a_ritz = self.av.subcols(0, with_a) * &y;
+        Ok(RitzStep {
+            theta,
+            y,
+            ritz,
+            a_ritz,
+        })
+    }
+
+    /// Thick restart: the first `keep` Ritz vectors and their images, then the pending block.
+    fn restart(&mut self, keep: usize, step: &RitzStep) {
+        let (with_a, cols) = (self.with_a, self.cols);
+        let pending = self.v.subcols(with_a, cols - with_a).to_owned();
+        let pending_m = self.mv.subcols(with_a, cols - with_a).to_owned();
+        let m_ritz = self.mv.subcols(0, with_a) * &step.y;
+        for c in 0..keep {
+            self.v.col_mut(c).copy_from(step.ritz.col(c));
+            self.mv.col_mut(c).copy_from(m_ritz.col(c));
+            self.av.col_mut(c).copy_from(step.a_ritz.col(c));
+        }
+        for c in 0..pending.ncols() {
+            self.v.col_mut(keep + c).copy_from(pending.col(c));
+            self.mv.col_mut(keep + c).copy_from(pending_m.col(c));
+        }
+        self.with_a = keep;
+        self.cols = keep + pending.ncols();
+    }
+}
+
+impl RitzStep {
+    /// The first `wanted` Ritz pairs' residuals $\|AVy - \theta Vy\|_M / |\theta|$.
+    fn relative_residuals(&self, m: &MassMatrix, wanted: usize) -> Vec<f64> {
+        let n = self.ritz.nrows();
+        let residual = Mat::from_fn(n, wanted, |r, c| {
+            self.a_ritz[(r, c)] - self.theta[c] * self.ritz[(r, c)]
+        });
+        let m_residual = m.mul(residual.as_ref());
+        (0..wanted)
+            .map(|c| {
+                let norm = residual.col(c).transpose() * m_residual.col(c);
+                norm.max(0.0).sqrt() / self.theta[c].abs()
+            })
+            .collect()
+    }
 }
 
 /// A shift $\sigma < 0$ for a singular (positive semi-definite) $K$:
