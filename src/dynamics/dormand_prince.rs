@@ -2,6 +2,7 @@
 //! critical step), and where its stability region ends.
 
 use super::DynamicsError;
+use crate::error::DivergenceCause;
 use crate::linalg::LinalgError;
 use std::time::Instant;
 
@@ -229,9 +230,7 @@ impl Stages {
                 {
                     return Err(Error::Dynamics(DynamicsError::Diverged {
                         time: t,
-                        reason: format!(
-                            "with the fixed step {h:.4e} s the {matrix} became singular"
-                        ),
+                        cause: DivergenceCause::FixedStepSingular { step: h, matrix },
                     }));
                 }
                 Err(e) => return Err(e),
@@ -286,13 +285,17 @@ pub(super) fn integrate(
         if !within(&y, p) {
             return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t,
-                reason: format!("the state grew beyond {:e}", p.divergence_bound),
+                cause: DivergenceCause::StateBeyondBound {
+                    bound: p.divergence_bound,
+                },
             }));
         }
         if steps + rejected > p.max_steps {
             return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t,
-                reason: format!("more than {} steps", p.max_steps),
+                cause: DivergenceCause::TooManySteps {
+                    max_steps: p.max_steps,
+                },
             }));
         }
         let target = next_output.min(p.end_time);
@@ -302,14 +305,13 @@ pub(super) fn integrate(
         h = h.min(target - t);
         let step = stages.attempt(sys, p, t, h, &y, &k1)?;
         let Some(norm) = step.filter(|norm| norm.is_finite() && within(&stages.y5, p)) else {
-            let what = format!(
-                "the state grew beyond {:e} or became non-finite",
-                p.divergence_bound
-            );
             if p.fixed_step.is_some() {
                 return Err(Error::Dynamics(DynamicsError::Diverged {
                     time: t,
-                    reason: format!("with the fixed step {h:.4e} s {what}"),
+                    cause: DivergenceCause::FixedStepBeyondBound {
+                        step: h,
+                        bound: p.divergence_bound,
+                    },
                 }));
             }
             h *= 0.2;
@@ -317,7 +319,9 @@ pub(super) fn integrate(
             if h < p.min_step {
                 return Err(Error::Dynamics(DynamicsError::Diverged {
                     time: t,
-                    reason: what,
+                    cause: DivergenceCause::StepsCannotHold {
+                        bound: p.divergence_bound,
+                    },
                 }));
             }
             continue;
@@ -363,7 +367,9 @@ pub(super) fn integrate(
         if p.fixed_step.is_none() && h < p.min_step {
             return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t,
-                reason: format!("step size fell below {:e} s", p.min_step),
+                cause: DivergenceCause::StepTooSmall {
+                    min_step: p.min_step,
+                },
             }));
         }
     }

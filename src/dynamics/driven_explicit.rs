@@ -16,7 +16,7 @@ use super::{
     driven_frame_body::Combination,
     driven_integration::static_start,
 };
-use crate::{Progress, Result};
+use crate::{Progress, Result, error::DivergenceCause};
 
 /// The fixed steps of an explicit driven run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -118,11 +118,11 @@ pub fn integrate_driven_explicit(
         if !(largest.is_finite() && largest <= steps.bound) {
             return Err(DynamicsError::Diverged {
                 time: t,
-                reason: format!(
-                    "a coordinate reached {largest:.3e}, beyond {:.3e}, with fixed steps of \
-                     {h:.3e} s",
-                    steps.bound
-                ),
+                cause: DivergenceCause::CoordinateBeyondBound {
+                    largest,
+                    bound: steps.bound,
+                    step: h,
+                },
             }
             .into());
         }

@@ -25,6 +25,7 @@
 //! constraints after every step as with the explicit scheme.
 
 use super::DynamicsError;
+use crate::error::DivergenceCause;
 use std::time::Instant;
 
 use faer::{
@@ -200,7 +201,9 @@ pub(crate) fn integrate(
         if steps > p.max_steps {
             return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t,
-                reason: format!("more than {} steps", p.max_steps),
+                cause: DivergenceCause::TooManySteps {
+                    max_steps: p.max_steps,
+                },
             }));
         }
         let target = next_output.min(p.end_time);
@@ -241,7 +244,9 @@ pub(crate) fn integrate(
         {
             return Err(Error::Dynamics(DynamicsError::Diverged {
                 time: t1,
-                reason: format!("the state grew beyond {:e}", p.divergence_bound),
+                cause: DivergenceCause::StateBeyondBound {
+                    bound: p.divergence_bound,
+                },
             }));
         }
         sys.project_in(t1, &mut s1, &mut ws)?;

@@ -25,7 +25,7 @@ mod system;
 mod system_constraints;
 mod system_kinematics;
 
-pub use crate::error::DynamicsError;
+pub use crate::error::{DivergenceCause, DynamicsError};
 pub use axes::{AxisKind, AxisType};
 pub use body::{Body, FlexibleBody, ModalMassInverse, RigidBody};
 pub use constraint::{Attachment, Constraint};

@@ -3,13 +3,15 @@
 
 use thiserror::Error;
 
+use super::DivergenceCause;
+
 /// Errors of the dynamics layer: a body that cannot sit on a floating or driven frame,
 /// settings an integrator cannot run with, and where and when an integration stopped.
 #[derive(Debug, Error, serde::Serialize)]
 pub enum DynamicsError {
     /// A time integration that could not continue.
-    #[error("the integration diverged at t = {time:.4} s: {reason}")]
-    Diverged { time: f64, reason: String },
+    #[error("the integration diverged at t = {time:.4} s: {cause}")]
+    Diverged { time: f64, cause: DivergenceCause },
 
     /// The Newton iterations of an implicit step did not converge, even with a fresh
     /// iteration matrix.

@@ -4,6 +4,7 @@
 //! its own and the top-level one without importing upwards.
 
 mod body_file_error;
+mod divergence_cause;
 mod dynamics_error;
 mod flexmodes_error;
 mod linalg_error;
@@ -13,6 +14,7 @@ mod serve_error;
 mod unknown_id;
 
 pub use body_file_error::BodyFileError;
+pub use divergence_cause::DivergenceCause;
 pub use dynamics_error::DynamicsError;
 pub use flexmodes_error::{Error, Result};
 pub use linalg_error::LinalgError;

@@ -1,7 +1,7 @@
 //! Floating-frame dynamics (§7.2, §5.3.3): accuracy ordering of the methods, invariants of the
 //! integration, the symmetry study and errors.
 
-use flexmodes::dynamics::DynamicsError;
+use flexmodes::dynamics::{DivergenceCause, DynamicsError};
 use flexmodes::{
     Error, Progress,
     analysis::relative_rms,
@@ -521,9 +521,17 @@ fn fixed_steps_diverge_above_the_critical_step_and_not_below() {
         .iter()
         .fold(0.0f64, |m, e| m.max((e - energy[0]).abs()));
     match run(3.0) {
-        Err(Error::Dynamics(DynamicsError::Diverged { time, reason })) => {
-            assert!(time < 4.0 && time > 0.0, "{time}: {reason}");
-            assert!(reason.contains("fixed step"), "{reason}");
+        Err(Error::Dynamics(DynamicsError::Diverged { time, cause })) => {
+            assert!(time < 4.0 && time > 0.0, "{time}: {cause}");
+            assert!(
+                matches!(
+                    cause,
+                    DivergenceCause::FixedStepBeyondBound { .. }
+                        | DivergenceCause::FixedStepSingular { .. }
+                ),
+                "{cause}"
+            );
+            assert!(cause.to_string().contains("fixed step"), "{cause}");
         }
         other => panic!(
             "expected Diverged at three times the critical step {critical:e} s, got {other:?}",
@@ -550,9 +558,10 @@ fn an_impossible_step_size_is_a_named_error() {
         ..Default::default()
     };
     match simulate(&system, &state, &p, &Progress::default()) {
-        Err(Error::Dynamics(DynamicsError::Diverged { time, reason })) => {
+        Err(Error::Dynamics(DynamicsError::Diverged { time, cause })) => {
             assert!(time < 0.5);
-            assert!(reason.contains("fell below"), "{reason}");
+            assert_eq!(cause, DivergenceCause::StepTooSmall { min_step: 1e-4 });
+            assert!(cause.to_string().contains("fell below"), "{cause}");
         }
         other => panic!(
             "expected Diverged, got {other:?}",
