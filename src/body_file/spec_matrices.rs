@@ -138,7 +138,7 @@ pub(super) fn read_nodes(
     let node_count = match &coordinates {
         Some((rows, _)) => rows.len(),
         None => {
-            if n % per != 0 {
+            if !n.is_multiple_of(per) {
                 return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
                     path: matrices.k_name.clone(),
                     what: "stiffness".into(),

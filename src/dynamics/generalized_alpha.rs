@@ -304,6 +304,7 @@ impl StepStart<'_> {
 
     /// Newton's iterations from the guess $\dot v_{n+1} = \dot v_n$, or the last
     /// correction's size when they do not converge in [`MAX_NEWTON_ITERATIONS`].
+    #[allow(clippy::too_many_arguments)]
     fn solve(
         &self,
         sys: &System,

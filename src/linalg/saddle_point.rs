@@ -211,14 +211,14 @@ fn solve_by_blocks(
         definite_schur: false,
     };
     if kept.is_empty() {
-        let lambda = match ScaledSchur::new(&schur) {
+        let lambda = match ScaledSchur::new(schur) {
             Some(s) => {
                 route.definite_schur = true;
                 let mut neg_g = DMatrix::zeros(nr, 1);
                 neg_g.column_mut(0).copy_from(&-g);
                 s.solve(&neg_g).column(0).into_owned()
             }
-            None => saddle_point_solve(&schur, &g),
+            None => saddle_point_solve(schur, g),
         };
         out.rows_mut(nf, nr).copy_from(&lambda);
     } else {
@@ -236,7 +236,7 @@ fn solve_by_blocks(
             f_s.rows_mut(ko, FRAME_BLOCK)
                 .copy_from(&rhs.rows(o, FRAME_BLOCK));
         }
-        let (x_s, lambda) = match dual_schur_solve(&a_s, &b_s, &f_s, &schur, &g, frame_scale) {
+        let (x_s, lambda) = match dual_schur_solve(&a_s, &b_s, &f_s, schur, g, frame_scale) {
             Some(solved) => {
                 route.definite_schur = true;
                 solved
@@ -247,10 +247,10 @@ fn solve_by_blocks(
                 reduced.view_mut((0, 0), (top, top)).copy_from(&a_s);
                 reduced.view_mut((top, 0), (nr, top)).copy_from(&b_s);
                 reduced.view_mut((0, top), (top, nr)).tr_copy_from(&b_s);
-                reduced.view_mut((top, top), (nr, nr)).copy_from(&schur);
+                reduced.view_mut((top, top), (nr, nr)).copy_from(schur);
                 let mut reduced_rhs = DVector::zeros(m);
                 reduced_rhs.rows_mut(0, top).copy_from(&f_s);
-                reduced_rhs.rows_mut(top, nr).copy_from(&g);
+                reduced_rhs.rows_mut(top, nr).copy_from(g);
                 let solution = saddle_point_solve(&reduced, &reduced_rhs);
                 (
                     solution.rows(0, top).into_owned(),
