@@ -12,6 +12,13 @@ pub enum LinalgError {
     )]
     NonPositivePivot { matrix: String, index: usize },
 
+    /// More eigenpairs than the partial eigensolver's basis leaves room for.
+    #[error(
+        "{wanted} modes of a {dof}-DOF problem: too many for the partial eigensolver, use the \
+         dense path"
+    )]
+    TooManyPairs { wanted: usize, dof: usize },
+
     /// An allocation the computation needs could not be made.
     #[error("out of memory: {what}")]
     OutOfMemory { what: String },

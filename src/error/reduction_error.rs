@@ -65,9 +65,14 @@ pub enum ReductionError {
     #[error("kept-mode counts {counts:?}: give at least one count, each at least 1")]
     NoKeptModes { counts: Vec<usize> },
 
-    /// A frequency cut-off that keeps no mode where at least one is required.
-    #[error("invalid mode selection: {reason}")]
-    InvalidModeSelection { reason: String },
+    /// A frequency cut-off that is not a non-negative number.
+    #[error("invalid mode selection: frequency cut-off {hz} Hz must be a non-negative number")]
+    InvalidCutoff { hz: f64 },
+
+    /// A reduction's column is not the DOF it stands for (a Guyan column per master DOF, in
+    /// order).
+    #[error("column {column} of the reduction is not DOF {dof}")]
+    ColumnNotAtDof { column: usize, dof: usize },
 
     /// Eitelberg's method needs every pole of A in the open left half-plane.
     #[error(

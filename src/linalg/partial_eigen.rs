@@ -12,7 +12,6 @@
 //! by its residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
 
 use super::LinalgError;
-use crate::error::ReductionError;
 use faer::{Mat, MatRef};
 
 use super::{
@@ -129,12 +128,7 @@ pub fn lowest_modes(
         ));
     }
     if max_basis + b > n {
-        return Err(Error::Reduction(ReductionError::InvalidModeSelection {
-            reason: format!(
-                "{wanted} modes of a {n}-DOF problem: too many for the partial eigensolver, \
-                 use the dense path"
-            ),
-        }));
+        return Err(Error::Linalg(LinalgError::TooManyPairs { wanted, dof: n }));
     }
     let mut stats = PartialEigenStatistics {
         basis_size: max_basis,

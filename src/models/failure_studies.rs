@@ -178,8 +178,9 @@ pub fn guyan_mean_axes(model: &FeModel) -> Result<GuyanMeanAxes> {
     for (c, col) in g.columns.iter().enumerate() {
         let expected = model.dofs_of_nodes(&[masters[c / 3]])?[c % 3];
         if col.dof != Some(expected) {
-            return Err(Error::Reduction(ReductionError::InvalidModeSelection {
-                reason: format!("Guyan column {c} is not DOF {expected}"),
+            return Err(Error::Reduction(ReductionError::ColumnNotAtDof {
+                column: c,
+                dof: expected,
             }));
         }
     }

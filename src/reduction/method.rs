@@ -114,9 +114,7 @@ impl ModeSelection {
             }
             ModeSelection::Count(n) => Ok(n),
             ModeSelection::UpToHz(f) if f.is_nan() || f < 0.0 => {
-                Err(Error::Reduction(ReductionError::InvalidModeSelection {
-                    reason: format!("frequency cut-off {f} Hz must be a non-negative number"),
-                }))
+                Err(Error::Reduction(ReductionError::InvalidCutoff { hz: f }))
             }
             ModeSelection::UpToHz(f) => Ok(hz.iter().take_while(|&&h| h <= f).count()),
         }

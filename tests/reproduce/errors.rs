@@ -124,7 +124,7 @@ fn too_many_modes() {
     assert!(
         matches!(
             e,
-            Error::Reduction(ReductionError::InvalidModeSelection { .. })
+            Error::Reduction(ReductionError::InvalidCutoff { hz }) if hz.is_nan()
         ),
         "{e}"
     );
