@@ -6,8 +6,9 @@ use std::collections::BTreeMap;
 use super::{
     BodyFileError, BodyLocation, ImportedBody, InterfaceSpec, MatrixMarket, MatrixMarketFormat,
     Units,
-    imported_body::{SetsAndInterfaces, check_node_count, checked_sets, dof_map},
+    imported_body::{SetsAndInterfaces, checked_sets, dof_map},
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
+    spec_matrices::check_node_count,
 };
 use crate::{
     Error, Result,

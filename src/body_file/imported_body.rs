@@ -1,14 +1,10 @@
 //! A body read from a body file: its [`FeModel`], named node sets and units, checked.
 
 use super::BodyFileError;
-use std::{
-    collections::BTreeMap,
-    path::{Path, PathBuf},
-    sync::Arc,
-};
+use std::{collections::BTreeMap, sync::Arc};
 
 use super::{
-    BodySpec, DofOrder, InterfaceKind, InterfaceSpec, Units,
+    BodyLocation, BodySpec, DofOrder, InterfaceKind, InterfaceSpec, Units,
     csv_table::edges,
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
     spec_matrices::{SpecMatrices, SpecText, place_equations, read_matrices, read_nodes},
@@ -36,78 +32,6 @@ pub struct RigidSet {
 /// Largest accepted $|a_{ij} - a_{ji}|$ relative to the largest entry of K or M: exporters
 /// that print 7 significant digits stay below it, a wrong matrix does not.
 pub const SYMMETRY_TOLERANCE: f64 = 1e-6;
-
-/// Where a body file and the files it names are read from.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum BodyLocation {
-    /// A body file on disk; the files it names are relative to its folder.
-    Disk(PathBuf),
-    /// A body embedded in the binary (`builtin:NAME`, from `assets/bodies/NAME/`).
-    Builtin(String),
-    /// A body handed over in memory ([`ImportedBody::from_matrices`], Python's
-    /// `flexmodes.Body`): its name; it names no other file.
-    Memory(String),
-}
-
-impl BodyLocation {
-    /// `builtin:NAME` for an embedded body, a path otherwise.
-    pub fn parse(s: &str) -> Self {
-        match s.strip_prefix("builtin:") {
-            Some(name) => Self::Builtin(name.to_string()),
-            None => Self::Disk(PathBuf::from(s)),
-        }
-    }
-
-    /// The body file itself, as shown in messages.
-    pub fn display(&self) -> String {
-        match self {
-            Self::Disk(p) => p.display().to_string(),
-            Self::Builtin(name) => format!("builtin:{name}"),
-            Self::Memory(name) => format!("<{name} in memory>"),
-        }
-    }
-
-    /// Reads the body file (`None`) or a file it names, relative to it; returns the bytes and
-    /// the name used in error messages.
-    pub(super) fn read(&self, relative: Option<&str>) -> Result<(Vec<u8>, String)> {
-        match self {
-            Self::Disk(body) => {
-                let path = match relative {
-                    None => body.clone(),
-                    Some(r) => body.parent().unwrap_or(Path::new(".")).join(r),
-                };
-                let bytes = std::fs::read(&path).map_err(|source| Error::Io {
-                    path: path.display().to_string(),
-                    source,
-                })?;
-                Ok((bytes, path.display().to_string()))
-            }
-            Self::Memory(name) => Err(Error::BodyFile(BodyFileError::BodyFile {
-                path: format!("<{name} in memory>"),
-                line: None,
-                reason: format!(
-                    "a body in memory names no file (asked for `{}`)",
-                    relative.unwrap_or("its body file")
-                ),
-            })),
-            Self::Builtin(name) => {
-                let file = relative.unwrap_or("body.toml");
-                let asset = format!("bodies/{name}/{file}");
-                let bytes = crate::assets::get(&asset).ok_or_else(|| {
-                    Error::BodyFile(BodyFileError::BodyFile {
-                        path: format!("builtin:{name}"),
-                        line: None,
-                        reason: format!(
-                            "no embedded file `{asset}` (built-in bodies: {})",
-                            crate::assets::builtin_bodies().join(", ")
-                        ),
-                    })
-                })?;
-                Ok((bytes.to_vec(), format!("assets/{asset}")))
-            }
-        }
-    }
-}
 
 /// A body from a body file: the model every reduction takes, plus what the file names.
 #[derive(Debug, Clone)]
@@ -472,28 +396,4 @@ pub(super) fn dof_map(names: &[String]) -> std::result::Result<DofMap, String> {
         per_node.push(dof);
     }
     Ok(DofMap::new(per_node))
-}
-
-/// `node_count` nodes of the DOF `dofs` names must make the stiffness' `n` DOF.
-pub(super) fn check_node_count(
-    k_name: &str,
-    n: usize,
-    node_count: usize,
-    dofs: &[String],
-) -> Result<()> {
-    let per = dofs.len();
-    if node_count * per == n {
-        return Ok(());
-    }
-    Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-        path: k_name.to_string(),
-        what: "stiffness".into(),
-        rows: n,
-        cols: n,
-        expected: format!(
-            "{node_count} nodes with {per} DOF each ({}) make {} DOF",
-            dofs.join(", "),
-            node_count * per
-        ),
-    }))
 }

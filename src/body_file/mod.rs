@@ -3,6 +3,7 @@
 //! exported to.
 
 mod abaqus_matrix;
+mod body_location;
 mod body_matrices;
 mod body_spec;
 mod body_writer;
@@ -23,6 +24,7 @@ mod spec_matrices;
 
 pub use crate::error::BodyFileError;
 pub use abaqus_matrix::parse_abaqus_matrix;
+pub use body_location::BodyLocation;
 pub use body_matrices::{BodyMatrices, MatrixEntries};
 pub use body_spec::{
     BodySpec, DofOrder, GeometrySpec, InterfaceKind, InterfaceSpec, MatrixFiles, MatrixFormat,
@@ -35,7 +37,7 @@ pub use body_writer::{
 pub use calculix_matrix::{calculix_equation_count, parse_calculix_dof_map, parse_calculix_matrix};
 pub use dof_map_file::parse_dof_map;
 pub use harwell_boeing::parse_harwell_boeing;
-pub use imported_body::{BodyHandle, BodyLocation, ImportedBody, RigidSet, SYMMETRY_TOLERANCE};
+pub use imported_body::{BodyHandle, ImportedBody, RigidSet, SYMMETRY_TOLERANCE};
 pub use matrix_market::{
     MatrixMarket, MatrixMarketFormat, parse_matrix_market, read_matrix_market, write_array,
     write_coordinate_symmetric, write_coordinate_symmetric_to,

@@ -5,11 +5,11 @@
 use super::{
     BodyFileError, BodySpec, DofOrder, MatrixFormat,
     abaqus_matrix::parse_abaqus_matrix,
+    body_location::BodyLocation,
     calculix_matrix::{calculix_equation_count, parse_calculix_dof_map, parse_calculix_matrix},
     csv_table::read_table,
     dof_map_file::parse_dof_map,
     harwell_boeing::parse_harwell_boeing,
-    imported_body::{BodyLocation, check_node_count},
     matrix_market::MatrixMarket,
     nastran_dmig::parse_nastran_dmig,
     nastran_op4::parse_op4,
@@ -240,4 +240,28 @@ pub(super) fn place_equations(
         }
     }
     Ok(())
+}
+
+/// `node_count` nodes of the DOF `dofs` names must make the stiffness' `n` DOF.
+pub(super) fn check_node_count(
+    k_name: &str,
+    n: usize,
+    node_count: usize,
+    dofs: &[String],
+) -> Result<()> {
+    let per = dofs.len();
+    if node_count * per == n {
+        return Ok(());
+    }
+    Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+        path: k_name.to_string(),
+        what: "stiffness".into(),
+        rows: n,
+        cols: n,
+        expected: format!(
+            "{node_count} nodes with {per} DOF each ({}) make {} DOF",
+            dofs.join(", "),
+            node_count * per
+        ),
+    }))
 }

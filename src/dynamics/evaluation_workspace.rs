@@ -3,7 +3,7 @@
 
 use nalgebra::{DMatrix, DVector, Matrix6};
 
-use super::{System, system_constraints::Rows};
+use super::{System, constraint_rows::Rows};
 use crate::linalg::BlockSaddlePointWorkspace;
 
 /// One body's rows of the mass matrix and forces (see [`System::accelerations`]).
@@ -50,15 +50,6 @@ pub(super) struct BodyElimination {
     pub(super) product: DMatrix<f64>,
     /// $X_{:, :6}\,\dot v_f$, then the modal accelerations.
     pub(super) frame_part: DVector<f64>,
-}
-
-/// The constraint rows $C$ a block elimination is of, their right-hand side $g$, and per
-/// body the rows that may touch its modal coordinates ([`Rows::modal_rows`]).
-#[derive(Clone, Copy)]
-pub(super) struct ConstraintRows<'a> {
-    pub(super) c: &'a DMatrix<f64>,
-    pub(super) g: &'a DVector<f64>,
-    pub(super) modal_rows: &'a [Vec<usize>],
 }
 
 /// Buffers of [`System::accelerations`]' block elimination.
@@ -127,20 +118,5 @@ impl EvaluationWorkspace {
     /// a projection step.
     pub(super) fn solution(&self) -> &DVector<f64> {
         &self.saddle.x
-    }
-}
-
-/// `m` as an `r` × `c` matrix, reallocated only when its shape differs; its entries are
-/// left as they are when it is not.
-pub(crate) fn reshape(m: &mut DMatrix<f64>, r: usize, c: usize) {
-    if m.shape() != (r, c) {
-        *m = DMatrix::zeros(r, c);
-    }
-}
-
-/// `v` with `n` entries, reallocated only when its length differs.
-pub(crate) fn resize(v: &mut DVector<f64>, n: usize) {
-    if v.len() != n {
-        *v = DVector::zeros(n);
     }
 }

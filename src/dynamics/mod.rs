@@ -6,6 +6,7 @@
 mod axes;
 mod body;
 mod constraint;
+mod constraint_rows;
 mod dormand_prince;
 mod driven_explicit;
 mod driven_frame_body;

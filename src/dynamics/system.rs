@@ -6,9 +6,8 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector4};
 
 use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
-    evaluation_workspace::{
-        BodyBlocks, ConstraintRows, EvaluationWorkspace, SaddlePointWorkspace, reshape, resize,
-    },
+    constraint_rows::{ConstraintRows, reshape, resize},
+    evaluation_workspace::{BodyBlocks, EvaluationWorkspace, SaddlePointWorkspace},
     rotation::{l_matrix, rotate_body, skew},
 };
 use crate::fem::NodeIndex;

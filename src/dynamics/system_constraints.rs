@@ -1,50 +1,14 @@
 //! The system's constraint rows $C\dot v = \gamma$ (joints, prescribed nodes, axis
 //! conditions), their violation, and the projection of a state onto them.
 
-use nalgebra::{DMatrix, DVector, Matrix3};
+use nalgebra::Matrix3;
 
 use super::{
     Attachment, AxisType, Constraint, FlexibleBody, InertiaInvariants, State, System,
-    evaluation_workspace::{ConstraintRows, EvaluationWorkspace, reshape, resize},
+    constraint_rows::{ConstraintRows, Rows, reshape, resize},
+    evaluation_workspace::EvaluationWorkspace,
 };
 use crate::Result;
-
-/// Constraint rows at one instant.
-#[derive(Debug, Clone)]
-pub(crate) struct Rows {
-    /// Jacobian, rows × nv.
-    pub c: DMatrix<f64>,
-    /// Acceleration right-hand side.
-    pub gamma: DVector<f64>,
-    /// Velocity right-hand side.
-    pub target: DVector<f64>,
-    /// Position residual (0 for non-holonomic rows).
-    pub phi: DVector<f64>,
-    /// Whether each row is holonomic.
-    pub holonomic: Vec<bool>,
-    /// The bodies' $H_c(z)$ at the state the rows are of ([`System::modal_moments`]): the axis
-    /// conditions need them, and so do the mass matrix and forces at the same state.
-    pub moments: Vec<Vec<Matrix3<f64>>>,
-    /// Per body, the rows that may touch its modal coordinates (a joint at one of its nodes,
-    /// its axis conditions), ascending: the block elimination looks for nonzero modal
-    /// entries only there.
-    pub modal_rows: Vec<Vec<usize>>,
-}
-
-impl Rows {
-    /// No rows: buffers for [`System::rows_into`].
-    pub(crate) fn empty() -> Self {
-        Self {
-            c: DMatrix::zeros(0, 0),
-            gamma: DVector::zeros(0),
-            target: DVector::zeros(0),
-            phi: DVector::zeros(0),
-            holonomic: Vec::new(),
-            moments: Vec::new(),
-            modal_rows: Vec::new(),
-        }
-    }
-}
 
 impl System {
     /// Constraint rows at time `t`.

@@ -1,0 +1,65 @@
+//! The system's constraint rows at one instant, $C\dot v = \gamma$ with their residuals, as
+//! buffers an integration reuses; and the view of them a block elimination takes.
+
+use nalgebra::{DMatrix, DVector, Matrix3};
+
+/// Constraint rows at one instant.
+#[derive(Debug, Clone)]
+pub(crate) struct Rows {
+    /// Jacobian, rows × nv.
+    pub c: DMatrix<f64>,
+    /// Acceleration right-hand side.
+    pub gamma: DVector<f64>,
+    /// Velocity right-hand side.
+    pub target: DVector<f64>,
+    /// Position residual (0 for non-holonomic rows).
+    pub phi: DVector<f64>,
+    /// Whether each row is holonomic.
+    pub holonomic: Vec<bool>,
+    /// The bodies' $H_c(z)$ at the state the rows are of ([`super::System::modal_moments`]): the axis
+    /// conditions need them, and so do the mass matrix and forces at the same state.
+    pub moments: Vec<Vec<Matrix3<f64>>>,
+    /// Per body, the rows that may touch its modal coordinates (a joint at one of its nodes,
+    /// its axis conditions), ascending: the block elimination looks for nonzero modal
+    /// entries only there.
+    pub modal_rows: Vec<Vec<usize>>,
+}
+
+impl Rows {
+    /// No rows: buffers for [`super::System::rows_into`].
+    pub(crate) fn empty() -> Self {
+        Self {
+            c: DMatrix::zeros(0, 0),
+            gamma: DVector::zeros(0),
+            target: DVector::zeros(0),
+            phi: DVector::zeros(0),
+            holonomic: Vec::new(),
+            moments: Vec::new(),
+            modal_rows: Vec::new(),
+        }
+    }
+}
+
+/// The constraint rows $C$ a block elimination is of, their right-hand side $g$, and per
+/// body the rows that may touch its modal coordinates ([`Rows::modal_rows`]).
+#[derive(Clone, Copy)]
+pub(super) struct ConstraintRows<'a> {
+    pub(super) c: &'a DMatrix<f64>,
+    pub(super) g: &'a DVector<f64>,
+    pub(super) modal_rows: &'a [Vec<usize>],
+}
+
+/// `m` as an `r` × `c` matrix, reallocated only when its shape differs; its entries are
+/// left as they are when it is not.
+pub(crate) fn reshape(m: &mut DMatrix<f64>, r: usize, c: usize) {
+    if m.shape() != (r, c) {
+        *m = DMatrix::zeros(r, c);
+    }
+}
+
+/// `v` with `n` entries, reallocated only when its length differs.
+pub(crate) fn resize(v: &mut DVector<f64>, n: usize) {
+    if v.len() != n {
+        *v = DVector::zeros(n);
+    }
+}
