@@ -8,7 +8,7 @@ use super::{
     Units,
     imported_body::{SetsAndInterfaces, checked_sets, dof_map},
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
-    spec_matrices::check_node_count,
+    spec_matrices::{SpecText, check_node_count},
 };
 use crate::{
     Error, Result,
@@ -176,8 +176,10 @@ impl ImportedBody {
                 default_interface: body.default_interface.as_deref(),
             },
             node_count,
-            &format!("<{} in memory>", body.name),
-            &|_| None,
+            &SpecText {
+                name: &format!("<{} in memory>", body.name),
+                text: "",
+            },
         )?;
         let node_major = |i: usize| i;
         let k = symmetric_matrix(

@@ -7,7 +7,7 @@ use super::{
     BodyLocation, BodySpec, DofOrder, InterfaceKind, InterfaceSpec, Units,
     csv_table::edges,
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
-    spec_matrices::{SpecMatrices, SpecText, place_equations, read_matrices, read_nodes},
+    spec_matrices::{SpecText, place_equations, read_matrices, read_nodes},
 };
 use crate::{
     Error, Result,
@@ -149,14 +149,19 @@ impl ImportedBody {
             DofOrder::NodeMajor => i,
             DofOrder::DofMajor => (i % node_count) * per + i / node_count,
         };
-        let SpecMatrices {
-            k_file,
-            k_name,
-            m_file,
+        let k = symmetric_matrix(
+            &matrices.k_file,
+            &matrices.k_name,
+            "stiffness",
+            &to_node_major,
+        )?;
+        let m_name = &matrices.m_name;
+        let m = mass_matrix(
+            &matrices.m_file,
             m_name,
-        } = matrices;
-        let k = symmetric_matrix(&k_file, &k_name, "stiffness", &to_node_major)?;
-        let m = mass_matrix(&m_file, &m_name, k_file.rows, &to_node_major)?;
+            matrices.k_file.rows,
+            &to_node_major,
+        )?;
 
         let edges = match &spec.geometry.edges {
             None => Vec::new(),
@@ -172,7 +177,7 @@ impl ImportedBody {
             m,
             rigid_motions: RigidMotions::Unknown,
         };
-        check_mass(&model, &m_name)?;
+        check_mass(&model, m_name)?;
         if has_coordinates && rigid_motions_are_null_space(&model) {
             model.rigid_motions = RigidMotions::FromGeometry;
         }
@@ -184,8 +189,7 @@ impl ImportedBody {
                 default_interface: spec.default_interface.as_deref(),
             },
             node_count,
-            &name,
-            &|key| spec_text.key_line(key),
+            &spec_text,
         )?;
         Ok(Self {
             model,
@@ -308,26 +312,18 @@ pub(super) struct SetsAndInterfaces<'a> {
     pub(super) default_interface: Option<&'a str>,
 }
 
-/// Checks the sets against `node_count` nodes and the interfaces against the sets; `name`
-/// and `key_line` place an error (the body file and the line of a key, when there is one).
+/// Checks the sets against `node_count` nodes and the interfaces against the sets; `text`
+/// places an error (the body file, and the line of a key when there is one).
 pub(super) fn checked_sets(
     given: &SetsAndInterfaces<'_>,
     node_count: usize,
-    name: &str,
-    key_line: &dyn Fn(&str) -> Option<usize>,
+    text: &SpecText<'_>,
 ) -> Result<BTreeMap<String, InterfaceSpec>> {
-    let body_error = |line: Option<usize>, reason: String| {
-        Error::BodyFile(BodyFileError::BodyFile {
-            path: name.to_string(),
-            line,
-            reason,
-        })
-    };
     if let Some(set) = &given.default_interface
         && !given.node_sets.contains_key(*set)
     {
-        return Err(body_error(
-            key_line("default_interface"),
+        return Err(text.error(
+            text.key_line("default_interface"),
             format!(
                 "`default_interface` names the node set `{set}`, which [node_sets] does not define"
             ),
@@ -336,7 +332,7 @@ pub(super) fn checked_sets(
     for (set, members) in given.node_sets {
         if let Some(&node) = members.iter().find(|&&x| x == 0 || x > node_count) {
             return Err(Error::BodyFile(BodyFileError::NodeSetOutOfRange {
-                path: name.to_string(),
+                path: text.name.to_string(),
                 set: set.clone(),
                 node,
                 count: node_count,
@@ -346,8 +342,8 @@ pub(super) fn checked_sets(
     let mut interfaces = BTreeMap::new();
     for (iname, interface) in given.interfaces {
         if !given.node_sets.contains_key(&interface.node_set) {
-            return Err(body_error(
-                key_line(iname),
+            return Err(text.error(
+                text.key_line(iname),
                 format!(
                     "interface `{iname}` names the node set `{}`, which [node_sets] does not \
                          define",
@@ -358,14 +354,14 @@ pub(super) fn checked_sets(
         if let Some(w) = &interface.weights {
             let count = given.node_sets[&interface.node_set].len();
             if interface.kind == InterfaceKind::Rbe2 {
-                return Err(body_error(
-                    key_line(iname),
+                return Err(text.error(
+                    text.key_line(iname),
                     format!("interface `{iname}`: weights belong to kind \"rbe3\" only"),
                 ));
             }
             if w.len() != count || w.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
-                return Err(body_error(
-                    key_line(iname),
+                return Err(text.error(
+                    text.key_line(iname),
                     format!(
                         "interface `{iname}`: {} weights for the {count} nodes of `{}`; \
                              each must be positive",

@@ -262,6 +262,27 @@ fn parse_size_line(
     })
 }
 
+/// The next data line while the size line promises more `what` (entries or values) than the
+/// `read` so far: a file that ends first is an error at the size line.
+fn promised_line(
+    lines: &mut NumberedLines<'_>,
+    name: &str,
+    size: &SizeLine,
+    read: usize,
+    what: &str,
+) -> Result<(usize, String)> {
+    next_data_line(lines, name)?.ok_or_else(|| {
+        line_error(
+            name,
+            size.line,
+            format!(
+                "the size line promises {} {what}, the file ends after {read}",
+                size.count
+            ),
+        )
+    })
+}
+
 /// `v` read from `token` on line `no`, when finite.
 fn finite_value(v: f64, name: &str, no: usize, token: &str) -> Result<f64> {
     if v.is_finite() {
@@ -286,16 +307,7 @@ fn coordinate_entries(
     let (rows, cols, count) = (size.rows, size.cols, size.count);
     let mut entries = Vec::with_capacity(count);
     while entries.len() < count {
-        let Some((no, line)) = next_data_line(lines, name)? else {
-            return Err(line_error(
-                name,
-                size.line,
-                format!(
-                    "the size line promises {count} entries, the file ends after {}",
-                    entries.len()
-                ),
-            ));
-        };
+        let (no, line) = promised_line(lines, name, size, entries.len(), "entries")?;
         let t: Vec<&str> = line.split_whitespace().collect();
         if t.len() != 3 {
             return Err(line_error(
@@ -341,16 +353,7 @@ fn array_entries(
     let mut entries = Vec::with_capacity(count);
     let (mut i, mut j) = (0usize, 0usize);
     while entries.len() < count {
-        let Some((no, line)) = next_data_line(lines, name)? else {
-            return Err(line_error(
-                name,
-                size.line,
-                format!(
-                    "the size line promises {count} values, the file ends after {}",
-                    entries.len()
-                ),
-            ));
-        };
+        let (no, line) = promised_line(lines, name, size, entries.len(), "values")?;
         for token in line.split_whitespace() {
             if entries.len() == count {
                 return Err(line_error(name, no, "more values than the size line says"));

@@ -215,13 +215,10 @@ pub(super) fn place_equations(
     } else {
         parse_dof_map(&bytes, &map_name, dofs, node_count)?
     };
-    let SpecMatrices {
-        k_file,
-        k_name,
-        m_file,
-        m_name,
-    } = matrices;
-    for (file, name) in [(k_file, &*k_name), (m_file, &*m_name)] {
+    for (file, name) in [
+        (&mut matrices.k_file, &matrices.k_name),
+        (&mut matrices.m_file, &matrices.m_name),
+    ] {
         if file.rows != equations.len() {
             return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
                 path: name.clone(),

@@ -133,13 +133,6 @@ impl ModalMassInverse {
         Ok(Self::Dense(inverse))
     }
 
-    /// $M_{zz}^{-1} B$.
-    pub fn solve(&self, b: &DMatrix<f64>) -> DMatrix<f64> {
-        let mut out = DMatrix::zeros(b.nrows(), b.ncols());
-        self.solve_into(b, &mut out);
-        out
-    }
-
     /// $M_{zz}^{-1} B$ into `out`, of `b`'s shape.
     pub fn solve_into(&self, b: &DMatrix<f64>, out: &mut DMatrix<f64>) {
         match self {

@@ -19,10 +19,6 @@ pub(crate) struct Rows {
     /// The bodies' $H_c(z)$ at the state the rows are of ([`super::System::modal_moments`]): the axis
     /// conditions need them, and so do the mass matrix and forces at the same state.
     pub moments: Vec<Vec<Matrix3<f64>>>,
-    /// Per body, the rows that may touch its modal coordinates (a joint at one of its nodes,
-    /// its axis conditions), ascending: the block elimination looks for nonzero modal
-    /// entries only there.
-    pub modal_rows: Vec<Vec<usize>>,
 }
 
 impl Rows {
@@ -35,13 +31,12 @@ impl Rows {
             phi: DVector::zeros(0),
             holonomic: Vec::new(),
             moments: Vec::new(),
-            modal_rows: Vec::new(),
         }
     }
 }
 
 /// The constraint rows $C$ a block elimination is of, their right-hand side $g$, and per
-/// body the rows that may touch its modal coordinates ([`Rows::modal_rows`]).
+/// body the rows that may touch its modal coordinates ([`super::System::modal_rows`]).
 #[derive(Clone, Copy)]
 pub(super) struct ConstraintRows<'a> {
     pub(super) c: &'a DMatrix<f64>,

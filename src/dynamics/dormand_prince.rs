@@ -263,8 +263,10 @@ pub(super) fn integrate(
 ) -> Result<Simulation> {
     let start = Instant::now();
     let nq = sys.nq();
+    let mut stages = Stages::new(sys);
+    // The projected initial state; then each accepted step's state, projected.
     let mut state = initial.clone();
-    sys.project(0.0, &mut state)?;
+    sys.project(0.0, &mut state, &mut stages.buffers.evaluation)?;
     let mut samples = vec![sample(sys, 0.0, &state)];
     let mut y = DVector::zeros(nq + sys.nv());
     y.rows_mut(0, nq).copy_from(&state.q);
@@ -278,9 +280,7 @@ pub(super) fn integrate(
     let (mut steps, mut rejected) = (0usize, 0usize);
     let mut next_output = p.output_interval;
     let mut k1 = DVector::zeros(y.len());
-    let mut stages = Stages::new(sys);
     derivative_into(sys, t, &y, &mut k1, &mut stages.buffers)?;
-    let mut s = initial.clone();
     while t < p.end_time - 1e-12 {
         if !within(&y, p) {
             return Err(Error::Dynamics(DynamicsError::Diverged {
@@ -330,27 +330,31 @@ pub(super) fn integrate(
             t += h;
             steps += 1;
             let y5 = &stages.y5;
-            s.q.copy_from(&y5.rows(0, nq));
-            s.v.copy_from(&y5.rows(nq, sys.nv()));
-            sys.project_in(t, &mut s, &mut stages.buffers.evaluation)?;
+            state.q.copy_from(&y5.rows(0, nq));
+            state.v.copy_from(&y5.rows(nq, sys.nv()));
+            sys.project(t, &mut state, &mut stages.buffers.evaluation)?;
             // First same as last: the last stage is the derivative at y5. The projection
             // moves y5 by round-off after every step; only a correction within
             // FSAL_CORRECTION of the error tolerance keeps it, a larger one is re-evaluated.
             let mut correction = 0.0;
-            for (i, (&before, &after)) in y5.iter().zip(s.q.iter().chain(s.v.iter())).enumerate() {
+            for (i, (&before, &after)) in y5
+                .iter()
+                .zip(state.q.iter().chain(state.v.iter()))
+                .enumerate()
+            {
                 let sc = p.atol + p.rtol * y5[i].abs();
                 correction += ((after - before) / sc).powi(2);
             }
             let reuse = (correction / y.len() as f64).sqrt() <= FSAL_CORRECTION;
-            y.rows_mut(0, nq).copy_from(&s.q);
-            y.rows_mut(nq, sys.nv()).copy_from(&s.v);
+            y.rows_mut(0, nq).copy_from(&state.q);
+            y.rows_mut(nq, sys.nv()).copy_from(&state.v);
             if reuse {
                 k1.copy_from(&stages.k[6]);
             } else {
                 derivative_into(sys, t, &y, &mut k1, &mut stages.buffers)?;
             }
             if (t - target).abs() < 1e-12 {
-                samples.push(sample(sys, target, &s));
+                samples.push(sample(sys, target, &state));
                 progress.advance(t)?;
                 next_output += p.output_interval;
             }

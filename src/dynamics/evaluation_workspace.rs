@@ -38,8 +38,6 @@ impl BodyBlocks {
 #[derive(Debug, Clone)]
 pub(super) struct BodyElimination {
     pub(super) blocks: BodyBlocks,
-    /// Whether the body's modal coordinates were eliminated (a deformable body).
-    pub(super) eliminated: bool,
     /// The constraint rows that touch its modal coordinates.
     pub(super) active: Vec<usize>,
     /// $W = [M_{zf}, C_z^T, Q_z]$, k × (7 + active rows).
@@ -67,6 +65,8 @@ pub(super) struct SaddlePointWorkspace {
 /// elimination's matrices and its solution.
 #[derive(Debug, Clone)]
 pub struct EvaluationWorkspace {
+    /// Per body, the rows that may touch its modal coordinates ([`System::modal_rows`]).
+    pub(super) modal_rows: Vec<Vec<usize>>,
     pub(super) rows: Rows,
     /// The holonomic rows of `rows` and their residuals (the position projection).
     pub(super) holonomic_c: DMatrix<f64>,
@@ -88,7 +88,6 @@ impl EvaluationWorkspace {
                 let k = body.velocity_count() - 6;
                 BodyElimination {
                     blocks: BodyBlocks::zeros(k),
-                    eliminated: false,
                     active: Vec::new(),
                     w: DMatrix::zeros(0, 0),
                     x: DMatrix::zeros(0, 0),
@@ -98,6 +97,7 @@ impl EvaluationWorkspace {
             })
             .collect();
         Self {
+            modal_rows: system.modal_rows(),
             rows: Rows::empty(),
             holonomic_c: DMatrix::zeros(0, 0),
             holonomic_phi: DVector::zeros(0),

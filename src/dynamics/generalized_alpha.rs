@@ -187,7 +187,7 @@ pub(crate) fn integrate(
     let clock = Instant::now();
     let mut ws = EvaluationWorkspace::new(sys);
     let mut s = initial.clone();
-    sys.project_in(0.0, &mut s, &mut ws)?;
+    sys.project(0.0, &mut s, &mut ws)?;
     let mut samples = vec![sample(sys, 0.0, &s)];
     let mut t = 0.0f64;
     sys.accelerations_in(t, &s, &mut ws)?;
@@ -249,7 +249,7 @@ pub(crate) fn integrate(
                 },
             }));
         }
-        sys.project_in(t1, &mut s1, &mut ws)?;
+        sys.project(t1, &mut s1, &mut ws)?;
         t = t1;
         steps += 1;
         s = s1;

@@ -346,7 +346,7 @@ impl System {
         let all = ConstraintRows {
             c: &rows.c,
             g: &rows.gamma,
-            modal_rows: &rows.modal_rows,
+            modal_rows: &ws.modal_rows,
         };
         self.saddle_point(s, &rows.moments, all, true, &mut ws.saddle)
     }
@@ -389,11 +389,9 @@ impl System {
             let c_f = c.columns(vo, 6);
             kkt.view_mut((nf, fo), (nr, 6)).copy_from(&c_f);
             kkt.view_mut((fo, nf), (6, nr)).copy_from(&c_f.transpose());
-            work.eliminated = false;
             let Body::Flexible(fb) = body else {
                 continue;
             };
-            work.eliminated = true;
             let k = fb.modes();
             let c_z = c.columns(vo + 6, k);
             // Only the constraint rows that touch the modal coordinates (a joint on another
@@ -453,11 +451,12 @@ impl System {
         let lambda = solution.rows(nf, nr);
         resize(&mut ws.x, self.nv());
         let vdot = &mut ws.x;
-        for (b, work) in ws.bodies.iter_mut().enumerate() {
+        for (b, (body, work)) in self.bodies.iter().zip(ws.bodies.iter_mut()).enumerate() {
             let (vo, fo) = (self.v_off[b], 6 * b);
             let a_f = solution.rows(fo, 6);
             vdot.rows_mut(vo, 6).copy_from(&a_f);
-            if work.eliminated {
+            // A deformable body's modal coordinates were eliminated: recovered here.
+            if matches!(body, Body::Flexible(_)) {
                 let (x, active) = (&work.x, &work.active);
                 let (k, na) = (x.nrows(), active.len());
                 let z_dd = &mut work.frame_part;

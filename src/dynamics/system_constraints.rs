@@ -18,6 +18,31 @@ impl System {
         out
     }
 
+    /// Per body, the constraint rows that may touch its modal coordinates (a joint at one of
+    /// its nodes, its axis conditions), ascending, in the order of [`Self::rows`]: the
+    /// system's structure, the same at every instant. The block elimination looks for
+    /// nonzero modal entries only there.
+    pub(super) fn modal_rows(&self) -> Vec<Vec<usize>> {
+        let mut out = vec![Vec::new(); self.bodies.len()];
+        let mut r = 0;
+        for c in &self.constraints {
+            for attachment in c.attachments() {
+                if let Attachment::Node { body, .. } = attachment {
+                    let list: &mut Vec<usize> = &mut out[body];
+                    // Both ends on one body's nodes: its rows once.
+                    let from = list.last().map_or(r, |&last| (last + 1).max(r));
+                    list.extend(from..r + c.rows());
+                }
+            }
+            r += c.rows();
+        }
+        for (body, _) in self.axis_condition_bodies() {
+            out[body].extend(r..r + 6);
+            r += 6;
+        }
+        out
+    }
+
     /// [`Self::rows`] into `out`, whose storage is reused.
     pub(crate) fn rows_into(&self, t: f64, s: &State, out: &mut Rows) {
         let nv = self.nv();
@@ -31,8 +56,6 @@ impl System {
         out.holonomic.clear();
         out.holonomic.resize(nr, true);
         self.modal_moments_into(s, &mut out.moments);
-        out.modal_rows.resize_with(self.bodies.len(), Vec::new);
-        out.modal_rows.iter_mut().for_each(Vec::clear);
         let mut r = 0;
         for c in &self.constraints {
             match c {
@@ -67,20 +90,11 @@ impl System {
                     out.phi[r] = p.d[*axis] - x;
                 }
             }
-            for attachment in c.attachments() {
-                if let Attachment::Node { body, .. } = attachment {
-                    let list = &mut out.modal_rows[body];
-                    // Both ends on one body's nodes: its rows once.
-                    let from = list.last().map_or(r, |&last| (last + 1).max(r));
-                    list.extend(from..r + c.rows());
-                }
-            }
             r += c.rows();
         }
         let moments = std::mem::take(&mut out.moments);
         for (body, fb) in self.axis_condition_bodies() {
             self.axis_rows(body, fb, s, &moments[body], r, out);
-            out.modal_rows[body].extend(r..r + 6);
             r += 6;
         }
         out.moments = moments;
@@ -151,12 +165,9 @@ impl System {
     /// fixed-step histories of Craig–Bampton and mode condensation differ by 1e-3 where
     /// their models are one (slab-sim3), and Simulation 2's orbit start with velocities the
     /// constraints do not allow.
-    pub(crate) fn project(&self, t: f64, s: &mut State) -> Result<()> {
-        self.project_in(t, s, &mut EvaluationWorkspace::new(self))
-    }
-
-    /// [`Self::project`] with the buffers of `ws`.
-    pub(crate) fn project_in(
+    ///
+    /// The buffers of `ws` are reused: an integration projects after every step.
+    pub(crate) fn project(
         &self,
         t: f64,
         s: &mut State,
@@ -190,8 +201,8 @@ impl System {
                 }
             }
             ws.holonomic_modal_rows
-                .resize_with(rows.modal_rows.len(), Vec::new);
-            for (held, all) in ws.holonomic_modal_rows.iter_mut().zip(&rows.modal_rows) {
+                .resize_with(ws.modal_rows.len(), Vec::new);
+            for (held, all) in ws.holonomic_modal_rows.iter_mut().zip(&ws.modal_rows) {
                 held.clear();
                 held.extend(
                     all.iter()
@@ -217,7 +228,7 @@ impl System {
             let all = ConstraintRows {
                 c: &rows.c,
                 g: &ws.residual,
-                modal_rows: &rows.modal_rows,
+                modal_rows: &ws.modal_rows,
             };
             self.saddle_point(s, &rows.moments, all, false, &mut ws.saddle)?;
             s.v -= &ws.saddle.x;

@@ -13,7 +13,7 @@
 //! 4. falls back to nalgebra's implicit QL (`SymmetricEigen`) when the check fails,
 //! 5. and returns `LinalgError::EigenCheckFailed` with the worst residual when neither passes.
 
-use super::{LinalgError, orthonormality_defect};
+use super::{LinalgError, max_abs, orthonormality_defect};
 use faer::{Mat, MatRef, Side};
 
 use crate::{Error, Result};
@@ -99,7 +99,7 @@ pub fn symmetric_eigen_with(
             kernel: SymmetricEigenKernel::Faer,
         });
     }
-    let scaled = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]) / scale);
+    let scaled = symmetrised(c, scale);
     let tolerance = dense_eigen_tolerance(n);
     let mut worst = f64::INFINITY;
     for &kernel in kernels {
@@ -136,15 +136,19 @@ pub(crate) fn unchecked_symmetric_eigen(
     kernel: SymmetricEigenKernel,
 ) -> Option<(Vec<f64>, Mat<f64>)> {
     let n = c.nrows();
-    let scale = (0..n)
-        .flat_map(|j| (0..n).map(move |i| (i, j)))
-        .fold(0.0f64, |a, (i, j)| a.max(c[(i, j)].abs()));
+    let scale = max_abs(c);
     if scale == 0.0 {
         return Some((vec![0.0; n], Mat::identity(n, n)));
     }
-    let scaled = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]) / scale);
-    let (values, vectors) = solve_with(kernel, scaled.as_ref())?;
+    let (values, vectors) = solve_with(kernel, symmetrised(c, scale).as_ref())?;
     Some((values.into_iter().map(|v| v * scale).collect(), vectors))
+}
+
+/// $\tfrac12(C + C^T)/s$: the matrix every kernel solves.
+fn symmetrised(c: MatRef<'_, f64>, scale: f64) -> Mat<f64> {
+    Mat::from_fn(c.nrows(), c.nrows(), |i, j| {
+        0.5 * (c[(i, j)] + c[(j, i)]) / scale
+    })
 }
 
 /// One kernel's ascending eigenpairs of the (scaled, symmetric) `c`; `None` when it failed.
