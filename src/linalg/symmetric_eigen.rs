@@ -13,7 +13,7 @@
 //! 4. falls back to nalgebra's implicit QL (`SymmetricEigen`) when the check fails,
 //! 5. and returns `LinalgError::EigenCheckFailed` with the worst residual when neither passes.
 
-use super::{LinalgError, max_abs, orthonormality_defect};
+use super::{LinalgError, orthonormality_defect};
 use faer::{Mat, MatRef, Side};
 
 use crate::{Error, Result};
@@ -123,25 +123,6 @@ pub fn symmetric_eigen_with(
         residual: worst,
         tolerance,
     }))
-}
-
-/// One kernel's ascending eigenpairs of the symmetric `c`, whose entries the caller has found
-/// finite, scaled by $\max|C_{ij}|$ as [`symmetric_eigen`] does but **not checked**: for a
-/// caller that checks every pair against the problem `c` came from (the generalised
-/// problem's pencil, [`super::check_pencil`]) and falls back to the next kernel itself, where
-/// checking the standard problem as well would repeat the work. `None` when the kernel
-/// failed.
-pub(crate) fn unchecked_symmetric_eigen(
-    c: MatRef<'_, f64>,
-    kernel: SymmetricEigenKernel,
-) -> Option<(Vec<f64>, Mat<f64>)> {
-    let n = c.nrows();
-    let scale = max_abs(c);
-    if scale == 0.0 {
-        return Some((vec![0.0; n], Mat::identity(n, n)));
-    }
-    let (values, vectors) = solve_with(kernel, symmetrised(c, scale).as_ref())?;
-    Some((values.into_iter().map(|v| v * scale).collect(), vectors))
 }
 
 /// $\tfrac12(C + C^T)/s$: the matrix every kernel solves.
