@@ -137,9 +137,30 @@ impl ModalMassInverse {
     pub fn solve_into(&self, b: &DMatrix<f64>, out: &mut DMatrix<f64>) {
         match self {
             Self::Diagonal(d) => {
-                out.copy_from(b);
-                for mut col in out.column_iter_mut() {
-                    col.component_mul_assign(d);
+                assert_eq!(
+                    out.shape(),
+                    b.shape(),
+                    "ModalMassInverse::solve_into: shapes"
+                );
+                let k = d.len();
+                assert_eq!(
+                    b.nrows(),
+                    k,
+                    "ModalMassInverse::solve_into: {} rows for {k}",
+                    b.nrows()
+                );
+                if k == 0 {
+                    return;
+                }
+                // One pass, column by column (k rows each).
+                for (o, b) in out
+                    .as_mut_slice()
+                    .chunks_exact_mut(k)
+                    .zip(b.as_slice().chunks_exact(k))
+                {
+                    for ((o, b), d) in o.iter_mut().zip(b).zip(d.as_slice()) {
+                        *o = b * d;
+                    }
                 }
             }
             Self::Dense(inverse) => inverse.mul_to(b, out),

@@ -43,18 +43,3 @@ pub(super) struct ConstraintRows<'a> {
     pub(super) g: &'a DVector<f64>,
     pub(super) modal_rows: &'a [Vec<usize>],
 }
-
-/// `m` as an `r` × `c` matrix, reallocated only when its shape differs; its entries are
-/// left as they are when it is not.
-pub(crate) fn reshape(m: &mut DMatrix<f64>, r: usize, c: usize) {
-    if m.shape() != (r, c) {
-        *m = DMatrix::zeros(r, c);
-    }
-}
-
-/// `v` with `n` entries, reallocated only when its length differs.
-pub(crate) fn resize(v: &mut DVector<f64>, n: usize) {
-    if v.len() != n {
-        *v = DVector::zeros(n);
-    }
-}

@@ -6,14 +6,14 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector4};
 
 use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
-    constraint_rows::{ConstraintRows, reshape, resize},
+    constraint_rows::ConstraintRows,
     evaluation_workspace::{BodyBlocks, EvaluationWorkspace, SaddlePointWorkspace},
     rotation::{l_matrix, rotate_body, skew},
 };
 use crate::fem::NodeIndex;
 use crate::{
     Error, Result,
-    linalg::{REDUNDANT_PSD, block_saddle_point_solve, pinv_solve},
+    linalg::{REDUNDANT_PSD, block_saddle_point_solve, pinv_solve, reshape, resize},
 };
 
 /// Standard gravity, m/s² (App. B, §7.2).

@@ -5,10 +5,13 @@ use nalgebra::Matrix3;
 
 use super::{
     Attachment, AxisType, Constraint, FlexibleBody, InertiaInvariants, State, System,
-    constraint_rows::{ConstraintRows, Rows, reshape, resize},
+    constraint_rows::{ConstraintRows, Rows},
     evaluation_workspace::EvaluationWorkspace,
 };
-use crate::Result;
+use crate::{
+    Result,
+    linalg::{reshape, resize},
+};
 
 impl System {
     /// Constraint rows at time `t`.

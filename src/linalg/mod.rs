@@ -2,6 +2,7 @@
 //! the thesis' models (at most a few hundred DOF), sparse symmetric matrices, sparse Cholesky
 //! and a partial generalised eigensolver for refined meshes of up to ~150 000 DOF.
 
+mod buffers;
 mod dense;
 mod generalized_eigen;
 mod gmres;
@@ -13,6 +14,7 @@ mod nested_dissection;
 mod orthonormality;
 mod partial_eigen;
 mod saddle_point;
+mod small_cholesky;
 mod sparse_symmetric;
 mod sturm_count;
 mod symmetric_eigen;
@@ -20,6 +22,7 @@ mod symmetric_factor;
 mod threads;
 
 pub use crate::error::LinalgError;
+pub use buffers::{reshape, resize};
 pub use dense::{
     frobenius, identity, max_abs, max_abs_diff, null_space, numerical_rank, principal_angles,
     select, select_cols, select_rows, symmetry_defect,
@@ -46,6 +49,7 @@ pub use saddle_point::{
     BlockSaddlePointWorkspace, REDUNDANT_PSD, REDUNDANT_SADDLE, block_saddle_point_solve,
     pinv_solve, saddle_point_solve,
 };
+pub use small_cholesky::SmallCholesky;
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
 pub use sturm_count::{SturmCount, sturm_count};
 pub use symmetric_eigen::{

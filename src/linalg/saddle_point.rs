@@ -6,6 +6,8 @@
 
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
+use super::{SmallCholesky, reshape, resize};
+
 /// Eigenvalues [`pinv_solve`] drops for a positive semi-definite matrix ($CC^T$,
 /// $C\tilde M^{-1}C^T$), as a fraction of the largest.
 pub const REDUNDANT_PSD: f64 = 1e-10;
@@ -52,9 +54,9 @@ const RANGE_SPACE_FRAME_PIVOT: f64 = 1e-8;
 
 /// Whether the squared Cholesky pivots `l_diagonal` stay above [`RANGE_SPACE_PIVOT`] of the
 /// largest.
-fn pivots_ok<'a>(l_diagonal: impl IntoIterator<Item = &'a f64>) -> bool {
+fn pivots_ok(l_diagonal: impl IntoIterator<Item = f64>) -> bool {
     let (mut smallest, mut largest) = (f64::INFINITY, 0.0f64);
-    for &x in l_diagonal {
+    for x in l_diagonal {
         if !x.is_finite() {
             return false;
         }
@@ -119,6 +121,10 @@ pub struct BlockSaddlePointWorkspace {
     /// The eliminated frame blocks: the first `eliminated` of `blocks`.
     blocks: Vec<EliminatedBlock>,
     eliminated: usize,
+    /// The factor of $S$.
+    scaled_schur: ScaledSchur,
+    /// The kept blocks' system when blocks are kept.
+    kept_system: KeptSystem,
     /// The solution.
     out: DVector<f64>,
 }
@@ -129,7 +135,7 @@ struct BlockRoute {
     /// Frame blocks left in the reduced system (not clearly definite).
     kept: usize,
     /// Whether $S$ was definite, so only Cholesky factorisations were needed (with blocks
-    /// kept: the multipliers eliminated in turn, see `dual_schur_solve`).
+    /// kept: the multipliers eliminated in turn, see [`KeptSystem::dual_schur_solve`]).
     definite_schur: bool,
 }
 
@@ -162,6 +168,7 @@ fn solve_by_blocks(
     let kept = &mut ws.kept;
     kept.clear();
     ws.eliminated = 0;
+    let entries = kkt.as_slice();
     for b in 0..nf / FRAME_BLOCK {
         let o = FRAME_BLOCK * b;
         let a = Matrix6::from_fn(|i, j| kkt[(o + i, o + j)]);
@@ -170,12 +177,15 @@ fn solve_by_blocks(
             pivots
                 .iter()
                 .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale)
-                && pivots_ok(pivots.iter())
+                && pivots_ok(pivots.iter().copied())
         }) else {
             kept.push(b);
             continue;
         };
-        let row = |r: usize| Vector6::from_fn(|j, _| kkt[(nf + r, o + j)]);
+        // The block's coupling B_b: column o + j of the constraint rows, contiguous.
+        let coupling: [&[f64]; FRAME_BLOCK] =
+            std::array::from_fn(|j| &entries[(o + j) * n + nf..(o + j + 1) * n]);
+        let row = |r: usize| Vector6::from_fn(|j, _| coupling[j][r]);
         if ws.blocks.len() == ws.eliminated {
             ws.blocks.push(EliminatedBlock::default());
         }
@@ -185,7 +195,7 @@ fn solve_by_blocks(
         block.active.clear();
         block
             .active
-            .extend((0..nr).filter(|&r| (0..FRAME_BLOCK).any(|j| kkt[(nf + r, o + j)] != 0.0)));
+            .extend((0..nr).filter(|&r| coupling.iter().any(|column| column[r] != 0.0)));
         block.a_f = chol.solve(&Vector6::from_fn(|i, _| rhs[o + i]));
         block.y.clear();
         block
@@ -211,58 +221,29 @@ fn solve_by_blocks(
         definite_schur: false,
     };
     if kept.is_empty() {
-        let lambda = match ScaledSchur::new(schur) {
-            Some(s) => {
-                route.definite_schur = true;
-                let mut neg_g = DMatrix::zeros(nr, 1);
-                neg_g.column_mut(0).copy_from(&-g);
-                s.solve(&neg_g).column(0).into_owned()
+        let lambda = &mut out.as_mut_slice()[nf..];
+        if ws.scaled_schur.factor(schur) {
+            route.definite_schur = true;
+            for (l, gi) in lambda.iter_mut().zip(g.iter()) {
+                *l = -gi;
             }
-            None => saddle_point_solve(schur, g),
-        };
-        out.rows_mut(nf, nr).copy_from(&lambda);
-    } else {
-        // The kept frame blocks, their coupling to every constraint row and their forces.
-        let top = FRAME_BLOCK * kept.len();
-        let mut a_s = DMatrix::zeros(top, top);
-        let mut b_s = DMatrix::zeros(nr, top);
-        let mut f_s = DVector::zeros(top);
-        for (i, &b) in kept.iter().enumerate() {
-            let (o, ko) = (FRAME_BLOCK * b, FRAME_BLOCK * i);
-            a_s.view_mut((ko, ko), (FRAME_BLOCK, FRAME_BLOCK))
-                .copy_from(&kkt.view((o, o), (FRAME_BLOCK, FRAME_BLOCK)));
-            b_s.columns_mut(ko, FRAME_BLOCK)
-                .copy_from(&kkt.view((nf, o), (nr, FRAME_BLOCK)));
-            f_s.rows_mut(ko, FRAME_BLOCK)
-                .copy_from(&rhs.rows(o, FRAME_BLOCK));
+            ws.scaled_schur.solve_in_place(lambda);
+        } else {
+            lambda.copy_from_slice(saddle_point_solve(schur, g).as_slice());
         }
-        let (x_s, lambda) = match dual_schur_solve(&a_s, &b_s, &f_s, schur, g, frame_scale) {
-            Some(solved) => {
-                route.definite_schur = true;
-                solved
-            }
-            None => {
-                let m = top + nr;
-                let mut reduced = DMatrix::zeros(m, m);
-                reduced.view_mut((0, 0), (top, top)).copy_from(&a_s);
-                reduced.view_mut((top, 0), (nr, top)).copy_from(&b_s);
-                reduced.view_mut((0, top), (top, nr)).tr_copy_from(&b_s);
-                reduced.view_mut((top, top), (nr, nr)).copy_from(schur);
-                let mut reduced_rhs = DVector::zeros(m);
-                reduced_rhs.rows_mut(0, top).copy_from(&f_s);
-                reduced_rhs.rows_mut(top, nr).copy_from(g);
-                let solution = saddle_point_solve(&reduced, &reduced_rhs);
-                (
-                    solution.rows(0, top).into_owned(),
-                    solution.rows(top, nr).into_owned(),
-                )
-            }
-        };
+    } else {
+        let system = &mut ws.kept_system;
+        system.gather(kkt, rhs, nf, kept);
+        let solved = system.dual_schur_solve(&mut ws.scaled_schur, schur, g, frame_scale);
+        route.definite_schur = solved;
+        if !solved {
+            system.reduced_solve(schur, g);
+        }
         for (i, &b) in kept.iter().enumerate() {
             out.rows_mut(FRAME_BLOCK * b, FRAME_BLOCK)
-                .copy_from(&x_s.rows(FRAME_BLOCK * i, FRAME_BLOCK));
+                .copy_from(&system.x.rows(FRAME_BLOCK * i, FRAME_BLOCK));
         }
-        out.rows_mut(nf, nr).copy_from(&lambda);
+        out.rows_mut(nf, nr).copy_from(&system.lambda);
     }
     // x_b = A_b⁻¹ f_b − A_b⁻¹ B_bᵀ λ for every eliminated block.
     for block in &ws.blocks[..ws.eliminated] {
@@ -291,76 +272,165 @@ struct EliminatedBlock {
 /// The Jacobi-scaled Cholesky factor of $S$, given the constraint block `neg_s` $= -S$ of
 /// [`block_saddle_point_solve`], when $S$ is clearly positive definite (squared pivots above
 /// [`RANGE_SPACE_PIVOT`] of the largest after scaling, so constraint rows of different units
-/// compare); `None` otherwise (redundant constraints, or rows only a kept block touches).
+/// compare); refused otherwise (redundant constraints, or rows only a kept block touches).
+#[derive(Debug, Clone, Default)]
 struct ScaledSchur {
-    cholesky: nalgebra::Cholesky<f64, nalgebra::Dyn>,
-    scale: DVector<f64>,
+    cholesky: SmallCholesky,
+    scale: Vec<f64>,
 }
 
 impl ScaledSchur {
-    fn new(neg_s: &DMatrix<f64>) -> Option<Self> {
+    /// Factors $S = -$`neg_s`; `false` when it is not clearly definite.
+    fn factor(&mut self, neg_s: &DMatrix<f64>) -> bool {
         let nr = neg_s.nrows();
-        let scale = DVector::from_fn(nr, |i, _| {
+        let Self { cholesky, scale } = self;
+        scale.clear();
+        scale.extend((0..nr).map(|i| {
             let d = -neg_s[(i, i)];
             if d > 0.0 { 1.0 / d.sqrt() } else { 1.0 }
-        });
-        let s = DMatrix::from_fn(nr, nr, |i, j| -neg_s[(i, j)] * scale[i] * scale[j]);
-        let cholesky = s.cholesky()?;
-        (nr == 0 || pivots_ok(cholesky.l_dirty().diagonal().iter()))
-            .then_some(Self { cholesky, scale })
+        }));
+        cholesky.factor(nr, |i, j| -neg_s[(i, j)] * scale[i] * scale[j])
+            && (nr == 0 || pivots_ok(cholesky.diagonal()))
     }
 
-    /// $S^{-1}B$, column by column.
-    fn solve(&self, b: &DMatrix<f64>) -> DMatrix<f64> {
-        let mut x = b.clone();
-        for mut column in x.column_iter_mut() {
-            column.component_mul_assign(&self.scale);
+    /// $x \leftarrow S^{-1}x$.
+    fn solve_in_place(&self, x: &mut [f64]) {
+        self.forward_in_place(x);
+        self.backward_in_place(x);
+    }
+
+    /// $x \leftarrow L^{-1}Dx$ where $DSD = LL^T$ ($D$ the Jacobi scaling): with
+    /// $Y = L^{-1}DB$, $B^TS^{-1}B = Y^TY$.
+    fn forward_in_place(&self, x: &mut [f64]) {
+        for (v, s) in x.iter_mut().zip(&self.scale) {
+            *v *= s;
         }
-        self.cholesky.solve_mut(&mut x);
-        for mut column in x.column_iter_mut() {
-            column.component_mul_assign(&self.scale);
+        self.cholesky.forward_in_place(x);
+    }
+
+    /// $x \leftarrow DL^{-T}x$: with [`Self::forward_in_place`], $S^{-1}x$.
+    fn backward_in_place(&self, x: &mut [f64]) {
+        self.cholesky.backward_in_place(x);
+        for (v, s) in x.iter_mut().zip(&self.scale) {
+            *v *= s;
         }
-        x
     }
 }
 
-/// The kept frame blocks' $x_S$ and the multipliers when $S$ is definite, by eliminating the
-/// multipliers instead (the dual range-space step): $\lambda = S^{-1}(B_Sx_S - g)$ and
-/// $(A_S + B_S^TS^{-1}B_S)\,x_S = f_S + B_S^TS^{-1}g$, a positive definite system of six rows
-/// per kept block even where $A_S$ is round-off (Ψ holding the rigid motions: the axis
-/// conditions, among the rows, fix the frame). `None` when either matrix is not clearly
-/// definite (that of the kept frames also judged against `frame_scale`, as the blocks were);
-/// the indefinite factorisation of the reduced system then decides.
-fn dual_schur_solve(
-    a_s: &DMatrix<f64>,
-    b_s: &DMatrix<f64>,
-    f_s: &DVector<f64>,
-    neg_s: &DMatrix<f64>,
-    g: &DVector<f64>,
-    frame_scale: f64,
-) -> Option<(DVector<f64>, DVector<f64>)> {
-    let schur = ScaledSchur::new(neg_s)?;
-    let (m, nr) = (a_s.nrows(), neg_s.nrows());
-    let mut columns = DMatrix::zeros(nr, m + 1);
-    columns.columns_mut(0, m).copy_from(b_s);
-    columns.column_mut(m).copy_from(g);
-    let solved = schur.solve(&columns);
-    let (s_b, s_g) = (solved.columns(0, m), solved.column(m));
-    let dual = a_s + b_s.tr_mul(&s_b);
-    let dual = dual.cholesky()?;
-    // A mass matrix of the kept frames: its pivots against the frame blocks' scale too, so
-    // frames the rows do not fix (round-off again) go to the indefinite solver.
-    let pivots = dual.l_dirty().diagonal();
-    if !pivots_ok(pivots.iter())
-        || pivots
-            .iter()
-            .any(|p| p * p <= RANGE_SPACE_FRAME_PIVOT * frame_scale)
-    {
-        return None;
+/// The kept frame blocks of [`block_saddle_point_solve`], their coupling to every constraint
+/// row, their forces, and the solution: buffers kept from one call to the next.
+#[derive(Debug, Clone, Default)]
+struct KeptSystem {
+    /// $A_S$, $B_S$ and $f_S$ of the kept blocks.
+    a_s: DMatrix<f64>,
+    b_s: DMatrix<f64>,
+    f_s: DVector<f64>,
+    /// $L^{-1}D[B_S, g]$ ($DSD = LL^T$).
+    columns: DMatrix<f64>,
+    /// The factor of $A_S + B_S^TS^{-1}B_S$.
+    dual: SmallCholesky,
+    /// The kept frames' unknowns and the multipliers.
+    x: DVector<f64>,
+    lambda: DVector<f64>,
+}
+
+impl KeptSystem {
+    /// $A_S$, $B_S$ and $f_S$ of the `kept` blocks from the system.
+    fn gather(&mut self, kkt: &DMatrix<f64>, rhs: &DVector<f64>, nf: usize, kept: &[usize]) {
+        let (top, nr) = (FRAME_BLOCK * kept.len(), kkt.nrows() - nf);
+        reshape(&mut self.a_s, top, top);
+        self.a_s.fill(0.0);
+        reshape(&mut self.b_s, nr, top);
+        resize(&mut self.f_s, top);
+        for (i, &b) in kept.iter().enumerate() {
+            let (o, ko) = (FRAME_BLOCK * b, FRAME_BLOCK * i);
+            self.a_s
+                .view_mut((ko, ko), (FRAME_BLOCK, FRAME_BLOCK))
+                .copy_from(&kkt.view((o, o), (FRAME_BLOCK, FRAME_BLOCK)));
+            self.b_s
+                .columns_mut(ko, FRAME_BLOCK)
+                .copy_from(&kkt.view((nf, o), (nr, FRAME_BLOCK)));
+            self.f_s
+                .rows_mut(ko, FRAME_BLOCK)
+                .copy_from(&rhs.rows(o, FRAME_BLOCK));
+        }
     }
-    let x = dual.solve(&(f_s + b_s.tr_mul(&s_g)));
-    let lambda = s_b * &x - s_g;
-    (x.iter().chain(lambda.iter()).all(|v| v.is_finite())).then_some((x, lambda))
+
+    /// The kept frame blocks' $x_S$ and the multipliers when $S$ is definite, by eliminating
+    /// the multipliers instead (the dual range-space step): $\lambda = S^{-1}(B_Sx_S - g)$
+    /// and $(A_S + B_S^TS^{-1}B_S)\,x_S = f_S + B_S^TS^{-1}g$, a positive definite system of
+    /// six rows per kept block even where $A_S$ is round-off (Ψ holding the rigid motions:
+    /// the axis conditions, among the rows, fix the frame). `false` when either matrix is not
+    /// clearly definite (that of the kept frames also judged against `frame_scale`, as the
+    /// blocks were); the indefinite factorisation of the reduced system then decides.
+    fn dual_schur_solve(
+        &mut self,
+        schur: &mut ScaledSchur,
+        neg_s: &DMatrix<f64>,
+        g: &DVector<f64>,
+        frame_scale: f64,
+    ) -> bool {
+        if !schur.factor(neg_s) {
+            return false;
+        }
+        let (m, nr) = (self.a_s.nrows(), neg_s.nrows());
+        // Y = L⁻¹D[B_S, g]: half solves; the rest follows from Y alone.
+        reshape(&mut self.columns, nr, m + 1);
+        self.columns.columns_mut(0, m).copy_from(&self.b_s);
+        self.columns.column_mut(m).copy_from(g);
+        for j in 0..=m {
+            schur.forward_in_place(&mut self.columns.as_mut_slice()[j * nr..(j + 1) * nr]);
+        }
+        let columns = &self.columns;
+        let (y_b, y_g) = (columns.columns(0, m), columns.column(m));
+        // A_S + B_SᵀS⁻¹B_S = A_S + Y_BᵀY_B: a mass matrix of the kept frames, its pivots
+        // against the frame blocks' scale too, so frames the rows do not fix (round-off
+        // again) go to the indefinite solver.
+        let definite = self.dual.factor(m, |i, j| {
+            self.a_s[(i, j)] + y_b.column(i).dot(&y_b.column(j))
+        }) && pivots_ok(self.dual.diagonal())
+            && self
+                .dual
+                .diagonal()
+                .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale);
+        if !definite {
+            return false;
+        }
+        // x_S from f_S + B_SᵀS⁻¹g = f_S + Y_Bᵀy_g.
+        resize(&mut self.x, m);
+        self.x.copy_from(&self.f_s);
+        self.x.gemv_tr(1.0, &y_b, &y_g, 1.0);
+        self.dual.solve_in_place(self.x.as_mut_slice());
+        // λ = S⁻¹(B_Sx_S − g) = DL⁻ᵀ(Y_Bx_S − y_g).
+        resize(&mut self.lambda, nr);
+        self.lambda.copy_from(&y_g);
+        self.lambda.gemv(1.0, &y_b, &self.x, -1.0);
+        schur.backward_in_place(self.lambda.as_mut_slice());
+        self.x
+            .iter()
+            .chain(self.lambda.iter())
+            .all(|v| v.is_finite())
+    }
+
+    /// The reduced saddle-point system of the kept blocks and every constraint row by
+    /// [`saddle_point_solve`] (redundant constraints, or frames the rows do not fix).
+    fn reduced_solve(&mut self, schur: &DMatrix<f64>, g: &DVector<f64>) {
+        let (top, nr) = (self.a_s.nrows(), schur.nrows());
+        let m = top + nr;
+        let mut reduced = DMatrix::zeros(m, m);
+        reduced.view_mut((0, 0), (top, top)).copy_from(&self.a_s);
+        reduced.view_mut((top, 0), (nr, top)).copy_from(&self.b_s);
+        reduced
+            .view_mut((0, top), (top, nr))
+            .tr_copy_from(&self.b_s);
+        reduced.view_mut((top, top), (nr, nr)).copy_from(schur);
+        let mut reduced_rhs = DVector::zeros(m);
+        reduced_rhs.rows_mut(0, top).copy_from(&self.f_s);
+        reduced_rhs.rows_mut(top, nr).copy_from(g);
+        let solution = saddle_point_solve(&reduced, &reduced_rhs);
+        self.x = solution.rows(0, top).into_owned();
+        self.lambda = solution.rows(top, nr).into_owned();
+    }
 }
 
 /// $x = A^{-1} b$, or $A^+ b$ when singular, for a small symmetric, possibly indefinite $A$
@@ -424,6 +494,15 @@ mod tests {
     ) -> (DVector<f64>, BlockRoute) {
         let mut ws = BlockSaddlePointWorkspace::default();
         let route = solve_by_blocks(kkt, rhs, nf, frame_scale, &mut ws);
+        // A workspace that solved other systems before (other shapes, other routes) gives
+        // the same solution: nothing of the last call leaks into the next.
+        let mut used = BlockSaddlePointWorkspace::default();
+        for (blocks, singular, nr) in [(3, vec![1], 8), (1, vec![], 2), (4, vec![0, 2], 12)] {
+            let (k, r) = block_system(blocks, nr, &singular, 99);
+            solve_by_blocks(&k, &r, FRAME_BLOCK * blocks, 1.0, &mut used);
+        }
+        assert_eq!(solve_by_blocks(kkt, rhs, nf, frame_scale, &mut used), route);
+        assert_eq!(used.out, ws.out, "a reused workspace");
         (ws.out, route)
     }
 
