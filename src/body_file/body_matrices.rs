@@ -12,7 +12,7 @@ use super::{
 };
 use crate::{
     Error, Result,
-    fem::{FeModel, RigidMotions},
+    fem::{FeModel, NodeIndex, RigidMotions},
 };
 
 /// A sparse matrix as entries: `rows × cols`, `(row, col, value)` 0-based, duplicates summed.
@@ -165,8 +165,8 @@ impl ImportedBody {
             .find(|(_, xyz)| xyz.iter().any(|x| !x.is_finite()))
         {
             return Err(body_error(format!(
-                "node {} has the coordinates {xyz:?}, which are not finite",
-                node + 1
+                "{} has the coordinates {xyz:?}, which are not finite",
+                NodeIndex(node)
             )));
         }
         let interfaces = checked_sets(

@@ -9,7 +9,10 @@ use super::{
     BodyFileError, MatrixMarket, MatrixMarketFormat,
     matrix_bytes::{entry_value, line_error as error, plain_text},
 };
-use crate::{Error, Result, fem::DofMap};
+use crate::{
+    Error, Result,
+    fem::{DofMap, NodeIndex},
+};
 
 /// Parses a CalculiX `.sti` or `.mas` file named `path` whose equations the DOF map numbers
 /// 1 to `equations`: a symmetric matrix of that size in the equations' order.
@@ -129,14 +132,14 @@ pub fn parse_calculix_dof_map(
                 ),
             )
         })?;
-        if node == 0 || node > node_count {
+        let Some(index) = NodeIndex::of_number(node).filter(|i| i.get() < node_count) else {
             return Err(error(
                 path,
                 number,
                 format!("node {node} is not one of the body's nodes 1 to {node_count}"),
             ));
-        }
-        let dof = (node - 1) * per + position;
+        };
+        let dof = index.get() * per + position;
         let equation = equations.len() + 1;
         if let Some(before) = taken[dof] {
             return Err(error(

@@ -3,7 +3,10 @@
 //! one line per equation, `equation node label`, labels `UX UY UZ ROTX ROTY ROTZ`.
 
 use super::BodyFileError;
-use crate::{Error, Result, fem::DofMap};
+use crate::{
+    Error, Result,
+    fem::{DofMap, NodeIndex},
+};
 
 /// The body's DOF of each equation (0-based equation → 0-based node-major DOF), checked: every
 /// equation once, labels the body has, and every DOF of the body given an equation.
@@ -63,16 +66,16 @@ pub fn parse_dof_map(
                 ),
             )
         })?;
-        if node == 0 || node > node_count {
+        let Some(index) = NodeIndex::of_number(node).filter(|i| i.get() < node_count) else {
             return Err(error(
                 number,
                 format!("node {node} is not one of the body's nodes 1 to {node_count}"),
             ));
-        }
+        };
         if eq == 0 {
             return Err(error(number, "equations are numbered from 1".into()));
         }
-        let dof = (node - 1) * per + position;
+        let dof = index.get() * per + position;
         if let Some(before) = taken[dof] {
             return Err(error(
                 number,

@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use crate::fem::{FeModel, NodeDof};
+use crate::fem::{FeModel, NodeDof, NodeIndex};
 
 /// Abaqus' and Nastran's component number of a node DOF: 1–3 translations, 4–6 rotations.
 fn component(dof: NodeDof) -> usize {
@@ -18,7 +18,7 @@ fn component(dof: NodeDof) -> usize {
 /// (node, component), both 1-based, of a 0-based node-major DOF.
 fn node_component(model: &FeModel, dof: usize) -> (usize, usize) {
     let (node, d) = model.dofs.locate(dof);
-    (node + 1, component(d))
+    (NodeIndex(node).number(), component(d))
 }
 
 /// Abaqus `*MATRIX INPUT` lines of the lower-triangle `entries` (0-based DOF).

@@ -2,7 +2,7 @@
 //! name nodes and components themselves (Abaqus matrix output, Nastran DMIG): components 1–3
 //! the translations, 4–6 the rotations, nodes the body's 1-based node numbers.
 
-use crate::fem::DofMap;
+use crate::fem::{DofMap, NodeIndex};
 
 /// The placement of (node, component) pairs on a body whose nodes carry `dofs`.
 pub(super) struct NodeDofPlacement {
@@ -23,9 +23,9 @@ impl NodeDofPlacement {
 
     /// The 0-based DOF of `node` (1-based) and `component` (1–6), or why there is none.
     pub fn index(&mut self, node: usize, component: usize) -> Result<usize, String> {
-        if node == 0 {
+        let Some(index) = NodeIndex::of_number(node) else {
             return Err("node 0 is not a node number (they start at 1)".into());
-        }
+        };
         let name = ["x", "y", "z", "θx", "θy", "θz"]
             .get(component.wrapping_sub(1))
             .copied()
@@ -43,7 +43,7 @@ impl NodeDofPlacement {
             )
         })?;
         self.largest_node = self.largest_node.max(node);
-        Ok((node - 1) * self.per + position)
+        Ok(index.get() * self.per + position)
     }
 
     /// Rows of the matrix: every DOF of nodes 1 to the largest placed.

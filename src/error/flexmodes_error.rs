@@ -90,6 +90,16 @@ pub enum Error {
     #[error("could not write recording {path}: {reason}")]
     RecordingWrite { path: String, reason: String },
 
+    /// A visual's per-time sequences differ in length (a scene's bug, caught before logging
+    /// a frame whose parts do not belong together).
+    #[error("the visual `{path}` has {found} {what}; {expected} expected")]
+    MismatchedSeries {
+        path: String,
+        what: &'static str,
+        expected: usize,
+        found: usize,
+    },
+
     /// Rerun reported an error while logging.
     #[error("rerun: {0}")]
     Rerun(String),

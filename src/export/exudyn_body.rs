@@ -32,7 +32,7 @@ use crate::{
         ImportedBody, lower_entries, mass_lower_entries, write_coordinate_symmetric, write_npy,
     },
     error::ReductionError,
-    fem::{Direction, FeModel, NodeDof},
+    fem::{Direction, FeModel, NodeDof, NodeIndex},
     linalg::{generalized_eigen, hz_from_eigenvalue},
     reduction::{AveragingInterface, Basis, ColumnKind, RigidInterface},
     report::sig_vec,
@@ -99,13 +99,14 @@ fn translation_order(model: &FeModel) -> Result<Vec<usize>> {
 
 /// Refuses a kept basis that moves a node of the frame's ring (beyond 1e-12 of its largest
 /// entry): the frame would not be attached to the ring.
-fn frame_ring_still(frame: &RigidInterface, modes: &Mat<f64>) -> Result<()> {
+fn frame_ring_still(model: &FeModel, frame: &RigidInterface, modes: &Mat<f64>) -> Result<()> {
     let largest = (0..modes.ncols())
         .flat_map(|j| (0..modes.nrows()).map(move |i| (i, j)))
         .fold(0.0f64, |m, (i, j)| m.max(modes[(i, j)].abs()));
     for &node in &frame.nodes {
         for axis in 0..3 {
-            let row = 3 * (node - 1) + axis;
+            // The rows are in Exudyn's order: node by node, x y z.
+            let row = 3 * model.node_index(node)?.get() + axis;
             let moved = (0..modes.ncols())
                 .map(|j| modes[(row, j)].abs())
                 .fold(0.0, f64::max);
@@ -165,7 +166,7 @@ pub fn exudyn_body(
     let modes = Mat::from_fn(order.len(), keep.len(), |i, j| {
         basis.psi[(order[i], keep[j])]
     });
-    frame_ring_still(frame, &modes)?;
+    frame_ring_still(model, frame, &modes)?;
 
     let kept = Basis {
         method: basis.method,
@@ -194,7 +195,34 @@ pub fn exudyn_body(
     } else {
         "HCBmodes"
     };
-    let zero_based = |nodes: &[usize]| nodes.iter().map(|n| n - 1).collect::<Vec<_>>();
+    // Exudyn numbers nodes from 0.
+    let zero_based = |nodes: &[usize]| -> Result<Vec<usize>> {
+        nodes
+            .iter()
+            .map(|&n| model.node_index(n).map(NodeIndex::get))
+            .collect()
+    };
+    let ring_indices = zero_based(&frame.nodes)?;
+    let node_sets = body
+        .node_sets
+        .iter()
+        .map(|(name, nodes)| Ok(json!({ "name": name, "node_numbers": zero_based(nodes)? })))
+        .collect::<Result<Vec<_>>>()?;
+    let interfaces = rigid
+        .iter()
+        .map(|i| {
+            Ok(json!({
+                "name": i.name, "kind": "rbe2", "master": i.master,
+                "node_numbers": zero_based(&i.nodes)?,
+            }))
+        })
+        .chain(averaging.iter().map(|i| {
+            Ok(json!({
+                "name": i.name, "kind": "rbe3", "master": i.master,
+                "node_numbers": zero_based(&i.nodes)?, "weights": i.weights,
+            }))
+        }))
+        .collect::<Result<Vec<_>>>()?;
     let doc = json!({
         "format": EXUDYN_FORMAT,
         "body_name": model.name,
@@ -208,7 +236,7 @@ pub fn exudyn_body(
             "interface": frame.name,
             "kind": "rbe2",
             "master": frame.master,
-            "node_numbers": zero_based(&frame.nodes),
+            "node_numbers": ring_indices,
             "note": "the floating frame's origin and axes are the body's own; the ring never \
                      moves in it (its constraint modes are left out of the basis)",
         },
@@ -218,17 +246,8 @@ pub fn exudyn_body(
         "eigenvalues": eig.values,
         "hz": hz,
         "residuals": sig_vec(&eig.residuals),
-        "node_sets": body.node_sets.iter().map(|(name, nodes)| json!({
-            "name": name,
-            "node_numbers": zero_based(nodes),
-        })).collect::<Vec<_>>(),
-        "interfaces": rigid.iter().map(|i| json!({
-            "name": i.name, "kind": "rbe2", "master": i.master,
-            "node_numbers": zero_based(&i.nodes),
-        })).chain(averaging.iter().map(|i| json!({
-            "name": i.name, "kind": "rbe3", "master": i.master,
-            "node_numbers": zero_based(&i.nodes), "weights": i.weights,
-        }))).collect::<Vec<_>>(),
+        "node_sets": node_sets,
+        "interfaces": interfaces,
         "files": {
             "nodes": "nodes.npy",
             "mass": "mass.mtx",

@@ -365,7 +365,7 @@ impl ReducedExport {
                     "kind": kind_name(&c.kind),
                     "dof": c.dof.map(|d| {
                         let (node, dof) = model.dof_node(d);
-                        json!({ "node": node, "dof": dof.name(), "index": d + 1 })
+                        json!({ "node": node.number(), "dof": dof.name(), "index": d + 1 })
                     }),
                     "hz": match c.kind {
                         ColumnKind::Normal { hz }

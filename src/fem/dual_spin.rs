@@ -4,7 +4,7 @@
 //! "platform" on a side arm. The booms give many low-frequency modes, most of which put no
 //! net force or moment on the hub and so are not seen from the actuator or the sensors.
 
-use super::{FeModel, FrameSection, frame_of_sections};
+use super::{FeModel, FrameSection, NodeIndex, frame_of_sections};
 use crate::error::MeshError;
 use crate::{Result, linalg::MassMatrix};
 
@@ -207,7 +207,7 @@ pub fn add_lumped(model: &mut FeModel, node: usize, mass: &[f64; 6]) -> Result<(
         }
         _ => Err(MeshError::NotALumpedFrameNode {
             body: model.name.clone(),
-            node: node + 1,
+            node: NodeIndex(node).number(),
             nodes: model.nodes.len(),
         }
         .into()),

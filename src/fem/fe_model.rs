@@ -155,10 +155,10 @@ impl FeModel {
         Ok(out)
     }
 
-    /// `(1-based node, DOF)` of a DOF index.
-    pub fn dof_node(&self, dof: usize) -> (usize, NodeDof) {
+    /// `(node, DOF)` of a DOF index.
+    pub fn dof_node(&self, dof: usize) -> (NodeIndex, NodeDof) {
         let (node, d) = self.dofs.locate(dof);
-        (node + 1, d)
+        (NodeIndex(node), d)
     }
 
     /// Position (m) of the node a DOF belongs to, for orderings that need coordinates.
@@ -169,7 +169,7 @@ impl FeModel {
     /// `node 3 y` (or `node 3 θz`) style label of a DOF.
     pub fn dof_label(&self, dof: usize) -> String {
         let (node, d) = self.dof_node(dof);
-        format!("node {node} {}", d.name())
+        format!("{node} {}", d.name())
     }
 
     /// The stiffness as a dense matrix (for the small bodies' dense path).

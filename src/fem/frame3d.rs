@@ -6,7 +6,7 @@
 use crate::error::MeshError;
 use faer::Mat;
 
-use super::{DofMap, FeModel, RigidMotions};
+use super::{DofMap, FeModel, NodeIndex, RigidMotions};
 use crate::{
     Error, Result,
     linalg::{MassMatrix, SparseAssembly, SparsityPattern},
@@ -222,7 +222,7 @@ pub fn frame_of_sections(
         }
         if i >= n || j >= n {
             return Err(Error::NodeOutOfRange {
-                node: i.max(j) + 1,
+                node: NodeIndex(i.max(j)).number(),
                 count: n,
                 body: name.into(),
             });

@@ -294,7 +294,7 @@ fn static_case(
             .iter()
             .map(|&n| {
                 Ok([
-                    model.nodes[n - 1][0],
+                    model.position(model.node_index(n)?)[0],
                     u[model.node_dof(n, NodeDof::Translation(case.direction))?],
                 ])
             })

@@ -20,7 +20,7 @@ use crate::{
         PinnedRing, Shake, SpinUp, integrate_driven, positions,
     },
     error::DynamicsError,
-    fem::FeModel,
+    fem::{FeModel, NodeIndex},
     progress::Progress,
     reduction::{ColumnKind, Method, ReductionError, RigidInterface},
 };
@@ -419,7 +419,7 @@ fn output_names(
             d(a).total_cmp(&d(b))
         })
         .unwrap_or(0);
-    vec![format!("node:{}", far + 1)]
+    vec![format!("node:{}", NodeIndex(far).number())]
 }
 
 /// The nodes (1-based) of output `name`: a node set, or `node:N`.

@@ -9,7 +9,7 @@ use faer::Mat;
 use crate::{
     Result,
     analysis::{FrequencyResponse, band_frequencies},
-    fem::{DualSpin, DualSpinParameters, FeModel, add_lumped, dual_spin},
+    fem::{DualSpin, DualSpinParameters, FeModel, NodeIndex, add_lumped, dual_spin},
     linalg::{GeneralizedEigen, generalized_eigen, identity},
     reduction::{
         Basis, Component, InterfaceLoading, InteriorProblem, IoMap, LoadedInterface,
@@ -257,8 +257,12 @@ impl DualSpinSets {
             rotor_hub: ds.rotor.dofs_of_nodes(&[1])?,
             rotor_r_set: ds.rotor.dofs_of_nodes(&[2])?,
             stator_base: ds.stator.dofs_of_nodes(&[1])?,
-            stator_hub: ds.stator.dofs_of_nodes(&[ds.stator_hub + 1])?,
-            stator_platform: ds.stator.dofs_of_nodes(&[ds.stator_platform + 1])?,
+            stator_hub: ds
+                .stator
+                .dofs_of_nodes(&[NodeIndex(ds.stator_hub).number()])?,
+            stator_platform: ds
+                .stator
+                .dofs_of_nodes(&[NodeIndex(ds.stator_platform).number()])?,
         })
     }
 

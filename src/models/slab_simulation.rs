@@ -254,11 +254,19 @@ pub fn slab_node(model: &FeModel, app_b_node: usize) -> usize {
     if model.node_count() == app_b.node_count() {
         return app_b_node;
     }
-    let target = app_b.nodes[app_b_node - 1];
+    let Some(target) = NodeIndex::of_number(app_b_node)
+        .filter(|i| i.get() < app_b.node_count())
+        .map(|i| app_b.position(i))
+    else {
+        return app_b_node;
+    };
     let distance = |p: &[f64; 3]| (0..3).map(|d| (p[d] - target[d]).powi(2)).sum::<f64>();
-    1 + (0..model.node_count())
-        .min_by(|&a, &b| distance(&model.nodes[a]).total_cmp(&distance(&model.nodes[b])))
-        .unwrap_or(0)
+    NodeIndex(
+        (0..model.node_count())
+            .min_by(|&a, &b| distance(&model.nodes[a]).total_cmp(&distance(&model.nodes[b])))
+            .unwrap_or(0),
+    )
+    .number()
 }
 
 /// The scene's default boundary on `model`: App. B's nodes 16, 18, 28, 30 where they are.

@@ -4,7 +4,7 @@
 use crate::{
     Result,
     error::ReductionError,
-    fem::{Direction, FeModel, NodeDof},
+    fem::{Direction, FeModel, NodeDof, NodeIndex},
 };
 
 /// Six translational DOF of three nodes outside `excluded` (1-based) that hold every rigid
@@ -17,8 +17,9 @@ pub fn three_two_one_support(model: &FeModel, excluded: &[usize]) -> Result<Vec<
         dofs: "3-2-1 support".into(),
         reason,
     };
-    let candidates: Vec<usize> = (1..=model.node_count())
-        .filter(|n| !excluded.contains(n))
+    let candidates: Vec<NodeIndex> = (0..model.node_count())
+        .map(NodeIndex)
+        .filter(|n| !excluded.contains(&n.number()))
         .collect();
     if candidates.len() < 3 {
         return Err(invalid(format!(
@@ -27,7 +28,7 @@ pub fn three_two_one_support(model: &FeModel, excluded: &[usize]) -> Result<Vec<
         ))
         .into());
     }
-    let x = |n: usize| model.nodes[n - 1];
+    let x = |n: NodeIndex| model.position(n);
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let cross = |a: [f64; 3], b: [f64; 3]| {
@@ -37,7 +38,7 @@ pub fn three_two_one_support(model: &FeModel, excluded: &[usize]) -> Result<Vec<
             a[0] * b[1] - a[1] * b[0],
         ]
     };
-    let farthest = |score: &dyn Fn(usize) -> f64| {
+    let farthest = |score: &dyn Fn(NodeIndex) -> f64| {
         candidates
             .iter()
             .copied()
@@ -64,7 +65,7 @@ pub fn three_two_one_support(model: &FeModel, excluded: &[usize]) -> Result<Vec<
         return Err(invalid("the nodes outside the interface lie on a line".into()).into());
     }
     let axes = [Direction::X, Direction::Y, Direction::Z];
-    let dof = |n: usize, d: Direction| model.node_dof(n, NodeDof::Translation(d));
+    let dof = |n: NodeIndex, d: Direction| model.node_dof(n.number(), NodeDof::Translation(d));
     let mut out = axes
         .iter()
         .map(|&d| dof(a, d))

@@ -409,6 +409,14 @@ fn log_mode(
     c: Color,
     planar: bool,
 ) -> Result<()> {
+    if shape.len() != geometry.nodes.len() {
+        return Err(Error::MismatchedSeries {
+            path: path.into(),
+            what: "nodal displacements for its nodes",
+            expected: geometry.nodes.len(),
+            found: shape.len(),
+        });
+    }
     let r = radius(geometry);
     let undeformed = Lines {
         strips: strips(geometry, &geometry.nodes),
@@ -536,6 +544,19 @@ fn log_frame_axes(
         rerun::Color::from_rgb(60, 200, 60),
         rerun::Color::from_rgb(60, 110, 240),
     ];
+    for (what, found) in [
+        ("frame origins for its times", origins.len()),
+        ("axis triads for its times", axes.len()),
+    ] {
+        if found != times.len() {
+            return Err(Error::MismatchedSeries {
+                path: path.into(),
+                what,
+                expected: times.len(),
+                found,
+            });
+        }
+    }
     for ((t, o), a) in times.iter().zip(origins).zip(axes) {
         rec.set_duration_secs("sim_time", *t);
         let o32 = o.map(|x| x as f32);
@@ -548,4 +569,56 @@ fn log_frame_axes(
     }
     rec.reset_time();
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::Report;
+
+    fn content(visuals: Vec<Visual>) -> RecordingContent {
+        RecordingContent {
+            report: Report::new("test"),
+            markdown: String::new(),
+            visuals,
+            layout: Layout::Tabs(Vec::new()),
+            timeline: Some("sim_time".into()),
+            y_up: false,
+        }
+    }
+
+    #[test]
+    fn frame_axes_of_mismatched_lengths_are_a_named_error_and_no_file() {
+        let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let visual = |origins: usize, triads: usize| Visual::FrameAxes {
+            path: "world/body/frame/mean".into(),
+            times: vec![0.0, 0.1, 0.2],
+            origins: vec![[0.0; 3]; origins],
+            axes: vec![axes; triads],
+            length: 1.0,
+        };
+        let dir = std::env::temp_dir().join(format!("flexmodes-axes-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("axes.rrd");
+        for (origins, triads) in [(2, 3), (3, 4)] {
+            let err = Recorder::default()
+                .save(&content(vec![visual(origins, triads)]), &file)
+                .unwrap_err();
+            assert!(
+                matches!(
+                    err,
+                    Error::MismatchedSeries { expected: 3, found, .. }
+                        if found == if origins != 3 { origins } else { triads }
+                ),
+                "{err}"
+            );
+            assert!(err.to_string().contains("world/body/frame/mean"), "{err}");
+            assert!(!file.exists());
+        }
+        Recorder::default()
+            .save(&content(vec![visual(3, 3)]), &file)
+            .unwrap();
+        assert!(file.exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -80,7 +80,7 @@ impl BoundaryCoordinates {
                 if tied[j].is_some() {
                     return Err(ReductionError::InvalidDofSet {
                         set: set(),
-                        reason: format!("node {} is tied to two interfaces", model.dof_node(dof).0),
+                        reason: format!("{} is tied to two interfaces", model.dof_node(dof).0),
                     }
                     .into());
                 }

@@ -4,7 +4,10 @@
 use super::ReductionError;
 use faer::Mat;
 
-use crate::{Error, Result, fem::FeModel};
+use crate::{
+    Error, Result,
+    fem::{FeModel, NodeIndex},
+};
 
 /// One component of an assembly: its body, a Ritz basis on its DOF (zero rows where it is
 /// held) and, per local node, the assembly node it is (0-based).
@@ -157,7 +160,7 @@ impl Synthesis {
             .copied()
             .flatten()
             .ok_or(Error::NodeOutOfRange {
-                node: node + 1,
+                node: NodeIndex(node).number(),
                 count: self.owner.len(),
                 body: "assembly".into(),
             })?;

@@ -12,7 +12,7 @@ use super::{
 };
 use crate::{
     Error, Progress, Result,
-    fem::{FeModel, RigidMotions},
+    fem::{FeModel, NodeIndex, RigidMotions},
     linalg::{
         GeneralizedEigen, MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor,
         SymmetricFactor, generalized_eigen, negative_shift, nested_dissection,
@@ -84,7 +84,7 @@ impl Partition {
         }
         let mut boundary_nodes: Vec<usize> = Vec::new();
         for &d in b {
-            let node = model.dof_node(d).0;
+            let node = model.dof_node(d).0.number();
             if !boundary_nodes.contains(&node) {
                 boundary_nodes.push(node);
             }
@@ -500,7 +500,7 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
     let restrained: Vec<usize> = p.b.iter().chain(&p.held).copied().collect();
     let r_b = Mat::from_fn(restrained.len(), rigid, |row, col| {
         let (node, dof) = model.dof_node(restrained[row]);
-        let x = model.nodes[node - 1];
+        let x = model.position(node);
         let r = [
             (x[0] - c[0]) / size,
             (x[1] - c[1]) / size,
@@ -545,21 +545,26 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
         let a: Vec<f64> = (0..3).map(|d| c[d] + wxt[d] / (wn * wn)).collect();
         // Name a boundary node the axis passes through, if any (a point support).
         let unit = [w[0] / wn, w[1] / wn, w[2] / wn];
-        let through_node = p.boundary_nodes.iter().copied().find(|&node| {
-            let x = model.nodes[node - 1];
-            let d = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
-            let along = d[0] * unit[0] + d[1] * unit[1] + d[2] * unit[2];
-            let off = (0..3)
-                .map(|k| (d[k] - along * unit[k]).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            off <= 1e-9 * size
-        });
+        // (Boundary node numbers were checked when the partition was made.)
+        let through_node = p
+            .boundary_nodes
+            .iter()
+            .filter_map(|&number| NodeIndex::of_number(number))
+            .find(|&node| {
+                let x = model.position(node);
+                let d = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
+                let along = d[0] * unit[0] + d[1] * unit[1] + d[2] * unit[2];
+                let off = (0..3)
+                    .map(|k| (d[k] - along * unit[k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                off <= 1e-9 * size
+            });
         let clean = |x: f64| if x.abs() < 1e-9 { 0.0 } else { x };
         if let Some(node) = through_node {
-            let x = model.nodes[node - 1];
+            let x = model.position(node);
             return format!(
-                "rotation about ({:.3}, {:.3}, {:.3}) through node {node} at ({:.3}, {:.3}, \
+                "rotation about ({:.3}, {:.3}, {:.3}) through {node} at ({:.3}, {:.3}, \
                  {:.3}) m",
                 clean(unit[0]),
                 clean(unit[1]),

@@ -133,7 +133,7 @@ pub fn tie_rigid_interfaces(
             if tied[j].is_some() {
                 return Err(ReductionError::InvalidDofSet {
                     set: format!("rbe2 interface `{}`", interface.name),
-                    reason: format!("node {} is tied to two interfaces", model.dof_node(dof).0),
+                    reason: format!("{} is tied to two interfaces", model.dof_node(dof).0),
                 }
                 .into());
             }

@@ -63,7 +63,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     for (name, node) in [("A", frame.a), ("B", frame.b), ("clamp", frame.clamp)] {
         visuals.push(Visual::Label3D {
             path: format!("structure/{}", name.to_lowercase()),
-            position: model.nodes[node - 1],
+            position: model.position(model.node_index(node)?),
             text: name.into(),
             color: [250, 80, 80, 255],
         });
