@@ -8,6 +8,7 @@ use egui_kittest::{Harness, kittest::Queryable};
 use flexmodes::{
     gui::{Controls, Explorer},
     record::RecordingDigest,
+    reduction::Method,
 };
 use rerun::external::egui::{self, accesskit::Role};
 
@@ -227,7 +228,7 @@ fn save_writes_a_recording() {
 #[test]
 fn the_end_time_of_a_simulation_can_be_changed() {
     let mut h = harness("slab-sim1");
-    h.state_mut().controls.methods = vec!["cb".into()];
+    h.state_mut().controls.methods = vec![Method::CraigBampton];
     h.state_mut().controls.end_time = 0.5;
     h.get_by_label("shorter").click();
     settle(&mut h);
@@ -254,11 +255,14 @@ fn the_end_time_of_a_simulation_can_be_changed() {
 #[test]
 fn the_integrator_of_a_simulation_is_a_control() {
     let mut h = harness("slab-sim1");
-    h.state_mut().controls.methods = vec!["cb".into()];
+    h.state_mut().controls.methods = vec![Method::CraigBampton];
     h.state_mut().controls.end_time = 0.25;
     h.get_by_label("gen-alpha").click();
     settle(&mut h);
-    assert_eq!(h.state().controls.integrator, "gen-alpha");
+    assert_eq!(
+        h.state().controls.integrator.map(|s| s.id()),
+        Some("gen-alpha")
+    );
     let report = &h.state().current.as_ref().unwrap().report;
     assert_eq!(report.parameters["integrator"], "gen-alpha");
     assert_eq!(report.parameters["dt_s"].as_f64(), Some(0.001));
@@ -298,7 +302,7 @@ fn a_newer_request_cancels_a_running_simulation() {
 #[test]
 fn a_running_simulation_shows_its_simulated_time() {
     let mut h = harness("slab-sim1");
-    h.state_mut().controls.methods = vec!["nr".into()];
+    h.state_mut().controls.methods = vec![Method::NoReduction];
     h.state_mut().controls.end_time = 2.0;
     h.get_by_label("more modes").click();
     let start = Instant::now();
@@ -381,7 +385,10 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
             "{m} offered"
         );
         assert!(
-            h.state().controls.methods.contains(&m.to_lowercase()),
+            h.state()
+                .controls
+                .methods
+                .contains(&m.to_lowercase().parse::<Method>().unwrap()),
             "{m} ticked"
         );
     }
@@ -407,7 +414,7 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
             .any(|n| n.as_str().unwrap().starts_with("CB:") && n.as_str().unwrap().contains("rbe3")),
         "{notes:?}"
     );
-    h.state_mut().controls.body = "/nonexistent/body.toml".into();
+    h.state_mut().controls.body = Some("/nonexistent/body.toml".into());
     h.state_mut().request();
     h.step();
     let error = h.state().error.clone().unwrap();
@@ -438,7 +445,7 @@ fn every_scene_opens_with_its_default_controls_and_its_titles_fit() {
 #[test]
 fn the_explorer_anticipates_one_mode_more_or_fewer_and_unticked_methods() {
     let mut c = Controls::for_scene("slab-sim1").unwrap();
-    c.methods.retain(|m| m != "mt");
+    c.methods.retain(|&m| m != Method::ModalTruncation);
     let modes = c.modes;
     assert!(modes > 0);
     let next = Explorer::new(c.clone()).likely_next();
@@ -453,7 +460,7 @@ fn the_explorer_anticipates_one_mode_more_or_fewer_and_unticked_methods() {
     );
     assert!(next.iter().any(|n| n.modes == modes
         && n.methods.len() == c.methods.len() + 1
-        && n.methods.iter().any(|m| m == "mt")));
+        && n.methods.contains(&Method::ModalTruncation)));
     // Everything else stays as the user set it.
     for n in &next {
         assert_eq!(
@@ -632,4 +639,24 @@ fn after_any_switches_the_recording_equals_a_fresh_one() {
             assert!(left.is_empty(), "{scene}: {m} left {left:?}");
         }
     }
+}
+
+#[test]
+fn the_persisted_controls_name_methods_and_integrator_by_id_and_read_older_settings() {
+    let mut c = Controls::for_scene("slab-sim1").unwrap();
+    c.methods = vec![Method::CraigBampton, Method::ModeCondensation];
+    c.integrator = Some("gen-alpha".parse().unwrap());
+    let text = serde_json::to_string(&c).unwrap();
+    assert!(text.contains(r#""methods":["cb","mc"]"#), "{text}");
+    assert!(text.contains(r#""integrator":"gen-alpha""#), "{text}");
+    assert_eq!(serde_json::from_str::<Controls>(&text).unwrap(), c);
+    // Earlier versions wrote the defaults as empty strings.
+    let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    value["integrator"] = "".into();
+    value["body"] = "".into();
+    let older: Controls = serde_json::from_value(value.clone()).unwrap();
+    assert_eq!((older.integrator, older.body), (None, None));
+    // An id no version wrote is refused (the explorer then starts from the defaults).
+    value["methods"] = serde_json::json!(["cb", "xx"]);
+    assert!(serde_json::from_value::<Controls>(value).is_err());
 }

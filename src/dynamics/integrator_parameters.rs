@@ -6,8 +6,10 @@ pub const DEFAULT_IMPLICIT_STEP: f64 = 1e-3;
 /// The implicit scheme's spectral radius at infinite frequency when none is given.
 pub const DEFAULT_SPECTRAL_RADIUS: f64 = 0.8;
 
-/// Which time-integration scheme [`simulate`](super::simulate) runs.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Which time-integration scheme [`simulate`](super::simulate) runs; written in settings by
+/// its id (generalized-α read back with [`DEFAULT_SPECTRAL_RADIUS`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "String", into = "String")]
 pub enum IntegrationScheme {
     /// Dormand–Prince 5(4): explicit, adaptive steps unless
     /// [`IntegratorParameters::fixed_step`] is set (then without error control).
@@ -132,6 +134,20 @@ impl IntegratorParameters {
 impl std::fmt::Display for IntegrationScheme {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.id())
+    }
+}
+
+impl TryFrom<String> for IntegrationScheme {
+    type Error = crate::error::UnknownId;
+
+    fn try_from(id: String) -> Result<Self, Self::Error> {
+        id.parse()
+    }
+}
+
+impl From<IntegrationScheme> for String {
+    fn from(scheme: IntegrationScheme) -> Self {
+        scheme.id().into()
     }
 }
 

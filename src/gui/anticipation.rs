@@ -29,10 +29,10 @@ impl Explorer {
                 });
             }
         }
-        for m in c.methods {
-            if !self.controls.methods.iter().any(|id| id == m.id()) {
+        for &m in c.methods {
+            if !self.controls.methods.contains(&m) {
                 let mut next = self.controls.clone();
-                next.methods.push(m.id().into());
+                next.methods.push(m);
                 out.push(next);
             }
         }

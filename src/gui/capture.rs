@@ -121,10 +121,14 @@ impl Capture {
         match m.as_str() {
             MORE_MODES => explorer.controls.modes += 1,
             FEWER_MODES => explorer.controls.modes = explorer.controls.modes.saturating_sub(1),
-            _ if explorer.controls.methods.contains(&m) => {
-                explorer.controls.methods.retain(|id| *id != m)
-            }
-            _ => explorer.controls.methods.push(m),
+            id => match id.parse::<crate::reduction::Method>() {
+                Ok(method) if explorer.controls.methods.contains(&method) => {
+                    explorer.controls.methods.retain(|&shown| shown != method)
+                }
+                Ok(method) => explorer.controls.methods.push(method),
+                // Nothing to toggle: the recording stays as it is.
+                Err(_) => {}
+            },
         }
         explorer.request();
         self.toggled = Some(now);

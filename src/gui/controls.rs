@@ -16,8 +16,8 @@ use crate::{
 pub struct Controls {
     /// Scene id.
     pub scene: String,
-    /// Method ids to show.
-    pub methods: Vec<String>,
+    /// Methods to show.
+    pub methods: Vec<Method>,
     /// Kept normal modes.
     pub modes: usize,
     /// Boundary nodes as typed, 1-based, comma separated.
@@ -33,12 +33,12 @@ pub struct Controls {
     /// Factor on the drawn deflections of the simulations (0: automatic).
     #[serde(default)]
     pub deformation_scale: f64,
-    /// Body file of the `modes` scene (a path or `builtin:NAME`; empty: its default body).
-    #[serde(default)]
-    pub body: String,
-    /// Integrator id of the simulations (`dp5` or `gen-alpha`; empty: dp5).
-    #[serde(default)]
-    pub integrator: String,
+    /// Body file of the `modes` scene (a path or `builtin:NAME`; `None`: its default body).
+    #[serde(default, deserialize_with = "empty_as_none")]
+    pub body: Option<String>,
+    /// Integrator of the simulations (`None`: the scene's default, Dormand–Prince).
+    #[serde(default, deserialize_with = "empty_as_none")]
+    pub integrator: Option<IntegrationScheme>,
 }
 
 /// The largest preset a simulation scene offers, DOF (its full model is integrated too).
@@ -56,23 +56,24 @@ impl Controls {
         let c = info.controls;
         Ok(Self {
             scene: id.into(),
-            methods: c.methods.iter().map(|m| m.id().to_string()).collect(),
+            methods: c.methods.to_vec(),
             modes: c.modes.unwrap_or(0),
             boundary: join(c.boundary),
             // Empty: the scene's own choice (plank-symmetry compares both frames).
             axes: None,
             end_time: c.end_time.unwrap_or(0.0),
             refine: c.refine.map(|r| r.to_vec()).unwrap_or_default(),
-            body: String::new(),
+            body: None,
             deformation_scale: 0.0,
-            integrator: String::new(),
+            integrator: None,
         })
     }
 
     /// The defaults of the `modes` scene on the body file `body`.
     pub fn for_body(body: &str) -> Result<Self> {
+        let body = body.trim();
         Ok(Self {
-            body: body.into(),
+            body: (!body.is_empty()).then(|| body.into()),
             ..Self::for_scene(scenes::body_modes::INFO.id)?
         })
     }
@@ -133,11 +134,7 @@ impl Controls {
             let nodes = SceneOptions::boundary_from_text(&self.scene, &self.boundary)?;
             Some(nodes)
         };
-        let methods = self
-            .methods
-            .iter()
-            .filter_map(|id| Method::from_id(id))
-            .collect::<Vec<_>>();
+        let methods = self.methods.clone();
         // A scene without method choices (the failures scene) runs with its own settings.
         SceneOptions::require_a_method(&info, &methods)?;
         Ok(SceneOptions {
@@ -149,9 +146,27 @@ impl Controls {
             deformation_scale: (c.end_time.is_some() && self.deformation_scale > 0.0)
                 .then_some(self.deformation_scale),
             refine,
-            integrator: c.end_time.and(IntegrationScheme::from_id(&self.integrator)),
+            integrator: c.end_time.and(self.integrator),
             ..Default::default()
         })
+    }
+}
+
+/// A persisted value read back: absent, `null` or empty (how earlier versions stored "the
+/// default") is `None`; otherwise it must parse.
+fn empty_as_none<'de, D, T>(deserializer: D) -> std::result::Result<Option<T>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: std::str::FromStr,
+    T::Err: std::fmt::Display,
+{
+    match Option::<String>::deserialize(deserializer)? {
+        Some(text) if !text.trim().is_empty() => text
+            .trim()
+            .parse()
+            .map(Some)
+            .map_err(serde::de::Error::custom),
+        _ => Ok(None),
     }
 }
 
@@ -204,20 +219,21 @@ impl Controls {
     pub fn change(&mut self, change: Change) {
         match change {
             Change::Method(m, on) => {
-                self.methods.retain(|id| id != m.id());
+                self.methods.retain(|&shown| shown != m);
                 if on {
-                    self.methods.push(m.id().into());
+                    self.methods.push(m);
                 }
             }
             Change::Modes(n) => self.modes = n,
             Change::Body(body) => {
-                self.body = body;
+                let body = body.trim();
+                self.body = (!body.is_empty()).then(|| body.into());
                 self.boundary.clear();
             }
             Change::Boundary(boundary) => self.boundary = boundary,
             Change::Axes(axes) => self.axes = axes,
             Change::Refine(bricks) => self.refine = bricks,
-            Change::Integrator(scheme) => self.integrator = scheme.id().into(),
+            Change::Integrator(scheme) => self.integrator = Some(scheme),
             Change::DeformationScale(f) => self.deformation_scale = f,
             Change::EndTime(t) => self.end_time = t,
         }

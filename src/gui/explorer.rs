@@ -64,7 +64,7 @@ pub struct Edits {
 impl Edits {
     fn of(controls: &Controls) -> Self {
         Self {
-            body: controls.body.clone(),
+            body: controls.body.clone().unwrap_or_default(),
             boundary: controls.boundary.clone(),
         }
     }
@@ -117,11 +117,11 @@ impl Explorer {
         if !self.controls.takes_body() {
             return Ok(None);
         }
-        let name = if self.controls.body.trim().is_empty() {
-            scenes::body_modes::DEFAULT_BODY.to_string()
-        } else {
-            self.controls.body.trim().to_string()
-        };
+        let name = self
+            .controls
+            .body
+            .clone()
+            .unwrap_or_else(|| scenes::body_modes::DEFAULT_BODY.to_string());
         if let Some((loaded, handle)) = &self.body
             && *loaded == name
         {
@@ -291,7 +291,7 @@ impl Explorer {
         ui.label("methods");
         ui.horizontal_wrapped(|ui| {
             for m in info.controls.methods {
-                let mut on = self.controls.methods.iter().any(|id| id == m.id());
+                let mut on = self.controls.methods.contains(m);
                 if ui
                     .checkbox(&mut on, m.id().to_uppercase())
                     .on_hover_text(m.name())
@@ -333,7 +333,7 @@ impl Explorer {
                 for name in crate::assets::builtin_bodies() {
                     let id = format!("builtin:{name}");
                     if ui
-                        .selectable_label(self.controls.body == id, name)
+                        .selectable_label(self.controls.body.as_deref() == Some(id.as_str()), name)
                         .clicked()
                     {
                         out.push(Command::Set(Change::Body(id)));
@@ -479,11 +479,7 @@ impl Explorer {
             ui.horizontal(|ui| {
                 ui.label("integrator");
                 for id in IntegrationScheme::IDS {
-                    let chosen = if self.controls.integrator.is_empty() {
-                        id == "dp5"
-                    } else {
-                        self.controls.integrator == id
-                    };
+                    let chosen = self.controls.integrator.map_or("dp5", |s| s.id()) == id;
                     if ui.selectable_label(chosen, id).clicked()
                         && !chosen
                         && let Some(scheme) = IntegrationScheme::from_id(id)

@@ -7,8 +7,11 @@ use super::{
 };
 use crate::{Error, Result, fem::FeModel};
 
-/// The reduction methods and their stable ids.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+/// The reduction methods and their stable ids (how they are written in files and settings).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
+#[serde(try_from = "String", into = "String")]
 pub enum Method {
     /// `nr`: no reduction, Ψ = I.
     NoReduction,
@@ -216,6 +219,20 @@ pub fn reduce(model: &FeModel, method: Method, p: &ReductionParameters) -> Resul
 impl std::fmt::Display for Method {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.id())
+    }
+}
+
+impl TryFrom<String> for Method {
+    type Error = crate::error::UnknownId;
+
+    fn try_from(id: String) -> Result<Self, Self::Error> {
+        id.parse()
+    }
+}
+
+impl From<Method> for String {
+    fn from(method: Method) -> Self {
+        method.id().into()
     }
 }
 
