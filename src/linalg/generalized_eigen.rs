@@ -27,7 +27,7 @@
 use super::LinalgError;
 use faer::{Mat, MatRef, Side};
 
-use super::{SymmetricEigenKernel, orthonormality_defect, symmetric_eigen::symmetric_eigen_with};
+use super::{SymmetricEigenKernel, orthonormality_defect, symmetric_eigen::symmetric_eigen_prefix};
 use crate::{Error, Result};
 
 /// Largest accepted normwise backward error $\eta_j$ of a dense generalised eigenpair.
@@ -116,6 +116,42 @@ pub fn eigenvalue_scale(diagonal: impl Iterator<Item = (f64, f64)>) -> f64 {
         .fold(0.0f64, f64::max)
 }
 
+/// Which of a dense problem's ascending pairs a caller keeps: only those are checked and
+/// returned ([`generalized_eigen_selected`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PairSelection {
+    /// Every pair.
+    All,
+    /// The lowest ones, at most this many.
+    Lowest(usize),
+    /// The lowest `always` pairs (a free body's rigid motions), then those up to `hz`
+    /// ([`hz_from_eigenvalue`] of each at most it).
+    UpToHz {
+        /// The cut-off, Hz.
+        hz: f64,
+        /// Pairs kept whatever their frequency.
+        always: usize,
+    },
+}
+
+impl PairSelection {
+    /// How many of the ascending `values` it keeps.
+    pub fn count(self, values: &[f64]) -> usize {
+        match self {
+            Self::All => values.len(),
+            Self::Lowest(k) => k.min(values.len()),
+            Self::UpToHz { hz, always } => {
+                let always = always.min(values.len());
+                always
+                    + values[always..]
+                        .iter()
+                        .take_while(|&&l| hz_from_eigenvalue(l) <= hz)
+                        .count()
+            }
+        }
+    }
+}
+
 /// Solves $K\Psi = M\Psi\Lambda$ for symmetric $K$ and symmetric positive definite $M$, as the
 /// module says: balanced, scaled, checked, with a fallback kernel.
 ///
@@ -124,6 +160,18 @@ pub fn generalized_eigen(
     k: MatRef<'_, f64>,
     m: MatRef<'_, f64>,
     what: &str,
+) -> Result<GeneralizedEigen> {
+    generalized_eigen_selected(k, m, what, PairSelection::All)
+}
+
+/// [`generalized_eigen`] returning only the pairs `selection` keeps. The complete problem is
+/// solved, but only the kept pairs are transformed back and checked (both checks, with the
+/// whole problem's tolerances): for the modes below a cut-off, $n^2k$ instead of $n^3$.
+pub fn generalized_eigen_selected(
+    k: MatRef<'_, f64>,
+    m: MatRef<'_, f64>,
+    what: &str,
+    selection: PairSelection,
 ) -> Result<GeneralizedEigen> {
     let n = k.nrows();
     assert_eq!((k.ncols(), m.nrows(), m.ncols()), (n, n, n));
@@ -184,7 +232,15 @@ pub fn generalized_eigen(
     let norm_m = norm1(m);
     let mut worst = f64::INFINITY;
     for kernel in [SymmetricEigenKernel::Faer, SymmetricEigenKernel::Nalgebra] {
-        let standard = match symmetric_eigen_with(c.as_ref(), what, &[kernel]) {
+        // C's eigenvalues times s are the problem's; the largest magnitude of all of them
+        // (kept or not) is the scale zero-energy pairs are judged against.
+        let largest = std::cell::Cell::new(0.0f64);
+        let keep = |theta: &[f64]| {
+            let values: Vec<f64> = theta.iter().map(|t| t * s).collect();
+            largest.set(values.iter().fold(0.0f64, |a, l| a.max(l.abs())));
+            selection.count(&values)
+        };
+        let standard = match symmetric_eigen_prefix(c.as_ref(), what, &[kernel], &keep) {
             Ok(e) => e,
             Err(Error::Linalg(LinalgError::EigenCheckFailed { residual, .. })) => {
                 worst = worst.min(residual);
@@ -195,14 +251,14 @@ pub fn generalized_eigen(
         let mut vectors = standard.vectors;
         l.transpose()
             .solve_upper_triangular_in_place(vectors.as_mut());
-        for j in 0..n {
+        for j in 0..vectors.ncols() {
             for i in 0..n {
                 vectors[(i, j)] *= d[i];
             }
             fix_sign(vectors.as_mut().col_mut(j));
         }
         let values: Vec<f64> = standard.values.iter().map(|&t| t * s).collect();
-        let scale = values.iter().fold(0.0f64, |a, l| a.max(l.abs()));
+        let scale = largest.get();
         let check = check_pencil(k, m, &values, vectors.as_ref(), norm_k, norm_m, scale);
         if check.backward_error <= PENCIL_BACKWARD_ERROR
             && check.orthonormality <= MASS_ORTHONORMALITY

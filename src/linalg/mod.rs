@@ -28,8 +28,9 @@ pub use dense::{
     select, select_cols, select_rows, symmetry_defect,
 };
 pub use generalized_eigen::{
-    GeneralizedEigen, MASS_ORTHONORMALITY, PENCIL_BACKWARD_ERROR, PencilCheck, ZERO_ENERGY_RATIO,
-    check_pencil, eigenvalue_scale, fix_sign, generalized_eigen, hz_from_eigenvalue,
+    GeneralizedEigen, MASS_ORTHONORMALITY, PENCIL_BACKWARD_ERROR, PairSelection, PencilCheck,
+    ZERO_ENERGY_RATIO, check_pencil, eigenvalue_scale, fix_sign, generalized_eigen,
+    generalized_eigen_selected, hz_from_eigenvalue,
 };
 pub use gmres::{GmresParameters, GmresStatistics, preconditioned_gmres};
 pub use indefinite_factor::{INDEFINITE_SOLVE_TOLERANCE, IndefiniteFactor};
@@ -54,7 +55,7 @@ pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
 pub use sturm_count::{SturmCount, sturm_count};
 pub use symmetric_eigen::{
     SymmetricEigen, SymmetricEigenKernel, dense_eigen_tolerance, symmetric_eigen,
-    symmetric_eigen_with,
+    symmetric_eigen_prefix, symmetric_eigen_with,
 };
 pub use symmetric_factor::{SymbolicFactor, SymmetricFactor};
 pub use threads::{

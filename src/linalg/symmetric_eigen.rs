@@ -65,6 +65,19 @@ pub fn symmetric_eigen_with(
     what: &str,
     kernels: &[SymmetricEigenKernel],
 ) -> Result<SymmetricEigen> {
+    symmetric_eigen_prefix(c, what, kernels, &|values| values.len())
+}
+
+/// [`symmetric_eigen_with`] keeping only the lowest pairs: `keep` is given every eigenvalue,
+/// ascending, and returns how many to keep. Only those are checked (with the tolerance of the
+/// whole $n \times n$ problem) and returned: a caller that keeps the modes below a cut-off
+/// checks $n^2k$ instead of $n^3$.
+pub fn symmetric_eigen_prefix(
+    c: MatRef<'_, f64>,
+    what: &str,
+    kernels: &[SymmetricEigenKernel],
+    keep: &dyn Fn(&[f64]) -> usize,
+) -> Result<SymmetricEigen> {
     let n = c.nrows();
     assert_eq!(c.ncols(), n, "symmetric_eigen of a non-square matrix");
     if n == 0 {
@@ -91,9 +104,10 @@ pub fn symmetric_eigen_with(
         }
     }
     if scale == 0.0 {
+        let kept = keep(&vec![0.0; n]).min(n);
         return Ok(SymmetricEigen {
-            values: vec![0.0; n],
-            vectors: Mat::identity(n, n),
+            values: vec![0.0; kept],
+            vectors: Mat::<f64>::identity(n, n).subcols(0, kept).to_owned(),
             max_residual: 0.0,
             orthonormality: 0.0,
             kernel: SymmetricEigenKernel::Faer,
@@ -106,11 +120,14 @@ pub fn symmetric_eigen_with(
         let Some((values, vectors)) = solve_with(kernel, scaled.as_ref()) else {
             continue;
         };
-        let (residual, orthonormality) = check(scaled.as_ref(), &values, vectors.as_ref());
+        let unscaled: Vec<f64> = values.iter().map(|v| v * scale).collect();
+        let kept = keep(&unscaled).min(n);
+        let vectors = vectors.subcols(0, kept);
+        let (residual, orthonormality) = check(scaled.as_ref(), &values[..kept], vectors);
         if residual <= tolerance && orthonormality <= tolerance {
             return Ok(SymmetricEigen {
-                values: values.into_iter().map(|v| v * scale).collect(),
-                vectors,
+                values: unscaled[..kept].to_vec(),
+                vectors: vectors.to_owned(),
                 max_residual: residual,
                 orthonormality,
                 kernel,
@@ -161,11 +178,11 @@ fn sorted(values: Vec<f64>, vectors: Mat<f64>) -> (Vec<f64>, Mat<f64>) {
     (v, u)
 }
 
-/// $(\max_j \|Cu_j - \theta_j u_j\|_2 / \|C\|_1,\ \max|U^TU - I|)$; NaN-safe (NaN counts as
-/// infinitely bad).
+/// $(\max_j \|Cu_j - \theta_j u_j\|_2 / \|C\|_1,\ \max|U^TU - I|)$ over the pairs given (all
+/// of them, or the lowest); NaN-safe (NaN counts as infinitely bad).
 fn check(c: MatRef<'_, f64>, values: &[f64], u: MatRef<'_, f64>) -> (f64, f64) {
     let n = c.nrows();
-    if values.len() != n || u.ncols() != n || u.nrows() != n {
+    if values.len() != u.ncols() || values.len() > n || u.nrows() != n {
         return (f64::INFINITY, f64::INFINITY);
     }
     let norm1 = (0..n)
@@ -173,7 +190,7 @@ fn check(c: MatRef<'_, f64>, values: &[f64], u: MatRef<'_, f64>) -> (f64, f64) {
         .fold(0.0f64, f64::max);
     let cu = c * u;
     let mut residual = 0.0f64;
-    for j in 0..n {
+    for j in 0..values.len() {
         let r = (0..n)
             .map(|i| (cu[(i, j)] - values[j] * u[(i, j)]).powi(2))
             .sum::<f64>()

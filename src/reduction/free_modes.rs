@@ -9,7 +9,7 @@ use super::{COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, ModeSelection};
 use crate::{
     Error, Result,
     fem::{FeModel, RigidMotions},
-    linalg::{GeneralizedEigen, generalized_eigen},
+    linalg::{GeneralizedEigen, PairSelection, generalized_eigen, generalized_eigen_selected},
 };
 
 use super::free_body_solver::{FreeBodyParameters, free_body_pairs};
@@ -23,14 +23,20 @@ pub fn lowest_free_modes(model: &FeModel, elastic: usize) -> Result<GeneralizedE
     let rigid = model.dofs.rigid_body_count();
     let wanted = (rigid + elastic).min(n);
     if n <= DENSE_INTERIOR_LIMIT {
-        let all = generalized_eigen(
-            model.k_dense().as_ref(),
-            model.m_dense().as_ref(),
-            "free-free",
-        )?;
-        return Ok(first(&all, wanted));
+        return dense_free_modes(model, PairSelection::Lowest(wanted));
     }
     lowest_free_body_pairs(model, wanted)
+}
+
+/// The pairs `selection` keeps of a small body's complete dense problem (only those
+/// transformed back and checked).
+fn dense_free_modes(model: &FeModel, selection: PairSelection) -> Result<GeneralizedEigen> {
+    generalized_eigen_selected(
+        model.k_dense().as_ref(),
+        model.m_dense().as_ref(),
+        "free-free",
+        selection,
+    )
 }
 
 /// The `wanted` lowest pairs of an unrestrained (or possibly restrained) body by shift-invert
@@ -56,14 +62,14 @@ pub fn selected_free_modes(model: &FeModel, selection: ModeSelection) -> Result<
             }
             lowest_free_modes(model, k)
         }
-        ModeSelection::UpToHz(_) => {
+        ModeSelection::UpToHz(hz) => {
             selection.count(&[])?;
-            // A dense body's solve yields every pair at once: asking for more would repeat it.
-            let mut wanted = if n <= DENSE_INTERIOR_LIMIT {
-                n - rigid
-            } else {
-                8usize
-            };
+            // A dense body's solve yields every pair at once: the rigid motions and the
+            // elastic modes up to the cut-off, from one solve.
+            if n <= DENSE_INTERIOR_LIMIT {
+                return dense_free_modes(model, PairSelection::UpToHz { hz, always: rigid });
+            }
+            let mut wanted = 8usize;
             loop {
                 let wanted_now = wanted.min(n - rigid);
                 let eig = lowest_free_modes(model, wanted_now)?;

@@ -14,8 +14,9 @@ use crate::{
     Error, Progress, Result,
     fem::{FeModel, NodeIndex, RigidMotions},
     linalg::{
-        GeneralizedEigen, MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor,
-        SymmetricFactor, generalized_eigen, negative_shift, nested_dissection,
+        GeneralizedEigen, MassMatrix, PairSelection, PartialEigenParameters, SparseSymmetric,
+        SymbolicFactor, SymmetricFactor, generalized_eigen_selected, negative_shift,
+        nested_dissection,
     },
 };
 
@@ -380,6 +381,12 @@ impl<'a> InteriorProblem<'a> {
     /// route of §6.5, whose n³ cost this makes visible). Beyond [`COMPLETE_EIGEN_LIMIT`]
     /// interior DOF it is [`Error::TooLarge`].
     pub fn complete_modes(&mut self, method: &str) -> Result<GeneralizedEigen> {
+        self.dense_modes(method, PairSelection::All)
+    }
+
+    /// The pairs `selection` keeps of the complete dense interior problem: solved whole, only
+    /// the kept pairs transformed back and checked.
+    fn dense_modes(&mut self, method: &str, selection: PairSelection) -> Result<GeneralizedEigen> {
         let n = self.interior_dofs();
         if n > COMPLETE_EIGEN_LIMIT {
             return Err(Error::TooLarge {
@@ -390,10 +397,11 @@ impl<'a> InteriorProblem<'a> {
         }
         self.progress.phase("complete interior eigenproblem")?;
         let started = Instant::now();
-        let eig = generalized_eigen(
+        let eig = generalized_eigen_selected(
             self.k_ii.to_dense().as_ref(),
             self.m_ii.to_dense().as_ref(),
             "fixed-interface",
+            selection,
         );
         self.statistics.eigen_s += started.elapsed().as_secs_f64();
         eig
@@ -402,12 +410,24 @@ impl<'a> InteriorProblem<'a> {
     /// The kept fixed-interface modes (Eq. 6.11), ascending and mass-normalised: the complete
     /// dense eigenproblem on the dense path, the partial shift-invert solver on the sparse one.
     pub fn kept_modes(&mut self, selection: ModeSelection) -> Result<GeneralizedEigen> {
-        if !self.sparse {
-            let all = self.complete_modes("fixed-interface modes")?;
-            let kept = selection.count(&all.hz())?;
-            return Ok(first_modes(&all, kept));
-        }
         let n = self.interior_dofs();
+        if !self.sparse {
+            let pairs = match selection {
+                ModeSelection::Count(k) if k > n => {
+                    return Err(Error::Reduction(ReductionError::TooManyModes {
+                        requested: k,
+                        available: n,
+                    }));
+                }
+                ModeSelection::Count(k) => PairSelection::Lowest(k),
+                ModeSelection::UpToHz(hz) => {
+                    // Validates the cut-off before any work.
+                    selection.count(&[])?;
+                    PairSelection::UpToHz { hz, always: 0 }
+                }
+            };
+            return self.dense_modes("fixed-interface modes", pairs);
+        }
         match selection {
             ModeSelection::Count(k) => {
                 if k > n {

@@ -5,8 +5,8 @@
 use faer::{Mat, Side};
 use flexmodes::linalg::LinalgError;
 use flexmodes::linalg::{
-    PENCIL_BACKWARD_ERROR, SymmetricEigenKernel, dense_eigen_tolerance, generalized_eigen,
-    symmetric_eigen,
+    PENCIL_BACKWARD_ERROR, PairSelection, SymmetricEigenKernel, dense_eigen_tolerance,
+    generalized_eigen, generalized_eigen_selected, hz_from_eigenvalue, symmetric_eigen,
 };
 
 use crate::common::Rng;
@@ -202,6 +202,59 @@ fn generalized_eigen_known_spectra() {
                     r < 1e-9,
                     "n {n} pair {j} (λ = {l:.2e}): relative residual {r:.1e}"
                 );
+            }
+        }
+    }
+}
+
+#[test]
+fn selected_pairs_are_the_complete_solves_lowest_checked_alike() {
+    // Only the kept pairs are transformed back and checked: they are the complete solve's
+    // lowest ones (same kernel, same arithmetic), with the zero-energy count judged against
+    // the whole spectrum's scale.
+    let mut rng = Rng::new(77);
+    for n in [8, 64, 200] {
+        let (k, m) = pencil(&mut rng, &spread_over(n, 1e14, 8.0), 1.0);
+        let all = generalized_eigen(k.as_ref(), m.as_ref(), "all").unwrap();
+        let hz: Vec<f64> = all.values.iter().map(|&l| hz_from_eigenvalue(l)).collect();
+        let cut = hz[n / 3];
+        for (selection, expected) in [
+            (PairSelection::All, n),
+            (PairSelection::Lowest(0), 0),
+            (PairSelection::Lowest(7), 7),
+            (PairSelection::Lowest(n + 5), n),
+            (PairSelection::UpToHz { hz: cut, always: 0 }, n / 3 + 1),
+            // The six rigid motions are kept even below a cut-off under their round-off.
+            (PairSelection::UpToHz { hz: 0.0, always: 6 }, 6),
+            (
+                PairSelection::UpToHz {
+                    hz: -1.0,
+                    always: 0,
+                },
+                0,
+            ),
+        ] {
+            let some =
+                generalized_eigen_selected(k.as_ref(), m.as_ref(), "some", selection).unwrap();
+            assert_eq!(some.values.len(), expected, "n {n} {selection:?}");
+            assert_eq!(some.vectors.ncols(), expected);
+            assert_eq!(some.residuals.len(), expected);
+            // The same solve of C: the same eigenvalues, bit for bit.
+            assert_eq!(
+                some.values[..],
+                all.values[..expected],
+                "n {n} {selection:?}"
+            );
+            assert_eq!(some.zero_energy, all.zero_energy.min(expected));
+            // The vectors are transformed back column by column (a blocked triangular solve
+            // may sum in another order for fewer columns): equal to round-off.
+            for j in 0..expected {
+                let largest = (0..n).fold(0.0f64, |a, i| a.max(all.vectors[(i, j)].abs()));
+                for i in 0..n {
+                    let gap = (some.vectors[(i, j)] - all.vectors[(i, j)]).abs();
+                    assert!(gap <= 1e-10 * largest, "n {n} pair {j}: {gap:e}");
+                }
+                assert!(some.residuals[j] <= 1e-9 || all.residuals[j] > 1e-9);
             }
         }
     }
