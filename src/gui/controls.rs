@@ -71,9 +71,8 @@ impl Controls {
 
     /// The defaults of the `modes` scene on the body file `body`.
     pub fn for_body(body: &str) -> Result<Self> {
-        let body = body.trim();
         Ok(Self {
-            body: (!body.is_empty()).then(|| body.into()),
+            body: body_file(body),
             ..Self::for_scene(scenes::body_modes::INFO.id)?
         })
     }
@@ -152,6 +151,12 @@ impl Controls {
     }
 }
 
+/// A body file as typed: blank is the scene's default body.
+fn body_file(text: &str) -> Option<String> {
+    let text = text.trim();
+    (!text.is_empty()).then(|| text.into())
+}
+
 /// A persisted value read back: absent, `null` or empty (how earlier versions stored "the
 /// default") is `None`; otherwise it must parse.
 fn empty_as_none<'de, D, T>(deserializer: D) -> std::result::Result<Option<T>, D::Error>
@@ -226,8 +231,7 @@ impl Controls {
             }
             Change::Modes(n) => self.modes = n,
             Change::Body(body) => {
-                let body = body.trim();
-                self.body = (!body.is_empty()).then(|| body.into());
+                self.body = body_file(&body);
                 self.boundary.clear();
             }
             Change::Boundary(boundary) => self.boundary = boundary,

@@ -232,14 +232,9 @@ pub fn generalized_eigen_selected(
     let norm_m = norm1(m);
     let mut worst = f64::INFINITY;
     for kernel in [SymmetricEigenKernel::Faer, SymmetricEigenKernel::Nalgebra] {
-        // C's eigenvalues times s are the problem's; the largest magnitude of all of them
-        // (kept or not) is the scale zero-energy pairs are judged against.
-        let largest = std::cell::Cell::new(0.0f64);
-        let keep = |theta: &[f64]| {
-            let values: Vec<f64> = theta.iter().map(|t| t * s).collect();
-            largest.set(values.iter().fold(0.0f64, |a, l| a.max(l.abs())));
-            selection.count(&values)
-        };
+        // C's eigenvalues times s are the problem's.
+        let keep =
+            |theta: &[f64]| selection.count(&theta.iter().map(|t| t * s).collect::<Vec<_>>());
         let standard = match symmetric_eigen_prefix(c.as_ref(), what, &[kernel], &keep) {
             Ok(e) => e,
             Err(Error::Linalg(LinalgError::EigenCheckFailed { residual, .. })) => {
@@ -258,7 +253,8 @@ pub fn generalized_eigen_selected(
             fix_sign(vectors.as_mut().col_mut(j));
         }
         let values: Vec<f64> = standard.values.iter().map(|&t| t * s).collect();
-        let scale = largest.get();
+        // The whole spectrum's scale (kept pairs or not): what zero energy is judged against.
+        let scale = standard.largest * s;
         let check = check_pencil(k, m, &values, vectors.as_ref(), norm_k, norm_m, scale);
         if check.backward_error <= PENCIL_BACKWARD_ERROR
             && check.orthonormality <= MASS_ORTHONORMALITY

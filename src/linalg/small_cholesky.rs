@@ -50,11 +50,6 @@ impl SmallCholesky {
         true
     }
 
-    /// Order of the factored matrix.
-    pub fn order(&self) -> usize {
-        self.n
-    }
-
     /// The diagonal of $L$ (the square roots of the pivots).
     pub fn diagonal(&self) -> impl Iterator<Item = f64> + '_ {
         (0..self.n).map(|j| self.l[j * self.n + j])
@@ -131,7 +126,6 @@ mod tests {
             for seed in 1..4 {
                 let (a, b) = system(n, seed + 7 * n as u64, 0.1);
                 assert!(chol.factor(n, |i, j| a[(i, j)]));
-                assert_eq!(chol.order(), n);
                 let mut x = b.as_slice().to_vec();
                 chol.solve_in_place(&mut x);
                 let reference = a.clone().cholesky().unwrap();

@@ -30,8 +30,10 @@ pub enum SymmetricEigenKernel {
 /// A checked eigen-decomposition $C = U\Theta U^T$, eigenvalues ascending.
 #[derive(Debug, Clone)]
 pub struct SymmetricEigen {
-    /// Eigenvalues $\theta_j$, ascending.
+    /// Eigenvalues $\theta_j$, ascending (the kept ones of [`symmetric_eigen_prefix`]).
     pub values: Vec<f64>,
+    /// The largest $|\theta_j|$ over every pair, kept or not: the scale of the whole spectrum.
+    pub largest: f64,
     /// Orthonormal eigenvectors, one per column.
     pub vectors: Mat<f64>,
     /// The worst $\|Cu_j - \theta_j u_j\|_2 / \|C\|_1$ over the pairs.
@@ -83,6 +85,7 @@ pub fn symmetric_eigen_prefix(
     if n == 0 {
         return Ok(SymmetricEigen {
             values: vec![],
+            largest: 0.0,
             vectors: Mat::zeros(0, 0),
             max_residual: 0.0,
             orthonormality: 0.0,
@@ -107,6 +110,7 @@ pub fn symmetric_eigen_prefix(
         let kept = keep(&vec![0.0; n]).min(n);
         return Ok(SymmetricEigen {
             values: vec![0.0; kept],
+            largest: 0.0,
             vectors: Mat::<f64>::identity(n, n).subcols(0, kept).to_owned(),
             max_residual: 0.0,
             orthonormality: 0.0,
@@ -127,6 +131,7 @@ pub fn symmetric_eigen_prefix(
         if residual <= tolerance && orthonormality <= tolerance {
             return Ok(SymmetricEigen {
                 values: unscaled[..kept].to_vec(),
+                largest: unscaled.iter().fold(0.0f64, |a, v| a.max(v.abs())),
                 vectors: vectors.to_owned(),
                 max_residual: residual,
                 orthonormality,

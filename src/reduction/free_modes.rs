@@ -62,13 +62,13 @@ pub fn selected_free_modes(model: &FeModel, selection: ModeSelection) -> Result<
             }
             lowest_free_modes(model, k)
         }
-        ModeSelection::UpToHz(hz) => {
-            selection.count(&[])?;
+        ModeSelection::UpToHz(_) => {
             // A dense body's solve yields every pair at once: the rigid motions and the
             // elastic modes up to the cut-off, from one solve.
             if n <= DENSE_INTERIOR_LIMIT {
-                return dense_free_modes(model, PairSelection::UpToHz { hz, always: rigid });
+                return dense_free_modes(model, selection.pairs(n - rigid, rigid)?);
             }
+            selection.count(&[])?;
             let mut wanted = 8usize;
             loop {
                 let wanted_now = wanted.min(n - rigid);

@@ -5,7 +5,7 @@ use super::{
     Basis, InteriorProblem, ModeCondensationRoute, craig_bampton, eitelberg::eitelberg, guyan,
     modal_truncation, mode_condensation, no_reduction,
 };
-use crate::{Error, Result, fem::FeModel};
+use crate::{Error, Result, fem::FeModel, linalg::PairSelection};
 
 /// The reduction methods and their stable ids (how they are written in files and settings).
 #[derive(
@@ -120,6 +120,27 @@ impl ModeSelection {
                 Err(Error::Reduction(ReductionError::InvalidCutoff { hz: f }))
             }
             ModeSelection::UpToHz(f) => Ok(hz.iter().take_while(|&&h| h <= f).count()),
+        }
+    }
+
+    /// The pairs of a complete dense solve of `available` modes after `always` leading ones
+    /// (a free body's rigid motions) that this selection keeps; checked as [`Self::count`]
+    /// checks before anything is solved.
+    pub fn pairs(&self, available: usize, always: usize) -> Result<PairSelection> {
+        match *self {
+            ModeSelection::Count(n) => {
+                if n > available {
+                    return Err(Error::Reduction(ReductionError::TooManyModes {
+                        requested: n,
+                        available,
+                    }));
+                }
+                Ok(PairSelection::Lowest(always + n))
+            }
+            ModeSelection::UpToHz(hz) => {
+                self.count(&[])?;
+                Ok(PairSelection::UpToHz { hz, always })
+            }
         }
     }
 }

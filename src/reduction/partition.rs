@@ -412,20 +412,8 @@ impl<'a> InteriorProblem<'a> {
     pub fn kept_modes(&mut self, selection: ModeSelection) -> Result<GeneralizedEigen> {
         let n = self.interior_dofs();
         if !self.sparse {
-            let pairs = match selection {
-                ModeSelection::Count(k) if k > n => {
-                    return Err(Error::Reduction(ReductionError::TooManyModes {
-                        requested: k,
-                        available: n,
-                    }));
-                }
-                ModeSelection::Count(k) => PairSelection::Lowest(k),
-                ModeSelection::UpToHz(hz) => {
-                    // Validates the cut-off before any work.
-                    selection.count(&[])?;
-                    PairSelection::UpToHz { hz, always: 0 }
-                }
-            };
+            // The count and the cut-off are checked before the solve.
+            let pairs = selection.pairs(n, 0)?;
             return self.dense_modes("fixed-interface modes", pairs);
         }
         match selection {
