@@ -9,6 +9,7 @@ use flexmodes::{
     gui::{Controls, Explorer},
     record::RecordingDigest,
     reduction::Method,
+    scenes::SceneId,
 };
 use rerun::external::egui::{self, accesskit::Role};
 
@@ -25,7 +26,7 @@ fn harness_with(controls: Controls) -> Harness<'static, Explorer> {
 }
 
 fn harness(scene: &str) -> Harness<'static, Explorer> {
-    harness_with(Controls::for_scene(scene).unwrap())
+    harness_with(Controls::for_scene(scene.parse().unwrap()))
 }
 
 /// The explorer's panel on the `modes` scene of body file `body`.
@@ -150,10 +151,10 @@ fn a_newer_request_abandons_a_running_reduction_at_its_next_phase() {
         refine: Some([24, 12, 6]),
         ..Default::default()
     };
-    let first = w.submit(1, "slab-modes", slow);
+    let first = w.submit(1, SceneId::SlabModes, slow);
     let start = Instant::now();
     let at_cancel = wait_for("a phase", start, 120, || first.phase_reading());
-    let second = w.submit(2, "beam-modes", SceneOptions::default());
+    let second = w.submit(2, SceneId::BeamModes, SceneOptions::default());
     assert!(first.is_cancelled() && !second.is_cancelled());
     let finished = next_result(&w, start, 300);
     assert_eq!(
@@ -284,12 +285,12 @@ fn the_integrator_of_a_simulation_is_a_control() {
 fn a_newer_request_cancels_a_running_simulation() {
     use flexmodes::{gui::Worker, scenes::SceneOptions};
     let mut w = Worker::new();
-    let first = w.submit(1, "slab-sim1", full_model_sim1(1.0));
+    let first = w.submit(1, SceneId::SlabSim1, full_model_sim1(1.0));
     let start = Instant::now();
     wait_for("progress", start, 120, || {
         first.reading().filter(|r| r.time > 0.0)
     });
-    let second = w.submit(2, "beam-modes", SceneOptions::default());
+    let second = w.submit(2, SceneId::BeamModes, SceneOptions::default());
     assert!(first.is_cancelled() && !second.is_cancelled());
     let finished = next_result(&w, start, 120);
     // The cancelled request reports nothing; the full-order run stopped short of its end.
@@ -326,7 +327,7 @@ fn a_running_simulation_shows_its_simulated_time() {
 fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
     let mut h = body_harness("builtin:app-b-slab");
     settle(&mut h);
-    assert_eq!(h.state().controls.scene, "modes");
+    assert_eq!(h.state().controls.scene, SceneId::Modes);
     let report = &h.state().current.as_ref().unwrap().report;
     // The body file's default interface: the four bottom corners.
     assert_eq!(
@@ -430,7 +431,7 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
 fn every_scene_opens_with_its_default_controls_and_its_titles_fit() {
     let mut cut = Vec::new();
     for id in flexmodes::scenes::all_ids() {
-        let mut h = harness(&id);
+        let mut h = harness(id.as_str());
         settle(&mut h);
         assert!(h.state().error.is_none(), "{id}: {:?}", h.state().error);
         assert!(!paths(&h).is_empty(), "{id}: the recording has no entities");
@@ -444,7 +445,7 @@ fn every_scene_opens_with_its_default_controls_and_its_titles_fit() {
 
 #[test]
 fn the_explorer_anticipates_one_mode_more_or_fewer_and_unticked_methods() {
-    let mut c = Controls::for_scene("slab-sim1").unwrap();
+    let mut c = Controls::for_scene(SceneId::SlabSim1);
     c.methods.retain(|&m| m != Method::ModalTruncation);
     let modes = c.modes;
     assert!(modes > 0);
@@ -469,7 +470,7 @@ fn the_explorer_anticipates_one_mode_more_or_fewer_and_unticked_methods() {
         );
     }
     // Mode scenes integrate nothing: nothing to anticipate.
-    let modes_scene = Explorer::new(Controls::for_scene("beam-modes").unwrap());
+    let modes_scene = Explorer::new(Controls::for_scene(SceneId::BeamModes));
     assert!(modes_scene.likely_next().is_empty());
 }
 
@@ -483,14 +484,14 @@ fn an_anticipated_request_is_served_from_the_cache() {
         end_time: Some(0.1),
         ..Default::default()
     };
-    w.anticipate("slab-sim1", vec![options.clone()]);
+    w.anticipate(SceneId::SlabSim1, vec![options.clone()]);
     let start = Instant::now();
     wait_for("the anticipation", start, 120, || {
         (w.anticipated() >= 1).then_some(())
     });
     let cached = w.cached();
     assert!(cached > 0, "the anticipation kept its integration");
-    let request = w.submit(1, "slab-sim1", options);
+    let request = w.submit(1, SceneId::SlabSim1, options);
     let finished = next_result(&w, Instant::now(), 120);
     assert!(finished.result.is_ok());
     assert_eq!(w.cached(), cached, "no new cache entry");
@@ -504,7 +505,7 @@ fn a_request_stops_a_running_anticipation() {
     use flexmodes::{gui::Worker, scenes::SceneOptions};
     let mut w = Worker::new();
     w.anticipate(
-        "slab-sim1",
+        SceneId::SlabSim1,
         vec![full_model_sim1(20.0), full_model_sim1(20.0)],
     );
     let start = Instant::now();
@@ -512,7 +513,7 @@ fn a_request_stops_a_running_anticipation() {
         w.anticipation()
             .filter(|p| p.reading().is_some_and(|r| r.time > 0.0))
     });
-    w.submit(1, "beam-modes", SceneOptions::default());
+    w.submit(1, SceneId::BeamModes, SceneOptions::default());
     assert!(running.is_cancelled());
     assert!(next_result(&w, start, 120).result.is_ok());
     // The anticipating thread stops at the cancelled integration's next output step and
@@ -591,7 +592,7 @@ fn after_any_switches_the_recording_equals_a_fresh_one() {
     let timed = ["/scene", "/metrics/speed_accuracy"];
     let cases: Vec<(Controls, Vec<Change>, Option<&str>)> = vec![
         (
-            Controls::for_scene("slab-sim1").unwrap(),
+            Controls::for_scene(SceneId::SlabSim1),
             vec![
                 Change::Method(Method::Guyan, false),
                 Change::Modes(5),
@@ -603,7 +604,7 @@ fn after_any_switches_the_recording_equals_a_fresh_one() {
             Some("mt"),
         ),
         (
-            Controls::for_scene("slab-modes").unwrap(),
+            Controls::for_scene(SceneId::SlabModes),
             vec![
                 Change::Method(Method::CraigBampton, false),
                 Change::Modes(3),
@@ -624,7 +625,7 @@ fn after_any_switches_the_recording_equals_a_fresh_one() {
         ),
     ];
     for (controls, switches, removed) in cases {
-        let scene = controls.scene.clone();
+        let scene = controls.scene;
         let (switched, fresh, last) = switched_and_fresh(controls, &switches);
         if let Some(d) = switched.difference(&fresh, &timed) {
             panic!("{scene} after {switches:?} ({last:?}): {d}");
@@ -643,7 +644,7 @@ fn after_any_switches_the_recording_equals_a_fresh_one() {
 
 #[test]
 fn the_persisted_controls_name_methods_and_integrator_by_id_and_read_older_settings() {
-    let mut c = Controls::for_scene("slab-sim1").unwrap();
+    let mut c = Controls::for_scene(SceneId::SlabSim1);
     c.methods = vec![Method::CraigBampton, Method::ModeCondensation];
     c.integrator = Some("gen-alpha".parse().unwrap());
     let text = serde_json::to_string(&c).unwrap();

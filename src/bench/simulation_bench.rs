@@ -96,13 +96,11 @@ pub const BENCH_SCHEMES: [IntegrationScheme; 2] = [
 
 /// The simulation a bench integrates: slab-sim1's or slab-sim2's (slab-sim3 needs its
 /// recorded driving tables and is not benchmarked).
-pub(crate) fn bench_scenario(scene: &str) -> Result<Scenario> {
+pub(crate) fn bench_scenario(scene: &'static str) -> Result<Scenario> {
     match scene {
         "slab-sim1" => Ok(Scenario::HeldAtSix),
         "slab-sim2" => Ok(Scenario::Orbit),
-        other => Err(Error::NotBenchable {
-            scene: other.into(),
-        }),
+        other => Err(Error::NotBenchable { scene: other }),
     }
 }
 
@@ -111,7 +109,7 @@ pub(crate) fn bench_scenario(scene: &str) -> Result<Scenario> {
 /// run is the reference of every error), each integration `repeats` times for the median
 /// online cost, and returns the `bench --json` object.
 pub fn bench_simulation(
-    scene: &str,
+    scene: &'static str,
     schemes: &[IntegrationScheme],
     bricks: Option<[usize; 3]>,
     repeats: usize,

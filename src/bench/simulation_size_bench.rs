@@ -103,7 +103,7 @@ fn points_on_mesh(
 /// Runs `scene` (slab-sim1 or slab-sim2) on every mesh of `sizes` with the explicit scheme
 /// (adaptive steps) over [`SIZES_RUN_S`].
 pub fn bench_sim_sizes(
-    scene: &str,
+    scene: &'static str,
     sizes: &[[usize; 3]],
     progress: &Progress,
 ) -> Result<SizeBench> {

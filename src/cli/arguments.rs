@@ -9,7 +9,7 @@ use crate::{
     body_file::{BodyHandle, ImportedBody},
     dynamics::{AxisKind, IntegrationScheme},
     reduction::Method,
-    scenes::SceneOptions,
+    scenes::{SceneId, SceneOptions},
 };
 
 /// Explorer of model order reduction for restrained deformable bodies.
@@ -39,7 +39,7 @@ pub(super) enum Command {
     /// Record scenes to Rerun `.rrd` files.
     Record {
         /// Scene ids (see `flexmodes list`).
-        scenes: Vec<String>,
+        scenes: Vec<SceneId>,
         /// Record every scene.
         #[arg(long, conflicts_with = "scenes")]
         all: bool,
@@ -64,7 +64,7 @@ pub(super) enum Command {
     #[cfg(feature = "gui")]
     Gui {
         /// Scene to open (default: the last session's, else beam-modes).
-        scene: Option<String>,
+        scene: Option<SceneId>,
         /// Open the `modes` scene on this body file (TOML) or `builtin:NAME`.
         #[arg(long, conflicts_with = "scene")]
         body: Option<String>,
@@ -120,7 +120,7 @@ pub(super) enum Command {
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {
         /// Scene id.
-        scene: String,
+        scene: SceneId,
         /// Print `{"scene", "parameters", "results"}` as JSON.
         #[arg(long)]
         json: bool,
@@ -295,7 +295,7 @@ impl From<WindowArgs> for crate::gui::ViewerOptions {
 #[derive(Debug, Args, Clone)]
 pub(super) struct ServeArgs {
     /// Scene ids (default: every scene, unless --file is given).
-    pub(super) scenes: Vec<String>,
+    pub(super) scenes: Vec<SceneId>,
     /// Serve these `.rrd` files too (each decoded whole first).
     #[arg(long = "file")]
     pub(super) files: Vec<PathBuf>,

@@ -6,14 +6,17 @@ use clap::Parser;
 
 use super::arguments::{BenchArgs, Cli, Command, ExportArgs};
 use crate::{
-    Error, Progress, Result, TerminalProgress, body_file::ImportedBody, record::Recorder, scenes,
+    Error, Progress, Result, TerminalProgress,
+    body_file::ImportedBody,
+    record::Recorder,
+    scenes::{self, SceneId},
 };
 
 /// Scenes `record` runs side by side at most (the machines here have two cores).
 const RECORD_WORKERS: usize = 2;
 
 /// What `bench --all` measures, in this order.
-const BENCH_ALL: [&str; 3] = ["slab-modes", "slab-sim1", "slab-sim2"];
+const BENCH_ALL: [SceneId; 3] = [SceneId::SlabModes, SceneId::SlabSim1, SceneId::SlabSim2];
 
 /// Parses the arguments (exit 2 on a usage error), runs, and maps errors to exit code 1 with
 /// the cause chain on stderr.
@@ -37,11 +40,12 @@ fn run(cli: Cli) -> Result<()> {
     crate::linalg::set_threads(threads.iter().copied().max());
     let compares_threads = matches!(
         &cli.command,
-        Command::Bench(b) if b.sizes.is_some() && b.scenes.iter().all(|s| s == "slab-modes")
+        Command::Bench(b) if b.sizes.is_some() && b.scenes.iter().all(|s| *s == SceneId::SlabModes.as_str())
     );
     if several && !compares_threads {
         return Err(Error::InvalidOption {
-            scene: "--threads".into(),
+            option: "--threads",
+            scene: None,
             reason: format!(
                 "{} thread counts given: only `bench slab-modes --sizes` times several",
                 threads.len()
@@ -51,9 +55,13 @@ fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::List => {
             let all = scenes::all();
-            let width = all.iter().map(|s| s.info.id.len()).max().unwrap_or(0);
+            let width = all
+                .iter()
+                .map(|s| s.info.id.as_str().len())
+                .max()
+                .unwrap_or(0);
             for s in all {
-                println!("{:<width$}  {}", s.info.id, s.info.summary);
+                println!("{:<width$}  {}", s.info.id.as_str(), s.info.summary);
             }
             Ok(())
         }
@@ -62,12 +70,7 @@ fn run(cli: Cli) -> Result<()> {
             scene,
             body,
             window,
-        } => {
-            if let Some(s) = &scene {
-                scenes::find(s)?;
-            }
-            crate::gui::run_with_body(scene.as_deref(), body.as_deref(), None, window.into())
-        }
+        } => crate::gui::run_with_body(scene, body.as_deref(), None, window.into()),
         #[cfg(feature = "gui")]
         Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),
         Command::Bench(args) => bench(args, &threads),
@@ -108,10 +111,10 @@ fn run(cli: Cli) -> Result<()> {
             json,
             options,
         } => {
-            let s = scenes::find(&scene)?;
+            let s = scenes::get(scene);
             let mut opts = options.into_scene_options()?;
             opts.progress = Progress::new();
-            let bar = TerminalProgress::start(&opts.progress, s.info.id);
+            let bar = TerminalProgress::start(&opts.progress, s.info.id.as_str());
             let out = s.execute(&opts)?;
             drop(bar);
             if json {
@@ -129,24 +132,22 @@ fn run(cli: Cli) -> Result<()> {
             timings,
             options,
         } => {
-            let ids: Vec<String> = if all { scenes::all_ids() } else { ids };
+            let ids: Vec<SceneId> = if all { scenes::all_ids() } else { ids };
             if ids.is_empty() {
                 return Err(Error::InvalidOption {
-                    scene: "-".into(),
+                    option: "SCENES",
+                    scene: None,
                     reason: "name at least one scene or pass --all".into(),
                 });
             }
             if save.is_some() && ids.len() != 1 {
                 return Err(Error::InvalidOption {
-                    scene: ids.join(","),
+                    option: "--save",
+                    scene: None,
                     reason: "--save takes exactly one scene; use --out DIR for several".into(),
                 });
             }
-            // Resolve every id first, so a typo fails before anything is written.
-            let found = ids
-                .iter()
-                .map(|id| scenes::find(id))
-                .collect::<Result<Vec<_>>>()?;
+            let found = ids.into_iter().map(scenes::get).collect();
             let opts = options.into_scene_options()?;
             if let Some(body) = &opts.body {
                 body.require_coordinates()?;
@@ -241,7 +242,7 @@ struct SceneTiming {
 /// several integrations per scene at once, the phases are those of the first thread (the
 /// others report to muted handles), so their shares need not add up.
 fn timing_table(
-    rows: &[(&str, SceneTiming)],
+    rows: &[(SceneId, SceneTiming)],
     workers: usize,
     integrations: usize,
     wall_s: f64,
@@ -258,7 +259,7 @@ fn timing_table(
          |---|---|---|---|---|\n",
         rows.len()
     );
-    let mut sorted: Vec<&(&str, SceneTiming)> = rows.iter().collect();
+    let mut sorted: Vec<&(SceneId, SceneTiming)> = rows.iter().collect();
     sorted.sort_by(|a, b| {
         let total = |t: &SceneTiming| t.computing_s + t.writing_s;
         total(&b.1).total_cmp(&total(&a.1))
@@ -319,7 +320,8 @@ fn driven_sizes(args: BenchArgs, body: PathBuf) -> Result<()> {
         ..
     } = args;
     let drive = drive.ok_or_else(|| Error::InvalidOption {
-        scene: "simulate".into(),
+        option: "--drive",
+        scene: None,
         reason: "bench simulate needs --drive rbe2:SET".into(),
     })?;
     let mut files = vec![body.display().to_string()];
@@ -358,7 +360,8 @@ fn body_modes(args: BenchArgs, body: PathBuf) -> Result<()> {
     } = args;
     if ids.as_slice() != ["modes"] {
         return Err(Error::InvalidOption {
-            scene: ids.join(","),
+            option: "SCENES",
+            scene: None,
             reason: "with --body, bench takes the scene `modes` or `simulate` (or \
                      none: the export bench)"
                 .into(),
@@ -411,7 +414,8 @@ fn export_peer(args: BenchArgs, body: PathBuf) -> Result<()> {
     } = args;
     if save.is_some() {
         return Err(Error::InvalidOption {
-            scene: "bench".into(),
+            option: "--save",
+            scene: None,
             reason: "the export bench writes no recording: --save goes with `bench modes --body`"
                 .into(),
         });
@@ -421,7 +425,8 @@ fn export_peer(args: BenchArgs, body: PathBuf) -> Result<()> {
         [k] => *k,
         _ => {
             return Err(Error::InvalidOption {
-                scene: "bench".into(),
+                option: "--modes",
+                scene: None,
                 reason: "the export bench takes one --modes count".into(),
             });
         }
@@ -438,7 +443,8 @@ fn export_peer(args: BenchArgs, body: PathBuf) -> Result<()> {
                 .find(|(_, v)| **v == nodes)
                 .map(|(k, _)| k.clone())
                 .ok_or_else(|| Error::InvalidOption {
-                    scene: "bench".into(),
+                    option: "--boundary",
+                    scene: None,
                     reason: "name the interface node set with --boundary".into(),
                 })?;
             vec![name]
@@ -468,12 +474,14 @@ fn size_bench(args: BenchArgs, sizes: &str, threads: &[usize]) -> Result<()> {
         repeats,
         ..
     } = args;
+    let ids = parse_scene_ids(&ids)?;
     let simulation = match ids.as_slice() {
-        [id] if id == "slab-sim1" || id == "slab-sim2" => Some(id.clone()),
-        _ if ids.iter().all(|id| id == "slab-modes") => None,
+        [id @ (SceneId::SlabSim1 | SceneId::SlabSim2)] => Some(*id),
+        _ if ids.iter().all(|id| *id == SceneId::SlabModes) => None,
         _ => {
             return Err(Error::InvalidOption {
-                scene: ids.join(","),
+                option: "SCENES",
+                scene: None,
                 reason: "--sizes times slab-modes, or one of slab-sim1 and slab-sim2".into(),
             });
         }
@@ -483,7 +491,7 @@ fn size_bench(args: BenchArgs, sizes: &str, threads: &[usize]) -> Result<()> {
         Some(id) => {
             let handle = Progress::new();
             let bar = TerminalProgress::start(&handle, &format!("bench {id} --sizes"));
-            let bench = crate::bench::bench_sim_sizes(id, &meshes, &handle)?;
+            let bench = crate::bench::bench_sim_sizes(id.as_str(), &meshes, &handle)?;
             drop(bar);
             bench
         }
@@ -493,7 +501,7 @@ fn size_bench(args: BenchArgs, sizes: &str, threads: &[usize]) -> Result<()> {
             })?
         }
     };
-    let title = simulation.as_deref().unwrap_or("slab-modes");
+    let title = simulation.unwrap_or(SceneId::SlabModes);
     if let Some(path) = &save {
         Recorder::default().save(&bench.recording, path)?;
         progress(&format!("wrote {}", path.display()));
@@ -519,39 +527,38 @@ fn scenes(args: BenchArgs) -> Result<()> {
         ..
     } = args;
     let ids = if all {
-        BENCH_ALL.iter().map(|s| s.to_string()).collect()
+        BENCH_ALL.to_vec()
     } else {
-        ids
+        parse_scene_ids(&ids)?
     };
-    if !integrator.is_empty() && !ids.is_empty() && ids.iter().all(|id| id == "slab-modes") {
+    if !integrator.is_empty() && !ids.is_empty() && ids.iter().all(|id| *id == SceneId::SlabModes) {
         return Err(Error::InvalidOption {
-            scene: "slab-modes".into(),
+            option: "--integrator",
+            scene: Some(SceneId::SlabModes.as_str()),
             reason: "--integrator applies to the simulation benches only".into(),
         });
     }
     if save.is_some() && ids.len() > 1 {
         return Err(Error::InvalidOption {
-            scene: ids.join(","),
+            option: "--save",
+            scene: None,
             reason: "--save writes the charts of one simulation bench: name one scene".into(),
         });
     }
     let ids = if ids.is_empty() {
-        vec!["slab-sim1".to_string()]
+        vec![SceneId::SlabSim1]
     } else {
         ids
     };
-    for id in &ids {
-        scenes::find(id)?;
-    }
     let count = ids.len();
     for (k, id) in ids.into_iter().enumerate() {
         let handle = Progress::new();
         let bar = TerminalProgress::start(&handle, &format!("bench {id} ({} of {count})", k + 1));
-        let (value, table, recording) = if id == "slab-modes" {
+        let (value, table, recording) = if id == SceneId::SlabModes {
             crate::bench::bench_modes(refine, &handle)?
         } else {
             crate::bench::bench_simulation(
-                &id,
+                id.as_str(),
                 &integrator,
                 refine,
                 repeats.unwrap_or(3) as usize,
@@ -569,6 +576,11 @@ fn scenes(args: BenchArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Scene ids as typed on the command line, each checked (a typo fails before anything runs).
+fn parse_scene_ids(ids: &[String]) -> Result<Vec<SceneId>> {
+    ids.iter().map(|id| id.parse()).collect()
 }
 
 /// `flexmodes export`: reduce a body and write the reduced model.

@@ -37,15 +37,12 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         options,
     } = arguments;
     // Everything that can fail on the input fails before a port is taken.
-    let ids: Vec<String> = if ids.is_empty() && files.is_empty() {
+    let ids = if ids.is_empty() && files.is_empty() {
         scenes::all_ids()
     } else {
         ids
     };
-    let found = ids
-        .iter()
-        .map(|id| scenes::find(id))
-        .collect::<Result<Vec<_>>>()?;
+    let found: Vec<_> = ids.into_iter().map(scenes::get).collect();
     let recordings = files
         .iter()
         .map(|f| file_messages(f))

@@ -35,19 +35,20 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         axes,
     } = arguments;
     let shaking = motion == super::arguments::Motion::Shake;
-    let three = |name: &str, v: &[f64]| -> Result<[f64; 3]> {
+    let three = |option: &'static str, v: &[f64]| -> Result<[f64; 3]> {
         match v {
             [x, y, z] => Ok([*x, *y, *z]),
             _ => Err(Error::InvalidOption {
-                scene: "simulate".into(),
-                reason: format!("--{name} takes three numbers X,Y,Z, not {}", v.len()),
+                option,
+                scene: None,
+                reason: format!("takes three numbers X,Y,Z, not {}", v.len()),
             }),
         }
     };
-    let axis = three("axis", &axis)?;
-    let direction = three("direction", &direction)?;
-    let axis_point = axis_point.map(|p| three("axis-point", &p)).transpose()?;
-    let gravity = gravity.map(|g| three("gravity", &g)).transpose()?;
+    let axis = three("--axis", &axis)?;
+    let direction = three("--direction", &direction)?;
+    let axis_point = axis_point.map(|p| three("--axis-point", &p)).transpose()?;
+    let gravity = gravity.map(|g| three("--gravity", &g)).transpose()?;
     let body = ImportedBody::load(&body)?;
     let steps = (end / dt).round().max(1.0) as usize;
     let parameters = crate::models::DrivenBodyParameters {

@@ -10,20 +10,26 @@ pub enum Error {
     #[error("unknown scene `{id}` (known scenes: {known})")]
     UnknownScene { id: String, known: String },
 
-    /// A reduction-method id that is not known, or not available in this scene.
-    #[error("unknown or unsupported method `{id}` for scene `{scene}` (available: {available})")]
+    /// A reduction method the scene does not offer.
+    #[error(
+        "unknown or unsupported method `{id}` for scene `{scene}` (available: {})",
+        listed(.available, "none")
+    )]
     UnknownMethod {
-        id: String,
-        scene: String,
-        available: String,
+        id: &'static str,
+        scene: &'static str,
+        available: Vec<&'static str>,
     },
 
-    /// An axis-type id that is not known, or not available in this scene.
-    #[error("unknown or unsupported axis type `{id}` for scene `{scene}` (available: {available})")]
+    /// An axis type the scene does not offer.
+    #[error(
+        "unknown or unsupported axis type `{id}` for scene `{scene}` (available: {})",
+        listed(.available, "none: this scene has no floating frame")
+    )]
     UnknownAxes {
-        id: String,
-        scene: String,
-        available: String,
+        id: &'static str,
+        scene: &'static str,
+        available: Vec<&'static str>,
     },
 
     /// A 1-based node number outside `1..=count`.
@@ -68,15 +74,21 @@ pub enum Error {
     #[error("cancelled: a newer request superseded this computation")]
     Cancelled,
 
-    /// Bad scene option (a combination the scene cannot honour).
-    #[error("invalid option for scene `{scene}`: {reason}")]
-    InvalidOption { scene: String, reason: String },
+    /// An option the user gave that does not hold, or does not apply where it was given:
+    /// `option` names it as typed (`--end-time`, `SCENES`), `scene` the scene it was given
+    /// for (`None`: a command's option).
+    #[error("invalid {option}{}: {reason}", in_scene(*.scene))]
+    InvalidOption {
+        option: &'static str,
+        scene: Option<&'static str>,
+        reason: String,
+    },
 
     /// `bench` asked of a scene it does not measure.
     #[error(
         "bench measures slab-modes and the simulation scenes slab-sim1 and slab-sim2, not `{scene}`"
     )]
-    NotBenchable { scene: String },
+    NotBenchable { scene: &'static str },
 
     /// A mesh size `bench --sizes` cannot read.
     #[error("--sizes: `{token}` is neither one of {named} nor NXxNYxNZ with positive counts")]
@@ -190,5 +202,21 @@ impl From<rerun::RecordingStreamError> for Error {
 impl From<rerun::SerializationError> for Error {
     fn from(e: rerun::SerializationError) -> Self {
         Error::Rerun(e.to_string())
+    }
+}
+
+/// ` in scene `ID`` for an error's message, or nothing.
+fn in_scene(scene: Option<&str>) -> String {
+    scene
+        .map(|s| format!(" in scene `{s}`"))
+        .unwrap_or_default()
+}
+
+/// `ids` comma separated, or `none` when there are none.
+fn listed(ids: &[&str], none: &str) -> String {
+    if ids.is_empty() {
+        none.into()
+    } else {
+        ids.join(", ")
     }
 }

@@ -9,10 +9,7 @@ impl Explorer {
     /// fewer, and each of the scene's methods not ticked, ticked. Only simulations: their
     /// integrations are what a switch waits for, and what the cache keeps.
     pub fn likely_next(&self) -> Vec<Controls> {
-        let Ok(scene) = scenes::find(&self.controls.scene) else {
-            return Vec::new();
-        };
-        let c = scene.info.controls;
+        let c = scenes::get(self.controls.scene).info.controls;
         if c.end_time.is_none() {
             return Vec::new();
         }
@@ -48,7 +45,7 @@ impl Explorer {
             .filter_map(|c| c.options_with(body.as_ref()).ok())
             .collect::<Vec<_>>();
         if !options.is_empty() {
-            self.worker.anticipate(&self.controls.scene, options);
+            self.worker.anticipate(self.controls.scene, options);
         }
     }
 }

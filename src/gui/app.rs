@@ -14,7 +14,7 @@ use super::{
     capture::{Capture, FrameSeries},
     viewer_handoff::{HandoffState, ViewerHandoff},
 };
-use crate::{Error, Result};
+use crate::{Error, Result, scenes::SceneId};
 
 /// Window options of [`run`].
 #[derive(Debug, Clone)]
@@ -153,14 +153,14 @@ impl eframe::App for FlexmodesApp {
 }
 
 /// Opens the explorer on `scene` (default `beam-modes`), or the viewer on a saved recording.
-pub fn run(scene: Option<&str>, file: Option<&Path>, opts: ViewerOptions) -> Result<()> {
+pub fn run(scene: Option<SceneId>, file: Option<&Path>, opts: ViewerOptions) -> Result<()> {
     run_with_body(scene, None, file, opts)
 }
 
 /// [`run`], or the explorer on the `modes` scene with the body file `body` (loaded and checked
 /// first, so a bad file fails before a window opens).
 pub fn run_with_body(
-    scene: Option<&str>,
+    scene: Option<SceneId>,
     body: Option<&str>,
     file: Option<&Path>,
     opts: ViewerOptions,
@@ -180,7 +180,7 @@ pub fn run_with_body(
             crate::body_file::ImportedBody::load(b)?;
             Some(Controls::for_body(b)?)
         }
-        (None, s, None) => Some(Controls::for_scene(s.unwrap_or("beam-modes"))?),
+        (None, s, None) => Some(Controls::for_scene(s.unwrap_or(SceneId::BeamModes))),
     };
     let toggles = if opts.toggle.is_some() {
         opts.repeat.max(1)
@@ -225,8 +225,7 @@ pub fn run_with_body(
             let restored = cc
                 .storage
                 .and_then(|s| s.get_string(STORAGE_KEY))
-                .and_then(|t| serde_json::from_str::<Controls>(&t).ok())
-                .filter(|c| crate::scenes::find(&c.scene).is_ok());
+                .and_then(|t| serde_json::from_str::<Controls>(&t).ok());
             let controls = match (initial, restored) {
                 (Some(_), Some(r)) if !explicit_scene => Some(r),
                 (i, _) => i,

@@ -8,14 +8,14 @@ use crate::{
     body_file::BodyHandle,
     dynamics::IntegrationScheme,
     reduction::Method,
-    scenes::{self, SceneOptions},
+    scenes::{self, SceneId, SceneOptions},
 };
 
 /// What the user chose; persisted between sessions.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Controls {
-    /// Scene id.
-    pub scene: String,
+    /// Which scene (a saved state naming no scene is not restored).
+    pub scene: SceneId,
     /// Methods to show.
     pub methods: Vec<Method>,
     /// Kept normal modes.
@@ -51,11 +51,10 @@ pub const MESH_PRESETS: [[usize; 3]; 5] =
 
 impl Controls {
     /// The defaults of a scene.
-    pub fn for_scene(id: &str) -> Result<Self> {
-        let info = scenes::find(id)?.info;
-        let c = info.controls;
-        Ok(Self {
-            scene: id.into(),
+    pub fn for_scene(id: SceneId) -> Self {
+        let c = scenes::get(id).info.controls;
+        Self {
+            scene: id,
             methods: c.methods.to_vec(),
             modes: c.modes.unwrap_or(0),
             boundary: join(c.boundary),
@@ -66,27 +65,25 @@ impl Controls {
             body: None,
             deformation_scale: 0.0,
             integrator: None,
-        })
+        }
     }
 
     /// The defaults of the `modes` scene on the body file `body`.
     pub fn for_body(body: &str) -> Result<Self> {
         Ok(Self {
             body: body_file(body),
-            ..Self::for_scene(scenes::body_modes::INFO.id)?
+            ..Self::for_scene(SceneId::Modes)
         })
     }
 
     /// Whether the scene takes a body file (and node-set names as boundary).
     pub fn takes_body(&self) -> bool {
-        self.scene == scenes::body_modes::INFO.id
+        self.scene == SceneId::Modes
     }
 
     /// The scene's default boundary, as text.
     pub fn default_boundary(&self) -> String {
-        scenes::find(&self.scene)
-            .map(|s| join(s.info.controls.boundary))
-            .unwrap_or_default()
+        join(scenes::get(self.scene).info.controls.boundary)
     }
 
     /// Scene options from the controls; a malformed boundary is an error that names it. For
@@ -118,7 +115,7 @@ impl Controls {
 
     /// Scene options from the controls; a malformed boundary is an error that names it.
     pub fn options(&self) -> Result<SceneOptions> {
-        let info = scenes::find(&self.scene)?.info;
+        let info = scenes::get(self.scene).info;
         let c = info.controls;
         let refine = match (c.refine, self.refine.as_slice()) {
             (Some(_), &[x, y, z]) => Some([x, y, z]),
@@ -130,7 +127,7 @@ impl Controls {
         let boundary = if c.boundary.is_empty() || (refined && self.boundary == join(c.boundary)) {
             None
         } else {
-            let nodes = SceneOptions::boundary_from_text(&self.scene, &self.boundary)?;
+            let nodes = SceneOptions::boundary_from_text(self.scene, &self.boundary)?;
             Some(nodes)
         };
         let methods = self.methods.clone();
@@ -187,7 +184,7 @@ fn join(nodes: &[usize]) -> String {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Command {
     /// Switch to another scene (with its defaults).
-    SelectScene(String),
+    SelectScene(SceneId),
     /// Put the scene's default boundary back and recompute.
     ResetBoundary,
     /// Write the current recording to this file.

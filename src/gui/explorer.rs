@@ -104,7 +104,7 @@ impl Explorer {
             Ok(options) => {
                 self.generation += 1;
                 self.worker
-                    .submit(self.generation, &self.controls.scene, options);
+                    .submit(self.generation, self.controls.scene, options);
                 self.computing_since = Some(Instant::now());
             }
             Err(e) => self.error = Some(e.to_string()),
@@ -217,11 +217,9 @@ impl Explorer {
         for c in commands {
             match c {
                 Command::SelectScene(id) => {
-                    if let Ok(controls) = Controls::for_scene(&id) {
-                        self.controls = controls;
-                        self.save_path = format!("{id}.rrd");
-                        self.request();
-                    }
+                    self.controls = Controls::for_scene(id);
+                    self.save_path = format!("{id}.rrd");
+                    self.request();
                 }
                 Command::Set(change) => {
                     self.controls.change(change);
@@ -253,12 +251,12 @@ impl Explorer {
         let mut out = Vec::new();
         ui.heading("flexmodes");
         let all = scenes::all();
-        let mut scene = self.controls.scene.clone();
+        let mut scene = self.controls.scene;
         egui::ComboBox::from_label("scene")
-            .selected_text(&scene)
+            .selected_text(scene.as_str())
             .show_ui(ui, |ui| {
                 for s in &all {
-                    ui.selectable_value(&mut scene, s.info.id.to_string(), s.info.id)
+                    ui.selectable_value(&mut scene, s.info.id, s.info.id.as_str())
                         .on_hover_text(s.info.summary);
                 }
             });

@@ -18,14 +18,14 @@ use crate::{
     Progress, ProgressReading,
     record::Recorder,
     report::Report,
-    scenes::{self, RunCache, SceneOptions},
+    scenes::{self, RunCache, SceneId, SceneOptions},
 };
 
 /// A finished computation: the numbers, the panel text and the recording.
 #[derive(Debug, Clone)]
 pub struct Computed {
     /// Scene id.
-    pub scene: String,
+    pub scene: SceneId,
     /// The numeric report.
     pub report: Report,
     /// Entity paths logged.
@@ -60,7 +60,7 @@ pub struct Finished {
 
 struct Job {
     generation: u64,
-    scene: String,
+    scene: SceneId,
     options: SceneOptions,
 }
 
@@ -69,7 +69,7 @@ struct Anticipation {
     /// The newest request's generation when the anticipation was made: a newer request
     /// makes it stale.
     generation: u64,
-    scene: String,
+    scene: SceneId,
     options: Vec<SceneOptions>,
 }
 
@@ -167,9 +167,7 @@ impl Worker {
                     while let Ok(newer) = anticipation_rx.try_recv() {
                         next = newer;
                     }
-                    let Ok(scene) = scenes::find(&next.scene) else {
-                        continue;
-                    };
+                    let scene = scenes::get(next.scene);
                     for mut options in next.options {
                         let progress = Progress::new();
                         match anticipating_a.lock() {
@@ -211,10 +209,10 @@ impl Worker {
 
     /// Runs `options` of `scene` ahead of time at low priority, one after the other, to fill
     /// the cache (replacing anticipations not yet started). A [`Self::submit`] stops them.
-    pub fn anticipate(&self, scene: &str, options: Vec<SceneOptions>) {
+    pub fn anticipate(&self, scene: SceneId, options: Vec<SceneOptions>) {
         let _ = self.anticipations.send(Anticipation {
             generation: self.latest.load(Ordering::SeqCst),
-            scene: scene.into(),
+            scene,
             options,
         });
     }
@@ -255,7 +253,12 @@ impl Worker {
 
     /// Requests a computation of generation `generation` (larger than any before) and cancels
     /// the previous one; returns the new request's progress handle.
-    pub fn submit(&mut self, generation: u64, scene: &str, mut options: SceneOptions) -> Progress {
+    pub fn submit(
+        &mut self,
+        generation: u64,
+        scene: SceneId,
+        mut options: SceneOptions,
+    ) -> Progress {
         // Newest generation first, so the cancelled job's error is dropped as superseded.
         self.latest.store(generation, Ordering::SeqCst);
         if let Some(old) = self.running.take() {
@@ -273,7 +276,7 @@ impl Worker {
         self.running = Some(progress.clone());
         let _ = self.jobs.send(Job {
             generation,
-            scene: scene.into(),
+            scene,
             options,
         });
         progress
@@ -307,9 +310,9 @@ fn lower_priority() {
 }
 
 fn compute(job: &Job) -> Result<Computed, String> {
-    let (scene, options, generation) = (&job.scene, &job.options, job.generation);
+    let (scene, options, generation) = (job.scene, &job.options, job.generation);
     let chain = |e: crate::Error| e.cause_chain();
-    let s = scenes::find(scene).map_err(chain)?;
+    let s = scenes::get(scene);
     let start = Instant::now();
     let out = s.execute(options).map_err(chain)?;
     let compute_s = start.elapsed().as_secs_f64();
@@ -323,7 +326,7 @@ fn compute(job: &Job) -> Result<Computed, String> {
     let messages = recorder.messages(&out).map_err(chain)?;
     let messages_s = start.elapsed().as_secs_f64();
     Ok(Computed {
-        scene: scene.clone(),
+        scene,
         entity_paths: out.visuals.iter().map(|v| v.path().to_string()).collect(),
         layout: recorder.fitted_layout(&out).0,
         report: out.report,

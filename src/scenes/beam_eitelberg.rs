@@ -19,7 +19,7 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "beam-eitelberg",
+    id: super::SceneId::BeamEitelberg,
     summary: "§6.6 Eitelberg's method on the beam (masters 1, 3, 5) with the L = [I I] \
               output-feedback trick; the restored M^-1 K equals Guyan's",
     sections: "§6.6, App. C",
@@ -64,7 +64,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 .collect()
         })
         .collect();
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     report.parameters.insert("boundary".into(), json!(masters));
     report
         .parameters

@@ -22,7 +22,7 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "beam-mean-axes",
+    id: super::SceneId::BeamMeanAxes,
     summary: "§8.4-8.5 mode condensation with mean axes: constraint and normal modes of the \
               reduced beam against the full model",
     sections: "§8.4, §8.5",
@@ -62,7 +62,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     );
     let fi = fixed_interface_modes(&model, &part)?;
     let full_hz = fi.hz();
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     report.parameters.insert("boundary".into(), json!(boundary));
     report.parameters.insert("modes".into(), json!(kept));
     report.parameters.insert(

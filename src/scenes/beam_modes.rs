@@ -21,7 +21,7 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "beam-modes",
+    id: super::SceneId::BeamModes,
     summary: "App. A beam: free-free, Guyan (a)(b)(c), boundary, fixed-interface, Craig-Bampton \
               and mode-condensation mode shapes (Figs. 6-1 to 6-9)",
     sections: "§6.2-6.5, App. A",
@@ -100,7 +100,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let cb_hz = reduced_hz(&model, &cb)?;
     let mc_hz = reduced_hz(&model, &mc)?;
 
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     report.parameters.insert("boundary".into(), json!(boundary));
     report.parameters.insert("modes".into(), json!(kept));
     report.parameters.insert(

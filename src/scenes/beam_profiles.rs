@@ -14,7 +14,7 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "beam-profiles",
+    id: super::SceneId::BeamProfiles,
     summary: "§7.1 deformed profiles of the beam: the same z* (profile 1) and a least-squares \
               fit (profile 2) by MT, CB and MC against the reference deflection",
     sections: "§7.1",
@@ -52,7 +52,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     };
     let delta = PROFILE_DELTA;
 
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     report.parameters.insert("boundary".into(), json!(boundary));
     report.parameters.insert("modes".into(), json!(kept));
     report.parameters.insert("delta".into(), json!(delta));

@@ -27,7 +27,7 @@ use crate::{
 pub const DEFAULT_BODY: &str = "builtin:l-bracket";
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "modes",
+    id: super::SceneId::Modes,
     summary: "any body from a body file (--body FILE; the L-bracket by default): every method \
               on its interfaces (node sets, rbe2:, rbe3:) against the full body's frequencies",
     sections: "§6.2–6.5 on a body of your own",
@@ -129,7 +129,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     visuals.extend(freq_bars.visuals());
     bars.insert(0, freq_bars.layout());
 
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     report
         .parameters
         .extend(run_parameters(&body, &boundary, opts, kept, &methods));

@@ -17,7 +17,7 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "cantilever-variants",
+    id: super::SceneId::CantileverVariants,
     summary: "Witteveen §4: CB (7+7), Krylov moment matching (2×7) and balanced truncation (14) \
               built once on a clamped beam structure, then with A clamped (variant 2) and A \
               sliding with 250 kg (variant 3): static deflections, frequency errors and MAC",
@@ -29,7 +29,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
     if opts.boundary.is_some() || opts.modes.is_some() {
         return Err(crate::Error::InvalidOption {
-            scene: INFO.id.into(),
+            option: "--boundary, --modes",
+            scene: Some(INFO.id.as_str()),
             reason: "--boundary and --modes do not apply: the bases are Witteveen's (the seven \
                      I/O DOF, 7 constraint + 7 fixed-interface modes, 2 Krylov blocks, 14 \
                      balanced vectors)"
@@ -41,7 +42,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let (params, frame) = (&study.params, &study.frame);
     let model = &frame.model;
 
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     for (key, value) in [
         ("bottom_length_mm", params.bottom_length),
         ("overhang_length_mm", params.overhang_length),

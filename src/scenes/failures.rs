@@ -27,7 +27,7 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "failures",
+    id: super::SceneId::Failures,
     summary: "where the methods fail, in one recording: CB with too few boundary DOF, \
               Eitelberg without feedback, mode condensation's n³ cost, mean axes with a \
               Guyan mass, an explicit step above critical, Guyan (b)'s symmetry, modal \
@@ -41,13 +41,14 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.methods_or(INFO.id, &[], &[])?;
     if opts.modes.is_some() || opts.boundary.is_some() || opts.end_time.is_some() {
         return Err(Error::InvalidOption {
-            scene: INFO.id.into(),
+            option: "--modes, --boundary, --end-time",
+            scene: Some(INFO.id.as_str()),
             reason: "the failures scene has fixed settings (each failure states its own)".into(),
         });
     }
     let beam_model = beam(&BeamParameters::default());
     let slab_model = slab(&SlabParameters::default());
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     let mut lines: Vec<[String; 3]> = Vec::new();
     let mut visuals = Vec::new();
 

@@ -23,6 +23,7 @@ mod options;
 pub mod plank_symmetry;
 mod registry;
 mod run_cache;
+mod scene_id;
 mod scene_info;
 mod sim_visuals;
 mod slab_mode_set_views;
@@ -35,6 +36,7 @@ mod slab_sim_views;
 pub mod slab_sims;
 
 pub use options::{SceneOptions, SceneOutput};
-pub use registry::{Scene, all, all_ids, find, ids};
+pub use registry::{Scene, all, all_ids, find, get};
 pub use run_cache::{CacheWeight, RunCache};
+pub use scene_id::SceneId;
 pub use scene_info::{SceneControls, SceneInfo};

@@ -10,7 +10,7 @@ use crate::{
 /// What a scene produces is what the recorder logs: numbers, text panel, visuals, layout.
 pub use crate::record::RecordingContent as SceneOutput;
 
-use super::{RunCache, SceneInfo};
+use super::{RunCache, SceneId, SceneInfo};
 
 /// Scene options from the command line (or the GUI). `None` means the scene's default.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -67,7 +67,7 @@ impl SceneOptions {
     /// of `available`; or `default`.
     pub fn methods_or(
         &self,
-        scene: &str,
+        scene: SceneId,
         available: &[Method],
         default: &[Method],
     ) -> Result<Vec<Method>> {
@@ -77,9 +77,9 @@ impl SceneOptions {
                 for m in req {
                     if !available.contains(m) {
                         return Err(Error::UnknownMethod {
-                            id: m.id().into(),
-                            scene: scene.into(),
-                            available: ids(available),
+                            id: m.id(),
+                            scene: scene.as_str(),
+                            available: available.iter().map(|m| m.id()).collect(),
                         });
                     }
                 }
@@ -101,12 +101,13 @@ impl SceneOptions {
 
     /// Boundary nodes (1-based) typed as text, separated by commas or spaces (the explorer's
     /// boundary field); a token that is not a node number is named.
-    pub fn boundary_from_text(scene: &str, text: &str) -> Result<Vec<usize>> {
+    pub fn boundary_from_text(scene: SceneId, text: &str) -> Result<Vec<usize>> {
         text.split([',', ' '])
             .filter(|t| !t.trim().is_empty())
             .map(|t| {
                 t.trim().parse::<usize>().map_err(|_| Error::InvalidOption {
-                    scene: scene.into(),
+                    option: "--boundary",
+                    scene: Some(scene.as_str()),
                     reason: format!("boundary `{text}`: `{t}` is not a node number"),
                 })
             })
@@ -118,7 +119,8 @@ impl SceneOptions {
     pub fn require_a_method(info: &SceneInfo, methods: &[Method]) -> Result<()> {
         if methods.is_empty() && !info.controls.methods.is_empty() {
             return Err(Error::InvalidOption {
-                scene: info.id.into(),
+                option: "--method",
+                scene: Some(info.id.as_str()),
                 reason: "select at least one method".into(),
             });
         }
@@ -133,19 +135,21 @@ impl SceneOptions {
     /// `--end-time` checked as in [`Self::end_time_or`], or the scene's default.
     pub fn end_time_or_default(&self, info: &SceneInfo) -> Result<f64> {
         let default = info.controls.end_time.ok_or_else(|| Error::InvalidOption {
-            scene: info.id.into(),
+            option: "--end-time",
+            scene: Some(info.id.as_str()),
             reason: "--end-time applies to simulations only".into(),
         })?;
         self.end_time_or(info.id, default)
     }
 
     /// The simulated interval: `--end-time` checked (0 < t ≤ 60 s), or `default`.
-    pub fn end_time_or(&self, scene: &str, default: f64) -> Result<f64> {
+    pub fn end_time_or(&self, scene: SceneId, default: f64) -> Result<f64> {
         match self.end_time {
             None => Ok(default),
             Some(t) if t > 0.0 && t <= 60.0 => Ok(t),
             Some(t) => Err(Error::InvalidOption {
-                scene: scene.into(),
+                option: "--end-time",
+                scene: Some(scene.as_str()),
                 reason: format!("end time {t} s must lie in (0, 60] s"),
             }),
         }
@@ -160,7 +164,8 @@ impl SceneOptions {
             && !(dt > 0.0 && dt <= 0.01)
         {
             return Err(Error::InvalidOption {
-                scene: info.id.into(),
+                option: "--dt",
+                scene: Some(info.id.as_str()),
                 reason: format!("step {dt} s must lie in (0, 0.01] s"),
             });
         }
@@ -168,7 +173,8 @@ impl SceneOptions {
             && !(0.0..=1.0).contains(&spectral_radius)
         {
             return Err(Error::InvalidOption {
-                scene: info.id.into(),
+                option: "--rho-inf",
+                scene: Some(info.id.as_str()),
                 reason: format!("spectral radius ρ∞ = {spectral_radius} must lie in [0, 1]"),
             });
         }
@@ -184,13 +190,14 @@ impl SceneOptions {
     pub fn check_integrator(&self, info: &SceneInfo) -> Result<()> {
         if info.controls.end_time.is_none() && (self.integrator.is_some() || self.dt.is_some()) {
             return Err(Error::InvalidOption {
-                scene: info.id.into(),
+                option: "--integrator",
+                scene: Some(info.id.as_str()),
                 reason: format!(
                     "--integrator, --dt and --rho-inf apply to the simulations only ({})",
                     super::all()
                         .iter()
                         .filter(|s| s.info.controls.end_time.is_some())
-                        .map(|s| s.info.id)
+                        .map(|s| s.info.id.as_str())
                         .collect::<Vec<_>>()
                         .join(", ")
                 ),
@@ -200,38 +207,27 @@ impl SceneOptions {
     }
 
     /// `--deformation-scale` checked (a finite factor ≥ 0; 0 draws no deflection), or `auto`.
-    pub fn deformation_scale_or(&self, scene: &str, auto: impl FnOnce() -> f64) -> Result<f64> {
+    pub fn deformation_scale_or(&self, scene: SceneId, auto: impl FnOnce() -> f64) -> Result<f64> {
         match self.deformation_scale {
             None => Ok(auto()),
             Some(f) if f.is_finite() && f >= 0.0 => Ok(f),
             Some(f) => Err(Error::InvalidOption {
-                scene: scene.into(),
+                option: "--deformation-scale",
+                scene: Some(scene.as_str()),
                 reason: format!("deformation scale {f} must be a finite number ≥ 0"),
             }),
         }
     }
 
     /// Rejects `--axes` for scenes that have no axis choice (beyond `allowed`).
-    pub fn check_axes(&self, scene: &str, allowed: &[AxisKind]) -> Result<()> {
+    pub fn check_axes(&self, scene: SceneId, allowed: &[AxisKind]) -> Result<()> {
         match self.axes {
             Some(a) if !allowed.contains(&a) => Err(Error::UnknownAxes {
-                id: a.id().into(),
-                scene: scene.into(),
-                available: if allowed.is_empty() {
-                    "none: this scene has no floating frame".into()
-                } else {
-                    allowed
-                        .iter()
-                        .map(|a| a.id())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                },
+                id: a.id(),
+                scene: scene.as_str(),
+                available: allowed.iter().map(|a| a.id()).collect(),
             }),
             _ => Ok(()),
         }
     }
-}
-
-fn ids(ms: &[Method]) -> String {
-    ms.iter().map(|m| m.id()).collect::<Vec<_>>().join(", ")
 }

@@ -26,7 +26,7 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "plank-symmetry",
+    id: super::SceneId::PlankSymmetry,
     summary: "§5.3.3 plank hung under four rigid links: nodal-fixed axes lose the mirror \
               symmetry after the chains snap taut, mean axes keep it",
     sections: "§5.3.3, ch. 8",
@@ -49,7 +49,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let modes = opts.modes_or_default(&INFO);
     let model = plank(&SlabParameters::default());
     let params = opts.integrator_parameters(&INFO)?;
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     report
         .parameters
         .insert("end_time_s".into(), json!(params.end_time));
@@ -205,7 +205,8 @@ fn study_variants(opts: &SceneOptions) -> Result<Vec<Variant>> {
     }
     if variants.is_empty() {
         return Err(crate::Error::InvalidOption {
-            scene: INFO.id.into(),
+            option: "--method, --axes",
+            scene: Some(INFO.id.as_str()),
             reason: "the study runs nr with nodal_fixed and mean axes and cb with mean axes; \
                      the --method/--axes filter left none"
                 .into(),

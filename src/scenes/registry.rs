@@ -1,6 +1,6 @@
 //! The list of scenes.
 
-use super::scene_info::SceneInfo;
+use super::{SceneId, scene_info::SceneInfo};
 use super::{
     SceneOptions, SceneOutput, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
     body_modes, cantilever_variants, failures, plank_symmetry, slab_mode_sets, slab_modes,
@@ -21,14 +21,16 @@ impl Scene {
     pub fn execute(&self, opts: &SceneOptions) -> Result<SceneOutput> {
         if opts.refine.is_some() && self.info.controls.refine.is_none() {
             return Err(Error::InvalidOption {
-                scene: self.info.id.into(),
+                option: "--refine",
+                scene: Some(self.info.id.as_str()),
                 reason: "--refine applies to slab-modes only".into(),
             });
         }
         opts.check_integrator(&self.info)?;
         if opts.band_hz.is_some() && self.info.id != super::body_modes::INFO.id {
             return Err(Error::InvalidOption {
-                scene: self.info.id.into(),
+                option: "--band",
+                scene: Some(self.info.id.as_str()),
                 reason: format!(
                     "--band compares interface responses in the `{}` scene only",
                     super::body_modes::INFO.id
@@ -39,13 +41,15 @@ impl Scene {
             && !(b.is_finite() && b > 0.0)
         {
             return Err(Error::InvalidOption {
-                scene: self.info.id.into(),
+                option: "--band",
+                scene: Some(self.info.id.as_str()),
                 reason: format!("--band must be a positive frequency in Hz, not {b}"),
             });
         }
         if opts.body.is_some() && self.info.id != super::body_modes::INFO.id {
             return Err(Error::InvalidOption {
-                scene: self.info.id.into(),
+                option: "--body",
+                scene: Some(self.info.id.as_str()),
                 reason: format!(
                     "--body applies to the `{}` scene only (the other scenes are the thesis' \
                      bodies)",
@@ -115,23 +119,34 @@ pub fn all() -> Vec<Scene> {
     ]
 }
 
-/// Scene ids, comma separated.
-pub fn ids() -> String {
-    all_ids().join(", ")
-}
-
 /// Every scene's id, in the registry's order.
-pub fn all_ids() -> Vec<String> {
-    all().iter().map(|s| s.info.id.to_string()).collect()
+pub fn all_ids() -> Vec<SceneId> {
+    all().iter().map(|s| s.info.id).collect()
 }
 
-/// Finds a scene by id.
+/// Finds a scene by its text form (as a user typed it).
 pub fn find(id: &str) -> Result<Scene> {
+    Ok(get(id.parse()?))
+}
+
+/// The scene `id`.
+pub fn get(id: SceneId) -> Scene {
     all()
         .into_iter()
         .find(|s| s.info.id == id)
-        .ok_or_else(|| Error::UnknownScene {
-            id: id.into(),
-            known: ids(),
-        })
+        .expect("the registry holds every SceneId")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_registry_holds_every_scene_id_once_in_catalogue_order() {
+        assert_eq!(all_ids(), SceneId::ALL.to_vec());
+        for id in SceneId::ALL {
+            assert_eq!(get(id).info.id, id);
+            assert_eq!(find(id.as_str()).unwrap().info.id, id);
+        }
+    }
 }

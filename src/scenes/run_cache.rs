@@ -247,7 +247,8 @@ mod tests {
         let cache = RunCache::new();
         let failed = cache.get_or_run::<Blob>("x".into(), || {
             Err(crate::Error::InvalidOption {
-                scene: "test".into(),
+                option: "--method",
+                scene: None,
                 reason: "no".into(),
             })
         });

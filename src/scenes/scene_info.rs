@@ -1,13 +1,14 @@
 //! What a scene is and which options it offers, as `flexmodes list` and the explorer's panel
 //! show them.
 
+use super::SceneId;
 use crate::{dynamics::AxisKind, reduction::Method};
 
 /// Static description of a scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneInfo {
-    /// Stable id (`beam-modes`).
-    pub id: &'static str,
+    /// Which scene (its text form names recordings and tables).
+    pub id: SceneId,
     /// One line for `flexmodes list`.
     pub summary: &'static str,
     /// Thesis sections it reproduces.

@@ -20,7 +20,7 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "slab-mode-sets",
+    id: super::SceneId::SlabModeSets,
     summary: "Spanos–Tsuha §4 on a dual-spin assembly (boom rotor, grounded stator column, rigid \
               platform): CB, MR and BH mode sets truncated at 20 Hz, joined by component mode \
               synthesis, motor-to-platform FRF against the full model over 0–10 Hz; influence \
@@ -33,7 +33,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
     if opts.boundary.is_some() || opts.modes.is_some() {
         return Err(crate::Error::InvalidOption {
-            scene: INFO.id.into(),
+            option: "--boundary, --modes",
+            scene: Some(INFO.id.as_str()),
             reason: "--boundary and --modes do not apply: the interfaces are the assembly's \
                      and the mode sets are truncated at 20 Hz, as in Spanos–Tsuha"
                 .into(),
@@ -41,7 +42,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
     let study = dual_spin_study(&methods, opts.concurrent_integrations)?;
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     report.parameters.insert("zeta".into(), json!(ZETA));
     report
         .parameters

@@ -22,7 +22,7 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: "slab-modes",
+    id: super::SceneId::SlabModes,
     summary: "App. B slab: free-free, constraint and fixed-interface modes for boundary nodes \
               16, 18, 28, 30, and the frequencies of the MT, CB, MC and GR models",
     sections: "§7.2.1, App. B",
@@ -120,7 +120,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         bars.push(m, &hz);
     }
 
-    let mut report = Report::new(INFO.id);
+    let mut report = Report::new(INFO.id.as_str());
     report.parameters.insert("boundary".into(), json!(boundary));
     report
         .parameters

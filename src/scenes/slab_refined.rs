@@ -40,7 +40,8 @@ const EXTRA_GUYAN_MASTER_POSITIONS: [[f64; 3]; 2] = [[1.0, 1.0, 1.0], [3.0, 1.0,
 pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<SceneOutput> {
     if opts.axes.is_some() {
         return Err(Error::InvalidOption {
-            scene: info.id.into(),
+            option: "--axes",
+            scene: Some(info.id.as_str()),
             reason: "--axes is offered on the App. B slab only (its nodal-fixed nodes 16, 28, \
                      18 are not defined on a refined mesh)"
                 .into(),
@@ -106,7 +107,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     visuals.extend(bars.visuals());
     let peak = peak_resident_bytes();
 
-    let mut report = Report::new(info.id);
+    let mut report = Report::new(info.id.as_str());
     let p = &mut report.parameters;
     p.insert("refine".into(), json!(bricks));
     p.insert("boundary".into(), json!(boundary));

@@ -37,7 +37,7 @@ const fn sim_controls(end: f64) -> super::scene_info::SceneControls {
 }
 
 pub const INFO_1: SceneInfo = SceneInfo {
-    id: "slab-sim1",
+    id: super::SceneId::SlabSim1,
     summary: "§7.2.2 slab held at six coordinates under gravity: node 8's deflections by NR, \
               MT, CB, MC and GR over time",
     sections: "§7.2.2",
@@ -45,7 +45,7 @@ pub const INFO_1: SceneInfo = SceneInfo {
 };
 
 pub const INFO_2: SceneInfo = SceneInfo {
-    id: "slab-sim2",
+    id: super::SceneId::SlabSim2,
     summary: "§7.2.3 slab pinned at nodes 16, 18 with node 30 driven on the orbit of Eq. 7.10: \
               node 8's deflections by every method",
     sections: "§7.2.3",
@@ -63,7 +63,7 @@ impl super::run_cache::CacheWeight for DrivenTables {
 }
 
 pub const INFO_3: SceneInfo = SceneInfo {
-    id: "slab-sim3",
+    id: super::SceneId::SlabSim3,
     summary: "§7.2.4 slab driven at nodes 16, 18, 28, 30 by accelerations recorded from the \
               two-link simulation of Fig. 7-12(b)",
     sections: "§7.2.4",
@@ -90,7 +90,7 @@ pub fn axis_type(kind: Option<AxisKind>) -> AxisType {
 /// What determines one method's time integration in a scene (the [`RunCache`](super::RunCache) key): boundary
 /// nodes matter to every method but NR, kept modes to MT, CB and MC only.
 pub fn run_key(
-    scene: &str,
+    scene: super::SceneId,
     method: Method,
     axes: AxisType,
     boundary: &[usize],
@@ -158,7 +158,7 @@ pub fn run_scenario(
         .zip(&integrated)
         .map(|(&m, run)| (m, &run.0, &run.1, probe_history(&run.0, &run.1, probe)))
         .collect();
-    let mut report = Report::new(info.id);
+    let mut report = Report::new(info.id.as_str());
     scenario_parameters(
         &mut report,
         &boundary,
