@@ -661,3 +661,107 @@ fn the_persisted_controls_name_methods_and_integrator_by_id_and_read_older_setti
     value["methods"] = serde_json::json!(["cb", "xx"]);
     assert!(serde_json::from_value::<Controls>(value).is_err());
 }
+
+/// The table's rows without the columns that are timings (offline s, online s and their
+/// ratio), for comparing two runs of the same study.
+fn untimed_rows(table: &str) -> Vec<String> {
+    table
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| model"))
+        .map(|l| {
+            l.split('|')
+                .enumerate()
+                .filter(|(k, _)| ![5, 6, 7].contains(k))
+                .map(|(_, c)| c.trim())
+                .collect::<Vec<_>>()
+                .join("|")
+        })
+        .collect()
+}
+
+/// A user's body driven from the panel: the committed steel link (6 972 DOF, two bores) spun
+/// up by one bore, the full body against the reduced models; the recording is the one
+/// `flexmodes simulate --save` writes for the same choices, a method ticked on shows at once
+/// beside the runs already made, and unticking `simulate` goes back to the body's modes.
+#[test]
+fn the_explorer_simulates_a_users_body_from_its_panel() {
+    use flexmodes::{
+        Progress,
+        body_file::ImportedBody,
+        scenes::{RunCache, body_simulation::simulated},
+    };
+    let link = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/bodies/steel-link/body.toml"
+    );
+    // The body's modes by Craig–Bampton alone first (all eight methods on 6 972 DOF would
+    // only lengthen the test).
+    let mut h = harness_with(Controls {
+        methods: vec![Method::CraigBampton],
+        ..Controls::for_body(link).unwrap()
+    });
+    settle(&mut h);
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert_eq!(h.state().current.as_ref().unwrap().report.scene, "modes");
+    h.get_by_label("simulate: drive an interface").click();
+    h.step();
+    h.step();
+    // The body file's default interface is the drive; the interval shortened at once (the
+    // second-long run the click started is superseded).
+    let simulation = h.state().controls.simulation.clone().expect("simulating");
+    assert_eq!(simulation.drive, "bore_a");
+    h.get_by_label("100 ms").click();
+    settle(&mut h);
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let shown = h.state().current.as_ref().unwrap();
+    assert_eq!(shown.report.scene, "simulate");
+    let methods = h.state().controls.methods.clone();
+    assert_eq!(methods, [Method::CraigBampton, Method::ModeCondensation]);
+    for lane in ["nr", "cb_10", "mc_10"] {
+        let path = format!("world/body/{lane}/deformed");
+        assert!(shown.entity_paths.contains(&path), "{path} missing");
+    }
+    assert!(!paths(&h).iter().any(|p| p.starts_with("world/body/mt")));
+    // The same study on the command line's path (nothing kept between runs).
+    let simulation = h.state().controls.simulation.clone().unwrap();
+    assert_eq!(simulation.end, 0.1);
+    let body = ImportedBody::load(link).unwrap();
+    let alone = simulated(
+        &body,
+        &simulation.simulation().unwrap(),
+        &methods,
+        h.state().controls.modes,
+        &Progress::new(),
+        &RunCache::default(),
+    )
+    .unwrap();
+    let rows = untimed_rows(&shown.report.table);
+    assert_eq!(rows.len(), 3, "{}", shown.report.table);
+    assert_eq!(rows, untimed_rows(&alone.report.table));
+    // The speed–accuracy chart's labels follow the timings; every other entity is the same.
+    let untimed = |paths: Vec<String>| -> Vec<String> {
+        paths
+            .into_iter()
+            .filter(|p| !p.starts_with("bench/error_vs_online"))
+            .collect()
+    };
+    let alone_paths = alone.visuals.iter().map(|v| v.path().to_string()).collect();
+    assert_eq!(untimed(shown.entity_paths.clone()), untimed(alone_paths));
+    // Modal truncation ticked on: its run joins the ones already made (the full body's
+    // history unchanged, to the digit).
+    h.get_by_label("MT").click();
+    settle(&mut h);
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let now = untimed_rows(&h.state().current.as_ref().unwrap().report.table);
+    assert_eq!(now.len(), 4);
+    assert_eq!(now[0], rows[0], "the full body's row");
+    assert!(now.iter().any(|r| r.starts_with("|MT 10|")), "{now:?}");
+    assert!(paths(&h).contains(&"world/body/mt_10/deformed".to_string()));
+    // A method that cannot hold the driven ring is not offered while simulating.
+    assert!(h.query_by_role_and_label(Role::CheckBox, "MM").is_none());
+    h.get_by_label("simulate: drive an interface").click();
+    settle(&mut h);
+    assert!(h.state().controls.simulation.is_none());
+    assert_eq!(h.state().current.as_ref().unwrap().report.scene, "modes");
+    assert!(h.query_by_role_and_label(Role::CheckBox, "MM").is_some());
+}

@@ -68,6 +68,13 @@ pub(super) enum Command {
         /// Open the `modes` scene on this body file (TOML) or `builtin:NAME`.
         #[arg(long, conflicts_with = "scene")]
         body: Option<String>,
+        /// With --body: open it driven through this node set (tied rigidly to its master),
+        /// spun up as `simulate` spins it.
+        #[arg(long, requires = "body")]
+        simulate: Option<String>,
+        /// With --simulate: the simulated interval, s.
+        #[arg(long, requires = "simulate", default_value_t = 1.0)]
+        interval: f64,
         #[command(flatten)]
         window: WindowArgs,
     },

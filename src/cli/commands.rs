@@ -69,8 +69,16 @@ fn run(cli: Cli) -> Result<()> {
         Command::Gui {
             scene,
             body,
+            simulate,
+            interval,
             window,
-        } => crate::gui::run_with_body(scene, body.as_deref(), None, window.into()),
+        } => {
+            let simulate = simulate.map(|set| crate::gui::SimulationControls {
+                end: interval,
+                ..crate::gui::SimulationControls::for_drive(&set)
+            });
+            crate::gui::run_with_body(scene, body.as_deref(), simulate, None, window.into())
+        }
         #[cfg(feature = "gui")]
         Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),
         Command::Bench(args) => bench(args, &threads),

@@ -10,7 +10,7 @@ use rerun::external::{
 };
 
 use super::{
-    Controls, Explorer,
+    Controls, Explorer, SimulationControls,
     capture::{Capture, FrameSeries},
     viewer_handoff::{HandoffState, ViewerHandoff},
 };
@@ -154,14 +154,15 @@ impl eframe::App for FlexmodesApp {
 
 /// Opens the explorer on `scene` (default `beam-modes`), or the viewer on a saved recording.
 pub fn run(scene: Option<SceneId>, file: Option<&Path>, opts: ViewerOptions) -> Result<()> {
-    run_with_body(scene, None, file, opts)
+    run_with_body(scene, None, None, file, opts)
 }
 
 /// [`run`], or the explorer on the `modes` scene with the body file `body` (loaded and checked
-/// first, so a bad file fails before a window opens).
+/// first, so a bad file fails before a window opens), driven as `simulate` says when given.
 pub fn run_with_body(
     scene: Option<SceneId>,
     body: Option<&str>,
+    simulate: Option<SimulationControls>,
     file: Option<&Path>,
     opts: ViewerOptions,
 ) -> Result<()> {
@@ -177,8 +178,15 @@ pub fn run_with_body(
     let initial = match (&file_bytes, scene, body) {
         (Some(_), _, _) => None,
         (None, _, Some(b)) => {
-            crate::body_file::ImportedBody::load(b)?;
-            Some(Controls::for_body(b)?)
+            let loaded = crate::body_file::ImportedBody::load(b)?;
+            let mut controls = Controls::for_body(b)?;
+            if let Some(s) = &simulate {
+                // The drive and its motion checked before a window opens.
+                s.simulation()?;
+                loaded.boundary(std::slice::from_ref(&s.drive))?;
+            }
+            controls.change(super::Change::Simulation(simulate));
+            Some(controls)
         }
         (None, s, None) => Some(Controls::for_scene(s.unwrap_or(SceneId::BeamModes))),
     };

@@ -3,6 +3,7 @@
 use crate::dynamics::AxisKind;
 use serde::{Deserialize, Serialize};
 
+use super::{SimulationControls, simulation_controls::DRIVEN_DEFAULT};
 use crate::{
     Result,
     body_file::BodyHandle,
@@ -39,6 +40,10 @@ pub struct Controls {
     /// Integrator of the simulations (`None`: the scene's default, Dormand–Prince).
     #[serde(default, deserialize_with = "empty_as_none")]
     pub integrator: Option<IntegrationScheme>,
+    /// The `modes` scene's body driven through an interface instead of its modes compared
+    /// (`None`: its modes).
+    #[serde(default)]
+    pub simulation: Option<SimulationControls>,
 }
 
 /// The largest preset a simulation scene offers, DOF (its full model is integrated too).
@@ -65,6 +70,7 @@ impl Controls {
             body: None,
             deformation_scale: 0.0,
             integrator: None,
+            simulation: None,
         }
     }
 
@@ -104,6 +110,11 @@ impl Controls {
                 _ => (None, Vec::new(), Vec::new()),
             };
             let mut options = self.options()?;
+            options.simulation = self
+                .simulation
+                .as_ref()
+                .map(|s| s.simulation())
+                .transpose()?;
             options.boundary = boundary;
             options.rigid_interfaces = rigid;
             options.averaging_interfaces = averaging;
@@ -214,6 +225,8 @@ pub enum Change {
     DeformationScale(f64),
     /// Simulate this interval, s.
     EndTime(f64),
+    /// Drive the body as these controls say (`None`: show its modes).
+    Simulation(Option<SimulationControls>),
 }
 
 impl Controls {
@@ -230,6 +243,8 @@ impl Controls {
             Change::Body(body) => {
                 self.body = body_file(&body);
                 self.boundary.clear();
+                // The new body need not have the driven set.
+                self.simulation = None;
             }
             Change::Boundary(boundary) => self.boundary = boundary,
             Change::Axes(axes) => self.axes = axes,
@@ -237,6 +252,14 @@ impl Controls {
             Change::Integrator(scheme) => self.integrator = Some(scheme),
             Change::DeformationScale(f) => self.deformation_scale = f,
             Change::EndTime(t) => self.end_time = t,
+            Change::Simulation(simulation) => {
+                if simulation.is_some() && self.simulation.is_none() {
+                    // `simulate`'s models: CB and MC (Guyan needs an interface besides the
+                    // drive, and the other methods do not hold the driven ring still).
+                    self.methods = DRIVEN_DEFAULT.to_vec();
+                }
+                self.simulation = simulation;
+            }
         }
     }
 }

@@ -144,6 +144,16 @@ impl Explorer {
         }
     }
 
+    /// The node set that is the loaded body's default interface, if one is.
+    pub fn default_interface_set(&self) -> Option<String> {
+        let (_, body) = self.body.as_ref()?;
+        let nodes = body.default_interface_nodes().ok()?;
+        self.node_sets()
+            .into_iter()
+            .map(|(name, _)| name)
+            .find(|name| body.node_sets.get(name).map(Vec::as_slice) == Some(nodes))
+    }
+
     /// Whether a request is running.
     /// Repaints `ctx` as soon as a result is ready (the switch latency would otherwise include
     /// up to one scheduled frame).
@@ -276,6 +286,7 @@ impl Explorer {
 
         self.methods_ui(ui, &info, &mut out);
         self.body_ui(ui, &mut out);
+        self.drive_ui(ui, &mut out);
         self.boundary_ui(ui, &info, &mut out);
         self.model_ui(ui, &info, &mut out);
         self.simulation_ui(ui, &info, &mut out);
@@ -287,8 +298,15 @@ impl Explorer {
     /// The scene's method checkboxes and the kept modes.
     fn methods_ui(&mut self, ui: &mut egui::Ui, info: &SceneInfo, out: &mut Vec<Command>) {
         ui.label("methods");
+        // A driven body is reduced only by the methods that hold its driven ring still.
+        let driven = self.controls.takes_body() && self.controls.simulation.is_some();
+        let offered = info
+            .controls
+            .methods
+            .iter()
+            .filter(|m| !driven || crate::models::DRIVEN_METHODS.contains(m));
         ui.horizontal_wrapped(|ui| {
-            for m in info.controls.methods {
+            for m in offered {
                 let mut on = self.controls.methods.contains(m);
                 if ui
                     .checkbox(&mut on, m.id().to_uppercase())
@@ -341,23 +359,12 @@ impl Explorer {
             let sets = self.node_sets();
             // With no boundary typed, the body file's default interface is the one in use.
             let in_use = if self.controls.boundary.trim().is_empty() {
-                self.body
-                    .as_ref()
-                    .and_then(|(_, b)| b.default_interface_nodes().ok())
-                    .and_then(|nodes| {
-                        sets.iter().map(|(name, _)| name.clone()).find(|name| {
-                            self.body
-                                .as_ref()
-                                .and_then(|(_, b)| b.node_sets.get(name))
-                                .map(Vec::as_slice)
-                                == Some(nodes)
-                        })
-                    })
-                    .unwrap_or_default()
+                self.default_interface_set().unwrap_or_default()
             } else {
                 self.controls.boundary.clone()
             };
-            if !sets.is_empty() {
+            // A driven body shows its drive instead (`simulation_ui`).
+            if !sets.is_empty() && self.controls.simulation.is_none() {
                 ui.horizontal_wrapped(|ui| {
                     ui.label("interface:");
                     for (name, count) in sets {
@@ -410,7 +417,8 @@ impl Explorer {
 
     /// The boundary nodes typed, applied or reset.
     fn boundary_ui(&mut self, ui: &mut egui::Ui, info: &SceneInfo, out: &mut Vec<Command>) {
-        if !info.controls.boundary.is_empty() || self.controls.takes_body() {
+        let driven = self.controls.simulation.is_some();
+        if !info.controls.boundary.is_empty() || (self.controls.takes_body() && !driven) {
             ui.horizontal(|ui| {
                 ui.label("boundary nodes");
                 let r = ui

@@ -10,6 +10,8 @@ mod capture;
 mod controls;
 mod explorer;
 mod report_view;
+mod simulation_controls;
+mod simulation_panel;
 mod updating_badge;
 mod viewer_handoff;
 mod worker;
@@ -18,5 +20,6 @@ pub use app::{FEWER_MODES, MORE_MODES, VIEWER_AREA, ViewerOptions, run, run_with
 pub use capture::FrameSeries;
 pub use controls::{Change, Command, Controls, MESH_PRESETS};
 pub use explorer::Explorer;
+pub use simulation_controls::{DriveMotion, SimulationControls};
 pub use viewer_handoff::{HandoffState, ViewerHandoff};
 pub use worker::{Computed, Finished, Worker};

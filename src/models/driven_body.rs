@@ -12,7 +12,7 @@ use faer::Mat;
 use nalgebra::{Unit, Vector3};
 
 use crate::{
-    Result,
+    Error, Result,
     analysis::{MeanAxisView, count_zero_energy_modes},
     body_file::{ImportedBody, InterfaceKind},
     dynamics::{
@@ -169,6 +169,80 @@ pub struct DrivenStudy {
     pub runs: Vec<DrivenRun>,
     /// The explicit scheme's critical step per reduced model, checked (with `explicit`).
     pub stability: Vec<ExplicitCheck>,
+    /// The reaction force a rigid body would need at each sample time: what the reaction
+    /// errors leave out of the full body's reaction (its elastic part is their scale).
+    pub rigid_force: Vec<[f64; 3]>,
+}
+
+impl DrivenStudy {
+    /// One study of the runs of `studies`, made of one body under one drive (and integrator)
+    /// each: the full body's run first when one of them has it, and every reduced run's
+    /// errors against it. Each run and its errors are independent of the others, so this is
+    /// the study `driven_body_study` makes of all their methods at once; sample times that
+    /// differ are an error, never zipped.
+    pub fn joined(studies: &[&DrivenStudy]) -> Result<Self> {
+        let Some(first) = studies.first() else {
+            return Err(Error::MismatchedSeries {
+                path: "simulate".into(),
+                what: "studies to join",
+                expected: 1,
+                found: 0,
+            });
+        };
+        for s in studies {
+            if s.times != first.times || s.rigid_force.len() != first.rigid_force.len() {
+                return Err(Error::MismatchedSeries {
+                    path: "simulate".into(),
+                    what: "sample times",
+                    expected: first.times.len(),
+                    found: s.times.len(),
+                });
+            }
+        }
+        let mut runs: Vec<DrivenRun> = studies
+            .iter()
+            .flat_map(|s| s.runs.iter().filter(|r| r.method.is_none()))
+            .take(1)
+            .cloned()
+            .collect();
+        let full = !runs.is_empty();
+        runs.extend(
+            studies
+                .iter()
+                .flat_map(|s| s.runs.iter().filter(|r| r.method.is_some()))
+                .cloned(),
+        );
+        if full {
+            compare_with_full(&mut runs, &first.rigid_force);
+        }
+        Ok(Self {
+            runs,
+            stability: studies
+                .iter()
+                .flat_map(|s| s.stability.iter().cloned())
+                .collect(),
+            times: first.times.clone(),
+            output_names: first.output_names.clone(),
+            drive: first.drive.clone(),
+            dof: first.dof,
+            rigid_force: first.rigid_force.clone(),
+        })
+    }
+
+    /// Bytes the study holds on the heap: its samples and each reduced run's basis.
+    pub fn heap_bytes(&self) -> usize {
+        let f = std::mem::size_of::<f64>();
+        let run = |r: &DrivenRun| {
+            let states: usize = r.states.iter().map(|x| x.len() * f).sum();
+            let outputs: usize = r.outputs.iter().map(|o| o.len() * 3 * f).sum();
+            let basis = match &r.field_map {
+                FieldMap::Basis(psi) => psi.nrows() * psi.ncols() * f,
+                FieldMap::Full(_) => 0,
+            };
+            states + outputs + r.reaction.len() * 6 * f + basis
+        };
+        self.times.len() * f + self.runs.iter().map(run).sum::<usize>()
+    }
 }
 
 /// Runs the full body (when `full`) and each method × kept-mode count on `body` under
@@ -301,8 +375,9 @@ pub fn driven_body_study(
             }
         }
     }
+    let rigid_force = rigid_reaction(&measure, &times);
     if full {
-        compare_with_full(&mut runs, &measure, &times);
+        compare_with_full(&mut runs, &rigid_force);
     }
     Ok(DrivenStudy {
         times,
@@ -311,6 +386,7 @@ pub fn driven_body_study(
         dof: model.dof_count(),
         runs,
         stability,
+        rigid_force,
     })
 }
 
@@ -656,9 +732,8 @@ impl ReducedRuns<'_> {
 }
 
 /// Every run's history and reaction error against the full body's (the first run).
-fn compare_with_full(runs: &mut [DrivenRun], measure: &Measure, times: &[f64]) {
+fn compare_with_full(runs: &mut [DrivenRun], rigid_force: &[[f64; 3]]) {
     let (reference, rest) = runs.split_first_mut().expect("the full body ran first");
-    let rigid_force = rigid_reaction(measure, times);
     for run in rest {
         // An explicit run sampled otherwise (an end the samples do not divide) is not
         // compared.
@@ -669,7 +744,7 @@ fn compare_with_full(runs: &mut [DrivenRun], measure: &Measure, times: &[f64]) {
         run.reaction_error = Some(reaction_error(
             &reference.reaction,
             &run.reaction,
-            &rigid_force,
+            rigid_force,
         ));
     }
 }

@@ -3,16 +3,19 @@
 //! truncation, Craig–Bampton and mode condensation by default; MacNeal–Rubin, Benfield–Hruda,
 //! moment matching and balanced truncation on request), each model's frequencies and MAC
 //! against the full body's, and the principal angles between the bases and its lowest modes.
+//! Asked for a simulation (the explorer's `simulate`), the body driven through an interface
+//! instead, as `flexmodes simulate` drives it.
 
 use super::body_influence::influence_count;
 use super::body_modes_report::{method_rows, run_parameters, sweep_section};
 use super::body_modes_text::{BodyTables, body_text, scene_text};
 use super::{
-    SceneInfo, SceneOptions, SceneOutput, frequency_bars::FrequencyBars, mode_visuals::undeformed,
+    SceneInfo, SceneOptions, SceneOutput, body_simulation::simulated,
+    frequency_bars::FrequencyBars, mode_visuals::undeformed,
 };
 use crate::models::{
     BALANCED_ZETA, BODY_METHODS, BODY_MODES_COMPARED, BodyInterfaces, BodyModesParameters,
-    BodyModesStudy, body_modes_study,
+    BodyModesStudy, DRIVEN_METHODS, body_modes_study,
 };
 use crate::{
     Result,
@@ -42,6 +45,8 @@ pub const INFO: SceneInfo = SceneInfo {
 };
 
 const AVAILABLE: [Method; 8] = BODY_METHODS;
+/// Driven unless `--method` says otherwise (with the full body, `simulate`'s default).
+const DRIVEN_DEFAULT: [Method; 2] = [Method::CraigBampton, Method::ModeCondensation];
 /// Computed unless `--method` says otherwise.
 const DEFAULT_METHODS: [Method; 4] = [
     Method::Guyan,
@@ -63,6 +68,19 @@ pub fn body_of(opts: &SceneOptions) -> Result<BodyHandle> {
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
     let body = body_of(opts)?;
+    if let Some(simulation) = &opts.simulation {
+        // A driven body: the methods whose boundary columns hold the driven ring still.
+        let methods = opts.methods_or(INFO.id, &DRIVEN_METHODS, &DRIVEN_DEFAULT)?;
+        let modes = opts.modes_or_default(&INFO);
+        return simulated(
+            &body,
+            simulation,
+            &methods,
+            modes,
+            &opts.progress,
+            &opts.cache,
+        );
+    }
     let model = &body.model;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &DEFAULT_METHODS)?;
     let boundary = match &opts.boundary {

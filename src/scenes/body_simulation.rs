@@ -3,12 +3,80 @@
 
 use serde_json::json;
 
+use super::RunCache;
 pub use super::body_simulation_visuals::recording;
 use crate::{
+    Progress, Result,
     body_file::ImportedBody,
-    models::{DrivenBodyParameters, DrivenRun, DrivenStudy},
+    models::{DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study},
+    record::RecordingContent,
+    reduction::Method,
     report::{markdown_table, sig},
 };
+
+/// A driven simulation asked of the `modes` scene (the explorer's `simulate`): the body's
+/// interface driven as `flexmodes simulate` drives it, one model per method.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodySimulation {
+    /// The drive, its motion and the integrator's steps.
+    pub parameters: DrivenBodyParameters,
+    /// Also integrate the full body: the reference of every history and reaction error.
+    pub full_body: bool,
+}
+
+/// Runs `simulation` of `body` with `methods` (each keeping `modes` fixed-interface modes)
+/// and returns the recording `flexmodes simulate --save` writes for the same choices.
+///
+/// With a cache that keeps runs (the explorer's), the full body's run and each method's are
+/// kept apart and joined: ticking a method on or off, or changing the kept modes, integrates
+/// only the reduced models it adds, never the full body again (its tens of seconds, not the
+/// reduced models' second, are the cost). Without one (the command line), one study runs.
+pub fn simulated(
+    body: &ImportedBody,
+    simulation: &BodySimulation,
+    methods: &[Method],
+    modes: usize,
+    progress: &Progress,
+    cache: &RunCache,
+) -> Result<RecordingContent> {
+    let study_of = |methods: &[Method], full: bool| {
+        driven_body_study(
+            body,
+            &simulation.parameters,
+            methods,
+            &[modes],
+            full,
+            progress,
+        )
+    };
+    let study = if cache.is_detached() {
+        study_of(methods, simulation.full_body)?
+    } else {
+        let key = |run: &str| {
+            format!(
+                "simulate/{:?}/{}/{:?}/{run}",
+                body.location, body.model.name, simulation.parameters
+            )
+        };
+        let mut parts = Vec::new();
+        if simulation.full_body {
+            parts.push(cache.get_or_run(key("nr"), || study_of(&[], true))?);
+        }
+        for &m in methods {
+            let run = format!("{}/{modes}", m.id());
+            parts.push(cache.get_or_run(key(&run), || study_of(&[m], false))?);
+        }
+        DrivenStudy::joined(&parts.iter().map(|p| p.as_ref()).collect::<Vec<_>>())?
+    };
+    let (_, text) = summary(body, &simulation.parameters, &study);
+    Ok(recording(&body.model, &study, &text))
+}
+
+impl super::CacheWeight for DrivenStudy {
+    fn bytes(&self) -> usize {
+        self.heap_bytes()
+    }
+}
 
 /// The JSON value and the text of a driven body's study.
 pub fn summary(

@@ -51,6 +51,9 @@ pub struct SceneOptions {
     pub deformation_scale: Option<f64>,
     /// `--body`: a body from a body file (the `modes` scene).
     pub body: Option<crate::body_file::BodyHandle>,
+    /// The body driven through one of its interfaces instead of its modes compared (the
+    /// `modes` scene; the explorer's `simulate`).
+    pub simulation: Option<super::body_simulation::BodySimulation>,
     /// Where the time integrations report how far they got; cancelling it stops the scene.
     pub progress: Progress,
     /// Time integrations kept from earlier requests (the desktop explorer's).

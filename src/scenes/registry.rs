@@ -46,6 +46,13 @@ impl Scene {
                 reason: format!("--band must be a positive frequency in Hz, not {b}"),
             });
         }
+        if opts.simulation.is_some() && self.info.id != SceneId::Modes {
+            return Err(Error::InvalidOption {
+                option: "simulate",
+                scene: Some(self.info.id.as_str()),
+                reason: "a body is driven in the `modes` scene only".into(),
+            });
+        }
         if opts.body.is_some() && self.info.id != super::body_modes::INFO.id {
             return Err(Error::InvalidOption {
                 option: "--body",

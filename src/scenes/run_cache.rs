@@ -110,6 +110,11 @@ impl RunCache {
             .unwrap_or(0)
     }
 
+    /// Whether the cache keeps nothing by design (the command line's default).
+    pub fn is_detached(&self) -> bool {
+        self.0.is_none()
+    }
+
     /// Whether nothing is kept.
     pub fn is_empty(&self) -> bool {
         self.len() == 0

@@ -309,3 +309,46 @@ fn a_pinned_ring_turns_about_its_place_as_in_scipys_steady_state() {
     );
     assert!(s.runs[1].history_error.unwrap() < 1e-2);
 }
+
+/// The explorer keeps the full body's run and each method's apart and joins them: the joined
+/// study is the one study of all of them, run for run and error for error (to the bit), and
+/// studies sampled at other times are refused, never zipped.
+#[test]
+fn studies_of_one_drive_join_into_the_study_of_all_their_runs() {
+    let (_, reference) = rod();
+    let p = parameters(&reference, 1e-3);
+    let methods = [Method::ModalTruncation, Method::CraigBampton];
+    let whole = study(&p, &methods, true);
+    let full = study(&p, &[], true);
+    let mt = study(&p, &methods[..1], false);
+    let cb = study(&p, &methods[1..], false);
+    // The order of the parts does not matter: the full body's run comes first.
+    let joined = DrivenStudy::joined(&[&mt, &full, &cb]).unwrap();
+    assert_eq!(joined.runs.len(), whole.runs.len());
+    for (a, b) in joined.runs.iter().zip(&whole.runs) {
+        assert_eq!(a.label(), b.label());
+        assert_eq!(a.outputs, b.outputs, "{}", a.label());
+        assert_eq!(a.reaction, b.reaction, "{}", a.label());
+        assert_eq!(a.history_error, b.history_error, "{}", a.label());
+        assert_eq!(a.reaction_error, b.reaction_error, "{}", a.label());
+    }
+    assert!(joined.runs[1].history_error.unwrap() > 0.0);
+    assert_eq!(joined.times, whole.times);
+    // Without the full body, no errors.
+    let reduced = DrivenStudy::joined(&[&mt, &cb]).unwrap();
+    assert!(reduced.runs.iter().all(|r| r.history_error.is_none()));
+    let mut every_step = p.clone();
+    every_step.integration.output_every = 1;
+    let other = study(&every_step, &methods[..1], false);
+    let e = DrivenStudy::joined(&[&full, &other]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            flexmodes::Error::MismatchedSeries {
+                what: "sample times",
+                ..
+            }
+        ),
+        "{e}"
+    );
+}

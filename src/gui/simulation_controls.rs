@@ -1,0 +1,157 @@
+//! The explorer's `simulate` choices for the `modes` scene's body: which interface is driven,
+//! how, and for how long; persisted with the other controls.
+
+use serde::{Deserialize, Serialize};
+
+use crate::{
+    Error, Result,
+    models::DrivenBodyParameters,
+    reduction::Method,
+    scenes::{SceneId, body_simulation::BodySimulation},
+};
+
+/// How the driven interface moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum DriveMotion {
+    /// Spun up about the body's z axis through the drive's master, then held at the rate.
+    SpinUp,
+    /// Shaken harmonically along the ground's x axis, not turning.
+    Shake,
+}
+
+/// A body driven through one of its interfaces (`flexmodes simulate --drive rbe2:SET`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SimulationControls {
+    /// The driven interface: a node set of the body, tied rigidly to its master (RBE2).
+    pub drive: String,
+    /// How the drive moves.
+    pub motion: DriveMotion,
+    /// Steady spin rate, rad/s (spin-up).
+    pub rate: f64,
+    /// Time to reach the rate, s (spin-up).
+    pub ramp: f64,
+    /// Shaking amplitude, m (shake).
+    pub amplitude: f64,
+    /// Shaking frequency, Hz (shake).
+    pub frequency: f64,
+    /// Simulated interval, s.
+    pub end: f64,
+    /// Also integrate the full body, the reference of every error.
+    pub full_body: bool,
+}
+
+/// The models a drive is first simulated with, as `flexmodes simulate` (beside the full body).
+pub const DRIVEN_DEFAULT: [Method; 2] = [Method::CraigBampton, Method::ModeCondensation];
+
+/// Steady rates the panel offers, rad/s.
+pub const RATES: [f64; 4] = [25.0, 50.0, 100.0, 200.0];
+/// Ramp times the panel offers, s.
+pub const RAMPS: [f64; 4] = [0.1, 0.25, 0.5, 1.0];
+/// Shaking frequencies the panel offers, Hz.
+pub const FREQUENCIES: [f64; 4] = [10.0, 50.0, 200.0, 1000.0];
+/// Simulated intervals the panel offers, s.
+pub const ENDS: [f64; 4] = [0.1, 0.25, 0.5, 1.0];
+/// Samples of the histories over the interval (as `simulate`'s default).
+const SAMPLES: usize = 100;
+
+impl SimulationControls {
+    /// `flexmodes simulate`'s defaults with `drive` driven.
+    pub fn for_drive(drive: &str) -> Self {
+        let d = DrivenBodyParameters::default();
+        Self {
+            drive: drive.into(),
+            motion: DriveMotion::SpinUp,
+            rate: d.rate,
+            ramp: d.ramp,
+            amplitude: 1e-3,
+            frequency: 50.0,
+            end: d.integration.end,
+            full_body: true,
+        }
+    }
+
+    /// The scene's simulation: the drive tied rigidly (`rbe2:`), generalized-α at
+    /// `simulate`'s default step, a hundred samples of the histories.
+    pub fn simulation(&self) -> Result<BodySimulation> {
+        let defaults = DrivenBodyParameters::default();
+        let invalid = |reason: String| Error::InvalidOption {
+            option: "simulate",
+            scene: Some(SceneId::Modes.as_str()),
+            reason,
+        };
+        if self.drive.trim().is_empty() {
+            return Err(invalid("choose the interface to drive".into()));
+        }
+        let positive = [
+            ("rate", self.rate),
+            ("ramp", self.ramp),
+            ("amplitude", self.amplitude),
+            ("frequency", self.frequency),
+            ("end time", self.end),
+        ];
+        if let Some((name, value)) = positive.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
+            return Err(invalid(format!("the {name} must be positive, not {value}")));
+        }
+        let step = defaults.integration.step;
+        let steps = (self.end / step).round().max(1.0) as usize;
+        let shake = self.motion == DriveMotion::Shake;
+        Ok(BodySimulation {
+            parameters: DrivenBodyParameters {
+                drive: format!("rbe2:{}", self.drive.trim()),
+                rate: if shake { 0.0 } else { self.rate },
+                ramp: self.ramp,
+                shake: shake.then_some(([1.0, 0.0, 0.0], self.amplitude, self.frequency)),
+                integration: crate::dynamics::DrivenIntegration {
+                    end: self.end,
+                    output_every: (steps / SAMPLES).max(1),
+                    ..defaults.integration
+                },
+                ..defaults
+            },
+            full_body: self.full_body,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_defaults_are_simulates_and_bad_values_are_named() {
+        let c = SimulationControls::for_drive("bore_a");
+        let s = c.simulation().unwrap();
+        let d = DrivenBodyParameters::default();
+        assert_eq!(s.parameters.drive, "rbe2:bore_a");
+        assert_eq!((s.parameters.rate, s.parameters.ramp), (d.rate, d.ramp));
+        assert_eq!(s.parameters.integration, d.integration);
+        assert!(s.parameters.shake.is_none() && s.full_body);
+        let shaken = SimulationControls {
+            motion: DriveMotion::Shake,
+            end: 0.25,
+            ..c.clone()
+        }
+        .simulation()
+        .unwrap();
+        assert_eq!(shaken.parameters.rate, 0.0);
+        assert_eq!(shaken.parameters.shake, Some(([1.0, 0.0, 0.0], 1e-3, 50.0)));
+        assert_eq!(shaken.parameters.integration.output_every, 2);
+        for bad in [
+            SimulationControls {
+                drive: " ".into(),
+                ..c.clone()
+            },
+            SimulationControls {
+                end: 0.0,
+                ..c.clone()
+            },
+            SimulationControls {
+                rate: f64::NAN,
+                ..c.clone()
+            },
+        ] {
+            let e = bad.simulation().unwrap_err().to_string();
+            assert!(e.starts_with("invalid simulate in scene `modes`"), "{e}");
+        }
+    }
+}
