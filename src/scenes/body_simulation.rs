@@ -11,7 +11,7 @@ use crate::{
     models::{DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study},
     record::RecordingContent,
     reduction::Method,
-    report::{markdown_table, sig},
+    report::{Cell, Table, sig},
 };
 
 /// A driven simulation asked of the `modes` scene (the explorer's `simulate`): the body's
@@ -86,47 +86,7 @@ pub fn summary(
 ) -> (serde_json::Value, String) {
     let length = &body.units.length;
     let force = &body.units.force;
-    let full_online = study
-        .runs
-        .iter()
-        .find(|r| r.method.is_none())
-        .map(|r| r.cost.online_s);
-    let opt = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or("–".to_string(), f);
-    let rows: Vec<Vec<String>> = study
-        .runs
-        .iter()
-        .map(|r| {
-            vec![
-                r.label(),
-                r.coordinates.to_string(),
-                opt(r.hz_range.map(|h| h.0), &|x| format!("{:.6}", sig(x))),
-                opt(r.hz_range.map(|h| h.1), &|x| format!("{:.6}", sig(x))),
-                format!("{:.3}", r.offline_s),
-                format!("{:.4}", r.cost.online_s),
-                opt(full_online, &|f| {
-                    format!("{:.0}", f / r.cost.online_s.max(1e-9))
-                }),
-                r.cost.iterations.to_string(),
-                opt(r.history_error, &|e| format!("{e:.2e}")),
-                opt(r.reaction_error, &|e| format!("{e:.2e}")),
-            ]
-        })
-        .collect();
-    let table = markdown_table(
-        &[
-            "model",
-            "coordinates",
-            "lowest Hz",
-            "highest Hz",
-            "offline s",
-            "online s",
-            "NR online / online",
-            "Krylov iterations",
-            "history error",
-            "reaction error",
-        ],
-        &rows,
-    );
+    let table = runs_table(study).markdown();
     let (drive, master, ring) = &study.drive;
     let steps = study.runs.first().map_or(0, |r| r.cost.steps);
     let motion = motion_words(parameters, length);
@@ -208,6 +168,51 @@ pub fn summary(
         "runs": runs,
     });
     (value, text)
+}
+
+/// One row per run: its size, frequency range, costs and errors against the full body (the
+/// online time and both errors ranked, lower is better).
+pub fn runs_table(study: &DrivenStudy) -> Table {
+    let full_online = study
+        .runs
+        .iter()
+        .find(|r| r.method.is_none())
+        .map(|r| r.cost.online_s);
+    let none = || Cell::text("–");
+    let hz = |x: Option<f64>| x.map_or_else(none, |x| Cell::number(x, format!("{:.6}", sig(x))));
+    let error = |x: Option<f64>| x.map_or_else(none, |e| Cell::number(e, format!("{e:.2e}")));
+    let mut table = Table::new(&[
+        "model",
+        "coordinates",
+        "lowest Hz",
+        "highest Hz",
+        "offline s",
+        "online s",
+        "NR online / online",
+        "Krylov iterations",
+        "history error",
+        "reaction error",
+    ])
+    .rank_lower(&[5, 8, 9]);
+    for r in &study.runs {
+        let online = r.cost.online_s;
+        table.push(vec![
+            Cell::text(r.label()),
+            Cell::number(r.coordinates as f64, r.coordinates.to_string()),
+            hz(r.hz_range.map(|h| h.0)),
+            hz(r.hz_range.map(|h| h.1)),
+            Cell::number(r.offline_s, format!("{:.3}", r.offline_s)),
+            Cell::number(online, format!("{online:.4}")),
+            full_online.map_or_else(none, |f| {
+                let ratio = f / online.max(1e-9);
+                Cell::number(ratio, format!("{ratio:.0}"))
+            }),
+            Cell::text(r.cost.iterations.to_string()),
+            error(r.history_error),
+            error(r.reaction_error),
+        ]);
+    }
+    table
 }
 
 /// What moves the drive, in words: spun up, shaken, gravity, or held still.

@@ -142,6 +142,8 @@ pub fn recording(model: &FeModel, study: &DrivenStudy, text: &str) -> RecordingC
     // The table's title line is a heading in a terminal, a paragraph in the panel.
     let text = text.strip_prefix("# ").unwrap_or(text);
     let mut report = Report::new("simulate");
+    // The runs' table registered, so the explorer draws it as a grid with its ranks.
+    report.add_table(super::body_simulation::runs_table(study));
     report.table = text.to_string();
     let view = if scale != 1.0 {
         format!("turning frame, one lane per model (deflection ×{scale}; grey: undeformed)")
