@@ -765,3 +765,47 @@ fn the_explorer_simulates_a_users_body_from_its_panel() {
     assert_eq!(h.state().current.as_ref().unwrap().report.scene, "modes");
     assert!(h.query_by_role_and_label(Role::CheckBox, "MM").is_some());
 }
+
+/// The panel's simulation choices are `flexmodes simulate`'s defaults; a blank drive or a
+/// value that is not positive is a named error.
+#[test]
+fn the_simulation_controls_are_simulates_defaults_and_bad_values_are_named() {
+    use flexmodes::{
+        gui::{DriveMotion, SimulationControls},
+        models::DrivenBodyParameters,
+    };
+    let c = SimulationControls::for_drive("bore_a");
+    let s = c.simulation().unwrap();
+    let d = DrivenBodyParameters::default();
+    assert_eq!(s.parameters.drive, "rbe2:bore_a");
+    assert_eq!((s.parameters.rate, s.parameters.ramp), (d.rate, d.ramp));
+    assert_eq!(s.parameters.integration, d.integration);
+    assert!(s.parameters.shake.is_none() && s.full_body);
+    let shaken = SimulationControls {
+        motion: DriveMotion::Shake,
+        end: 0.25,
+        ..c.clone()
+    }
+    .simulation()
+    .unwrap();
+    assert_eq!(shaken.parameters.rate, 0.0);
+    assert_eq!(shaken.parameters.shake, Some(([1.0, 0.0, 0.0], 1e-3, 50.0)));
+    assert_eq!(shaken.parameters.integration.output_every, 2);
+    for bad in [
+        SimulationControls {
+            drive: " ".into(),
+            ..c.clone()
+        },
+        SimulationControls {
+            end: 0.0,
+            ..c.clone()
+        },
+        SimulationControls {
+            rate: f64::NAN,
+            ..c.clone()
+        },
+    ] {
+        let e = bad.simulation().unwrap_err().to_string();
+        assert!(e.starts_with("invalid simulate in scene `modes`"), "{e}");
+    }
+}

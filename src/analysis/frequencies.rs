@@ -17,7 +17,8 @@ pub fn free_free_modes(model: &FeModel) -> Result<GeneralizedEigen> {
     let n = model.dof_count();
     if n > COMPLETE_EIGEN_LIMIT {
         return Err(Error::TooLarge {
-            method: "the complete free-free eigenproblem".into(),
+            method: "the complete free-free eigenproblem",
+            step: None,
             dofs: n,
             limit: COMPLETE_EIGEN_LIMIT,
         });

@@ -40,7 +40,7 @@ struct Runs {
     stderr: String,
 }
 
-fn run_timed(mut command: Command, repeats: usize, what: &str) -> Result<Runs> {
+fn run_timed(mut command: Command, repeats: usize, what: &'static str) -> Result<Runs> {
     let mut seconds = Vec::with_capacity(repeats);
     let mut stdout = String::new();
     let mut stderr = String::new();
@@ -53,7 +53,7 @@ fn run_timed(mut command: Command, repeats: usize, what: &str) -> Result<Runs> {
         seconds.push(started.elapsed().as_secs_f64());
         if !out.status.success() {
             return Err(Error::PeerFailed {
-                peer: what.to_string(),
+                peer: what,
                 reason: String::from_utf8_lossy(&out.stderr)
                     .lines()
                     .last()
@@ -116,7 +116,7 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
         },
     )?)
     .map_err(|e| Error::PeerFailed {
-        peer: "flexmodes export".into(),
+        peer: "flexmodes export",
         reason: format!("its model.json does not parse: {e}"),
     })?;
     let _ = std::fs::remove_dir_all(&out_dir);

@@ -146,7 +146,7 @@ impl ImportedBody {
         if body.stiffness.cols != n || n == 0 {
             return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
                 path: k_name,
-                what: "stiffness".into(),
+                what: "stiffness",
                 rows: n,
                 cols: body.stiffness.cols,
                 expected: "a stiffness must be square, with at least one DOF".into(),

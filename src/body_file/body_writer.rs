@@ -84,7 +84,7 @@ pub fn write_body(model: &FeModel, parameters: &BodyFileParameters) -> Result<Bo
     };
     if let Some(format) = unwritable {
         return Err(Error::BodyFile(super::BodyFileError::NotWritable {
-            format: format.into(),
+            format,
         }));
     }
     let mut files = BodyFiles::new();

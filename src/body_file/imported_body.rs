@@ -271,15 +271,7 @@ impl ImportedBody {
                     let set = self.node_sets.get(item).ok_or_else(|| {
                         Error::BodyFile(BodyFileError::UnknownNodeSet {
                             name: item.into(),
-                            known: if self.node_sets.is_empty() {
-                                "no node sets".into()
-                            } else {
-                                self.node_sets
-                                    .keys()
-                                    .cloned()
-                                    .collect::<Vec<_>>()
-                                    .join(", ")
-                            },
+                            known: self.node_sets.keys().cloned().collect(),
                         })
                     })?;
                     for &n in set {

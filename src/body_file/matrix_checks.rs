@@ -15,7 +15,7 @@ use crate::{
 pub(super) fn symmetric_matrix(
     file: &MatrixMarket,
     name: &str,
-    what: &str,
+    what: &'static str,
     to_node_major: &dyn Fn(usize) -> usize,
 ) -> Result<SparseSymmetric> {
     let n = file.rows;
@@ -46,7 +46,7 @@ pub(super) fn symmetric_matrix(
     if scale > 0.0 && worst.0 > SYMMETRY_TOLERANCE * scale {
         return Err(Error::BodyFile(BodyFileError::NotSymmetric {
             path: name.into(),
-            what: what.into(),
+            what,
             row: worst.1 + 1,
             col: worst.2 + 1,
             asymmetry: worst.0 / scale,
@@ -80,7 +80,7 @@ pub(super) fn mass_matrix(
     if file.rows != n || file.cols != n {
         return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
             path: name.into(),
-            what: "mass".into(),
+            what: "mass",
             rows: file.rows,
             cols: file.cols,
             expected: format!("the stiffness is {n} × {n} (or give an {n} × 1 lumped vector)"),

@@ -106,7 +106,7 @@ pub(super) fn read_matrices(
     if k_file.rows != k_file.cols {
         return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
             path: k_name,
-            what: "stiffness".into(),
+            what: "stiffness",
             rows: k_file.rows,
             cols: k_file.cols,
             expected: "a stiffness must be square".into(),
@@ -141,7 +141,7 @@ pub(super) fn read_nodes(
             if !n.is_multiple_of(per) {
                 return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
                     path: matrices.k_name.clone(),
-                    what: "stiffness".into(),
+                    what: "stiffness",
                     rows: n,
                     cols: n,
                     expected: format!(
@@ -222,7 +222,7 @@ pub(super) fn place_equations(
         if file.rows != equations.len() {
             return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
                 path: name.clone(),
-                what: "matrix".into(),
+                what: "matrix",
                 rows: file.rows,
                 cols: file.cols,
                 expected: format!("the DOF map {map_name} has {} equations", equations.len()),
@@ -252,7 +252,7 @@ pub(super) fn check_node_count(
     }
     Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
         path: k_name.to_string(),
-        what: "stiffness".into(),
+        what: "stiffness",
         rows: n,
         cols: n,
         expected: format!(

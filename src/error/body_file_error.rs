@@ -7,7 +7,7 @@ use thiserror::Error;
 pub enum BodyFileError {
     /// A format flexmodes reads but does not write.
     #[error("{format} is read, not written: write matrix-market, abaqus or nastran-dmig")]
-    NotWritable { format: String },
+    NotWritable { format: &'static str },
 
     /// A Matrix Market file whose first line is not a real `coordinate` or `array` header.
     #[error("{path}:{line}: not a real Matrix Market matrix: {found}")]
@@ -56,7 +56,7 @@ pub enum BodyFileError {
     #[error("{path}: the {what} is {rows} × {cols}, but {expected}")]
     MatrixSizeMismatch {
         path: String,
-        what: String,
+        what: &'static str,
         rows: usize,
         cols: usize,
         expected: String,
@@ -69,7 +69,7 @@ pub enum BodyFileError {
     )]
     NotSymmetric {
         path: String,
-        what: String,
+        what: &'static str,
         row: usize,
         col: usize,
         asymmetry: f64,
@@ -95,8 +95,11 @@ pub enum BodyFileError {
     },
 
     /// A boundary given by a set name that the body file does not define.
-    #[error("unknown node set `{name}` (the body defines: {known})")]
-    UnknownNodeSet { name: String, known: String },
+    #[error(
+        "unknown node set `{name}` (the body defines: {})",
+        if known.is_empty() { "no node sets".to_string() } else { known.join(", ") }
+    )]
+    UnknownNodeSet { name: String, known: Vec<String> },
 
     /// Drawing asked of a body that has no node coordinates.
     #[error(

@@ -8,7 +8,7 @@ use thiserror::Error;
 pub enum Error {
     /// A scene id that is not in the registry.
     #[error("unknown scene `{id}` (known scenes: {known})")]
-    UnknownScene { id: String, known: String },
+    UnknownScene { id: String, known: &'static str },
 
     /// A reduction method the scene does not offer.
     #[error(
@@ -54,10 +54,15 @@ pub enum Error {
         carried: String,
     },
 
-    /// A model larger than a method (or the machine) can take.
-    #[error("{method} is limited to {limit} DOF, but this model has {dofs}")]
+    /// A model larger than a method (or the machine) can take; `step` names the part of
+    /// the method that is limited, when it is one.
+    #[error(
+        "{method}{} is limited to {limit} DOF, but this model has {dofs}",
+        step.map(|s| format!(" ({s})")).unwrap_or_default()
+    )]
     TooLarge {
-        method: String,
+        method: &'static str,
+        step: Option<&'static str>,
         dofs: usize,
         limit: usize,
     },
@@ -92,15 +97,11 @@ pub enum Error {
 
     /// A mesh size `bench --sizes` cannot read.
     #[error("--sizes: `{token}` is neither one of {named} nor NXxNYxNZ with positive counts")]
-    InvalidSize { token: String, named: String },
+    InvalidSize { token: String, named: &'static str },
 
     /// A peer a bench runs (a process, or the file it wrote) failed.
     #[error("{peer} failed: {reason}")]
-    PeerFailed { peer: String, reason: String },
-
-    /// Writing a recording failed; the destination was left untouched.
-    #[error("could not write recording {path}: {reason}")]
-    RecordingWrite { path: String, reason: String },
+    PeerFailed { peer: &'static str, reason: String },
 
     /// A visual's per-time sequences differ in length (a scene's bug, caught before logging
     /// a frame whose parts do not belong together).

@@ -16,12 +16,15 @@ pub enum ReductionError {
 
     /// An export another code cannot take as it is (`to`: the code).
     #[error("cannot export for {to}: {reason}")]
-    NotExportable { to: String, reason: String },
+    NotExportable { to: &'static str, reason: String },
 
     /// A method asked of the generic [`reduce`](crate::reduction::reduce) entry point that
     /// needs more than a boundary set and a mode count.
     #[error("{method} needs {needs}")]
-    MethodNeedsContext { method: String, needs: String },
+    MethodNeedsContext {
+        method: &'static str,
+        needs: &'static str,
+    },
 
     /// MacNeal–Rubin's r-set (Spanos–Tsuha Eq. 11) must restrain every rigid motion with
     /// exactly as many DOF as there are rigid motions (statically determinate).
@@ -89,6 +92,6 @@ pub enum ReductionError {
     AnchorNotInBasis {
         node: usize,
         direction: &'static str,
-        method: String,
+        method: &'static str,
     },
 }

@@ -1,5 +1,7 @@
 //! Errors of serving the classroom: which address, port, file or asset.
 
+use std::{net::IpAddr, path::PathBuf};
+
 use thiserror::Error;
 
 /// Errors of `flexmodes serve`: which address, port, file or asset.
@@ -15,19 +17,23 @@ pub enum ServeError {
     /// A port another program (or another server) already holds.
     #[error("{address}:{port} is in use (the {what}); choose another with --{option}")]
     PortInUse {
-        address: String,
+        address: IpAddr,
         port: u16,
         what: &'static str,
         option: &'static str,
     },
 
     /// An address that is not an IP address of this machine.
-    #[error("cannot bind {address}: {reason}")]
-    Bind { address: String, reason: String },
+    #[error("cannot bind {address}{}: {reason}", port.map(|p| format!(":{p}")).unwrap_or_default())]
+    Bind {
+        address: IpAddr,
+        port: Option<u16>,
+        reason: String,
+    },
 
     /// A recording file that does not decode whole (or holds no recording).
-    #[error("{path}: not a Rerun recording flexmodes can serve: {reason}")]
-    Recording { path: String, reason: String },
+    #[error("{}: not a Rerun recording flexmodes can serve: {reason}", .path.display())]
+    Recording { path: PathBuf, reason: String },
 
     /// A `--control-token` too short or with characters a URL would change (not echoed: it is
     /// the teacher's secret).

@@ -62,7 +62,7 @@ pub struct ExudynBody {
 
 fn refuse(reason: impl Into<String>) -> crate::Error {
     ReductionError::NotExportable {
-        to: "Exudyn".into(),
+        to: "Exudyn",
         reason: reason.into(),
     }
     .into()

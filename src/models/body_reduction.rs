@@ -229,10 +229,9 @@ impl<'a> BodyReducer<'a> {
     pub fn problem(&mut self) -> Result<&mut InteriorProblem<'a>> {
         self.problem.as_mut().ok_or_else(|| {
             ReductionError::MethodNeedsContext {
-                method: "a fixed-interface basis".into(),
+                method: "a fixed-interface basis",
                 needs: "a boundary that holds the body (node sets or rbe2 interfaces); rbe3 \
-                        interfaces only average and load it"
-                    .into(),
+                        interfaces only average and load it",
             }
             .into()
         })
@@ -382,12 +381,11 @@ impl<'a> BodyReducer<'a> {
             && !self.interfaces.averaging.is_empty()
         {
             return Err(ReductionError::MethodNeedsContext {
-                method: method.name().into(),
+                method: method.name(),
                 needs: "interfaces that are boundary DOF: an rbe3 master is a dependent node \
                         (the weighted average of its ring, which stays free), so it has no \
                         constraint mode of its own; use rbe2 for a joint, or bh, mm, bt, which \
-                        load the master"
-                    .into(),
+                        load the master",
             }
             .into());
         }
@@ -408,11 +406,10 @@ impl<'a> BodyReducer<'a> {
             Method::MacNealRubin => {
                 if !self.interfaces.rigid.is_empty() {
                     return Err(ReductionError::MethodNeedsContext {
-                        method: "MacNeal-Rubin".into(),
+                        method: "MacNeal-Rubin",
                         needs: "plain interface DOF: its free-interface and residual-flexibility \
                                 columns are no unit boundary motions an rbe2 master could \
-                                combine"
-                            .into(),
+                                combine",
                     }
                     .into());
                 }
@@ -455,8 +452,8 @@ impl<'a> BodyReducer<'a> {
             }
             other => {
                 return Err(ReductionError::MethodNeedsContext {
-                    method: other.name().into(),
-                    needs: "a set-up of its own (it is shown in its scenes, not on a body)".into(),
+                    method: other.name(),
+                    needs: "a set-up of its own (it is shown in its scenes, not on a body)",
                 }
                 .into());
             }

@@ -629,10 +629,9 @@ impl ReducedRuns<'_> {
     ) -> Result<()> {
         if !DRIVEN_METHODS.contains(&method) {
             return Err(ReductionError::MethodNeedsContext {
-                method: method.name().into(),
+                method: method.name(),
                 needs: "a basis whose boundary columns are unit interface motions, so the \
-                        driven ring can be held still on the frame (gr, mt, cb, mc)"
-                    .into(),
+                        driven ring can be held still on the frame (gr, mt, cb, mc)",
             }
             .into());
         }
@@ -654,11 +653,10 @@ impl ReducedRuns<'_> {
             .collect();
         if keep.is_empty() {
             return Err(ReductionError::MethodNeedsContext {
-                method: method.name().into(),
+                method: method.name(),
                 needs: "a coordinate besides the drive: Guyan keeps only the interfaces' \
                         constraint modes, and with the drive the only interface the body \
-                        would be rigid (add --boundary)"
-                    .into(),
+                        would be rigid (add --boundary)",
             }
             .into());
         }

@@ -110,7 +110,8 @@ pub fn benfield_hruda(
     let n = model.dof_count();
     if n > COMPLETE_EIGEN_LIMIT {
         return Err(Error::TooLarge {
-            method: "Benfield-Hruda (dense loaded eigenproblem)".into(),
+            method: "Benfield-Hruda",
+            step: Some("dense loaded eigenproblem"),
             dofs: n,
             limit: COMPLETE_EIGEN_LIMIT,
         });

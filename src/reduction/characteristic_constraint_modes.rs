@@ -35,10 +35,9 @@ impl CharacteristicConstraintModes {
         let constraint = basis.columns_of(|k| *k == ColumnKind::Constraint);
         if constraint.is_empty() {
             return Err(ReductionError::MethodNeedsContext {
-                method: basis.method.name().into(),
+                method: basis.method.name(),
                 needs: "constraint modes for --interface-modes (Craig-Bampton or Guyan; the \
-                        boundary of a rigid interface is already six DOF)"
-                    .into(),
+                        boundary of a rigid interface is already six DOF)",
             }
             .into());
         }

@@ -164,7 +164,8 @@ pub fn eitelberg(
     let n = model.dof_count();
     if n > EITELBERG_DOF_LIMIT {
         return Err(Error::TooLarge {
-            method: "Eitelberg's method (dense 2n state matrix)".into(),
+            method: "Eitelberg's method",
+            step: Some("dense 2n state matrix"),
             dofs: n,
             limit: EITELBERG_DOF_LIMIT,
         });

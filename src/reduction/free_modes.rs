@@ -102,7 +102,8 @@ pub fn restrained_modes(
     let free: Vec<usize> = (0..n).filter(|d| !held.contains(d)).collect();
     if free.len() > COMPLETE_EIGEN_LIMIT {
         return Err(Error::TooLarge {
-            method: "restrained free-interface modes (dense)".into(),
+            method: "restrained free-interface modes",
+            step: Some("dense"),
             dofs: free.len(),
             limit: COMPLETE_EIGEN_LIMIT,
         });

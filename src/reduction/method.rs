@@ -197,8 +197,8 @@ pub fn reduce_interior(
             mode_condensation::mode_condensation_from(problem, modes, route)
         }
         other => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: other.name().into(),
-            needs: "a fixed-interface basis is built by gr, mt, cb or mc".into(),
+            method: other.name(),
+            needs: "a fixed-interface basis is built by gr, mt, cb or mc",
         })),
     }
 }
@@ -219,20 +219,20 @@ pub fn reduce(model: &FeModel, method: Method, p: &ReductionParameters) -> Resul
         }
         Method::Eitelberg => Ok(eitelberg(model, &p.boundary_nodes, &Default::default())?.basis),
         Method::MacNealRubin => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: method.name().into(),
-            needs: "an r-set besides the interface (use `macneal_rubin`)".into(),
+            method: method.name(),
+            needs: "an r-set besides the interface (use `macneal_rubin`)",
         })),
         Method::BenfieldHruda => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: method.name().into(),
-            needs: "the interface loading of the adjacent components (use `benfield_hruda`)".into(),
+            method: method.name(),
+            needs: "the interface loading of the adjacent components (use `benfield_hruda`)",
         })),
         Method::MomentMatching => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: method.name().into(),
-            needs: "input DOF and a block count (use `moment_matching`)".into(),
+            method: method.name(),
+            needs: "input DOF and a block count (use `moment_matching`)",
         })),
         Method::BalancedTruncation => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: method.name().into(),
-            needs: "inputs, outputs and damping (use `balanced_truncation_basis`)".into(),
+            method: method.name(),
+            needs: "inputs, outputs and damping (use `balanced_truncation_basis`)",
         })),
     }
 }

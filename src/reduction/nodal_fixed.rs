@@ -116,7 +116,7 @@ impl NodalFixedAxes {
                     return Err(Error::Reduction(ReductionError::AnchorNotInBasis {
                         node,
                         direction: dir.name(),
-                        method: basis.method.name().into(),
+                        method: basis.method.name(),
                     }));
                 }
             }
@@ -131,7 +131,7 @@ impl NodalFixedAxes {
                 return Err(Error::Reduction(ReductionError::AnchorNotInBasis {
                     node,
                     direction: dir.name(),
-                    method: basis.method.name().into(),
+                    method: basis.method.name(),
                 }));
             }
         }

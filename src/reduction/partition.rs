@@ -380,17 +380,22 @@ impl<'a> InteriorProblem<'a> {
     /// (Eq. 6.11), by a complete dense eigenproblem whatever the path (mode condensation's
     /// route of §6.5, whose n³ cost this makes visible). Beyond [`COMPLETE_EIGEN_LIMIT`]
     /// interior DOF it is [`Error::TooLarge`].
-    pub fn complete_modes(&mut self, method: &str) -> Result<GeneralizedEigen> {
+    pub fn complete_modes(&mut self, method: &'static str) -> Result<GeneralizedEigen> {
         self.dense_modes(method, PairSelection::All)
     }
 
     /// The pairs `selection` keeps of the complete dense interior problem: solved whole, only
     /// the kept pairs transformed back and checked.
-    fn dense_modes(&mut self, method: &str, selection: PairSelection) -> Result<GeneralizedEigen> {
+    fn dense_modes(
+        &mut self,
+        method: &'static str,
+        selection: PairSelection,
+    ) -> Result<GeneralizedEigen> {
         let n = self.interior_dofs();
         if n > COMPLETE_EIGEN_LIMIT {
             return Err(Error::TooLarge {
-                method: format!("{method} (complete interior eigenproblem)"),
+                method,
+                step: Some("complete interior eigenproblem"),
                 dofs: n,
                 limit: COMPLETE_EIGEN_LIMIT,
             });

@@ -42,7 +42,8 @@ impl Classroom {
         };
         let sink = GrpcServerSink::new(&address.to_string(), port, options).map_err(|e| {
             ServeError::Bind {
-                address: address.to_string(),
+                address,
+                port: Some(port),
                 reason: e.to_string(),
             }
         })?;
@@ -82,7 +83,7 @@ pub fn scene_messages(
 pub fn file_messages(path: &Path) -> Result<Vec<LogMsg>> {
     let refuse = |reason: String| -> crate::Error {
         ServeError::Recording {
-            path: path.display().to_string(),
+            path: path.to_path_buf(),
             reason,
         }
         .into()

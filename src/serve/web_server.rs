@@ -27,14 +27,15 @@ pub fn check_port(
     match std::net::TcpListener::bind((address, port)) {
         Ok(_) => Ok(()),
         Err(e) if e.kind() == std::io::ErrorKind::AddrInUse => Err(ServeError::PortInUse {
-            address: address.to_string(),
+            address,
             port,
             what,
             option,
         }
         .into()),
         Err(e) => Err(ServeError::Bind {
-            address: address.to_string(),
+            address,
+            port: Some(port),
             reason: e.to_string(),
         }
         .into()),
@@ -122,7 +123,8 @@ impl WebServer {
         let server =
             Arc::new(
                 tiny_http::Server::http((address, port)).map_err(|e| ServeError::Bind {
-                    address: format!("{address}:{port}"),
+                    address,
+                    port: Some(port),
                     reason: e.to_string(),
                 })?,
             );
