@@ -6,6 +6,8 @@ state (views empty, meshes stacked at the origin, plots without their lines).
 
     python3 assets/gui/check_switches.py --binary target/debug/flexmodes \
         --scene slab-sim1 --toggle gr --out target/gui-check/slab-sim1
+    python3 assets/gui/check_switches.py --body tests/bodies/steel-link/body.toml \
+        --simulate bore_a --toggle mt --repeat 1 --out target/gui-check/steel-link
 
 Needs Xvfb and a Vulkan or GL driver that runs without a GPU (Debian: xvfb,
 mesa-vulkan-drivers) and Pillow. The screenshots stay in --out; a summary goes to
@@ -71,8 +73,12 @@ def run_explorer(args, display):
     if os.path.isdir(args.out):
         shutil.rmtree(args.out)
     os.makedirs(args.out)
+    # A body file opens the `modes` scene on it, driven through a node set with --simulate.
+    opened = [args.scene] if args.body is None else ["--body", args.body]
+    if args.simulate is not None:
+        opened += ["--simulate", args.simulate, "--interval", str(args.interval)]
     command = [
-        args.binary, "gui", args.scene, "--window-size", args.window,
+        args.binary, "gui", *opened, "--window-size", args.window,
         "--screenshot", os.path.join(args.out, "final.png"),
         "--toggle", args.toggle, "--repeat", str(args.repeat), "--pause", str(args.pause),
         "--frames", args.out, "--frame-every-ms", "1", "--frame-count", str(args.frames),
@@ -149,6 +155,10 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--binary", default="target/debug/flexmodes")
     p.add_argument("--scene", default="slab-sim1")
+    p.add_argument("--body", help="open the `modes` scene on this body file instead of --scene")
+    p.add_argument("--simulate", help="with --body: drive this node set (`gui --simulate`)")
+    p.add_argument("--interval", type=float, default=0.1,
+                   help="with --simulate: the simulated interval, s")
     p.add_argument("--toggle", default="gr")
     p.add_argument("--repeat", type=int, default=2)
     p.add_argument("--pause", type=float, default=8.0,
