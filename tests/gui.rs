@@ -710,6 +710,7 @@ fn the_explorer_simulates_a_users_body_from_its_panel() {
     // second-long run the click started is superseded).
     let simulation = h.state().controls.simulation.clone().expect("simulating");
     assert_eq!(simulation.drive, "bore_a");
+    assert_eq!(h.state().save_path, "simulate.rrd");
     h.get_by_label("100 ms").click();
     settle(&mut h);
     assert!(h.state().error.is_none(), "{:?}", h.state().error);

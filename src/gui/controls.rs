@@ -82,6 +82,15 @@ impl Controls {
         })
     }
 
+    /// The file name `save .rrd` proposes: the scene's id, or `simulate` for a driven body
+    /// (the name `flexmodes simulate --save` users give it).
+    pub fn file_name(&self) -> String {
+        match &self.simulation {
+            Some(_) if self.takes_body() => "simulate.rrd".into(),
+            _ => format!("{}.rrd", self.scene),
+        }
+    }
+
     /// Whether the scene takes a body file (and node-set names as boundary).
     pub fn takes_body(&self) -> bool {
         self.scene == SceneId::Modes

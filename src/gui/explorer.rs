@@ -73,7 +73,7 @@ impl Edits {
 impl Explorer {
     /// Starts with `controls` and requests the first computation.
     pub fn new(controls: Controls) -> Self {
-        let save_path = format!("{}.rrd", controls.scene);
+        let save_path = controls.file_name();
         let mut e = Self {
             edits: Edits::of(&controls),
             controls,
@@ -228,11 +228,16 @@ impl Explorer {
             match c {
                 Command::SelectScene(id) => {
                     self.controls = Controls::for_scene(id);
-                    self.save_path = format!("{id}.rrd");
+                    self.save_path = self.controls.file_name();
                     self.request();
                 }
                 Command::Set(change) => {
+                    // The proposed file name follows the recording unless the user typed one.
+                    let proposed = self.save_path == self.controls.file_name();
                     self.controls.change(change);
+                    if proposed {
+                        self.save_path = self.controls.file_name();
+                    }
                     self.request();
                 }
                 Command::ResetBoundary => {
