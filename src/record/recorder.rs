@@ -458,6 +458,11 @@ fn log_mode(
     Ok(())
 }
 
+/// Width of a deformable body's drawn lines against a rigid outline's (its undeformed ghost,
+/// a link): where the two coincide, at rest (a simulation's first instant), the body's colour
+/// still shows around the grey ghost instead of vanishing under it for that frame.
+const DEFORMED_LINE_WIDTH: f32 = 1.6;
+
 /// A deformable body's drawn history over simulated time.
 fn log_trajectory(
     rec: &RecordingStream,
@@ -467,10 +472,11 @@ fn log_trajectory(
     positions: &[Vec<[f64; 3]>],
     c: Color,
 ) -> Result<()> {
-    let r = positions
-        .first()
-        .map(|p| radius(&geometry.with_nodes(p.clone())))
-        .unwrap_or(1e-3);
+    let r = DEFORMED_LINE_WIDTH
+        * positions
+            .first()
+            .map(|p| radius(&geometry.with_nodes(p.clone())))
+            .unwrap_or(1e-3);
     let style = Lines {
         strips: Vec::new(),
         color: color(c),
