@@ -760,6 +760,26 @@ fn the_explorer_simulates_a_users_body_from_its_panel() {
     assert!(paths(&h).contains(&"world/body/mt_10/deformed".to_string()));
     // A method that cannot hold the driven ring is not offered while simulating.
     assert!(h.query_by_role_and_label(Role::CheckBox, "MM").is_none());
+    // Guyan keeps nothing but interfaces: with the other bore kept (tied rigidly, free in the
+    // simulation) it runs beside CB; the full body's run is the one already made.
+    h.get_by_label("MT").click();
+    settle(&mut h);
+    h.get_by_label("MC").click();
+    settle(&mut h);
+    h.get_by_role_and_label(Role::CheckBox, "rbe2:bore_b")
+        .click();
+    settle(&mut h);
+    h.get_by_label("GR").click();
+    settle(&mut h);
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert_eq!(
+        h.state().controls.simulation.as_ref().unwrap().kept,
+        ["bore_b"]
+    );
+    let kept = untimed_rows(&h.state().current.as_ref().unwrap().report.table);
+    assert_eq!(kept.len(), 3, "{kept:?}");
+    assert_eq!(kept[0], rows[0], "the full body's row");
+    assert!(kept.iter().any(|r| r.starts_with("|GR|")), "{kept:?}");
     // Unticked, the body's modes are asked for again with every method offered (their
     // recomputation, seen above, is not waited for).
     h.get_by_label("simulate: drive an interface").click();
@@ -793,6 +813,15 @@ fn the_simulation_controls_are_simulates_defaults_and_bad_values_are_named() {
     .simulation()
     .unwrap();
     assert_eq!(shaken.parameters.rate, 0.0);
+    // Kept interfaces become the reduced models' rigid interfaces; the drive is never one.
+    let kept = SimulationControls {
+        kept: vec!["bore_b".into(), "bore_a".into()],
+        ..c.clone()
+    }
+    .simulation()
+    .unwrap();
+    assert_eq!(kept.parameters.boundary, ["rbe2:bore_b"]);
+    assert!(s.parameters.boundary.is_empty());
     assert_eq!(shaken.parameters.shake, Some(([1.0, 0.0, 0.0], 1e-3, 50.0)));
     assert_eq!(shaken.parameters.integration.output_every, 2);
     for bad in [

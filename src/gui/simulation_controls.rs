@@ -24,6 +24,10 @@ pub enum DriveMotion {
 pub struct SimulationControls {
     /// The driven interface: a node set of the body, tied rigidly to its master (RBE2).
     pub drive: String,
+    /// Other node sets the reduced models keep as interfaces (each tied rigidly, free in the
+    /// simulation): Guyan needs one, and they bound what the reduced models can do there.
+    #[serde(default)]
+    pub kept: Vec<String>,
     /// How the drive moves.
     pub motion: DriveMotion,
     /// Steady spin rate, rad/s (spin-up).
@@ -60,6 +64,7 @@ impl SimulationControls {
         let d = DrivenBodyParameters::default();
         Self {
             drive: drive.into(),
+            kept: Vec::new(),
             motion: DriveMotion::SpinUp,
             rate: d.rate,
             ramp: d.ramp,
@@ -98,6 +103,12 @@ impl SimulationControls {
         Ok(BodySimulation {
             parameters: DrivenBodyParameters {
                 drive: format!("rbe2:{}", self.drive.trim()),
+                boundary: self
+                    .kept
+                    .iter()
+                    .filter(|set| set.trim() != self.drive.trim())
+                    .map(|set| format!("rbe2:{}", set.trim()))
+                    .collect(),
                 rate: if shake { 0.0 } else { self.rate },
                 ramp: self.ramp,
                 shake: shake.then_some(([1.0, 0.0, 0.0], self.amplitude, self.frequency)),

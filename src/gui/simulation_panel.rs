@@ -46,6 +46,25 @@ impl Explorer {
                     .on_hover_text(format!("{count} nodes tied to one 6-DOF master, driven"));
             }
         });
+        ui.horizontal_wrapped(|ui| {
+            ui.label("also kept:");
+            for (name, count) in sets.iter().filter(|(name, _)| *name != changed.drive) {
+                let mut on = changed.kept.contains(name);
+                if ui
+                    .checkbox(&mut on, format!("rbe2:{name}"))
+                    .on_hover_text(format!(
+                        "{count} nodes tied to a master the reduced models keep as an \
+                         interface (free in the simulation; Guyan needs one)"
+                    ))
+                    .changed()
+                {
+                    changed.kept.retain(|k| k != name);
+                    if on {
+                        changed.kept.push(name.clone());
+                    }
+                }
+            }
+        });
         ui.horizontal(|ui| {
             ui.label("motion:");
             ui.selectable_value(&mut changed.motion, DriveMotion::SpinUp, "spin up")

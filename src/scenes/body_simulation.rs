@@ -52,19 +52,26 @@ pub fn simulated(
     let study = if cache.is_detached() {
         study_of(methods, simulation.full_body)?
     } else {
-        let key = |run: &str| {
+        let key = |run: &str, parameters: &DrivenBodyParameters| {
             format!(
-                "simulate/{:?}/{}/{:?}/{run}",
-                body.location, body.model.name, simulation.parameters
+                "simulate/{:?}/{}/{parameters:?}/{run}",
+                body.location, body.model.name
             )
         };
         let mut parts = Vec::new();
         if simulation.full_body {
-            parts.push(cache.get_or_run(key("nr"), || study_of(&[], true))?);
+            // The full body leaves the reduced models' kept interfaces free: its run does not
+            // depend on them.
+            let full = DrivenBodyParameters {
+                boundary: Vec::new(),
+                ..simulation.parameters.clone()
+            };
+            parts.push(cache.get_or_run(key("nr", &full), || study_of(&[], true))?);
         }
         for &m in methods {
             let run = format!("{}/{modes}", m.id());
-            parts.push(cache.get_or_run(key(&run), || study_of(&[m], false))?);
+            let reduced = key(&run, &simulation.parameters);
+            parts.push(cache.get_or_run(reduced, || study_of(&[m], false))?);
         }
         DrivenStudy::joined(&parts.iter().map(|p| p.as_ref()).collect::<Vec<_>>())?
     };
