@@ -13,7 +13,7 @@ pub enum BodyLocation {
     Disk(PathBuf),
     /// A body embedded in the binary (`builtin:NAME`, from `assets/bodies/NAME/`).
     Builtin(String),
-    /// A body handed over in memory ([`ImportedBody::from_matrices`], Python's
+    /// A body handed over in memory ([`ImportedBody::from_matrices`](super::ImportedBody::from_matrices), Python's
     /// `flexmodes.Body`): its name; it names no other file.
     Memory(String),
 }

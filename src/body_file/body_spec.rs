@@ -238,7 +238,7 @@ impl std::str::FromStr for MatrixFormat {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GeometrySpec {
-    /// Node coordinates: a CSV file (x,y[,z] per line, optionally a leading node number) or
+    /// Node coordinates: a CSV file (`x,y[,z]` per line, optionally a leading node number) or
     /// inline `[[x, y, z], ...]`.
     pub nodes: Option<TableOrFile<f64>>,
     /// Wireframe edges as 1-based node pairs, or faces as 1-based node cycles: a CSV file or

@@ -52,7 +52,7 @@ const RANGE_SPACE_PIVOT: f64 = 1e-10;
 /// rigid motion and the frame block is round-off.
 const RANGE_SPACE_FRAME_PIVOT: f64 = 1e-8;
 
-/// Whether the squared Cholesky pivots `l_diagonal` stay above [`RANGE_SPACE_PIVOT`] of the
+/// Whether the squared Cholesky pivots `l_diagonal` stay above `RANGE_SPACE_PIVOT` of the
 /// largest.
 fn pivots_ok(l_diagonal: impl IntoIterator<Item = f64>) -> bool {
     let (mut smallest, mut largest) = (f64::INFINITY, 0.0f64);
@@ -91,9 +91,9 @@ const FRAME_BLOCK: usize = 6;
 ///   constraint rows by [`saddle_point_solve`] (scaled $LBL^T$, or the pseudo-inverse).
 ///
 /// A block is clearly definite when its Cholesky factor's squared pivots all exceed
-/// [`RANGE_SPACE_FRAME_PIVOT`] of `frame_scale` (the largest diagonal entry of the frame
+/// `RANGE_SPACE_FRAME_PIVOT` of `frame_scale` (the largest diagonal entry of the frame
 /// blocks before the modal coordinates were eliminated: a mass or a moment of inertia) and
-/// [`RANGE_SPACE_PIVOT`] of its largest one. The elimination is exact, so the solution is the
+/// `RANGE_SPACE_PIVOT` of its largest one. The elimination is exact, so the solution is the
 /// one [`saddle_point_solve`] finds for the whole system (tested to round-off); it costs a few
 /// 6 × 6 solves per body where the indefinite factorisation of the whole costs
 /// $O((n_f + n_r)^3)$.
@@ -271,7 +271,7 @@ struct EliminatedBlock {
 
 /// The Jacobi-scaled Cholesky factor of $S$, given the constraint block `neg_s` $= -S$ of
 /// [`block_saddle_point_solve`], when $S$ is clearly positive definite (squared pivots above
-/// [`RANGE_SPACE_PIVOT`] of the largest after scaling, so constraint rows of different units
+/// `RANGE_SPACE_PIVOT` of the largest after scaling, so constraint rows of different units
 /// compare); refused otherwise (redundant constraints, or rows only a kept block touches).
 #[derive(Debug, Clone, Default)]
 struct ScaledSchur {

@@ -140,7 +140,7 @@ pub struct InterfaceStatics {
 impl InterfaceStatics {
     /// $G$ of the full body: $x = K^+ L_e$ by the fixed point
     /// $x \leftarrow (K + \sigma M)^{-1}(L_e + \sigma M x)$ on one sparse Cholesky of
-    /// $K + \sigma M$ ($\sigma$ = [`STATIC_SHIFT`] of the lowest elastic eigenvalue
+    /// $K + \sigma M$ ($\sigma$ = `STATIC_SHIFT` of the lowest elastic eigenvalue
     /// `lowest`), until the update is below 1e-12 of $x$; `zero` are the body's
     /// mass-normalised zero-energy modes.
     pub fn of_full_body(

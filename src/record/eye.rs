@@ -128,10 +128,10 @@ pub fn series_range(origin: &str, visuals: &[Visual]) -> Option<[f64; 2]> {
 
 impl Eye {
     /// The camera (z up) that frames `bounds` in a view `aspect` times wider than high: it
-    /// looks at their centre across the longer horizontal extent, turned [`SKEW`] from
-    /// square-on and raised [`ELEVATION`], from the nearest place where every corner of the
+    /// looks at their centre across the longer horizontal extent, turned `SKEW` from
+    /// square-on and raised `ELEVATION`, from the nearest place where every corner of the
     /// bounds lies inside the viewer's field of view (55° high, `aspect` × as wide) shrunk by
-    /// [`MARGIN`], perspective included.
+    /// `MARGIN`, perspective included.
     pub fn framing(bounds: &Bounds, aspect: f64) -> Eye {
         let centre = [0, 1, 2].map(|i| 0.5 * (bounds.lo[i] + bounds.hi[i]));
         let extent = [0, 1, 2].map(|i| bounds.hi[i] - bounds.lo[i]);

@@ -155,7 +155,7 @@ impl Layout {
 
     /// The layout with the tab titles the viewer would cut at `size` (width, height in
     /// points) shortened to fit (`craig_bampton` → `craig_b…`), and each shortened title with
-    /// the full one. Titles are never shortened below [`MIN_TITLE_CHARS`] characters.
+    /// the full one. Titles are never shortened below `MIN_TITLE_CHARS` characters.
     pub fn fit_titles(&self, size: (f64, f64)) -> (Layout, Vec<(String, String)>) {
         let mut short = Vec::new();
         let fitted = self.fitted(size, &mut short);
@@ -248,7 +248,7 @@ impl Layout {
     }
 
     /// The tab titles the viewer would cut when the layout fills `size` (width, height in
-    /// points), by the estimate of [`title_width`] and [`TITLE_BAR_BUTTON`]: a lone view's
+    /// points), by the estimate of `title_width` and `TITLE_BAR_BUTTON`: a lone view's
     /// title shares its width with the view's buttons, the titles of a tabs container share
     /// the container's width with the buttons of its shown view.
     pub fn cut_titles(&self, size: (f64, f64)) -> Vec<String> {

@@ -48,8 +48,9 @@ impl InterfaceLoading {
 
     /// The loading by a rigid body of `mass` (kg) and inertia `inertia` (kg m², about its
     /// mass centre `centre`, m) attached at the 6-DOF node at `point` (x, y, z, θx, θy, θz):
-    /// with $c$ = centre − point, $M = \begin{bmatrix} mI & -m[c]_\times \\ m[c]_\times &
-    /// J - m[c]_\times^2 \end{bmatrix}$, no stiffness.
+    /// with $c$ = centre − point and $\tilde c$ its cross-product matrix,
+    /// $M = \begin{bmatrix} mI & -m\tilde c \\ m\tilde c & J - m\tilde c^2 \end{bmatrix}$,
+    /// no stiffness.
     pub fn rigid_body(
         mass: f64,
         inertia: [[f64; 3]; 3],

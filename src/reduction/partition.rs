@@ -118,7 +118,7 @@ impl Partition {
         psi
     }
 
-    /// The unit boundary block $[I]$ of Ψ followed by `extra` zero columns.
+    /// The unit boundary block $I$ of Ψ followed by `extra` zero columns.
     pub fn unit_top(&self, extra: usize) -> Mat<f64> {
         let nb = self.b.len();
         Mat::from_fn(nb, nb + extra, |r, c| if r == c { 1.0 } else { 0.0 })
