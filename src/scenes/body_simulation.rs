@@ -52,10 +52,13 @@ pub fn simulated(
     let study = if cache.is_detached() {
         study_of(methods, simulation.full_body)?
     } else {
+        // The body by its file and its contents: a file edited and loaded again is another
+        // body.
+        let contents = fingerprint(&body.model);
         let key = |run: &str, parameters: &DrivenBodyParameters| {
             format!(
-                "simulate/{:?}/{}/{parameters:?}/{run}",
-                body.location, body.model.name
+                "simulate/{:?}/{contents:016x}/{parameters:?}/{run}",
+                body.location
             )
         };
         let mut parts = Vec::new();
@@ -77,6 +80,32 @@ pub fn simulated(
     };
     let (_, text) = summary(body, &simulation.parameters, &study);
     Ok(recording(&body.model, &study, &text))
+}
+
+/// A hash of what a driven body's runs depend on: its DOF map, node coordinates and every
+/// stored entry of K and M (bit for bit).
+fn fingerprint(model: &crate::fem::FeModel) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    model.name.hash(&mut h);
+    model.dof_count().hash(&mut h);
+    for p in model.nodes.iter().flatten() {
+        p.to_bits().hash(&mut h);
+    }
+    let mut values = |m: &crate::linalg::SparseSymmetric| {
+        let a = m.as_faer();
+        a.symbolic().col_ptr().hash(&mut h);
+        a.symbolic().row_idx().hash(&mut h);
+        for v in a.val() {
+            v.to_bits().hash(&mut h);
+        }
+    };
+    values(&model.k);
+    match &model.m {
+        crate::linalg::MassMatrix::Lumped(d) => d.iter().for_each(|v| v.to_bits().hash(&mut h)),
+        crate::linalg::MassMatrix::Consistent(m) => values(m),
+    }
+    h.finish()
 }
 
 impl super::CacheWeight for DrivenStudy {
