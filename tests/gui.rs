@@ -730,10 +730,10 @@ fn the_explorer_simulates_a_users_body_from_its_panel() {
     let alone = simulated(
         &body,
         &simulation.simulation().unwrap(),
-        &methods,
-        h.state().controls.modes,
+        (&methods, h.state().controls.modes),
         &Progress::new(),
         &RunCache::default(),
+        1,
     )
     .unwrap();
     let rows = untimed_rows(&shown.report.table);

@@ -75,10 +75,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         return simulated(
             &body,
             simulation,
-            &methods,
-            modes,
+            (&methods, modes),
             &opts.progress,
             &opts.cache,
+            opts.concurrent_integrations,
         );
     }
     let model = &body.model;

@@ -31,15 +31,17 @@ pub struct BodySimulation {
 /// kept apart and joined: ticking a method on or off, or changing the kept modes, integrates
 /// only the reduced models it adds, never the full body again (its tens of seconds, not the
 /// reduced models' second, are the cost). Without one (the command line), one study runs.
+/// The runs not yet kept go on up to `concurrent` threads, the full body's first: the reduced
+/// models are done beside it.
 pub fn simulated(
     body: &ImportedBody,
     simulation: &BodySimulation,
-    methods: &[Method],
-    modes: usize,
+    (methods, modes): (&[Method], usize),
     progress: &Progress,
     cache: &RunCache,
+    concurrent: usize,
 ) -> Result<RecordingContent> {
-    let study_of = |methods: &[Method], full: bool| {
+    let study_of = |methods: &[Method], full: bool, progress: &Progress| {
         driven_body_study(
             body,
             &simulation.parameters,
@@ -50,7 +52,7 @@ pub fn simulated(
         )
     };
     let study = if cache.is_detached() {
-        study_of(methods, simulation.full_body)?
+        study_of(methods, simulation.full_body, progress)?
     } else {
         // The body by its file and its contents: a file edited and loaded again is another
         // body.
@@ -61,21 +63,28 @@ pub fn simulated(
                 body.location
             )
         };
-        let mut parts = Vec::new();
-        if simulation.full_body {
-            // The full body leaves the reduced models' kept interfaces free: its run does not
-            // depend on them.
-            let full = DrivenBodyParameters {
-                boundary: Vec::new(),
-                ..simulation.parameters.clone()
-            };
-            parts.push(cache.get_or_run(key("nr", &full), || study_of(&[], true))?);
-        }
-        for &m in methods {
-            let run = format!("{}/{modes}", m.id());
-            let reduced = key(&run, &simulation.parameters);
-            parts.push(cache.get_or_run(reduced, || study_of(&[m], false))?);
-        }
+        // The full body leaves the reduced models' kept interfaces free: its run does not
+        // depend on them.
+        let full = DrivenBodyParameters {
+            boundary: Vec::new(),
+            ..simulation.parameters.clone()
+        };
+        let runs: Vec<Option<Method>> = simulation
+            .full_body
+            .then_some(None)
+            .into_iter()
+            .chain(methods.iter().copied().map(Some))
+            .collect();
+        let parts =
+            crate::work_pool::run_concurrently(&runs, concurrent, progress, |run, p| match run {
+                None => cache.get_or_run(key("nr", &full), || study_of(&[], true, p)),
+                Some(m) => {
+                    let reduced = key(&format!("{}/{modes}", m.id()), &simulation.parameters);
+                    cache.get_or_run(reduced, || study_of(&[m], false, p))
+                }
+            })
+            .into_iter()
+            .collect::<Result<Vec<_>>>()?;
         DrivenStudy::joined(&parts.iter().map(|p| p.as_ref()).collect::<Vec<_>>())?
     };
     let (_, text) = summary(body, &simulation.parameters, &study);
