@@ -656,7 +656,8 @@ impl ReducedRuns<'_> {
                 method: method.name(),
                 needs: "a coordinate besides the drive: Guyan keeps only the interfaces' \
                         constraint modes, and with the drive the only interface the body \
-                        would be rigid (add --boundary)",
+                        would be rigid (keep another interface: `simulate --boundary \
+                        rbe2:SET`, or \"also kept\" in the explorer)",
             }
             .into());
         }
