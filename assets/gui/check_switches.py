@@ -7,7 +7,7 @@ state (views empty, meshes stacked at the origin, plots without their lines).
     python3 assets/gui/check_switches.py --binary target/debug/flexmodes \
         --scene slab-sim1 --toggle gr --out target/gui-check/slab-sim1
     python3 assets/gui/check_switches.py --body tests/bodies/steel-link/body.toml \
-        --simulate bore_a --toggle mt --repeat 1 --out target/gui-check/steel-link
+        --simulate bore_a --toggle cb --repeat 1 --out target/gui-check/steel-link
 
 Needs Xvfb and a Vulkan or GL driver that runs without a GPU (Debian: xvfb,
 mesa-vulkan-drivers) and Pillow. The screenshots stay in --out; a summary goes to
