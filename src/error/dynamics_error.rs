@@ -109,7 +109,8 @@ pub enum DynamicsError {
 
     /// An output that names no node set (or `node:N` without a number).
     #[error(
-        "no node set `{name}` to output (the body has: {known}; or node:N with a 1-based node number)"
+        "no node set `{name}` to output (the body has: {}; or node:N with a 1-based node number)",
+        known.join(", ")
     )]
-    UnknownOutput { name: String, known: String },
+    UnknownOutput { name: String, known: Vec<String> },
 }

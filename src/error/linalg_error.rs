@@ -65,9 +65,13 @@ pub enum LinalgError {
 
     /// Every route of the free-body eigensolver failed.
     #[error(
-        "the free-free eigensolver found no accurate set of {wanted} pairs; routes tried: {routes}"
+        "the free-free eigensolver found no accurate set of {wanted} pairs; routes tried: {}",
+        routes.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ")
     )]
-    EigenRoutesFailed { wanted: usize, routes: String },
+    EigenRoutesFailed {
+        wanted: usize,
+        routes: Vec<super::EigenAttempt>,
+    },
 
     /// A partial eigensolution that the Sturm count shows to have skipped eigenvalues, after
     /// every retry.

@@ -6,6 +6,7 @@
 mod body_file_error;
 mod divergence_cause;
 mod dynamics_error;
+mod eigen_attempt;
 mod flexmodes_error;
 mod linalg_error;
 mod mesh_error;
@@ -16,6 +17,7 @@ mod unknown_id;
 pub use body_file_error::BodyFileError;
 pub use divergence_cause::DivergenceCause;
 pub use dynamics_error::DynamicsError;
+pub use eigen_attempt::EigenAttempt;
 pub use flexmodes_error::{Error, Result};
 pub use linalg_error::LinalgError;
 pub use mesh_error::MeshError;

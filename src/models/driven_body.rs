@@ -502,12 +502,7 @@ fn output_names(
 fn output_nodes(body: &ImportedBody, name: &str) -> Result<Vec<usize>> {
     let unknown = || DynamicsError::UnknownOutput {
         name: name.to_string(),
-        known: body
-            .node_sets
-            .keys()
-            .cloned()
-            .collect::<Vec<_>>()
-            .join(", "),
+        known: body.node_sets.keys().cloned().collect(),
     };
     Ok(match name.strip_prefix("node:") {
         Some(number) => vec![number.parse::<usize>().map_err(|_| unknown())?],

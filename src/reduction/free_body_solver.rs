@@ -31,7 +31,7 @@ use faer::{Mat, MatRef};
 use super::COMPLETE_EIGEN_LIMIT;
 use crate::{
     Error, Result,
-    error::LinalgError,
+    error::{EigenAttempt, LinalgError},
     fem::{FeModel, RigidMotions},
     linalg::{
         GeneralizedEigen, MassMatrix, PartialEigenParameters, PartialEigenStatistics,
@@ -73,19 +73,6 @@ impl Default for FreeBodyParameters {
             seed: 0x0dd_ba11,
         }
     }
-}
-
-/// One failed route of [`free_body_pairs`], for its error.
-#[derive(Debug, Clone, PartialEq)]
-struct RouteAttempt {
-    /// What the route was ("shift -7.5e3, null space refined", ...).
-    route: String,
-    /// Pairs that passed their residual check.
-    converged: usize,
-    /// Pairs wanted.
-    wanted: usize,
-    /// Worst relative residual of the pairs as they stood.
-    residual: f64,
 }
 
 /// The `wanted` lowest pairs of `model`'s pencil (an unrestrained body: rigid motions first),
@@ -200,40 +187,31 @@ pub fn free_body_pairs(
     }
     Err(Error::Linalg(LinalgError::EigenRoutesFailed {
         wanted,
-        routes: failed
-            .iter()
-            .map(|a| {
-                format!(
-                    "{}: {} of {} pairs, worst residual {:.1e}",
-                    a.route, a.converged, a.wanted, a.residual
-                )
-            })
-            .collect::<Vec<_>>()
-            .join("; "),
+        routes: failed,
     }))
 }
 
 /// A route's failure as an attempt; errors that are not convergence failures (memory, a
 /// factor that is not positive definite) end the search.
-fn attempt(route: String, wanted: usize, e: Error) -> Result<RouteAttempt> {
+fn attempt(route: String, wanted: usize, e: Error) -> Result<EigenAttempt> {
     match e {
         Error::Linalg(LinalgError::EigenNotConverged {
             converged,
             wanted,
             residual,
-        }) => Ok(RouteAttempt {
+        }) => Ok(EigenAttempt {
             route,
             converged,
             wanted,
             residual,
         }),
-        Error::Linalg(LinalgError::MissedModes { missed, .. }) => Ok(RouteAttempt {
+        Error::Linalg(LinalgError::MissedModes { missed, .. }) => Ok(EigenAttempt {
             route: format!("{route} (Sturm count: {missed} missed)"),
             converged: wanted.saturating_sub(missed),
             wanted,
             residual: f64::NAN,
         }),
-        Error::Linalg(LinalgError::EigenCheckFailed { residual, .. }) => Ok(RouteAttempt {
+        Error::Linalg(LinalgError::EigenCheckFailed { residual, .. }) => Ok(EigenAttempt {
             route,
             converged: 0,
             wanted,
