@@ -663,16 +663,22 @@ fn the_persisted_controls_name_methods_and_integrator_by_id_and_read_older_setti
 }
 
 /// The table's rows without the columns that are timings (offline s, online s and their
-/// ratio), for comparing two runs of the same study.
+/// ratio, found by their titles), for comparing two runs of the same study.
 fn untimed_rows(table: &str) -> Vec<String> {
-    table
-        .lines()
-        .filter(|l| l.starts_with("| ") && !l.starts_with("| model"))
+    let cells = |l: &str| -> Vec<String> { l.split('|').map(|c| c.trim().to_string()).collect() };
+    let mut lines = table.lines().filter(|l| l.starts_with("| "));
+    let header = cells(lines.next().expect("a header row"));
+    let timed: Vec<usize> = ["offline s", "online s", "NR online / online"]
+        .iter()
+        .map(|t| header.iter().position(|h| h == t).expect("a timing column"))
+        .collect();
+    lines
         .map(|l| {
-            l.split('|')
+            cells(l)
+                .into_iter()
                 .enumerate()
-                .filter(|(k, _)| ![5, 6, 7].contains(k))
-                .map(|(_, c)| c.trim())
+                .filter(|(k, _)| !timed.contains(k))
+                .map(|(_, c)| c)
                 .collect::<Vec<_>>()
                 .join("|")
         })

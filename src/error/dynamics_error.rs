@@ -113,4 +113,9 @@ pub enum DynamicsError {
         known.join(", ")
     )]
     UnknownOutput { name: String, known: Vec<String> },
+
+    /// Driven studies to be joined that are not runs of one body under one drive: they differ
+    /// in `what` (their sample times, outputs, drive or its motion).
+    #[error("the driven studies to join differ in their {what}: they are not runs of one drive")]
+    StudiesDiffer { what: &'static str },
 }

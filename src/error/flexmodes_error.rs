@@ -7,8 +7,11 @@ use thiserror::Error;
 #[derive(Debug, Error, serde::Serialize)]
 pub enum Error {
     /// A scene id that is not in the registry.
-    #[error("unknown scene `{id}` (known scenes: {known})")]
-    UnknownScene { id: String, known: &'static str },
+    #[error("unknown scene `{id}` (known scenes: {})", known.join(", "))]
+    UnknownScene {
+        id: String,
+        known: Vec<&'static str>,
+    },
 
     /// A reduction method the scene does not offer.
     #[error(
@@ -96,8 +99,14 @@ pub enum Error {
     NotBenchable { scene: &'static str },
 
     /// A mesh size `bench --sizes` cannot read.
-    #[error("--sizes: `{token}` is neither one of {named} nor NXxNYxNZ with positive counts")]
-    InvalidSize { token: String, named: &'static str },
+    #[error(
+        "--sizes: `{token}` is neither one of {} nor NXxNYxNZ with positive counts",
+        named.join(", ")
+    )]
+    InvalidSize {
+        token: String,
+        named: Vec<&'static str>,
+    },
 
     /// A peer a bench runs (a process, or the file it wrote) failed.
     #[error("{peer} failed: {reason}")]

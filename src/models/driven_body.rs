@@ -12,7 +12,7 @@ use faer::Mat;
 use nalgebra::{Unit, Vector3};
 
 use crate::{
-    Error, Result,
+    Result,
     analysis::{MeanAxisView, count_zero_energy_modes},
     body_file::{ImportedBody, InterfaceKind},
     dynamics::{
@@ -178,25 +178,26 @@ impl DrivenStudy {
     /// One study of the runs of `studies`, made of one body under one drive (and integrator)
     /// each: the full body's run first when one of them has it, and every reduced run's
     /// errors against it. Each run and its errors are independent of the others, so this is
-    /// the study `driven_body_study` makes of all their methods at once; sample times that
-    /// differ are an error, never zipped.
+    /// the study `driven_body_study` makes of all their methods at once. Studies that differ
+    /// in their sample times, outputs, drive or its motion (the rigid reaction it needs) are
+    /// an error, never zipped; so is none.
     pub fn joined(studies: &[&DrivenStudy]) -> Result<Self> {
+        let differ = |what| Err(DynamicsError::StudiesDiffer { what }.into());
         let Some(first) = studies.first() else {
-            return Err(Error::MismatchedSeries {
-                path: "simulate".into(),
-                what: "studies to join",
-                expected: 1,
-                found: 0,
-            });
+            return differ("number: there are none");
         };
         for s in studies {
-            if s.times != first.times || s.rigid_force.len() != first.rigid_force.len() {
-                return Err(Error::MismatchedSeries {
-                    path: "simulate".into(),
-                    what: "sample times",
-                    expected: first.times.len(),
-                    found: s.times.len(),
-                });
+            if s.times != first.times {
+                return differ("sample times");
+            }
+            if s.output_names != first.output_names {
+                return differ("outputs");
+            }
+            if s.drive != first.drive || s.dof != first.dof {
+                return differ("drive");
+            }
+            if s.rigid_force != first.rigid_force {
+                return differ("motion (the rigid reaction)");
             }
         }
         let mut runs: Vec<DrivenRun> = studies

@@ -41,18 +41,16 @@ pub fn simulated(
     cache: &RunCache,
     concurrent: usize,
 ) -> Result<RecordingContent> {
-    let study_of = |methods: &[Method], full: bool, progress: &Progress| {
-        driven_body_study(
-            body,
-            &simulation.parameters,
-            methods,
-            &[modes],
-            full,
-            progress,
-        )
+    let study_of = |parameters, methods: &[Method], full: bool, progress: &Progress| {
+        driven_body_study(body, parameters, methods, &[modes], full, progress)
     };
     let study = if cache.is_detached() {
-        study_of(methods, simulation.full_body, progress)?
+        study_of(
+            &simulation.parameters,
+            methods,
+            simulation.full_body,
+            progress,
+        )?
     } else {
         // The body by its file and its contents: a file edited and loaded again is another
         // body.
@@ -77,10 +75,11 @@ pub fn simulated(
             .collect();
         let parts =
             crate::work_pool::run_concurrently(&runs, concurrent, progress, |run, p| match run {
-                None => cache.get_or_run(key("nr", &full), || study_of(&[], true, p)),
+                None => cache.get_or_run(key("nr", &full), || study_of(&full, &[], true, p)),
                 Some(m) => {
-                    let reduced = key(&format!("{}/{modes}", m.id()), &simulation.parameters);
-                    cache.get_or_run(reduced, || study_of(&[m], false, p))
+                    let parameters = &simulation.parameters;
+                    let reduced = key(&format!("{}/{modes}", m.id()), parameters);
+                    cache.get_or_run(reduced, || study_of(parameters, &[m], false, p))
                 }
             })
             .into_iter()

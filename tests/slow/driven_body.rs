@@ -9,6 +9,7 @@ use flexmodes::{
     Progress,
     body_file::ImportedBody,
     dynamics::{AxisKind, DrivenIntegration},
+    error::DynamicsError,
     models::{DrivenBodyParameters, DrivenStudy, driven_body_study, history_error},
     reduction::Method,
 };
@@ -340,15 +341,19 @@ fn studies_of_one_drive_join_into_the_study_of_all_their_runs() {
     let mut every_step = p.clone();
     every_step.integration.output_every = 1;
     let other = study(&every_step, &methods[..1], false);
-    let e = DrivenStudy::joined(&[&full, &other]).unwrap_err();
-    assert!(
-        matches!(
-            e,
-            flexmodes::Error::MismatchedSeries {
-                what: "sample times",
-                ..
-            }
-        ),
-        "{e}"
+    let refused = |studies: &[&DrivenStudy], expected: &str| match DrivenStudy::joined(studies) {
+        Err(flexmodes::Error::Dynamics(DynamicsError::StudiesDiffer { what })) => {
+            assert_eq!(what, expected)
+        }
+        other => panic!("{expected}: {:?}", other.map(|s| s.runs.len())),
+    };
+    refused(&[&full, &other], "sample times");
+    // The same samples of a faster spin: another motion, another rigid reaction.
+    let mut faster = p.clone();
+    faster.rate *= 2.0;
+    refused(
+        &[&full, &study(&faster, &methods[..1], false)],
+        "motion (the rigid reaction)",
     );
+    refused(&[], "number: there are none");
 }
