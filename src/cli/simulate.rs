@@ -84,8 +84,20 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         .collect();
     let handle = Progress::new();
     let bar = TerminalProgress::start(&handle, "simulate");
-    let study =
-        crate::models::driven_body_study(&body, &parameters, &reduced, &modes, full, &handle)?;
+    let simulation = scenes::body_simulation::BodySimulation {
+        parameters,
+        full_body: full,
+    };
+    // The explorer's path without its cache: one study of every model.
+    let study = scenes::body_simulation::simulated_study(
+        &body,
+        &simulation,
+        (&reduced, &modes),
+        &handle,
+        &scenes::RunCache::default(),
+        1,
+    )?;
+    let parameters = simulation.parameters;
     drop(bar);
     let (value, text) = scenes::body_simulation::summary(&body, &parameters, &study);
     if let Some(path) = &save {

@@ -24,8 +24,9 @@ pub struct BodySimulation {
     pub full_body: bool,
 }
 
-/// Runs `simulation` of `body` with `methods` (each keeping `modes` fixed-interface modes)
-/// and returns the recording `flexmodes simulate --save` writes for the same choices.
+/// Runs `simulation` of `body` with `methods` (one model per count of `modes` kept
+/// fixed-interface modes each, Guyan one) and returns the study: what `flexmodes simulate`
+/// prints and, through [`recording`], writes.
 ///
 /// With a cache that keeps runs (the explorer's), the full body's run and each method's are
 /// kept apart and joined: ticking a method on or off, or changing the kept modes, integrates
@@ -33,18 +34,18 @@ pub struct BodySimulation {
 /// reduced models' second, are the cost). Without one (the command line), one study runs.
 /// The runs not yet kept go on up to `concurrent` threads, the full body's first: the reduced
 /// models are done beside it.
-pub fn simulated(
+pub fn simulated_study(
     body: &ImportedBody,
     simulation: &BodySimulation,
-    (methods, modes): (&[Method], usize),
+    (methods, modes): (&[Method], &[usize]),
     progress: &Progress,
     cache: &RunCache,
     concurrent: usize,
-) -> Result<RecordingContent> {
+) -> Result<DrivenStudy> {
     let study_of = |parameters, methods: &[Method], full: bool, progress: &Progress| {
-        driven_body_study(body, parameters, methods, &[modes], full, progress)
+        driven_body_study(body, parameters, methods, modes, full, progress)
     };
-    let study = if cache.is_detached() {
+    Ok(if cache.is_detached() {
         study_of(
             &simulation.parameters,
             methods,
@@ -78,14 +79,34 @@ pub fn simulated(
                 None => cache.get_or_run(key("nr", &full), || study_of(&full, &[], true, p)),
                 Some(m) => {
                     let parameters = &simulation.parameters;
-                    let reduced = key(&format!("{}/{modes}", m.id()), parameters);
+                    let reduced = key(&format!("{}/{modes:?}", m.id()), parameters);
                     cache.get_or_run(reduced, || study_of(parameters, &[m], false, p))
                 }
             })
             .into_iter()
             .collect::<Result<Vec<_>>>()?;
         DrivenStudy::joined(&parts.iter().map(|p| p.as_ref()).collect::<Vec<_>>())?
-    };
+    })
+}
+
+/// [`simulated_study`]'s recording, with the kept modes `modes` for every method: the one
+/// `flexmodes simulate --save` writes for the same choices.
+pub fn simulated(
+    body: &ImportedBody,
+    simulation: &BodySimulation,
+    (methods, modes): (&[Method], usize),
+    progress: &Progress,
+    cache: &RunCache,
+    concurrent: usize,
+) -> Result<RecordingContent> {
+    let study = simulated_study(
+        body,
+        simulation,
+        (methods, &[modes]),
+        progress,
+        cache,
+        concurrent,
+    )?;
     let (_, text) = summary(body, &simulation.parameters, &study);
     Ok(recording(&body.model, &study, &text))
 }
