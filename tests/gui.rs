@@ -435,7 +435,7 @@ fn every_scene_opens_with_its_default_controls_and_its_titles_fit() {
         settle(&mut h);
         assert!(h.state().error.is_none(), "{id}: {:?}", h.state().error);
         assert!(!paths(&h).is_empty(), "{id}: the recording has no entities");
-        let layout = &h.state().current.as_ref().unwrap().layout;
+        let layout = &h.state().current.as_ref().unwrap().blueprint.layout;
         for t in layout.cut_titles(flexmodes::gui::VIEWER_AREA) {
             cut.push(format!("{id}: {t}"));
         }
@@ -847,4 +847,89 @@ fn the_simulation_controls_are_simulates_defaults_and_bad_values_are_named() {
         let e = bad.simulation().unwrap_err().to_string();
         assert!(e.starts_with("invalid simulate in scene `modes`"), "{e}");
     }
+}
+
+/// A recording of `controls` as the explorer hands it to the viewer: messages (the recording
+/// `suffix`, its layout as the default blueprint) and the layout.
+fn offer_of(controls: &Controls, suffix: &str) -> flexmodes::gui::Offer {
+    let out = flexmodes::scenes::get(controls.scene)
+        .execute(&controls.options().unwrap())
+        .unwrap();
+    let recorder = flexmodes::record::Recorder {
+        recording_suffix: Some(suffix.into()),
+        default_blueprint_only: true,
+        viewer_area: Some(flexmodes::gui::VIEWER_AREA),
+    };
+    flexmodes::gui::Offer {
+        messages: recorder.messages(&out).unwrap(),
+        blueprint: Some(recorder.blueprint_key(&out)),
+    }
+}
+
+/// A switch keeps what the user made of the layout (views resized, moved, hidden, a camera
+/// turned: the active blueprint) when the new recording has the same views and what each
+/// shows lies within its framing, and replaces it with the new layout otherwise (other views,
+/// or contents a kept camera would not show).
+#[test]
+fn a_switch_keeps_the_users_layout_when_the_views_are_the_same() {
+    use rerun::external::{
+        re_log_channel::{LogSource, log_channel},
+        re_viewer::external::re_viewer_context::{SystemCommand, command_channel},
+    };
+    let (tx, rx) = log_channel(LogSource::Sdk);
+    let (commands, received) = command_channel();
+    // Not atomic (no screenshots headless), layouts kept as the atomic explorer keeps them.
+    let mut handoff = flexmodes::gui::ViewerHandoff::new(tx, commands, false).keeping_layouts(true);
+    let ctx = egui::Context::default();
+    // Offers a recording, lets the "viewer" take every message in, and returns whether the
+    // switch to it cleared the active layout.
+    let mut switch_to = |offer: flexmodes::gui::Offer| -> bool {
+        let messages = offer.messages.len();
+        handoff.offer(&ctx, offer);
+        let mut taken = 0;
+        while rx.try_recv().is_ok() {
+            taken += 1;
+        }
+        assert_eq!(taken, messages, "every message reaches the viewer");
+        assert!(
+            handoff.step(&ctx),
+            "the recording is shown once all of it is in"
+        );
+        let mut cleared = false;
+        while let Some((_, command)) = received.recv_system() {
+            cleared |= matches!(command, SystemCommand::ClearActiveBlueprint);
+        }
+        cleared
+    };
+    let slab = Controls::for_scene(SceneId::SlabModes);
+    let mut without_mt = slab.clone();
+    without_mt.methods.retain(|&m| m != Method::ModalTruncation);
+    let mut more = without_mt.clone();
+    more.modes += 1;
+    let (first, method_switch) = (offer_of(&slab, "1"), offer_of(&without_mt, "2"));
+    let modes_switch = offer_of(&more, "3");
+    let key = |o: &flexmodes::gui::Offer| o.blueprint.clone().unwrap();
+    assert!(
+        key(&first).frames(&key(&method_switch)),
+        "MT unticked changes no view of slab-modes and nothing they frame"
+    );
+    assert_eq!(key(&first).layout, key(&modes_switch).layout);
+    assert!(
+        !key(&method_switch).frames(&key(&modes_switch)),
+        "a seventh fixed-interface mode is drawn in a new row, beyond the view's framing"
+    );
+    assert!(switch_to(first), "the first recording brings its layout");
+    assert!(
+        !switch_to(method_switch),
+        "the same views framing the same: the user's arrangement of them stays"
+    );
+    assert!(
+        switch_to(modes_switch),
+        "contents beyond the framing: the new layout frames them"
+    );
+    let beam = offer_of(&Controls::for_scene(SceneId::BeamModes), "4");
+    assert!(
+        switch_to(beam),
+        "other views: the new layout replaces the active one"
+    );
 }

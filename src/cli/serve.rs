@@ -50,9 +50,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     let opts = options.into_scene_options()?;
     let token = match control_token {
         Some(t) => checked_token(t)?,
-        None => new_control_token().map_err(|e| ServeError::System {
-            reason: format!("no random control token from the operating system: {e}"),
-        })?,
+        None => new_control_token().map_err(|source| ServeError::NoRandomToken { source })?,
     };
     check_port(bind, grpc_port, "data server", "grpc-port")?;
     check_port(bind, port, "web page", "port")?;
@@ -181,8 +179,8 @@ fn read_commands(
     ctrlc::set_handler(move || {
         let _ = stop.send(Event::Stop);
     })
-    .map_err(|e| crate::error::ServeError::System {
-        reason: format!("cannot catch Ctrl-C: {e}"),
+    .map_err(|e| crate::error::ServeError::NoInterruptHandler {
+        source: Box::new(e),
     })?;
     std::thread::spawn(move || {
         for line in std::io::stdin().lock().lines() {

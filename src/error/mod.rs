@@ -22,5 +22,5 @@ pub use flexmodes_error::{Error, Result};
 pub use linalg_error::LinalgError;
 pub use mesh_error::MeshError;
 pub use reduction_error::ReductionError;
-pub use serve_error::ServeError;
+pub use serve_error::{RecordingProblem, ServeError};
 pub use unknown_id::UnknownId;

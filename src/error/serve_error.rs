@@ -23,17 +23,23 @@ pub enum ServeError {
         option: &'static str,
     },
 
-    /// An address that is not an IP address of this machine.
-    #[error("cannot bind {address}{}: {reason}", port.map(|p| format!(":{p}")).unwrap_or_default())]
+    /// An address that is not an IP address of this machine; `source` is the system's (or
+    /// the server library's) refusal.
+    #[error("cannot bind {address}{}", port.map(|p| format!(":{p}")).unwrap_or_default())]
     Bind {
         address: IpAddr,
         port: Option<u16>,
-        reason: String,
+        #[source]
+        #[serde(serialize_with = "as_text")]
+        source: Box<dyn std::error::Error + Send + Sync>,
     },
 
     /// A recording file that does not decode whole (or holds no recording).
-    #[error("{}: not a Rerun recording flexmodes can serve: {reason}", .path.display())]
-    Recording { path: PathBuf, reason: String },
+    #[error("{}: not a Rerun recording flexmodes can serve: {problem}", .path.display())]
+    Recording {
+        path: PathBuf,
+        problem: RecordingProblem,
+    },
 
     /// A `--control-token` too short or with characters a URL would change (not echoed: it is
     /// the teacher's secret).
@@ -43,11 +49,69 @@ pub enum ServeError {
     )]
     ControlToken { length: usize },
 
-    /// No random control token from the operating system, or no Ctrl-C handler.
-    #[error("the classroom server cannot start: {reason}")]
-    System { reason: String },
+    /// No random control token from the operating system (`source`: its refusal).
+    #[error("the classroom server cannot start: no random control token from the operating system")]
+    NoRandomToken {
+        #[source]
+        #[serde(serialize_with = "as_text")]
+        source: std::io::Error,
+    },
 
-    /// The embedded web viewer's files.
-    #[error("the embedded web viewer: {reason}")]
-    Viewer { reason: String },
+    /// No Ctrl-C handler (`source`: why).
+    #[error("the classroom server cannot start: it cannot catch Ctrl-C")]
+    NoInterruptHandler {
+        #[source]
+        #[serde(serialize_with = "as_text")]
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+
+    /// The embedded web viewer's files: `what` no longer holds as flexmodes serves it
+    /// (`source`: the library's error, when one was given).
+    #[error("the embedded web viewer: {what}")]
+    Viewer {
+        what: &'static str,
+        #[source]
+        #[serde(serialize_with = "as_optional_text")]
+        source: Option<Box<dyn std::error::Error + Send + Sync>>,
+    },
+}
+
+/// An error value as its message.
+fn as_text<S: serde::Serializer, E: std::fmt::Display + ?Sized>(
+    e: &E,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    s.collect_str(e)
+}
+
+/// [`as_text`] of the error, when there is one.
+fn as_optional_text<S: serde::Serializer>(
+    e: &Option<Box<dyn std::error::Error + Send + Sync>>,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    match e {
+        Some(e) => s.collect_str(e),
+        None => s.serialize_none(),
+    }
+}
+
+/// What is wrong with a recording file `flexmodes serve` was given.
+#[derive(Debug, Error, serde::Serialize)]
+pub enum RecordingProblem {
+    /// The file cannot be read.
+    #[error("{0}")]
+    Unreadable(#[serde(serialize_with = "as_text")] std::io::Error),
+    /// Message `message` (0-based) does not decode.
+    #[error("message {message}: {source}")]
+    Damaged {
+        message: usize,
+        #[serde(serialize_with = "as_text")]
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+    /// No message starts a recording.
+    #[error("{messages} message(s), none of them starts a recording")]
+    NoRecording { messages: usize },
+    /// A recording without data.
+    #[error("no data in it")]
+    NoData,
 }

@@ -3,23 +3,23 @@
 
 /// `id` is not one of the `known` ids of `what`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error, serde::Serialize)]
-#[error("unknown {what} `{id}` (known: {known})")]
+#[error("unknown {what} `{id}` (known: {})", known.join(", "))]
 pub struct UnknownId {
     /// What was named: `method`, `integrator`, `axis type`, `Ψ format`.
     pub what: &'static str,
     /// The id given.
     pub id: String,
-    /// The known ids, comma-separated.
-    pub known: String,
+    /// The known ids.
+    pub known: Vec<&'static str>,
 }
 
 impl UnknownId {
     /// `id` is not among `known`.
-    pub fn new(what: &'static str, id: &str, known: &[&str]) -> Self {
+    pub fn new(what: &'static str, id: &str, known: &[&'static str]) -> Self {
         Self {
             what,
             id: id.into(),
-            known: known.join(", "),
+            known: known.to_vec(),
         }
     }
 }

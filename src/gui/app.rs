@@ -12,7 +12,7 @@ use rerun::external::{
 use super::{
     Controls, Explorer, SimulationControls,
     capture::{Capture, FrameSeries},
-    viewer_handoff::{HandoffState, ViewerHandoff},
+    viewer_handoff::{HandoffState, Offer, ViewerHandoff},
 };
 use crate::{Error, Result, scenes::SceneId};
 
@@ -102,9 +102,12 @@ impl eframe::App for FlexmodesApp {
         if let Some(mut explorer) = self.explorer.take() {
             explorer.wake(ctx);
             explorer.poll();
-            if let Some(messages) = explorer.take_fresh().map(|c| c.messages.clone()) {
+            if let Some(offer) = explorer.take_fresh().map(|c| Offer {
+                messages: c.messages.clone(),
+                blueprint: Some(c.blueprint.clone()),
+            }) {
                 let start = std::time::Instant::now();
-                self.handoff.offer(ctx, messages);
+                self.handoff.offer(ctx, offer);
                 if let Some(c) = &mut self.capture {
                     c.handoffs.push(start.elapsed());
                 }

@@ -21,5 +21,5 @@ pub use capture::FrameSeries;
 pub use controls::{Change, Command, Controls, MESH_PRESETS};
 pub use explorer::Explorer;
 pub use simulation_controls::{DriveMotion, SimulationControls};
-pub use viewer_handoff::{HandoffState, ViewerHandoff};
+pub use viewer_handoff::{HandoffState, Offer, ViewerHandoff};
 pub use worker::{Computed, Finished, Worker};

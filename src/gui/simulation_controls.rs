@@ -4,10 +4,10 @@
 use serde::{Deserialize, Serialize};
 
 use crate::{
-    Error, Result,
+    Result,
     models::DrivenBodyParameters,
     reduction::Method,
-    scenes::{SceneId, body_simulation::BodySimulation},
+    scenes::body_simulation::{BodySimulation, DriveRequest},
 };
 
 /// How the driven interface moves.
@@ -55,8 +55,6 @@ pub const RAMPS: [f64; 4] = [0.1, 0.25, 0.5, 1.0];
 pub const FREQUENCIES: [f64; 4] = [10.0, 50.0, 200.0, 1000.0];
 /// Simulated intervals the panel offers, s.
 pub const ENDS: [f64; 4] = [0.1, 0.25, 0.5, 1.0];
-/// Samples of the histories over the interval (as `simulate`'s default).
-const SAMPLES: usize = 100;
 
 impl SimulationControls {
     /// `flexmodes simulate`'s defaults with `drive` driven.
@@ -76,49 +74,16 @@ impl SimulationControls {
     }
 
     /// The scene's simulation: the drive tied rigidly (`rbe2:`), generalized-α at
-    /// `simulate`'s default step, a hundred samples of the histories.
+    /// `simulate`'s default step, a hundred samples of the histories; values that do not
+    /// hold are named.
     pub fn simulation(&self) -> Result<BodySimulation> {
-        let defaults = DrivenBodyParameters::default();
-        let invalid = |reason: String| Error::InvalidOption {
-            option: "simulate",
-            scene: Some(SceneId::Modes.as_str()),
-            reason,
-        };
-        if self.drive.trim().is_empty() {
-            return Err(invalid("choose the interface to drive".into()));
-        }
-        let positive = [
-            ("rate", self.rate),
-            ("ramp", self.ramp),
-            ("amplitude", self.amplitude),
-            ("frequency", self.frequency),
-            ("end time", self.end),
-        ];
-        if let Some((name, value)) = positive.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
-            return Err(invalid(format!("the {name} must be positive, not {value}")));
-        }
-        let step = defaults.integration.step;
-        let steps = (self.end / step).round().max(1.0) as usize;
-        let shake = self.motion == DriveMotion::Shake;
-        Ok(BodySimulation {
-            parameters: DrivenBodyParameters {
-                drive: format!("rbe2:{}", self.drive.trim()),
-                boundary: self
-                    .kept
-                    .iter()
-                    .filter(|set| set.trim() != self.drive.trim())
-                    .map(|set| format!("rbe2:{}", set.trim()))
-                    .collect(),
-                rate: if shake { 0.0 } else { self.rate },
-                ramp: self.ramp,
-                shake: shake.then_some(([1.0, 0.0, 0.0], self.amplitude, self.frequency)),
-                integration: crate::dynamics::DrivenIntegration {
-                    end: self.end,
-                    output_every: (steps / SAMPLES).max(1),
-                    ..defaults.integration
-                },
-                ..defaults
-            },
+        BodySimulation::of_request(&DriveRequest {
+            drive: &self.drive,
+            kept: &self.kept,
+            rate: self.rate,
+            ramp: self.ramp,
+            shake: (self.motion == DriveMotion::Shake).then_some((self.amplitude, self.frequency)),
+            end: self.end,
             full_body: self.full_body,
         })
     }

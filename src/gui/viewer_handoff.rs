@@ -7,6 +7,12 @@
 //! until every message of the new one is in; then, between two frames, the new recording
 //! becomes the one shown, its layout replaces the active one (so a removed method leaves no
 //! view behind), and the previous recording and its layout are closed (their memory freed).
+//! When the new recording has the views shown and each view's contents lie inside what it
+//! frames, filling at least half of it ([`BlueprintKey::frames`]: a method unticked, a mode
+//! fewer, another integrator), the active layout is kept instead, with whatever the user made
+//! of it (views resized, moved or hidden, a tab picked, a 3D camera turned). Contents beyond
+//! the framing (a mode more in a new row, a ticked method's larger swing) or far smaller bring
+//! the new layout: a kept camera never points where the body is not.
 //!
 //! Even with every message in, the viewer fills a newly shown layout's views over its first
 //! frames (a few views per frame, measured on slab-sim1: 3–5 frames until every plot has its
@@ -14,6 +20,8 @@
 //! over the viewer for [`COVER_FRAMES`] frames while the viewer lays out the new one beneath.
 
 use re_viewer_context::{CommandSender, RecordingOrTable, SystemCommand, SystemCommandSender as _};
+
+use crate::record::BlueprintKey;
 use rerun::external::{
     egui,
     re_log_channel::{LogSender, LogSource},
@@ -27,12 +35,17 @@ struct Stores {
     recording: Option<StoreId>,
     /// Its layout, sent as the application's default blueprint.
     blueprint: Option<StoreId>,
+    /// What that blueprint holds, when known.
+    blueprint_key: Option<BlueprintKey>,
 }
 
 impl Stores {
-    fn of(messages: &[LogMsg]) -> Self {
-        let mut s = Self::default();
-        for m in messages {
+    fn of(offer: &Offer) -> Self {
+        let mut s = Self {
+            blueprint_key: offer.blueprint.clone(),
+            ..Self::default()
+        };
+        for m in &offer.messages {
             if let LogMsg::SetStoreInfo(info) = m {
                 let id = &info.info.store_id;
                 if id.is_recording() && s.recording.is_none() {
@@ -69,13 +82,24 @@ pub enum HandoffState {
     },
 }
 
+/// A recording offered to the viewer: its messages (the recording and its layout as a
+/// default blueprint) and what that blueprint holds, when known.
+#[derive(Debug, Clone, Default)]
+pub struct Offer {
+    /// The recording's messages.
+    pub messages: Vec<LogMsg>,
+    /// What its blueprint holds: a recording whose blueprint would be the one shown keeps
+    /// the active layout.
+    pub blueprint: Option<BlueprintKey>,
+}
+
 /// Where a handoff is.
 enum Phase {
     /// Nothing on its way.
     Idle,
-    /// A screenshot of the picture shown is on its way; then these messages are sent under
+    /// A screenshot of the picture shown is on its way; then this recording is sent under
     /// it (the viewer shows a new recording for one frame at its first message).
-    ShotBeforeSend(Vec<LogMsg>),
+    ShotBeforeSend(Offer),
     /// The viewer takes the messages in while the previous recording stays on screen.
     Loading,
     /// Every message is in; a screenshot of the picture shown is on its way to cover the
@@ -92,8 +116,10 @@ pub struct ViewerHandoff {
     phase: Phase,
     /// A newer recording that came while one was being taken in: sent once that one is in
     /// (and dropped unseen).
-    waiting: Option<Vec<LogMsg>>,
+    waiting: Option<Offer>,
     atomic: bool,
+    /// Whether a switch to the same views keeps the active layout (see the module).
+    keep_layouts: bool,
     /// The previous picture over the viewer, and the frames it stays.
     cover: Option<(egui::TextureHandle, u32)>,
 }
@@ -108,8 +134,8 @@ const SEND_COVER_FRAMES: u32 = 2;
 
 impl ViewerHandoff {
     /// Hands recordings over through `tx`, switching with `commands`. `atomic: false` shows
-    /// each recording as it arrives (the viewer's own behaviour; kept for the check that
-    /// the screenshots catch half-drawn frames).
+    /// each recording as it arrives and replaces the layout at every switch (the old
+    /// explorer's switch, kept for the check that the screenshots catch half-drawn frames).
     pub fn new(tx: LogSender, commands: CommandSender, atomic: bool) -> Self {
         Self {
             tx,
@@ -119,16 +145,24 @@ impl ViewerHandoff {
             phase: Phase::Idle,
             waiting: None,
             atomic,
+            keep_layouts: atomic,
             cover: None,
         }
     }
 
+    /// Whether a switch to a recording with the views shown keeps the active layout (the
+    /// user's arrangement); by default, when the switch is atomic.
+    pub fn keeping_layouts(mut self, keep: bool) -> Self {
+        self.keep_layouts = keep;
+        self
+    }
+
     /// Offers a new recording (its messages and its layout as a default blueprint).
-    pub fn offer(&mut self, ctx: &egui::Context, messages: Vec<LogMsg>) {
+    pub fn offer(&mut self, ctx: &egui::Context, offer: Offer) {
         match &mut self.phase {
-            Phase::Idle => self.start(ctx, messages),
-            Phase::ShotBeforeSend(queued) => *queued = messages,
-            Phase::Loading | Phase::ShotBeforeSwitch => self.waiting = Some(messages),
+            Phase::Idle => self.start(ctx, offer),
+            Phase::ShotBeforeSend(queued) => *queued = offer,
+            Phase::Loading | Phase::ShotBeforeSwitch => self.waiting = Some(offer),
         }
     }
 
@@ -139,19 +173,19 @@ impl ViewerHandoff {
         }
     }
 
-    /// Sends `messages`, under a cover when a recording is on screen.
-    fn start(&mut self, ctx: &egui::Context, messages: Vec<LogMsg>) {
+    /// Sends `offer`, under a cover when a recording is on screen.
+    fn start(&mut self, ctx: &egui::Context, offer: Offer) {
         if self.atomic && self.shown.is_some() {
             request_shot(ctx);
-            self.phase = Phase::ShotBeforeSend(messages);
+            self.phase = Phase::ShotBeforeSend(offer);
         } else {
-            self.send(messages);
+            self.send(offer);
         }
     }
 
-    fn send(&mut self, messages: Vec<LogMsg>) {
-        let stores = Stores::of(&messages);
-        for msg in messages {
+    fn send(&mut self, offer: Offer) {
+        let stores = Stores::of(&offer);
+        for msg in offer.messages {
             let _ = self.tx.send(msg.into());
         }
         self.incoming = Some(stores);
@@ -196,13 +230,13 @@ impl ViewerHandoff {
         let shot = cover_shot(ctx);
         match std::mem::replace(&mut self.phase, Phase::Idle) {
             Phase::Idle => false,
-            Phase::ShotBeforeSend(messages) => {
+            Phase::ShotBeforeSend(offer) => {
                 match shot {
                     Some(image) => {
                         self.cover = Some((texture(ctx, &image), SEND_COVER_FRAMES));
-                        self.send(messages);
+                        self.send(offer);
                     }
-                    None => self.phase = Phase::ShotBeforeSend(messages),
+                    None => self.phase = Phase::ShotBeforeSend(offer),
                 }
                 false
             }
@@ -244,7 +278,8 @@ impl ViewerHandoff {
         }
     }
 
-    /// Shows the incoming recording with its layout and closes the previous one.
+    /// Shows the incoming recording with its layout (or the active one, when the layouts
+    /// are the same) and closes the previous one.
     fn switch(&mut self) -> bool {
         let Some(incoming) = self.incoming.take() else {
             return false;
@@ -255,10 +290,17 @@ impl ViewerHandoff {
                     recording_id,
                 }));
         }
-        // The route's application now; its default blueprint (the new layout) is cloned
-        // into the active one before the frame is drawn.
-        self.commands
-            .send_system(SystemCommand::ClearActiveBlueprint);
+        let mut incoming = incoming;
+        if self.keep_layouts && keeps_layout(self.shown.as_ref(), &incoming) {
+            // The active layout stays, framing what it framed: later switches are judged
+            // against that, not against the layout this recording brought.
+            incoming.blueprint_key = self.shown.as_ref().and_then(|s| s.blueprint_key.clone());
+        } else {
+            // The route's application now; its default blueprint (the new layout) is
+            // cloned into the active one before the frame is drawn.
+            self.commands
+                .send_system(SystemCommand::ClearActiveBlueprint);
+        }
         if let Some(old) = self.shown.take() {
             self.close(&old);
         }
@@ -305,6 +347,20 @@ impl ViewerHandoff {
                 None => HandoffState::Idle,
             },
         }
+    }
+}
+
+/// Whether `incoming` keeps the active layout: its blueprint is known and `shown`'s frames
+/// it ([`BlueprintKey::frames`]: the same views, its contents inside what each shows), so
+/// the user's arrangement of the views stays (the active blueprint belongs to the scene's
+/// application, not to the recording closed).
+fn keeps_layout(shown: Option<&Stores>, incoming: &Stores) -> bool {
+    match (
+        shown.and_then(|s| s.blueprint_key.as_ref()),
+        &incoming.blueprint_key,
+    ) {
+        (Some(shown), Some(incoming)) => shown.frames(incoming),
+        _ => false,
     }
 }
 

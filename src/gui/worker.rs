@@ -30,8 +30,8 @@ pub struct Computed {
     pub report: Report,
     /// Entity paths logged.
     pub entity_paths: Vec<String>,
-    /// The views' layout.
-    pub layout: crate::record::Layout,
+    /// The views' layout and what each starts showing: what its default blueprint holds.
+    pub blueprint: crate::record::BlueprintKey,
     /// The recording's messages, as the viewer takes them (encoded only to be saved).
     pub messages: Vec<LogMsg>,
     /// Running the scene, s.
@@ -328,7 +328,7 @@ fn compute(job: &Job) -> Result<Computed, String> {
     Ok(Computed {
         scene,
         entity_paths: out.visuals.iter().map(|v| v.path().to_string()).collect(),
-        layout: recorder.fitted_layout(&out).0,
+        blueprint: recorder.blueprint_key(&out),
         report: out.report,
         messages,
         compute_s,

@@ -3,6 +3,7 @@
 //! [`RecordingContent`].
 
 mod blueprint;
+mod blueprint_key;
 mod eye;
 mod layout;
 mod log_log_chart;
@@ -12,6 +13,7 @@ mod recording_content;
 mod recording_digest;
 mod visual;
 
+pub use blueprint_key::BlueprintKey;
 pub use eye::{Bounds, Eye};
 pub use layout::Layout;
 pub use log_log_chart::{LogLogChart, LogLogSeries};

@@ -8,7 +8,7 @@ use rerun::{
 };
 
 use super::{
-    Bounds, Color, Eye, Geometry, Layout, PHASE_STEPS, RecordingContent, Visual,
+    BlueprintKey, Bounds, Color, Eye, Geometry, Layout, PHASE_STEPS, RecordingContent, Visual,
     blueprint::{BlueprintParameters, send_blueprint},
 };
 use crate::{Error, Result};
@@ -82,6 +82,11 @@ impl Recorder {
     /// each shortened title with its full one.
     pub fn fitted_layout(&self, out: &RecordingContent) -> (Layout, Vec<(String, String)>) {
         out.layout.fit_titles(self.area())
+    }
+
+    /// What the default blueprint of `out` holds ([`BlueprintKey`]).
+    pub fn blueprint_key(&self, out: &RecordingContent) -> BlueprintKey {
+        BlueprintKey::of(self.fitted_layout(out).0, out)
     }
 
     /// Logs everything of `out` to `rec`: the text panel, the visuals, the blueprint.

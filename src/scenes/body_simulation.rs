@@ -3,10 +3,10 @@
 
 use serde_json::json;
 
-use super::RunCache;
 pub use super::body_simulation_visuals::recording;
+use super::{RunCache, SceneId};
 use crate::{
-    Progress, Result,
+    Error, Progress, Result,
     body_file::ImportedBody,
     models::{DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study},
     record::RecordingContent,
@@ -22,6 +22,92 @@ pub struct BodySimulation {
     pub parameters: DrivenBodyParameters,
     /// Also integrate the full body: the reference of every history and reaction error.
     pub full_body: bool,
+}
+
+/// A drive as the explorer's panel states it: which node set, how it moves, for how long.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DriveRequest<'a> {
+    /// The driven node set, tied rigidly to its master (`rbe2:SET`).
+    pub drive: &'a str,
+    /// Other node sets the reduced models keep as interfaces (tied rigidly, free in the
+    /// simulation).
+    pub kept: &'a [String],
+    /// Steady spin rate about z through the drive's master, rad/s (a spin-up).
+    pub rate: f64,
+    /// Time to reach the rate, s.
+    pub ramp: f64,
+    /// A harmonic shake along ground x instead of a spin: amplitude (m) and frequency (Hz).
+    pub shake: Option<(f64, f64)>,
+    /// Simulated interval, s.
+    pub end: f64,
+    /// Also integrate the full body.
+    pub full_body: bool,
+}
+
+/// Samples of the histories over a requested interval (as `simulate`'s default).
+const REQUEST_SAMPLES: usize = 100;
+
+impl BodySimulation {
+    /// The simulation `request` states: generalized-α at `simulate`'s default step,
+    /// [`REQUEST_SAMPLES`] samples of the histories. No drive, or a rate, ramp, amplitude,
+    /// frequency or interval that is not a positive number, is refused by name.
+    pub fn of_request(request: &DriveRequest<'_>) -> Result<Self> {
+        let defaults = DrivenBodyParameters::default();
+        let invalid = |reason: String| Error::InvalidOption {
+            option: "simulate",
+            scene: Some(SceneId::Modes.as_str()),
+            reason,
+        };
+        let drive = request.drive.trim();
+        if drive.is_empty() {
+            return Err(invalid("choose the interface to drive".into()));
+        }
+        let (amplitude, frequency) = request.shake.unwrap_or((1.0, 1.0));
+        let positive = [
+            (
+                "rate",
+                if request.shake.is_some() {
+                    1.0
+                } else {
+                    request.rate
+                },
+            ),
+            ("ramp", request.ramp),
+            ("amplitude", amplitude),
+            ("frequency", frequency),
+            ("end time", request.end),
+        ];
+        if let Some((name, value)) = positive.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
+            return Err(invalid(format!("the {name} must be positive, not {value}")));
+        }
+        let step = defaults.integration.step;
+        let steps = (request.end / step).round().max(1.0) as usize;
+        Ok(Self {
+            parameters: DrivenBodyParameters {
+                drive: format!("rbe2:{drive}"),
+                boundary: request
+                    .kept
+                    .iter()
+                    .filter(|set| set.trim() != drive)
+                    .map(|set| format!("rbe2:{}", set.trim()))
+                    .collect(),
+                rate: if request.shake.is_some() {
+                    0.0
+                } else {
+                    request.rate
+                },
+                ramp: request.ramp,
+                shake: request.shake.map(|(a, f)| ([1.0, 0.0, 0.0], a, f)),
+                integration: crate::dynamics::DrivenIntegration {
+                    end: request.end,
+                    output_every: (steps / REQUEST_SAMPLES).max(1),
+                    ..defaults.integration
+                },
+                ..defaults
+            },
+            full_body: request.full_body,
+        })
+    }
 }
 
 /// Runs `simulation` of `body` with `methods` (one model per count of `modes` kept

@@ -12,7 +12,7 @@ use rerun::{
 
 use crate::{
     Result,
-    error::ServeError,
+    error::{RecordingProblem, ServeError},
     record::Recorder,
     scenes::{Scene, SceneOptions},
 };
@@ -44,7 +44,7 @@ impl Classroom {
             ServeError::Bind {
                 address,
                 port: Some(port),
-                reason: e.to_string(),
+                source: Box::new(e),
             }
         })?;
         Ok(Self { sink })
@@ -81,34 +81,38 @@ pub fn scene_messages(
 /// holds no recording, is refused by name (Rerun's own `rrd verify` passes a file whose
 /// header is right and whose body is garbage).
 pub fn file_messages(path: &Path) -> Result<Vec<LogMsg>> {
-    let refuse = |reason: String| -> crate::Error {
+    let refuse = |problem: RecordingProblem| -> crate::Error {
         ServeError::Recording {
             path: path.to_path_buf(),
-            reason,
+            problem,
         }
         .into()
     };
-    let bytes = std::fs::read(path).map_err(|e| refuse(e.to_string()))?;
+    let bytes = std::fs::read(path).map_err(|e| refuse(RecordingProblem::Unreadable(e)))?;
     let mut messages = Vec::new();
-    for (k, m) in DecoderApp::decode_lazy(bytes.as_slice()).enumerate() {
-        messages.push(m.map_err(|e| refuse(format!("message {k}: {e}")))?);
+    for (message, m) in DecoderApp::decode_lazy(bytes.as_slice()).enumerate() {
+        messages.push(m.map_err(|e| {
+            refuse(RecordingProblem::Damaged {
+                message,
+                source: Box::new(e),
+            })
+        })?);
     }
     let recordings = messages
         .iter()
         .filter(|m| matches!(m, LogMsg::SetStoreInfo(i) if i.info.store_id.is_recording()))
         .count();
     if recordings == 0 {
-        return Err(refuse(format!(
-            "{} message(s), none of them starts a recording",
-            messages.len()
-        )));
+        return Err(refuse(RecordingProblem::NoRecording {
+            messages: messages.len(),
+        }));
     }
     let data = messages
         .iter()
         .filter(|m| matches!(m, LogMsg::ArrowMsg(..)))
         .count();
     if data == 0 {
-        return Err(refuse("no data in it".into()));
+        return Err(refuse(RecordingProblem::NoData));
     }
     Ok(messages)
 }

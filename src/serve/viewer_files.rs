@@ -24,9 +24,18 @@ pub struct ViewerFiles {
     files: BTreeMap<&'static str, ViewerFile>,
 }
 
-fn asset_error(reason: impl Into<String>) -> crate::Error {
+fn asset_error(what: &'static str) -> crate::Error {
+    ServeError::Viewer { what, source: None }.into()
+}
+
+/// [`asset_error`] with the library's error behind it.
+fn asset_error_from(
+    what: &'static str,
+    source: impl Into<Box<dyn std::error::Error + Send + Sync>>,
+) -> crate::Error {
     ServeError::Viewer {
-        reason: reason.into(),
+        what,
+        source: Some(source.into()),
     }
     .into()
 }
@@ -77,7 +86,7 @@ fn gzip(bytes: &[u8]) -> Result<Vec<u8>> {
     );
     gz.write_all(bytes)
         .and_then(|_| gz.finish())
-        .map_err(|e| asset_error(format!("gzip: {e}")))
+        .map_err(|e| asset_error_from("gzip", e))
 }
 
 impl ViewerFiles {
@@ -85,9 +94,10 @@ impl ViewerFiles {
     /// parallel).
     pub fn load() -> Result<Self> {
         let data = re_web_viewer_server::WebViewerData::load(None)
-            .map_err(|e| asset_error(e.to_string()))?;
+            .map_err(|e| asset_error_from("its files do not load", e))?;
         let index = offline_index(
-            std::str::from_utf8(data.index_html()).map_err(|_| asset_error("index.html"))?,
+            std::str::from_utf8(data.index_html())
+                .map_err(|e| asset_error_from("index.html is not UTF-8", e))?,
         )?;
         let sources: Vec<(&'static str, &'static str, Vec<u8>)> = vec![
             ("/", "text/html; charset=utf-8", index.into_bytes()),

@@ -36,7 +36,7 @@ pub fn check_port(
         Err(e) => Err(ServeError::Bind {
             address,
             port: Some(port),
-            reason: e.to_string(),
+            source: Box::new(e),
         }
         .into()),
     }
@@ -120,14 +120,13 @@ impl WebServer {
         control: Option<Arc<ControlPage>>,
     ) -> Result<Self> {
         check_port(address, port, "web page", "port")?;
-        let server =
-            Arc::new(
-                tiny_http::Server::http((address, port)).map_err(|e| ServeError::Bind {
-                    address,
-                    port: Some(port),
-                    reason: e.to_string(),
-                })?,
-            );
+        let server = Arc::new(tiny_http::Server::http((address, port)).map_err(|source| {
+            ServeError::Bind {
+                address,
+                port: Some(port),
+                source,
+            }
+        })?);
         let threads = (0..THREADS)
             .map(|_| {
                 let (server, files, control) = (server.clone(), files.clone(), control.clone());
