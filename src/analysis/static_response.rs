@@ -45,13 +45,15 @@ impl StaticLoadCase {
     fn check(&self, model: &FeModel) -> Result<()> {
         let n = model.dof_count();
         if self.load.len() != n {
-            return Err(Error::InvalidLoadCase {
-                reason: format!("{} load entries for a body of {n} DOF", self.load.len()),
+            return Err(Error::LoadCaseLength {
+                entries: self.load.len(),
+                dofs: n,
             });
         }
         if let Some(&(d, _)) = self.held.iter().find(|(d, _)| *d >= n) {
-            return Err(Error::InvalidLoadCase {
-                reason: format!("held DOF {} does not exist (the body has {n})", d + 1),
+            return Err(Error::LoadCaseHeldDof {
+                dof: d + 1,
+                dofs: n,
             });
         }
         Ok(())

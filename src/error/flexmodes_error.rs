@@ -70,13 +70,13 @@ pub enum Error {
         limit: usize,
     },
 
-    /// A nodal-fixed configuration whose three nodes are not distinct or whose axes do not fit.
-    #[error("invalid nodal-fixed axes: {reason}")]
-    InvalidAxes { reason: String },
+    /// A static load case whose load vector is not the body's length.
+    #[error("static load case: {entries} load entries for a body of {dofs} DOF")]
+    LoadCaseLength { entries: usize, dofs: usize },
 
-    /// A static load case that does not fit the body.
-    #[error("static load case: {reason}")]
-    InvalidLoadCase { reason: String },
+    /// A static load case holding a DOF (1-based) the body does not have.
+    #[error("static load case: held DOF {dof} does not exist (the body has {dofs})")]
+    LoadCaseHeldDof { dof: usize, dofs: usize },
 
     /// The computation was asked to stop (a newer request superseded it).
     #[error("cancelled: a newer request superseded this computation")]

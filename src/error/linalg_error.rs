@@ -56,12 +56,30 @@ pub enum LinalgError {
         given: usize,
     },
 
-    /// The Sturm sequence check could not factor $K - \sigma' M$ accurately at any shift tried.
+    /// The Sturm sequence check could not factor $K - \sigma' M$ accurately at any of the
+    /// `tries` shifts tried; `last` is why the last one failed.
     #[error(
-        "the Sturm sequence check failed: K - σ'M at σ' = {shift:.6e} (rad/s)² could not be \
-         factored accurately ({reason})"
+        "the Sturm sequence check failed: K - σ'M could not be factored accurately at any of \
+         {tries} shifts, the last σ' = {shift:.6e} (rad/s)²"
     )]
-    SturmCheckFailed { shift: f64, reason: String },
+    SturmCheckFailed {
+        shift: f64,
+        tries: usize,
+        #[source]
+        last: Option<Box<crate::Error>>,
+    },
+
+    /// An unpivoted $LDL^T$ factor of $K - \sigma' M$ that grew: its solves' backward error
+    /// is above the bound, so its inertia may be wrong.
+    #[error(
+        "the LDLᵀ factor of K - σ'M at σ' = {shift:.6e} (rad/s)² solves with a backward error \
+         of {backward:.1e}, above {bound:.0e}"
+    )]
+    SturmFactorInaccurate {
+        shift: f64,
+        backward: f64,
+        bound: f64,
+    },
 
     /// Every route of the free-body eigensolver failed.
     #[error(

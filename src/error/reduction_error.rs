@@ -5,9 +5,15 @@ use thiserror::Error;
 /// Errors of a reduction: which boundary, DOF set, mode selection or system does not fit the method.
 #[derive(Debug, Error, serde::Serialize)]
 pub enum ReductionError {
-    /// A boundary set that is empty or leaves no interior DOF.
-    #[error("invalid boundary set {nodes:?}: {reason}")]
-    InvalidBoundary { nodes: Vec<usize>, reason: String },
+    /// An empty boundary set.
+    #[error("invalid boundary set []: at least one boundary node is needed")]
+    NoBoundary,
+
+    /// A boundary set of every node: no interior DOF is left to reduce.
+    #[error(
+        "invalid boundary set {nodes:?}: every node is a boundary node, nothing is left to reduce"
+    )]
+    NoInterior { nodes: Vec<usize> },
 
     /// A DOF set (boundary, held, interface, r-set, inputs, outputs) naming a DOF that does
     /// not exist or naming one twice.
@@ -31,12 +37,32 @@ pub enum ReductionError {
     #[error("invalid MacNeal-Rubin r-set {dofs}: {reason}")]
     InvalidRSet { dofs: String, reason: String },
 
-    /// Balanced truncation of a system whose poles are not all strictly stable.
+    /// A modal damping ratio that is not positive, for what needs every pole strictly
+    /// stable (`needs`: the gramians of Eq. (39), the modal influence coefficients).
     #[error(
-        "balanced truncation needs an asymptotically stable (damped) system: {reason}; add \
-         modal damping or a damping matrix"
+        "{needs} exist only for an asymptotically stable (damped) system, but the modal damping \
+         ratio is ζ = {zeta}; add modal damping"
     )]
-    UndampedSystem { reason: String },
+    NoModalDamping { zeta: f64, needs: &'static str },
+
+    /// Balanced truncation of a body without viscous damping $D = \alpha K$.
+    #[error(
+        "balanced truncation needs viscous damping (Witteveen uses D = 1e-4·K); α = {alpha} was \
+         given"
+    )]
+    NoViscousDamping { alpha: f64 },
+
+    /// An elastic mode handed to balanced truncation whose eigenvalue is not positive: its
+    /// gramian is not finite.
+    #[error(
+        "balanced truncation needs an asymptotically stable system: an elastic mode of \
+         eigenvalue {eigenvalue:e} (rad/s)² has no finite gramian"
+    )]
+    NonPositiveElasticMode { eigenvalue: f64 },
+
+    /// Elastic modes handed to balanced truncation that are linearly dependent.
+    #[error("the elastic modes handed to balanced truncation are linearly dependent")]
+    DependentElasticModes,
 
     /// A frequency band that contains none of the model's modes.
     #[error("the band {low_hz} to {high_hz} Hz contains no mode of the {what}")]
@@ -83,6 +109,18 @@ pub enum ReductionError {
          {max_real_part:.3e} >= 0 (use the output-feedback trick A - B L C)"
     )]
     UnstableSystem { max_real_part: f64 },
+
+    /// Nodal-fixed axes whose plane is given by one axis twice.
+    #[error("invalid nodal-fixed axes: a plane needs two different axes, got {axis}{axis}")]
+    AxesPlaneRepeated { axis: &'static str },
+
+    /// Nodal-fixed axes anchored twice at one node.
+    #[error("invalid nodal-fixed axes: nodes i, j, k must differ, node {node} repeats")]
+    AxesNodeRepeated { node: usize },
+
+    /// Nodal-fixed axes along z of a planar body.
+    #[error("invalid nodal-fixed axes: the {body} is planar: use the x or y axis")]
+    AxesOutOfPlane { body: String },
 
     /// A nodal-fixed anchor coordinate that is not a boundary (identity) column of Ψ.
     #[error(

@@ -115,12 +115,7 @@ impl FeModel {
 
     /// The DOF index of a 1-based node's translation in a direction.
     pub fn dof(&self, node: usize, dir: Direction) -> Result<usize> {
-        let i = self.node_index(node)?.get();
-        self.dofs
-            .index(i, NodeDof::Translation(dir))
-            .ok_or_else(|| Error::InvalidAxes {
-                reason: format!("the {} is planar and has no {} DOF", self.name, dir.name()),
-            })
+        self.node_dof(node, NodeDof::Translation(dir))
     }
 
     /// The DOF index of a 1-based node's DOF (translation or rotation); a node without it is

@@ -76,12 +76,10 @@ pub fn sturm_count(
                 if backward <= STURM_BACKWARD_ERROR {
                     Ok(factor.negative_pivots())
                 } else {
-                    Err(Error::Linalg(LinalgError::SturmCheckFailed {
+                    Err(Error::Linalg(LinalgError::SturmFactorInaccurate {
                         shift,
-                        reason: format!(
-                            "its LDLᵀ solves with a backward error of {backward:.1e}, above \
-                             {STURM_BACKWARD_ERROR:.0e}"
-                        ),
+                        backward,
+                        bound: STURM_BACKWARD_ERROR,
                     }))
                 }
             });
@@ -99,7 +97,8 @@ pub fn sturm_count(
     }
     Err(Error::Linalg(LinalgError::SturmCheckFailed {
         shift,
-        reason: last_error.map(|e| e.to_string()).unwrap_or_default(),
+        tries: SHIFT_TRIES,
+        last: last_error.map(Box::new),
     }))
 }
 

@@ -25,7 +25,7 @@ pub const KEPT_FILL: f64 = 0.5;
 impl BlueprintKey {
     /// Whether a view arranged for `self` shows `next` as well: the same views and timeline,
     /// and in each view `next`'s bounds (3D and 2D views) and value range (time series)
-    /// inside `self`'s, spanning at least [`KEPT_FILL`] of them along every axis where
+    /// inside `self`'s, spanning at least `KEPT_FILL` (half) of them along every axis where
     /// `self` has an extent. Nothing drawn in both is the same framing too.
     pub fn frames(&self, next: &BlueprintKey) -> bool {
         self.layout == next.layout

@@ -42,12 +42,9 @@ impl BalancedTruncation {
 /// the interleaved state order of [`ModalModel::elastic_state_space`].
 pub fn modal_gramians(model: &ModalModel) -> Result<(Mat<f64>, Mat<f64>, StateSpace)> {
     if model.zeta <= 0.0 || !model.zeta.is_finite() {
-        return Err(Error::Reduction(ReductionError::UndampedSystem {
-            reason: format!(
-                "the gramians of Eq. (39) exist only for a stable system; modal damping ζ = {} \
-                 leaves the modes on the imaginary axis",
-                model.zeta
-            ),
+        return Err(Error::Reduction(ReductionError::NoModalDamping {
+            zeta: model.zeta,
+            needs: "the gramians of Eq. (39)",
         }));
     }
     let ss = model.elastic_state_space();
@@ -69,7 +66,7 @@ pub fn modal_gramians(model: &ModalModel) -> Result<(Mat<f64>, Mat<f64>, StateSp
 /// $T_r = L_cY_k\Sigma_k^{-1/2}$, $T_l = L_oU_k\Sigma_k^{-1/2}$ give
 /// $A_k = T_l^TAT_r$, $\mathcal B_k = T_l^T\mathcal B$, $\mathcal C_k = \mathcal CT_r$.
 ///
-/// An undamped model (ζ ≤ 0) is `ReductionError::UndampedSystem`; `states` above the number of
+/// An undamped model (ζ ≤ 0) is `ReductionError::NoModalDamping`; `states` above the number of
 /// elastic states is `ReductionError::TooManyModes`.
 pub fn balanced_truncation(model: &ModalModel, states: usize) -> Result<BalancedTruncation> {
     let (w, v, ss) = modal_gramians(model)?;
@@ -196,12 +193,8 @@ impl Default for BalancedBasisParameters {
 /// thousand DOF. Columns are labelled with their eigenvalue of $W_x$.
 pub fn balanced_basis(model: &FeModel, p: &BalancedBasisParameters) -> Result<Basis> {
     if p.alpha <= 0.0 || !p.alpha.is_finite() {
-        return Err(Error::Reduction(ReductionError::UndampedSystem {
-            reason: format!(
-                "balanced truncation needs viscous damping (Witteveen uses D = 1e-4·K); \
-                 α = {} was given",
-                p.alpha
-            ),
+        return Err(Error::Reduction(ReductionError::NoViscousDamping {
+            alpha: p.alpha,
         }));
     }
     let partition = super::Partition::from_dofs(model, &p.inputs, &p.held)?;

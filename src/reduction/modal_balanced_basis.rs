@@ -70,19 +70,10 @@ pub fn modal_balanced_basis(
         .into());
     }
     if let Some(&l) = elastic.values.iter().find(|&&l| l <= 0.0) {
-        return Err(ReductionError::UndampedSystem {
-            reason: format!("an elastic mode of eigenvalue {l:e} (rad/s)² has no finite gramian"),
-        }
-        .into());
+        return Err(ReductionError::NonPositiveElasticMode { eigenvalue: l }.into());
     }
     if p.alpha <= 0.0 || !p.alpha.is_finite() {
-        return Err(ReductionError::UndampedSystem {
-            reason: format!(
-                "balanced truncation needs viscous damping; α = {} was given",
-                p.alpha
-            ),
-        }
-        .into());
+        return Err(ReductionError::NoViscousDamping { alpha: p.alpha }.into());
     }
     let started = std::time::Instant::now();
     let phi = elastic.vectors.as_ref();
@@ -92,10 +83,7 @@ pub fn modal_balanced_basis(
     let g = Mat::from_fn(ne, ne, |i, j| 0.5 * (g[(i, j)] + g[(j, i)]));
     let ge = symmetric_eigen(g.as_ref(), "Gram matrix of the elastic modes")?;
     if ge.values[0] <= 0.0 {
-        return Err(ReductionError::UndampedSystem {
-            reason: "the elastic modes handed to balanced truncation are linearly dependent".into(),
-        }
-        .into());
+        return Err(ReductionError::DependentElasticModes.into());
     }
     let root = |power: f64| {
         let d: Vec<f64> = ge.values.iter().map(|s| s.powf(power)).collect();

@@ -42,14 +42,12 @@ impl ModalInfluence {
 /// $G_i(0) = c_{1i}b_i/\omega_i^2$ the mode's static contribution. Gregory derives it for a
 /// lightly damped mode well separated from the others; Eq. (45) measures how far that holds.
 ///
-/// A model without damping has no finite Hankel singular values: `ReductionError::UndampedSystem`.
+/// A model without damping has no finite Hankel singular values: `ReductionError::NoModalDamping`.
 pub fn modal_influence(model: &ModalModel) -> Result<ModalInfluence> {
     if model.zeta <= 0.0 || !model.zeta.is_finite() {
-        return Err(Error::Reduction(ReductionError::UndampedSystem {
-            reason: format!(
-                "modal influence coefficients divide by the damping ratio, here ζ = {}",
-                model.zeta
-            ),
+        return Err(Error::Reduction(ReductionError::NoModalDamping {
+            zeta: model.zeta,
+            needs: "modal influence coefficients (they divide by the damping ratio)",
         }));
     }
     let p = model.mode_count();

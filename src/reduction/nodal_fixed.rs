@@ -59,9 +59,7 @@ impl NodalFixedAxes {
     pub fn anchored_dofs(&self, model: &FeModel) -> Result<Vec<(usize, Direction, usize)>> {
         let TableConfiguration { axis, plane_with } = self.configuration;
         if axis == plane_with {
-            return Err(Error::InvalidAxes {
-                reason: format!("a plane needs two different axes, got {0}{0}", axis.name()),
-            });
+            return Err(ReductionError::AxesPlaneRepeated { axis: axis.name() }.into());
         }
         let nodes: &[usize] = if model.spatial_dim() == 3 {
             &[self.origin, self.axis_node, self.plane_node]
@@ -71,16 +69,15 @@ impl NodalFixedAxes {
         for (a, &n) in nodes.iter().enumerate() {
             model.node_index(n)?;
             if nodes[..a].contains(&n) {
-                return Err(Error::InvalidAxes {
-                    reason: format!("nodes i, j, k must differ, node {n} repeats"),
-                });
+                return Err(ReductionError::AxesNodeRepeated { node: n }.into());
             }
         }
         let dims: Vec<Direction> = Direction::ALL[..model.spatial_dim()].to_vec();
         if !dims.contains(&axis) || (model.spatial_dim() == 3 && !dims.contains(&plane_with)) {
-            return Err(Error::InvalidAxes {
-                reason: format!("the {} is planar: use the x or y axis", model.name),
-            });
+            return Err(ReductionError::AxesOutOfPlane {
+                body: model.name.clone(),
+            }
+            .into());
         }
         let mut out = Vec::new();
         for &d in &dims {

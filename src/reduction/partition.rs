@@ -39,10 +39,7 @@ impl Partition {
     /// Splits `model`'s DOF by the 1-based `boundary_nodes`.
     pub fn new(model: &FeModel, boundary_nodes: &[usize]) -> Result<Self> {
         if boundary_nodes.is_empty() {
-            return Err(Error::Reduction(ReductionError::InvalidBoundary {
-                nodes: vec![],
-                reason: "at least one boundary node is needed".into(),
-            }));
+            return Err(Error::Reduction(ReductionError::NoBoundary));
         }
         let b = model.dofs_of_nodes(boundary_nodes)?;
         let mut is_boundary = vec![false; model.dof_count()];
@@ -53,9 +50,8 @@ impl Partition {
             .filter(|&d| !is_boundary[d])
             .collect();
         if i.is_empty() {
-            return Err(Error::Reduction(ReductionError::InvalidBoundary {
+            return Err(Error::Reduction(ReductionError::NoInterior {
                 nodes: boundary_nodes.to_vec(),
-                reason: "every node is a boundary node, nothing is left to reduce".into(),
             }));
         }
         Ok(Self {

@@ -49,7 +49,7 @@ const REQUEST_SAMPLES: usize = 100;
 
 impl BodySimulation {
     /// The simulation `request` states: generalized-α at `simulate`'s default step,
-    /// [`REQUEST_SAMPLES`] samples of the histories. No drive, or a rate, ramp, amplitude,
+    /// a hundred samples of the histories. No drive, or a rate, ramp, amplitude,
     /// frequency or interval that is not a positive number, is refused by name.
     pub fn of_request(request: &DriveRequest<'_>) -> Result<Self> {
         let defaults = DrivenBodyParameters::default();

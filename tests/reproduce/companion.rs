@@ -489,11 +489,11 @@ fn balanced_truncation_error_bound_holds_on_the_computed_frf() {
     let undamped = clamped_modal(0.0, &io, 4);
     assert!(matches!(
         balanced_truncation(&undamped, 2),
-        Err(Error::Reduction(ReductionError::UndampedSystem { .. }))
+        Err(Error::Reduction(ReductionError::NoModalDamping { .. }))
     ));
     assert!(matches!(
         modal_influence(&undamped),
-        Err(Error::Reduction(ReductionError::UndampedSystem { .. }))
+        Err(Error::Reduction(ReductionError::NoModalDamping { .. }))
     ));
 }
 
@@ -599,7 +599,9 @@ fn balanced_basis_needs_damping_and_existing_dofs() {
     };
     assert!(matches!(
         balanced_basis(model, &p),
-        Err(Error::Reduction(ReductionError::UndampedSystem { .. }))
+        Err(Error::Reduction(ReductionError::NoViscousDamping {
+            alpha: 0.0
+        }))
     ));
     let bad = BalancedBasisParameters {
         inputs: vec![model.dof_count() + 3],

@@ -43,11 +43,11 @@ fn node_out_of_range_and_duplicates() {
     let all: Vec<usize> = (1..=5).collect();
     assert!(matches!(
         guyan(&model, &all).unwrap_err(),
-        Error::Reduction(ReductionError::InvalidBoundary { .. })
+        Error::Reduction(ReductionError::NoInterior { .. })
     ));
     assert!(matches!(
         guyan(&model, &[]).unwrap_err(),
-        Error::Reduction(ReductionError::InvalidBoundary { .. })
+        Error::Reduction(ReductionError::NoBoundary)
     ));
 }
 
