@@ -49,12 +49,15 @@ pub enum Error {
 
     /// A node that does not carry the named DOF (a rotation of a solid's node, z of a planar
     /// body).
-    #[error("node {node} of the {body} has no {dof} DOF (its nodes carry {carried})")]
+    #[error(
+        "node {node} of the {body} has no {dof} DOF (its nodes carry {})",
+        carried.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
+    )]
     NoSuchDof {
         node: usize,
-        dof: String,
+        dof: crate::fem::NodeDof,
         body: String,
-        carried: String,
+        carried: Vec<crate::fem::NodeDof>,
     },
 
     /// A model larger than a method (or the machine) can take; `step` names the part of

@@ -5,22 +5,26 @@
 
 mod body_file_error;
 mod divergence_cause;
+mod dof_set_problem;
 mod dynamics_error;
 mod eigen_attempt;
 mod flexmodes_error;
 mod linalg_error;
 mod mesh_error;
+mod r_set_problem;
 mod reduction_error;
 mod serve_error;
 mod unknown_id;
 
 pub use body_file_error::BodyFileError;
 pub use divergence_cause::DivergenceCause;
+pub use dof_set_problem::DofSetProblem;
 pub use dynamics_error::DynamicsError;
 pub use eigen_attempt::EigenAttempt;
 pub use flexmodes_error::{Error, Result};
 pub use linalg_error::LinalgError;
 pub use mesh_error::MeshError;
+pub use r_set_problem::RSetProblem;
 pub use reduction_error::ReductionError;
 pub use serve_error::{RecordingProblem, ServeError};
 pub use unknown_id::UnknownId;

@@ -17,8 +17,11 @@ pub enum ReductionError {
 
     /// A DOF set (boundary, held, interface, r-set, inputs, outputs) naming a DOF that does
     /// not exist or naming one twice.
-    #[error("invalid {set} DOF set: {reason}")]
-    InvalidDofSet { set: String, reason: String },
+    #[error("invalid {set} DOF set: {problem}")]
+    InvalidDofSet {
+        set: String,
+        problem: super::DofSetProblem,
+    },
 
     /// An export another code cannot take as it is (`to`: the code).
     #[error("cannot export for {to}: {reason}")]
@@ -34,8 +37,11 @@ pub enum ReductionError {
 
     /// MacNeal–Rubin's r-set (Spanos–Tsuha Eq. 11) must restrain every rigid motion with
     /// exactly as many DOF as there are rigid motions (statically determinate).
-    #[error("invalid MacNeal-Rubin r-set {dofs}: {reason}")]
-    InvalidRSet { dofs: String, reason: String },
+    #[error("invalid MacNeal-Rubin r-set {dofs}: {problem}")]
+    InvalidRSet {
+        dofs: String,
+        problem: super::RSetProblem,
+    },
 
     /// A modal damping ratio that is not positive, for what needs every pole strictly
     /// stable (`needs`: the gramians of Eq. (39), the modal influence coefficients).

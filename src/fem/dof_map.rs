@@ -4,12 +4,19 @@
 use super::Direction;
 
 /// One DOF of a node: a translation (m) or a small rotation (rad) about a global direction.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
 pub enum NodeDof {
     /// Displacement along the direction, m.
     Translation(Direction),
     /// Rotation about the direction, rad.
     Rotation(Direction),
+}
+
+impl std::fmt::Display for NodeDof {
+    /// [`NodeDof::name`].
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.name())
+    }
 }
 
 impl NodeDof {

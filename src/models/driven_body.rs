@@ -6,6 +6,7 @@
 //! model's history (the mean displacement of chosen node sets in the frame, and the reaction
 //! at the drive) is compared with the full body's.
 
+use crate::error::DofSetProblem;
 use std::{sync::Arc, time::Instant};
 
 use faer::Mat;
@@ -408,9 +409,7 @@ fn drive_interface(
             .expect("named above")),
         _ => Err(ReductionError::InvalidDofSet {
             set: item.to_string(),
-            reason: "the drive must be one rigid interface: rbe2:SET or an rbe2 interface of \
-                     the body file"
-                .into(),
+            problem: DofSetProblem::DriveNotRigid,
         }
         .into()),
     }
@@ -545,7 +544,7 @@ fn pinned_rings(
             .find(|i| i.name == name)
             .ok_or_else(|| ReductionError::InvalidDofSet {
                 set: item.clone(),
-                reason: "a pinned interface must be a rigid (rbe2) node set".into(),
+                problem: DofSetProblem::PinNotRigid,
             })?;
         let rows = interface.rigid_motions(model)?;
         pins.push(PinnedRing {

@@ -1,6 +1,7 @@
 //! A statically determinate support of a free solid body (the r-set of MacNeal–Rubin,
 //! Spanos–Tsuha Eq. 11): 3-2-1 translations of three interior nodes far apart.
 
+use crate::error::RSetProblem;
 use crate::{
     Result,
     error::ReductionError,
@@ -13,19 +14,18 @@ use crate::{
 /// from the line AB most aligned with the normal of the plane ABC. An error names why when the
 /// body has fewer than three such nodes or they lie on a line.
 pub fn three_two_one_support(model: &FeModel, excluded: &[usize]) -> Result<Vec<usize>> {
-    let invalid = |reason: String| ReductionError::InvalidRSet {
+    let invalid = |problem| ReductionError::InvalidRSet {
         dofs: "3-2-1 support".into(),
-        reason,
+        problem,
     };
     let candidates: Vec<NodeIndex> = (0..model.node_count())
         .map(NodeIndex)
         .filter(|n| !excluded.contains(&n.number()))
         .collect();
     if candidates.len() < 3 {
-        return Err(invalid(format!(
-            "{} nodes outside the interface; three are needed",
-            candidates.len()
-        ))
+        return Err(invalid(RSetProblem::TooFewNodes {
+            nodes: candidates.len(),
+        })
         .into());
     }
     let x = |n: NodeIndex| model.position(n);
@@ -62,7 +62,7 @@ pub fn three_two_one_support(model: &FeModel, excluded: &[usize]) -> Result<Vec<
     let normal = cross(ab, sub(x(c), x(a)));
     let size = dot(ab, ab).sqrt();
     if dot(normal, normal).sqrt() <= 1e-9 * size * size {
-        return Err(invalid("the nodes outside the interface lie on a line".into()).into());
+        return Err(invalid(RSetProblem::Collinear).into());
     }
     let axes = [Direction::X, Direction::Y, Direction::Z];
     let dof = |n: NodeIndex, d: Direction| model.node_dof(n.number(), NodeDof::Translation(d));

@@ -9,6 +9,7 @@
 //! = A\,u_S$ ($R$ the ring's rigid-motion matrix, $D$ the weights on every DOF of a node);
 //! a master load $F_m$ reaches the ring as $f_S = A^TF_m$, doing the same virtual work.
 
+use crate::error::DofSetProblem;
 use faer::Mat;
 
 use super::rigid_interface::rigid_motion_rows;
@@ -39,7 +40,7 @@ impl AveragingInterface {
         if nodes.is_empty() {
             return Err(ReductionError::InvalidDofSet {
                 set: set(),
-                reason: "the node set is empty".into(),
+                problem: DofSetProblem::NoNodes,
             }
             .into());
         }
@@ -47,7 +48,10 @@ impl AveragingInterface {
         if weights.len() != nodes.len() {
             return Err(ReductionError::InvalidDofSet {
                 set: set(),
-                reason: format!("{} weights for {} nodes", weights.len(), nodes.len()),
+                problem: DofSetProblem::WeightCount {
+                    weights: weights.len(),
+                    nodes: nodes.len(),
+                },
             }
             .into());
         }
@@ -58,10 +62,10 @@ impl AveragingInterface {
         {
             return Err(ReductionError::InvalidDofSet {
                 set: set(),
-                reason: format!(
-                    "the weight of node {} is {w}: weights must be positive",
-                    nodes[k]
-                ),
+                problem: DofSetProblem::NonPositiveWeight {
+                    node: nodes[k],
+                    weight: *w,
+                },
             }
             .into());
         }
@@ -109,12 +113,10 @@ impl AveragingInterface {
         if lo.is_nan() || lo <= 1e-10 * hi {
             return Err(ReductionError::InvalidDofSet {
                 set: format!("rbe3 interface `{}`", self.name),
-                reason: format!(
-                    "its {} nodes do not fix a rigid motion (RᵀDR has condition {:.1e}: \
-                     nodes on one line leave the rotation about it free)",
-                    self.nodes.len(),
-                    hi / lo.max(f64::MIN_POSITIVE)
-                ),
+                problem: DofSetProblem::NoRigidMotion {
+                    nodes: self.nodes.len(),
+                    condition: hi / lo.max(f64::MIN_POSITIVE),
+                },
             }
             .into());
         }

@@ -2,6 +2,7 @@
 //! interface carries the constraint-mode mass and stiffness of the components attached to it.
 
 use super::ReductionError;
+use crate::error::DofSetProblem;
 use faer::Mat;
 
 use super::{
@@ -124,11 +125,15 @@ pub fn benfield_hruda(
         if face.loading.mass.nrows() != ni || face.loading.stiffness.nrows() != ni {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: format!("interface {}", c + 1),
-                reason: format!(
-                    "{ni} DOF but a {} × {} loading",
-                    face.loading.mass.nrows(),
-                    face.loading.mass.ncols()
-                ),
+                problem: DofSetProblem::Shape {
+                    what: "rows of its loading",
+                    found: if face.loading.mass.nrows() != ni {
+                        face.loading.mass.nrows()
+                    } else {
+                        face.loading.stiffness.nrows()
+                    },
+                    expected: ni,
+                },
             }));
         }
         let mut taken = vec![0u8; n];

@@ -6,6 +6,7 @@
 //! columns are $[R_S;\,-K_{ii}^{-1}K_{ib}R_S]$: six right-hand sides per interface instead of
 //! three per tied node. The fixed-interface modes are unchanged (the ring is held either way).
 
+use crate::error::DofSetProblem;
 use faer::{Mat, sparse::SparseColMat};
 
 use super::{Column, ColumnKind, MASTER_DOF_NAMES, ReductionError, RigidInterface};
@@ -69,18 +70,22 @@ impl BoundaryCoordinates {
                 if j == usize::MAX {
                     return Err(ReductionError::InvalidDofSet {
                         set: set(),
-                        reason: format!(
-                            "{} is not a boundary DOF (a rigid interface's nodes must be \
-                             boundary nodes)",
-                            model.dof_label(dof)
-                        ),
+                        problem: {
+                            let (node, d) = model.dof_node(dof);
+                            DofSetProblem::NotBoundary {
+                                node: node.number(),
+                                dof: d,
+                            }
+                        },
                     }
                     .into());
                 }
                 if tied[j].is_some() {
                     return Err(ReductionError::InvalidDofSet {
                         set: set(),
-                        reason: format!("{} is tied to two interfaces", model.dof_node(dof).0),
+                        problem: DofSetProblem::TiedTwice {
+                            node: model.dof_node(dof).0.number(),
+                        },
                     }
                     .into());
                 }

@@ -2,6 +2,7 @@
 //! component in its own Ritz coordinates, joined by equal displacements at shared nodes.
 
 use super::ReductionError;
+use crate::error::DofSetProblem;
 use faer::Mat;
 
 use crate::{
@@ -58,21 +59,20 @@ impl Synthesis {
         let mut offsets = Vec::with_capacity(components.len());
         let mut total = 0;
         for (ci, c) in components.iter().enumerate() {
-            if c.model.dofs.per_node() != per_node
-                || c.nodes.len() != c.model.node_count()
-                || c.basis.nrows() != c.model.dof_count()
-            {
+            // The first of its maps whose length is not the component's.
+            let shapes = [
+                ("DOF per node", c.model.dofs.per_node(), per_node),
+                ("nodes mapped", c.nodes.len(), c.model.node_count()),
+                ("rows of its basis", c.basis.nrows(), c.model.dof_count()),
+            ];
+            if let Some(&(what, found, expected)) = shapes.iter().find(|(_, f, e)| f != e) {
                 return Err(Error::Reduction(ReductionError::InvalidDofSet {
                     set: format!("component {}", ci + 1),
-                    reason: format!(
-                        "{} nodes mapped for {} body nodes, basis of {} rows for {} DOF, {} DOF \
-                         per node against {per_node}",
-                        c.nodes.len(),
-                        c.model.node_count(),
-                        c.basis.nrows(),
-                        c.model.dof_count(),
-                        c.model.dofs.per_node()
-                    ),
+                    problem: DofSetProblem::Shape {
+                        what,
+                        found,
+                        expected,
+                    },
                 }));
             }
             offsets.push(total);

@@ -132,11 +132,8 @@ pub fn restrained_modes(
 pub fn mass_normalised_rigid_modes(model: &FeModel) -> Result<Mat<f64>> {
     if model.rigid_motions != RigidMotions::FromGeometry {
         return Err(Error::Reduction(ReductionError::InvalidRSet {
-            dofs: String::new(),
-            reason: format!(
-                "the rigid motions of the {} are not known from its geometry",
-                model.name
-            ),
+            dofs: model.name.clone(),
+            problem: crate::error::RSetProblem::UnknownRigidMotions,
         }));
     }
     let r = model.rigid_body_modes();

@@ -2,6 +2,7 @@
 //! modes plus one residual-flexibility mode per interface DOF.
 
 use super::ReductionError;
+use crate::error::RSetProblem;
 use faer::Mat;
 
 use super::{
@@ -56,9 +57,7 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
         if !p.r_set.is_empty() {
             return Err(Error::Reduction(ReductionError::InvalidRSet {
                 dofs: format!("{} DOF", p.r_set.len()),
-                reason: "the component is held, so it has no rigid-body motions to restrain; \
-                         leave the r-set empty"
-                    .into(),
+                problem: RSetProblem::HeldComponent,
             }));
         }
         check_dof_set(model, "held", &p.held, &mut taken, 2)?;
@@ -180,20 +179,16 @@ fn check_r_set(model: &FeModel, r_set: &[usize], phi_r: faer::MatRef<'_, f64>) -
     if rank < rigid {
         return Err(Error::Reduction(ReductionError::InvalidRSet {
             dofs: format!("[{}]", labels()),
-            reason: format!(
-                "it restrains only {rank} of the {rigid} rigid-body motions, so the restrained \
-                 stiffness of Eq. (13) is singular"
-            ),
+            problem: RSetProblem::Deficient { rank, rigid },
         }));
     }
     if r_set.len() > rigid {
         return Err(Error::Reduction(ReductionError::InvalidRSet {
             dofs: format!("[{}]", labels()),
-            reason: format!(
-                "it is redundant: {} DOF for {rigid} rigid-body motions (statically \
-                 indeterminate); Eq. (13) needs a statically determinate set",
-                r_set.len()
-            ),
+            problem: RSetProblem::Redundant {
+                dofs: r_set.len(),
+                rigid,
+            },
         }));
     }
     Ok(())

@@ -1,6 +1,7 @@
 //! Balanced-truncation trial vectors for a body too large for its complete modes: Witteveen's
 //! position gramian (§4.3.3) built on the body's lowest elastic free-free modes.
 
+use crate::error::DofSetProblem;
 use faer::{Mat, MatRef};
 
 use super::{
@@ -52,13 +53,18 @@ pub fn modal_balanced_basis(
     let n = elastic.vectors.nrows();
     let ne = elastic.values.len();
     if rigid.nrows() != n || loads.matrix.nrows() != n {
+        let (what, found) = if rigid.nrows() != n {
+            ("rows of the rigid motions", rigid.nrows())
+        } else {
+            ("rows of the loads", loads.matrix.nrows())
+        };
         return Err(ReductionError::InvalidDofSet {
             set: "balanced truncation".into(),
-            reason: format!(
-                "{} rigid rows and {} load rows for {n} modal rows",
-                rigid.nrows(),
-                loads.matrix.nrows()
-            ),
+            problem: DofSetProblem::Shape {
+                what,
+                found,
+                expected: n,
+            },
         }
         .into());
     }

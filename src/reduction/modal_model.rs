@@ -2,6 +2,7 @@
 //! its actuator-to-sensor frequency response.
 
 use super::ReductionError;
+use crate::error::DofSetProblem;
 use faer::{Mat, MatRef, c64, linalg::solvers::Solve};
 
 use crate::{
@@ -34,7 +35,7 @@ impl IoMap {
         if self.inputs.is_empty() || self.output_count() == 0 {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: "input/output".into(),
-                reason: "a frequency response needs at least one input and one output".into(),
+                problem: DofSetProblem::NoInputOrOutput,
             }));
         }
         for (set, list) in [
@@ -45,7 +46,10 @@ impl IoMap {
             if let Some(&d) = list.iter().find(|&&d| d >= dofs) {
                 return Err(Error::Reduction(ReductionError::InvalidDofSet {
                     set: set.into(),
-                    reason: format!("DOF {d} does not exist (the body has {dofs} DOF)"),
+                    problem: DofSetProblem::OutOfRange {
+                        dof: d,
+                        count: dofs,
+                    },
                 }));
             }
         }

@@ -1,6 +1,7 @@
 //! Second-order Krylov moment matching (Witteveen §3.2, Eq. 21) by block Arnoldi with
 //! re-orthogonalisation and deflation.
 
+use crate::error::DofSetProblem;
 use faer::Mat;
 
 use super::{
@@ -253,17 +254,18 @@ fn free_dofs(model: &FeModel, p: &MomentMatchingParameters) -> Result<Vec<usize>
 /// Refuses `vectors` (the loads or the leading vectors) without a row per DOF of the body or
 /// a label per column.
 fn check_vectors(model: &FeModel, what: &str, vectors: &Mat<f64>, labels: &[String]) -> Result<()> {
-    if vectors.nrows() != model.dof_count() || labels.len() != vectors.ncols() {
+    let shapes = [
+        ("rows", vectors.nrows(), model.dof_count()),
+        ("labels", labels.len(), vectors.ncols()),
+    ];
+    if let Some(&(rows_or_labels, found, expected)) = shapes.iter().find(|(_, f, e)| f != e) {
         return Err(ReductionError::InvalidDofSet {
             set: format!("moment-matching {what}"),
-            reason: format!(
-                "{} × {} {} with {} labels for a body of {} DOF",
-                vectors.nrows(),
-                vectors.ncols(),
-                if what == "loads" { "loads" } else { "vectors" },
-                labels.len(),
-                model.dof_count()
-            ),
+            problem: DofSetProblem::Shape {
+                what: rows_or_labels,
+                found,
+                expected,
+            },
         }
         .into());
     }

@@ -2,6 +2,7 @@
 //! dense path (small bodies) or the sparse one (refined meshes).
 
 use super::ReductionError;
+use crate::error::DofSetProblem;
 use std::time::Instant;
 
 use faer::{Mat, MatRef, sparse::SparseColMat};
@@ -76,7 +77,7 @@ impl Partition {
         if i.is_empty() {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: "boundary".into(),
-                reason: "every DOF is a boundary or held DOF, nothing is left to reduce".into(),
+                problem: DofSetProblem::NothingLeft,
             }));
         }
         let mut boundary_nodes: Vec<usize> = Vec::new();
@@ -609,26 +610,38 @@ pub(crate) fn check_dof_set(
     if dofs.is_empty() {
         return Err(Error::Reduction(ReductionError::InvalidDofSet {
             set: set.into(),
-            reason: "it is empty".into(),
+            problem: DofSetProblem::Empty,
         }));
     }
     for &d in dofs {
         if d >= n {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: set.into(),
-                reason: format!("DOF {d} is out of range: the {} has {n} DOF", model.name),
+                problem: DofSetProblem::OutOfRange { dof: d, count: n },
             }));
         }
         if taken[d] == mark {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: set.into(),
-                reason: format!("{} is listed twice", model.dof_label(d)),
+                problem: {
+                    let (node, dof) = model.dof_node(d);
+                    DofSetProblem::Twice {
+                        node: node.number(),
+                        dof,
+                    }
+                },
             }));
         }
         if taken[d] != 0 {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: set.into(),
-                reason: format!("{} already belongs to another set", model.dof_label(d)),
+                problem: {
+                    let (node, dof) = model.dof_node(d);
+                    DofSetProblem::InAnotherSet {
+                        node: node.number(),
+                        dof,
+                    }
+                },
             }));
         }
         taken[d] = mark;

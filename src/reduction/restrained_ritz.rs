@@ -2,6 +2,7 @@
 //! zero and point masses applied to a Ritz-reduced model only, its basis left as it was.
 
 use super::ReductionError;
+use crate::error::DofSetProblem;
 use crate::linalg::LinalgError;
 use faer::{Mat, MatRef, linalg::solvers::Solve};
 
@@ -47,7 +48,7 @@ impl RestrainedRitzModel {
         {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
                 set: "restrained".into(),
-                reason: format!("DOF {d} does not exist (the body has {n} DOF)"),
+                problem: DofSetProblem::OutOfRange { dof: d, count: n },
             }));
         }
         let r = basis.ncols();

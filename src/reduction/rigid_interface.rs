@@ -13,6 +13,7 @@
 //! interior is unchanged, $K'_{ib} = K_{ib}R$, so the constraint modes are
 //! $-K_{ii}^{-1}K_{ib}R$, and the fixed-interface modes are those with the ring held.
 
+use crate::error::DofSetProblem;
 use faer::Mat;
 
 use super::{Basis, Column, ColumnKind};
@@ -45,7 +46,7 @@ impl RigidInterface {
         if nodes.is_empty() {
             return Err(ReductionError::InvalidDofSet {
                 set: format!("rbe2 interface `{name}`"),
-                reason: "the node set is empty".into(),
+                problem: DofSetProblem::NoNodes,
             }
             .into());
         }
@@ -123,17 +124,21 @@ pub fn tie_rigid_interfaces(
                 .position(|c| c.dof == Some(dof) && boundary_column(&c.kind))
                 .ok_or_else(|| ReductionError::InvalidDofSet {
                     set: format!("rbe2 interface `{}`", interface.name),
-                    reason: format!(
-                        "{} has no unit boundary column in the {} basis (a rigid \
-                         interface needs its nodes in the boundary of CB, GR, MT or MC)",
-                        model.dof_label(dof),
-                        basis.method.name()
-                    ),
+                    problem: {
+                        let (node, d) = model.dof_node(dof);
+                        DofSetProblem::NotInBoundary {
+                            node: node.number(),
+                            dof: d,
+                            method: basis.method.name(),
+                        }
+                    },
                 })?;
             if tied[j].is_some() {
                 return Err(ReductionError::InvalidDofSet {
                     set: format!("rbe2 interface `{}`", interface.name),
-                    reason: format!("{} is tied to two interfaces", model.dof_node(dof).0),
+                    problem: DofSetProblem::TiedTwice {
+                        node: model.dof_node(dof).0.number(),
+                    },
                 }
                 .into());
             }
