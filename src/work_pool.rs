@@ -70,9 +70,30 @@ pub fn run_in_order<T: Sync, R: Send>(
     items: &[T],
     threads: usize,
     run: impl Fn(usize, &T) -> Result<R> + Sync,
+    done: impl FnMut(usize, R),
+) -> Result<()> {
+    let order: Vec<usize> = (0..items.len()).collect();
+    run_in_order_by(items, &order, threads, run, done)
+}
+
+/// [`run_in_order`] with the items started in `order` (a permutation of their indices: the
+/// longest first, say, so that no thread is left with a long item at the end while the others
+/// idle); results are still handed to `done` in the order of the items. After an error, items
+/// not yet started stay so, and results are handed on up to the first item without one.
+pub fn run_in_order_by<T: Sync, R: Send>(
+    items: &[T],
+    order: &[usize],
+    threads: usize,
+    run: impl Fn(usize, &T) -> Result<R> + Sync,
     mut done: impl FnMut(usize, R),
 ) -> Result<()> {
     let count = items.len();
+    let mut sorted = order.to_vec();
+    sorted.sort_unstable();
+    assert!(
+        sorted.iter().copied().eq(0..count),
+        "run_in_order_by: the order {order:?} is not a permutation of 0..{count}"
+    );
     let threads = threads.clamp(1, count.max(1));
     let next = AtomicUsize::new(0);
     let failed = AtomicBool::new(false);
@@ -83,10 +104,11 @@ pub fn run_in_order<T: Sync, R: Send>(
             let (next, failed, run) = (&next, &failed, &run);
             scope.spawn(move || {
                 loop {
-                    let k = next.fetch_add(1, Ordering::SeqCst);
-                    if k >= count || failed.load(Ordering::SeqCst) {
+                    let started = next.fetch_add(1, Ordering::SeqCst);
+                    if started >= count || failed.load(Ordering::SeqCst) {
                         break;
                     }
+                    let k = order[started];
                     let result = run(k, &items[k]);
                     if result.is_err() {
                         failed.store(true, Ordering::SeqCst);
@@ -156,6 +178,44 @@ mod tests {
             // Nothing after the failed item is handed on; items before it all are.
             assert_eq!(handed, vec![0, 1], "{threads} threads");
         }
+    }
+
+    #[test]
+    fn items_started_in_another_order_are_handed_on_in_theirs() {
+        let input: Vec<usize> = (0..7).collect();
+        let order = [6, 2, 4, 0, 1, 3, 5];
+        for threads in 1..4 {
+            let started = std::sync::Mutex::new(Vec::new());
+            let mut seen = Vec::new();
+            run_in_order_by(
+                &input,
+                &order,
+                threads,
+                |k, &i| {
+                    started.lock().unwrap().push(k);
+                    Ok(i + 100)
+                },
+                |k, r| seen.push((k, r)),
+            )
+            .unwrap();
+            assert_eq!(
+                seen,
+                input.iter().map(|&i| (i, i + 100)).collect::<Vec<_>>()
+            );
+            if threads == 1 {
+                assert_eq!(
+                    started.into_inner().unwrap(),
+                    order,
+                    "one thread starts in order"
+                );
+            }
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "not a permutation")]
+    fn an_order_that_is_not_a_permutation_is_refused() {
+        let _ = run_in_order_by(&[1, 2, 3], &[0, 0, 2], 2, |_, &i| Ok(i), |_, _| {});
     }
 
     #[test]

@@ -165,10 +165,11 @@ fn run(cli: Cli) -> Result<()> {
     }
 }
 
-/// Records `scenes` side by side on the work pool (at most [`RECORD_WORKERS`] at once), each
-/// to `save` or `out/<id>.rrd`, and prints each result table in the order given as soon as
-/// it and those before it are done. The first error stops new scenes from starting and is
-/// returned once the running ones finish.
+/// Records `scenes` side by side on the work pool (at most [`RECORD_WORKERS`] at once, the
+/// costliest first: [`scenes::SceneId::recording_cost`]), each to `save` or `out/<id>.rrd`,
+/// and prints each result table in the order given as soon as it and those before it are
+/// done. The first error stops new scenes from starting and is returned once the running ones
+/// finish.
 fn record_scenes(
     scenes: Vec<scenes::Scene>,
     opts: &scenes::SceneOptions,
@@ -186,8 +187,13 @@ fn record_scenes(
     let recorder = Recorder::default();
     let started = Instant::now();
     let mut rows = Vec::with_capacity(count);
-    crate::work_pool::run_in_order(
+    // The costliest scenes first (a stable sort: ties in the catalogue's order); the tables
+    // are still printed in the catalogue's order.
+    let mut order: Vec<usize> = (0..count).collect();
+    order.sort_by_key(|&k| std::cmp::Reverse(scenes[k].info.id.recording_cost()));
+    crate::work_pool::run_in_order_by(
         &scenes,
+        &order,
         workers,
         |k, s| {
             let mut opts = opts.clone();

@@ -56,6 +56,25 @@ impl SceneId {
         SceneId::Modes,
     ];
 
+    /// What recording the scene costs, in tenths of a second of one core (release build,
+    /// `record --all --timings` on the 2-core reference machine, docs/benchmarks.md): `record`
+    /// starts the costliest first, so that no core is left with a long scene at the end
+    /// while the other idles. Only the order matters; a new scene must be placed here.
+    pub const fn recording_cost(self) -> u8 {
+        match self {
+            SceneId::PlankSymmetry => 9,
+            SceneId::SlabSim2 | SceneId::SlabModeSets => 8,
+            SceneId::SlabSim3 => 6,
+            SceneId::SlabSim1 | SceneId::Modes => 5,
+            SceneId::Failures | SceneId::CantileverVariants => 2,
+            SceneId::BeamModes
+            | SceneId::SlabModes
+            | SceneId::BeamProfiles
+            | SceneId::BeamEitelberg
+            | SceneId::BeamMeanAxes => 0,
+        }
+    }
+
     /// The text form (`beam-modes`).
     pub const fn as_str(self) -> &'static str {
         match self {
