@@ -16,7 +16,11 @@ impl NodeDofPlacement {
     pub fn new(dofs: &DofMap) -> Self {
         Self {
             per: dofs.per_node(),
-            names: dofs.node_dofs().iter().map(|d| d.name()).collect(),
+            names: dofs
+                .node_dofs()
+                .iter()
+                .map(|d| d.name().to_string())
+                .collect(),
             largest_node: 0,
         }
     }

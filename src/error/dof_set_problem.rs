@@ -1,10 +1,9 @@
 //! What is wrong with a DOF set a reduction was given (boundary, held, interface, r-set,
 //! inputs, outputs), with its data.
 
-use crate::fem::NodeDof;
-
 /// What is wrong with a DOF set ([`ReductionError::InvalidDofSet`](super::ReductionError)).
-/// Nodes are 1-based, as users number them; DOF are 0-based rows of the body's matrices.
+/// Nodes are 1-based, as users number them; DOF are 0-based rows of the body's matrices, or
+/// a node's DOF by name (`x`, `θz`).
 #[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize)]
 pub enum DofSetProblem {
     /// No DOF in it.
@@ -15,10 +14,10 @@ pub enum DofSetProblem {
     OutOfRange { dof: usize, count: usize },
     /// A DOF given twice.
     #[error("node {node} {dof} is listed twice")]
-    Twice { node: usize, dof: NodeDof },
+    Twice { node: usize, dof: &'static str },
     /// A DOF another set of the same reduction already holds.
     #[error("node {node} {dof} already belongs to another set")]
-    InAnotherSet { node: usize, dof: NodeDof },
+    InAnotherSet { node: usize, dof: &'static str },
     /// Boundary and held DOF that leave no interior DOF.
     #[error("every DOF is a boundary or held DOF, nothing is left to reduce")]
     NothingLeft,
@@ -32,7 +31,7 @@ pub enum DofSetProblem {
     )]
     NotInBoundary {
         node: usize,
-        dof: NodeDof,
+        dof: &'static str,
         method: &'static str,
     },
     /// A node tied to two rigid interfaces.
@@ -42,7 +41,7 @@ pub enum DofSetProblem {
     #[error(
         "node {node} {dof} is not a boundary DOF (a rigid interface's nodes must be boundary nodes)"
     )]
-    NotBoundary { node: usize, dof: NodeDof },
+    NotBoundary { node: usize, dof: &'static str },
     /// An averaging interface's weights, one per node, that do not match its nodes.
     #[error("{weights} weights for {nodes} nodes")]
     WeightCount { weights: usize, nodes: usize },

@@ -51,13 +51,13 @@ pub enum Error {
     /// body).
     #[error(
         "node {node} of the {body} has no {dof} DOF (its nodes carry {})",
-        carried.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
+        carried.join(", ")
     )]
     NoSuchDof {
         node: usize,
-        dof: crate::fem::NodeDof,
+        dof: &'static str,
         body: String,
-        carried: Vec<crate::fem::NodeDof>,
+        carried: Vec<&'static str>,
     },
 
     /// A model larger than a method (or the machine) can take; `step` names the part of

@@ -66,7 +66,7 @@ pub enum LinalgError {
         shift: f64,
         tries: usize,
         #[source]
-        last: Option<Box<crate::Error>>,
+        last: Option<Box<super::Error>>,
     },
 
     /// An unpivoted $LDL^T$ factor of $K - \sigma' M$ that grew: its solves' backward error

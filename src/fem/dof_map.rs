@@ -4,7 +4,7 @@
 use super::Direction;
 
 /// One DOF of a node: a translation (m) or a small rotation (rad) about a global direction.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum NodeDof {
     /// Displacement along the direction, m.
     Translation(Direction),
@@ -15,16 +15,18 @@ pub enum NodeDof {
 impl std::fmt::Display for NodeDof {
     /// [`NodeDof::name`].
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.name())
+        f.write_str(self.name())
     }
 }
 
 impl NodeDof {
     /// `x` for a translation, `θx` for a rotation.
-    pub fn name(self) -> String {
+    pub fn name(self) -> &'static str {
         match self {
-            NodeDof::Translation(d) => d.name().into(),
-            NodeDof::Rotation(d) => format!("θ{}", d.name()),
+            NodeDof::Translation(d) => d.name(),
+            NodeDof::Rotation(Direction::X) => "θx",
+            NodeDof::Rotation(Direction::Y) => "θy",
+            NodeDof::Rotation(Direction::Z) => "θz",
         }
     }
 

@@ -10,7 +10,7 @@ use crate::{
 };
 
 /// A translational direction of a node (the thesis' ξ, η, ζ of the body frame).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Direction {
     /// ξ, along x.
     X,
@@ -124,9 +124,9 @@ impl FeModel {
         let i = self.node_index(node)?.get();
         self.dofs.index(i, dof).ok_or_else(|| Error::NoSuchDof {
             node,
-            dof,
+            dof: dof.name(),
             body: self.name.clone(),
-            carried: self.dofs.node_dofs().to_vec(),
+            carried: self.dofs.node_dofs().iter().map(|d| d.name()).collect(),
         })
     }
 

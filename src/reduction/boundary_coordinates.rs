@@ -74,7 +74,7 @@ impl BoundaryCoordinates {
                             let (node, d) = model.dof_node(dof);
                             DofSetProblem::NotBoundary {
                                 node: node.number(),
-                                dof: d,
+                                dof: d.name(),
                             }
                         },
                     }

@@ -627,7 +627,7 @@ pub(crate) fn check_dof_set(
                     let (node, dof) = model.dof_node(d);
                     DofSetProblem::Twice {
                         node: node.number(),
-                        dof,
+                        dof: dof.name(),
                     }
                 },
             }));
@@ -639,7 +639,7 @@ pub(crate) fn check_dof_set(
                     let (node, dof) = model.dof_node(d);
                     DofSetProblem::InAnotherSet {
                         node: node.number(),
-                        dof,
+                        dof: dof.name(),
                     }
                 },
             }));

@@ -128,7 +128,7 @@ pub fn tie_rigid_interfaces(
                         let (node, d) = model.dof_node(dof);
                         DofSetProblem::NotInBoundary {
                             node: node.number(),
-                            dof: d,
+                            dof: d.name(),
                             method: basis.method.name(),
                         }
                     },
