@@ -65,21 +65,30 @@ pub fn body_of(opts: &SceneOptions) -> Result<BodyHandle> {
     }
 }
 
+/// The body driven through one interface (the explorer's `simulate`): the methods whose
+/// boundary columns hold the driven ring still.
+fn run_driven(
+    body: &crate::body_file::ImportedBody,
+    simulation: &super::body_simulation::BodySimulation,
+    opts: &SceneOptions,
+) -> Result<SceneOutput> {
+    let methods = opts.methods_or(INFO.id, &DRIVEN_METHODS, &DRIVEN_DEFAULT)?;
+    let modes = opts.modes_or_default(&INFO);
+    simulated(
+        body,
+        simulation,
+        (&methods, modes),
+        &opts.progress,
+        &opts.cache,
+        opts.concurrent_integrations,
+    )
+}
+
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     opts.check_axes(INFO.id, &[])?;
     let body = body_of(opts)?;
     if let Some(simulation) = &opts.simulation {
-        // A driven body: the methods whose boundary columns hold the driven ring still.
-        let methods = opts.methods_or(INFO.id, &DRIVEN_METHODS, &DRIVEN_DEFAULT)?;
-        let modes = opts.modes_or_default(&INFO);
-        return simulated(
-            &body,
-            simulation,
-            (&methods, modes),
-            &opts.progress,
-            &opts.cache,
-            opts.concurrent_integrations,
-        );
+        return run_driven(&body, simulation, opts);
     }
     let model = &body.model;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &DEFAULT_METHODS)?;

@@ -10,6 +10,7 @@ mod body_modes_report;
 mod body_modes_text;
 mod body_response;
 pub mod body_simulation;
+mod body_simulation_report;
 mod body_simulation_visuals;
 mod cantilever_text;
 pub mod cantilever_variants;
