@@ -8,8 +8,8 @@
 //! becomes the one shown, its layout replaces the active one (so a removed method leaves no
 //! view behind), and the previous recording and its layout are closed (their memory freed).
 //! When the new recording has the views shown and each view's contents lie inside what it
-//! frames, filling at least half of it ([`BlueprintKey::frames`]: a method unticked, a mode
-//! fewer, another integrator), the active layout is kept instead, with whatever the user made
+//! frames, filling at least half of it ([`BlueprintKey::frames`]: a method unticked, often a
+//! mode fewer), the active layout is kept instead, with whatever the user made
 //! of it (views resized, moved or hidden, a tab picked, a 3D camera turned). Contents beyond
 //! the framing (a mode more in a new row, a ticked method's larger swing) or far smaller bring
 //! the new layout: a kept camera never points where the body is not.
