@@ -850,7 +850,7 @@ fn the_simulation_controls_are_simulates_defaults_and_bad_values_are_named() {
 }
 
 /// A recording of `controls` as the explorer hands it to the viewer: messages (the recording
-/// `suffix`, its layout as the default blueprint) and the layout.
+/// `suffix`, its layout as the default blueprint) and what that blueprint holds.
 fn offer_of(controls: &Controls, suffix: &str) -> flexmodes::gui::Offer {
     let out = flexmodes::scenes::get(controls.scene)
         .execute(&controls.options().unwrap())
@@ -862,7 +862,7 @@ fn offer_of(controls: &Controls, suffix: &str) -> flexmodes::gui::Offer {
     };
     flexmodes::gui::Offer {
         messages: recorder.messages(&out).unwrap(),
-        blueprint: Some(recorder.blueprint_key(&out)),
+        blueprint: recorder.blueprint_key(&out),
     }
 }
 
@@ -908,7 +908,7 @@ fn a_switch_keeps_the_users_layout_when_the_views_are_the_same() {
     more.modes += 1;
     let (first, method_switch) = (offer_of(&slab, "1"), offer_of(&without_mt, "2"));
     let modes_switch = offer_of(&more, "3");
-    let key = |o: &flexmodes::gui::Offer| o.blueprint.clone().unwrap();
+    let key = |o: &flexmodes::gui::Offer| o.blueprint.clone();
     assert!(
         key(&first).frames(&key(&method_switch)),
         "MT unticked changes no view of slab-modes and nothing they frame"

@@ -3,6 +3,8 @@
 
 use thiserror::Error;
 
+use super::as_text::as_text;
+
 /// Everything that can go wrong in flexmodes, from bad user input to a failed decomposition.
 #[derive(Debug, Error, serde::Serialize)]
 pub enum Error {
@@ -194,11 +196,6 @@ impl Error {
         }
         message
     }
-}
-
-/// An error value as its message (the I/O error inside [`Error::Io`]).
-fn as_text<S: serde::Serializer>(e: &std::io::Error, s: S) -> std::result::Result<S::Ok, S::Error> {
-    s.collect_str(e)
 }
 
 /// Result alias used across the crate.

@@ -3,6 +3,7 @@
 //! wrapped by the crate's [`Error`]. They live at the ground floor so every layer can name
 //! its own and the top-level one without importing upwards.
 
+mod as_text;
 mod body_file_error;
 mod divergence_cause;
 mod dof_set_problem;

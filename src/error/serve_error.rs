@@ -4,6 +4,8 @@ use std::{net::IpAddr, path::PathBuf};
 
 use thiserror::Error;
 
+use super::as_text::{as_optional_text, as_text};
+
 /// Errors of `flexmodes serve`: which address, port, file or asset.
 #[derive(Debug, Error, serde::Serialize)]
 pub enum ServeError {
@@ -74,25 +76,6 @@ pub enum ServeError {
         #[serde(serialize_with = "as_optional_text")]
         source: Option<Box<dyn std::error::Error + Send + Sync>>,
     },
-}
-
-/// An error value as its message.
-fn as_text<S: serde::Serializer, E: std::fmt::Display + ?Sized>(
-    e: &E,
-    s: S,
-) -> std::result::Result<S::Ok, S::Error> {
-    s.collect_str(e)
-}
-
-/// [`as_text`] of the error, when there is one.
-fn as_optional_text<S: serde::Serializer>(
-    e: &Option<Box<dyn std::error::Error + Send + Sync>>,
-    s: S,
-) -> std::result::Result<S::Ok, S::Error> {
-    match e {
-        Some(e) => s.collect_str(e),
-        None => s.serialize_none(),
-    }
 }
 
 /// What is wrong with a recording file `flexmodes serve` was given.

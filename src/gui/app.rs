@@ -104,7 +104,7 @@ impl eframe::App for FlexmodesApp {
             explorer.poll();
             if let Some(offer) = explorer.take_fresh().map(|c| Offer {
                 messages: c.messages.clone(),
-                blueprint: Some(c.blueprint.clone()),
+                blueprint: c.blueprint.clone(),
             }) {
                 let start = std::time::Instant::now();
                 self.handoff.offer(ctx, offer);

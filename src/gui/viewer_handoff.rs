@@ -30,20 +30,22 @@ use rerun::external::{
 };
 
 /// The stores of one recording as the viewer holds them.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 struct Stores {
     recording: Option<StoreId>,
     /// Its layout, sent as the application's default blueprint.
     blueprint: Option<StoreId>,
-    /// What that blueprint holds, when known.
-    blueprint_key: Option<BlueprintKey>,
+    /// What the active layout frames while this recording is shown: its own blueprint's
+    /// key, or the one it kept.
+    blueprint_key: BlueprintKey,
 }
 
 impl Stores {
     fn of(offer: &Offer) -> Self {
         let mut s = Self {
+            recording: None,
+            blueprint: None,
             blueprint_key: offer.blueprint.clone(),
-            ..Self::default()
         };
         for m in &offer.messages {
             if let LogMsg::SetStoreInfo(info) = m {
@@ -83,14 +85,14 @@ pub enum HandoffState {
 }
 
 /// A recording offered to the viewer: its messages (the recording and its layout as a
-/// default blueprint) and what that blueprint holds, when known.
-#[derive(Debug, Clone, Default)]
+/// default blueprint) and what that blueprint holds.
+#[derive(Debug, Clone)]
 pub struct Offer {
     /// The recording's messages.
     pub messages: Vec<LogMsg>,
     /// What its blueprint holds: a recording whose blueprint would be the one shown keeps
     /// the active layout.
-    pub blueprint: Option<BlueprintKey>,
+    pub blueprint: BlueprintKey,
 }
 
 /// Where a handoff is.
@@ -278,10 +280,10 @@ impl ViewerHandoff {
         }
     }
 
-    /// Shows the incoming recording with its layout (or the active one, when the layouts
-    /// are the same) and closes the previous one.
+    /// Shows the incoming recording with its layout (or the active one, when that frames
+    /// it) and closes the previous one.
     fn switch(&mut self) -> bool {
-        let Some(incoming) = self.incoming.take() else {
+        let Some(mut incoming) = self.incoming.take() else {
             return false;
         };
         if let Some(recording_id) = incoming.recording.clone() {
@@ -290,11 +292,14 @@ impl ViewerHandoff {
                     recording_id,
                 }));
         }
-        let mut incoming = incoming;
-        if self.keep_layouts && keeps_layout(self.shown.as_ref(), &incoming) {
+        let kept = self.shown.as_ref().filter(|shown| {
+            self.keep_layouts && shown.blueprint_key.frames(&incoming.blueprint_key)
+        });
+        if let Some(shown) = kept {
             // The active layout stays, framing what it framed: later switches are judged
-            // against that, not against the layout this recording brought.
-            incoming.blueprint_key = self.shown.as_ref().and_then(|s| s.blueprint_key.clone());
+            // against that, not against the layout this recording brought (the active
+            // blueprint belongs to the scene's application, not to the recording closed).
+            incoming.blueprint_key = shown.blueprint_key.clone();
         } else {
             // The route's application now; its default blueprint (the new layout) is
             // cloned into the active one before the frame is drawn.
@@ -347,20 +352,6 @@ impl ViewerHandoff {
                 None => HandoffState::Idle,
             },
         }
-    }
-}
-
-/// Whether `incoming` keeps the active layout: its blueprint is known and `shown`'s frames
-/// it ([`BlueprintKey::frames`]: the same views, its contents inside what each shows), so
-/// the user's arrangement of the views stays (the active blueprint belongs to the scene's
-/// application, not to the recording closed).
-fn keeps_layout(shown: Option<&Stores>, incoming: &Stores) -> bool {
-    match (
-        shown.and_then(|s| s.blueprint_key.as_ref()),
-        &incoming.blueprint_key,
-    ) {
-        (Some(shown), Some(incoming)) => shown.frames(incoming),
-        _ => false,
     }
 }
 

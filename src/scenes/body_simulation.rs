@@ -61,21 +61,14 @@ impl BodySimulation {
         if drive.is_empty() {
             return Err(invalid("choose the interface to drive".into()));
         }
-        let (amplitude, frequency) = request.shake.unwrap_or((1.0, 1.0));
-        let positive = [
-            (
-                "rate",
-                if request.shake.is_some() {
-                    1.0
-                } else {
-                    request.rate
-                },
-            ),
-            ("ramp", request.ramp),
-            ("amplitude", amplitude),
-            ("frequency", frequency),
-            ("end time", request.end),
-        ];
+        // The values the motion uses: a spin's rate, or a shake's amplitude and frequency.
+        let mut positive = vec![("ramp", request.ramp), ("end time", request.end)];
+        match request.shake {
+            Some((amplitude, frequency)) => {
+                positive.extend([("amplitude", amplitude), ("frequency", frequency)])
+            }
+            None => positive.push(("rate", request.rate)),
+        }
         if let Some((name, value)) = positive.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
             return Err(invalid(format!("the {name} must be positive, not {value}")));
         }
@@ -203,6 +196,7 @@ fn fingerprint(model: &crate::fem::FeModel) -> u64 {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     model.name.hash(&mut h);
     model.dof_count().hash(&mut h);
+    model.dofs.node_dofs().hash(&mut h);
     for p in model.nodes.iter().flatten() {
         p.to_bits().hash(&mut h);
     }
