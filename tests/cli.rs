@@ -3,6 +3,8 @@
 #[path = "common/cli.rs"]
 #[allow(dead_code)]
 mod common;
+#[path = "common/scratch.rs"]
+mod scratch;
 
 use common::{flexmodes, json, temp_dir};
 
@@ -237,8 +239,6 @@ fn record_writes_every_scene_and_failures_write_nothing() {
     ]);
     assert_eq!(out.status.code(), Some(2));
     assert_eq!(std::fs::read_dir(&dir2).unwrap().count(), 0);
-    let _ = std::fs::remove_dir_all(dir);
-    let _ = std::fs::remove_dir_all(dir2);
 }
 
 #[test]
@@ -598,7 +598,6 @@ fn bench_sizes_writes_the_log_log_chart() {
     ]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("name one scene"));
-    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
@@ -713,7 +712,6 @@ fn import_report_and_export_a_body_file() {
     let out = flexmodes(&["report", "slab-modes", "--boundary", "bottom_corners"]);
     assert_eq!(out.status.code(), Some(2), "a usage error");
     assert!(String::from_utf8_lossy(&out.stderr).contains("node set names need --body"));
-    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
@@ -859,7 +857,8 @@ fn export_macneal_rubin_of_an_external_body() {
     // Free-interface modes and residual flexibility: 6 + 10 + 660 columns; the reduced model
     // holds the kept free-free modes, so its frequencies are SciPy's full-body ones.
     let body = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/bodies/steel-link");
-    let out = std::env::temp_dir().join(format!("flexmodes-mr-{}", std::process::id()));
+    let scratch = temp_dir("mr");
+    let out = scratch.join("out");
     let run = flexmodes(&[
         "export",
         "--body",
@@ -1050,7 +1049,8 @@ fn convert_writes_what_was_read_as_a_matrix_market_body() {
 /// an output format.
 #[test]
 fn carrying_out_refuses_by_name_and_writes_nothing() {
-    let dir = temp_dir("refused-exudyn").join("out");
+    let scratch = temp_dir("refused-exudyn");
+    let dir = scratch.join("out");
     let rod = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/tests/bodies/steel-rod/body.toml"
@@ -1195,5 +1195,4 @@ fn thread_counts_are_compared_and_reported() {
         err.contains("factorisation:") && err.contains(" %)"),
         "{err}"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }

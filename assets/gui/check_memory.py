@@ -31,7 +31,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from check_switches import start_xvfb  # noqa: E402
+from check_switches import start_xvfb, stop_xvfb  # noqa: E402
 
 
 def fail(message):
@@ -89,7 +89,7 @@ def main():
                               timeout=args.timeout)
     finally:
         if xvfb is not None:
-            xvfb.kill()
+            stop_xvfb(xvfb)
     log = done.stdout + done.stderr
     with open(os.path.join(args.out, "explorer.log"), "w") as f:
         f.write(log)

@@ -24,9 +24,11 @@ import glob
 import json
 import os
 import re
+import select
 import shutil
 import subprocess
 import sys
+import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -50,23 +52,48 @@ def fail(message):
 
 
 def start_xvfb(size):
-    """A private X server on a free display; returns (display, process)."""
+    """A private X server on a display it picks itself; returns (display, process).
+
+    Xvfb chooses a free display and writes its number to a pipe (`-displayfd`) once it accepts
+    clients: no guessing of free numbers, and a lock file left by a server that died is
+    recognised as stale by Xvfb itself (a check that skipped every display with a lock file ran
+    out of displays on a machine whose /tmp kept the locks of killed servers)."""
     if shutil.which("Xvfb") is None:
         fail("Xvfb is not installed (Debian: apt-get install xvfb mesa-vulkan-drivers)")
-    for n in range(90, 140):
-        if os.path.exists(f"/tmp/.X11-unix/X{n}") or os.path.exists(f"/tmp/.X{n}-lock"):
-            continue
-        proc = subprocess.Popen(
-            ["Xvfb", f":{n}", "-screen", "0", f"{size}x24", "-extension", "Composite"],
-            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        for _ in range(50):
-            if os.path.exists(f"/tmp/.X11-unix/X{n}"):
-                return f":{n}", proc
-            if proc.poll() is not None:
+    read, write = os.pipe()
+    log = tempfile.TemporaryFile()
+    proc = subprocess.Popen(
+        ["Xvfb", "-displayfd", str(write), "-screen", "0", f"{size}x24",
+         "-extension", "Composite", "-nolisten", "tcp"],
+        pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=log)
+    os.close(write)
+    number = b""
+    deadline = time.time() + 30
+    while not number.endswith(b"\n") and time.time() < deadline:
+        ready, _, _ = select.select([read], [], [], 0.5)
+        if ready:
+            chunk = os.read(read, 16)
+            if not chunk:
                 break
-            time.sleep(0.1)
+            number += chunk
+    os.close(read)
+    if not number.strip().isdigit():
         proc.kill()
-    fail("could not start Xvfb on any display :90–:139")
+        proc.wait()
+        log.seek(0)
+        said = log.read().decode(errors="replace").strip()[-2000:]
+        fail(f"Xvfb did not start (exit {proc.poll()}); it said:\n{said}")
+    return f":{number.strip().decode()}", proc
+
+
+def stop_xvfb(proc):
+    """Stops a server start_xvfb started, letting it remove its lock file and socket."""
+    proc.terminate()
+    try:
+        proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
 
 
 def run_explorer(args, display):
@@ -188,7 +215,7 @@ def main():
         log, wall = run_explorer(args, display)
     finally:
         if xvfb is not None:
-            xvfb.kill()
+            stop_xvfb(xvfb)
     numbers = measured(log)
     switches = []
     for n in range(1, args.repeat + 1):

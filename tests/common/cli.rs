@@ -20,11 +20,9 @@ pub fn json(args: &[&str]) -> serde_json::Value {
     serde_json::from_slice(&out.stdout).expect("one JSON object on stdout")
 }
 
-pub fn temp_dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("flexmodes-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh empty folder, removed when the test passes.
+pub fn temp_dir(name: &str) -> crate::scratch::Scratch {
+    crate::scratch::Scratch::new(&format!("cli-{name}"))
 }
 
 /// The reduced matrices in `dir`, solved by nalgebra (Cholesky of M_r, then the symmetric

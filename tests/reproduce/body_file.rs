@@ -3,10 +3,7 @@
 //! error, and the export round trip.
 
 use flexmodes::body_file::BodyFileError;
-use std::{
-    path::{Path, PathBuf},
-    sync::atomic::{AtomicUsize, Ordering},
-};
+use std::path::{Path, PathBuf};
 
 use faer::Mat;
 use flexmodes::{
@@ -23,17 +20,9 @@ use flexmodes::{
     scenes::{self, SceneOptions},
 };
 
-/// A fresh empty folder under the system's temporary folder.
-fn scratch(tag: &str) -> PathBuf {
-    static COUNT: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "flexmodes-test-{}-{tag}-{}",
-        std::process::id(),
-        COUNT.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh empty folder, removed when the test passes.
+fn scratch(tag: &str) -> crate::scratch::Scratch {
+    crate::scratch::Scratch::new(&format!("test-{tag}"))
 }
 
 fn write(dir: &Path, name: &str, text: &str) {
@@ -56,7 +45,12 @@ const BAR_K: &str =
     "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n1 1 4\n2 1 -4\n2 2 4\n";
 const BAR_M: &str = "%%MatrixMarket matrix array real general\n2 1\n1\n1\n";
 
-fn bar(dir_tag: &str, body: &str, k: &str, m: &str) -> (PathBuf, flexmodes::Result<ImportedBody>) {
+fn bar(
+    dir_tag: &str,
+    body: &str,
+    k: &str,
+    m: &str,
+) -> (crate::scratch::Scratch, flexmodes::Result<ImportedBody>) {
     let dir = scratch(dir_tag);
     write(&dir, "body.toml", body);
     write(&dir, "k.mtx", k);
@@ -678,7 +672,8 @@ fn example_bodies_reduce_with_every_method_and_ritz_bounds_hold() {
 #[test]
 fn export_round_trip_gives_the_same_frequencies() {
     let body = ImportedBody::load("builtin:l-bracket").unwrap();
-    let dir = scratch("export").join("cb");
+    let scratch_dir = scratch("export");
+    let dir = scratch_dir.join("cb");
     let boundary = body.boundary(&["bolt_hole".into()]).unwrap();
     let summary = flexmodes::export::export(
         &body,

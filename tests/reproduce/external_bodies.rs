@@ -39,8 +39,7 @@ fn mass_properties_from_the_consistent_mass_match_scipy() {
 #[test]
 fn npy_files_read_back_exactly() {
     use flexmodes::body_file::{npy_header, read_npy, write_npy};
-    let dir = std::env::temp_dir().join(format!("flexmodes-npy-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::scratch::Scratch::new("npy");
     for (rows, cols) in [(1, 1), (3, 2), (17, 5), (1000, 3)] {
         assert_eq!(npy_header(rows, cols).len() % 64, 0);
         let a = faer::Mat::from_fn(rows, cols, |i, j| {
@@ -127,8 +126,7 @@ fn a_rigid_interface_needs_boundary_columns() {
 fn interfaces_declared_in_the_body_file() {
     use flexmodes::{Error, error::BodyFileError, models::BodyInterfaces};
     let source = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/bodies/steel-link");
-    let dir = std::env::temp_dir().join(format!("flexmodes-interfaces-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::scratch::Scratch::new("interfaces");
     for f in ["k.mtx.gz", "m.mtx.gz", "nodes.csv", "edges.csv"] {
         std::fs::copy(source.join(f), dir.join(f)).unwrap();
     }

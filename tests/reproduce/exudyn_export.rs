@@ -45,8 +45,8 @@ fn dense(path: &Path) -> Mat<f64> {
 #[test]
 fn exudyn_files_hold_the_clamped_rod() {
     let (body, reference) = rod();
-    let dir = std::env::temp_dir().join(format!("flexmodes-exudyn-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let scratch = crate::scratch::Scratch::new("exudyn");
+    let dir = scratch.join("out");
     let end_a = ring(&body, "end_a");
     let parameters = ExportParameters {
         rigid_interfaces: vec![end_a.clone()],
@@ -148,8 +148,8 @@ fn exudyn_files_hold_the_clamped_rod() {
 #[test]
 fn exudyn_export_refuses_by_name_and_writes_nothing() {
     let (body, _) = rod();
-    let dir = std::env::temp_dir().join(format!("flexmodes-exudyn-refused-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let scratch = crate::scratch::Scratch::new("exudyn-refused");
+    let dir = scratch.join("out");
     let end_a = ring(&body, "end_a");
     let exudyn = |rigid: Vec<RigidInterface>| ExportParameters {
         rigid_interfaces: rigid,

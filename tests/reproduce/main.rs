@@ -17,4 +17,6 @@ mod linalg;
 mod matrix_formats;
 mod published;
 mod scenes;
+#[path = "../common/scratch.rs"]
+mod scratch;
 mod sparse;

@@ -78,11 +78,8 @@ fn convert_writes_every_format_it_reads_back() {
         (MatrixFormat::NastranDmig, true),
         (MatrixFormat::MatrixMarket, false),
     ] {
-        let dir = std::env::temp_dir().join(format!(
-            "flexmodes-convert-{format:?}-{}",
-            std::process::id()
-        ));
-        let _ = std::fs::remove_dir_all(&dir);
+        let scratch = crate::scratch::Scratch::new(&format!("convert-{format:?}"));
+        let dir = scratch.join("out");
         write_files(
             &dir,
             &write_imported_body(&source, compress, format).unwrap(),

@@ -17,6 +17,8 @@ mod checks;
 #[path = "../common/cli.rs"]
 #[allow(dead_code)]
 mod cli_common;
+#[path = "../common/scratch.rs"]
+mod scratch;
 
 mod body_methods;
 mod cli;
