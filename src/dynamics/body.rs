@@ -163,7 +163,23 @@ impl ModalMassInverse {
                     }
                 }
             }
-            Self::Dense(inverse) => inverse.mul_to(b, out),
+            // faer's small-matrix kernels, sequential: nalgebra's `mul_to` packs its operands
+            // into buffers it allocates at every call, once per evaluation of an integration.
+            Self::Dense(inverse) => {
+                assert!(
+                    out.shape() == b.shape() && inverse.ncols() == b.nrows(),
+                    "ModalMassInverse::solve_into: shapes"
+                );
+                let (k, n) = b.shape();
+                faer::linalg::matmul::matmul(
+                    faer::MatMut::from_column_major_slice_mut(out.as_mut_slice(), k, n),
+                    faer::Accum::Replace,
+                    faer::MatRef::from_column_major_slice(inverse.as_slice(), k, k),
+                    faer::MatRef::from_column_major_slice(b.as_slice(), k, n),
+                    1.0,
+                    faer::Par::Seq,
+                );
+            }
         }
     }
 }

@@ -280,7 +280,11 @@ impl System {
         out.resize_with(self.bodies.len(), Vec::new);
         for (b, (body, h)) in self.bodies.iter().zip(out.iter_mut()).enumerate() {
             match body {
-                Body::Flexible(fb) => fb.invariants.h_into(&self.frame(b, s).z, h),
+                Body::Flexible(fb) => {
+                    // Only z: the frame's rotation is not needed here.
+                    let (qo, k) = (self.q_off[b], fb.modes());
+                    fb.invariants.h_into(&s.q.rows(qo + 7, k), h)
+                }
                 Body::Rigid(_) => h.clear(),
             }
         }
