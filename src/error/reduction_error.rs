@@ -24,8 +24,11 @@ pub enum ReductionError {
     },
 
     /// An export another code cannot take as it is (`to`: the code).
-    #[error("cannot export for {to}: {reason}")]
-    NotExportable { to: &'static str, reason: String },
+    #[error("cannot export for {to}: {problem}")]
+    NotExportable {
+        to: &'static str,
+        problem: super::ExportProblem,
+    },
 
     /// A method asked of the generic [`reduce`](crate::reduction::reduce) entry point that
     /// needs more than a boundary set and a mode count.
@@ -81,14 +84,15 @@ pub enum ReductionError {
     /// $K_{ii}$ is singular: the boundary DOF do not restrain every rigid-body motion.
     #[error(
         "K_ii is singular for boundary nodes {boundary_nodes:?}: {rank_deficiency} rigid-body \
-         motion(s) of the interior stay unrestrained ({free_motions}); Craig-Bampton, Guyan and \
-         mode condensation need at least {needed} properly chosen boundary DOF"
+         motion(s) of the interior stay unrestrained ({}); Craig-Bampton, Guyan and \
+         mode condensation need at least {needed} properly chosen boundary DOF",
+        super::free_motion::FreeMotions(free_motions)
     )]
     SingularInterior {
         boundary_nodes: Vec<usize>,
         rank_deficiency: usize,
-        /// The unrestrained motions in words, e.g. `rotation about (1, 0, 0) through (0, 0, 0) m`.
-        free_motions: String,
+        /// The unrestrained motions.
+        free_motions: Vec<super::FreeMotion>,
         needed: usize,
     },
 

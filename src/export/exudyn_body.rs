@@ -31,7 +31,7 @@ use crate::{
     body_file::{
         ImportedBody, lower_entries, mass_lower_entries, write_coordinate_symmetric, write_npy,
     },
-    error::ReductionError,
+    error::{ExportProblem, ReductionError},
     fem::{Direction, FeModel, NodeDof, NodeIndex},
     linalg::{generalized_eigen, hz_from_eigenvalue},
     reduction::{AveragingInterface, Basis, ColumnKind, RigidInterface},
@@ -60,10 +60,10 @@ pub struct ExudynBody {
     doc: serde_json::Value,
 }
 
-fn refuse(reason: impl Into<String>) -> crate::Error {
+fn refuse(problem: ExportProblem) -> crate::Error {
     ReductionError::NotExportable {
         to: "Exudyn",
-        reason: reason.into(),
+        problem,
     }
     .into()
 }
@@ -74,15 +74,9 @@ fn translation_order(model: &FeModel) -> Result<Vec<usize>> {
     let per_node = model.dofs.node_dofs();
     let translations = [Direction::X, Direction::Y, Direction::Z].map(NodeDof::Translation);
     if per_node.len() != 3 || !translations.iter().all(|d| per_node.contains(d)) {
-        return Err(refuse(format!(
-            "Exudyn's reduced-order FFRF object takes three translations per node; the body's \
-             nodes carry {}",
-            per_node
-                .iter()
-                .map(|d| d.name())
-                .collect::<Vec<_>>()
-                .join(" ")
-        )));
+        return Err(refuse(ExportProblem::NotTranslations {
+            carried: per_node.iter().map(|d| d.name()).collect(),
+        }));
     }
     let nodes = model.node_count();
     Ok((0..nodes)
@@ -111,11 +105,12 @@ fn frame_ring_still(model: &FeModel, frame: &RigidInterface, modes: &Mat<f64>) -
                 .map(|j| modes[(row, j)].abs())
                 .fold(0.0, f64::max);
             if moved > 1e-12 * largest {
-                return Err(refuse(format!(
-                    "the kept basis moves node {node} of the frame's ring `{}` by {moved:.2e} \
-                     (largest entry {largest:.2e}): the frame would not be attached to it",
-                    frame.name
-                )));
+                return Err(refuse(ExportProblem::FrameRingMoves {
+                    node,
+                    ring: frame.name.clone(),
+                    moved,
+                    largest,
+                }));
             }
         }
     }
@@ -131,15 +126,12 @@ pub fn exudyn_body(
 ) -> Result<ExudynBody> {
     let model = &body.model;
     if !body.has_coordinates {
-        return Err(refuse("the body file gives no node coordinates"));
+        return Err(refuse(ExportProblem::NoCoordinates));
     }
     let order = translation_order(model)?;
-    let frame = rigid.first().ok_or_else(|| {
-        refuse(
-            "the floating frame is attached to a rigid interface: give one as `rbe2:SET` \
-             (the first is the frame)",
-        )
-    })?;
+    let frame = rigid
+        .first()
+        .ok_or_else(|| refuse(ExportProblem::NoFrameInterface))?;
     let nodes = model.node_count();
 
     let keep: Vec<usize> = (0..basis.size())
@@ -149,19 +141,16 @@ pub fn exudyn_body(
         })
         .collect();
     if keep.len() + 6 != basis.size() {
-        return Err(refuse(format!(
-            "the basis has no six constraint modes of `{}`: {} of its {} columns are other",
-            frame.name,
-            keep.len(),
-            basis.size()
-        )));
+        return Err(refuse(ExportProblem::NoConstraintModes {
+            ring: frame.name.clone(),
+            other: keep.len(),
+            columns: basis.size(),
+        }));
     }
     if keep.is_empty() {
-        return Err(refuse(format!(
-            "with `{}` as the frame nothing elastic is left: keep modes (--modes) or another \
-             interface",
-            frame.name
-        )));
+        return Err(refuse(ExportProblem::NothingElastic {
+            ring: frame.name.clone(),
+        }));
     }
     let modes = Mat::from_fn(order.len(), keep.len(), |i, j| {
         basis.psi[(order[i], keep[j])]
@@ -181,11 +170,11 @@ pub fn exudyn_body(
     let hz = eig.hz();
     let zero = zero_energy_below(&hz, zero_energy_threshold_hz(model));
     if zero > 0 {
-        return Err(refuse(format!(
-            "the basis without `{}`'s constraint modes keeps {zero} zero-energy mode(s) \
-             (lowest {:.3e} Hz): the frame's interface alone does not hold the body",
-            frame.name, hz[0]
-        )));
+        return Err(refuse(ExportProblem::ZeroEnergyLeft {
+            ring: frame.name.clone(),
+            zero,
+            lowest_hz: hz[0],
+        }));
     }
     let mode_type = if keep
         .iter()

@@ -177,10 +177,13 @@ pub fn cantilever_study(methods: &[Method]) -> Result<CantileverStudy> {
                 ),
             ));
         }
-        let first_torsion = band
-            .iter()
-            .position(|&i| is_bottom_torsion(&frame, &full.vectors, i))
-            .map(|k| (k + 1, full_hz[band[k]]));
+        let mut first_torsion = None;
+        for (k, &i) in band.iter().enumerate() {
+            if is_bottom_torsion(&frame, &full.vectors, i)? {
+                first_torsion = Some((k + 1, full_hz[band[k]]));
+                break;
+            }
+        }
         let mass_mode_hz = band
             .iter()
             .copied()
@@ -317,16 +320,18 @@ fn static_case(
 
 /// Whether mode `i` is a torsion of the bottom section: somewhere along it the rotation about
 /// x times the half-width (50 mm) exceeds every translation of the section.
-fn is_bottom_torsion(frame: &OverhangFrame, shapes: &Mat<f64>, i: usize) -> bool {
+fn is_bottom_torsion(frame: &OverhangFrame, shapes: &Mat<f64>, i: usize) -> Result<bool> {
     let (mut twist, mut translation) = (0.0f64, 0.0f64);
+    let model = &frame.model;
     for &n in &frame.bottom {
-        let base = (n - 1) * 6;
-        twist = twist.max(50.0 * shapes[(base + 3, i)].abs());
-        for t in 0..3 {
-            translation = translation.max(shapes[(base + t, i)].abs());
+        let rotation_x = model.node_dof(n, NodeDof::Rotation(Direction::X))?;
+        twist = twist.max(50.0 * shapes[(rotation_x, i)].abs());
+        for d in [Direction::X, Direction::Y, Direction::Z] {
+            let dof = model.node_dof(n, NodeDof::Translation(d))?;
+            translation = translation.max(shapes[(dof, i)].abs());
         }
     }
-    twist > translation
+    Ok(twist > translation)
 }
 
 /// The full model's modes compared: up to this frequency, Hz. Witteveen's range of interest is

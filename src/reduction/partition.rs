@@ -2,7 +2,7 @@
 //! dense path (small bodies) or the sparse one (refined meshes).
 
 use super::ReductionError;
-use crate::error::DofSetProblem;
+use crate::error::{DofSetProblem, FreeMotion};
 use std::time::Instant;
 
 use faer::{Mat, MatRef, sparse::SparseColMat};
@@ -170,7 +170,7 @@ pub struct InteriorProblem<'a> {
     factor: Option<(SymmetricFactor, f64)>,
     /// The pattern analysis of the factored matrix (sparse path), for the Sturm check.
     symbolic: Option<SymbolicFactor>,
-    free_motions: Option<Vec<String>>,
+    free_motions: Option<Vec<FreeMotion>>,
     partial_modes: Option<GeneralizedEigen>,
     /// Phase timings and sizes so far.
     pub statistics: ReductionStatistics,
@@ -291,7 +291,7 @@ impl<'a> InteriorProblem<'a> {
         Err(Error::Reduction(ReductionError::SingularInterior {
             boundary_nodes: self.partition.boundary_nodes.clone(),
             rank_deficiency: free.len(),
-            free_motions: free.join("; "),
+            free_motions: free.clone(),
             needed: self.model.dofs.rigid_body_count(),
         }))
     }
@@ -494,7 +494,7 @@ fn first_modes(all: &GeneralizedEigen, kept: usize) -> GeneralizedEigen {
 /// The rigid-body motions the boundary DOF leave free (none when the rigid motions restricted
 /// to the boundary DOF have full rank), each described as a rotation about an axis or a
 /// translation.
-fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
+fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<FreeMotion>> {
     let rigid = model.dofs.rigid_body_count();
     // Rigid motions about the body's centroid, rotations scaled by its size so the columns
     // are commensurate: u = t + (w / L) × (x − c).
@@ -528,22 +528,29 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
     let free: Vec<usize> = (0..rigid)
         .filter(|&k| evd.values[k] <= 1e-12 * largest)
         .collect();
-    let describe = |k: usize| -> String {
+    let describe = |k: usize| -> FreeMotion {
         let v = evd.vectors.col(k);
         if model.spatial_dim() == 2 {
             let w = v[2] / size;
             let t = [v[0] - (-w * c[1]), v[1] - (w * c[0])];
             if w.abs() * size < 1e-9 {
-                return format!("translation along ({:.3}, {:.3})", v[0], v[1]);
+                return FreeMotion::Translation {
+                    along: [v[0], v[1], 0.0],
+                    planar: true,
+                };
             }
             // Rotation about the point a with t = ω ẑ × (−a).
-            let a = [-t[1] / w, t[0] / w];
-            return format!("rotation in the plane about ({:.3}, {:.3}) m", a[0], a[1]);
+            return FreeMotion::PlanarRotation {
+                about: [-t[1] / w, t[0] / w],
+            };
         }
         let w = [v[3] / size, v[4] / size, v[5] / size];
         let wn = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
         if wn * size < 1e-9 {
-            return format!("translation along ({:.3}, {:.3}, {:.3})", v[0], v[1], v[2]);
+            return FreeMotion::Translation {
+                along: [v[0], v[1], v[2]],
+                planar: false,
+            };
         }
         // Motion t + ω × (x − c): the axis passes through a = c + (ω × t)/|ω|².
         let t = [v[0], v[1], v[2]];
@@ -571,28 +578,22 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<String>> {
                 off <= 1e-9 * size
             });
         let clean = |x: f64| if x.abs() < 1e-9 { 0.0 } else { x };
-        if let Some(node) = through_node {
-            let x = model.position(node);
-            return format!(
-                "rotation about ({:.3}, {:.3}, {:.3}) through {node} at ({:.3}, {:.3}, \
-                 {:.3}) m",
-                clean(unit[0]),
-                clean(unit[1]),
-                clean(unit[2]),
-                clean(x[0]),
-                clean(x[1]),
-                clean(x[2])
-            );
+        let axis = unit.map(clean);
+        match through_node {
+            Some(node) => {
+                let x = model.position(node);
+                FreeMotion::Rotation {
+                    axis,
+                    point: [clean(x[0]), clean(x[1]), clean(x[2])],
+                    node: Some(node.number()),
+                }
+            }
+            None => FreeMotion::Rotation {
+                axis,
+                point: [clean(a[0]), clean(a[1]), clean(a[2])],
+                node: None,
+            },
         }
-        format!(
-            "rotation about ({:.3}, {:.3}, {:.3}) through ({:.3}, {:.3}, {:.3}) m",
-            clean(w[0] / wn),
-            clean(w[1] / wn),
-            clean(w[2] / wn),
-            clean(a[0]),
-            clean(a[1]),
-            clean(a[2])
-        )
     };
     Ok(free.iter().map(|&k| describe(k)).collect())
 }

@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use faer::Mat;
+use flexmodes::error::ExportProblem;
 use flexmodes::{
     body_file::{ImportedBody, read_matrix_market, read_npy},
     export::{EXUDYN_FORMAT, ExportParameters, export},
@@ -156,20 +157,36 @@ fn exudyn_export_refuses_by_name_and_writes_nothing() {
         exudyn: true,
         ..Default::default()
     };
-    let cases: [(Method, usize, ExportParameters, &str); 2] = [
+    let cases: [(Method, usize, ExportParameters, ExportProblem, &str); 2] = [
         // A plain node set: no frame to attach.
-        (Method::CraigBampton, 6, exudyn(vec![]), "rigid interface"),
+        (
+            Method::CraigBampton,
+            6,
+            exudyn(vec![]),
+            ExportProblem::NoFrameInterface,
+            "rigid interface",
+        ),
         // Guyan on the drive alone: only the frame's rigid motions.
         (
             Method::Guyan,
             0,
             exudyn(vec![end_a.clone()]),
+            ExportProblem::NothingElastic {
+                ring: "end_a".into(),
+            },
             "nothing elastic is left",
         ),
     ];
-    for (method, modes, parameters, says) in cases {
+    for (method, modes, parameters, problem, says) in cases {
         let error = export(&body, method, &end_a.nodes, modes, &dir, &parameters).unwrap_err();
         let text = error.to_string();
+        match &error {
+            flexmodes::Error::Reduction(flexmodes::reduction::ReductionError::NotExportable {
+                to: "Exudyn",
+                problem: found,
+            }) => assert_eq!(found, &problem, "{text}"),
+            other => panic!("not a refused export: {other}"),
+        }
         assert!(
             text.contains("cannot export for Exudyn") && text.contains(says),
             "{text}"

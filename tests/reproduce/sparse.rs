@@ -2,6 +2,7 @@
 //! condensation's two routes, the refined slab and how the factor's fill grows.
 
 use faer::Mat;
+use flexmodes::error::FreeMotion;
 use flexmodes::linalg::LinalgError;
 use flexmodes::reduction::ReductionError;
 use flexmodes::{
@@ -349,14 +350,35 @@ fn singular_interior_names_the_free_motions_without_an_eigenproblem() {
             ..
         }) => {
             assert_eq!(rank_deficiency, 3);
-            // Three rotations, each about an axis through node 16 at the origin.
-            assert_eq!(free_motions.matches("rotation about").count(), 3, "{e}");
+            // Three rotations, each about an axis through node 16 at the origin, about
+            // three independent unit axes; the message names them so.
+            assert_eq!(free_motions.len(), 3, "{e}");
+            let mut axes = Vec::new();
+            for motion in free_motions {
+                match motion {
+                    FreeMotion::Rotation {
+                        axis,
+                        point,
+                        node: Some(16),
+                    } => {
+                        assert_eq!(*point, [0.0; 3], "{e}");
+                        let norm = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
+                        assert!((norm - 1.0).abs() < 1e-12, "{e}");
+                        axes.push(nalgebra::Vector3::from(*axis));
+                    }
+                    other => panic!("{other}: not a rotation through node 16 ({e})"),
+                }
+            }
+            let volume = axes[0].cross(&axes[1]).dot(&axes[2]).abs();
+            assert!(volume > 0.99, "axes {axes:?} are not independent");
+            let message = e.to_string();
+            assert_eq!(message.matches("rotation about").count(), 3, "{message}");
             assert_eq!(
-                free_motions
+                message
                     .matches("through node 16 at (0.000, 0.000, 0.000)")
                     .count(),
                 3,
-                "{e}"
+                "{message}"
             );
         }
         e => panic!("{e}"),
