@@ -3,7 +3,7 @@
 
 use super::BodyFileError;
 use super::{BodyLocation, TableOrFile};
-use crate::{Error, Result};
+use crate::{Error, Result, error::TableProblem};
 
 /// A row of a table and its 1-based line.
 pub(super) type Row<T> = (usize, Vec<T>);
@@ -44,10 +44,10 @@ pub(super) fn read_table<T: std::str::FromStr + Copy>(
                     Ok(v) => rows.push((k + 1, v)),
                     Err(_) if rows.is_empty() && k == 0 => {} // a header
                     Err(_) => {
-                        return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
+                        return Err(Error::BodyFile(BodyFileError::TableLine {
                             path: name,
                             line: k + 1,
-                            reason: format!("`{line}` is not a row of numbers"),
+                            problem: TableProblem::NotNumbers { text: line.into() },
                         }));
                     }
                 }
@@ -68,17 +68,20 @@ pub(super) fn edges(
     let mut out = Vec::new();
     for (line, row) in rows {
         if row.len() < 2 {
-            return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
+            return Err(Error::BodyFile(BodyFileError::TableLine {
                 path: name,
                 line,
-                reason: "an edge needs two nodes (a face three or more)".into(),
+                problem: TableProblem::EdgeTooShort,
             }));
         }
         if let Some(&bad) = row.iter().find(|&&x| x == 0 || x > node_count) {
-            return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
+            return Err(Error::BodyFile(BodyFileError::TableLine {
                 path: name,
                 line,
-                reason: format!("node {bad} is out of range: the body has nodes 1 to {node_count}"),
+                problem: TableProblem::NodeOutOfRange {
+                    node: bad,
+                    count: node_count,
+                },
             }));
         }
         let cycle = row.len() > 2;

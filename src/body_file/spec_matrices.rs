@@ -15,7 +15,7 @@ use super::{
     nastran_op4::parse_op4,
     parse_matrix_market,
 };
-use crate::{Error, Result, fem::DofMap};
+use crate::{Error, Result, error::TableProblem, fem::DofMap};
 
 /// A body file's text and name, for errors that point at its lines.
 #[derive(Clone, Copy)]
@@ -162,25 +162,20 @@ pub(super) fn read_nodes(
             2 | 3 => &row,
             4 if row[0] == (k + 1) as f64 => &row[1..],
             4 => {
-                return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
+                return Err(Error::BodyFile(BodyFileError::TableLine {
                     path: table_name,
                     line,
-                    reason: format!(
-                        "a leading node number must count 1, 2, 3, ... in order: expected {}, \
-                         got {}",
-                        k + 1,
-                        row[0]
-                    ),
+                    problem: TableProblem::NodeNumberOutOfOrder {
+                        expected: k + 1,
+                        found: row[0],
+                    },
                 }));
             }
             c => {
-                return Err(Error::BodyFile(BodyFileError::MatrixMarketLine {
+                return Err(Error::BodyFile(BodyFileError::TableLine {
                     path: table_name,
                     line,
-                    reason: format!(
-                        "a node needs 2 or 3 coordinates (optionally after its number), got {c} \
-                         values"
-                    ),
+                    problem: TableProblem::CoordinateCount { values: c },
                 }));
             }
         };

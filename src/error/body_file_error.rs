@@ -17,7 +17,15 @@ pub enum BodyFileError {
         found: String,
     },
 
-    /// A line of a Matrix Market file (or a CSV file of a body) that does not parse.
+    /// A line of a body's CSV table (node coordinates, edges) that does not fit.
+    #[error("{path}:{line}: {problem}")]
+    TableLine {
+        path: String,
+        line: usize,
+        problem: super::TableProblem,
+    },
+
+    /// A line of a matrix file that does not parse.
     #[error("{path}:{line}: {reason}")]
     MatrixMarketLine {
         path: String,

@@ -17,6 +17,7 @@ mod mesh_error;
 mod r_set_problem;
 mod reduction_error;
 mod serve_error;
+mod table_problem;
 mod unknown_id;
 
 pub use body_file_error::BodyFileError;
@@ -32,4 +33,5 @@ pub use mesh_error::MeshError;
 pub use r_set_problem::RSetProblem;
 pub use reduction_error::ReductionError;
 pub use serve_error::{RecordingProblem, ServeError};
+pub use table_problem::TableProblem;
 pub use unknown_id::UnknownId;

@@ -534,6 +534,70 @@ fn malformed_files_give_named_errors_with_file_and_line() {
     );
 }
 
+/// A node or edge table's bad line is named by file, line and what is wrong there, as data.
+#[test]
+fn bad_table_lines_are_named_with_their_data() {
+    use flexmodes::error::TableProblem;
+    let tabled = BAR_BODY.replace(
+        "nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]",
+        "nodes = \"nodes.csv\"\nedges = \"edges.csv\"",
+    );
+    let cases: [(&str, &str, usize, TableProblem); 5] = [
+        (
+            "x,y,z\n0,0,0\n1,0,zero\n",
+            "1 2\n",
+            3,
+            TableProblem::NotNumbers {
+                text: "1,0,zero".into(),
+            },
+        ),
+        (
+            "1,0,0,0\n3,1,0,0\n",
+            "1 2\n",
+            2,
+            TableProblem::NodeNumberOutOfOrder {
+                expected: 2,
+                found: 3.0,
+            },
+        ),
+        (
+            "0\n1\n",
+            "1 2\n",
+            1,
+            TableProblem::CoordinateCount { values: 1 },
+        ),
+        ("0,0,0\n1,0,0\n", "1 2\n2\n", 2, TableProblem::EdgeTooShort),
+        (
+            "0,0,0\n1,0,0\n",
+            "1 3\n",
+            1,
+            TableProblem::NodeOutOfRange { node: 3, count: 2 },
+        ),
+    ];
+    for (i, (nodes, edges, line, problem)) in cases.into_iter().enumerate() {
+        let dir = scratch(&format!("table-{i}"));
+        write(&dir, "body.toml", &tabled);
+        write(&dir, "k.mtx", BAR_K);
+        write(&dir, "m.mtx", BAR_M);
+        write(&dir, "nodes.csv", nodes);
+        write(&dir, "edges.csv", edges);
+        let e = ImportedBody::load(dir.join("body.toml").to_str().unwrap()).unwrap_err();
+        let file = if i < 3 { "nodes.csv" } else { "edges.csv" };
+        match &e {
+            Error::BodyFile(BodyFileError::TableLine {
+                path,
+                line: found_line,
+                problem: found,
+            }) => {
+                assert!(path.ends_with(file), "{e}");
+                assert_eq!((*found_line, found), (line, &problem), "{e}");
+            }
+            other => panic!("case {i}: not a table line: {other}"),
+        }
+        assert!(e.to_string().contains(&format!("{file}:{line}: ")), "{e}");
+    }
+}
+
 #[test]
 fn a_body_without_coordinates_reduces_but_does_not_draw() {
     let body_text = BAR_BODY.replace(
