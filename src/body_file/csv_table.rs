@@ -3,7 +3,7 @@
 
 use super::BodyFileError;
 use super::{BodyLocation, TableOrFile};
-use crate::{Error, Result, error::TableProblem};
+use crate::{Error, Result, error::TableProblem, fem::NodeIndex};
 
 /// A row of a table and its 1-based line.
 pub(super) type Row<T> = (usize, Vec<T>);
@@ -84,12 +84,17 @@ pub(super) fn edges(
                 },
             }));
         }
+        // Every number is in 1..=node_count (checked above): stored nodes from here on.
+        let row: Vec<usize> = row
+            .iter()
+            .map(|&number| NodeIndex::of_number(number).expect("checked above").get())
+            .collect();
         let cycle = row.len() > 2;
         for w in row.windows(2) {
-            out.push([w[0] - 1, w[1] - 1]);
+            out.push([w[0], w[1]]);
         }
         if cycle {
-            out.push([row[row.len() - 1] - 1, row[0] - 1]);
+            out.push([row[row.len() - 1], row[0]]);
         }
     }
     Ok(out)

@@ -4,7 +4,7 @@
 //! chosen so that the full model meets the frequencies he prints (see
 //! [`OverhangFrameParameters::default`]).
 
-use super::{FeModel, FrameSection, frame_of_sections};
+use super::{FeModel, FrameSection, NodeIndex, frame_of_sections};
 use crate::Result;
 
 /// Where the overhanging beam points from its root on the bottom section.
@@ -115,7 +115,8 @@ pub fn overhang_frame(p: &OverhangFrameParameters) -> Result<OverhangFrame> {
         (OverhangDirection::Upwards, false) => [0.0, 1.0, 0.0],
     };
     let overhang_section = FrameSection::rectangle(100.0, 5.0, e, g, rho);
-    let mut overhang = vec![root_element + 1];
+    // Stored (0-based) nodes from the root to the tip; the frame lists them by number.
+    let mut overhang = vec![NodeIndex(root_element)];
     for k in 1..=no {
         let s = p.overhang_length * k as f64 / no as f64;
         nodes.push([
@@ -123,11 +124,12 @@ pub fn overhang_frame(p: &OverhangFrameParameters) -> Result<OverhangFrame> {
             root[1] + s * dir[1],
             root[2] + s * dir[2],
         ]);
-        overhang.push(nodes.len());
+        overhang.push(NodeIndex(nodes.len() - 1));
     }
-    for k in 0..no {
-        elements.push(([overhang[k] - 1, overhang[k + 1] - 1], overhang_up, 1));
+    for pair in overhang.windows(2) {
+        elements.push(([pair[0].get(), pair[1].get()], overhang_up, 1));
     }
+    let overhang: Vec<usize> = overhang.iter().map(|n| n.number()).collect();
     let model = frame_of_sections(
         "Witteveen's clamped beam structure",
         nodes,
