@@ -312,6 +312,26 @@ def test_unknown_names_are_refused(bar):
         flexmodes.Body.from_file(ROOT / "no" / "such" / "body.toml")
 
 
+def test_a_bad_table_line_is_named_with_its_data(tmp_path):
+    # The committed steel rod, its edge table given a node it does not have on line 2.
+    import shutil
+
+    rod = ROOT / "tests" / "bodies" / "steel-rod"
+    for f in ["body.toml", "k.mtx.gz", "m.mtx.gz", "nodes.csv"]:
+        shutil.copy(rod / f, tmp_path / f)
+    lines = (rod / "edges.csv").read_text().splitlines()
+    count = len((rod / "nodes.csv").read_text().splitlines()) - 1
+    first = next(i for i, line in enumerate(lines) if line[:1].isdigit())
+    lines[first] = f"1 {count + 5}"
+    (tmp_path / "edges.csv").write_text("\n".join(lines) + "\n")
+    with pytest.raises(flexmodes.BodyFileError) as caught:
+        flexmodes.Body.from_file(tmp_path / "body.toml")
+    assert caught.value.kind == "BodyFile.TableLine"
+    data = caught.value.data
+    assert data["line"] == first + 1 and data["path"].endswith("edges.csv")
+    assert data["problem"]["NodeOutOfRange"]["node"] == count + 5
+
+
 def test_readme_example_runs_as_written(bar):
     """The README's ten-line script, extracted and run: it meshes this file's bar, so its
     Craig–Bampton frequencies bound LAPACK's free-bar ones from above, within 1 %."""
