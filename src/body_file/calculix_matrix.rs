@@ -89,11 +89,7 @@ pub fn parse_calculix_dof_map(
 ) -> Result<Vec<usize>> {
     let text = plain_text(bytes, path)?;
     let per = dofs.per_node();
-    let names: Vec<String> = dofs
-        .node_dofs()
-        .iter()
-        .map(|d| d.name().to_string())
-        .collect();
+    let names: Vec<&'static str> = dofs.node_dofs().iter().map(|d| d.name()).collect();
     let mut taken: Vec<Option<usize>> = vec![None; node_count * per];
     let mut equations = Vec::new();
     for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l)) {

@@ -25,11 +25,7 @@ pub fn parse_dof_map(
     };
     let text = std::str::from_utf8(bytes).map_err(|_| error(0, "the file is not text".into()))?;
     let per = dofs.per_node();
-    let names: Vec<String> = dofs
-        .node_dofs()
-        .iter()
-        .map(|d| d.name().to_string())
-        .collect();
+    let names: Vec<&'static str> = dofs.node_dofs().iter().map(|d| d.name()).collect();
     let mut equations: Vec<Option<usize>> = Vec::new();
     let mut taken = vec![None; node_count * per];
     for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l)) {

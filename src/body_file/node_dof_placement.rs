@@ -7,7 +7,7 @@ use crate::fem::{DofMap, NodeIndex};
 /// The placement of (node, component) pairs on a body whose nodes carry `dofs`.
 pub(super) struct NodeDofPlacement {
     per: usize,
-    names: Vec<String>,
+    names: Vec<&'static str>,
     /// The largest node placed so far.
     pub largest_node: usize,
 }
@@ -16,11 +16,7 @@ impl NodeDofPlacement {
     pub fn new(dofs: &DofMap) -> Self {
         Self {
             per: dofs.per_node(),
-            names: dofs
-                .node_dofs()
-                .iter()
-                .map(|d| d.name().to_string())
-                .collect(),
+            names: dofs.node_dofs().iter().map(|d| d.name()).collect(),
             largest_node: 0,
         }
     }
@@ -39,7 +35,7 @@ impl NodeDofPlacement {
                      rotation (4-6)"
                 )
             })?;
-        let position = self.names.iter().position(|n| n == name).ok_or_else(|| {
+        let position = self.names.iter().position(|&n| n == name).ok_or_else(|| {
             format!(
                 "node {node} has DOF {component} ({name}), which the body's DOF ({}) do not \
                  include",

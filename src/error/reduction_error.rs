@@ -39,10 +39,11 @@ pub enum ReductionError {
     },
 
     /// MacNeal–Rubin's r-set (Spanos–Tsuha Eq. 11) must restrain every rigid motion with
-    /// exactly as many DOF as there are rigid motions (statically determinate).
-    #[error("invalid MacNeal-Rubin r-set {dofs}: {problem}")]
+    /// exactly as many DOF as there are rigid motions (statically determinate). `set` says
+    /// which: its DOF by node and name, how many, or whose (`of the steel_rod`).
+    #[error("invalid MacNeal-Rubin r-set {set}: {problem}")]
     InvalidRSet {
-        dofs: String,
+        set: String,
         problem: super::RSetProblem,
     },
 

@@ -59,12 +59,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         crate::linalg::MassMatrix::Lumped(d) => ("lumped", d.len()),
         crate::linalg::MassMatrix::Consistent(m) => ("consistent", m.nnz()),
     };
-    let dof_names: Vec<String> = model
-        .dofs
-        .node_dofs()
-        .iter()
-        .map(|d| d.name().to_string())
-        .collect();
+    let dof_names: Vec<&'static str> = model.dofs.node_dofs().iter().map(|d| d.name()).collect();
     // How far the coordinates' rigid motions are from K's null space (computed once).
     let defect = (model.rigid_motions == crate::fem::RigidMotions::FromGeometry)
         .then(|| model.rigid_motion_defect());

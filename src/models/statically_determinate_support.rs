@@ -15,7 +15,7 @@ use crate::{
 /// body has fewer than three such nodes or they lie on a line.
 pub fn three_two_one_support(model: &FeModel, excluded: &[usize]) -> Result<Vec<usize>> {
     let invalid = |problem| ReductionError::InvalidRSet {
-        dofs: "3-2-1 support".into(),
+        set: "of a 3-2-1 support".into(),
         problem,
     };
     let candidates: Vec<NodeIndex> = (0..model.node_count())

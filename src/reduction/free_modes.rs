@@ -132,7 +132,7 @@ pub fn restrained_modes(
 pub fn mass_normalised_rigid_modes(model: &FeModel) -> Result<Mat<f64>> {
     if model.rigid_motions != RigidMotions::FromGeometry {
         return Err(Error::Reduction(ReductionError::InvalidRSet {
-            dofs: model.name.clone(),
+            set: format!("of the {}", model.name),
             problem: crate::error::RSetProblem::UnknownRigidMotions,
         }));
     }

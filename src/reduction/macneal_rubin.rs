@@ -56,7 +56,7 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
     } else {
         if !p.r_set.is_empty() {
             return Err(Error::Reduction(ReductionError::InvalidRSet {
-                dofs: format!("{} DOF", p.r_set.len()),
+                set: format!("of {} DOF", p.r_set.len()),
                 problem: RSetProblem::HeldComponent,
             }));
         }
@@ -178,13 +178,13 @@ fn check_r_set(model: &FeModel, r_set: &[usize], phi_r: faer::MatRef<'_, f64>) -
     let rank = crate::linalg::numerical_rank(rows.as_ref(), 1e-9)?;
     if rank < rigid {
         return Err(Error::Reduction(ReductionError::InvalidRSet {
-            dofs: format!("[{}]", labels()),
+            set: format!("[{}]", labels()),
             problem: RSetProblem::Deficient { rank, rigid },
         }));
     }
     if r_set.len() > rigid {
         return Err(Error::Reduction(ReductionError::InvalidRSet {
-            dofs: format!("[{}]", labels()),
+            set: format!("[{}]", labels()),
             problem: RSetProblem::Redundant {
                 dofs: r_set.len(),
                 rigid,

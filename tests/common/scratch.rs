@@ -4,8 +4,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// A fresh empty folder, unique to this process and call; removed on drop unless the test is
-/// failing (then its files stay for a look, and the panic message names them through the
-/// test's own assertions).
+/// failing (then its files stay for a look, under `flexmodes-{tag}-{pid}-{n}`).
 pub struct Scratch(PathBuf);
 
 impl Scratch {
