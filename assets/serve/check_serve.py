@@ -210,6 +210,22 @@ def check_control(args, control_url, debug_port, cdp):
         fail(f"the viewer followed after {followed:.1f} s, more than {args.control_within} s")
 
 
+def show_recording(cdp, wanted, tries=40):
+    """Makes `wanted` the viewer's active recording, or fails naming what it shows.
+
+    The viewer's handle does nothing, silently, when it is asked while a frame holds the app
+    (or before the recording is in its store): it is asked again until it shows the recording.
+    """
+    shown = None
+    for _ in range(tries):
+        cdp.evaluate(f"window._handle.set_active_recording_id({json.dumps(wanted)})")
+        time.sleep(0.25)
+        shown = cdp.evaluate("window._handle.get_active_recording_id() ?? null")
+        if shown == wanted:
+            return
+    fail(f"the viewer did not show {wanted} after {tries} requests (it shows {shown})")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--binary", required=True, help="flexmodes built with --features serve")
@@ -315,16 +331,8 @@ def main():
             print(f"viewer: every recording arrived {time.time() - started:.1f} s after serve started")
             for scene in ids:
                 wanted = f"flexmodes-{scene}"
-                cdp.evaluate(f"window._handle.set_active_recording_id({json.dumps(wanted)})")
-                shown = None
-                for _ in range(40):
-                    shown = cdp.evaluate("window._handle.get_active_recording_id() ?? null")
-                    if shown == wanted:
-                        break
-                    time.sleep(0.25)
-                time.sleep(1.0)
-                if shown != wanted:
-                    fail(f"the viewer did not show {wanted} (it shows {shown})")
+                show_recording(cdp, wanted)
+                time.sleep(0.5)  # a few of the viewer's frames on the recording
                 if cdp.evaluate("window._handle.has_panicked()"):
                     fail(f"the viewer panicked on {wanted}: "
                          f"{cdp.evaluate('window._handle.panic_message()')}")
@@ -333,8 +341,8 @@ def main():
                 os.makedirs(os.path.dirname(os.path.abspath(stem)), exist_ok=True)
                 open(f"{stem}-{scene}.png", "wb").write(shot)
             print(f"every scene shown without a panic: {', '.join(ids)}")
-            cdp.evaluate(f"window._handle.set_active_recording_id({json.dumps('flexmodes-' + args.scene)})")
             recording = f"flexmodes-{args.scene}"
+            show_recording(cdp, recording)
         # Stop the mode animation at a phase (the timeline runs over the phase steps).
         span = None
         for _ in range(60):  # the data arrives after the recording is active
