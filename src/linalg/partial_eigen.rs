@@ -134,7 +134,8 @@ pub fn lowest_modes(
         basis_size: max_basis,
         ..Default::default()
     };
-    let apply = |x: MatRef<'_, f64>| factor.solve(m.mul(x).as_ref());
+    // A = (K - σM)⁻¹M, applied to a block through its image MV (kept beside V).
+    let solve = |mv: MatRef<'_, f64>| factor.solve(mv);
     let attainable = ATTAINABLE_RITZ
         * f64::EPSILON
         * eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
@@ -156,7 +157,7 @@ pub fn lowest_modes(
     let mut ritz_history: Vec<f64> = Vec::new();
     let result;
     loop {
-        stats.block_solves += basis.expand(b, max_basis, &apply, m, &mut rng);
+        stats.block_solves += basis.expand(b, max_basis, &solve, m, &mut rng);
         let step = basis.rayleigh_ritz(sigma)?;
         let (theta, ritz) = (&step.theta, &step.ritz);
         let relative = step.relative_residuals(m, wanted);
@@ -275,20 +276,20 @@ impl Basis {
         self.cols += append_orthonormal(&mut self.v, &mut self.mv, self.cols, x, m, rng);
     }
 
-    /// $A$ applied to the newest blocks of `b` columns, each image orthogonalised and appended,
-    /// until `max_basis` columns have images; returns the block solves.
+    /// $A = (K - \sigma M)^{-1}M$ applied to the newest blocks of `b` columns (`solve` takes
+    /// their images $MV$, already kept), each image orthogonalised and appended, until
+    /// `max_basis` columns have images; returns the block solves.
     fn expand(
         &mut self,
         b: usize,
         max_basis: usize,
-        apply: &dyn Fn(MatRef<'_, f64>) -> Mat<f64>,
+        solve: &dyn Fn(MatRef<'_, f64>) -> Mat<f64>,
         m: &MassMatrix,
         rng: &mut u64,
     ) -> usize {
         let mut solves = 0;
         while self.with_a + b <= max_basis {
-            let block = self.v.subcols(self.with_a, b).to_owned();
-            let mut w = apply(block.as_ref());
+            let mut w = solve(self.mv.subcols(self.with_a, b));
             solves += 1;
             let known = self.known;
             if known > 0 {
@@ -409,7 +410,12 @@ fn append_orthonormal(
     let room = v.ncols() - cols;
     let count = x.ncols().min(room);
     let mut x = x.subcols(0, count).to_owned();
-    let original: Vec<f64> = (0..count).map(|j| m_norm(x.col(j).as_mat(), m)).collect();
+    // The columns' M-norms before any projection, from one blocked product (the reference of
+    // the test for a column that vanishes).
+    let mx = m.mul(x.as_ref());
+    let original: Vec<f64> = (0..count)
+        .map(|j| (x.col(j).transpose() * mx.col(j)).max(0.0).sqrt())
+        .collect();
     if cols > 0 {
         for _ in 0..2 {
             let coeffs = mv.subcols(0, cols).transpose() * &x;
@@ -431,13 +437,14 @@ fn append_orthonormal(
                     xj -= &proj;
                 }
             }
-            let norm = m_norm(x.col(j).as_mat(), m);
+            // One product per column: its M-norm and, scaled, the image M v kept beside v.
+            let mx = m.mul(x.col(j).as_mat());
+            let norm = (x.col(j).transpose() * mx.col(0)).max(0.0).sqrt();
             if norm > 1e-10 * reference && norm > 0.0 {
                 let target = cols + j;
-                let scaled = x.col(j) * (1.0 / norm);
-                v.col_mut(target).copy_from(&scaled);
-                let mcol = m.mul(v.col(target).as_mat());
-                mv.col_mut(target).copy_from(mcol.col(0));
+                let scale = 1.0 / norm;
+                v.col_mut(target).copy_from(x.col(j) * scale);
+                mv.col_mut(target).copy_from(mx.col(0) * scale);
                 break;
             }
             tries += 1;

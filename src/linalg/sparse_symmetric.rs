@@ -87,6 +87,10 @@ const GATHER_ROWS: usize = 4096;
 /// $Y = A^T X$ (= $AX$ for a symmetric A) for the rows of `y`, which start at row `first`:
 /// row j is $\sum_p a_{pj} x_p$ over column j's entries. Split in halves on two threads while
 /// `parallel` and the rows are many.
+///
+/// X's rows are first copied interleaved ($x_{i,0} \dots x_{i,w-1}$ side by side), so the `w`
+/// values a stored entry multiplies share a cache line: read by columns, each entry touched
+/// `w` lines at random rows, and the product cost more than the entries it reads.
 fn gather_rows(
     a: faer::sparse::SparseColMatRef<'_, usize, f64>,
     x: MatRef<'_, f64>,
@@ -94,53 +98,63 @@ fn gather_rows(
     first: usize,
     parallel: bool,
 ) {
+    let width = x.ncols();
     assert!(
-        x.ncols() <= GATHER_COLUMNS,
+        width <= GATHER_COLUMNS,
         "at most {GATHER_COLUMNS} columns at once"
     );
+    assert_eq!(y.ncols(), width, "a column of Y per column of X");
+    let n = x.nrows();
+    let mut xt = vec![0.0; n * width];
+    for c in 0..width {
+        for i in 0..n {
+            xt[i * width + c] = x[(i, c)];
+        }
+    }
+    match width {
+        0 => {}
+        1 => gather_interleaved::<1>(a, &xt, y, first, parallel),
+        2 => gather_interleaved::<2>(a, &xt, y, first, parallel),
+        3 => gather_interleaved::<3>(a, &xt, y, first, parallel),
+        4 => gather_interleaved::<4>(a, &xt, y, first, parallel),
+        5 => gather_interleaved::<5>(a, &xt, y, first, parallel),
+        6 => gather_interleaved::<6>(a, &xt, y, first, parallel),
+        7 => gather_interleaved::<7>(a, &xt, y, first, parallel),
+        _ => gather_interleaved::<GATHER_COLUMNS>(a, &xt, y, first, parallel),
+    }
+}
+
+/// [`gather_rows`] on X interleaved by rows (`xt[i * W + c]` = $x_{ic}$), `W` columns.
+fn gather_interleaved<const W: usize>(
+    a: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    xt: &[f64],
+    y: faer::MatMut<'_, f64>,
+    first: usize,
+    parallel: bool,
+) {
     let rows = y.nrows();
     if parallel && rows > 2 * GATHER_ROWS {
         let half = rows / 2;
         let (top, bottom) = y.split_at_row_mut(half);
         rayon::join(
-            || gather_rows(a, x, top, first, true),
-            || gather_rows(a, x, bottom, first + half, true),
+            || gather_interleaved::<W>(a, xt, top, first, true),
+            || gather_interleaved::<W>(a, xt, bottom, first + half, true),
         );
         return;
     }
     let mut y = y;
     let (col_ptr, row_idx, val) = (a.col_ptr(), a.row_idx(), a.val());
-    let width = x.ncols();
-    // X's columns as slices (copied when X is not stored by columns).
-    let owned;
-    let x = match (0..width).all(|c| x.col(c).try_as_col_major().is_some()) {
-        true => x,
-        false => {
-            owned = x.to_owned();
-            owned.as_ref()
-        }
-    };
-    let columns: Vec<&[f64]> = (0..width)
-        .map(|c| {
-            x.col(c)
-                .try_as_col_major()
-                .expect("stored by columns")
-                .as_slice()
-        })
-        .collect();
-    let mut acc = [0.0f64; GATHER_COLUMNS];
     for r in 0..rows {
         let j = first + r;
-        acc[..width].fill(0.0);
-        for (&i, &v) in row_idx[col_ptr[j]..col_ptr[j + 1]]
-            .iter()
-            .zip(&val[col_ptr[j]..col_ptr[j + 1]])
-        {
-            for (sum, column) in acc[..width].iter_mut().zip(&columns) {
-                *sum += v * column[i];
+        let (from, to) = (col_ptr[j], col_ptr[j + 1]);
+        let mut acc = [0.0f64; W];
+        for (&i, &v) in row_idx[from..to].iter().zip(&val[from..to]) {
+            let xi: &[f64; W] = xt[i * W..(i + 1) * W].try_into().expect("W values per row");
+            for (sum, &xc) in acc.iter_mut().zip(xi) {
+                *sum += v * xc;
             }
         }
-        for (c, &sum) in acc[..width].iter().enumerate() {
+        for (c, &sum) in acc.iter().enumerate() {
             y[(r, c)] = sum;
         }
     }
