@@ -17,7 +17,7 @@ pub fn write_atomically(
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<()> {
     let io = |path: &Path| {
-        let path = path.display().to_string();
+        let path = path.to_path_buf();
         move |source| Error::Io { path, source }
     };
     let dir = path

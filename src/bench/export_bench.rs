@@ -47,7 +47,7 @@ fn run_timed(mut command: Command, repeats: usize, what: &'static str) -> Result
     for _ in 0..repeats {
         let started = Instant::now();
         let out = command.output().map_err(|source| Error::Io {
-            path: what.to_string(),
+            path: what.into(),
             source,
         })?;
         seconds.push(started.elapsed().as_secs_f64());
@@ -111,7 +111,7 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
     let ours = run_timed(own, p.repeats, "flexmodes export")?;
     let model: Value = serde_json::from_slice(&std::fs::read(out_dir.join("model.json")).map_err(
         |source| Error::Io {
-            path: out_dir.join("model.json").display().to_string(),
+            path: out_dir.join("model.json"),
             source,
         },
     )?)

@@ -46,13 +46,13 @@ impl BodyLocation {
                     Some(r) => body.parent().unwrap_or(Path::new(".")).join(r),
                 };
                 let bytes = std::fs::read(&path).map_err(|source| Error::Io {
-                    path: path.display().to_string(),
+                    path: path.clone(),
                     source,
                 })?;
                 Ok((bytes, path.display().to_string()))
             }
             Self::Memory(name) => Err(Error::BodyFile(BodyFileError::BodyFile {
-                path: format!("<{name} in memory>"),
+                path: format!("<{name} in memory>").into(),
                 line: None,
                 reason: format!(
                     "a body in memory names no file (asked for `{}`)",
@@ -64,7 +64,7 @@ impl BodyLocation {
                 let asset = format!("bodies/{name}/{file}");
                 let bytes = crate::assets::get(&asset).ok_or_else(|| {
                     Error::BodyFile(BodyFileError::BodyFile {
-                        path: format!("builtin:{name}"),
+                        path: format!("builtin:{name}").into(),
                         line: None,
                         reason: format!(
                             "no embedded file `{asset}` (built-in bodies: {})",

@@ -133,7 +133,7 @@ impl ImportedBody {
         let m_name = format!("M of {}", body.name);
         let body_error = |reason: String| {
             Error::BodyFile(BodyFileError::BodyFile {
-                path: format!("<{} in memory>", body.name),
+                path: format!("<{} in memory>", body.name).into(),
                 line: None,
                 reason,
             })
@@ -145,7 +145,7 @@ impl ImportedBody {
         let n = body.stiffness.rows;
         if body.stiffness.cols != n || n == 0 {
             return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-                path: k_name,
+                path: k_name.into(),
                 what: "stiffness",
                 rows: n,
                 cols: body.stiffness.cols,

@@ -269,7 +269,7 @@ fn body_toml(
 /// Writes `files` into the folder `dir` (created if missing), each file atomically.
 pub fn write_files(dir: &Path, files: &BodyFiles) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-        path: dir.display().to_string(),
+        path: dir.to_path_buf(),
         source,
     })?;
     for (name, bytes) in files {

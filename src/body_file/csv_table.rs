@@ -45,7 +45,7 @@ pub(super) fn read_table<T: std::str::FromStr + Copy>(
                     Err(_) if rows.is_empty() && k == 0 => {} // a header
                     Err(_) => {
                         return Err(Error::BodyFile(BodyFileError::TableLine {
-                            path: name,
+                            path: name.into(),
                             line: k + 1,
                             problem: TableProblem::NotNumbers { text: line.into() },
                         }));
@@ -69,14 +69,14 @@ pub(super) fn edges(
     for (line, row) in rows {
         if row.len() < 2 {
             return Err(Error::BodyFile(BodyFileError::TableLine {
-                path: name,
+                path: name.into(),
                 line,
                 problem: TableProblem::EdgeTooShort,
             }));
         }
         if let Some(&bad) = row.iter().find(|&&x| x == 0 || x > node_count) {
             return Err(Error::BodyFile(BodyFileError::TableLine {
-                path: name,
+                path: name.into(),
                 line,
                 problem: TableProblem::NodeOutOfRange {
                     node: bad,

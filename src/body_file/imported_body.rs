@@ -324,7 +324,7 @@ pub(super) fn checked_sets(
     for (set, members) in given.node_sets {
         if let Some(&node) = members.iter().find(|&&x| x == 0 || x > node_count) {
             return Err(Error::BodyFile(BodyFileError::NodeSetOutOfRange {
-                path: text.name.to_string(),
+                path: text.name.into(),
                 set: set.clone(),
                 node,
                 count: node_count,

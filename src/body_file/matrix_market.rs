@@ -64,7 +64,7 @@ impl MatrixMarket {
 /// file is called.
 pub fn read_matrix_market(path: &Path) -> Result<MatrixMarket> {
     let bytes = fs::read(path).map_err(|source| Error::Io {
-        path: path.display().to_string(),
+        path: path.to_path_buf(),
         source,
     })?;
     parse_matrix_market(&bytes, &path.display().to_string())

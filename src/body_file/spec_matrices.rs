@@ -28,7 +28,7 @@ impl SpecText<'_> {
     /// The body file's error at `line` (1-based).
     pub(super) fn error(&self, line: Option<usize>, reason: String) -> Error {
         Error::BodyFile(BodyFileError::BodyFile {
-            path: self.name.to_string(),
+            path: self.name.into(),
             line,
             reason,
         })
@@ -105,7 +105,7 @@ pub(super) fn read_matrices(
     drop(m_bytes);
     if k_file.rows != k_file.cols {
         return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-            path: k_name,
+            path: k_name.into(),
             what: "stiffness",
             rows: k_file.rows,
             cols: k_file.cols,
@@ -140,7 +140,7 @@ pub(super) fn read_nodes(
         None => {
             if !n.is_multiple_of(per) {
                 return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-                    path: matrices.k_name.clone(),
+                    path: matrices.k_name.clone().into(),
                     what: "stiffness",
                     rows: n,
                     cols: n,
@@ -163,7 +163,7 @@ pub(super) fn read_nodes(
             4 if row[0] == (k + 1) as f64 => &row[1..],
             4 => {
                 return Err(Error::BodyFile(BodyFileError::TableLine {
-                    path: table_name,
+                    path: table_name.into(),
                     line,
                     problem: TableProblem::NodeNumberOutOfOrder {
                         expected: k + 1,
@@ -173,7 +173,7 @@ pub(super) fn read_nodes(
             }
             c => {
                 return Err(Error::BodyFile(BodyFileError::TableLine {
-                    path: table_name,
+                    path: table_name.into(),
                     line,
                     problem: TableProblem::CoordinateCount { values: c },
                 }));
@@ -216,7 +216,7 @@ pub(super) fn place_equations(
     ] {
         if file.rows != equations.len() {
             return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-                path: name.clone(),
+                path: name.clone().into(),
                 what: "matrix",
                 rows: file.rows,
                 cols: file.cols,
@@ -246,7 +246,7 @@ pub(super) fn check_node_count(
         return Ok(());
     }
     Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-        path: k_name.to_string(),
+        path: k_name.into(),
         what: "stiffness",
         rows: n,
         cols: n,

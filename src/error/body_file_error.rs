@@ -1,5 +1,7 @@
 //! Errors of reading a body: the file, the line and what is wrong there.
 
+use std::path::PathBuf;
+
 use thiserror::Error;
 
 /// Errors of reading a body: the file, the line and what is wrong there.
@@ -10,33 +12,36 @@ pub enum BodyFileError {
     NotWritable { format: &'static str },
 
     /// A Matrix Market file whose first line is not a real `coordinate` or `array` header.
-    #[error("{path}:{line}: not a real Matrix Market matrix: {found}")]
+    #[error("{}:{line}: not a real Matrix Market matrix: {found}", path.display())]
     MatrixMarketHeader {
-        path: String,
+        path: PathBuf,
         line: usize,
         found: String,
     },
 
     /// A line of a body's CSV table (node coordinates, edges) that does not fit.
-    #[error("{path}:{line}: {problem}")]
+    #[error("{}:{line}: {problem}", path.display())]
     TableLine {
-        path: String,
+        path: PathBuf,
         line: usize,
         problem: super::TableProblem,
     },
 
     /// A line of a matrix file that does not parse.
-    #[error("{path}:{line}: {reason}")]
+    #[error("{}:{line}: {reason}", path.display())]
     MatrixMarketLine {
-        path: String,
+        path: PathBuf,
         line: usize,
         reason: String,
     },
 
     /// A Matrix Market entry whose 1-based index lies outside the size line's dimensions.
-    #[error("{path}:{line}: entry ({row}, {col}) lies outside the {rows} × {cols} matrix")]
+    #[error(
+        "{}:{line}: entry ({row}, {col}) lies outside the {rows} × {cols} matrix",
+        path.display()
+    )]
     MatrixIndexOutOfRange {
-        path: String,
+        path: PathBuf,
         line: usize,
         row: usize,
         col: usize,
@@ -45,25 +50,29 @@ pub enum BodyFileError {
     },
 
     /// A NaN or infinite value in a matrix file.
-    #[error("{path}:{line}: the value `{value}` is not finite")]
+    #[error("{}:{line}: the value `{value}` is not finite", path.display())]
     NonFiniteEntry {
-        path: String,
+        path: PathBuf,
         line: usize,
         value: String,
     },
 
     /// A body file (TOML) that does not parse or names something inconsistent.
-    #[error("{path}{}: {reason}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+    #[error(
+        "{}{}: {reason}",
+        path.display(),
+        line.map(|l| format!(":{l}")).unwrap_or_default()
+    )]
     BodyFile {
-        path: String,
+        path: PathBuf,
         line: Option<usize>,
         reason: String,
     },
 
     /// A matrix whose size does not match the body's DOF map or the other matrix.
-    #[error("{path}: the {what} is {rows} × {cols}, but {expected}")]
+    #[error("{}: the {what} is {rows} × {cols}, but {expected}", path.display())]
     MatrixSizeMismatch {
-        path: String,
+        path: PathBuf,
         what: &'static str,
         rows: usize,
         cols: usize,
@@ -72,11 +81,12 @@ pub enum BodyFileError {
 
     /// A stiffness or consistent mass that is not symmetric.
     #[error(
-        "{path}: the {what} is not symmetric: entry ({row}, {col}) differs from ({col}, {row}) \
-         by {asymmetry:.3e} relative to the largest entry (tolerance {tolerance:.0e})"
+        "{}: the {what} is not symmetric: entry ({row}, {col}) differs from ({col}, {row}) \
+         by {asymmetry:.3e} relative to the largest entry (tolerance {tolerance:.0e})",
+        path.display()
     )]
     NotSymmetric {
-        path: String,
+        path: PathBuf,
         what: &'static str,
         row: usize,
         col: usize,
@@ -85,18 +95,24 @@ pub enum BodyFileError {
     },
 
     /// A mass matrix that is not positive definite, located at a DOF.
-    #[error("{path}: the mass matrix is not positive definite at DOF {dof} ({label}): {reason}")]
+    #[error(
+        "{}: the mass matrix is not positive definite at DOF {dof} ({label}): {reason}",
+        path.display()
+    )]
     MassNotPositive {
-        path: String,
+        path: PathBuf,
         dof: usize,
         label: String,
         reason: String,
     },
 
     /// A node set that names a node the body does not have.
-    #[error("{path}: node set `{set}` names node {node}, but the body has nodes 1 to {count}")]
+    #[error(
+        "{}: node set `{set}` names node {node}, but the body has nodes 1 to {count}",
+        path.display()
+    )]
     NodeSetOutOfRange {
-        path: String,
+        path: PathBuf,
         set: String,
         node: usize,
         count: usize,

@@ -145,9 +145,9 @@ pub enum Error {
     },
 
     /// I/O error with the path involved.
-    #[error("{path}: {source}")]
+    #[error("{}: {source}", path.display())]
     Io {
-        path: String,
+        path: std::path::PathBuf,
         #[source]
         #[serde(serialize_with = "as_text")]
         source: std::io::Error,

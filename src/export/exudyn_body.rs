@@ -269,7 +269,7 @@ impl ExudynBody {
     pub fn write(&self, body: &ImportedBody, dir: &Path) -> Result<Vec<String>> {
         let model = &body.model;
         std::fs::create_dir_all(dir).map_err(|source| crate::Error::Io {
-            path: dir.display().to_string(),
+            path: dir.to_path_buf(),
             source,
         })?;
         let mut position = vec![0; self.order.len()];

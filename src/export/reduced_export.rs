@@ -488,7 +488,7 @@ impl ReducedExport {
         };
         // Write into a temporary folder, then rename it into place.
         let io = |path: &Path| {
-            let path = path.display().to_string();
+            let path = path.to_path_buf();
             move |source| Error::Io { path, source }
         };
         let name = dir

@@ -172,7 +172,7 @@ pub fn run_with_body(
     let gui_error = |e: String| Error::Rerun(format!("desktop app: {e}"));
     let file_bytes = match file {
         Some(p) => Some(std::fs::read(p).map_err(|source| Error::Io {
-            path: p.display().to_string(),
+            path: p.to_path_buf(),
             source,
         })?),
         None => None,

@@ -513,7 +513,7 @@ mod tests {
     }
 
     /// The row-wise gather against a dense product, for sizes that split across threads and
-    /// column counts around the gather's block of eight.
+    /// every width of the interleaved kernel (1–8) and a count above the block of eight.
     #[test]
     fn the_gathered_product_is_the_dense_one() {
         let mut seed = 7u64;
@@ -529,7 +529,7 @@ mod tests {
                 }
             }
             let a = SparseSymmetric::from_triplets(n, &entries);
-            for cols in [1, 5, 8, 13] {
+            for cols in [1, 2, 3, 4, 5, 6, 7, 8, 13] {
                 let x = Mat::from_fn(n, cols, |_, _| crate::linalg::next_uniform(&mut seed));
                 // A block stored by rows is copied first.
                 let by_rows = x.transpose().to_owned();

@@ -953,7 +953,7 @@ fn a_body_from_matrices_equals_its_body_file_and_is_checked_alike() {
     match kind(ImportedBody::from_matrices(given(k, m_lower.clone())).unwrap_err()) {
         BodyFileError::NonFiniteEntry { line, path, .. } => {
             assert_eq!(line, 10);
-            assert_eq!(path, "K of bracket");
+            assert_eq!(path, std::path::Path::new("K of bracket"));
         }
         other => panic!("{other}"),
     }
