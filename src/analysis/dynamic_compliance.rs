@@ -3,6 +3,7 @@
 //! $LDL^T$ per frequency) and of a reduced model (dense), compared by
 //! [`FrequencyResponse::relative_magnitude_error`].
 
+use crate::error::MatrixLabel;
 use faer::{Mat, MatRef, c64, linalg::solvers::Solve};
 
 use super::FrequencyResponse;
@@ -59,7 +60,7 @@ pub fn full_dynamic_compliance(
         ))?;
         let omega = 2.0 * std::f64::consts::PI * f;
         let a = model.k.shifted(&model.m, omega * omega);
-        let factor = IndefiniteFactor::factor(a, &symbolic, &format!("K - ω²M at {f:.4e} Hz"))?;
+        let factor = IndefiniteFactor::factor(a, &symbolic, MatrixLabel::at_hz("K - ω²M", f))?;
         let x = factor.solve(loads)?;
         values.push(to_complex(&(loads.transpose() * &x)));
     }

@@ -1,5 +1,6 @@
 //! Natural frequencies of full and reduced models.
 
+use crate::error::MatrixLabel;
 use crate::{
     Error, Result,
     fem::FeModel,
@@ -49,7 +50,7 @@ pub fn reduced_modes(model: &FeModel, basis: &Basis) -> Result<GeneralizedEigen>
     generalized_eigen(
         k.as_ref(),
         m.as_ref(),
-        &format!("{} reduced", basis.method.id()),
+        MatrixLabel::of_method("reduced", basis.method.id()),
     )
 }
 

@@ -30,7 +30,7 @@ pub fn modes_in_band(
     natural_hz: &[f64],
     low_hz: f64,
     high_hz: f64,
-    what: &str,
+    what: &'static str,
 ) -> Result<Vec<usize>> {
     let inside: Vec<usize> = (0..natural_hz.len())
         .filter(|&i| natural_hz[i] >= low_hz && natural_hz[i] <= high_hz)
@@ -39,7 +39,7 @@ pub fn modes_in_band(
         return Err(Error::Reduction(ReductionError::EmptyBand {
             low_hz,
             high_hz,
-            what: what.into(),
+            what,
         }));
     }
     Ok(inside)

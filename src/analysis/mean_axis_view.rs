@@ -4,6 +4,7 @@
 //! frame), with $P$ the rigid-body modes. A field $u$ in any frame splits into the mean frame's
 //! motion $q = (P^TMP)^{-1}P^TMu$ and the deformation $u_e = u - Pq$ it sees.
 
+use crate::error::MatrixLabel;
 use faer::{Mat, MatRef, Side, linalg::solvers::Solve};
 
 use crate::{Result, error::LinalgError, fem::FeModel};
@@ -29,7 +30,7 @@ impl MeanAxisView {
         let llt = gram
             .llt(Side::Lower)
             .map_err(|_| LinalgError::NotPositiveDefinite {
-                matrix: format!("rigid-body mass PᵀMP of {}", model.name),
+                matrix: MatrixLabel::of_body("rigid-body mass PᵀMP", model.name.clone()),
             })?;
         let gram_inverse = llt.solve(Mat::<f64>::identity(r, r));
         Ok(Self {

@@ -2,6 +2,7 @@
 //! Cholesky of the free block) and of a reduced basis (a Ritz solution), so reduction methods
 //! can be compared in statics.
 
+use crate::error::MatrixLabel;
 use crate::linalg::LinalgError;
 use faer::{Mat, linalg::solvers::Solve};
 
@@ -125,7 +126,7 @@ pub fn ritz_static_response(
         .fold(0.0f64, f64::max);
     if z.iter().any(|v| !v.is_finite()) || (scale > 1e-300 && held_error > 1e-8 * scale) {
         return Err(Error::Linalg(LinalgError::SingularMatrix {
-            matrix: format!("{} static saddle-point system", basis.method.id()),
+            matrix: MatrixLabel::of_method("static saddle-point system", basis.method.id()),
             rcond: None,
         }));
     }

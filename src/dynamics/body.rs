@@ -1,6 +1,7 @@
 //! Rigid and deformable bodies with their mass matrices and generalised forces.
 
 use super::DynamicsError;
+use crate::error::MatrixLabel;
 use crate::linalg::LinalgError;
 use faer::Mat;
 use nalgebra::{DMatrix, DVector, Dyn, IsContiguous, Matrix3, Matrix3xX, Storage, Vector3};
@@ -110,7 +111,7 @@ impl ModalMassInverse {
         let off_diagonal = (0..n).any(|i| (0..n).any(|j| i != j && m_zz[(i, j)] != 0.0));
         let singular = |rcond: Option<f64>| {
             Error::Linalg(LinalgError::SingularMatrix {
-                matrix: format!("modal mass ΨᵀMΨ of {body}"),
+                matrix: MatrixLabel::of_body("modal mass ΨᵀMΨ", body),
                 rcond,
             })
         };

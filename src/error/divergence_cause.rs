@@ -36,7 +36,7 @@ pub enum DivergenceCause {
         /// The step, s.
         step: f64,
         /// The matrix that became singular.
-        matrix: String,
+        matrix: super::MatrixLabel,
     },
     /// A coordinate of a fixed-step integration passed the bound.
     #[error(

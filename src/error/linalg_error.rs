@@ -2,6 +2,8 @@
 
 use thiserror::Error;
 
+use super::MatrixLabel;
+
 /// Errors of the linear algebra: factorisations, eigensolvers and their checks, memory.
 #[derive(Debug, Error, serde::Serialize)]
 pub enum LinalgError {
@@ -10,7 +12,7 @@ pub enum LinalgError {
         "the {matrix} matrix is not positive definite: the pivot of its row {index} (0-based) \
          is not positive"
     )]
-    NonPositivePivot { matrix: String, index: usize },
+    NonPositivePivot { matrix: MatrixLabel, index: usize },
 
     /// More eigenpairs than the partial eigensolver's basis leaves room for.
     #[error(
@@ -20,8 +22,17 @@ pub enum LinalgError {
     TooManyPairs { wanted: usize, dof: usize },
 
     /// An allocation the computation needs could not be made.
-    #[error("out of memory: {what}")]
-    OutOfMemory { what: String },
+    #[error(
+        "out of memory: {what}{}{}",
+        matrix.as_ref().map(|m| format!(" of {m}")).unwrap_or_default(),
+        entries.map(|n| format!(" ({n} entries)")).unwrap_or_default()
+    )]
+    OutOfMemory {
+        /// What could not be allocated: "Cholesky factor", "LDLᵀ workspace", …
+        what: &'static str,
+        matrix: Option<MatrixLabel>,
+        entries: Option<usize>,
+    },
 
     /// A mesh whose estimated memory exceeds what the machine has.
     #[error(
@@ -51,7 +62,7 @@ pub enum LinalgError {
          for its factorisation ({analysed} entries)"
     )]
     PatternMismatch {
-        matrix: String,
+        matrix: MatrixLabel,
         analysed: usize,
         given: usize,
     },
@@ -111,22 +122,22 @@ pub enum LinalgError {
          tolerance of {tolerance:.1e} (faer and nalgebra both tried)"
     )]
     EigenCheckFailed {
-        what: String,
+        what: MatrixLabel,
         residual: f64,
         tolerance: f64,
     },
 
     /// A NaN or infinite entry in a matrix handed to a decomposition.
-    #[error("the {what} has a non-finite entry at row {row}, column {col} (0-based)")]
+    #[error("the {what} matrix has a non-finite entry at row {row}, column {col} (0-based)")]
     NotFinite {
-        what: String,
+        what: MatrixLabel,
         row: usize,
         col: usize,
     },
 
     /// A matrix that should be symmetric positive definite is not.
     #[error("the {matrix} matrix is not positive definite")]
-    NotPositiveDefinite { matrix: String },
+    NotPositiveDefinite { matrix: MatrixLabel },
 
     /// A square matrix that must be inverted is singular: its factorisation failed, or gave
     /// a non-finite solution. `rcond` is the reciprocal condition estimate where one was
@@ -135,11 +146,14 @@ pub enum LinalgError {
         "the {matrix} matrix is singular{}",
         rcond.map(|r| format!(" (reciprocal condition estimate {r:.1e})")).unwrap_or_default()
     )]
-    SingularMatrix { matrix: String, rcond: Option<f64> },
+    SingularMatrix {
+        matrix: MatrixLabel,
+        rcond: Option<f64>,
+    },
 
     /// An eigen- or singular-value decomposition did not converge.
     #[error("the {what} decomposition did not converge")]
-    DecompositionFailed { what: String },
+    DecompositionFailed { what: MatrixLabel },
 
     /// Two sequences that must match (the same frequencies, the same length) do not.
     #[error("{what} differ: {left} against {right}")]
@@ -156,7 +170,7 @@ pub enum LinalgError {
          refinement (tolerance {tolerance:.0e})"
     )]
     SolveInaccurate {
-        matrix: String,
+        matrix: MatrixLabel,
         residual: f64,
         tolerance: f64,
     },

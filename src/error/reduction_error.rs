@@ -23,6 +23,15 @@ pub enum ReductionError {
         problem: super::DofSetProblem,
     },
 
+    /// A Craig–Bampton basis whose constraint modes couple to its normal modes through the
+    /// reduced stiffness (they are K-orthogonal in exact arithmetic): `coupling` is the
+    /// largest coupling entry over the largest entry of $K_r$.
+    #[error(
+        "the Craig-Bampton structure check failed: the constraint modes couple to the normal \
+         modes through K_r at {coupling:.1e} of its largest entry (tolerance {tolerance:.0e})"
+    )]
+    ConstraintModesCouple { coupling: f64, tolerance: f64 },
+
     /// An export another code cannot take as it is (`to`: the code).
     #[error("cannot export for {to}: {problem}")]
     NotExportable {
@@ -79,7 +88,7 @@ pub enum ReductionError {
     EmptyBand {
         low_hz: f64,
         high_hz: f64,
-        what: String,
+        what: &'static str,
     },
 
     /// $K_{ii}$ is singular: the boundary DOF do not restrain every rigid-body motion.

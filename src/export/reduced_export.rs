@@ -1,7 +1,7 @@
 //! [`export`]: reduce a body and write the reduced model (see the module `export`).
 
 use super::{ExudynBody, exudyn_body};
-use crate::linalg::LinalgError;
+use crate::error::ReductionError;
 use std::{
     path::{Path, PathBuf},
     time::Instant,
@@ -278,13 +278,11 @@ pub fn reduce_for_export(
     };
     let reduced = ReducedMatrices::of(model, &basis);
     if reduced.structured && reduced.constraint_coupling > CONSTRAINT_COUPLING_TOLERANCE {
-        return Err(Error::Linalg(LinalgError::DecompositionFailed {
-            what: format!(
-                "Craig-Bampton structure check: the constraint modes couple to the normal \
-                 modes through K_r at {:.1e} of its largest entry (tolerance {:.0e})",
-                reduced.constraint_coupling, CONSTRAINT_COUPLING_TOLERANCE
-            ),
-        }));
+        return Err(ReductionError::ConstraintModesCouple {
+            coupling: reduced.constraint_coupling,
+            tolerance: CONSTRAINT_COUPLING_TOLERANCE,
+        }
+        .into());
     }
     let (k_r, m_r) = (reduced.k, reduced.m);
     lap("reduced matrices", &mut timings);

@@ -28,7 +28,10 @@ use super::LinalgError;
 use faer::{Mat, MatRef, Side};
 
 use super::{SymmetricEigenKernel, orthonormality_defect, symmetric_eigen::symmetric_eigen_prefix};
-use crate::{Error, Result};
+use crate::{
+    Error, Result,
+    error::{MatrixLabel, PencilPart},
+};
 
 /// Largest accepted normwise backward error $\eta_j$ of a dense generalised eigenpair.
 pub const PENCIL_BACKWARD_ERROR: f64 = 1e-10;
@@ -159,7 +162,7 @@ impl PairSelection {
 pub fn generalized_eigen(
     k: MatRef<'_, f64>,
     m: MatRef<'_, f64>,
-    what: &str,
+    what: impl Into<MatrixLabel>,
 ) -> Result<GeneralizedEigen> {
     generalized_eigen_selected(k, m, what, PairSelection::All)
 }
@@ -170,9 +173,10 @@ pub fn generalized_eigen(
 pub fn generalized_eigen_selected(
     k: MatRef<'_, f64>,
     m: MatRef<'_, f64>,
-    what: &str,
+    what: impl Into<MatrixLabel>,
     selection: PairSelection,
 ) -> Result<GeneralizedEigen> {
+    let what: MatrixLabel = what.into();
     let n = k.nrows();
     assert_eq!((k.ncols(), m.nrows(), m.ncols()), (n, n, n));
     if n == 0 {
@@ -184,12 +188,12 @@ pub fn generalized_eigen_selected(
             sturm: None,
         });
     }
-    for (name, a) in [("stiffness", k), ("mass", m)] {
+    for (part, a) in [(PencilPart::Stiffness, k), (PencilPart::Mass, m)] {
         for j in 0..n {
             for i in 0..n {
                 if !a[(i, j)].is_finite() {
                     return Err(Error::Linalg(LinalgError::NotFinite {
-                        what: format!("{what} {name} matrix"),
+                        what: what.part(part),
                         row: i,
                         col: j,
                     }));
@@ -203,7 +207,7 @@ pub fn generalized_eigen_selected(
         let mii = m[(i, i)];
         if mii <= 0.0 {
             return Err(Error::Linalg(LinalgError::NonPositivePivot {
-                matrix: format!("{what} mass"),
+                matrix: what.part(PencilPart::Mass),
                 index: i,
             }));
         }
@@ -218,7 +222,7 @@ pub fn generalized_eigen_selected(
     let m_tilde = Mat::from_fn(n, n, |i, j| 0.5 * (m[(i, j)] + m[(j, i)]) * d[i] * d[j]);
     let llt = m_tilde.llt(Side::Lower).map_err(|_| {
         Error::Linalg(LinalgError::NotPositiveDefinite {
-            matrix: format!("{what} mass"),
+            matrix: what.part(PencilPart::Mass),
         })
     })?;
     let l = llt.L();
@@ -235,7 +239,7 @@ pub fn generalized_eigen_selected(
         // C's eigenvalues times s are the problem's.
         let keep =
             |theta: &[f64]| selection.count(&theta.iter().map(|t| t * s).collect::<Vec<_>>());
-        let standard = match symmetric_eigen_prefix(c.as_ref(), what, &[kernel], &keep) {
+        let standard = match symmetric_eigen_prefix(c.as_ref(), what.clone(), &[kernel], &keep) {
             Ok(e) => e,
             Err(Error::Linalg(LinalgError::EigenCheckFailed { residual, .. })) => {
                 worst = worst.min(residual);
@@ -274,7 +278,7 @@ pub fn generalized_eigen_selected(
         );
     }
     Err(Error::Linalg(LinalgError::EigenCheckFailed {
-        what: what.to_string(),
+        what,
         residual: worst,
         tolerance: PENCIL_BACKWARD_ERROR,
     }))

@@ -10,7 +10,10 @@
 //! estimate alone (an ill-conditioned $A$ cannot give a smaller residual relative to $\|b\|$
 //! alone than its round-off $\varepsilon\||A||x|\|$).
 
-use crate::{Result, error::LinalgError};
+use crate::{
+    Result,
+    error::{LinalgError, MatrixLabel},
+};
 
 /// What a solve took.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -56,7 +59,7 @@ fn dot(x: &[f64], y: &[f64]) -> f64 {
 /// error: [`LinalgError::SolveInaccurate`] with the residual reached when the allowed
 /// products did not meet the tolerance (or the products were not finite).
 pub fn preconditioned_gmres(
-    what: &str,
+    what: impl Into<MatrixLabel>,
     mut apply: impl FnMut(&[f64]) -> Vec<f64>,
     mut precondition: impl FnMut(&[f64]) -> Vec<f64>,
     mut abs_norm: impl FnMut(&[f64]) -> f64,
@@ -81,8 +84,9 @@ pub fn preconditioned_gmres(
         return Ok((vec![0.0; n], stats));
     }
     let mut x = x0;
+    let what = what.into();
     let inaccurate = |residual: f64| LinalgError::SolveInaccurate {
-        matrix: what.into(),
+        matrix: what.clone(),
         residual,
         tolerance,
     };

@@ -12,7 +12,7 @@ use faer::{
 };
 
 use super::{LinalgError, SparseSymmetric, SymbolicFactor};
-use crate::{Error, Result};
+use crate::{Error, Result, error::MatrixLabel};
 
 /// Relative residual $\|AX - B\|_F / \|B\|_F$ a solve must reach.
 pub const INDEFINITE_SOLVE_TOLERANCE: f64 = 1e-9;
@@ -25,19 +25,26 @@ pub struct IndefiniteFactor {
     a: SparseSymmetric,
     symbolic: SymbolicFactor,
     values: Vec<f64>,
-    what: String,
+    what: MatrixLabel,
 }
 
 impl IndefiniteFactor {
     /// Factors `a` (its pattern analysed by `symbolic`). A zero pivot (`a` singular, or a
     /// frequency on a natural one) is [`LinalgError::SingularMatrix`].
-    pub fn factor(a: SparseSymmetric, symbolic: &SymbolicFactor, what: &str) -> Result<Self> {
-        symbolic.check_pattern(a.as_faer(), what)?;
+    pub fn factor(
+        a: SparseSymmetric,
+        symbolic: &SymbolicFactor,
+        what: impl Into<MatrixLabel>,
+    ) -> Result<Self> {
+        let what = what.into();
+        symbolic.check_pattern(a.as_faer(), &what)?;
         let sym = symbolic.inner();
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {
             Error::Linalg(LinalgError::OutOfMemory {
-                what: format!("LDLᵀ factor of {what} ({} entries)", sym.len_val()),
+                what: "LDLᵀ factor",
+                matrix: Some(what.clone()),
+                entries: Some(sym.len_val()),
             })
         })?;
         values.resize(sym.len_val(), 0.0);
@@ -46,7 +53,9 @@ impl IndefiniteFactor {
             MemBuffer::try_new(sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()))
                 .map_err(|_| {
                     Error::Linalg(LinalgError::OutOfMemory {
-                        what: format!("LDLᵀ workspace of {what}"),
+                        what: "LDLᵀ workspace",
+                        matrix: Some(what.clone()),
+                        entries: None,
                     })
                 })?;
         let result = sym.factorize_numeric_ldlt(
@@ -60,7 +69,7 @@ impl IndefiniteFactor {
         );
         if let Err(LdltError::ZeroPivot { .. }) = result {
             return Err(Error::Linalg(LinalgError::SingularMatrix {
-                matrix: what.into(),
+                matrix: what,
                 rcond: None,
             }));
         }
@@ -68,7 +77,7 @@ impl IndefiniteFactor {
             a,
             symbolic: symbolic.clone(),
             values,
-            what: what.into(),
+            what,
         })
     }
 

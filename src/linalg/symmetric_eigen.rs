@@ -16,7 +16,7 @@
 use super::{LinalgError, orthonormality_defect};
 use faer::{Mat, MatRef, Side};
 
-use crate::{Error, Result};
+use crate::{Error, Result, error::MatrixLabel};
 
 /// Which dense kernel produced an accepted eigen-decomposition.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -53,7 +53,7 @@ pub fn dense_eigen_tolerance(n: usize) -> f64 {
 /// Eigenvalues and orthonormal eigenvectors of the symmetric `c` (only its lower triangle
 /// is read after symmetrisation $\tfrac12(C + C^T)$), checked as the module says. `what`
 /// names the problem in errors.
-pub fn symmetric_eigen(c: MatRef<'_, f64>, what: &str) -> Result<SymmetricEigen> {
+pub fn symmetric_eigen(c: MatRef<'_, f64>, what: impl Into<MatrixLabel>) -> Result<SymmetricEigen> {
     symmetric_eigen_with(
         c,
         what,
@@ -64,7 +64,7 @@ pub fn symmetric_eigen(c: MatRef<'_, f64>, what: &str) -> Result<SymmetricEigen>
 /// [`symmetric_eigen`] with the kernels to try, in order.
 pub fn symmetric_eigen_with(
     c: MatRef<'_, f64>,
-    what: &str,
+    what: impl Into<MatrixLabel>,
     kernels: &[SymmetricEigenKernel],
 ) -> Result<SymmetricEigen> {
     symmetric_eigen_prefix(c, what, kernels, &|values| values.len())
@@ -76,10 +76,11 @@ pub fn symmetric_eigen_with(
 /// checks $n^2k$ instead of $n^3$.
 pub fn symmetric_eigen_prefix(
     c: MatRef<'_, f64>,
-    what: &str,
+    what: impl Into<MatrixLabel>,
     kernels: &[SymmetricEigenKernel],
     keep: &dyn Fn(&[f64]) -> usize,
 ) -> Result<SymmetricEigen> {
+    let what: MatrixLabel = what.into();
     let n = c.nrows();
     assert_eq!(c.ncols(), n, "symmetric_eigen of a non-square matrix");
     if n == 0 {
@@ -98,7 +99,7 @@ pub fn symmetric_eigen_prefix(
             let v = c[(i, j)];
             if !v.is_finite() {
                 return Err(Error::Linalg(LinalgError::NotFinite {
-                    what: format!("{what} matrix"),
+                    what,
                     row: i,
                     col: j,
                 }));
@@ -141,7 +142,7 @@ pub fn symmetric_eigen_prefix(
         worst = worst.min(residual.max(orthonormality));
     }
     Err(Error::Linalg(LinalgError::EigenCheckFailed {
-        what: what.to_string(),
+        what,
         residual: worst,
         tolerance,
     }))

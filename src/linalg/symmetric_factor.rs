@@ -21,7 +21,7 @@ use faer::{
     },
 };
 
-use crate::{Error, Result};
+use crate::{Error, Result, error::MatrixLabel};
 
 /// Right-hand sides from which a sparse solve runs on every core.
 const WIDE_SOLVE: usize = 64;
@@ -65,7 +65,9 @@ impl SymbolicFactor {
             factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ordering, Default::default())
                 .map_err(|_| {
                     Error::Linalg(LinalgError::OutOfMemory {
-                        what: "symbolic Cholesky analysis".into(),
+                        what: "symbolic Cholesky analysis",
+                        matrix: None,
+                        entries: None,
                     })
                 })?;
         let flops = factor_flops(&inner);
@@ -89,12 +91,16 @@ impl SymbolicFactor {
     /// [`LinalgError::PatternMismatch`] unless `a` has the pattern analysed (its entries per
     /// column): a shift `K - σM` built on another pattern than the analysis would make faer
     /// panic or factor garbage.
-    pub(super) fn check_pattern(&self, a: &SparseColMat<usize, f64>, what: &str) -> Result<()> {
+    pub(super) fn check_pattern(
+        &self,
+        a: &SparseColMat<usize, f64>,
+        what: &MatrixLabel,
+    ) -> Result<()> {
         if a.symbolic().col_ptr() == self.col_ptr.as_slice() {
             return Ok(());
         }
         Err(Error::Linalg(LinalgError::PatternMismatch {
-            matrix: what.into(),
+            matrix: what.clone(),
             analysed: *self.col_ptr.last().unwrap_or(&0),
             given: a.compute_nnz(),
         }))
@@ -160,7 +166,7 @@ impl std::fmt::Debug for SymmetricFactor {
 
 impl SymmetricFactor {
     /// Factors a dense symmetric positive definite `a`. `what` names the matrix in errors.
-    pub fn dense(a: MatRef<'_, f64>, what: &str) -> Result<Self> {
+    pub fn dense(a: MatRef<'_, f64>, what: impl Into<MatrixLabel>) -> Result<Self> {
         let llt = a.llt(Side::Lower).map_err(|e| {
             let LltError::NonPositivePivot { index } = e;
             Error::Linalg(LinalgError::NonPositivePivot {
@@ -180,14 +186,17 @@ impl SymmetricFactor {
     pub fn sparse(
         a: &SparseColMat<usize, f64>,
         symbolic: &SymbolicFactor,
-        what: &str,
+        what: impl Into<MatrixLabel>,
     ) -> Result<Self> {
-        symbolic.check_pattern(a, what)?;
+        let what = what.into();
+        symbolic.check_pattern(a, &what)?;
         let sym = &symbolic.inner;
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {
             Error::Linalg(LinalgError::OutOfMemory {
-                what: format!("Cholesky factor of {what} ({} entries)", sym.len_val()),
+                what: "Cholesky factor",
+                matrix: Some(what.clone()),
+                entries: Some(sym.len_val()),
             })
         })?;
         values.resize(sym.len_val(), 0.0);
@@ -196,7 +205,9 @@ impl SymmetricFactor {
             MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
                 .map_err(|_| {
                 Error::Linalg(LinalgError::OutOfMemory {
-                    what: format!("Cholesky workspace of {what}"),
+                    what: "Cholesky workspace",
+                    matrix: Some(what.clone()),
+                    entries: None,
                 })
             })?;
         let result = sym.factorize_numeric_llt(
@@ -220,7 +231,7 @@ impl SymmetricFactor {
                 None => index,
             };
             return Err(Error::Linalg(LinalgError::NonPositivePivot {
-                matrix: what.into(),
+                matrix: what,
                 index: original,
             }));
         }

@@ -224,7 +224,7 @@ pub fn compare_body_methods(
         return Err(ReductionError::EmptyBand {
             low_hz: 0.0,
             high_hz: p.band_hz.unwrap_or(0.0),
-            what: "full body's elastic modes".into(),
+            what: "full body's elastic modes",
         }
         .into());
     }

@@ -541,7 +541,7 @@ impl<'a> BodyReducer<'a> {
                 ReductionError::EmptyBand {
                     low_hz: 0.0,
                     high_hz: f64::INFINITY,
-                    what: "body's elastic modes (none was computed)".into(),
+                    what: "body's elastic modes (none was computed)",
                 }
                 .into()
             })

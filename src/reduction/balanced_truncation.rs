@@ -116,7 +116,7 @@ pub fn balanced_truncation(model: &ModalModel, states: usize) -> Result<Balanced
 
 /// $L$ with $LL^T = G$ for a symmetric positive semi-definite $G$, from its eigenpairs
 /// (negative round-off eigenvalues set to zero), so a rank-deficient gramian is no error.
-fn psd_factor(g: MatRef<'_, f64>, what: &str) -> Result<Mat<f64>> {
+fn psd_factor(g: MatRef<'_, f64>, what: &'static str) -> Result<Mat<f64>> {
     let n = g.nrows();
     let sym = Mat::from_fn(n, n, |i, j| 0.5 * (g[(i, j)] + g[(j, i)]));
     let evd = crate::linalg::symmetric_eigen(sym.as_ref(), what)?;
