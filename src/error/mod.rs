@@ -25,7 +25,7 @@ pub use body_file_error::BodyFileError;
 pub use divergence_cause::DivergenceCause;
 pub use dof_set_problem::DofSetProblem;
 pub use dynamics_error::DynamicsError;
-pub use eigen_attempt::EigenAttempt;
+pub use eigen_attempt::{EigenAttempt, EigenRoute};
 pub use export_problem::ExportProblem;
 pub use flexmodes_error::{Error, Result};
 pub use free_motion::FreeMotion;

@@ -31,7 +31,7 @@ use faer::{Mat, MatRef};
 use super::COMPLETE_EIGEN_LIMIT;
 use crate::{
     Error, Result,
-    error::{EigenAttempt, LinalgError},
+    error::{EigenAttempt, EigenRoute, LinalgError},
     fem::{FeModel, RigidMotions},
     linalg::{
         GeneralizedEigen, MassMatrix, PartialEigenParameters, PartialEigenStatistics,
@@ -120,7 +120,10 @@ pub fn free_body_pairs(
         ..Default::default()
     };
     // Route 1: the small shift, the refined null space deflated.
-    let route1 = format!("shift {sigma0:.2e} (rad/s)², {null_count} null vectors deflated");
+    let route1 = EigenRoute::SmallShift {
+        shift: sigma0,
+        null_vectors: null_count,
+    };
     match sturm_checked(
         k,
         m,
@@ -142,9 +145,12 @@ pub fn free_body_pairs(
         && -0.5 * lowest < sigma0
     {
         let sigma1 = -0.5 * lowest;
-        let route2 = format!(
-            "shift {sigma1:.2e} (rad/s)² from the lowest elastic estimate, block 8, 150 restarts"
-        );
+        let (block, restarts) = (8, 150);
+        let route2 = EigenRoute::SpectrumShift {
+            shift: sigma1,
+            block,
+            restarts,
+        };
         let shifted = k.shifted(m, sigma1);
         let result =
             SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "K - σM").and_then(|factor1| {
@@ -156,8 +162,8 @@ pub fn free_body_pairs(
                     wanted,
                     null_vectors.as_ref(),
                     &PartialEigenParameters {
-                        block_size: 8,
-                        max_restarts: 150,
+                        block_size: block,
+                        max_restarts: restarts,
                         ..base.clone()
                     },
                     &symbolic,
@@ -173,7 +179,7 @@ pub fn free_body_pairs(
     }
     // Route 3: the complete dense solve of a body small enough.
     if n <= COMPLETE_EIGEN_LIMIT {
-        let route3 = "complete dense solve".to_string();
+        let route3 = EigenRoute::CompleteDense;
         match generalized_eigen(
             model.k_dense().as_ref(),
             model.m_dense().as_ref(),
@@ -193,7 +199,7 @@ pub fn free_body_pairs(
 
 /// A route's failure as an attempt; errors that are not convergence failures (memory, a
 /// factor that is not positive definite) end the search.
-fn attempt(route: String, wanted: usize, e: Error) -> Result<EigenAttempt> {
+fn attempt(route: EigenRoute, wanted: usize, e: Error) -> Result<EigenAttempt> {
     match e {
         Error::Linalg(LinalgError::EigenNotConverged {
             converged,
@@ -204,18 +210,21 @@ fn attempt(route: String, wanted: usize, e: Error) -> Result<EigenAttempt> {
             converged,
             wanted,
             residual,
+            missed: None,
         }),
         Error::Linalg(LinalgError::MissedModes { missed, .. }) => Ok(EigenAttempt {
-            route: format!("{route} (Sturm count: {missed} missed)"),
+            route,
             converged: wanted.saturating_sub(missed),
             wanted,
             residual: f64::NAN,
+            missed: Some(missed),
         }),
         Error::Linalg(LinalgError::EigenCheckFailed { residual, .. }) => Ok(EigenAttempt {
             route,
             converged: 0,
             wanted,
             residual,
+            missed: None,
         }),
         other => Err(other),
     }
