@@ -1,6 +1,7 @@
 //! The assembled multibody system: $M\dot v + C^T\lambda = Q$, $C\dot v = \gamma$.
 
 use super::DynamicsError;
+use crate::error::AttachmentProblem;
 use crate::linalg::LinalgError;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector4};
 
@@ -123,7 +124,7 @@ impl System {
 
     /// Checks indices of constraints and loads.
     pub fn validate(&self) -> Result<()> {
-        let bad = |what: &'static str, place: String| {
+        let bad = |what: &'static str, place: AttachmentProblem| {
             Err(DynamicsError::BadAttachment { what, place }.into())
         };
         let node_ok = |b: usize, n: NodeIndex| match self.bodies.get(b) {
@@ -138,16 +139,16 @@ impl System {
                             Attachment::Node { body, node } if !node_ok(body, node) => {
                                 return bad(
                                     "joint",
-                                    format!("{node} of body {body}, which it does not have"),
+                                    AttachmentProblem::NoSuchNode {
+                                        body,
+                                        node: node.number(),
+                                    },
                                 );
                             }
                             Attachment::Point { body, .. }
                                 if !matches!(self.bodies.get(body), Some(Body::Rigid(_))) =>
                             {
-                                return bad(
-                                    "joint",
-                                    format!("a point of body {body}, which is not rigid"),
-                                );
+                                return bad("joint", AttachmentProblem::NotRigid { body });
                             }
                             _ => {}
                         }
@@ -159,9 +160,11 @@ impl System {
                     if !node_ok(*body, *node) || *axis > 2 {
                         return bad(
                             "prescribed motion",
-                            format!(
-                                "{node} of body {body}, which it does not have (or axis {axis})"
-                            ),
+                            AttachmentProblem::NoSuchNodeOrAxis {
+                                body: *body,
+                                node: node.number(),
+                                axis: *axis,
+                            },
                         );
                     }
                 }
@@ -169,7 +172,13 @@ impl System {
         }
         for &(b, n, _) in &self.nodal_forces {
             if !node_ok(b, n) {
-                return bad("force", format!("{n} of body {b}, which it does not have"));
+                return bad(
+                    "force",
+                    AttachmentProblem::NoSuchNode {
+                        body: b,
+                        node: n.number(),
+                    },
+                );
             }
         }
         Ok(())

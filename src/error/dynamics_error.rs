@@ -99,7 +99,10 @@ pub enum DynamicsError {
     /// A constraint or load of a system names a node its body does not have, or a point of a
     /// body that is not rigid.
     #[error("the system's {what} names {place}")]
-    BadAttachment { what: &'static str, place: String },
+    BadAttachment {
+        what: &'static str,
+        place: super::AttachmentProblem,
+    },
 
     /// The histories of a driven body are seen from the drive's frame or mean axes.
     #[error(

@@ -4,6 +4,7 @@
 //! its own and the top-level one without importing upwards.
 
 mod as_text;
+mod attachment_problem;
 mod body_file_error;
 mod divergence_cause;
 mod dof_set_problem;
@@ -21,6 +22,7 @@ mod serve_error;
 mod table_problem;
 mod unknown_id;
 
+pub use attachment_problem::AttachmentProblem;
 pub use body_file_error::BodyFileError;
 pub use divergence_cause::DivergenceCause;
 pub use dof_set_problem::DofSetProblem;

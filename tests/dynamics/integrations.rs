@@ -545,6 +545,41 @@ fn fixed_steps_diverge_above_the_critical_step_and_not_below() {
     );
 }
 
+/// A force at a node the slab does not have (it has 45) is refused before any step, naming
+/// the body and the node, never integrated or indexed out of range.
+#[test]
+fn a_load_at_a_node_the_body_lacks_is_a_named_error() {
+    let model = slab(&SlabParameters::default());
+    let body = slab_body(&model, Method::CraigBampton, nodal(), &BOUNDARY, 6).unwrap();
+    let (mut system, state) = slab_system(&Scenario::HeldAtSix, body).unwrap();
+    let nodes = model.node_count();
+    system.nodal_forces.push((
+        0,
+        flexmodes::fem::NodeIndex(nodes),
+        nalgebra::Vector3::new(0.0, 0.0, -1.0),
+    ));
+    let p = IntegratorParameters {
+        end_time: 0.01,
+        ..Default::default()
+    };
+    match simulate(&system, &state, &p, &Progress::default()) {
+        Err(Error::Dynamics(DynamicsError::BadAttachment { what, place })) => {
+            assert_eq!(what, "force");
+            assert_eq!(
+                place,
+                flexmodes::error::AttachmentProblem::NoSuchNode {
+                    body: 0,
+                    node: nodes + 1
+                }
+            );
+        }
+        other => panic!(
+            "expected BadAttachment, got {other:?}",
+            other = other.map(|s| s.steps)
+        ),
+    }
+}
+
 #[test]
 fn an_impossible_step_size_is_a_named_error() {
     let model = slab(&SlabParameters::default());
