@@ -46,8 +46,9 @@ fn run_timed(mut command: Command, repeats: usize, what: &'static str) -> Result
     let mut stderr = String::new();
     for _ in 0..repeats {
         let started = Instant::now();
+        // A program that cannot be started is named by its path (`what` names the run).
         let out = command.output().map_err(|source| Error::Io {
-            path: what.into(),
+            path: command.get_program().into(),
             source,
         })?;
         seconds.push(started.elapsed().as_secs_f64());

@@ -145,11 +145,10 @@ pub fn free_body_pairs(
         && -0.5 * lowest < sigma0
     {
         let sigma1 = -0.5 * lowest;
-        let (block, restarts) = (8, 150);
         let route2 = EigenRoute::SpectrumShift {
             shift: sigma1,
-            block,
-            restarts,
+            block: SPECTRUM_SHIFT_BLOCK,
+            restarts: SPECTRUM_SHIFT_RESTARTS,
         };
         let shifted = k.shifted(m, sigma1);
         let result =
@@ -162,8 +161,8 @@ pub fn free_body_pairs(
                     wanted,
                     null_vectors.as_ref(),
                     &PartialEigenParameters {
-                        block_size: block,
-                        max_restarts: restarts,
+                        block_size: SPECTRUM_SHIFT_BLOCK,
+                        max_restarts: SPECTRUM_SHIFT_RESTARTS,
                         ..base.clone()
                     },
                     &symbolic,
@@ -196,6 +195,13 @@ pub fn free_body_pairs(
         routes: failed,
     }))
 }
+
+/// Vectors per Lanczos block on the second route (the first takes
+/// [`PartialEigenParameters::default`]'s 4).
+const SPECTRUM_SHIFT_BLOCK: usize = 8;
+
+/// Restarts allowed on the second route (the first takes the default 50).
+const SPECTRUM_SHIFT_RESTARTS: usize = 150;
 
 /// A route's failure as an attempt; errors that are not convergence failures (memory, a
 /// factor that is not positive definite) end the search.
