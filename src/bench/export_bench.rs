@@ -55,7 +55,7 @@ fn run_timed(mut command: Command, repeats: usize, what: &'static str) -> Result
         if !out.status.success() {
             return Err(Error::PeerFailed {
                 peer: what,
-                reason: String::from_utf8_lossy(&out.stderr)
+                stderr: String::from_utf8_lossy(&out.stderr)
                     .lines()
                     .last()
                     .unwrap_or("")
@@ -116,9 +116,10 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
             source,
         },
     )?)
-    .map_err(|e| Error::PeerFailed {
+    .map_err(|source| Error::PeerOutput {
         peer: "flexmodes export",
-        reason: format!("its model.json does not parse: {e}"),
+        file: "model.json",
+        source,
     })?;
     let _ = std::fs::remove_dir_all(&out_dir);
     let our_hz: Vec<f64> = model["reduced_elastic_hz"]

@@ -10,7 +10,7 @@ use super::{
     matrix_bytes::{entry_value, plain_text},
     node_dof_placement::NodeDofPlacement,
 };
-use crate::{Result, fem::DofMap};
+use crate::{Result, error::MatrixLineProblem, fem::DofMap};
 
 use super::matrix_bytes::line_error as error;
 
@@ -31,24 +31,35 @@ pub fn parse_abaqus_matrix(bytes: &[u8], path: &str, dofs: &DofMap) -> Result<Ma
             return Err(error(
                 path,
                 number,
-                format!(
-                    "{} fields: a line is `row node, row DOF, column node, column DOF, value`",
-                    fields.len()
-                ),
+                MatrixLineProblem::NotLayout {
+                    text: line.into(),
+                    layout: "row node, row DOF, column node, column DOF, value",
+                },
             ));
+        };
+        let not_a_number = |field, text: &str, expected| {
+            error(
+                path,
+                number,
+                MatrixLineProblem::NotANumber {
+                    field,
+                    text: text.into(),
+                    expected,
+                },
+            )
         };
         let mut index = |node: &str, dof: &str| -> Result<usize> {
             let node: usize = node
                 .parse()
                 .ok()
                 .filter(|&n| n > 0)
-                .ok_or_else(|| error(path, number, format!("`{node}` is not a node number")))?;
+                .ok_or_else(|| not_a_number("node", node, "a node number (1, 2, ...)"))?;
             let k: usize = dof
                 .parse()
-                .map_err(|_| error(path, number, format!("`{dof}` is not a DOF number")))?;
+                .map_err(|_| not_a_number("DOF", dof, "a DOF number (1-6)"))?;
             placement
                 .index(node, k)
-                .map_err(|reason| error(path, number, reason))
+                .map_err(|problem| error(path, number, problem))
         };
         let (i, j) = (index(ni, di)?, index(nj, dj)?);
         let v = entry_value(value, path, number)?;
@@ -57,7 +68,7 @@ pub fn parse_abaqus_matrix(bytes: &[u8], path: &str, dofs: &DofMap) -> Result<Ma
         entries.push((i, j, v));
     }
     if entries.is_empty() {
-        return Err(error(path, 0, "the file holds no matrix entries"));
+        return Err(error(path, 0, MatrixLineProblem::NoEntries));
     }
     let n = placement.size();
     Ok(MatrixMarket {

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use super::BodyFileError;
+use crate::error::BodySpecProblem;
 use crate::{Error, Result};
 
 /// Where a body file and the files it names are read from.
@@ -54,10 +55,9 @@ impl BodyLocation {
             Self::Memory(name) => Err(Error::BodyFile(BodyFileError::BodyFile {
                 path: format!("<{name} in memory>").into(),
                 line: None,
-                reason: format!(
-                    "a body in memory names no file (asked for `{}`)",
-                    relative.unwrap_or("its body file")
-                ),
+                problem: BodySpecProblem::NoFileInMemory {
+                    asked: relative.map(str::to_string),
+                },
             })),
             Self::Builtin(name) => {
                 let file = relative.unwrap_or("body.toml");
@@ -66,10 +66,10 @@ impl BodyLocation {
                     Error::BodyFile(BodyFileError::BodyFile {
                         path: format!("builtin:{name}").into(),
                         line: None,
-                        reason: format!(
-                            "no embedded file `{asset}` (built-in bodies: {})",
-                            crate::assets::builtin_bodies().join(", ")
-                        ),
+                        problem: BodySpecProblem::NoEmbeddedFile {
+                            asset: asset.clone(),
+                            builtin: crate::assets::builtin_bodies(),
+                        },
                     })
                 })?;
                 Ok((bytes.to_vec(), format!("assets/{asset}")))

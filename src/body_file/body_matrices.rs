@@ -1,6 +1,7 @@
 //! A body handed over in memory (Python's `flexmodes.Body`): stiffness and mass as entries,
 //! optional node coordinates, node sets and interfaces, checked exactly as a body file is.
 
+use crate::error::{BodySpecProblem, SizeExpectation};
 use std::collections::BTreeMap;
 
 use super::{
@@ -131,11 +132,11 @@ impl ImportedBody {
     pub fn from_matrices(body: BodyMatrices) -> Result<Self> {
         let k_name = format!("K of {}", body.name);
         let m_name = format!("M of {}", body.name);
-        let body_error = |reason: String| {
+        let body_error = |problem| {
             Error::BodyFile(BodyFileError::BodyFile {
                 path: format!("<{} in memory>", body.name).into(),
                 line: None,
-                reason,
+                problem,
             })
         };
         let dofs = dof_map(&body.dofs).map_err(body_error)?;
@@ -149,7 +150,7 @@ impl ImportedBody {
                 what: "stiffness",
                 rows: n,
                 cols: body.stiffness.cols,
-                expected: "a stiffness must be square, with at least one DOF".into(),
+                expected: SizeExpectation::Square,
             }));
         }
         let node_count = match &body.nodes {
@@ -164,10 +165,10 @@ impl ImportedBody {
             .enumerate()
             .find(|(_, xyz)| xyz.iter().any(|x| !x.is_finite()))
         {
-            return Err(body_error(format!(
-                "{} has the coordinates {xyz:?}, which are not finite",
-                NodeIndex(node)
-            )));
+            return Err(body_error(BodySpecProblem::NonFiniteCoordinates {
+                node: NodeIndex(node).number(),
+                xyz: *xyz,
+            }));
         }
         let interfaces = checked_sets(
             &SetsAndInterfaces {

@@ -11,6 +11,7 @@ use super::{
 };
 use crate::{
     Error, Result,
+    error::MatrixLineProblem,
     fem::{DofMap, NodeIndex},
 };
 
@@ -28,10 +29,10 @@ pub fn parse_calculix_matrix(bytes: &[u8], path: &str, equations: usize) -> Resu
             return Err(error(
                 path,
                 number,
-                format!(
-                    "{} fields: a line is `row column value` (1-based equations)",
-                    fields.len()
-                ),
+                MatrixLineProblem::NotLayout {
+                    text: line.trim().into(),
+                    layout: "row column value",
+                },
             ));
         };
         let index = |t: &str| {
@@ -39,7 +40,11 @@ pub fn parse_calculix_matrix(bytes: &[u8], path: &str, equations: usize) -> Resu
                 error(
                     path,
                     number,
-                    format!("`{t}` is not an equation number (1, 2, ...)"),
+                    MatrixLineProblem::NotANumber {
+                        field: "equation",
+                        text: t.into(),
+                        expected: "an equation number (1, 2, ...)",
+                    },
                 )
             })
         };
@@ -61,7 +66,7 @@ pub fn parse_calculix_matrix(bytes: &[u8], path: &str, equations: usize) -> Resu
         }
     }
     if entries.is_empty() {
-        return Err(error(path, 0, "the file holds no matrix entries"));
+        return Err(error(path, 0, MatrixLineProblem::NoEntries));
     }
     Ok(MatrixMarket {
         rows: equations,
@@ -104,7 +109,10 @@ pub fn parse_calculix_dof_map(
             return Err(error(
                 path,
                 number,
-                format!("`{field}`: a line is `node.dof` (e.g. `12.3`)"),
+                MatrixLineProblem::NotLayout {
+                    text: field.into(),
+                    layout: "node.dof",
+                },
             ));
         };
         let name = match component {
@@ -118,7 +126,10 @@ pub fn parse_calculix_dof_map(
                 return Err(error(
                     path,
                     number,
-                    format!("DOF {other} of node {node} is not a displacement or rotation (1-6)"),
+                    MatrixLineProblem::NotAComponent {
+                        node,
+                        component: other.to_string(),
+                    },
                 ));
             }
         };
@@ -126,17 +137,21 @@ pub fn parse_calculix_dof_map(
             error(
                 path,
                 number,
-                format!(
-                    "node {node} has DOF {component}, which the body's DOF ({}) do not include",
-                    names.join(", ")
-                ),
+                MatrixLineProblem::DofNotInBody {
+                    node,
+                    dof: component.to_string(),
+                    body: names.clone(),
+                },
             )
         })?;
         let Some(index) = NodeIndex::of_number(node).filter(|i| i.get() < node_count) else {
             return Err(error(
                 path,
                 number,
-                format!("node {node} is not one of the body's nodes 1 to {node_count}"),
+                MatrixLineProblem::NodeNotInBody {
+                    node,
+                    count: node_count,
+                },
             ));
         };
         let dof = index.get() * per + position;
@@ -145,7 +160,11 @@ pub fn parse_calculix_dof_map(
             return Err(error(
                 path,
                 number,
-                format!("node {node} DOF {component} already has equation {before}"),
+                MatrixLineProblem::DofTwice {
+                    node,
+                    dof: component.to_string(),
+                    before,
+                },
             ));
         }
         taken[dof] = Some(equation);
@@ -155,12 +174,11 @@ pub fn parse_calculix_dof_map(
         return Err(error(
             path,
             0,
-            format!(
-                "node {} DOF `{}` has no equation (CalculiX leaves out DOF that are held or \
-                 belong to no element: write the matrices of an unrestrained part)",
-                dof / per + 1,
-                names[dof % per]
-            ),
+            MatrixLineProblem::DofWithoutEquation {
+                node: NodeIndex(dof / per).number(),
+                dof: names[dof % per],
+                left_out: true,
+            },
         ));
     }
     Ok(equations)

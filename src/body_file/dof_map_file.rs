@@ -2,9 +2,10 @@
 //! `HBMAT` writes it beside the matrix (`.mapping`): a header line `Matrix Eqn Node DOF`, then
 //! one line per equation, `equation node label`, labels `UX UY UZ ROTX ROTY ROTZ`.
 
-use super::BodyFileError;
+use super::matrix_bytes::line_error;
 use crate::{
-    Error, Result,
+    Result,
+    error::MatrixLineProblem,
     fem::{DofMap, NodeIndex},
 };
 
@@ -16,14 +17,8 @@ pub fn parse_dof_map(
     dofs: &DofMap,
     node_count: usize,
 ) -> Result<Vec<usize>> {
-    let error = |line: usize, reason: String| {
-        Error::BodyFile(BodyFileError::MatrixMarketLine {
-            path: path.into(),
-            line,
-            reason,
-        })
-    };
-    let text = std::str::from_utf8(bytes).map_err(|_| error(0, "the file is not text".into()))?;
+    let error = |line: usize, problem| line_error(path, line, problem);
+    let text = std::str::from_utf8(bytes).map_err(|_| error(0, MatrixLineProblem::NotText))?;
     let per = dofs.per_node();
     let names: Vec<&'static str> = dofs.node_dofs().iter().map(|d| d.name()).collect();
     let mut equations: Vec<Option<usize>> = Vec::new();
@@ -37,7 +32,10 @@ pub fn parse_dof_map(
             }
             return Err(error(
                 number,
-                format!("`{}`: a line is `equation node DOF`", line.trim()),
+                MatrixLineProblem::NotLayout {
+                    text: line.trim().into(),
+                    layout: "equation node DOF",
+                },
             ));
         };
         let (Ok(eq), Ok(node)) = (eq.parse::<usize>(), node.parse::<usize>()) else {
@@ -53,33 +51,44 @@ pub fn parse_dof_map(
             other => {
                 return Err(error(
                     number,
-                    format!("DOF `{other}` of node {node} is not a displacement or rotation"),
+                    MatrixLineProblem::NotAComponent {
+                        node,
+                        component: other.into(),
+                    },
                 ));
             }
         };
         let position = names.iter().position(|n| *n == name).ok_or_else(|| {
             error(
                 number,
-                format!(
-                    "node {node} has DOF `{label}`, which the body's DOF ({}) do not include",
-                    names.join(", ")
-                ),
+                MatrixLineProblem::DofNotInBody {
+                    node,
+                    dof: label.into(),
+                    body: names.clone(),
+                },
             )
         })?;
         let Some(index) = NodeIndex::of_number(node).filter(|i| i.get() < node_count) else {
             return Err(error(
                 number,
-                format!("node {node} is not one of the body's nodes 1 to {node_count}"),
+                MatrixLineProblem::NodeNotInBody {
+                    node,
+                    count: node_count,
+                },
             ));
         };
         if eq == 0 {
-            return Err(error(number, "equations are numbered from 1".into()));
+            return Err(error(number, MatrixLineProblem::EquationZero));
         }
         let dof = index.get() * per + position;
         if let Some(before) = taken[dof] {
             return Err(error(
                 number,
-                format!("node {node} {label} already has equation {before}"),
+                MatrixLineProblem::DofTwice {
+                    node,
+                    dof: label.into(),
+                    before,
+                },
             ));
         }
         taken[dof] = Some(eq);
@@ -87,21 +96,27 @@ pub fn parse_dof_map(
             equations.resize(eq, None);
         }
         if equations[eq - 1].is_some() {
-            return Err(error(number, format!("equation {eq} is mapped twice")));
+            return Err(error(
+                number,
+                MatrixLineProblem::EquationTwice { equation: eq },
+            ));
         }
         equations[eq - 1] = Some(dof);
     }
     if let Some(eq) = equations.iter().position(Option::is_none) {
-        return Err(error(0, format!("equation {} has no node and DOF", eq + 1)));
+        return Err(error(
+            0,
+            MatrixLineProblem::EquationUnplaced { equation: eq + 1 },
+        ));
     }
     if let Some(dof) = taken.iter().position(Option::is_none) {
         return Err(error(
             0,
-            format!(
-                "node {} DOF `{}` has no equation",
-                dof / per + 1,
-                names[dof % per]
-            ),
+            MatrixLineProblem::DofWithoutEquation {
+                node: NodeIndex(dof / per).number(),
+                dof: names[dof % per],
+                left_out: false,
+            },
         ));
     }
     Ok(equations.into_iter().map(|e| e.expect("checked")).collect())

@@ -11,15 +11,9 @@ use super::{
     BodyFileError, MatrixMarket, MatrixMarketFormat,
     matrix_bytes::{entry_value, plain_text},
 };
-use crate::{Error, Result};
+use crate::{Error, Result, error::MatrixLineProblem};
 
-fn error(path: &str, line: usize, reason: impl Into<String>) -> Error {
-    Error::BodyFile(BodyFileError::MatrixMarketLine {
-        path: path.into(),
-        line,
-        reason: reason.into(),
-    })
-}
+use super::matrix_bytes::line_error as error;
 
 /// A Fortran edit descriptor of a repeated field: count per line and width.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,7 +66,7 @@ fn fields<'a>(
     format: FieldFormat,
     real: bool,
     path: &str,
-    what: &str,
+    what: &'static str,
 ) -> Result<Vec<(usize, &'a str)>> {
     let mut out = Vec::with_capacity(count);
     for card in 0..cards {
@@ -81,10 +75,11 @@ fn fields<'a>(
             error(
                 path,
                 index + 1,
-                format!(
-                    "the file ends inside the {what} ({} of {count} read)",
-                    out.len()
-                ),
+                MatrixLineProblem::EndsEarly {
+                    what,
+                    read: out.len(),
+                    expected: count,
+                },
             )
         })?;
         let line = line.trim_end_matches('\r');
@@ -110,13 +105,10 @@ fn fields<'a>(
                 break;
             }
             let to = (from + format.width).min(line.len());
-            let field = line.get(from..to).ok_or_else(|| {
-                error(
-                    path,
-                    index + 1,
-                    format!("the {what} line is not plain text"),
-                )
-            })?;
+            // A cut inside a character: not the plain text fixed-width fields are.
+            let field = line
+                .get(from..to)
+                .ok_or_else(|| error(path, index + 1, MatrixLineProblem::NotText))?;
             out.push((index + 1, field.trim()));
         }
     }
@@ -124,16 +116,24 @@ fn fields<'a>(
         return Err(error(
             path,
             start + cards,
-            format!(
-                "{} {what} in {cards} lines, the header says {count}",
-                out.len()
-            ),
+            MatrixLineProblem::CountMismatch {
+                what,
+                found: out.len(),
+                lines: cards,
+                expected: count,
+            },
         ));
     }
     Ok(out)
 }
 
-fn header_int(line: &str, field: usize, path: &str, number: usize, what: &str) -> Result<usize> {
+fn header_int(
+    line: &str,
+    field: usize,
+    path: &str,
+    number: usize,
+    what: &'static str,
+) -> Result<usize> {
     let text = line
         .get(14 * field..(14 * field + 14).min(line.len()))
         .unwrap_or("");
@@ -141,7 +141,11 @@ fn header_int(line: &str, field: usize, path: &str, number: usize, what: &str) -
         error(
             path,
             number,
-            format!("the {what} `{}` is not a count", text.trim()),
+            MatrixLineProblem::NotANumber {
+                field: what,
+                text: text.trim().into(),
+                expected: "a count",
+            },
         )
     })
 }
@@ -152,29 +156,32 @@ fn symmetric_kind(line: &str, path: &str) -> Result<bool> {
     let kind = line.get(..3).unwrap_or("").to_ascii_uppercase();
     let mut chars = kind.chars();
     let (value_type, structure, assembly) = (chars.next(), chars.next(), chars.next());
-    if value_type != Some('R') {
-        return Err(error(
+    let unsupported = |needs| {
+        error(
             path,
             3,
-            format!("type `{kind}`: only real matrices (R..) describe a body"),
-        ));
+            MatrixLineProblem::Unsupported {
+                field: "type",
+                value: kind.clone(),
+                needs,
+            },
+        )
+    };
+    if value_type != Some('R') {
+        return Err(unsupported("only real matrices (R..) describe a body"));
     }
     let symmetric = match structure {
         Some('S') | Some('H') => true,
         Some('U') => false,
         _ => {
-            return Err(error(
-                path,
-                3,
-                format!("type `{kind}`: a body's matrix is symmetric (S) or stored whole (U)"),
+            return Err(unsupported(
+                "a body's matrix is symmetric (S) or stored whole (U)",
             ));
         }
     };
     if assembly != Some('A') {
-        return Err(error(
-            path,
-            3,
-            format!("type `{kind}`: only assembled matrices (..A) are read, not elemental"),
+        return Err(unsupported(
+            "only assembled matrices (..A) are read, not elemental",
         ));
     }
     Ok(symmetric)
@@ -188,7 +195,7 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
         return Err(error(
             path,
             lines.len(),
-            "a Harwell-Boeing file has four header lines",
+            MatrixLineProblem::HeaderShort { lines: lines.len() },
         ));
     }
     let cards = |field| header_int(lines[1], field, path, 2, "card count");
@@ -197,13 +204,16 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
     let symmetric = symmetric_kind(lines[2], path)?;
     let dims = |field| header_int(&lines[2][..lines[2].len().min(70)], field, path, 3, "size");
     let (rows, cols, nnz) = (dims(1)?, dims(2)?, dims(3)?);
-    let format = |from: usize, to: usize, what: &str| {
+    let format = |from: usize, to: usize, what: &'static str| {
         let text = lines[3].get(from..to.min(lines[3].len())).unwrap_or("");
         field_format(text).ok_or_else(|| {
             error(
                 path,
                 4,
-                format!("the {what} format `{}` is not a Fortran field", text.trim()),
+                MatrixLineProblem::NotAFortranFormat {
+                    what,
+                    text: text.trim().into(),
+                },
             )
         })
     };
@@ -213,9 +223,18 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
         format(32, 52, "value")?,
     );
     let start = 4 + usize::from(rhs_cards > 0);
-    let integer = |(line, text): (usize, &str), what: &str| -> Result<usize> {
-        text.parse()
-            .map_err(|_| error(path, line, format!("the {what} `{text}` is not an integer")))
+    let integer = |(line, text): (usize, &str), what: &'static str| -> Result<usize> {
+        text.parse().map_err(|_| {
+            error(
+                path,
+                line,
+                MatrixLineProblem::NotANumber {
+                    field: what,
+                    text: text.into(),
+                    expected: "an integer",
+                },
+            )
+        })
     };
     let pointers = fields(
         &lines,
@@ -254,12 +273,11 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
         return Err(error(
             path,
             start + 1,
-            format!(
-                "the column pointers run from {:?} to {:?}, not from 1 to {}",
-                pointers.first(),
-                pointers.last(),
-                nnz + 1
-            ),
+            MatrixLineProblem::PointerRange {
+                first: pointers.first().copied(),
+                last: pointers.last().copied(),
+                expected_last: nnz + 1,
+            },
         ));
     }
     let mut entries = Vec::with_capacity(nnz);
@@ -269,7 +287,11 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
             return Err(error(
                 path,
                 start + 1,
-                format!("column {}'s pointer decreases ({from} then {to})", j + 1),
+                MatrixLineProblem::PointerDecreases {
+                    column: j + 1,
+                    from,
+                    to,
+                },
             ));
         }
         for p in from - 1..to - 1 {
@@ -294,7 +316,11 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
         return Err(error(
             path,
             2,
-            "a pattern-only file (no values) describes no body",
+            MatrixLineProblem::Unsupported {
+                field: "value card count",
+                value: "0".into(),
+                needs: "a pattern-only file (no values) describes no body",
+            },
         ));
     }
     Ok(MatrixMarket {
@@ -378,6 +404,20 @@ RSA                        3             3             5             0
         assert!(e.to_string().contains("t.rsa:7"), "{e}");
         let cut: String = RSA.lines().take(7).collect::<Vec<_>>().join("\n");
         let e = parse_harwell_boeing(cut.as_bytes(), "t.rsa").unwrap_err();
-        assert!(e.to_string().contains("ends inside the values"), "{e}");
+        assert!(
+            matches!(
+                e,
+                Error::BodyFile(BodyFileError::MatrixLine {
+                    line: 8,
+                    problem: MatrixLineProblem::EndsEarly {
+                        what: "values",
+                        read: 2,
+                        expected: 5
+                    },
+                    ..
+                })
+            ),
+            "{e}"
+        );
     }
 }

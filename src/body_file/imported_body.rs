@@ -1,6 +1,7 @@
 //! A body read from a body file: its [`FeModel`], named node sets and units, checked.
 
 use super::BodyFileError;
+use crate::error::BodySpecProblem;
 use std::{collections::BTreeMap, sync::Arc};
 
 use super::{
@@ -122,7 +123,12 @@ impl ImportedBody {
                 name: &name,
                 text: "",
             }
-            .error(None, format!("not UTF-8 text: {e}"))
+            .error(
+                None,
+                BodySpecProblem::NotUtf8 {
+                    byte: e.utf8_error().valid_up_to(),
+                },
+            )
         })?;
         let spec_text = SpecText {
             name: &name,
@@ -130,10 +136,15 @@ impl ImportedBody {
         };
         let spec: BodySpec = toml::from_str(&text).map_err(|e| {
             let line = e.span().map(|s| line_of(&text, s.start));
-            spec_text.error(line, e.message().trim().to_string())
+            spec_text.error(
+                line,
+                BodySpecProblem::Toml {
+                    message: e.message().trim().to_string(),
+                },
+            )
         })?;
         let dofs = dof_map(&spec.dofs)
-            .map_err(|reason| spec_text.error(spec_text.key_line("dofs"), reason))?;
+            .map_err(|problem| spec_text.error(spec_text.key_line("dofs"), problem))?;
         let mut matrices = read_matrices(&location, &spec, &dofs, &spec_text)?;
         let (nodes, node_count) = read_nodes(&location, &spec, &dofs, &matrices, &name)?;
         place_equations(
@@ -316,9 +327,9 @@ pub(super) fn checked_sets(
     {
         return Err(text.error(
             text.key_line("default_interface"),
-            format!(
-                "`default_interface` names the node set `{set}`, which [node_sets] does not define"
-            ),
+            BodySpecProblem::DefaultInterfaceUndefined {
+                set: set.to_string(),
+            },
         ));
     }
     for (set, members) in given.node_sets {
@@ -336,11 +347,10 @@ pub(super) fn checked_sets(
         if !given.node_sets.contains_key(&interface.node_set) {
             return Err(text.error(
                 text.key_line(iname),
-                format!(
-                    "interface `{iname}` names the node set `{}`, which [node_sets] does not \
-                         define",
-                    interface.node_set
-                ),
+                BodySpecProblem::InterfaceSetUndefined {
+                    interface: iname.clone(),
+                    set: interface.node_set.clone(),
+                },
             ));
         }
         if let Some(w) = &interface.weights {
@@ -348,18 +358,20 @@ pub(super) fn checked_sets(
             if interface.kind == InterfaceKind::Rbe2 {
                 return Err(text.error(
                     text.key_line(iname),
-                    format!("interface `{iname}`: weights belong to kind \"rbe3\" only"),
+                    BodySpecProblem::WeightsOnRbe2 {
+                        interface: iname.clone(),
+                    },
                 ));
             }
             if w.len() != count || w.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
                 return Err(text.error(
                     text.key_line(iname),
-                    format!(
-                        "interface `{iname}`: {} weights for the {count} nodes of `{}`; \
-                             each must be positive",
-                        w.len(),
-                        interface.node_set
-                    ),
+                    BodySpecProblem::Weights {
+                        interface: iname.clone(),
+                        given: w.len(),
+                        nodes: count,
+                        set: interface.node_set.clone(),
+                    },
                 ));
             }
         }
@@ -368,18 +380,17 @@ pub(super) fn checked_sets(
     Ok(interfaces)
 }
 
-/// The per-node DOF a body names (of x, y, z, rx, ry, rz, each once); the reason when they
+/// The per-node DOF a body names (of x, y, z, rx, ry, rz, each once); the problem when they
 /// are not.
-pub(super) fn dof_map(names: &[String]) -> std::result::Result<DofMap, String> {
+pub(super) fn dof_map(names: &[String]) -> std::result::Result<DofMap, BodySpecProblem> {
     if names.is_empty() {
-        return Err("`dofs` lists no DOF".into());
+        return Err(BodySpecProblem::NoDofs);
     }
     let mut per_node = Vec::new();
     for d in names {
-        let dof =
-            node_dof(d).ok_or_else(|| format!("unknown DOF `{d}` (known: x, y, z, rx, ry, rz)"))?;
+        let dof = node_dof(d).ok_or_else(|| BodySpecProblem::UnknownDof { dof: d.clone() })?;
         if per_node.contains(&dof) {
-            return Err(format!("DOF `{d}` is listed twice"));
+            return Err(BodySpecProblem::DofListedTwice { dof: d.clone() });
         }
         per_node.push(dof);
     }

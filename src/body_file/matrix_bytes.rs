@@ -4,18 +4,14 @@
 use std::{borrow::Cow, io::Read};
 
 use super::BodyFileError;
-use crate::{Error, Result};
-
-fn damaged(path: &str, reason: String) -> Error {
-    line_error(path, 0, reason)
-}
+use crate::{Error, Result, error::MatrixLineProblem};
 
 /// A line of a matrix file that does not parse (line 0: the file as a whole).
-pub(super) fn line_error(path: &str, line: usize, reason: impl Into<String>) -> Error {
-    Error::BodyFile(BodyFileError::MatrixMarketLine {
+pub(super) fn line_error(path: &str, line: usize, problem: MatrixLineProblem) -> Error {
+    Error::BodyFile(BodyFileError::MatrixLine {
         path: path.into(),
         line,
-        reason: reason.into(),
+        problem,
     })
 }
 
@@ -27,14 +23,19 @@ pub(super) fn plain_bytes<'a>(bytes: &'a [u8], path: &str) -> Result<Cow<'a, [u8
     let mut out = Vec::new();
     flate2::read::MultiGzDecoder::new(bytes)
         .read_to_end(&mut out)
-        .map_err(|e| damaged(path, format!("the gzip stream is damaged: {e}")))?;
+        .map_err(|source| {
+            Error::BodyFile(BodyFileError::GzipDamaged {
+                path: path.into(),
+                source,
+            })
+        })?;
     Ok(Cow::Owned(out))
 }
 
 /// [`plain_bytes`] as UTF-8 text.
 pub(super) fn plain_text(bytes: &[u8], path: &str) -> Result<String> {
     String::from_utf8(plain_bytes(bytes, path)?.into_owned())
-        .map_err(|_| damaged(path, "the file is not text".into()))
+        .map_err(|_| line_error(path, 0, MatrixLineProblem::NotText))
 }
 
 /// A real as Fortran and Nastran write it: `1.5`, `1.5E+3`, `1.5D+3`, or the exponent without
@@ -59,7 +60,11 @@ pub(super) fn entry_value(text: &str, path: &str, line: usize) -> Result<f64> {
         line_error(
             path,
             line,
-            format!("the value `{}` is not a real number", text.trim()),
+            MatrixLineProblem::NotANumber {
+                field: "value",
+                text: text.trim().into(),
+                expected: "a real number",
+            },
         )
     })?;
     if !v.is_finite() {

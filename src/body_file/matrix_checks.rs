@@ -3,6 +3,7 @@
 //! a DOF, and the rigid motions found in the stiffness's null space.
 
 use super::{BodyFileError, MatrixMarket, SYMMETRY_TOLERANCE};
+use crate::error::{MassDefect, SizeExpectation};
 use crate::linalg::LinalgError;
 use crate::{
     Error, Result,
@@ -83,7 +84,7 @@ pub(super) fn mass_matrix(
             what: "mass",
             rows: file.rows,
             cols: file.cols,
-            expected: format!("the stiffness is {n} × {n} (or give an {n} × 1 lumped vector)"),
+            expected: SizeExpectation::LikeStiffness { n },
         }));
     }
     if file.entries.iter().all(|&(i, j, _)| i == j) {
@@ -108,18 +109,18 @@ pub(super) const SEMI_DEFINITE_MASS: f64 = 1e-10;
 /// M must be positive definite, or semi-definite to round-off ([`SEMI_DEFINITE_MASS`]):
 /// every lumped entry positive, every diagonal entry positive, a consistent M factorisable.
 pub(super) fn check_mass(model: &FeModel, name: &str) -> Result<()> {
-    let fail = |dof: usize, reason: String| {
+    let fail = |dof: usize, defect| {
         Error::BodyFile(BodyFileError::MassNotPositive {
             path: name.into(),
             dof: dof + 1,
             label: model.dof_label(dof),
-            reason,
+            defect,
         })
     };
     match &model.m {
         MassMatrix::Lumped(d) => {
             if let Some((dof, v)) = d.iter().enumerate().find(|(_, v)| **v <= 0.0) {
-                return Err(fail(dof, format!("its lumped mass is {v:e}")));
+                return Err(fail(dof, MassDefect::Lumped { value: *v }));
             }
         }
         MassMatrix::Consistent(m) => {
@@ -129,7 +130,7 @@ pub(super) fn check_mass(model: &FeModel, name: &str) -> Result<()> {
                 .enumerate()
                 .find(|(_, v)| *v <= 0.0)
             {
-                return Err(fail(dof, format!("its diagonal entry is {v:e}")));
+                return Err(fail(dof, MassDefect::Diagonal { value: v }));
             }
             let symbolic = SymbolicFactor::analyse(m.as_faer())?;
             if let Err(Error::Linalg(LinalgError::NonPositivePivot { index, .. })) =
@@ -144,10 +145,9 @@ pub(super) fn check_mass(model: &FeModel, name: &str) -> Result<()> {
                 if SymmetricFactor::sparse(regularised.as_faer(), &symbolic, "mass").is_err() {
                     return Err(fail(
                         index,
-                        format!(
-                            "the Cholesky pivot of this DOF is not positive, even with \
-                             {SEMI_DEFINITE_MASS:.0e} of the diagonal added"
-                        ),
+                        MassDefect::Pivot {
+                            regularisation: SEMI_DEFINITE_MASS,
+                        },
                     ));
                 }
             }

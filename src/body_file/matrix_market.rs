@@ -19,7 +19,7 @@ use std::{
 use faer::MatRef;
 
 use crate::atomic_file::write_atomically;
-use crate::{Error, Result};
+use crate::{Error, Result, error::MatrixLineProblem};
 
 /// How the entries of a Matrix Market file are stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -75,12 +75,25 @@ pub fn parse_matrix_market(bytes: &[u8], name: &str) -> Result<MatrixMarket> {
     parse_text(BufReader::new(&*plain_bytes(bytes, name)?), name)
 }
 
-fn line_error(name: &str, line: usize, reason: impl Into<String>) -> Error {
-    Error::BodyFile(BodyFileError::MatrixMarketLine {
+fn line_error(name: &str, line: usize, problem: MatrixLineProblem) -> Error {
+    Error::BodyFile(BodyFileError::MatrixLine {
         path: name.into(),
         line,
-        reason: reason.into(),
+        problem,
     })
+}
+
+/// The error of a value `text` on line `no` that is not a real number.
+fn not_a_real(name: &str, no: usize, text: &str) -> Error {
+    line_error(
+        name,
+        no,
+        MatrixLineProblem::NotANumber {
+            field: "value",
+            text: text.into(),
+            expected: "a real number",
+        },
+    )
 }
 
 /// A real number; Fortran writers' `1.0D+03` is accepted.
@@ -103,11 +116,14 @@ fn parse_text(reader: impl BufRead, name: &str) -> Result<MatrixMarket> {
         return Err(line_error(
             name,
             no,
-            format!(
-                "`{}` follows the {} entries the size line promises",
-                line.trim(),
-                size.count
-            ),
+            MatrixLineProblem::TooMany {
+                what: match format {
+                    MatrixMarketFormat::Coordinate => "entries",
+                    MatrixMarketFormat::Array => "values",
+                },
+                expected: size.count,
+                text: line.trim().into(),
+            },
         ));
     }
     Ok(MatrixMarket {
@@ -125,7 +141,8 @@ type NumberedLines<'a> = dyn Iterator<Item = (usize, std::io::Result<String>)> +
 /// The next line that is neither blank nor a comment, with its number.
 fn next_data_line(lines: &mut NumberedLines<'_>, name: &str) -> Result<Option<(usize, String)>> {
     for (no, line) in lines {
-        let line = line.map_err(|e| line_error(name, no, format!("unreadable: {e}")))?;
+        // Lines of bytes in memory fail only where they are not UTF-8.
+        let line = line.map_err(|_| line_error(name, no, MatrixLineProblem::NotText))?;
         let t = line.trim();
         if t.is_empty() || t.starts_with('%') {
             continue;
@@ -143,12 +160,12 @@ fn parse_header(
 ) -> Result<(usize, MatrixMarketFormat, bool)> {
     let (header_no, header) = match lines.next() {
         Some((no, Ok(l))) => (no, l),
-        Some((no, Err(e))) => return Err(line_error(name, no, format!("unreadable: {e}"))),
+        Some((no, Err(_))) => return Err(line_error(name, no, MatrixLineProblem::NotText)),
         None => {
             return Err(Error::BodyFile(BodyFileError::MatrixMarketHeader {
                 path: name.into(),
                 line: 1,
-                found: "an empty file".into(),
+                problem: MatrixLineProblem::EmptyFile,
             }));
         }
     };
@@ -156,43 +173,45 @@ fn parse_header(
         .split_whitespace()
         .map(|w| w.to_ascii_lowercase())
         .collect();
-    let bad_header = |what: &str| {
+    let bad_header = |problem| {
         Error::BodyFile(BodyFileError::MatrixMarketHeader {
             path: name.into(),
             line: header_no,
-            found: format!("{what} in `{}`", header.trim()),
+            problem,
         })
     };
     if words.len() != 5 || words[0] != "%%matrixmarket" || words[1] != "matrix" {
-        return Err(bad_header(
-            "not a `%%MatrixMarket matrix <format> <field> <symmetry>` header",
-        ));
+        return Err(bad_header(MatrixLineProblem::NotLayout {
+            text: header.trim().into(),
+            layout: "%%MatrixMarket matrix <format> <field> <symmetry>",
+        }));
     }
+    let unsupported = |field, value: &str, needs| {
+        bad_header(MatrixLineProblem::Unsupported {
+            field,
+            value: value.into(),
+            needs,
+        })
+    };
     let format = match words[2].as_str() {
         "coordinate" => MatrixMarketFormat::Coordinate,
         "array" => MatrixMarketFormat::Array,
-        other => {
-            return Err(bad_header(&format!(
-                "format `{other}` (coordinate or array)"
-            )));
-        }
+        other => return Err(unsupported("format", other, "coordinate or array")),
     };
     match words[3].as_str() {
         "real" | "double" | "integer" => {}
         other => {
-            return Err(bad_header(&format!(
-                "field `{other}` (a stiffness or mass must be real)"
-            )));
+            return Err(unsupported(
+                "field",
+                other,
+                "a stiffness or mass must be real",
+            ));
         }
     }
     let symmetric = match words[4].as_str() {
         "general" => false,
         "symmetric" => true,
-        other => {
-            return Err(bad_header(&format!(
-                "symmetry `{other}` (general or symmetric)"
-            )));
-        }
+        other => return Err(unsupported("symmetry", other, "general or symmetric")),
     };
     Ok((header_no, format, symmetric))
 }
@@ -216,37 +235,35 @@ fn parse_size_line(
     symmetric: bool,
 ) -> Result<SizeLine> {
     let (size_no, size_line) = next_data_line(lines, name)?
-        .ok_or_else(|| line_error(name, header_no + 1, "the size line is missing"))?;
+        .ok_or_else(|| line_error(name, header_no + 1, MatrixLineProblem::SizeLineMissing))?;
+    let (expected_sizes, layout) = match format {
+        MatrixMarketFormat::Coordinate => (3, "rows cols entries"),
+        MatrixMarketFormat::Array => (2, "rows cols"),
+    };
+    let not_layout = || {
+        line_error(
+            name,
+            size_no,
+            MatrixLineProblem::NotLayout {
+                text: size_line.trim().into(),
+                layout,
+            },
+        )
+    };
     let sizes: Vec<usize> = size_line
         .split_whitespace()
         .map(|t| t.parse::<usize>())
         .collect::<std::result::Result<_, _>>()
-        .map_err(|_| line_error(name, size_no, format!("size line `{}`", size_line.trim())))?;
-    let expected_sizes = match format {
-        MatrixMarketFormat::Coordinate => 3,
-        MatrixMarketFormat::Array => 2,
-    };
+        .map_err(|_| not_layout())?;
     if sizes.len() != expected_sizes {
-        return Err(line_error(
-            name,
-            size_no,
-            format!(
-                "the size line `{}` needs {expected_sizes} numbers ({})",
-                size_line.trim(),
-                if expected_sizes == 3 {
-                    "rows cols entries"
-                } else {
-                    "rows cols"
-                }
-            ),
-        ));
+        return Err(not_layout());
     }
     let (rows, cols) = (sizes[0], sizes[1]);
     if symmetric && rows != cols {
         return Err(line_error(
             name,
             size_no,
-            format!("a symmetric matrix must be square, the file says {rows} × {cols}"),
+            MatrixLineProblem::NotSquare { rows, cols },
         ));
     }
     let count = match format {
@@ -269,16 +286,17 @@ fn promised_line(
     name: &str,
     size: &SizeLine,
     read: usize,
-    what: &str,
+    what: &'static str,
 ) -> Result<(usize, String)> {
     next_data_line(lines, name)?.ok_or_else(|| {
         line_error(
             name,
             size.line,
-            format!(
-                "the size line promises {} {what}, the file ends after {read}",
-                size.count
-            ),
+            MatrixLineProblem::EndsEarly {
+                what,
+                read,
+                expected: size.count,
+            },
         )
     })
 }
@@ -313,12 +331,24 @@ fn coordinate_entries(
             return Err(line_error(
                 name,
                 no,
-                format!("expected `row col value`, got `{}`", line.trim()),
+                MatrixLineProblem::NotLayout {
+                    text: line.trim().into(),
+                    layout: "row col value",
+                },
             ));
         }
         let index = |s: &str| {
-            s.parse::<usize>()
-                .map_err(|_| line_error(name, no, format!("index `{s}` is not a positive integer")))
+            s.parse::<usize>().map_err(|_| {
+                line_error(
+                    name,
+                    no,
+                    MatrixLineProblem::NotANumber {
+                        field: "index",
+                        text: s.into(),
+                        expected: "a positive integer",
+                    },
+                )
+            })
         };
         let (i, j) = (index(t[0])?, index(t[1])?);
         if i == 0 || j == 0 || i > rows || j > cols {
@@ -331,8 +361,7 @@ fn coordinate_entries(
                 cols,
             }));
         }
-        let v = parse_value(t[2])
-            .ok_or_else(|| line_error(name, no, format!("value `{}` is not a number", t[2])))?;
+        let v = parse_value(t[2]).ok_or_else(|| not_a_real(name, no, t[2]))?;
         let v = finite_value(v, name, no, t[2])?;
         // Some writers store the upper triangle of a `symmetric` file: the same matrix.
         let (i, j) = if symmetric && j > i { (j, i) } else { (i, j) };
@@ -356,10 +385,17 @@ fn array_entries(
         let (no, line) = promised_line(lines, name, size, entries.len(), "values")?;
         for token in line.split_whitespace() {
             if entries.len() == count {
-                return Err(line_error(name, no, "more values than the size line says"));
+                return Err(line_error(
+                    name,
+                    no,
+                    MatrixLineProblem::TooMany {
+                        what: "values",
+                        expected: count,
+                        text: token.into(),
+                    },
+                ));
             }
-            let v = parse_value(token)
-                .ok_or_else(|| line_error(name, no, format!("value `{token}` is not a number")))?;
+            let v = parse_value(token).ok_or_else(|| not_a_real(name, no, token))?;
             entries.push((i, j, finite_value(v, name, no, token)?));
             i += 1;
             if i == rows {

@@ -19,7 +19,7 @@ use super::{
     matrix_bytes::{entry_value, plain_text},
     node_dof_placement::NodeDofPlacement,
 };
-use crate::{Result, fem::DofMap};
+use crate::{Result, error::MatrixLineProblem, fem::DofMap};
 
 use super::matrix_bytes::line_error as error;
 
@@ -132,22 +132,23 @@ pub fn parse_nastran_dmig(
         error(
             path,
             0,
-            format!(
-                "no DMIG header card for `{wanted}` (the file's DMIG matrices: {})",
-                if names.is_empty() {
-                    "none".to_string()
-                } else {
-                    names.into_iter().collect::<Vec<_>>().join(", ")
-                }
-            ),
+            MatrixLineProblem::NoSuchMatrix {
+                format: "DMIG",
+                wanted: wanted.clone(),
+                found: names.into_iter().collect(),
+            },
         )
     })?;
-    let integer = |card: &Card, i: usize, what: &str| -> Result<usize> {
+    let integer = |card: &Card, i: usize, what: &'static str| -> Result<usize> {
         card.get(i).parse().map_err(|_| {
             error(
                 path,
                 card.line_of(i),
-                format!("{what} `{}` is not an integer", card.get(i)),
+                MatrixLineProblem::NotANumber {
+                    field: what,
+                    text: card.get(i).into(),
+                    expected: "an integer",
+                },
             )
         })
     };
@@ -157,7 +158,11 @@ pub fn parse_nastran_dmig(
         return Err(error(
             path,
             header.line_of(3),
-            format!("`{wanted}` has TIN {tin}: only real matrices (TIN 1 or 2) make a body"),
+            MatrixLineProblem::Unsupported {
+                field: "TIN",
+                value: tin.to_string(),
+                needs: "only real matrices (TIN 1 or 2) make a body",
+            },
         ));
     }
     let symmetric = match ifo {
@@ -167,9 +172,11 @@ pub fn parse_nastran_dmig(
             return Err(error(
                 path,
                 header.line_of(2),
-                format!(
-                    "`{wanted}` has IFO {other}: a body's matrix is square (1) or symmetric (6)"
-                ),
+                MatrixLineProblem::Unsupported {
+                    field: "IFO",
+                    value: other.to_string(),
+                    needs: "a body's matrix is square (1) or symmetric (6)",
+                },
             ));
         }
     };
@@ -186,7 +193,7 @@ pub fn parse_nastran_dmig(
             };
             placement
                 .index(node, component)
-                .map_err(|reason| error(path, card.line_of(i), reason))
+                .map_err(|problem| error(path, card.line_of(i), problem))
         };
         let j = grid(1, &mut placement)?;
         let mut k = 4;
@@ -208,16 +215,11 @@ pub fn parse_nastran_dmig(
                 return Err(error(
                     path,
                     line,
-                    format!(
-                        "the entry of DOF {} and {} is given twice{}",
-                        key.0 + 1,
-                        key.1 + 1,
-                        if symmetric {
-                            " (a symmetric DMIG gives one triangle)"
-                        } else {
-                            ""
-                        }
-                    ),
+                    MatrixLineProblem::EntryTwice {
+                        row: key.0 + 1,
+                        col: key.1 + 1,
+                        symmetric,
+                    },
                 ));
             }
             entries.push((i, j, v));
@@ -228,7 +230,7 @@ pub fn parse_nastran_dmig(
         return Err(error(
             path,
             header.line,
-            format!("`{wanted}` has no entries"),
+            MatrixLineProblem::MatrixEmpty { matrix: wanted },
         ));
     }
     let n = placement.size();

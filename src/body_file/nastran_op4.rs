@@ -20,7 +20,19 @@ use super::{
     MatrixMarket, MatrixMarketFormat,
     matrix_bytes::{entry_value, line_error as error, plain_bytes},
 };
-use crate::Result;
+use crate::{
+    Error, Result,
+    error::{BodyFileError, MatrixLineProblem},
+};
+
+/// A problem at `byte` of the binary file `path`.
+fn at_byte(path: &str, byte: usize, problem: MatrixLineProblem) -> Error {
+    Error::BodyFile(BodyFileError::MatrixByte {
+        path: path.into(),
+        byte,
+        problem,
+    })
+}
 
 /// A matrix being read: its size and the entries so far (0-based).
 struct Matrix {
@@ -43,15 +55,18 @@ impl Matrix {
 }
 
 /// Checks a matrix's NTYPE: the 4-byte words per value (1 single, 2 double precision).
-fn words_per_value(ntype: i64, name: &str) -> std::result::Result<usize, String> {
-    match ntype {
-        1 => Ok(1),
-        2 => Ok(2),
-        3 | 4 => Err(format!(
-            "`{name}` is complex (NTYPE {ntype}): a body's matrices are real"
-        )),
-        other => Err(format!("`{name}` has NTYPE {other}, not 1-4")),
-    }
+fn words_per_value(ntype: i64) -> std::result::Result<usize, MatrixLineProblem> {
+    let needs = match ntype {
+        1 => return Ok(1),
+        2 => return Ok(2),
+        3 | 4 => "a complex matrix: a body's matrices are real (NTYPE 1 or 2)",
+        _ => "NTYPE is 1 or 2 (real), 3 or 4 (complex)",
+    };
+    Err(MatrixLineProblem::Unsupported {
+        field: "NTYPE",
+        value: ntype.to_string(),
+        needs,
+    })
 }
 
 /// Parses the OP4 matrix `matrix` of the bytes named `path` (binary or ASCII, gzip allowed).
@@ -66,13 +81,8 @@ pub fn parse_op4(bytes: &[u8], path: &str, matrix: &str) -> Result<MatrixMarket>
     let found = if binary {
         binary_op4(&bytes, path, &wanted)?
     } else {
-        let text = std::str::from_utf8(&bytes).map_err(|_| {
-            error(
-                path,
-                0,
-                "neither a binary OP4 (a 24-byte first record) nor text",
-            )
-        })?;
+        let text = std::str::from_utf8(&bytes)
+            .map_err(|_| error(path, 0, MatrixLineProblem::NeitherOp4NorText))?;
         ascii_op4(text, path, &wanted)?
     };
     match found {
@@ -80,14 +90,11 @@ pub fn parse_op4(bytes: &[u8], path: &str, matrix: &str) -> Result<MatrixMarket>
         Err(names) => Err(error(
             path,
             0,
-            format!(
-                "no OP4 matrix `{wanted}` (the file's matrices: {})",
-                if names.is_empty() {
-                    "none".to_string()
-                } else {
-                    names.into_iter().collect::<Vec<_>>().join(", ")
-                }
-            ),
+            MatrixLineProblem::NoSuchMatrix {
+                format: "OP4",
+                wanted,
+                found: names.into_iter().collect(),
+            },
         )),
     }
 }
@@ -114,26 +121,26 @@ impl<'a> Records<'a> {
         if self.at == self.bytes.len() {
             return Ok(None);
         }
-        let start = self.at;
-        let fail = |reason: String| error(path, 0, format!("byte {start}: {reason}"));
-        if start + 4 > self.bytes.len() {
-            return Err(fail("the file ends inside a record's length".into()));
+        let byte = self.at;
+        let fail = |problem| at_byte(path, byte, problem);
+        if byte + 4 > self.bytes.len() {
+            return Err(fail(MatrixLineProblem::RecordCut));
         }
-        let len = self.int(&self.bytes[start..start + 4]);
-        let len = usize::try_from(len).map_err(|_| fail(format!("record length {len}")))?;
-        let end = start + 4 + len;
+        let length = self.int(&self.bytes[byte..byte + 4]);
+        let length = usize::try_from(length)
+            .map_err(|_| fail(MatrixLineProblem::RecordLength { length }))?;
+        let end = byte + 4 + length;
         if end + 4 > self.bytes.len() {
-            return Err(fail(format!(
-                "a record of {len} bytes runs past the end of the file ({} bytes)",
-                self.bytes.len()
-            )));
+            return Err(fail(MatrixLineProblem::RecordPastEnd {
+                length,
+                file: self.bytes.len(),
+            }));
         }
         let trailer = self.int(&self.bytes[end..end + 4]);
-        if trailer != len as i64 {
-            return Err(fail(format!(
-                "a record of {len} bytes closes with length {trailer}: not an OP4 record"
-            )));
+        if trailer != length as i64 {
+            return Err(fail(MatrixLineProblem::RecordTrailer { length, trailer }));
         }
+        let start = byte;
         self.at = end + 4;
         Ok(Some((&self.bytes[start + 4..end], start)))
     }
@@ -149,25 +156,22 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
         little,
     };
     let mut names = BTreeSet::new();
-    while let Some((header, at)) = records.next(path)? {
-        let fail = |reason: String| error(path, 0, format!("byte {at}: {reason}"));
+    while let Some((header, byte)) = records.next(path)? {
+        let fail = |problem| at_byte(path, byte, problem);
         if header.len() == 48 {
-            return Err(fail(
-                "an OP4 with 8-byte integers: only 4-byte integers are read".into(),
-            ));
+            return Err(fail(MatrixLineProblem::EightByteIntegers));
         }
         if header.len() != 24 {
-            return Err(fail(format!(
-                "a matrix header of {} bytes, expected 24 (NCOL NROW NF NTYPE NAME)",
-                header.len()
-            )));
+            return Err(fail(MatrixLineProblem::HeaderLength {
+                length: header.len(),
+            }));
         }
         let word = |k: usize| records.int(&header[4 * k..4 * k + 4]);
         let name = String::from_utf8_lossy(&header[16..24])
             .trim()
             .to_ascii_uppercase();
         let (ncols, nrows, ntype) = (word(0), word(1), word(3));
-        let wpv = words_per_value(ntype, &name).map_err(fail)?;
+        let wpv = words_per_value(ntype).map_err(fail)?;
         let bigmat = nrows < 0;
         let (rows, cols) = (nrows.unsigned_abs() as usize, ncols.max(0) as usize);
         let value_bytes = 4 * wpv;
@@ -177,12 +181,16 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
             entries: Vec::new(),
         };
         loop {
-            let (record, at) = records
-                .next(path)?
-                .ok_or_else(|| fail(format!("`{name}` ends before its closing record")))?;
-            let fail = |reason: String| error(path, 0, format!("byte {at}: {reason}"));
+            let (record, byte) = records.next(path)?.ok_or_else(|| {
+                fail(MatrixLineProblem::NoClosingRecord {
+                    matrix: name.clone(),
+                })
+            })?;
+            let fail = |problem| at_byte(path, byte, problem);
             if record.len() < 12 {
-                return Err(fail(format!("a column record of {} bytes", record.len())));
+                return Err(fail(MatrixLineProblem::ColumnRecordShort {
+                    length: record.len(),
+                }));
             }
             let w = |k: usize| records.int(&record[4 * k..4 * k + 4]);
             let (icol, irow) = (w(0), w(1));
@@ -190,7 +198,10 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
                 break;
             }
             if icol < 1 {
-                return Err(fail(format!("column {icol} of `{name}`")));
+                return Err(fail(MatrixLineProblem::NoSuchColumn {
+                    matrix: name.clone(),
+                    column: icol,
+                }));
             }
             let col = icol as usize - 1;
             let value = |offset: usize| -> f64 {
@@ -214,12 +225,19 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
             };
             let push = |row: i64, v: f64, m: &mut Matrix| -> Result<()> {
                 if row < 1 || row as usize > rows {
-                    return Err(fail(format!(
-                        "row {row} of column {icol}: `{name}` has {rows}"
-                    )));
+                    return Err(fail(MatrixLineProblem::RowOutOfRange {
+                        matrix: name.clone(),
+                        row,
+                        column: icol,
+                        rows,
+                    }));
                 }
                 if !v.is_finite() {
-                    return Err(fail(format!("{v} at row {row}, column {icol}")));
+                    return Err(fail(MatrixLineProblem::NonFinite {
+                        value: v,
+                        row,
+                        column: icol,
+                    }));
                 }
                 if v != 0.0 {
                     m.entries.push((row as usize - 1, col, v));
@@ -229,7 +247,7 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
             let data = &record[12..];
             if irow > 0 {
                 if data.len() % value_bytes != 0 {
-                    return Err(fail(format!("{} bytes of values", data.len())));
+                    return Err(fail(MatrixLineProblem::PartValues { length: data.len() }));
                 }
                 for k in 0..data.len() / value_bytes {
                     push(irow + k as i64, value(12 + k * value_bytes), &mut m)?;
@@ -239,7 +257,7 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
                 while p < record.len() {
                     let head = if bigmat { 8 } else { 4 };
                     if p + head > record.len() {
-                        return Err(fail("a string header runs past its column record".into()));
+                        return Err(fail(MatrixLineProblem::StringHeaderCut));
                     }
                     let (words, row) = if bigmat {
                         (w(p / 4) - 1, w(p / 4 + 1))
@@ -250,9 +268,11 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
                     p += head;
                     let count = usize::try_from(words).unwrap_or(usize::MAX) / wpv;
                     if words < 1 || p + count * value_bytes > record.len() {
-                        return Err(fail(format!(
-                            "a string of {words} words at row {row} does not fit its column record"
-                        )));
+                        return Err(fail(MatrixLineProblem::StringTooLong {
+                            words,
+                            row,
+                            column_words: w(2),
+                        }));
                     }
                     for k in 0..count {
                         push(row + k as i64, value(p + k * value_bytes), &mut m)?;
@@ -297,15 +317,25 @@ fn ascii_op4(text: &str, path: &str, wanted: &str) -> Result<Found> {
         if header.trim().is_empty() {
             continue;
         }
-        let fail = |line: usize, reason: String| error(path, line, reason);
-        let head = ints(header.get(..32).unwrap_or(header), 8, 4).ok_or_else(|| {
+        let fail = |line: usize, problem| error(path, line, problem);
+        let not_layout = |line: usize, text: &str, layout| {
             fail(
+                line,
+                MatrixLineProblem::NotLayout {
+                    text: text.trim().into(),
+                    layout,
+                },
+            )
+        };
+        let head = ints(header.get(..32).unwrap_or(header), 8, 4).ok_or_else(|| {
+            not_layout(
                 number,
-                "not an OP4 matrix header (NCOL NROW NF NTYPE in 4I8, then the name)".into(),
+                header,
+                "NCOL NROW NF NTYPE (4I8), the name (A8), the format",
             )
         })?;
         let name = header.get(32..40).unwrap_or("").trim().to_ascii_uppercase();
-        let wpv = words_per_value(head[3], &name).map_err(|r| fail(number, r))?;
+        let wpv = words_per_value(head[3]).map_err(|p| fail(number, p))?;
         // The values' Fortran format, e.g. `1P,3E23.16`: values per line and width.
         let format = header.get(40..).unwrap_or("").trim().to_ascii_uppercase();
         let width = format
@@ -321,7 +351,10 @@ fn ascii_op4(text: &str, path: &str, wanted: &str) -> Result<Found> {
             .ok_or_else(|| {
                 fail(
                     number,
-                    format!("the values' format `{format}` is not like 1P,3E23.16"),
+                    MatrixLineProblem::NotAFortranFormat {
+                        what: "values'",
+                        text: format.clone(),
+                    },
                 )
             })?;
         let (ncols, nrows) = (head[0], head[1]);
@@ -342,9 +375,15 @@ fn ascii_op4(text: &str, path: &str, wanted: &str) -> Result<Found> {
             let mut row = from_row;
             let mut left = count;
             while left > 0 {
-                let (n, line): (usize, &str) = lines
-                    .next()
-                    .ok_or_else(|| fail(0, format!("`{name}` ends inside column {}", col + 1)))?;
+                let (n, line): (usize, &str) = lines.next().ok_or_else(|| {
+                    fail(
+                        0,
+                        MatrixLineProblem::EndsInsideColumn {
+                            matrix: name.clone(),
+                            column: col as i64 + 1,
+                        },
+                    )
+                })?;
                 let chars: Vec<char> = line.trim_end().chars().collect();
                 let mut k = 0;
                 while left > 0 && k * width < chars.len() {
@@ -355,7 +394,12 @@ fn ascii_op4(text: &str, path: &str, wanted: &str) -> Result<Found> {
                     if row < 1 || row as usize > rows {
                         return Err(fail(
                             n,
-                            format!("row {row} of column {}: `{name}` has {rows}", col + 1),
+                            MatrixLineProblem::RowOutOfRange {
+                                matrix: name.clone(),
+                                row,
+                                column: col as i64 + 1,
+                                rows,
+                            },
                         ));
                     }
                     if v != 0.0 {
@@ -368,25 +412,38 @@ fn ascii_op4(text: &str, path: &str, wanted: &str) -> Result<Found> {
                 if k == 0 {
                     return Err(fail(
                         n,
-                        format!("a line without values inside column {}", col + 1),
+                        MatrixLineProblem::LineWithoutValues {
+                            column: col as i64 + 1,
+                        },
                     ));
                 }
             }
             Ok(())
         };
         loop {
-            let (n, line) = lines
-                .next()
-                .ok_or_else(|| fail(0, format!("`{name}` ends before its closing record")))?;
+            let (n, line) = lines.next().ok_or_else(|| {
+                fail(
+                    0,
+                    MatrixLineProblem::NoClosingRecord {
+                        matrix: name.clone(),
+                    },
+                )
+            })?;
             let [icol, irow, nw] = ints(line, 8, 3)
                 .and_then(|v| <[i64; 3]>::try_from(v).ok())
-                .ok_or_else(|| fail(n, "not a column header (ICOL IROW NW in 3I8)".into()))?;
+                .ok_or_else(|| not_layout(n, line, "ICOL IROW NW (3I8)"))?;
             if icol > ncols {
                 lines.next(); // the closing record's one value
                 break;
             }
             if icol < 1 {
-                return Err(fail(n, format!("column {icol} of `{name}`")));
+                return Err(fail(
+                    n,
+                    MatrixLineProblem::NoSuchColumn {
+                        matrix: name.clone(),
+                        column: icol,
+                    },
+                ));
             }
             let col = icol as usize - 1;
             if irow > 0 {
@@ -395,24 +452,34 @@ fn ascii_op4(text: &str, path: &str, wanted: &str) -> Result<Found> {
             }
             let mut words = nw;
             while words > 0 {
-                let (h, string) = lines
-                    .next()
-                    .ok_or_else(|| fail(0, format!("`{name}` ends inside column {icol}")))?;
+                let (h, string) = lines.next().ok_or_else(|| {
+                    fail(
+                        0,
+                        MatrixLineProblem::EndsInsideColumn {
+                            matrix: name.clone(),
+                            column: icol,
+                        },
+                    )
+                })?;
                 let (length, row, used) = if bigmat {
                     let [l, r] = ints(string, 8, 2)
                         .and_then(|v| <[i64; 2]>::try_from(v).ok())
-                        .ok_or_else(|| fail(h, "not a bigmat string header (L+1, row)".into()))?;
+                        .ok_or_else(|| not_layout(h, string, "L+1 ROW (2I8), a bigmat string"))?;
                     (l - 1, r, 2)
                 } else {
                     let is: i64 = string.trim().parse().map_err(|_| {
-                        fail(h, "not a string header (IS = row + 65536(L+1))".into())
+                        not_layout(h, string, "IS = ROW + 65536(L+1), a string's header")
                     })?;
                     ((is >> 16) - 1, is & 0xFFFF, 1)
                 };
                 if length < 1 || length + used > words {
                     return Err(fail(
                         h,
-                        format!("a string of {length} words in a column of {nw}"),
+                        MatrixLineProblem::StringTooLong {
+                            words: length,
+                            row,
+                            column_words: nw,
+                        },
                     ));
                 }
                 values(length as usize / wpv, row, col, &mut m, &mut lines)?;
@@ -512,7 +579,7 @@ mod tests {
         let e = parse_op4(&binary(true, 2), "a.op4", "KAAX")
             .unwrap_err()
             .to_string();
-        assert!(e.contains("the file's matrices: A"), "{e}");
+        assert!(e.contains("the file's OP4 matrices: A"), "{e}");
         let mut cut = binary(false, 2);
         cut.truncate(cut.len() - 6);
         let e = parse_op4(&cut, "a.op4", "A").unwrap_err().to_string();

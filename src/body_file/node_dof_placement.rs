@@ -2,7 +2,10 @@
 //! name nodes and components themselves (Abaqus matrix output, Nastran DMIG): components 1–3
 //! the translations, 4–6 the rotations, nodes the body's 1-based node numbers.
 
-use crate::fem::{DofMap, NodeIndex};
+use crate::{
+    error::MatrixLineProblem,
+    fem::{DofMap, NodeIndex},
+};
 
 /// The placement of (node, component) pairs on a body whose nodes carry `dofs`.
 pub(super) struct NodeDofPlacement {
@@ -22,25 +25,23 @@ impl NodeDofPlacement {
     }
 
     /// The 0-based DOF of `node` (1-based) and `component` (1–6), or why there is none.
-    pub fn index(&mut self, node: usize, component: usize) -> Result<usize, String> {
+    pub fn index(&mut self, node: usize, component: usize) -> Result<usize, MatrixLineProblem> {
         let Some(index) = NodeIndex::of_number(node) else {
-            return Err("node 0 is not a node number (they start at 1)".into());
+            return Err(MatrixLineProblem::NodeZero);
         };
         let name = ["x", "y", "z", "θx", "θy", "θz"]
             .get(component.wrapping_sub(1))
             .copied()
-            .ok_or_else(|| {
-                format!(
-                    "component {component} of node {node} is not a displacement (1-3) or \
-                     rotation (4-6)"
-                )
+            .ok_or_else(|| MatrixLineProblem::NotAComponent {
+                node,
+                component: component.to_string(),
             })?;
         let position = self.names.iter().position(|&n| n == name).ok_or_else(|| {
-            format!(
-                "node {node} has DOF {component} ({name}), which the body's DOF ({}) do not \
-                 include",
-                self.names.join(", ")
-            )
+            MatrixLineProblem::DofNotInBody {
+                node,
+                dof: name.into(),
+                body: self.names.clone(),
+            }
         })?;
         self.largest_node = self.largest_node.max(node);
         Ok(index.get() * self.per + position)

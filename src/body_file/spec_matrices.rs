@@ -15,6 +15,7 @@ use super::{
     nastran_op4::parse_op4,
     parse_matrix_market,
 };
+use crate::error::{BodySpecProblem, SizeExpectation};
 use crate::{Error, Result, error::TableProblem, fem::DofMap};
 
 /// A body file's text and name, for errors that point at its lines.
@@ -26,11 +27,11 @@ pub(super) struct SpecText<'a> {
 
 impl SpecText<'_> {
     /// The body file's error at `line` (1-based).
-    pub(super) fn error(&self, line: Option<usize>, reason: String) -> Error {
+    pub(super) fn error(&self, line: Option<usize>, problem: BodySpecProblem) -> Error {
         Error::BodyFile(BodyFileError::BodyFile {
             path: self.name.into(),
             line,
-            reason,
+            problem,
         })
     }
 
@@ -67,9 +68,7 @@ pub(super) fn read_matrices(
         return Err(text.error(
             text.key_line("stiffness_matrix")
                 .max(text.key_line("mass_matrix")),
-            "stiffness_matrix and mass_matrix name DMIG or OP4 matrices: they need format = \
-             \"nastran-dmig\" or \"op4\""
-                .into(),
+            BodySpecProblem::MatrixNamesNeedFormat,
         ));
     }
     // CalculiX numbers its equations by the lines of its `.dof` file.
@@ -77,9 +76,7 @@ pub(super) fn read_matrices(
         let Some(map_file) = &matrices.dof_map else {
             return Err(text.error(
                 text.key_line("format"),
-                "format = \"calculix\" needs dof_map = \"job.dof\" (the equations' nodes \
-                 and DOF, written beside job.sti and job.mas)"
-                    .into(),
+                BodySpecProblem::CalculixNeedsDofMap,
             ));
         };
         let (bytes, map_name) = location.read(Some(map_file))?;
@@ -109,7 +106,7 @@ pub(super) fn read_matrices(
             what: "stiffness",
             rows: k_file.rows,
             cols: k_file.cols,
-            expected: "a stiffness must be square".into(),
+            expected: SizeExpectation::Square,
         }));
     }
     Ok(SpecMatrices {
@@ -144,9 +141,10 @@ pub(super) fn read_nodes(
                     what: "stiffness",
                     rows: n,
                     cols: n,
-                    expected: format!(
-                        "{n} DOF do not divide into nodes of {per} DOF (`dofs` in {name})"
-                    ),
+                    expected: SizeExpectation::WholeNodes {
+                        per,
+                        body_file: name.into(),
+                    },
                 }));
             }
             n / per
@@ -198,11 +196,7 @@ pub(super) fn place_equations(
         return Ok(());
     };
     if spec.dof_order != DofOrder::NodeMajor {
-        return Err(text.error(
-            text.key_line("dof_order"),
-            "with a dof_map the map says where each equation goes: leave dof_order node-major"
-                .into(),
-        ));
+        return Err(text.error(text.key_line("dof_order"), BodySpecProblem::DofOrderWithMap));
     }
     let (bytes, map_name) = location.read(Some(map_file))?;
     let equations = if spec.matrices.format == MatrixFormat::Calculix {
@@ -220,7 +214,10 @@ pub(super) fn place_equations(
                 what: "matrix",
                 rows: file.rows,
                 cols: file.cols,
-                expected: format!("the DOF map {map_name} has {} equations", equations.len()),
+                expected: SizeExpectation::DofMapEquations {
+                    map: map_name.clone(),
+                    equations: equations.len(),
+                },
             }));
         }
         let square = file.cols == file.rows;
@@ -250,10 +247,9 @@ pub(super) fn check_node_count(
         what: "stiffness",
         rows: n,
         cols: n,
-        expected: format!(
-            "{node_count} nodes with {per} DOF each ({}) make {} DOF",
-            dofs.join(", "),
-            node_count * per
-        ),
+        expected: SizeExpectation::NodesTimesDof {
+            nodes: node_count,
+            dofs: dofs.to_vec(),
+        },
     }))
 }

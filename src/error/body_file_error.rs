@@ -12,11 +12,11 @@ pub enum BodyFileError {
     NotWritable { format: &'static str },
 
     /// A Matrix Market file whose first line is not a real `coordinate` or `array` header.
-    #[error("{}:{line}: not a real Matrix Market matrix: {found}", path.display())]
+    #[error("{}:{line}: not a real Matrix Market matrix: {problem}", path.display())]
     MatrixMarketHeader {
         path: PathBuf,
         line: usize,
-        found: String,
+        problem: super::MatrixLineProblem,
     },
 
     /// A line of a body's CSV table (node coordinates, edges) that does not fit.
@@ -27,12 +27,28 @@ pub enum BodyFileError {
         problem: super::TableProblem,
     },
 
-    /// A line of a matrix file that does not parse.
-    #[error("{}:{line}: {reason}", path.display())]
-    MatrixMarketLine {
+    /// A line of a matrix file (line 0: the file as a whole) that does not parse.
+    #[error("{}:{line}: {problem}", path.display())]
+    MatrixLine {
         path: PathBuf,
         line: usize,
-        reason: String,
+        problem: super::MatrixLineProblem,
+    },
+
+    /// A byte of a binary matrix file (OP4) where its records do not parse.
+    #[error("{}: byte {byte}: {problem}", path.display())]
+    MatrixByte {
+        path: PathBuf,
+        byte: usize,
+        problem: super::MatrixLineProblem,
+    },
+
+    /// A gzip-compressed matrix file whose stream is damaged.
+    #[error("{}: the gzip stream is damaged: {source}", path.display())]
+    GzipDamaged {
+        path: PathBuf,
+        #[serde(serialize_with = "super::as_text::as_text")]
+        source: std::io::Error,
     },
 
     /// A Matrix Market entry whose 1-based index lies outside the size line's dimensions.
@@ -59,14 +75,14 @@ pub enum BodyFileError {
 
     /// A body file (TOML) that does not parse or names something inconsistent.
     #[error(
-        "{}{}: {reason}",
+        "{}{}: {problem}",
         path.display(),
         line.map(|l| format!(":{l}")).unwrap_or_default()
     )]
     BodyFile {
         path: PathBuf,
         line: Option<usize>,
-        reason: String,
+        problem: super::BodySpecProblem,
     },
 
     /// A matrix whose size does not match the body's DOF map or the other matrix.
@@ -76,7 +92,7 @@ pub enum BodyFileError {
         what: &'static str,
         rows: usize,
         cols: usize,
-        expected: String,
+        expected: super::SizeExpectation,
     },
 
     /// A stiffness or consistent mass that is not symmetric.
@@ -96,14 +112,14 @@ pub enum BodyFileError {
 
     /// A mass matrix that is not positive definite, located at a DOF.
     #[error(
-        "{}: the mass matrix is not positive definite at DOF {dof} ({label}): {reason}",
+        "{}: the mass matrix is not positive definite at DOF {dof} ({label}): {defect}",
         path.display()
     )]
     MassNotPositive {
         path: PathBuf,
         dof: usize,
         label: String,
-        reason: String,
+        defect: super::MassDefect,
     },
 
     /// A node set that names a node the body does not have.

@@ -3,7 +3,7 @@
 
 use thiserror::Error;
 
-use super::as_text::as_text;
+use super::as_text::{as_optional_text, as_text};
 
 /// Everything that can go wrong in flexmodes, from bad user input to a failed decomposition.
 #[derive(Debug, Error, serde::Serialize)]
@@ -113,9 +113,19 @@ pub enum Error {
         named: Vec<&'static str>,
     },
 
-    /// A peer a bench runs (a process, or the file it wrote) failed.
-    #[error("{peer} failed: {reason}")]
-    PeerFailed { peer: &'static str, reason: String },
+    /// A peer a bench runs (a process) failed: the last line it wrote to stderr.
+    #[error("{peer} failed: {stderr}")]
+    PeerFailed { peer: &'static str, stderr: String },
+
+    /// A file a peer wrote (`file`) that does not parse.
+    #[error("{peer} wrote a {file} that does not parse")]
+    PeerOutput {
+        peer: &'static str,
+        file: &'static str,
+        #[source]
+        #[serde(serialize_with = "as_text")]
+        source: serde_json::Error,
+    },
 
     /// A visual's per-time sequences differ in length (a scene's bug, caught before logging
     /// a frame whose parts do not belong together).
@@ -127,9 +137,18 @@ pub enum Error {
         found: usize,
     },
 
-    /// Rerun reported an error while logging.
-    #[error("rerun: {0}")]
-    Rerun(String),
+    /// Rerun reported an error: `step` what flexmodes asked of it (encode, flush, the
+    /// blueprint, the desktop app), `source` Rerun's (or the viewer's) error when it gave one.
+    #[error(
+        "rerun: {step}{}",
+        source.as_ref().map(|s| format!(": {s}")).unwrap_or_default()
+    )]
+    Rerun {
+        step: &'static str,
+        #[source]
+        #[serde(serialize_with = "as_optional_text")]
+        source: Option<Box<dyn std::error::Error + Send + Sync>>,
+    },
 
     /// A stiffness with more zero-energy modes than a free body has rigid motions.
     #[error(
@@ -180,6 +199,17 @@ pub enum Error {
 }
 
 impl Error {
+    /// [`Error::Rerun`] at `step`, caused by `source`.
+    pub fn rerun(
+        step: &'static str,
+        source: impl std::error::Error + Send + Sync + 'static,
+    ) -> Self {
+        Error::Rerun {
+            step,
+            source: Some(Box::new(source)),
+        }
+    }
+
     /// The message and its causes on one line, `cause: cause: …`, as the command line, the
     /// explorer and Python show it; a cause the message already quotes (an I/O error behind
     /// its path) is not repeated.
@@ -204,14 +234,14 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 #[cfg(feature = "cli")]
 impl From<rerun::RecordingStreamError> for Error {
     fn from(e: rerun::RecordingStreamError) -> Self {
-        Error::Rerun(e.to_string())
+        Error::rerun("log", e)
     }
 }
 
 #[cfg(feature = "cli")]
 impl From<rerun::SerializationError> for Error {
     fn from(e: rerun::SerializationError) -> Self {
-        Error::Rerun(e.to_string())
+        Error::rerun("serialise", e)
     }
 }
 

@@ -169,7 +169,6 @@ pub fn run_with_body(
     file: Option<&Path>,
     opts: ViewerOptions,
 ) -> Result<()> {
-    let gui_error = |e: String| Error::Rerun(format!("desktop app: {e}"));
     let file_bytes = match file {
         Some(p) => Some(std::fs::read(p).map_err(|source| Error::Io {
             path: p.to_path_buf(),
@@ -208,7 +207,8 @@ pub fn run_with_body(
         )
     });
     let atomic = opts.atomic;
-    let runtime = tokio::runtime::Runtime::new().map_err(|e| gui_error(e.to_string()))?;
+    let runtime =
+        tokio::runtime::Runtime::new().map_err(|e| Error::rerun("desktop app's runtime", e))?;
     let handle = runtime.handle().clone();
     let main_thread_token = re_viewer::MainThreadToken::i_promise_i_am_on_the_main_thread();
     let startup = re_viewer::StartupOptions {
@@ -259,7 +259,7 @@ pub fn run_with_body(
         }),
         None,
     )
-    .map_err(|e| gui_error(e.to_string()))?;
+    .map_err(|e| Error::rerun("desktop app", e))?;
     drop(runtime);
     Ok(())
 }

@@ -80,7 +80,10 @@ pub(crate) fn send_blueprint(
     let root_id = root
         .strip_prefix("container/")
         .and_then(|id| uuid::Uuid::parse_str(id).ok())
-        .ok_or_else(|| Error::Rerun(format!("blueprint: root {root} is not a container")))?;
+        .ok_or_else(|| Error::Rerun {
+            step: "blueprint: the root view is not a container",
+            source: None,
+        })?;
     bp.log(
         "viewport",
         &ViewportBlueprint::new()
@@ -106,7 +109,7 @@ pub(crate) fn send_blueprint(
     }
     bp.log("time_panel", &time_panel).map_err(rerun_error)?;
     bp.flush_blocking()
-        .map_err(|e| Error::Rerun(format!("blueprint flush: {e}")))?;
+        .map_err(|e| Error::rerun("blueprint flush", e))?;
     let msgs = storage.take();
     let blueprint_id = msgs
         .iter()
@@ -114,7 +117,10 @@ pub(crate) fn send_blueprint(
             LogMsg::SetStoreInfo(info) => Some(info.info.store_id.clone()),
             _ => None,
         })
-        .ok_or_else(|| Error::Rerun("blueprint: no store info".into()))?;
+        .ok_or_else(|| Error::Rerun {
+            step: "blueprint: no store info",
+            source: None,
+        })?;
     rec.send_blueprint(
         msgs,
         BlueprintActivationCommand {
@@ -128,7 +134,7 @@ pub(crate) fn send_blueprint(
 
 /// A failed log call while building the blueprint.
 fn rerun_error(e: rerun::RecordingStreamError) -> Error {
-    Error::Rerun(format!("blueprint: {e}"))
+    Error::rerun("blueprint", e)
 }
 
 struct Writer<'a> {

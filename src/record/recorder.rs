@@ -15,7 +15,7 @@ use crate::{Error, Result};
 
 /// The bytes of an `.rrd` file holding `messages` (see [`Recorder::messages`]).
 pub fn encode_messages(messages: &[LogMsg]) -> Result<Vec<u8>> {
-    Encoder::encode(messages.iter().map(Ok)).map_err(|e| Error::Rerun(format!("encode: {e}")))
+    Encoder::encode(messages.iter().map(Ok)).map_err(|e| Error::rerun("encode", e))
 }
 
 /// Prefix of every recording's application id (`flexmodes-<scene>`: one default layout per
@@ -62,8 +62,7 @@ impl Recorder {
         rec.set_log_time_enabled(false);
         rec.send_recording_name(out.report.scene.clone())?;
         self.log(&rec, out)?;
-        rec.flush_blocking()
-            .map_err(|e| Error::Rerun(format!("flush: {e}")))?;
+        rec.flush_blocking().map_err(|e| Error::rerun("flush", e))?;
         Ok(storage.take())
     }
 

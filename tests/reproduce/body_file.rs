@@ -3,6 +3,7 @@
 //! error, and the export round trip.
 
 use flexmodes::body_file::BodyFileError;
+use flexmodes::error::MatrixLineProblem;
 use std::path::{Path, PathBuf};
 
 use faer::Mat;
@@ -324,13 +325,19 @@ fn malformed_files_give_named_errors_with_file_and_line() {
     // A line that does not parse.
     let (_, r) = bar("line", BAR_BODY, &BAR_K.replace("2 1 -4", "2 1 -4x"), BAR_M);
     let e = r.unwrap_err();
-    assert!(
-        matches!(
-            e,
-            Error::BodyFile(BodyFileError::MatrixMarketLine { line: 4, .. })
-        ),
-        "{e}"
-    );
+    match &e {
+        Error::BodyFile(BodyFileError::MatrixLine {
+            line: 4,
+            problem:
+                MatrixLineProblem::NotANumber {
+                    field: "value",
+                    text,
+                    ..
+                },
+            ..
+        }) => assert_eq!(text, "-4x"),
+        _ => panic!("{e}"),
+    }
     assert!(e.to_string().contains("k.mtx:4"), "{e}");
 
     // An index out of range.
@@ -357,15 +364,35 @@ fn malformed_files_give_named_errors_with_file_and_line() {
 
     // Fewer entries than promised, and more.
     let (_, r) = bar("short", BAR_BODY, &BAR_K.replace("2 2 3", "2 2 4"), BAR_M);
-    assert!(matches!(
-        r.unwrap_err(),
-        Error::BodyFile(BodyFileError::MatrixMarketLine { line: 2, .. })
-    ));
+    let e = r.unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::BodyFile(BodyFileError::MatrixLine {
+                line: 2,
+                problem: MatrixLineProblem::EndsEarly {
+                    what: "entries",
+                    read: 3,
+                    expected: 4
+                },
+                ..
+            })
+        ),
+        "{e}"
+    );
     let (_, r) = bar("long", BAR_BODY, &format!("{BAR_K}1 1 1\n"), BAR_M);
-    assert!(matches!(
-        r.unwrap_err(),
-        Error::BodyFile(BodyFileError::MatrixMarketLine { line: 6, .. })
-    ));
+    let e = r.unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::BodyFile(BodyFileError::MatrixLine {
+                line: 6,
+                problem: MatrixLineProblem::TooMany { expected: 3, .. },
+                ..
+            })
+        ),
+        "{e}"
+    );
 
     // NaN and Inf.
     let (_, r) = bar("nan", BAR_BODY, &BAR_K.replace("2 2 4", "2 2 NaN"), BAR_M);

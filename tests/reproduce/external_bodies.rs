@@ -124,7 +124,11 @@ fn a_rigid_interface_needs_boundary_columns() {
 /// with the file, the line and the reason.
 #[test]
 fn interfaces_declared_in_the_body_file() {
-    use flexmodes::{Error, error::BodyFileError, models::BodyInterfaces};
+    use flexmodes::{
+        Error,
+        error::{BodyFileError, BodySpecProblem},
+        models::BodyInterfaces,
+    };
     let source = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/bodies/steel-link");
     let dir = crate::scratch::Scratch::new("interfaces");
     for f in ["k.mtx.gz", "m.mtx.gz", "nodes.csv", "edges.csv"] {
@@ -185,8 +189,15 @@ fn interfaces_declared_in_the_body_file() {
         weights[1..].join(", ")
     ))
     .unwrap_err();
+    // One weight short of the set's nodes: the count of each, named.
     assert!(
-        matches!(&e, Error::BodyFile(BodyFileError::BodyFile { reason, .. }) if reason.contains("weights")),
+        matches!(
+            &e,
+            Error::BodyFile(BodyFileError::BodyFile {
+                problem: BodySpecProblem::Weights { given, nodes, .. },
+                ..
+            }) if *given + 1 == *nodes
+        ),
         "{e}"
     );
     let e = write("[interfaces.pin]\nkind = \"rbe2\"\nnode_set = \"nope\"\n").unwrap_err();

@@ -1,0 +1,71 @@
+//! What is wrong in a body file (TOML) or a body given in memory
+//! ([`super::BodyFileError::BodyFile`], which names the file and, where it can, the line).
+
+/// What is wrong in a body's description, with its data.
+#[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize)]
+pub enum BodySpecProblem {
+    /// A body file that is not UTF-8 text from byte `byte` on.
+    #[error("not UTF-8 text (byte {byte})")]
+    NotUtf8 { byte: usize },
+    /// A body file that does not parse as TOML or as a body: the TOML reader's message.
+    #[error("{message}")]
+    Toml { message: String },
+    /// `dofs` lists nothing.
+    #[error("`dofs` lists no DOF")]
+    NoDofs,
+    /// A DOF name that is not x, y, z, rx, ry or rz.
+    #[error("unknown DOF `{dof}` (known: x, y, z, rx, ry, rz)")]
+    UnknownDof { dof: String },
+    /// A DOF listed twice in `dofs`.
+    #[error("DOF `{dof}` is listed twice")]
+    DofListedTwice { dof: String },
+    /// A body in memory asked for a file of its own.
+    #[error("a body in memory names no file (asked for `{}`)", asked.as_deref().unwrap_or("its body file"))]
+    NoFileInMemory { asked: Option<String> },
+    /// A built-in body without the file asked for.
+    #[error("no embedded file `{asset}` (built-in bodies: {})", builtin.join(", "))]
+    NoEmbeddedFile {
+        asset: String,
+        builtin: Vec<&'static str>,
+    },
+    /// A node whose coordinates are NaN or infinite (1-based).
+    #[error("node {node} has the coordinates {xyz:?}, which are not finite")]
+    NonFiniteCoordinates { node: usize, xyz: [f64; 3] },
+    /// `default_interface` names a set `[node_sets]` does not define.
+    #[error("`default_interface` names the node set `{set}`, which [node_sets] does not define")]
+    DefaultInterfaceUndefined { set: String },
+    /// An interface whose node set `[node_sets]` does not define.
+    #[error(
+        "interface `{interface}` names the node set `{set}`, which [node_sets] does not define"
+    )]
+    InterfaceSetUndefined { interface: String, set: String },
+    /// Weights on a rigid (RBE2) interface.
+    #[error("interface `{interface}`: weights belong to kind \"rbe3\" only")]
+    WeightsOnRbe2 { interface: String },
+    /// RBE3 weights that are not one positive number per node of the set.
+    #[error(
+        "interface `{interface}`: {given} weights for the {nodes} nodes of `{set}`; each must be \
+         positive"
+    )]
+    Weights {
+        interface: String,
+        given: usize,
+        nodes: usize,
+        set: String,
+    },
+    /// `stiffness_matrix`/`mass_matrix` with a format that has no named matrices.
+    #[error(
+        "stiffness_matrix and mass_matrix name DMIG or OP4 matrices: they need format = \
+         \"nastran-dmig\" or \"op4\""
+    )]
+    MatrixNamesNeedFormat,
+    /// CalculiX matrices without their `.dof` file.
+    #[error(
+        "format = \"calculix\" needs dof_map = \"job.dof\" (the equations' nodes and DOF, \
+         written beside job.sti and job.mas)"
+    )]
+    CalculixNeedsDofMap,
+    /// A `dof_order` other than node-major beside a DOF map.
+    #[error("with a dof_map the map says where each equation goes: leave dof_order node-major")]
+    DofOrderWithMap,
+}
