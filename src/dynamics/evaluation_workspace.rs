@@ -40,6 +40,9 @@ pub(super) struct BodyElimination {
     pub(super) blocks: BodyBlocks,
     /// The constraint rows that touch its modal coordinates.
     pub(super) active: Vec<usize>,
+    /// Per row that may touch them, the modal column found nonzero at the last call: looked
+    /// at first.
+    pub(super) nonzero_hint: Vec<usize>,
     /// $W = [M_{zf}, C_z^T, Q_z]$, k × (7 + active rows).
     pub(super) w: DMatrix<f64>,
     /// $X = M_{zz}^{-1} W$.
@@ -54,6 +57,8 @@ pub(super) struct BodyElimination {
 #[derive(Debug, Clone)]
 pub(super) struct SaddlePointWorkspace {
     pub(super) kkt: DMatrix<f64>,
+    /// The frame rows of `kkt`'s layout (6 per body).
+    pub(super) kkt_frames: usize,
     pub(super) rhs: DVector<f64>,
     pub(super) bodies: Vec<BodyElimination>,
     pub(super) blocks: BlockSaddlePointWorkspace,
@@ -89,6 +94,7 @@ impl EvaluationWorkspace {
                 BodyElimination {
                     blocks: BodyBlocks::zeros(k),
                     active: Vec::new(),
+                    nonzero_hint: Vec::new(),
                     w: DMatrix::zeros(0, 0),
                     x: DMatrix::zeros(0, 0),
                     product: DMatrix::zeros(0, 0),
@@ -106,6 +112,7 @@ impl EvaluationWorkspace {
             residual: DVector::zeros(0),
             saddle: SaddlePointWorkspace {
                 kkt: DMatrix::zeros(0, 0),
+                kkt_frames: 0,
                 rhs: DVector::zeros(0),
                 bodies,
                 blocks: BlockSaddlePointWorkspace::default(),

@@ -383,10 +383,17 @@ impl System {
         let nr = c.nrows();
         let nf = 6 * nb;
         let n = nf + nr;
-        reshape(&mut ws.kkt, n, n);
-        ws.kkt.as_mut_slice().fill(0.0);
+        // Every entry the elimination writes is overwritten below (the frame blocks and the
+        // frame–constraint blocks) or accumulated into the constraint block, which alone is
+        // cleared; the frame blocks of two bodies stay zero from allocation. A workspace of
+        // another layout of the same size is cleared whole.
+        if ws.kkt.shape() == (n, n) && ws.kkt_frames == nf {
+            ws.kkt.view_mut((nf, nf), (nr, nr)).fill(0.0);
+        } else {
+            ws.kkt = DMatrix::zeros(n, n);
+            ws.kkt_frames = nf;
+        }
         resize(&mut ws.rhs, n);
-        ws.rhs.as_mut_slice().fill(0.0);
         let (kkt, rhs) = (&mut ws.kkt, &mut ws.rhs);
         rhs.rows_mut(nf, nr).copy_from(g);
         // The largest diagonal entry of the frame blocks before elimination: the scale
@@ -408,14 +415,26 @@ impl System {
             let k = fb.modes();
             let c_z = c.columns(vo + 6, k);
             // Only the constraint rows that touch the modal coordinates (a joint on another
-            // body has none here), looked for among those that may.
+            // body has none here), looked for among those that may: at the column that was
+            // nonzero at the last call first, along the whole row only when that one is zero
+            // (the scan of every row was a twentieth of a full model's simulation).
             work.active.clear();
-            work.active.extend(
-                rows.modal_rows[b]
-                    .iter()
-                    .copied()
-                    .filter(|&r| c_z.row(r).iter().any(|&x| x != 0.0)),
-            );
+            let candidates = &rows.modal_rows[b];
+            work.nonzero_hint.resize(candidates.len(), 0);
+            for (&r, hint) in candidates.iter().zip(work.nonzero_hint.iter_mut()) {
+                let row = c_z.row(r);
+                let touches = (*hint < k && row[*hint] != 0.0)
+                    || match row.iter().position(|&x| x != 0.0) {
+                        Some(j) => {
+                            *hint = j;
+                            true
+                        }
+                        None => false,
+                    };
+                if touches {
+                    work.active.push(r);
+                }
+            }
             let active = &work.active;
             let na = active.len();
             // W = [M_zf, C_z^T, Q_z] and X = M_zz^-1 W (k × (7 + active rows)).
