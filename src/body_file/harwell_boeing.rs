@@ -105,10 +105,9 @@ fn fields<'a>(
                 break;
             }
             let to = (from + format.width).min(line.len());
-            // A cut inside a character: not the plain text fixed-width fields are.
             let field = line
                 .get(from..to)
-                .ok_or_else(|| error(path, index + 1, MatrixLineProblem::NotText))?;
+                .ok_or_else(|| error(path, index + 1, MatrixLineProblem::NotPlainText { what }))?;
             out.push((index + 1, field.trim()));
         }
     }

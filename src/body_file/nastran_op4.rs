@@ -140,9 +140,8 @@ impl<'a> Records<'a> {
         if trailer != length as i64 {
             return Err(fail(MatrixLineProblem::RecordTrailer { length, trailer }));
         }
-        let start = byte;
         self.at = end + 4;
-        Ok(Some((&self.bytes[start + 4..end], start)))
+        Ok(Some((&self.bytes[byte + 4..end], byte)))
     }
 }
 

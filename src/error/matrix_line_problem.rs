@@ -10,6 +10,10 @@ pub enum MatrixLineProblem {
     /// A file without a single line.
     #[error("an empty file")]
     EmptyFile,
+    /// Harwell–Boeing: a fixed-width field that cuts a character of a section's line (fields
+    /// are counted in bytes: the line is not plain ASCII).
+    #[error("the {what} line is not plain text")]
+    NotPlainText { what: &'static str },
     /// The file, or this line of it, is not UTF-8 text.
     #[error("the file is not text")]
     NotText,
