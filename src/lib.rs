@@ -18,39 +18,31 @@
 //! - [`record`] and [`export`]: the one Rerun recorder, reduced models written out;
 //! - [`scenes`]: the registry behind `flexmodes list/record/report`, wiring models to visuals;
 //! - [`bench`](mod@bench), [`cli`] and (feature `gui`) the desktop explorer: the doors.
+//!
+//! Everything up to [`models`] and [`export`] is the crate `flexmodes-core` (no Rerun, no command
+//! line; the Python package builds on it alone), re-exported here under the same names: the
+//! compiler keeps the numerics from importing a scene or the recorder.
 
-pub mod analysis;
-pub mod assets;
-pub mod atomic_file;
+pub use flexmodes_core::{
+    Error, PhaseReading, Progress, ProgressReading, Result, analysis, assets, atomic_file,
+    body_file, dynamics, error, export, fem, inline_markdown, linalg, markdown_tables, models,
+    reduction, report, work_pool,
+};
+
 #[cfg(feature = "cli")]
 pub mod bench;
-pub mod body_file;
 #[cfg(feature = "cli")]
 pub mod cli;
-pub mod dynamics;
-pub mod error;
-pub mod export;
-pub mod fem;
 #[cfg(feature = "gui")]
 pub mod gui;
-pub mod inline_markdown;
-pub mod linalg;
-pub mod markdown_tables;
-pub mod models;
-mod progress;
 #[cfg(feature = "cli")]
 pub mod record;
-pub mod reduction;
-pub mod report;
 #[cfg(feature = "cli")]
 pub mod scenes;
 #[cfg(feature = "serve")]
 pub mod serve;
 #[cfg(feature = "cli")]
 mod terminal_progress;
-pub mod work_pool;
 
-pub use error::{Error, Result};
-pub use progress::{PhaseReading, Progress, ProgressReading};
 #[cfg(feature = "cli")]
 pub use terminal_progress::TerminalProgress;

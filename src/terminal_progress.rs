@@ -15,7 +15,7 @@ use std::{
 
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::progress::Progress;
+use crate::Progress;
 
 /// Redraw interval of the bar.
 const TICK: Duration = Duration::from_millis(100);

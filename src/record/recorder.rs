@@ -58,9 +58,11 @@ impl Recorder {
         let (rec, storage) = RecordingStreamBuilder::new(app_id)
             .recording_id(id)
             .recording_name(out.report.scene.clone())
-            .memory()?;
+            .memory()
+            .or_rerun()?;
         rec.set_log_time_enabled(false);
-        rec.send_recording_name(out.report.scene.clone())?;
+        rec.send_recording_name(out.report.scene.clone())
+            .or_rerun()?;
         self.log(&rec, out)?;
         rec.flush_blocking().map_err(|e| Error::rerun("flush", e))?;
         Ok(storage.take())
@@ -109,7 +111,8 @@ impl Recorder {
                 width - crate::markdown_tables::PANEL_MARGIN,
             );
         }
-        rec.log_static("scene", &rerun::TextDocument::from_markdown(markdown))?;
+        rec.log_static("scene", &rerun::TextDocument::from_markdown(markdown))
+            .or_rerun()?;
         let up = if out.y_up {
             rerun::ViewCoordinates::RIGHT_HAND_Y_UP()
         } else {
@@ -120,7 +123,7 @@ impl Recorder {
         let planar = out.y_up;
         if !planar {
             for origin in layout.spatial_origins() {
-                rec.log_static(origin.as_str(), &up)?;
+                rec.log_static(origin.as_str(), &up).or_rerun()?;
             }
         }
         for v in &out.visuals {
@@ -187,16 +190,20 @@ fn send_strip_frames(
             [time],
             rerun::LineStrips2D::update_fields()
                 .with_strips(flat)
-                .columns(lengths)?,
-        )?;
+                .columns(lengths)
+                .or_rerun()?,
+        )
+        .or_rerun()?;
     } else {
         rec.send_columns(
             path,
             [time],
             rerun::LineStrips3D::update_fields()
                 .with_strips(all)
-                .columns(lengths)?,
-        )?;
+                .columns(lengths)
+                .or_rerun()?,
+        )
+        .or_rerun()?;
     }
     Ok(())
 }
@@ -276,7 +283,8 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                 radius: radius(geometry),
                 label: label.clone(),
             };
-            rec.log_static(path.as_str(), lines.archetype(planar).as_ref())?;
+            rec.log_static(path.as_str(), lines.archetype(planar).as_ref())
+                .or_rerun()?;
         }
         Visual::Mode {
             path,
@@ -293,7 +301,8 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                 } else {
                     translation.map(|x| x as f32)
                 }),
-            )?;
+            )
+            .or_rerun()?;
         }
         Visual::Trajectory {
             path,
@@ -322,15 +331,19 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                 &rerun::SeriesLines::new()
                     .with_colors([color(*c)])
                     .with_names([name.clone()]),
-            )?;
+            )
+            .or_rerun()?;
             rec.send_columns(
                 path.as_str(),
                 [rerun::TimeColumn::new_duration_secs(
                     "sim_time",
                     times.iter().copied(),
                 )],
-                rerun::Scalars::new(values.iter().copied()).columns_of_unit_batches()?,
-            )?;
+                rerun::Scalars::new(values.iter().copied())
+                    .columns_of_unit_batches()
+                    .or_rerun()?,
+            )
+            .or_rerun()?;
         }
         Visual::FrameAxes {
             path,
@@ -351,7 +364,8 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                     .with_labels([text.clone()])
                     .with_colors([color(*c)])
                     .with_radii([rerun::Radius::new_ui_points(4.0)]),
-            )?;
+            )
+            .or_rerun()?;
         }
         Visual::Scatter {
             path,
@@ -365,7 +379,8 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                     .with_labels(labels.clone())
                     .with_colors(colors.iter().map(|c| color(*c)))
                     .with_radii([rerun::Radius::new_ui_points(6.0)]),
-            )?;
+            )
+            .or_rerun()?;
         }
         Visual::Polyline2D {
             path,
@@ -382,7 +397,7 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
             if let Some(l) = label {
                 strips = strips.with_labels([l.clone()]);
             }
-            rec.log_static(path.as_str(), &strips)?;
+            rec.log_static(path.as_str(), &strips).or_rerun()?;
         }
         Visual::SeriesBars {
             path,
@@ -397,7 +412,8 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
                     .with_abscissa(abscissa.clone())
                     .with_widths([*width as f32])
                     .with_color(color(*c)),
-            )?;
+            )
+            .or_rerun()?;
         }
     }
     Ok(())
@@ -431,7 +447,8 @@ fn log_mode(
     rec.log_static(
         format!("{path}/undeformed"),
         undeformed.archetype(planar).as_ref(),
-    )?;
+    )
+    .or_rerun()?;
     // Colour, radius and label once; the strips of all phase steps in one call.
     let frames: Vec<Vec<Vec<[f32; 3]>>> = (0..PHASE_STEPS)
         .map(|s| {
@@ -451,7 +468,8 @@ fn log_mode(
         radius: r,
         label: Some(label.to_string()),
     };
-    rec.log_static(path, style.style(planar).as_ref())?;
+    rec.log_static(path, style.style(planar).as_ref())
+        .or_rerun()?;
     send_strip_frames(
         rec,
         path,
@@ -487,7 +505,8 @@ fn log_trajectory(
         radius: r,
         label: None,
     };
-    rec.log_static(path, style.style(false).as_ref())?;
+    rec.log_static(path, style.style(false).as_ref())
+        .or_rerun()?;
     let n = times.len().min(positions.len());
     send_strip_frames(
         rec,
@@ -518,7 +537,8 @@ fn log_rigid_trajectory(
         radius: radius(geometry),
         label: None,
     };
-    rec.log_static(path, lines.archetype(false).as_ref())?;
+    rec.log_static(path, lines.archetype(false).as_ref())
+        .or_rerun()?;
     let n = times.len().min(translations.len()).min(rotations.len());
     rec.send_columns(
         path,
@@ -535,8 +555,10 @@ fn log_rigid_trajectory(
                     r[2].map(|x| x as f32),
                 ])
             }))
-            .columns_of_unit_batches()?,
-    )?;
+            .columns_of_unit_batches()
+            .or_rerun()?,
+    )
+    .or_rerun()?;
     Ok(())
 }
 
@@ -575,10 +597,30 @@ fn log_frame_axes(
             &rerun::Arrows3D::from_vectors(a.map(|v| v.map(|x| (x * length) as f32)))
                 .with_origins([o32, o32, o32])
                 .with_colors(colors),
-        )?;
+        )
+        .or_rerun()?;
     }
     rec.reset_time();
     Ok(())
+}
+
+/// Rerun's errors as [`Error::Rerun`], naming the step that failed: logging or serialising.
+/// (The error enum is `flexmodes-core`'s, which knows nothing of Rerun: the conversion lives
+/// here, with the one recorder.)
+trait OrRerun<T> {
+    fn or_rerun(self) -> Result<T>;
+}
+
+impl<T> OrRerun<T> for std::result::Result<T, rerun::RecordingStreamError> {
+    fn or_rerun(self) -> Result<T> {
+        self.map_err(|e| Error::rerun("log", e))
+    }
+}
+
+impl<T> OrRerun<T> for std::result::Result<T, rerun::SerializationError> {
+    fn or_rerun(self) -> Result<T> {
+        self.map_err(|e| Error::rerun("serialise", e))
+    }
 }
 
 #[cfg(test)]

@@ -183,7 +183,7 @@ impl std::fmt::Debug for RunCache {
 
 impl PartialEq for RunCache {
     fn eq(&self, other: &Self) -> bool {
-        crate::progress::same_shared(&self.0, &other.0)
+        flexmodes_core::same_shared(&self.0, &other.0)
     }
 }
 

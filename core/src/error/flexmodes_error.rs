@@ -231,20 +231,6 @@ impl Error {
 /// Result alias used across the crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
-#[cfg(feature = "cli")]
-impl From<rerun::RecordingStreamError> for Error {
-    fn from(e: rerun::RecordingStreamError) -> Self {
-        Error::rerun("log", e)
-    }
-}
-
-#[cfg(feature = "cli")]
-impl From<rerun::SerializationError> for Error {
-    fn from(e: rerun::SerializationError) -> Self {
-        Error::rerun("serialise", e)
-    }
-}
-
 /// ` in scene `ID`` for an error's message, or nothing.
 fn in_scene(scene: Option<&str>) -> String {
     scene

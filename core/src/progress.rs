@@ -178,7 +178,7 @@ impl PartialEq for Progress {
 
 /// Whether two optional shared handles are the same one (or both absent): the equality of
 /// handles that share state, where comparing contents would be meaningless.
-pub(crate) fn same_shared<T: ?Sized>(a: &Option<Arc<T>>, b: &Option<Arc<T>>) -> bool {
+pub fn same_shared<T: ?Sized>(a: &Option<Arc<T>>, b: &Option<Arc<T>>) -> bool {
     match (a, b) {
         (None, None) => true,
         (Some(a), Some(b)) => Arc::ptr_eq(a, b),

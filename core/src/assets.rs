@@ -6,7 +6,7 @@ macro_rules! embed {
     ($path:literal) => {
         (
             $path,
-            include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/", $path)).as_slice(),
+            include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/", $path)).as_slice(),
         )
     };
 }
