@@ -80,7 +80,12 @@ pub struct EvaluationWorkspace {
     /// Each row's position among the holonomic rows.
     pub(super) position: Vec<usize>,
     pub(super) residual: DVector<f64>,
+    /// The elimination of the evaluations and the velocity projection (every row).
     pub(super) saddle: SaddlePointWorkspace,
+    /// The elimination of the position projection (the holonomic rows only): its own
+    /// buffers, so that neither is reshaped, zeroed and refilled at every step when the
+    /// two have different rows (mean axes' rotational rows are not holonomic).
+    pub(super) held_saddle: SaddlePointWorkspace,
 }
 
 impl EvaluationWorkspace {
@@ -102,6 +107,14 @@ impl EvaluationWorkspace {
                 }
             })
             .collect();
+        let saddle = SaddlePointWorkspace {
+            kkt: DMatrix::zeros(0, 0),
+            kkt_frames: 0,
+            rhs: DVector::zeros(0),
+            bodies,
+            blocks: BlockSaddlePointWorkspace::default(),
+            x: DVector::zeros(system.nv()),
+        };
         Self {
             modal_rows: system.modal_rows(),
             rows: Rows::empty(),
@@ -110,14 +123,8 @@ impl EvaluationWorkspace {
             holonomic_modal_rows: Vec::new(),
             position: Vec::new(),
             residual: DVector::zeros(0),
-            saddle: SaddlePointWorkspace {
-                kkt: DMatrix::zeros(0, 0),
-                kkt_frames: 0,
-                rhs: DVector::zeros(0),
-                bodies,
-                blocks: BlockSaddlePointWorkspace::default(),
-                x: DVector::zeros(system.nv()),
-            },
+            held_saddle: saddle.clone(),
+            saddle,
         }
     }
 

@@ -60,6 +60,7 @@ impl System {
         out.holonomic.resize(nr, true);
         self.modal_moments_into(s, &mut out.moments);
         let mut r = 0;
+        let mut last_node = None;
         for c in &self.constraints {
             match c {
                 Constraint::Spherical(a, b) => {
@@ -76,21 +77,25 @@ impl System {
                     x0,
                     v0,
                 } => {
-                    let p = self.point(
-                        &Attachment::Node {
-                            body: *body,
-                            node: *node,
-                        },
-                        s,
-                        1.0,
-                        &mut out.c,
-                        r,
-                        Some(*axis),
-                    );
+                    let at = Attachment::Node {
+                        body: *body,
+                        node: *node,
+                    };
+                    // A node prescribed along several axes (consecutive constraints): its
+                    // kinematics once.
+                    let kin = match &last_node {
+                        Some((b, n, kin)) if (b, n) == (body, node) => kin,
+                        _ => {
+                            &last_node
+                                .insert((*body, *node, self.point_kinematics(&at, s)))
+                                .2
+                        }
+                    };
+                    self.add_point_rows(&at, kin, 1.0, &mut out.c, r, Some(*axis));
                     let (x, v, acc) = motion.at(t, *x0, *v0);
-                    out.gamma[r] = acc - p.aq[*axis];
+                    out.gamma[r] = acc - kin.aq[*axis];
                     out.target[r] = v;
-                    out.phi[r] = p.d[*axis] - x;
+                    out.phi[r] = kin.d[*axis] - x;
                 }
             }
             r += c.rows();
@@ -218,9 +223,9 @@ impl System {
                 g: &ws.holonomic_phi,
                 modal_rows: &ws.holonomic_modal_rows,
             };
-            self.saddle_point(s, &rows.moments, held, false, &mut ws.saddle)?;
-            ws.saddle.x.neg_mut();
-            self.apply_increment(s, &ws.saddle.x);
+            self.saddle_point(s, &rows.moments, held, false, &mut ws.held_saddle)?;
+            ws.held_saddle.x.neg_mut();
+            self.apply_increment(s, &ws.held_saddle.x);
             self.rows_into(t, s, &mut ws.rows);
         }
         let rows = &ws.rows;

@@ -27,6 +27,10 @@ pub(super) struct Frame<'a> {
 pub(super) struct PointKin {
     pub(super) d: Vector3<f64>,
     pub(super) aq: Vector3<f64>,
+    /// The rotation of the point's body (the identity for the ground).
+    pub(super) a: Matrix3<f64>,
+    /// $-A\tilde b$: the point's partial velocity in its body's angular velocity.
+    pub(super) arm: Matrix3<f64>,
 }
 
 impl System {
@@ -135,65 +139,94 @@ impl System {
         r: usize,
         axis: Option<usize>,
     ) -> PointKin {
-        let axes = axis.map_or(0..3, |a| a..a + 1);
-        let row = |i: usize| r + i - axes.start;
+        let kin = self.point_kinematics(att, s);
+        self.add_point_rows(att, &kin, sign, c, r, axis);
+        kin
+    }
+
+    /// A point's position, the velocity-dependent part of its acceleration, and what its
+    /// partial velocities are made of ([`Self::add_point_rows`]).
+    pub(super) fn point_kinematics(&self, att: &Attachment, s: &State) -> PointKin {
         match *att {
             Attachment::Ground(x) => PointKin {
                 d: x,
                 aq: Vector3::zeros(),
+                a: Matrix3::identity(),
+                arm: Matrix3::zeros(),
             },
             Attachment::Point { body, local } => {
                 let f = self.frame(body, s);
-                let vo = self.v_off[body];
-                let arm = -f.a * skew(&local);
-                for i in axes.clone() {
-                    c[(row(i), vo + i)] += sign;
-                    for k in 0..3 {
-                        c[(row(i), vo + 3 + k)] += sign * arm[(i, k)];
-                    }
-                }
                 PointKin {
                     d: f.r + f.a * local,
                     aq: f.a * (f.w.cross(&f.w.cross(&local))),
+                    arm: -f.a * skew(&local),
+                    a: f.a,
                 }
             }
             Attachment::Node { body, node } => {
                 let f = self.frame(body, s);
-                let vo = self.v_off[body];
                 let Body::Flexible(fb) = &self.bodies[body] else {
                     unreachable!("node attachments are checked to name deformable bodies")
                 };
-                let psi = &fb.psi_nodes[node.get()];
                 let bj = fb.b(node.get(), &f.z);
-                let arm = -f.a * skew(&bj);
-                for i in axes.clone() {
-                    c[(row(i), vo + i)] += sign;
-                    for k in 0..3 {
-                        c[(row(i), vo + 3 + k)] += sign * arm[(i, k)];
-                    }
-                    // Row i of A Ψ_j: over Ψ_j's nonzero columns when they are few (no
-                    // reduction), else by one product into the row (no temporary).
-                    match fb.psi_columns(node.get()) {
-                        Some(columns) => {
-                            let a_i = f.a.row(i);
-                            for &col in columns {
-                                c[(row(i), vo + 6 + col)] +=
-                                    sign * a_i.dot(&psi.column(col).transpose());
-                            }
-                        }
-                        None => c.view_mut((row(i), vo + 6), (1, fb.modes())).gemm(
-                            sign,
-                            &f.a.row(i),
-                            psi,
-                            1.0,
-                        ),
-                    }
-                }
                 let u = fb.deflection(node.get(), &f.zd);
                 PointKin {
                     d: f.r + f.a * bj,
                     aq: f.a * (f.w.cross(&f.w.cross(&bj)) + 2.0 * f.w.cross(&u)),
+                    arm: -f.a * skew(&bj),
+                    a: f.a,
                 }
+            }
+        }
+    }
+
+    /// Adds `sign` times the point's partial velocities $L$ (Eq. 3.17) to `c`: all three
+    /// rows from row `r` on, or only the row of `axis` at row `r`; `kin` is the point's
+    /// [`Self::point_kinematics`] at the state.
+    pub(super) fn add_point_rows(
+        &self,
+        att: &Attachment,
+        kin: &PointKin,
+        sign: f64,
+        c: &mut DMatrix<f64>,
+        r: usize,
+        axis: Option<usize>,
+    ) {
+        let axes = axis.map_or(0..3, |a| a..a + 1);
+        let first = axes.start;
+        let row = |i: usize| r + i - first;
+        let (body, node) = match *att {
+            Attachment::Ground(_) => return,
+            Attachment::Point { body, .. } => (body, None),
+            Attachment::Node { body, node } => (body, Some(node)),
+        };
+        let vo = self.v_off[body];
+        for i in axes.clone() {
+            c[(row(i), vo + i)] += sign;
+            for k in 0..3 {
+                c[(row(i), vo + 3 + k)] += sign * kin.arm[(i, k)];
+            }
+        }
+        let (Some(node), Body::Flexible(fb)) = (node, &self.bodies[body]) else {
+            return;
+        };
+        let psi = &fb.psi_nodes[node.get()];
+        for i in axes {
+            // Row i of A Ψ_j: over Ψ_j's nonzero columns when they are few (no reduction),
+            // else by one product into the row (no temporary).
+            match fb.psi_columns(node.get()) {
+                Some(columns) => {
+                    let a_i = kin.a.row(i);
+                    for &col in columns {
+                        c[(row(i), vo + 6 + col)] += sign * a_i.dot(&psi.column(col).transpose());
+                    }
+                }
+                None => c.view_mut((row(i), vo + 6), (1, fb.modes())).gemm(
+                    sign,
+                    &kin.a.row(i),
+                    psi,
+                    1.0,
+                ),
             }
         }
     }
