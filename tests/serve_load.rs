@@ -173,6 +173,198 @@ fn stop(mut server: Child) {
     let _ = server.kill();
 }
 
+/// Thirty page loads at once, each read whole: the wall time of all, each one's (sorted),
+/// and the bytes read.
+fn load_pages(port: u16) -> (f64, Vec<f64>, usize) {
+    let started = Instant::now();
+    let loads: Vec<_> = (0..VIEWERS)
+        .map(|_| {
+            std::thread::spawn(move || {
+                let t = Instant::now();
+                let sizes: Vec<(u16, usize)> = ["/", "/re_viewer.js", "/re_viewer_bg.wasm"]
+                    .iter()
+                    .map(|path| get(port, path))
+                    .collect();
+                (t.elapsed().as_secs_f64(), sizes)
+            })
+        })
+        .collect();
+    let mut page_s = Vec::new();
+    let mut page_bytes = 0;
+    for load in loads {
+        let (s, sizes) = load.join().expect("a page load");
+        for (status, bytes) in sizes {
+            assert_eq!(status, 200);
+            page_bytes += bytes;
+        }
+        page_s.push(s);
+    }
+    let pages_s = started.elapsed().as_secs_f64();
+    page_s.sort_by(f64::total_cmp);
+
+    (pages_s, page_s, page_bytes)
+}
+
+/// Thirty viewers connected through Rerun's own gRPC client, each counting the messages it
+/// receives on its own thread until `done` is dropped.
+struct Viewers {
+    /// Keeps the client's runtime alive while the viewers read.
+    _runtime: tokio::runtime::Runtime,
+    viewers: Vec<Arc<Mutex<Viewer>>>,
+    readers: Vec<std::thread::JoinHandle<()>>,
+    done: mpsc::Sender<()>,
+}
+
+impl Viewers {
+    fn connect(grpc_port: u16) -> Self {
+        let runtime = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(2)
+            .enable_all()
+            .build()
+            .unwrap();
+        let handle = re_async::AsyncRuntimeHandle::new_native(runtime.handle().clone());
+        let uri: re_uri::ProxyUri = format!("rerun+http://{ADDRESS}:{grpc_port}/proxy")
+            .parse()
+            .unwrap();
+        let viewers: Vec<Arc<Mutex<Viewer>>> = (0..VIEWERS)
+            .map(|_| Arc::new(Mutex::new(Viewer::default())))
+            .collect();
+        let (done_tx, done_rx) = mpsc::channel::<()>();
+        let done_rx = Arc::new(Mutex::new(done_rx));
+        let readers: Vec<_> = viewers
+            .iter()
+            .map(|viewer| {
+                let receiver = re_grpc_client::read::stream(&handle, uri.clone());
+                let (viewer, done) = (viewer.clone(), done_rx.clone());
+                std::thread::spawn(move || {
+                    loop {
+                        if !matches!(
+                            done.lock().unwrap().try_recv(),
+                            Err(mpsc::TryRecvError::Empty)
+                        ) {
+                            return;
+                        }
+                        let Ok(message) = receiver.recv_timeout(Duration::from_millis(50)) else {
+                            continue;
+                        };
+                        let mut v = viewer.lock().unwrap();
+                        match message.payload {
+                            SmartMessagePayload::Msg(DataSourceMessage::LogMsg(_)) => {
+                                v.arrivals.push(Instant::now());
+                            }
+                            SmartMessagePayload::Quit(why) => {
+                                v.dropped = Some(why.map_or("closed".into(), |e| e.to_string()));
+                                return;
+                            }
+                            _ => {}
+                        }
+                    }
+                })
+            })
+            .collect();
+        Self {
+            _runtime: runtime,
+            viewers,
+            readers,
+            done: done_tx,
+        }
+    }
+
+    /// Messages each viewer holds.
+    fn counts(&self) -> Vec<usize> {
+        self.viewers
+            .iter()
+            .map(|v| v.lock().unwrap().arrivals.len())
+            .collect()
+    }
+
+    /// Waits until the recording published at start reached every viewer whole (it is kept
+    /// for late joiners).
+    fn wait_for_first_recording(&self) {
+        let deadline = Instant::now() + Duration::from_secs(60);
+        let mut previous = Vec::new();
+        loop {
+            std::thread::sleep(Duration::from_millis(500));
+            let now = self.counts();
+            if now == previous && now.iter().all(|&c| c > 0 && c == now[0]) {
+                return;
+            }
+            assert!(
+                Instant::now() < deadline,
+                "the first recording never settled: {now:?}"
+            );
+            previous = now;
+        }
+    }
+
+    /// Shows `words` from the control page and waits until every viewer holds the whole
+    /// publication: its messages, the time the server took, and the median and slowest
+    /// viewer's time after publication, s.
+    fn show_and_time(
+        &self,
+        port: u16,
+        lines: &mut BufReader<ChildStdout>,
+        words: &'static str,
+    ) -> (&'static str, usize, f64, f64, f64) {
+        let before = self.counts();
+        let asked = Instant::now();
+        show(port, words);
+        let showing = line_starting(lines, "showing:");
+        let published = Instant::now();
+        let messages: usize = showing
+            .rsplit_once('(')
+            .and_then(|(_, tail)| tail.split_whitespace().next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("no message count in `{showing}`"));
+        let deadline = published + Duration::from_secs_f64(COMPLETE_WITHIN_S);
+        let mut latest = Vec::new();
+        for (k, viewer) in self.viewers.iter().enumerate() {
+            let wanted = before[k] + messages;
+            loop {
+                {
+                    let v = viewer.lock().unwrap();
+                    assert!(v.dropped.is_none(), "viewer {k} dropped: {:?}", v.dropped);
+                    if v.arrivals.len() >= wanted {
+                        let last = v.arrivals[wanted - 1];
+                        latest.push(last.saturating_duration_since(published).as_secs_f64());
+                        break;
+                    }
+                }
+                assert!(
+                    Instant::now() < deadline,
+                    "`{words}`: viewer {k} holds {} of {messages} messages {COMPLETE_WITHIN_S} s \
+                     after publication",
+                    viewer.lock().unwrap().arrivals.len() - before[k]
+                );
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        }
+        latest.sort_by(f64::total_cmp);
+        (
+            words,
+            messages,
+            published.duration_since(asked).as_secs_f64(),
+            latest[latest.len() / 2],
+            latest[latest.len() - 1],
+        )
+    }
+
+    /// Stops the readers; none may have dropped.
+    fn close(self) {
+        drop(self.done);
+        for r in self.readers {
+            r.join().unwrap();
+        }
+        for (k, v) in self.viewers.iter().enumerate() {
+            assert!(
+                v.lock().unwrap().dropped.is_none(),
+                "viewer {k} dropped: {:?}",
+                v.lock().unwrap().dropped
+            );
+        }
+    }
+}
+
 #[test]
 fn thirty_viewers_receive_every_recording_whole_and_none_drops() {
     let (port, grpc_port) = (free_port(), free_port());
@@ -201,157 +393,15 @@ fn thirty_viewers_receive_every_recording_whole_and_none_drops() {
     line_starting(&mut lines, "commands:");
     let idle_mb = resident_mb(pid);
 
-    // Thirty page loads at once, each read whole.
-    let started = Instant::now();
-    let loads: Vec<_> = (0..VIEWERS)
-        .map(|_| {
-            std::thread::spawn(move || {
-                let t = Instant::now();
-                let sizes: Vec<(u16, usize)> = ["/", "/re_viewer.js", "/re_viewer_bg.wasm"]
-                    .iter()
-                    .map(|path| get(port, path))
-                    .collect();
-                (t.elapsed().as_secs_f64(), sizes)
-            })
-        })
+    let (pages_s, page_s, page_bytes) = load_pages(port);
+    let viewers = Viewers::connect(grpc_port);
+    viewers.wait_for_first_recording();
+    let table: Vec<_> = SHOWN
+        .into_iter()
+        .map(|words| viewers.show_and_time(port, &mut lines, words))
         .collect();
-    let mut page_s = Vec::new();
-    let mut page_bytes = 0;
-    for load in loads {
-        let (s, sizes) = load.join().expect("a page load");
-        for (status, bytes) in sizes {
-            assert_eq!(status, 200);
-            page_bytes += bytes;
-        }
-        page_s.push(s);
-    }
-    let pages_s = started.elapsed().as_secs_f64();
-    page_s.sort_by(f64::total_cmp);
-
-    // Thirty data connections through Rerun's own gRPC client.
-    let runtime = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .unwrap();
-    let handle = re_async::AsyncRuntimeHandle::new_native(runtime.handle().clone());
-    let uri: re_uri::ProxyUri = format!("rerun+http://{ADDRESS}:{grpc_port}/proxy")
-        .parse()
-        .unwrap();
-    let viewers: Vec<Arc<Mutex<Viewer>>> = (0..VIEWERS)
-        .map(|_| Arc::new(Mutex::new(Viewer::default())))
-        .collect();
-    let (done_tx, done_rx) = mpsc::channel::<()>();
-    let done_rx = Arc::new(Mutex::new(done_rx));
-    let readers: Vec<_> = viewers
-        .iter()
-        .map(|viewer| {
-            let receiver = re_grpc_client::read::stream(&handle, uri.clone());
-            let (viewer, done) = (viewer.clone(), done_rx.clone());
-            std::thread::spawn(move || {
-                loop {
-                    if !matches!(
-                        done.lock().unwrap().try_recv(),
-                        Err(mpsc::TryRecvError::Empty)
-                    ) {
-                        return;
-                    }
-                    let Ok(message) = receiver.recv_timeout(Duration::from_millis(50)) else {
-                        continue;
-                    };
-                    let mut v = viewer.lock().unwrap();
-                    match message.payload {
-                        SmartMessagePayload::Msg(DataSourceMessage::LogMsg(_)) => {
-                            v.arrivals.push(Instant::now());
-                        }
-                        SmartMessagePayload::Quit(why) => {
-                            v.dropped = Some(why.map_or("closed".into(), |e| e.to_string()));
-                            return;
-                        }
-                        _ => {}
-                    }
-                }
-            })
-        })
-        .collect();
-    let counts = || -> Vec<usize> {
-        viewers
-            .iter()
-            .map(|v| v.lock().unwrap().arrivals.len())
-            .collect()
-    };
-    // The recording published at start reaches every viewer (it is kept for late joiners).
-    let deadline = Instant::now() + Duration::from_secs(60);
-    let mut previous = Vec::new();
-    loop {
-        std::thread::sleep(Duration::from_millis(500));
-        let now = counts();
-        if now == previous && now.iter().all(|&c| c > 0 && c == now[0]) {
-            break;
-        }
-        assert!(
-            Instant::now() < deadline,
-            "the first recording never settled: {now:?}"
-        );
-        previous = now;
-    }
-
-    let mut table = Vec::new();
-    for words in SHOWN {
-        let before = counts();
-        let asked = Instant::now();
-        show(port, words);
-        let showing = line_starting(&mut lines, "showing:");
-        let published = Instant::now();
-        let messages: usize = showing
-            .rsplit_once('(')
-            .and_then(|(_, tail)| tail.split_whitespace().next())
-            .and_then(|n| n.parse().ok())
-            .unwrap_or_else(|| panic!("no message count in `{showing}`"));
-        let deadline = published + Duration::from_secs_f64(COMPLETE_WITHIN_S);
-        let mut latest = Vec::new();
-        for (k, viewer) in viewers.iter().enumerate() {
-            let wanted = before[k] + messages;
-            loop {
-                {
-                    let v = viewer.lock().unwrap();
-                    assert!(v.dropped.is_none(), "viewer {k} dropped: {:?}", v.dropped);
-                    if v.arrivals.len() >= wanted {
-                        let last = v.arrivals[wanted - 1];
-                        latest.push(last.saturating_duration_since(published).as_secs_f64());
-                        break;
-                    }
-                }
-                assert!(
-                    Instant::now() < deadline,
-                    "`{words}`: viewer {k} holds {} of {messages} messages {COMPLETE_WITHIN_S} s \
-                     after publication",
-                    viewer.lock().unwrap().arrivals.len() - before[k]
-                );
-                std::thread::sleep(Duration::from_millis(20));
-            }
-        }
-        latest.sort_by(f64::total_cmp);
-        table.push((
-            words,
-            messages,
-            published.duration_since(asked).as_secs_f64(),
-            latest[latest.len() / 2],
-            latest[latest.len() - 1],
-        ));
-    }
     let loaded_mb = resident_mb(pid);
-    drop(done_tx);
-    for r in readers {
-        r.join().unwrap();
-    }
-    for (k, v) in viewers.iter().enumerate() {
-        assert!(
-            v.lock().unwrap().dropped.is_none(),
-            "viewer {k} dropped: {:?}",
-            v.lock().unwrap().dropped
-        );
-    }
+    viewers.close();
     stop(server);
 
     println!(

@@ -299,7 +299,7 @@ fn the_formats_exporters_write_all_parse_to_one_body() {
 }
 
 #[test]
-fn malformed_files_give_named_errors_with_file_and_line() {
+fn malformed_matrix_files_give_named_errors_with_file_and_line() {
     // Header that is not real.
     let (_, r) = bar("hdr", BAR_BODY, &BAR_K.replace("real", "complex"), BAR_M);
     let e = r.unwrap_err();
@@ -409,7 +409,12 @@ fn malformed_files_give_named_errors_with_file_and_line() {
         r.unwrap_err(),
         Error::BodyFile(BodyFileError::NonFiniteEntry { line: 3, .. })
     ));
+}
 
+/// Matrices that parse but do not describe the body: sizes, symmetry, a mass that is not
+/// positive definite.
+#[test]
+fn inconsistent_matrices_give_named_errors_with_their_data() {
     // K and M of different sizes.
     let m3 = "%%MatrixMarket matrix array real general\n3 1\n1\n1\n1\n";
     let (_, r) = bar("size", BAR_BODY, BAR_K, m3);
@@ -484,7 +489,11 @@ fn malformed_files_give_named_errors_with_file_and_line() {
         ),
         "{e}"
     );
+}
 
+/// A body file's own mistakes: node sets, missing files, TOML, DOF names, set names.
+#[test]
+fn malformed_body_files_give_named_errors() {
     // A node set naming a missing node.
     let (_, r) = bar(
         "set",
