@@ -18,8 +18,12 @@ impl SmallCholesky {
     /// positive definite); the factor is then unusable.
     pub fn factor(&mut self, n: usize, entry: impl Fn(usize, usize) -> f64) -> bool {
         self.n = n;
-        self.l.clear();
-        self.l.resize(n * n, 0.0);
+        // Only the lower triangle is written and read: the storage is kept as it is between
+        // factorisations of one order (clearing it was 2 % of a simulation's instructions).
+        if self.l.len() != n * n {
+            self.l.clear();
+            self.l.resize(n * n, 0.0);
+        }
         let l = &mut self.l;
         for j in 0..n {
             for i in j..n {
