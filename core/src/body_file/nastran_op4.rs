@@ -407,6 +407,23 @@ impl<'p> AsciiMatrix<'p> {
         )
     }
 
+    /// The next line inside column `icol` (1-based); the file ending there is an error.
+    fn line_in_column<'t>(
+        &self,
+        icol: i64,
+        lines: &mut impl Lines<'t>,
+    ) -> Result<(usize, &'t str)> {
+        lines.next().ok_or_else(|| {
+            self.fail(
+                0,
+                MatrixLineProblem::EndsInsideColumn {
+                    matrix: self.name.clone(),
+                    column: icol,
+                },
+            )
+        })
+    }
+
     /// The column records up to the closing one (a column beyond NCOL and its one value).
     fn read_columns<'t>(&mut self, lines: &mut impl Lines<'t>) -> Result<()> {
         loop {
@@ -447,15 +464,7 @@ impl<'p> AsciiMatrix<'p> {
     fn sparse_strings<'t>(&mut self, nw: i64, icol: i64, lines: &mut impl Lines<'t>) -> Result<()> {
         let mut words = nw;
         while words > 0 {
-            let (h, string) = lines.next().ok_or_else(|| {
-                self.fail(
-                    0,
-                    MatrixLineProblem::EndsInsideColumn {
-                        matrix: self.name.clone(),
-                        column: icol,
-                    },
-                )
-            })?;
+            let (h, string) = self.line_in_column(icol, lines)?;
             let (length, row, used) = if self.bigmat {
                 let [l, r] = ints(string, 8, 2)
                     .and_then(|v| <[i64; 2]>::try_from(v).ok())
@@ -496,15 +505,7 @@ impl<'p> AsciiMatrix<'p> {
         let mut row = from_row;
         let mut left = count;
         while left > 0 {
-            let (n, line) = lines.next().ok_or_else(|| {
-                self.fail(
-                    0,
-                    MatrixLineProblem::EndsInsideColumn {
-                        matrix: self.name.clone(),
-                        column: icol,
-                    },
-                )
-            })?;
+            let (n, line) = self.line_in_column(icol, lines)?;
             let chars: Vec<char> = line.trim_end().chars().collect();
             let mut k = 0;
             while left > 0 && k * self.width < chars.len() {
@@ -612,6 +613,91 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("a.op4:6:") && e.contains("not a real"), "{e}");
+    }
+
+    /// An ASCII OP4 whose columns are cut short, overrun or never closed: each a named error
+    /// with its matrix, column and line (the non-bigmat string header `IS` too).
+    #[test]
+    fn ascii_columns_cut_short_name_matrix_column_and_line() {
+        let ascii = [
+            "       3       3       6       2A       1P,3E23.16",
+            "       1       1       2",
+            " 2.0000000000000000E+00-1.0000000000000000E+00",
+            "       3       0       5",
+            "     327682",
+            "-1.0000000000000000E+00 4.0000000000000000E+00",
+            "       4       1       1",
+            " 1.0000000000000000E+00",
+        ];
+        let text = |lines: &[&str]| lines.join("\n");
+        let problem = |lines: &[&str]| match parse_op4(text(lines).as_bytes(), "a.op4", "A") {
+            Err(Error::BodyFile(BodyFileError::MatrixLine { line, problem, .. })) => {
+                (line, problem)
+            }
+            other => panic!("{other:?}"),
+        };
+        // IS = ROW + 65536 (L + 1): row 2, two double-precision values (four words).
+        let m = parse_op4(text(&ascii).as_bytes(), "a.op4", "A").unwrap();
+        assert_eq!(
+            m.entries,
+            vec![(0, 0, 2.0), (1, 0, -1.0), (1, 2, -1.0), (2, 2, 4.0)]
+        );
+        let matrix = String::from("A");
+        assert_eq!(
+            problem(&ascii[..5]),
+            (
+                0,
+                MatrixLineProblem::EndsInsideColumn {
+                    matrix: matrix.clone(),
+                    column: 3
+                }
+            )
+        );
+        assert_eq!(
+            problem(&ascii[..2]),
+            (
+                0,
+                MatrixLineProblem::EndsInsideColumn {
+                    matrix: matrix.clone(),
+                    column: 1
+                }
+            )
+        );
+        assert_eq!(
+            problem(&ascii[..6]),
+            (
+                0,
+                MatrixLineProblem::NoClosingRecord {
+                    matrix: matrix.clone()
+                }
+            )
+        );
+        let mut overrun = ascii;
+        overrun[1] = "       1       3       2";
+        assert_eq!(
+            problem(&overrun),
+            (
+                3,
+                MatrixLineProblem::RowOutOfRange {
+                    matrix: matrix.clone(),
+                    row: 4,
+                    column: 1,
+                    rows: 3
+                }
+            )
+        );
+        let mut empty = ascii;
+        empty[2] = "";
+        assert_eq!(
+            problem(&empty),
+            (3, MatrixLineProblem::LineWithoutValues { column: 1 })
+        );
+        let mut column0 = ascii;
+        column0[1] = "       0       1       2";
+        assert_eq!(
+            problem(&column0),
+            (2, MatrixLineProblem::NoSuchColumn { matrix, column: 0 })
+        );
     }
 
     #[test]
