@@ -1,6 +1,8 @@
 //! The system's constraint rows at one instant, $C\dot v = \gamma$ with their residuals, as
 //! buffers an integration reuses; and the view of them a block elimination takes.
 
+use std::ops::Range;
+
 use nalgebra::{DMatrix, DVector, Matrix3};
 
 /// Constraint rows at one instant.
@@ -19,6 +21,20 @@ pub(crate) struct Rows {
     /// The bodies' $H_c(z)$ at the state the rows are of ([`super::System::modal_moments`]): the axis
     /// conditions need them, and so do the mass matrix and forces at the same state.
     pub moments: Vec<Vec<Matrix3<f64>>>,
+    /// Where the last [`super::System::rows_into`] wrote `c`: the next one clears these
+    /// entries alone, not all of `c` (a joint's rows have a few nonzeros among `nv` columns;
+    /// clearing the whole Jacobian was a twelfth of a full model's evaluation).
+    pub written: WrittenEntries,
+}
+
+/// The entries of a Jacobian an evaluation wrote.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct WrittenEntries {
+    /// Entries added to (joints and prescribed nodes): (row, columns).
+    pub added: Vec<(usize, Range<usize>)>,
+    /// Blocks overwritten whole (a body's six axis rows from the row, over its modal
+    /// columns): cleared only when the next evaluation's blocks are not the same.
+    pub assigned: Vec<(usize, Range<usize>)>,
 }
 
 impl Rows {
@@ -31,6 +47,7 @@ impl Rows {
             phi: DVector::zeros(0),
             holonomic: Vec::new(),
             moments: Vec::new(),
+            written: WrittenEntries::default(),
         }
     }
 }

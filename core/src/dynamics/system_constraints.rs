@@ -1,7 +1,7 @@
 //! The system's constraint rows $C\dot v = \gamma$ (joints, prescribed nodes, axis
 //! conditions), their violation, and the projection of a state onto them.
 
-use nalgebra::Matrix3;
+use nalgebra::{DMatrix, Matrix3};
 
 use super::{
     Attachment, AxisType, Constraint, FlexibleBody, InertiaInvariants, State, System,
@@ -50,8 +50,7 @@ impl System {
     pub(crate) fn rows_into(&self, t: f64, s: &State, out: &mut Rows) {
         let nv = self.nv();
         let nr = self.constraint_rows();
-        reshape(&mut out.c, nr, nv);
-        out.c.as_mut_slice().fill(0.0);
+        self.clear_jacobian(nr, nv, out);
         for v in [&mut out.gamma, &mut out.target, &mut out.phi] {
             resize(v, nr);
             v.as_mut_slice().fill(0.0);
@@ -64,8 +63,9 @@ impl System {
         for c in &self.constraints {
             match c {
                 Constraint::Spherical(a, b) => {
-                    let pa = self.point(a, s, 1.0, &mut out.c, r, None);
-                    let pb = self.point(b, s, -1.0, &mut out.c, r, None);
+                    let added = &mut out.written.added;
+                    let pa = self.point(a, s, 1.0, &mut out.c, r, None, added);
+                    let pb = self.point(b, s, -1.0, &mut out.c, r, None, added);
                     out.gamma.rows_mut(r, 3).copy_from(&(pb.aq - pa.aq));
                     out.phi.rows_mut(r, 3).copy_from(&(pa.d - pb.d));
                 }
@@ -91,7 +91,8 @@ impl System {
                                 .2
                         }
                     };
-                    self.add_point_rows(&at, kin, 1.0, &mut out.c, r, Some(*axis));
+                    let added = &mut out.written.added;
+                    self.add_point_rows(&at, kin, 1.0, &mut out.c, r, Some(*axis), added);
                     let (x, v, acc) = motion.at(t, *x0, *v0);
                     out.gamma[r] = acc - kin.aq[*axis];
                     out.target[r] = v;
@@ -106,6 +107,42 @@ impl System {
             r += 6;
         }
         out.moments = moments;
+    }
+
+    /// Makes `out.c` an `nr` × `nv` Jacobian that is zero wherever this evaluation does not
+    /// write it, and clears `out.written` for it: of a Jacobian of that shape, only the
+    /// entries the last evaluation added to, and the axis blocks it overwrote that this one
+    /// does not (the same system's are the same blocks); of another shape, all.
+    fn clear_jacobian(&self, nr: usize, nv: usize, out: &mut Rows) {
+        let first = nr - 6 * self.axis_condition_bodies().count();
+        let blocks = || {
+            self.axis_condition_bodies()
+                .enumerate()
+                .map(move |(i, (body, fb))| {
+                    let o = self.v_off[body] + 6;
+                    (first + 6 * i, o..o + fb.modes())
+                })
+        };
+        let (c, written) = (&mut out.c, &mut out.written);
+        if c.shape() == (nr, nv) {
+            for (row, columns) in written.added.drain(..) {
+                for column in columns {
+                    c[(row, column)] = 0.0;
+                }
+            }
+            if !blocks().eq(written.assigned.iter().cloned()) {
+                for (row, columns) in written.assigned.drain(..) {
+                    c.view_mut((row, columns.start), (6, columns.len()))
+                        .fill(0.0);
+                }
+                written.assigned.extend(blocks());
+            }
+        } else {
+            *c = DMatrix::zeros(nr, nv);
+            written.added.clear();
+            written.assigned.clear();
+            written.assigned.extend(blocks());
+        }
     }
 
     /// The six rows of mean axes (Table 4-2) or principal axes (§4.3) of body `body` from row
@@ -242,5 +279,97 @@ impl System {
             s.v -= &ws.saddle.x;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Vector3;
+
+    use super::*;
+    use crate::{
+        dynamics::{Body, Constraint, RigidBody},
+        fem::{SlabParameters, plank},
+        reduction::{Method, ModeSelection, ReductionParameters, reduce},
+    };
+
+    /// The plank reduced by `method` on mean axes and a rod hung from the ground by one end,
+    /// its other end joined to plank node `node`; the plank first or second among the
+    /// bodies; deformed and moving.
+    fn plank_on_a_rod(method: Method, node: usize, plank_first: bool) -> (System, State) {
+        let model = plank(&SlabParameters::default());
+        let basis = reduce(
+            &model,
+            method,
+            &ReductionParameters {
+                boundary_nodes: vec![3, 15, 22],
+                modes: ModeSelection::Count(6),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let node = model.node_index(node).unwrap();
+        let body = FlexibleBody::new(model, basis, AxisType::Mean).unwrap();
+        let origin = body.origin;
+        let (p, r) = if plank_first { (0, 1) } else { (1, 0) };
+        let mut bodies = vec![
+            Body::Flexible(Box::new(body)),
+            Body::Rigid(RigidBody::rod("rod", 1.0, 2.0)),
+        ];
+        let mut placements = vec![
+            (origin, Matrix3::identity()),
+            (Vector3::new(0.0, 0.0, 3.0), Matrix3::identity()),
+        ];
+        if !plank_first {
+            bodies.swap(0, 1);
+            placements.swap(0, 1);
+        }
+        let end = |sign: f64| Attachment::Point {
+            body: r,
+            local: Vector3::new(0.5 * sign, 0.0, 0.0),
+        };
+        let joints = vec![
+            Constraint::Spherical(Attachment::Ground(Vector3::new(-0.5, 0.0, 3.0)), end(-1.0)),
+            Constraint::Spherical(end(1.0), Attachment::Node { body: p, node }),
+        ];
+        let system = System::new(bodies, joints);
+        let mut state = system.state_at(&placements);
+        for (i, v) in state.v.iter_mut().enumerate() {
+            *v = ((i * 7919) % 13) as f64 / 13.0 - 0.4;
+        }
+        let (qo, _) = system.offsets(p);
+        for i in 7..system.bodies[p].position_count() {
+            state.q[qo + i] += 1e-3 * ((i % 5) as f64 - 2.0);
+        }
+        (system, state)
+    }
+
+    /// Rows written into buffers an earlier evaluation left (of the same system at another
+    /// state, of a system joined at another node, of one whose bodies are in another order:
+    /// each of the same shape) are the rows written into new buffers, to the bit.
+    #[test]
+    fn reused_constraint_rows_equal_fresh_ones() {
+        for method in [Method::NoReduction, Method::CraigBampton] {
+            let systems = [
+                plank_on_a_rod(method, 3, true),
+                plank_on_a_rod(method, 15, true),
+                plank_on_a_rod(method, 15, false),
+            ];
+            let shape = systems[0].0.rows(0.0, &systems[0].1).c.shape();
+            let mut rows = Rows::empty();
+            for (k, (system, state)) in systems.iter().cycle().take(7).enumerate() {
+                let mut state = state.clone();
+                state.v *= 1.0 + k as f64;
+                system.rows_into(0.0, &state, &mut rows);
+                let fresh = system.rows(0.0, &state);
+                assert_eq!(
+                    fresh.c.shape(),
+                    shape,
+                    "{method:?}: the systems differ in shape"
+                );
+                assert_eq!(rows.c, fresh.c, "{method:?}, evaluation {k}");
+                assert_eq!(rows.gamma, fresh.gamma, "{method:?}, evaluation {k}");
+            }
+        }
     }
 }

@@ -1,6 +1,8 @@
 //! Where the system's points are and how they move: a body's frame and deformation, nodal
 //! positions and accelerations, and a point's kinematics as constraint rows need them.
 
+use std::ops::Range;
+
 use nalgebra::{DMatrix, DVector, DVectorView, Matrix3, Vector3, Vector4};
 
 use super::{
@@ -59,7 +61,8 @@ impl System {
         vdot: &DVector<f64>,
     ) -> Vector3<f64> {
         let mut l = DMatrix::zeros(3, self.nv());
-        let p = self.point(&Attachment::Node { body: b, node }, s, 1.0, &mut l, 0, None);
+        let at = Attachment::Node { body: b, node };
+        let p = self.point(&at, s, 1.0, &mut l, 0, None, &mut Vec::new());
         l * vdot + p.aq
     }
 
@@ -129,7 +132,8 @@ impl System {
 
     /// The kinematics of a point, adding `sign` times its partial velocities $L$ (Eq. 3.17)
     /// to `c`: all three rows of $L$ from row `r` on, or only the row of `axis` at row `r`.
-    /// Only the point's own body's columns are touched.
+    /// Only the point's own body's columns are touched; they are appended to `written`.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn point(
         &self,
         att: &Attachment,
@@ -138,9 +142,10 @@ impl System {
         c: &mut DMatrix<f64>,
         r: usize,
         axis: Option<usize>,
+        written: &mut Vec<(usize, Range<usize>)>,
     ) -> PointKin {
         let kin = self.point_kinematics(att, s);
-        self.add_point_rows(att, &kin, sign, c, r, axis);
+        self.add_point_rows(att, &kin, sign, c, r, axis, written);
         kin
     }
 
@@ -182,7 +187,9 @@ impl System {
 
     /// Adds `sign` times the point's partial velocities $L$ (Eq. 3.17) to `c`: all three
     /// rows from row `r` on, or only the row of `axis` at row `r`; `kin` is the point's
-    /// [`Self::point_kinematics`] at the state.
+    /// [`Self::point_kinematics`] at the state. Each row's columns added to are appended to
+    /// `written` as (row, columns), so that the next evaluation clears those alone.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn add_point_rows(
         &self,
         att: &Attachment,
@@ -191,6 +198,7 @@ impl System {
         c: &mut DMatrix<f64>,
         r: usize,
         axis: Option<usize>,
+        written: &mut Vec<(usize, Range<usize>)>,
     ) {
         let axes = axis.map_or(0..3, |a| a..a + 1);
         let first = axes.start;
@@ -202,6 +210,7 @@ impl System {
         };
         let vo = self.v_off[body];
         for i in axes.clone() {
+            written.push((row(i), vo..vo + 6));
             c[(row(i), vo + i)] += sign;
             for k in 0..3 {
                 c[(row(i), vo + 3 + k)] += sign * kin.arm[(i, k)];
@@ -218,15 +227,20 @@ impl System {
                 Some(columns) => {
                     let a_i = kin.a.row(i);
                     for &col in columns {
-                        c[(row(i), vo + 6 + col)] += sign * a_i.dot(&psi.column(col).transpose());
+                        let at = vo + 6 + col;
+                        c[(row(i), at)] += sign * a_i.dot(&psi.column(col).transpose());
+                        written.push((row(i), at..at + 1));
                     }
                 }
-                None => c.view_mut((row(i), vo + 6), (1, fb.modes())).gemm(
-                    sign,
-                    &kin.a.row(i),
-                    psi,
-                    1.0,
-                ),
+                None => {
+                    c.view_mut((row(i), vo + 6), (1, fb.modes())).gemm(
+                        sign,
+                        &kin.a.row(i),
+                        psi,
+                        1.0,
+                    );
+                    written.push((row(i), vo + 6..vo + 6 + fb.modes()));
+                }
             }
         }
     }
