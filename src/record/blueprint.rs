@@ -3,19 +3,17 @@
 //! (the view's `EyeControls3D` property), and without one the viewer's default eye sees a row
 //! of bodies from one end, so the far bodies are specks.
 
-use rerun::{
-    RecordingStream, RecordingStreamBuilder,
+use super::rerun_sdk::{
+    self, RecordingStream, RecordingStreamBuilder,
     blueprint::components::{
         ColumnShare, ContainerKind, Eye3DKind, IncludedContent, LoopMode, PanelState, PlayState,
         QueryExpression, RootContainer, RowShare, ViewClass,
     },
-    external::{
-        re_log_types::{BlueprintActivationCommand, LogMsg},
-        re_sdk_types::blueprint::archetypes::{
-            ContainerBlueprint, EyeControls3D, PanelBlueprint, PlotLegend, ScalarAxis,
-            TimePanelBlueprint, ViewBlueprint, ViewContents, ViewportBlueprint, VisualBounds2D,
-        },
+    blueprint_archetypes::{
+        ContainerBlueprint, EyeControls3D, PanelBlueprint, PlotLegend, ScalarAxis,
+        TimePanelBlueprint, ViewBlueprint, ViewContents, ViewportBlueprint, VisualBounds2D,
     },
+    external::re_log_types::{BlueprintActivationCommand, LogMsg},
 };
 
 use super::{Bounds, Eye, Layout, layout::split};
@@ -54,7 +52,7 @@ pub(crate) fn send_blueprint(
     let application_id = rec
         .store_info()
         .map(|info| info.application_id().clone())
-        .unwrap_or_else(|| rerun::ApplicationId::new_or_unknown("flexmodes".to_string()));
+        .unwrap_or_else(|| rerun_sdk::ApplicationId::new_or_unknown("flexmodes".to_string()));
     let (bp, storage) = RecordingStreamBuilder::new(application_id)
         .recording_id(uuid::Uuid::new_v4().to_string())
         .blueprint()
@@ -133,7 +131,7 @@ pub(crate) fn send_blueprint(
 }
 
 /// A failed log call while building the blueprint.
-fn rerun_error(e: rerun::RecordingStreamError) -> Error {
+fn rerun_error(e: rerun_sdk::RecordingStreamError) -> Error {
     Error::rerun("blueprint", e)
 }
 
@@ -263,7 +261,7 @@ impl Writer<'_> {
         // errors by mode number) rise to the right, so the legend covers the fewest there.
         if let Layout::BarChart { legend, .. } = layout {
             let plot_legend = if *legend {
-                PlotLegend::new().with_corner(rerun::blueprint::components::Corner2D::LeftTop)
+                PlotLegend::new().with_corner(rerun_sdk::blueprint::components::Corner2D::LeftTop)
             } else {
                 PlotLegend::new().with_visible(false)
             };
@@ -280,8 +278,8 @@ impl Writer<'_> {
             self.bp
                 .log(
                     format!("{path}/VisualBounds2D").as_str(),
-                    &VisualBounds2D::new(rerun::blueprint::components::VisualBounds2D::from(
-                        rerun::datatypes::Range2D {
+                    &VisualBounds2D::new(rerun_sdk::blueprint::components::VisualBounds2D::from(
+                        rerun_sdk::datatypes::Range2D {
                             x_range: [b.lo[0] - m, b.hi[0] + m].into(),
                             y_range: [-b.hi[1] - m, -b.lo[1] + m].into(),
                         },
@@ -298,7 +296,7 @@ impl Writer<'_> {
             self.bp
                 .log(
                     format!("{path}/ScalarAxis").as_str(),
-                    &ScalarAxis::new().with_range(rerun::datatypes::Range1D([lo - m, hi + m])),
+                    &ScalarAxis::new().with_range(rerun_sdk::datatypes::Range1D([lo - m, hi + m])),
                 )
                 .map_err(rerun_error)?;
         }

@@ -11,6 +11,7 @@ mod palette;
 mod recorder;
 mod recording_content;
 mod recording_digest;
+mod rerun_sdk;
 mod visual;
 
 pub use blueprint_key::BlueprintKey;

@@ -2,8 +2,8 @@
 
 use std::path::Path;
 
-use rerun::{
-    RecordingStream, RecordingStreamBuilder,
+use super::rerun_sdk::{
+    self, RecordingStream, RecordingStreamBuilder,
     external::{re_log_encoding::Encoder, re_log_types::LogMsg},
 };
 
@@ -53,8 +53,10 @@ impl Recorder {
             Some(s) => format!("flexmodes-{}-{s}", out.report.scene),
             None => format!("flexmodes-{}", out.report.scene),
         };
-        let app_id =
-            rerun::ApplicationId::new_or_unknown(format!("{APPLICATION_ID}-{}", out.report.scene));
+        let app_id = rerun_sdk::ApplicationId::new_or_unknown(format!(
+            "{APPLICATION_ID}-{}",
+            out.report.scene
+        ));
         let (rec, storage) = RecordingStreamBuilder::new(app_id)
             .recording_id(id)
             .recording_name(out.report.scene.clone())
@@ -111,12 +113,12 @@ impl Recorder {
                 width - crate::markdown_tables::PANEL_MARGIN,
             );
         }
-        rec.log_static("scene", &rerun::TextDocument::from_markdown(markdown))
+        rec.log_static("scene", &rerun_sdk::TextDocument::from_markdown(markdown))
             .or_rerun()?;
         let up = if out.y_up {
-            rerun::ViewCoordinates::RIGHT_HAND_Y_UP()
+            rerun_sdk::ViewCoordinates::RIGHT_HAND_Y_UP()
         } else {
-            rerun::ViewCoordinates::RIGHT_HAND_Z_UP()
+            rerun_sdk::ViewCoordinates::RIGHT_HAND_Z_UP()
         };
         // Planar bodies (the beam in the x-y plane) are drawn in 2D views, which frame their
         // contents exactly; solids in 3D views with their up axis.
@@ -167,7 +169,7 @@ fn strips(g: &Geometry, nodes: &[[f64; 3]]) -> Vec<Vec<[f32; 3]>> {
 /// body, as 2D strips with y pointing up (2D views point y down).
 struct Lines {
     strips: Vec<Vec<[f32; 3]>>,
-    color: rerun::Color,
+    color: rerun_sdk::Color,
     radius: f32,
     label: Option<String>,
 }
@@ -177,7 +179,7 @@ struct Lines {
 fn send_strip_frames(
     rec: &RecordingStream,
     path: &str,
-    time: rerun::TimeColumn,
+    time: rerun_sdk::TimeColumn,
     frames: Vec<Vec<Vec<[f32; 3]>>>,
     planar: bool,
 ) -> Result<()> {
@@ -188,7 +190,7 @@ fn send_strip_frames(
         rec.send_columns(
             path,
             [time],
-            rerun::LineStrips2D::update_fields()
+            rerun_sdk::LineStrips2D::update_fields()
                 .with_strips(flat)
                 .columns(lengths)
                 .or_rerun()?,
@@ -198,7 +200,7 @@ fn send_strip_frames(
         rec.send_columns(
             path,
             [time],
-            rerun::LineStrips3D::update_fields()
+            rerun_sdk::LineStrips3D::update_fields()
                 .with_strips(all)
                 .columns(lengths)
                 .or_rerun()?,
@@ -211,18 +213,18 @@ fn send_strip_frames(
 impl Lines {
     /// Colour, radius and label without strips (logged once, static, beside strips sent as
     /// columns).
-    fn style(self, planar: bool) -> Box<dyn rerun::AsComponents> {
+    fn style(self, planar: bool) -> Box<dyn rerun_sdk::AsComponents> {
         self.build(planar, false)
     }
 
     /// Strips with their colour, radius and label.
-    fn archetype(self, planar: bool) -> Box<dyn rerun::AsComponents> {
+    fn archetype(self, planar: bool) -> Box<dyn rerun_sdk::AsComponents> {
         self.build(planar, true)
     }
 
-    fn build(self, planar: bool, with_strips: bool) -> Box<dyn rerun::AsComponents> {
+    fn build(self, planar: bool, with_strips: bool) -> Box<dyn rerun_sdk::AsComponents> {
         if planar {
-            let mut a = rerun::LineStrips2D::update_fields()
+            let mut a = rerun_sdk::LineStrips2D::update_fields()
                 .with_colors([self.color])
                 .with_radii([self.radius]);
             if with_strips {
@@ -237,7 +239,7 @@ impl Lines {
             }
             Box::new(a)
         } else {
-            let mut a = rerun::LineStrips3D::update_fields()
+            let mut a = rerun_sdk::LineStrips3D::update_fields()
                 .with_colors([self.color])
                 .with_radii([self.radius]);
             if with_strips {
@@ -265,8 +267,8 @@ fn radius(g: &Geometry) -> f32 {
     (ext * 0.004).max(1e-4) as f32
 }
 
-fn color(c: [u8; 4]) -> rerun::Color {
-    rerun::Color::from_unmultiplied_rgba(c[0], c[1], c[2], c[3])
+fn color(c: [u8; 4]) -> rerun_sdk::Color {
+    rerun_sdk::Color::from_unmultiplied_rgba(c[0], c[1], c[2], c[3])
 }
 
 fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
@@ -296,7 +298,7 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
         Visual::Offset { path, translation } => {
             rec.log_static(
                 path.as_str(),
-                &rerun::Transform3D::from_translation(if planar {
+                &rerun_sdk::Transform3D::from_translation(if planar {
                     [translation[0] as f32, -translation[1] as f32, 0.0]
                 } else {
                     translation.map(|x| x as f32)
@@ -328,18 +330,18 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
         } => {
             rec.log_static(
                 path.as_str(),
-                &rerun::SeriesLines::new()
+                &rerun_sdk::SeriesLines::new()
                     .with_colors([color(*c)])
                     .with_names([name.clone()]),
             )
             .or_rerun()?;
             rec.send_columns(
                 path.as_str(),
-                [rerun::TimeColumn::new_duration_secs(
+                [rerun_sdk::TimeColumn::new_duration_secs(
                     "sim_time",
                     times.iter().copied(),
                 )],
-                rerun::Scalars::new(values.iter().copied())
+                rerun_sdk::Scalars::new(values.iter().copied())
                     .columns_of_unit_batches()
                     .or_rerun()?,
             )
@@ -360,10 +362,10 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
         } => {
             rec.log_static(
                 path.as_str(),
-                &rerun::Points3D::new([position.map(|x| x as f32)])
+                &rerun_sdk::Points3D::new([position.map(|x| x as f32)])
                     .with_labels([text.clone()])
                     .with_colors([color(*c)])
-                    .with_radii([rerun::Radius::new_ui_points(4.0)]),
+                    .with_radii([rerun_sdk::Radius::new_ui_points(4.0)]),
             )
             .or_rerun()?;
         }
@@ -375,10 +377,10 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
         } => {
             rec.log_static(
                 path.as_str(),
-                &rerun::Points2D::new(points.iter().map(|p| [p[0] as f32, p[1] as f32]))
+                &rerun_sdk::Points2D::new(points.iter().map(|p| [p[0] as f32, p[1] as f32]))
                     .with_labels(labels.clone())
                     .with_colors(colors.iter().map(|c| color(*c)))
-                    .with_radii([rerun::Radius::new_ui_points(6.0)]),
+                    .with_radii([rerun_sdk::Radius::new_ui_points(6.0)]),
             )
             .or_rerun()?;
         }
@@ -388,12 +390,12 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
             color: c,
             label,
         } => {
-            let mut strips = rerun::LineStrips2D::new([points
+            let mut strips = rerun_sdk::LineStrips2D::new([points
                 .iter()
                 .map(|p| [p[0] as f32, p[1] as f32])
                 .collect::<Vec<_>>()])
             .with_colors([color(*c)])
-            .with_radii([rerun::Radius::new_ui_points(2.0)]);
+            .with_radii([rerun_sdk::Radius::new_ui_points(2.0)]);
             if let Some(l) = label {
                 strips = strips.with_labels([l.clone()]);
             }
@@ -408,7 +410,7 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
         } => {
             rec.log_static(
                 path.as_str(),
-                &rerun::BarChart::new(values.clone())
+                &rerun_sdk::BarChart::new(values.clone())
                     .with_abscissa(abscissa.clone())
                     .with_widths([*width as f32])
                     .with_color(color(*c)),
@@ -440,7 +442,7 @@ fn log_mode(
     let r = radius(geometry);
     let undeformed = Lines {
         strips: strips(geometry, &geometry.nodes),
-        color: rerun::Color::from_unmultiplied_rgba(150, 150, 150, 120),
+        color: rerun_sdk::Color::from_unmultiplied_rgba(150, 150, 150, 120),
         radius: r * 0.5,
         label: None,
     };
@@ -473,7 +475,7 @@ fn log_mode(
     send_strip_frames(
         rec,
         path,
-        rerun::TimeColumn::new_sequence("phase", 0..PHASE_STEPS as i64),
+        rerun_sdk::TimeColumn::new_sequence("phase", 0..PHASE_STEPS as i64),
         frames,
         planar,
     )?;
@@ -511,7 +513,7 @@ fn log_trajectory(
     send_strip_frames(
         rec,
         path,
-        rerun::TimeColumn::new_duration_secs("sim_time", times[..n].iter().copied()),
+        rerun_sdk::TimeColumn::new_duration_secs("sim_time", times[..n].iter().copied()),
         positions[..n]
             .iter()
             .map(|nodes| strips(geometry, nodes))
@@ -542,14 +544,14 @@ fn log_rigid_trajectory(
     let n = times.len().min(translations.len()).min(rotations.len());
     rec.send_columns(
         path,
-        [rerun::TimeColumn::new_duration_secs(
+        [rerun_sdk::TimeColumn::new_duration_secs(
             "sim_time",
             times[..n].iter().copied(),
         )],
-        rerun::Transform3D::update_fields()
+        rerun_sdk::Transform3D::update_fields()
             .with_many_translation(translations[..n].iter().map(|t| t.map(|x| x as f32)))
             .with_many_mat3x3(rotations[..n].iter().map(|r| {
-                rerun::datatypes::Mat3x3::from([
+                rerun_sdk::datatypes::Mat3x3::from([
                     r[0].map(|x| x as f32),
                     r[1].map(|x| x as f32),
                     r[2].map(|x| x as f32),
@@ -572,9 +574,9 @@ fn log_frame_axes(
     length: f64,
 ) -> Result<()> {
     let colors = [
-        rerun::Color::from_rgb(230, 60, 60),
-        rerun::Color::from_rgb(60, 200, 60),
-        rerun::Color::from_rgb(60, 110, 240),
+        rerun_sdk::Color::from_rgb(230, 60, 60),
+        rerun_sdk::Color::from_rgb(60, 200, 60),
+        rerun_sdk::Color::from_rgb(60, 110, 240),
     ];
     for (what, found) in [
         ("frame origins for its times", origins.len()),
@@ -594,7 +596,7 @@ fn log_frame_axes(
         let o32 = o.map(|x| x as f32);
         rec.log(
             path,
-            &rerun::Arrows3D::from_vectors(a.map(|v| v.map(|x| (x * length) as f32)))
+            &rerun_sdk::Arrows3D::from_vectors(a.map(|v| v.map(|x| (x * length) as f32)))
                 .with_origins([o32, o32, o32])
                 .with_colors(colors),
         )
@@ -611,13 +613,13 @@ trait OrRerun<T> {
     fn or_rerun(self) -> Result<T>;
 }
 
-impl<T> OrRerun<T> for std::result::Result<T, rerun::RecordingStreamError> {
+impl<T> OrRerun<T> for std::result::Result<T, rerun_sdk::RecordingStreamError> {
     fn or_rerun(self) -> Result<T> {
         self.map_err(|e| Error::rerun("log", e))
     }
 }
 
-impl<T> OrRerun<T> for std::result::Result<T, rerun::SerializationError> {
+impl<T> OrRerun<T> for std::result::Result<T, rerun_sdk::SerializationError> {
     fn or_rerun(self) -> Result<T> {
         self.map_err(|e| Error::rerun("serialise", e))
     }

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use rerun::external::re_log_types::LogMsg;
+use super::rerun_sdk::external::re_log_types::LogMsg;
 
 /// Arrow metadata: a column's or a chunk's entity path, and a column's kind (`control`
 /// for the row ids).
