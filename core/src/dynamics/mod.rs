@@ -25,6 +25,8 @@ mod spin_up;
 mod system;
 mod system_constraints;
 mod system_kinematics;
+#[cfg(test)]
+mod test_systems;
 
 pub use crate::error::{DivergenceCause, DynamicsError};
 pub use axes::{AxisKind, AxisType};

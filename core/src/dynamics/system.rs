@@ -621,55 +621,31 @@ impl System {
 mod tests {
     use super::*;
     use crate::{
-        dynamics::RigidBody,
-        fem::{SlabParameters, plank},
-        reduction::{Method, ModeSelection, ReductionParameters, reduce},
+        dynamics::{
+            RigidBody,
+            test_systems::{reduced_plank, set_in_motion},
+        },
+        reduction::Method,
     };
-
-    /// The plank reduced by `method` (6 modes on nodes 3, 15, 22) on mean axes, with a rigid
-    /// rod beside it, at rest in place.
-    fn plank_with_rod(method: Method) -> (System, State) {
-        let model = plank(&SlabParameters::default());
-        let basis = reduce(
-            &model,
-            method,
-            &ReductionParameters {
-                boundary_nodes: vec![3, 15, 22],
-                modes: ModeSelection::Count(6),
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        let body = FlexibleBody::new(model, basis, AxisType::Mean).unwrap();
-        let origin = body.origin;
-        let system = System::new(
-            vec![
-                Body::Flexible(Box::new(body)),
-                Body::Rigid(RigidBody::rod("rod", 1.0, 2.0)),
-            ],
-            vec![],
-        );
-        let state = system.state_at(&[
-            (origin, Matrix3::identity()),
-            (Vector3::new(0.0, 0.0, 3.0), Matrix3::identity()),
-        ]);
-        (system, state)
-    }
 
     #[test]
     fn kinetic_energy_by_blocks_equals_the_dense_quadratic_form() {
         for method in [Method::NoReduction, Method::CraigBampton] {
-            let (system, mut state) = plank_with_rod(method);
-            // A moving, deformed state: every velocity and modal coordinate nonzero.
-            for (i, v) in state.v.iter_mut().enumerate() {
-                *v = ((i * 7919) % 13) as f64 / 13.0 - 0.4;
-            }
-            for b in 0..system.bodies.len() {
-                let (qo, _) = system.offsets(b);
-                for i in 7..system.bodies[b].position_count() {
-                    state.q[qo + i] += 1e-3 * ((i % 5) as f64 - 2.0);
-                }
-            }
+            // The reduced plank with a rigid rod beside it, moving and deformed.
+            let (_, body) = reduced_plank(method);
+            let origin = body.origin;
+            let system = System::new(
+                vec![
+                    Body::Flexible(Box::new(body)),
+                    Body::Rigid(RigidBody::rod("rod", 1.0, 2.0)),
+                ],
+                vec![],
+            );
+            let mut state = system.state_at(&[
+                (origin, Matrix3::identity()),
+                (Vector3::new(0.0, 0.0, 3.0), Matrix3::identity()),
+            ]);
+            set_in_motion(&system, &mut state);
             let (m, _) = system.mass_and_forces(&state);
             let dense = 0.5 * state.v.dot(&(&m * &state.v));
             let blocks = system.kinetic_energy(&state);

@@ -63,9 +63,10 @@ impl System {
         for c in &self.constraints {
             match c {
                 Constraint::Spherical(a, b) => {
+                    let (pa, pb) = (self.point_kinematics(a, s), self.point_kinematics(b, s));
                     let added = &mut out.written.added;
-                    let pa = self.point(a, s, 1.0, &mut out.c, r, None, added);
-                    let pb = self.point(b, s, -1.0, &mut out.c, r, None, added);
+                    self.add_point_rows(a, &pa, 1.0, &mut out.c, r, None, added);
+                    self.add_point_rows(b, &pb, -1.0, &mut out.c, r, None, added);
                     out.gamma.rows_mut(r, 3).copy_from(&(pb.aq - pa.aq));
                     out.phi.rows_mut(r, 3).copy_from(&(pa.d - pb.d));
                 }
@@ -288,28 +289,19 @@ mod tests {
 
     use super::*;
     use crate::{
-        dynamics::{Body, Constraint, RigidBody},
-        fem::{SlabParameters, plank},
-        reduction::{Method, ModeSelection, ReductionParameters, reduce},
+        dynamics::{
+            Body, Constraint, RigidBody,
+            test_systems::{reduced_plank, set_in_motion},
+        },
+        reduction::Method,
     };
 
     /// The plank reduced by `method` on mean axes and a rod hung from the ground by one end,
     /// its other end joined to plank node `node`; the plank first or second among the
     /// bodies; deformed and moving.
     fn plank_on_a_rod(method: Method, node: usize, plank_first: bool) -> (System, State) {
-        let model = plank(&SlabParameters::default());
-        let basis = reduce(
-            &model,
-            method,
-            &ReductionParameters {
-                boundary_nodes: vec![3, 15, 22],
-                modes: ModeSelection::Count(6),
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let (model, body) = reduced_plank(method);
         let node = model.node_index(node).unwrap();
-        let body = FlexibleBody::new(model, basis, AxisType::Mean).unwrap();
         let origin = body.origin;
         let (p, r) = if plank_first { (0, 1) } else { (1, 0) };
         let mut bodies = vec![
@@ -334,13 +326,7 @@ mod tests {
         ];
         let system = System::new(bodies, joints);
         let mut state = system.state_at(&placements);
-        for (i, v) in state.v.iter_mut().enumerate() {
-            *v = ((i * 7919) % 13) as f64 / 13.0 - 0.4;
-        }
-        let (qo, _) = system.offsets(p);
-        for i in 7..system.bodies[p].position_count() {
-            state.q[qo + i] += 1e-3 * ((i % 5) as f64 - 2.0);
-        }
+        set_in_motion(&system, &mut state);
         (system, state)
     }
 

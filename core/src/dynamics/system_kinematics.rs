@@ -62,7 +62,8 @@ impl System {
     ) -> Vector3<f64> {
         let mut l = DMatrix::zeros(3, self.nv());
         let at = Attachment::Node { body: b, node };
-        let p = self.point(&at, s, 1.0, &mut l, 0, None, &mut Vec::new());
+        let p = self.point_kinematics(&at, s);
+        self.add_point_rows(&at, &p, 1.0, &mut l, 0, None, &mut Vec::new());
         l * vdot + p.aq
     }
 
@@ -130,27 +131,9 @@ impl System {
         self.frame(b, s).z.into_owned()
     }
 
-    /// The kinematics of a point, adding `sign` times its partial velocities $L$ (Eq. 3.17)
-    /// to `c`: all three rows of $L$ from row `r` on, or only the row of `axis` at row `r`.
-    /// Only the point's own body's columns are touched; they are appended to `written`.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn point(
-        &self,
-        att: &Attachment,
-        s: &State,
-        sign: f64,
-        c: &mut DMatrix<f64>,
-        r: usize,
-        axis: Option<usize>,
-        written: &mut Vec<(usize, Range<usize>)>,
-    ) -> PointKin {
-        let kin = self.point_kinematics(att, s);
-        self.add_point_rows(att, &kin, sign, c, r, axis, written);
-        kin
-    }
-
     /// A point's position, the velocity-dependent part of its acceleration, and what its
-    /// partial velocities are made of ([`Self::add_point_rows`]).
+    /// partial velocities are made of ([`Self::add_point_rows`] writes them as rows of $L$,
+    /// Eq. 3.17).
     pub(super) fn point_kinematics(&self, att: &Attachment, s: &State) -> PointKin {
         match *att {
             Attachment::Ground(x) => PointKin {
@@ -187,8 +170,9 @@ impl System {
 
     /// Adds `sign` times the point's partial velocities $L$ (Eq. 3.17) to `c`: all three
     /// rows from row `r` on, or only the row of `axis` at row `r`; `kin` is the point's
-    /// [`Self::point_kinematics`] at the state. Each row's columns added to are appended to
-    /// `written` as (row, columns), so that the next evaluation clears those alone.
+    /// [`Self::point_kinematics`] at the state. Only the point's own body's columns are
+    /// touched; each row's are appended to `written` as (row, columns), so that the next
+    /// evaluation clears those alone.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn add_point_rows(
         &self,
