@@ -59,7 +59,7 @@ fn run_timed(mut command: Command, repeats: usize, what: &'static str) -> Result
                     .lines()
                     .last()
                     .unwrap_or("")
-                    .to_string(),
+                    .into(),
             });
         }
         stdout = String::from_utf8_lossy(&out.stdout).into_owned();

@@ -46,7 +46,7 @@ pub fn parse_sizes(text: &str) -> Result<Vec<[usize; 3]>> {
                 [Some(a), Some(b), Some(c)] if *a > 0 && *b > 0 && *c > 0 => [*a, *b, *c],
                 _ => {
                     return Err(Error::InvalidSize {
-                        token: token.to_string(),
+                        token: token.into(),
                         named: NAMED_SIZES.map(|(n, _)| n).to_vec(),
                     });
                 }

@@ -56,7 +56,7 @@ impl BodyLocation {
                 path: format!("<{name} in memory>").into(),
                 line: None,
                 problem: BodySpecProblem::NoFileInMemory {
-                    asked: relative.map(str::to_string),
+                    asked: relative.map(crate::error::Name::from),
                 },
             })),
             Self::Builtin(name) => {
@@ -67,7 +67,7 @@ impl BodyLocation {
                         path: format!("builtin:{name}").into(),
                         line: None,
                         problem: BodySpecProblem::NoEmbeddedFile {
-                            asset: asset.clone(),
+                            asset: (&asset).into(),
                             builtin: crate::assets::builtin_bodies(),
                         },
                     })

@@ -98,7 +98,7 @@ impl MatrixEntries {
                 return Err(Error::BodyFile(BodyFileError::NonFiniteEntry {
                     path: path.into(),
                     line: k + 1,
-                    value: v.to_string(),
+                    value: v.to_string().into(),
                 }));
             }
         }

@@ -141,10 +141,7 @@ impl Units {
             "in" => 0.0254,
             "ft" => 0.3048,
             other => {
-                return Err(super::BodyFileError::UnknownLengthUnit {
-                    unit: other.to_string(),
-                }
-                .into());
+                return Err(super::BodyFileError::UnknownLengthUnit { unit: other.into() }.into());
             }
         })
     }

@@ -128,7 +128,7 @@ pub fn parse_calculix_dof_map(
                     number,
                     MatrixLineProblem::NotAComponent {
                         node,
-                        component: other.to_string(),
+                        component: other.to_string().into(),
                     },
                 ));
             }
@@ -139,7 +139,7 @@ pub fn parse_calculix_dof_map(
                 number,
                 MatrixLineProblem::DofNotInBody {
                     node,
-                    dof: component.to_string(),
+                    dof: component.to_string().into(),
                     body: names.clone(),
                 },
             )
@@ -162,7 +162,7 @@ pub fn parse_calculix_dof_map(
                 number,
                 MatrixLineProblem::DofTwice {
                     node,
-                    dof: component.to_string(),
+                    dof: component.to_string().into(),
                     before,
                 },
             ));

@@ -161,7 +161,7 @@ fn symmetric_kind(line: &str, path: &str) -> Result<bool> {
             3,
             MatrixLineProblem::Unsupported {
                 field: "type",
-                value: kind.clone(),
+                value: kind.into(),
                 needs,
             },
         )

@@ -105,7 +105,7 @@ impl ImportedBody {
             .map(Vec::as_slice)
             .ok_or_else(|| {
                 Error::BodyFile(BodyFileError::NoNodeSets {
-                    body: self.model.name.clone(),
+                    body: (&self.model.name).into(),
                 })
             })
     }
@@ -282,7 +282,7 @@ impl ImportedBody {
                     let set = self.node_sets.get(item).ok_or_else(|| {
                         Error::BodyFile(BodyFileError::UnknownNodeSet {
                             name: item.into(),
-                            known: self.node_sets.keys().cloned().collect(),
+                            known: crate::error::Name::all(self.node_sets.keys()),
                         })
                     })?;
                     for &n in set {
@@ -302,7 +302,7 @@ impl ImportedBody {
             Ok(())
         } else {
             Err(Error::BodyFile(BodyFileError::NoCoordinates {
-                body: self.model.name.clone(),
+                body: (&self.model.name).into(),
             }))
         }
     }
@@ -327,16 +327,14 @@ pub(super) fn checked_sets(
     {
         return Err(text.error(
             text.key_line("default_interface"),
-            BodySpecProblem::DefaultInterfaceUndefined {
-                set: set.to_string(),
-            },
+            BodySpecProblem::DefaultInterfaceUndefined { set: (*set).into() },
         ));
     }
     for (set, members) in given.node_sets {
         if let Some(&node) = members.iter().find(|&&x| x == 0 || x > node_count) {
             return Err(Error::BodyFile(BodyFileError::NodeSetOutOfRange {
                 path: text.name.into(),
-                set: set.clone(),
+                set: set.into(),
                 node,
                 count: node_count,
             }));
@@ -348,8 +346,8 @@ pub(super) fn checked_sets(
             return Err(text.error(
                 text.key_line(iname),
                 BodySpecProblem::InterfaceSetUndefined {
-                    interface: iname.clone(),
-                    set: interface.node_set.clone(),
+                    interface: iname.into(),
+                    set: (&interface.node_set).into(),
                 },
             ));
         }
@@ -359,7 +357,7 @@ pub(super) fn checked_sets(
                 return Err(text.error(
                     text.key_line(iname),
                     BodySpecProblem::WeightsOnRbe2 {
-                        interface: iname.clone(),
+                        interface: iname.into(),
                     },
                 ));
             }
@@ -367,10 +365,10 @@ pub(super) fn checked_sets(
                 return Err(text.error(
                     text.key_line(iname),
                     BodySpecProblem::Weights {
-                        interface: iname.clone(),
+                        interface: iname.into(),
                         given: w.len(),
                         nodes: count,
-                        set: interface.node_set.clone(),
+                        set: (&interface.node_set).into(),
                     },
                 ));
             }
@@ -388,9 +386,9 @@ pub(super) fn dof_map(names: &[String]) -> std::result::Result<DofMap, BodySpecP
     }
     let mut per_node = Vec::new();
     for d in names {
-        let dof = node_dof(d).ok_or_else(|| BodySpecProblem::UnknownDof { dof: d.clone() })?;
+        let dof = node_dof(d).ok_or_else(|| BodySpecProblem::UnknownDof { dof: d.into() })?;
         if per_node.contains(&dof) {
-            return Err(BodySpecProblem::DofListedTwice { dof: d.clone() });
+            return Err(BodySpecProblem::DofListedTwice { dof: dof.name() });
         }
         per_node.push(dof);
     }

@@ -113,7 +113,8 @@ pub(super) fn check_mass(model: &FeModel, name: &str) -> Result<()> {
         Error::BodyFile(BodyFileError::MassNotPositive {
             path: name.into(),
             dof: dof + 1,
-            label: model.dof_label(dof),
+            node: model.dof_node(dof).0.number(),
+            component: model.dof_node(dof).1.name(),
             defect,
         })
     };

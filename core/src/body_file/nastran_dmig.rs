@@ -134,8 +134,8 @@ pub fn parse_nastran_dmig(
             0,
             MatrixLineProblem::NoSuchMatrix {
                 format: "DMIG",
-                wanted: wanted.clone(),
-                found: names.into_iter().collect(),
+                wanted: (&wanted).into(),
+                found: crate::error::Name::all(names),
             },
         )
     })?;
@@ -160,7 +160,7 @@ pub fn parse_nastran_dmig(
             header.line_of(3),
             MatrixLineProblem::Unsupported {
                 field: "TIN",
-                value: tin.to_string(),
+                value: tin.to_string().into(),
                 needs: "only real matrices (TIN 1 or 2) make a body",
             },
         ));
@@ -174,7 +174,7 @@ pub fn parse_nastran_dmig(
                 header.line_of(2),
                 MatrixLineProblem::Unsupported {
                     field: "IFO",
-                    value: other.to_string(),
+                    value: other.to_string().into(),
                     needs: "a body's matrix is square (1) or symmetric (6)",
                 },
             ));
@@ -230,7 +230,9 @@ pub fn parse_nastran_dmig(
         return Err(error(
             path,
             header.line,
-            MatrixLineProblem::MatrixEmpty { matrix: wanted },
+            MatrixLineProblem::MatrixEmpty {
+                matrix: wanted.into(),
+            },
         ));
     }
     let n = placement.size();

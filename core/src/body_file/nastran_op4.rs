@@ -64,7 +64,7 @@ fn words_per_value(ntype: i64) -> std::result::Result<usize, MatrixLineProblem> 
     };
     Err(MatrixLineProblem::Unsupported {
         field: "NTYPE",
-        value: ntype.to_string(),
+        value: ntype.to_string().into(),
         needs,
     })
 }
@@ -92,8 +92,8 @@ pub fn parse_op4(bytes: &[u8], path: &str, matrix: &str) -> Result<MatrixMarket>
             0,
             MatrixLineProblem::NoSuchMatrix {
                 format: "OP4",
-                wanted,
-                found: names.into_iter().collect(),
+                wanted: wanted.into(),
+                found: crate::error::Name::all(names),
             },
         )),
     }
@@ -182,7 +182,7 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
         loop {
             let (record, byte) = records.next(path)?.ok_or_else(|| {
                 fail(MatrixLineProblem::NoClosingRecord {
-                    matrix: name.clone(),
+                    matrix: (&name).into(),
                 })
             })?;
             let fail = |problem| at_byte(path, byte, problem);
@@ -198,7 +198,7 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
             }
             if icol < 1 {
                 return Err(fail(MatrixLineProblem::NoSuchColumn {
-                    matrix: name.clone(),
+                    matrix: (&name).into(),
                     column: icol,
                 }));
             }
@@ -225,7 +225,7 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
             let push = |row: i64, v: f64, m: &mut Matrix| -> Result<()> {
                 if row < 1 || row as usize > rows {
                     return Err(fail(MatrixLineProblem::RowOutOfRange {
-                        matrix: name.clone(),
+                        matrix: (&name).into(),
                         row,
                         column: icol,
                         rows,
@@ -374,7 +374,7 @@ impl<'p> AsciiMatrix<'p> {
             .ok_or_else(|| {
                 fail(MatrixLineProblem::NotAFortranFormat {
                     what: "values'",
-                    text: format.clone(),
+                    text: format.into(),
                 })
             })?;
         let (ncols, nrows) = (head[0], head[1]);
@@ -417,7 +417,7 @@ impl<'p> AsciiMatrix<'p> {
             self.fail(
                 0,
                 MatrixLineProblem::EndsInsideColumn {
-                    matrix: self.name.clone(),
+                    matrix: (&self.name).into(),
                     column: icol,
                 },
             )
@@ -431,7 +431,7 @@ impl<'p> AsciiMatrix<'p> {
                 self.fail(
                     0,
                     MatrixLineProblem::NoClosingRecord {
-                        matrix: self.name.clone(),
+                        matrix: (&self.name).into(),
                     },
                 )
             })?;
@@ -446,7 +446,7 @@ impl<'p> AsciiMatrix<'p> {
                 return Err(self.fail(
                     n,
                     MatrixLineProblem::NoSuchColumn {
-                        matrix: self.name.clone(),
+                        matrix: (&self.name).into(),
                         column: icol,
                     },
                 ));
@@ -517,7 +517,7 @@ impl<'p> AsciiMatrix<'p> {
                     return Err(self.fail(
                         n,
                         MatrixLineProblem::RowOutOfRange {
-                            matrix: self.name.clone(),
+                            matrix: (&self.name).into(),
                             row,
                             column: icol,
                             rows,
@@ -642,7 +642,7 @@ mod tests {
             m.entries,
             vec![(0, 0, 2.0), (1, 0, -1.0), (1, 2, -1.0), (2, 2, 4.0)]
         );
-        let matrix = String::from("A");
+        let matrix = crate::error::Name::from("A");
         assert_eq!(
             problem(&ascii[..5]),
             (
@@ -696,7 +696,13 @@ mod tests {
         column0[1] = "       0       1       2";
         assert_eq!(
             problem(&column0),
-            (2, MatrixLineProblem::NoSuchColumn { matrix, column: 0 })
+            (
+                2,
+                MatrixLineProblem::NoSuchColumn {
+                    matrix: matrix.clone(),
+                    column: 0
+                }
+            )
         );
     }
 

@@ -34,7 +34,7 @@ impl NodeDofPlacement {
             .copied()
             .ok_or_else(|| MatrixLineProblem::NotAComponent {
                 node,
-                component: component.to_string(),
+                component: component.to_string().into(),
             })?;
         let position = self.names.iter().position(|&n| n == name).ok_or_else(|| {
             MatrixLineProblem::DofNotInBody {

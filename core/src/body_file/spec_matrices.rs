@@ -215,7 +215,7 @@ pub(super) fn place_equations(
                 rows: file.rows,
                 cols: file.cols,
                 expected: SizeExpectation::DofMapEquations {
-                    map: map_name.clone(),
+                    map: map_name.into(),
                     equations: equations.len(),
                 },
             }));
@@ -249,7 +249,7 @@ pub(super) fn check_node_count(
         cols: n,
         expected: SizeExpectation::NodesTimesDof {
             nodes: node_count,
-            dofs: dofs.to_vec(),
+            dofs: crate::error::Name::all(dofs),
         },
     }))
 }

@@ -217,7 +217,7 @@ impl FlexibleBody {
     pub fn new(model: FeModel, basis: Basis, axes: AxisType) -> Result<Self> {
         if model.dofs != DofMap::solid() {
             return Err(DynamicsError::NotSolid {
-                body: model.name.clone(),
+                body: (&model.name).into(),
                 frame: "floating",
             }
             .into());
@@ -225,7 +225,7 @@ impl FlexibleBody {
         let n = model.node_count();
         let not_lumped = || -> Error {
             DynamicsError::MassNotLumped {
-                body: model.name.clone(),
+                body: (&model.name).into(),
             }
             .into()
         };

@@ -101,14 +101,14 @@ pub struct DrivenFrameBody {
 fn check_isotropic(model: &FeModel) -> Result<()> {
     if model.dofs != DofMap::solid() {
         return Err(DynamicsError::NotSolid {
-            body: model.name.clone(),
+            body: (&model.name).into(),
             frame: "driven",
         }
         .into());
     }
     let unequal = |node: usize, other: Option<usize>| -> Error {
         DynamicsError::MassNotIsotropic {
-            body: model.name.clone(),
+            body: (&model.name).into(),
             node,
             other,
         }

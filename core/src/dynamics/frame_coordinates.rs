@@ -53,7 +53,7 @@ impl FrameCoordinates {
             for (r, &d) in pin.dofs.iter().enumerate() {
                 if roles[d] != Role::Free(0) {
                     return Err(DynamicsError::RingsOverlap {
-                        ring: pin.name.clone(),
+                        ring: (&pin.name).into(),
                         dof: d + 1,
                     }
                     .into());

@@ -70,7 +70,7 @@ pub enum BodyFileError {
     NonFiniteEntry {
         path: PathBuf,
         line: usize,
-        value: String,
+        value: super::Excerpt,
     },
 
     /// A body file (TOML) that does not parse or names something inconsistent.
@@ -112,13 +112,16 @@ pub enum BodyFileError {
 
     /// A mass matrix that is not positive definite, located at a DOF.
     #[error(
-        "{}: the mass matrix is not positive definite at DOF {dof} ({label}): {defect}",
+        "{}: the mass matrix is not positive definite at DOF {dof} (node {node} {component}): \
+         {defect}",
         path.display()
     )]
     MassNotPositive {
         path: PathBuf,
         dof: usize,
-        label: String,
+        /// The node the DOF belongs to, 1-based.
+        node: usize,
+        component: &'static str,
         defect: super::MassDefect,
     },
 
@@ -129,7 +132,7 @@ pub enum BodyFileError {
     )]
     NodeSetOutOfRange {
         path: PathBuf,
-        set: String,
+        set: super::Name,
         node: usize,
         count: usize,
     },
@@ -137,28 +140,31 @@ pub enum BodyFileError {
     /// A boundary given by a set name that the body file does not define.
     #[error(
         "unknown node set `{name}` (the body defines: {})",
-        if known.is_empty() { "no node sets".to_string() } else { known.join(", ") }
+        if known.is_empty() { "no node sets".to_string() } else { super::name::joined(known) }
     )]
-    UnknownNodeSet { name: String, known: Vec<String> },
+    UnknownNodeSet {
+        name: super::Excerpt,
+        known: Vec<super::Name>,
+    },
 
     /// Drawing asked of a body that has no node coordinates.
     #[error(
         "the body `{body}` has no node coordinates, so it cannot be drawn (add `nodes` under \
          [geometry] in its body file; `report` and `export` work without them)"
     )]
-    NoCoordinates { body: String },
+    NoCoordinates { body: super::Name },
 
     /// A length unit flexmodes cannot convert to metres (gravity, shaking amplitudes).
     #[error(
         "the body's length unit `{unit}` is not one SI quantities can be converted to (m, cm, \
          mm, in, ft)"
     )]
-    UnknownLengthUnit { unit: String },
+    UnknownLengthUnit { unit: super::Excerpt },
 
     /// An interface was left to the body file, which names none.
     #[error(
         "the body `{body}` defines no node sets: name its interface (`--boundary` on the \
          command line, `boundary=` in Python)"
     )]
-    NoNodeSets { body: String },
+    NoNodeSets { body: super::Name },
 }

@@ -15,17 +15,17 @@ pub enum BodySpecProblem {
     NoDofs,
     /// A DOF name that is not x, y, z, rx, ry or rz.
     #[error("unknown DOF `{dof}` (known: x, y, z, rx, ry, rz)")]
-    UnknownDof { dof: String },
+    UnknownDof { dof: super::Excerpt },
     /// A DOF listed twice in `dofs`.
     #[error("DOF `{dof}` is listed twice")]
-    DofListedTwice { dof: String },
+    DofListedTwice { dof: &'static str },
     /// A body in memory asked for a file of its own.
     #[error("a body in memory names no file (asked for `{}`)", asked.as_deref().unwrap_or("its body file"))]
-    NoFileInMemory { asked: Option<String> },
+    NoFileInMemory { asked: Option<super::Name> },
     /// A built-in body without the file asked for.
     #[error("no embedded file `{asset}` (built-in bodies: {})", builtin.join(", "))]
     NoEmbeddedFile {
-        asset: String,
+        asset: super::Name,
         builtin: Vec<&'static str>,
     },
     /// A node whose coordinates are NaN or infinite (1-based).
@@ -33,25 +33,28 @@ pub enum BodySpecProblem {
     NonFiniteCoordinates { node: usize, xyz: [f64; 3] },
     /// `default_interface` names a set `[node_sets]` does not define.
     #[error("`default_interface` names the node set `{set}`, which [node_sets] does not define")]
-    DefaultInterfaceUndefined { set: String },
+    DefaultInterfaceUndefined { set: super::Name },
     /// An interface whose node set `[node_sets]` does not define.
     #[error(
         "interface `{interface}` names the node set `{set}`, which [node_sets] does not define"
     )]
-    InterfaceSetUndefined { interface: String, set: String },
+    InterfaceSetUndefined {
+        interface: super::Name,
+        set: super::Name,
+    },
     /// Weights on a rigid (RBE2) interface.
     #[error("interface `{interface}`: weights belong to kind \"rbe3\" only")]
-    WeightsOnRbe2 { interface: String },
+    WeightsOnRbe2 { interface: super::Name },
     /// RBE3 weights that are not one positive number per node of the set.
     #[error(
         "interface `{interface}`: {given} weights for the {nodes} nodes of `{set}`; each must be \
          positive"
     )]
     Weights {
-        interface: String,
+        interface: super::Name,
         given: usize,
         nodes: usize,
-        set: String,
+        set: super::Name,
     },
     /// `stiffness_matrix`/`mass_matrix` with a format that has no named matrices.
     #[error(

@@ -45,13 +45,16 @@ pub enum DynamicsError {
     #[error(
         "the body `{body}` on a {frame} frame needs x, y, z translations per node and no rotations"
     )]
-    NotSolid { body: String, frame: &'static str },
+    NotSolid {
+        body: super::Name,
+        frame: &'static str,
+    },
 
     /// A floating-frame body needs a lumped mass, the same in x, y and z at each node.
     #[error(
         "the floating-frame body `{body}` needs a lumped (diagonal, isotropic per node) mass matrix"
     )]
-    MassNotLumped { body: String },
+    MassNotLumped { body: super::Name },
 
     /// A driven body's mass is not $M_s \otimes I_3$: node `node` (1-based) differs by
     /// direction, or couples to `other` unequally across directions.
@@ -61,7 +64,7 @@ pub enum DynamicsError {
         other.map(|o| format!(" coupled to node {o}")).unwrap_or_default()
     )]
     MassNotIsotropic {
-        body: String,
+        body: super::Name,
         node: usize,
         other: Option<usize>,
     },
@@ -70,7 +73,7 @@ pub enum DynamicsError {
     #[error(
         "DOF {dof} (1-based) of the pinned ring `{ring}` is also in the drive's ring or in another pinned ring"
     )]
-    RingsOverlap { ring: String, dof: usize },
+    RingsOverlap { ring: super::Name, dof: usize },
 
     /// A basis column that moves a DOF the driven frame holds.
     #[error(
@@ -113,9 +116,12 @@ pub enum DynamicsError {
     /// An output that names no node set (or `node:N` without a number).
     #[error(
         "no node set `{name}` to output (the body has: {}; or node:N with a 1-based node number)",
-        known.join(", ")
+        super::name::joined(known)
     )]
-    UnknownOutput { name: String, known: Vec<String> },
+    UnknownOutput {
+        name: super::Excerpt,
+        known: Vec<super::Name>,
+    },
 
     /// Driven studies to be joined that are not runs of one body under one drive: they differ
     /// in `what` (their sample times, outputs, drive or its motion).

@@ -30,7 +30,7 @@ pub enum ExportProblem {
     )]
     FrameRingMoves {
         node: usize,
-        ring: String,
+        ring: super::Name,
         moved: f64,
         largest: f64,
     },
@@ -41,7 +41,7 @@ pub enum ExportProblem {
          are other"
     )]
     NoConstraintModes {
-        ring: String,
+        ring: super::Name,
         other: usize,
         columns: usize,
     },
@@ -51,7 +51,7 @@ pub enum ExportProblem {
         "with `{ring}` as the frame nothing elastic is left: keep modes (--modes) or another \
          interface"
     )]
-    NothingElastic { ring: String },
+    NothingElastic { ring: super::Name },
 
     /// The basis without the ring's constraint modes still has zero-energy modes.
     #[error(
@@ -59,7 +59,7 @@ pub enum ExportProblem {
          {lowest_hz:.3e} Hz): the frame's interface alone does not hold the body"
     )]
     ZeroEnergyLeft {
-        ring: String,
+        ring: super::Name,
         zero: usize,
         lowest_hz: f64,
     },

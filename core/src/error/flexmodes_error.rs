@@ -11,7 +11,7 @@ pub enum Error {
     /// A scene id that is not in the registry.
     #[error("unknown scene `{id}` (known scenes: {})", known.join(", "))]
     UnknownScene {
-        id: String,
+        id: super::Excerpt,
         known: Vec<&'static str>,
     },
 
@@ -42,7 +42,7 @@ pub enum Error {
     NodeOutOfRange {
         node: usize,
         count: usize,
-        body: String,
+        body: super::Name,
     },
 
     /// The same node was given twice in a boundary or master set.
@@ -58,7 +58,7 @@ pub enum Error {
     NoSuchDof {
         node: usize,
         dof: &'static str,
-        body: String,
+        body: super::Name,
         carried: Vec<&'static str>,
     },
 
@@ -109,13 +109,16 @@ pub enum Error {
         named.join(", ")
     )]
     InvalidSize {
-        token: String,
+        token: super::Excerpt,
         named: Vec<&'static str>,
     },
 
     /// A peer a bench runs (a process) failed: the last line it wrote to stderr.
     #[error("{peer} failed: {stderr}")]
-    PeerFailed { peer: &'static str, stderr: String },
+    PeerFailed {
+        peer: &'static str,
+        stderr: super::Excerpt,
+    },
 
     /// A file a peer wrote (`file`) that does not parse.
     #[error("{peer} wrote a {file} that does not parse")]
@@ -131,7 +134,7 @@ pub enum Error {
     /// a frame whose parts do not belong together).
     #[error("the visual `{path}` has {found} {what}; {expected} expected")]
     MismatchedSeries {
-        path: String,
+        path: super::Name,
         what: &'static str,
         expected: usize,
         found: usize,
@@ -157,7 +160,7 @@ pub enum Error {
          body; some DOF are unconnected or a joint is missing"
     )]
     Mechanism {
-        body: String,
+        body: super::Name,
         zero_modes: usize,
         rigid: usize,
         threshold_hz: f64,

@@ -27,7 +27,7 @@ pub enum PencilPart {
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub enum LabelContext {
     /// The body (by its name) the matrix belongs to.
-    Body(String),
+    Body(super::Name),
     /// The reduction method (by its id) the matrix belongs to.
     Method(&'static str),
     /// The frequency the matrix was formed at, Hz.
@@ -53,7 +53,7 @@ impl MatrixLabel {
     }
 
     /// This label, of a body.
-    pub fn of_body(name: &'static str, body: impl Into<String>) -> Self {
+    pub fn of_body(name: &'static str, body: impl Into<super::Name>) -> Self {
         Self {
             context: Some(LabelContext::Body(body.into())),
             ..Self::of(name)

@@ -30,32 +30,38 @@ pub enum MatrixLineProblem {
     )]
     NoSuchMatrix {
         format: &'static str,
-        wanted: String,
-        found: Vec<String>,
+        wanted: super::Name,
+        found: Vec<super::Name>,
     },
     /// A named matrix with no entries.
     #[error("`{matrix}` has no entries")]
-    MatrixEmpty { matrix: String },
+    MatrixEmpty { matrix: super::Name },
 
     /// A field that should be a number and is not: `field` what it is, `expected` what kind
     /// of number ("a real number", "an integer", "a count", …).
     #[error("the {field} `{text}` is not {expected}")]
     NotANumber {
         field: &'static str,
-        text: String,
+        text: super::Excerpt,
         expected: &'static str,
     },
     /// A line that is not laid out as the format's lines are.
     #[error("`{text}`: a line here is `{layout}`")]
-    NotLayout { text: String, layout: &'static str },
+    NotLayout {
+        text: super::Excerpt,
+        layout: &'static str,
+    },
     /// A Fortran edit descriptor that cannot be read.
     #[error("the {what} format `{text}` is not a Fortran field such as (1P,3E23.16)")]
-    NotAFortranFormat { what: &'static str, text: String },
+    NotAFortranFormat {
+        what: &'static str,
+        text: super::Excerpt,
+    },
     /// A header field naming a kind of matrix that describes no body.
     #[error("{field} `{value}`: {needs}")]
     Unsupported {
         field: &'static str,
-        value: String,
+        value: super::Excerpt,
         needs: &'static str,
     },
 
@@ -77,7 +83,7 @@ pub enum MatrixLineProblem {
     TooMany {
         what: &'static str,
         expected: usize,
-        text: String,
+        text: super::Excerpt,
     },
     /// Harwell–Boeing: the fields read from a section's lines are not as many as its header
     /// says.
@@ -114,12 +120,15 @@ pub enum MatrixLineProblem {
         "DOF `{component}` of node {node} is not a displacement (1-3, UX UY UZ) or rotation \
          (4-6, ROTX ROTY ROTZ)"
     )]
-    NotAComponent { node: usize, component: String },
+    NotAComponent {
+        node: usize,
+        component: super::Excerpt,
+    },
     /// A DOF the body's nodes do not carry.
     #[error("node {node} has DOF `{dof}`, which the body's DOF ({}) do not include", body.join(", "))]
     DofNotInBody {
         node: usize,
-        dof: String,
+        dof: super::Excerpt,
         body: Vec<&'static str>,
     },
     /// A node outside the body's nodes.
@@ -129,7 +138,7 @@ pub enum MatrixLineProblem {
     #[error("node {node} DOF `{dof}` already has equation {before}")]
     DofTwice {
         node: usize,
-        dof: String,
+        dof: super::Excerpt,
         before: usize,
     },
     /// Equation 0 in a map numbered from 1.
@@ -188,17 +197,17 @@ pub enum MatrixLineProblem {
     HeaderLength { length: usize },
     /// OP4: a matrix without its closing record.
     #[error("`{matrix}` ends before its closing record")]
-    NoClosingRecord { matrix: String },
+    NoClosingRecord { matrix: super::Name },
     /// OP4: a column record too short for its header.
     #[error("a column record of {length} bytes")]
     ColumnRecordShort { length: usize },
     /// OP4: a column number below 1.
     #[error("`{matrix}` has no column {column}")]
-    NoSuchColumn { matrix: String, column: i64 },
+    NoSuchColumn { matrix: super::Name, column: i64 },
     /// OP4: a row outside the matrix.
     #[error("row {row} of column {column}: `{matrix}` has {rows}")]
     RowOutOfRange {
-        matrix: String,
+        matrix: super::Name,
         row: i64,
         column: i64,
         rows: usize,
@@ -221,17 +230,17 @@ pub enum MatrixLineProblem {
     },
     /// OP4 (ASCII): the file ends inside a column.
     #[error("`{matrix}` ends inside column {column}")]
-    EndsInsideColumn { matrix: String, column: i64 },
+    EndsInsideColumn { matrix: super::Name, column: i64 },
     /// OP4 (ASCII): a line without values where a column's values go on.
     #[error("a line without values inside column {column}")]
     LineWithoutValues { column: i64 },
 }
 
 /// `names` joined, or "none".
-fn listed(names: &[String]) -> String {
+fn listed(names: &[super::Name]) -> String {
     if names.is_empty() {
         "none".into()
     } else {
-        names.join(", ")
+        super::name::joined(names)
     }
 }

@@ -22,7 +22,7 @@ pub enum MeshError {
     /// A frame element naming a section the frame does not define.
     #[error("an element of `{body}` uses section {section} of {sections} sections")]
     SectionOutOfRange {
-        body: String,
+        body: super::Name,
         section: usize,
         sections: usize,
     },
@@ -39,7 +39,7 @@ pub enum MeshError {
         "a rigid body's mass can be lumped only on a 6-DOF node of a lumped-mass body (node {node} of {nodes} in `{body}`)"
     )]
     NotALumpedFrameNode {
-        body: String,
+        body: super::Name,
         node: usize,
         nodes: usize,
     },

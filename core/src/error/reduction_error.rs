@@ -19,7 +19,7 @@ pub enum ReductionError {
     /// not exist or naming one twice.
     #[error("invalid {set} DOF set: {problem}")]
     InvalidDofSet {
-        set: String,
+        set: super::DofSetName,
         problem: super::DofSetProblem,
     },
 
@@ -52,7 +52,7 @@ pub enum ReductionError {
     /// which: its DOF by node and name, how many, or whose (`of the steel_rod`).
     #[error("invalid MacNeal-Rubin r-set {set}: {problem}")]
     InvalidRSet {
-        set: String,
+        set: super::RSetName,
         problem: super::RSetProblem,
     },
 
@@ -140,7 +140,7 @@ pub enum ReductionError {
 
     /// Nodal-fixed axes along z of a planar body.
     #[error("invalid nodal-fixed axes: the {body} is planar: use the x or y axis")]
-    AxesOutOfPlane { body: String },
+    AxesOutOfPlane { body: super::Name },
 
     /// A nodal-fixed anchor coordinate that is not a boundary (identity) column of Ψ.
     #[error(

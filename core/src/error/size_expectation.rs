@@ -12,11 +12,14 @@ pub enum SizeExpectation {
     LikeStiffness { n: usize },
     /// Without coordinates, the DOF must divide into nodes of `per` DOF.
     #[error("its DOF do not divide into nodes of {per} DOF (`dofs` in {body_file})")]
-    WholeNodes { per: usize, body_file: String },
+    WholeNodes { per: usize, body_file: super::Name },
     /// As many rows as the DOF map has equations.
     #[error("the DOF map {map} has {equations} equations")]
-    DofMapEquations { map: String, equations: usize },
+    DofMapEquations { map: super::Name, equations: usize },
     /// The nodes times their DOF.
-    #[error("{nodes} nodes with {} DOF each ({}) make {} DOF", dofs.len(), dofs.join(", "), nodes * dofs.len())]
-    NodesTimesDof { nodes: usize, dofs: Vec<String> },
+    #[error("{nodes} nodes with {} DOF each ({}) make {} DOF", dofs.len(), super::name::joined(dofs), nodes * dofs.len())]
+    NodesTimesDof {
+        nodes: usize,
+        dofs: Vec<super::Name>,
+    },
 }

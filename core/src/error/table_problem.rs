@@ -6,7 +6,7 @@
 pub enum TableProblem {
     /// A line that is not a row of numbers (past the first line, which may be a header).
     #[error("`{text}` is not a row of numbers")]
-    NotNumbers { text: String },
+    NotNumbers { text: super::Excerpt },
     /// An edge row with fewer than two nodes.
     #[error("an edge needs two nodes (a face three or more)")]
     EdgeTooShort,

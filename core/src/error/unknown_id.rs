@@ -8,7 +8,7 @@ pub struct UnknownId {
     /// What was named: `method`, `integrator`, `axis type`, `Ψ format`.
     pub what: &'static str,
     /// The id given.
-    pub id: String,
+    pub id: super::Excerpt,
     /// The known ids.
     pub known: Vec<&'static str>,
 }

@@ -107,7 +107,7 @@ fn frame_ring_still(model: &FeModel, frame: &RigidInterface, modes: &Mat<f64>) -
             if moved > 1e-12 * largest {
                 return Err(refuse(ExportProblem::FrameRingMoves {
                     node,
-                    ring: frame.name.clone(),
+                    ring: (&frame.name).into(),
                     moved,
                     largest,
                 }));
@@ -142,14 +142,14 @@ pub fn exudyn_body(
         .collect();
     if keep.len() + 6 != basis.size() {
         return Err(refuse(ExportProblem::NoConstraintModes {
-            ring: frame.name.clone(),
+            ring: (&frame.name).into(),
             other: keep.len(),
             columns: basis.size(),
         }));
     }
     if keep.is_empty() {
         return Err(refuse(ExportProblem::NothingElastic {
-            ring: frame.name.clone(),
+            ring: (&frame.name).into(),
         }));
     }
     let modes = Mat::from_fn(order.len(), keep.len(), |i, j| {
@@ -171,7 +171,7 @@ pub fn exudyn_body(
     let zero = zero_energy_below(&hz, zero_energy_threshold_hz(model));
     if zero > 0 {
         return Err(refuse(ExportProblem::ZeroEnergyLeft {
-            ring: frame.name.clone(),
+            ring: (&frame.name).into(),
             zero,
             lowest_hz: hz[0],
         }));

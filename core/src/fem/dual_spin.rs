@@ -206,7 +206,7 @@ pub fn add_lumped(model: &mut FeModel, node: usize, mass: &[f64; 6]) -> Result<(
             Ok(())
         }
         _ => Err(MeshError::NotALumpedFrameNode {
-            body: model.name.clone(),
+            body: (&model.name).into(),
             node: NodeIndex(node).number(),
             nodes: model.nodes.len(),
         }

@@ -98,13 +98,13 @@ impl FeModel {
             return Err(Error::NodeOutOfRange {
                 node,
                 count: self.node_count(),
-                body: self.name.clone(),
+                body: (&self.name).into(),
             });
         }
         NodeIndex::of_number(node).ok_or(Error::NodeOutOfRange {
             node,
             count: self.node_count(),
-            body: self.name.clone(),
+            body: (&self.name).into(),
         })
     }
 
@@ -125,7 +125,7 @@ impl FeModel {
         self.dofs.index(i, dof).ok_or_else(|| Error::NoSuchDof {
             node,
             dof: dof.name(),
-            body: self.name.clone(),
+            body: (&self.name).into(),
             carried: self.dofs.node_dofs().iter().map(|d| d.name()).collect(),
         })
     }

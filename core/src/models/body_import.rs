@@ -22,7 +22,7 @@ pub fn refuse_mechanism(
     let rigid = model.dofs.rigid_body_count();
     if full.zero_modes > rigid {
         return Err(Error::Mechanism {
-            body: model.name.clone(),
+            body: (&model.name).into(),
             zero_modes: full.zero_modes,
             rigid,
             threshold_hz: full.threshold_hz,

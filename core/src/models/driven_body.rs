@@ -6,7 +6,7 @@
 //! model's history (the mean displacement of chosen node sets in the frame, and the reaction
 //! at the drive) is compared with the full body's.
 
-use crate::error::DofSetProblem;
+use crate::error::{DofSetName, DofSetProblem};
 use std::{sync::Arc, time::Instant};
 
 use faer::Mat;
@@ -408,7 +408,7 @@ fn drive_interface(
             .cloned()
             .expect("named above")),
         _ => Err(ReductionError::InvalidDofSet {
-            set: item.to_string(),
+            set: DofSetName::Given(item.into()),
             problem: DofSetProblem::DriveNotRigid,
         }
         .into()),
@@ -501,8 +501,8 @@ fn output_names(
 /// The nodes (1-based) of output `name`: a node set, or `node:N`.
 fn output_nodes(body: &ImportedBody, name: &str) -> Result<Vec<usize>> {
     let unknown = || DynamicsError::UnknownOutput {
-        name: name.to_string(),
-        known: body.node_sets.keys().cloned().collect(),
+        name: name.into(),
+        known: crate::error::Name::all(body.node_sets.keys()),
     };
     Ok(match name.strip_prefix("node:") {
         Some(number) => vec![number.parse::<usize>().map_err(|_| unknown())?],
@@ -543,7 +543,7 @@ fn pinned_rings(
             .iter()
             .find(|i| i.name == name)
             .ok_or_else(|| ReductionError::InvalidDofSet {
-                set: item.clone(),
+                set: DofSetName::Given(item.into()),
                 problem: DofSetProblem::PinNotRigid,
             })?;
         let rows = interface.rigid_motions(model)?;

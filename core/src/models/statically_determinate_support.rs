@@ -1,7 +1,7 @@
 //! A statically determinate support of a free solid body (the r-set of MacNeal–Rubin,
 //! Spanos–Tsuha Eq. 11): 3-2-1 translations of three interior nodes far apart.
 
-use crate::error::RSetProblem;
+use crate::error::{RSetName, RSetProblem};
 use crate::{
     Result,
     error::ReductionError,
@@ -15,7 +15,7 @@ use crate::{
 /// body has fewer than three such nodes or they lie on a line.
 pub fn three_two_one_support(model: &FeModel, excluded: &[usize]) -> Result<Vec<usize>> {
     let invalid = |problem| ReductionError::InvalidRSet {
-        set: "of a 3-2-1 support".into(),
+        set: RSetName::Support321,
         problem,
     };
     let candidates: Vec<NodeIndex> = (0..model.node_count())

@@ -9,7 +9,7 @@
 //! = A\,u_S$ ($R$ the ring's rigid-motion matrix, $D$ the weights on every DOF of a node);
 //! a master load $F_m$ reaches the ring as $f_S = A^TF_m$, doing the same virtual work.
 
-use crate::error::DofSetProblem;
+use crate::error::{DofSetName, DofSetProblem};
 use faer::Mat;
 
 use super::rigid_interface::rigid_motion_rows;
@@ -36,7 +36,10 @@ impl AveragingInterface {
         nodes: &[usize],
         weights: Option<Vec<f64>>,
     ) -> Result<Self> {
-        let set = || format!("rbe3 interface `{name}`");
+        let set = || DofSetName::Interface {
+            kind: "rbe3",
+            name: name.into(),
+        };
         if nodes.is_empty() {
             return Err(ReductionError::InvalidDofSet {
                 set: set(),
@@ -112,7 +115,10 @@ impl AveragingInterface {
         // Written so that NaN (a degenerate ring) fails too.
         if lo.is_nan() || lo <= 1e-10 * hi {
             return Err(ReductionError::InvalidDofSet {
-                set: format!("rbe3 interface `{}`", self.name),
+                set: DofSetName::Interface {
+                    kind: "rbe3",
+                    name: (&self.name).into(),
+                },
                 problem: DofSetProblem::NoRigidMotion {
                     nodes: self.nodes.len(),
                     condition: hi / lo.max(f64::MIN_POSITIVE),

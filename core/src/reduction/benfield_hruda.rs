@@ -2,7 +2,7 @@
 //! interface carries the constraint-mode mass and stiffness of the components attached to it.
 
 use super::ReductionError;
-use crate::error::DofSetProblem;
+use crate::error::{DofSetName, DofSetProblem};
 use faer::Mat;
 
 use super::{
@@ -124,7 +124,10 @@ pub fn benfield_hruda(
         let ni = face.dofs.len();
         if face.loading.mass.nrows() != ni || face.loading.stiffness.nrows() != ni {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
-                set: format!("interface {}", c + 1),
+                set: DofSetName::Numbered {
+                    what: "interface",
+                    number: c + 1,
+                },
                 problem: DofSetProblem::Shape {
                     what: "rows of its loading",
                     found: if face.loading.mass.nrows() != ni {
@@ -139,7 +142,10 @@ pub fn benfield_hruda(
         let mut taken = vec![0u8; n];
         super::partition::check_dof_set(
             model,
-            &format!("interface {}", c + 1),
+            DofSetName::Numbered {
+                what: "interface",
+                number: c + 1,
+            },
             &face.dofs,
             &mut taken,
             1,

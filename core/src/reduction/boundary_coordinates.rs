@@ -6,7 +6,7 @@
 //! columns are $[R_S;\,-K_{ii}^{-1}K_{ib}R_S]$: six right-hand sides per interface instead of
 //! three per tied node. The fixed-interface modes are unchanged (the ring is held either way).
 
-use crate::error::DofSetProblem;
+use crate::error::{DofSetName, DofSetProblem};
 use faer::{Mat, sparse::SparseColMat};
 
 use super::{Column, ColumnKind, MASTER_DOF_NAMES, ReductionError, RigidInterface};
@@ -64,7 +64,10 @@ impl BoundaryCoordinates {
         // Per boundary DOF: tied into interface k with rigid-motion row, or not.
         let mut tied: Vec<Option<(usize, [f64; 6])>> = vec![None; b.len()];
         for (k, interface) in interfaces.iter().enumerate() {
-            let set = || format!("rbe2 interface `{}`", interface.name);
+            let set = || DofSetName::Interface {
+                kind: "rbe2",
+                name: (&interface.name).into(),
+            };
             for (dof, row) in interface.rigid_motions(model)? {
                 let j = position[dof];
                 if j == usize::MAX {

@@ -2,7 +2,7 @@
 //! component in its own Ritz coordinates, joined by equal displacements at shared nodes.
 
 use super::ReductionError;
-use crate::error::DofSetProblem;
+use crate::error::{DofSetName, DofSetProblem};
 use faer::Mat;
 
 use crate::{
@@ -67,7 +67,10 @@ impl Synthesis {
             ];
             if let Some(&(what, found, expected)) = shapes.iter().find(|(_, f, e)| f != e) {
                 return Err(Error::Reduction(ReductionError::InvalidDofSet {
-                    set: format!("component {}", ci + 1),
+                    set: DofSetName::Numbered {
+                        what: "component",
+                        number: ci + 1,
+                    },
                     problem: DofSetProblem::Shape {
                         what,
                         found,

@@ -132,7 +132,7 @@ pub fn restrained_modes(
 pub fn mass_normalised_rigid_modes(model: &FeModel) -> Result<Mat<f64>> {
     if model.rigid_motions != RigidMotions::FromGeometry {
         return Err(Error::Reduction(ReductionError::InvalidRSet {
-            set: format!("of the {}", model.name),
+            set: crate::error::RSetName::OfBody((&model.name).into()),
             problem: crate::error::RSetProblem::UnknownRigidMotions,
         }));
     }

@@ -2,7 +2,7 @@
 //! modes plus one residual-flexibility mode per interface DOF.
 
 use super::ReductionError;
-use crate::error::RSetProblem;
+use crate::error::{RSetName, RSetProblem};
 use faer::Mat;
 
 use super::{
@@ -56,7 +56,7 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
     } else {
         if !p.r_set.is_empty() {
             return Err(Error::Reduction(ReductionError::InvalidRSet {
-                set: format!("of {} DOF", p.r_set.len()),
+                set: RSetName::Count(p.r_set.len()),
                 problem: RSetProblem::HeldComponent,
             }));
         }
@@ -167,24 +167,26 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
 /// motions restricted to it must have full rank.
 fn check_r_set(model: &FeModel, r_set: &[usize], phi_r: faer::MatRef<'_, f64>) -> Result<()> {
     let rigid = phi_r.ncols();
-    let labels = || {
+    let dofs = || {
         r_set
             .iter()
-            .map(|&d| model.dof_label(d))
-            .collect::<Vec<_>>()
-            .join(", ")
+            .map(|&d| {
+                let (node, component) = model.dof_node(d);
+                (node.number(), component.name())
+            })
+            .collect()
     };
     let rows = Mat::from_fn(r_set.len(), rigid, |r, c| phi_r[(r_set[r], c)]);
     let rank = crate::linalg::numerical_rank(rows.as_ref(), 1e-9)?;
     if rank < rigid {
         return Err(Error::Reduction(ReductionError::InvalidRSet {
-            set: format!("[{}]", labels()),
+            set: RSetName::Dofs(dofs()),
             problem: RSetProblem::Deficient { rank, rigid },
         }));
     }
     if r_set.len() > rigid {
         return Err(Error::Reduction(ReductionError::InvalidRSet {
-            set: format!("[{}]", labels()),
+            set: RSetName::Dofs(dofs()),
             problem: RSetProblem::Redundant {
                 dofs: r_set.len(),
                 rigid,

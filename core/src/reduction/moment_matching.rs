@@ -121,7 +121,7 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
     };
     let extra = p.loads.as_ref().map_or(0, |(l, _)| l.ncols());
     if let Some((l, labels)) = &p.loads {
-        check_vectors(model, "loads", l, labels)?;
+        check_vectors(model, "moment-matching loads", l, labels)?;
     }
     let b1 = Mat::from_fn(nf, p.inputs.len() + extra, |r, c| {
         if c < p.inputs.len() {
@@ -136,7 +136,7 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
     let mut mv = Mat::<f64>::zeros(nf, 0);
     let mut columns = Vec::new();
     if let Some((lead, labels)) = &p.leading {
-        check_vectors(model, "leading vectors", lead, labels)?;
+        check_vectors(model, "moment-matching leading vectors", lead, labels)?;
         v = Mat::from_fn(nf, lead.ncols(), |r, c| lead[(free[r], c)]);
         mv = m_ff.mul(v.as_ref());
         columns.extend(labels.iter().map(|label| Column {
@@ -253,14 +253,19 @@ fn free_dofs(model: &FeModel, p: &MomentMatchingParameters) -> Result<Vec<usize>
 
 /// Refuses `vectors` (the loads or the leading vectors) without a row per DOF of the body or
 /// a label per column.
-fn check_vectors(model: &FeModel, what: &str, vectors: &Mat<f64>, labels: &[String]) -> Result<()> {
+fn check_vectors(
+    model: &FeModel,
+    set: &'static str,
+    vectors: &Mat<f64>,
+    labels: &[String],
+) -> Result<()> {
     let shapes = [
         ("rows", vectors.nrows(), model.dof_count()),
         ("labels", labels.len(), vectors.ncols()),
     ];
     if let Some(&(rows_or_labels, found, expected)) = shapes.iter().find(|(_, f, e)| f != e) {
         return Err(ReductionError::InvalidDofSet {
-            set: format!("moment-matching {what}"),
+            set: set.into(),
             problem: DofSetProblem::Shape {
                 what: rows_or_labels,
                 found,

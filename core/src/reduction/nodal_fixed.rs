@@ -75,7 +75,7 @@ impl NodalFixedAxes {
         let dims: Vec<Direction> = Direction::ALL[..model.spatial_dim()].to_vec();
         if !dims.contains(&axis) || (model.spatial_dim() == 3 && !dims.contains(&plane_with)) {
             return Err(ReductionError::AxesOutOfPlane {
-                body: model.name.clone(),
+                body: (&model.name).into(),
             }
             .into());
         }

@@ -2,7 +2,7 @@
 //! dense path (small bodies) or the sparse one (refined meshes).
 
 use super::ReductionError;
-use crate::error::{DofSetProblem, FreeMotion};
+use crate::error::{DofSetName, DofSetProblem, FreeMotion};
 use std::time::Instant;
 
 use faer::{Mat, MatRef, sparse::SparseColMat};
@@ -602,28 +602,29 @@ fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<FreeMotion>>
 /// per DOF: 0 free, otherwise the mark of the set that took it), then marks it with `mark`.
 pub(crate) fn check_dof_set(
     model: &FeModel,
-    set: &str,
+    set: impl Into<DofSetName>,
     dofs: &[usize],
     taken: &mut [u8],
     mark: u8,
 ) -> Result<()> {
+    let set = set.into();
     let n = model.dof_count();
     if dofs.is_empty() {
         return Err(Error::Reduction(ReductionError::InvalidDofSet {
-            set: set.into(),
+            set: set.clone(),
             problem: DofSetProblem::Empty,
         }));
     }
     for &d in dofs {
         if d >= n {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
-                set: set.into(),
+                set: set.clone(),
                 problem: DofSetProblem::OutOfRange { dof: d, count: n },
             }));
         }
         if taken[d] == mark {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
-                set: set.into(),
+                set: set.clone(),
                 problem: {
                     let (node, dof) = model.dof_node(d);
                     DofSetProblem::Twice {
@@ -635,7 +636,7 @@ pub(crate) fn check_dof_set(
         }
         if taken[d] != 0 {
             return Err(Error::Reduction(ReductionError::InvalidDofSet {
-                set: set.into(),
+                set: set.clone(),
                 problem: {
                     let (node, dof) = model.dof_node(d);
                     DofSetProblem::InAnotherSet {

@@ -13,7 +13,7 @@
 //! interior is unchanged, $K'_{ib} = K_{ib}R$, so the constraint modes are
 //! $-K_{ii}^{-1}K_{ib}R$, and the fixed-interface modes are those with the ring held.
 
-use crate::error::DofSetProblem;
+use crate::error::{DofSetName, DofSetProblem};
 use faer::Mat;
 
 use super::{Basis, Column, ColumnKind};
@@ -45,7 +45,10 @@ impl RigidInterface {
         }
         if nodes.is_empty() {
             return Err(ReductionError::InvalidDofSet {
-                set: format!("rbe2 interface `{name}`"),
+                set: DofSetName::Interface {
+                    kind: "rbe2",
+                    name: name.into(),
+                },
                 problem: DofSetProblem::NoNodes,
             }
             .into());
@@ -123,7 +126,10 @@ pub fn tie_rigid_interfaces(
                 .iter()
                 .position(|c| c.dof == Some(dof) && boundary_column(&c.kind))
                 .ok_or_else(|| ReductionError::InvalidDofSet {
-                    set: format!("rbe2 interface `{}`", interface.name),
+                    set: DofSetName::Interface {
+                        kind: "rbe2",
+                        name: (&interface.name).into(),
+                    },
                     problem: {
                         let (node, d) = model.dof_node(dof);
                         DofSetProblem::NotInBoundary {
@@ -135,7 +141,10 @@ pub fn tie_rigid_interfaces(
                 })?;
             if tied[j].is_some() {
                 return Err(ReductionError::InvalidDofSet {
-                    set: format!("rbe2 interface `{}`", interface.name),
+                    set: DofSetName::Interface {
+                        kind: "rbe2",
+                        name: (&interface.name).into(),
+                    },
                     problem: DofSetProblem::TiedTwice {
                         node: model.dof_node(dof).0.number(),
                     },
