@@ -340,6 +340,26 @@ fn malformed_matrix_files_give_named_errors_with_file_and_line() {
     }
     assert!(e.to_string().contains("k.mtx:4"), "{e}");
 
+    // A field of a megabyte (a binary file saved as .mtx): quoted in part, on one line.
+    let long = format!("-4{}", "x".repeat(1 << 20));
+    let (_, r) = bar(
+        "long",
+        BAR_BODY,
+        &BAR_K.replace("2 1 -4", &format!("2 1 {long}")),
+        BAR_M,
+    );
+    let e = r.unwrap_err();
+    let message = e.to_string();
+    assert!(
+        message.contains("k.mtx:4") && message.contains("-4xxx") && message.contains('…'),
+        "{message:.300}"
+    );
+    assert!(
+        message.len() < 400,
+        "{} bytes: {message:.300}",
+        message.len()
+    );
+
     // An index out of range.
     let (_, r) = bar(
         "range",
