@@ -98,7 +98,9 @@ const FRAME_BLOCK: usize = 6;
 /// 6 × 6 solves per body where the indefinite factorisation of the whole costs
 /// $O((n_f + n_r)^3)$.
 ///
-/// The solution is written into `ws` (buffers kept from one call to the next) and returned.
+/// The solution is written into `ws` (buffers kept from one call to the next) and returned;
+/// the factors stay in `ws`, so [`BlockSaddlePointWorkspace::resolve`] solves the same
+/// system for another right-hand side at the cost of the triangular solves.
 pub fn block_saddle_point_solve<'w>(
     kkt: &DMatrix<f64>,
     rhs: &DVector<f64>,
@@ -110,9 +112,12 @@ pub fn block_saddle_point_solve<'w>(
     &ws.out
 }
 
-/// Buffers [`block_saddle_point_solve`] reuses from one call to the next.
+/// Buffers [`block_saddle_point_solve`] reuses from one call to the next, and the factors of
+/// the last system it solved.
 #[derive(Debug, Clone, Default)]
 pub struct BlockSaddlePointWorkspace {
+    /// The order of the factored system and its frame rows; `None` before a factorisation.
+    factored: Option<(usize, usize)>,
     /// The constraint block after elimination and its right-hand side.
     schur: DMatrix<f64>,
     g: DVector<f64>,
@@ -121,6 +126,8 @@ pub struct BlockSaddlePointWorkspace {
     /// The eliminated frame blocks: the first `eliminated` of `blocks`.
     blocks: Vec<EliminatedBlock>,
     eliminated: usize,
+    /// How what is left after the elimination is solved.
+    reduced: ReducedSolve,
     /// The factor of $S$.
     scaled_schur: ScaledSchur,
     /// The kept blocks' system when blocks are kept.
@@ -129,13 +136,189 @@ pub struct BlockSaddlePointWorkspace {
     out: DVector<f64>,
 }
 
+/// How the system left after the elimination of the definite frame blocks is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+enum ReducedSolve {
+    /// No block kept, $S$ definite: its scaled Cholesky factor.
+    #[default]
+    Schur,
+    /// No block kept, $S$ not clearly definite: [`saddle_point_solve`] of $S$.
+    IndefiniteSchur,
+    /// Blocks kept, $S$ and the kept frames' dual matrix definite: the multipliers
+    /// eliminated in turn ([`KeptSystem::dual_solve`]).
+    Dual,
+    /// Blocks kept, otherwise: the reduced saddle-point system ([`KeptSystem::reduced_solve`]).
+    Reduced,
+}
+
+impl BlockSaddlePointWorkspace {
+    /// The solution for the right-hand side `rhs` of the system the last
+    /// [`block_saddle_point_solve`] with this workspace factored, from its factors: the
+    /// same numbers a new [`block_saddle_point_solve`] of that system gives, to the bit,
+    /// for the cost of the triangular solves.
+    ///
+    /// # Panics
+    /// Before a factorisation, or for a right-hand side of another length.
+    pub fn resolve(&mut self, rhs: &DVector<f64>) -> &DVector<f64> {
+        self.solve_factored(rhs);
+        &self.out
+    }
+
+    /// Eliminates every clearly definite frame block of `kkt` and factors what is left (see
+    /// [`block_saddle_point_solve`]).
+    fn factor(&mut self, kkt: &DMatrix<f64>, nf: usize, frame_scale: f64) -> BlockRoute {
+        let n = kkt.nrows();
+        assert!(
+            nf.is_multiple_of(FRAME_BLOCK) && nf <= n && kkt.ncols() == n,
+            "block_saddle_point_solve: {n} × {} system, {nf} frame rows",
+            kkt.ncols(),
+        );
+        let nr = n - nf;
+        // The constraint block after elimination (−D − Σ B_b A_b⁻¹ B_bᵀ).
+        if self.schur.shape() != (nr, nr) {
+            self.schur = DMatrix::zeros(nr, nr);
+        }
+        self.schur.copy_from(&kkt.view((nf, nf), (nr, nr)));
+        let schur = &mut self.schur;
+        self.kept.clear();
+        self.eliminated = 0;
+        let entries = kkt.as_slice();
+        for b in 0..nf / FRAME_BLOCK {
+            let o = FRAME_BLOCK * b;
+            let a = Matrix6::from_fn(|i, j| kkt[(o + i, o + j)]);
+            let Some(chol) = a.cholesky().filter(|c| {
+                let pivots = c.l_dirty().diagonal();
+                pivots
+                    .iter()
+                    .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale)
+                    && pivots_ok(pivots.iter().copied())
+            }) else {
+                self.kept.push(b);
+                continue;
+            };
+            // The block's coupling B_b: column o + j of the constraint rows, contiguous.
+            let coupling: [&[f64]; FRAME_BLOCK] =
+                std::array::from_fn(|j| &entries[(o + j) * n + nf..(o + j + 1) * n]);
+            if self.blocks.len() == self.eliminated {
+                self.blocks.push(EliminatedBlock::default());
+            }
+            let block = &mut self.blocks[self.eliminated];
+            self.eliminated += 1;
+            block.first = o;
+            block.active.clear();
+            block
+                .active
+                .extend((0..nr).filter(|&r| coupling.iter().any(|column| column[r] != 0.0)));
+            block.rows.clear();
+            block.rows.extend(
+                block
+                    .active
+                    .iter()
+                    .map(|&r| Vector6::from_fn(|j, _| coupling[j][r])),
+            );
+            block.y.clear();
+            block.y.extend(block.rows.iter().map(|row| chol.solve(row)));
+            for (&ri, bi) in block.active.iter().zip(&block.rows) {
+                for (&rj, yj) in block.active.iter().zip(&block.y) {
+                    schur[(ri, rj)] -= bi.dot(yj);
+                }
+            }
+            block.chol = Some(chol);
+        }
+        let schur = &self.schur;
+        self.reduced = if self.kept.is_empty() {
+            if self.scaled_schur.factor(schur) {
+                ReducedSolve::Schur
+            } else {
+                ReducedSolve::IndefiniteSchur
+            }
+        } else {
+            self.kept_system.gather(kkt, nf, &self.kept);
+            if self
+                .kept_system
+                .dual_factor(&mut self.scaled_schur, schur, frame_scale)
+            {
+                ReducedSolve::Dual
+            } else {
+                ReducedSolve::Reduced
+            }
+        };
+        self.factored = Some((n, nf));
+        BlockRoute {
+            kept: self.kept.len(),
+            definite_schur: matches!(self.reduced, ReducedSolve::Schur | ReducedSolve::Dual),
+        }
+    }
+
+    /// The solution for `rhs` from the factors of [`Self::factor`], into `out`.
+    fn solve_factored(&mut self, rhs: &DVector<f64>) {
+        let Some((n, nf)) = self.factored else {
+            panic!("BlockSaddlePointWorkspace: a solve before a factorisation");
+        };
+        assert_eq!(
+            rhs.len(),
+            n,
+            "block_saddle_point_solve: {} right-hand side entries for {n} rows",
+            rhs.len()
+        );
+        let nr = n - nf;
+        resize(&mut self.g, nr);
+        self.g.copy_from(&rhs.rows(nf, nr));
+        let g = &mut self.g;
+        for block in &mut self.blocks[..self.eliminated] {
+            let chol = block.chol.as_ref().expect("factored with the block");
+            block.a_f = chol.solve(&Vector6::from_fn(|i, _| rhs[block.first + i]));
+            for (&ri, bi) in block.active.iter().zip(&block.rows) {
+                g[ri] -= bi.dot(&block.a_f);
+            }
+        }
+        resize(&mut self.out, n);
+        self.out.as_mut_slice().fill(0.0);
+        let (out, schur, g) = (&mut self.out, &self.schur, &self.g);
+        match self.reduced {
+            ReducedSolve::Schur => {
+                let lambda = &mut out.as_mut_slice()[nf..];
+                for (l, gi) in lambda.iter_mut().zip(g.iter()) {
+                    *l = -gi;
+                }
+                self.scaled_schur.solve_in_place(lambda);
+            }
+            ReducedSolve::IndefiniteSchur => {
+                out.as_mut_slice()[nf..].copy_from_slice(saddle_point_solve(schur, g).as_slice());
+            }
+            ReducedSolve::Dual | ReducedSolve::Reduced => {
+                let system = &mut self.kept_system;
+                system.gather_forces(rhs, &self.kept);
+                let solved =
+                    self.reduced == ReducedSolve::Dual && system.dual_solve(&self.scaled_schur, g);
+                if !solved {
+                    system.reduced_solve(schur, g);
+                }
+                for (i, &b) in self.kept.iter().enumerate() {
+                    out.rows_mut(FRAME_BLOCK * b, FRAME_BLOCK)
+                        .copy_from(&system.x.rows(FRAME_BLOCK * i, FRAME_BLOCK));
+                }
+                out.rows_mut(nf, nr).copy_from(&system.lambda);
+            }
+        }
+        // x_b = A_b⁻¹ f_b − A_b⁻¹ B_bᵀ λ for every eliminated block.
+        for block in &self.blocks[..self.eliminated] {
+            let mut x = block.a_f;
+            for (&r, yr) in block.active.iter().zip(&block.y) {
+                x -= yr * out[nf + r];
+            }
+            out.rows_mut(block.first, FRAME_BLOCK).copy_from(&x);
+        }
+    }
+}
+
 /// How [`block_saddle_point_solve`] solved a system.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct BlockRoute {
     /// Frame blocks left in the reduced system (not clearly definite).
     kept: usize,
     /// Whether $S$ was definite, so only Cholesky factorisations were needed (with blocks
-    /// kept: the multipliers eliminated in turn, see [`KeptSystem::dual_schur_solve`]).
+    /// kept: the multipliers eliminated in turn, see [`KeptSystem::dual_solve`]).
     definite_schur: bool,
 }
 
@@ -147,112 +330,8 @@ fn solve_by_blocks(
     frame_scale: f64,
     ws: &mut BlockSaddlePointWorkspace,
 ) -> BlockRoute {
-    let n = kkt.nrows();
-    assert!(
-        nf.is_multiple_of(FRAME_BLOCK) && nf <= n && rhs.len() == n && kkt.ncols() == n,
-        "block_saddle_point_solve: {n} × {} system, {} right-hand side entries, {nf} frame rows",
-        kkt.ncols(),
-        rhs.len()
-    );
-    let nr = n - nf;
-    // The constraint block after elimination (−D − Σ B_b A_b⁻¹ B_bᵀ) and its right-hand side.
-    if ws.schur.shape() != (nr, nr) {
-        ws.schur = DMatrix::zeros(nr, nr);
-    }
-    ws.schur.copy_from(&kkt.view((nf, nf), (nr, nr)));
-    if ws.g.len() != nr {
-        ws.g = DVector::zeros(nr);
-    }
-    ws.g.copy_from(&rhs.rows(nf, nr));
-    let (schur, g) = (&mut ws.schur, &mut ws.g);
-    let kept = &mut ws.kept;
-    kept.clear();
-    ws.eliminated = 0;
-    let entries = kkt.as_slice();
-    for b in 0..nf / FRAME_BLOCK {
-        let o = FRAME_BLOCK * b;
-        let a = Matrix6::from_fn(|i, j| kkt[(o + i, o + j)]);
-        let Some(chol) = a.cholesky().filter(|c| {
-            let pivots = c.l_dirty().diagonal();
-            pivots
-                .iter()
-                .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale)
-                && pivots_ok(pivots.iter().copied())
-        }) else {
-            kept.push(b);
-            continue;
-        };
-        // The block's coupling B_b: column o + j of the constraint rows, contiguous.
-        let coupling: [&[f64]; FRAME_BLOCK] =
-            std::array::from_fn(|j| &entries[(o + j) * n + nf..(o + j + 1) * n]);
-        let row = |r: usize| Vector6::from_fn(|j, _| coupling[j][r]);
-        if ws.blocks.len() == ws.eliminated {
-            ws.blocks.push(EliminatedBlock::default());
-        }
-        let block = &mut ws.blocks[ws.eliminated];
-        ws.eliminated += 1;
-        block.first = o;
-        block.active.clear();
-        block
-            .active
-            .extend((0..nr).filter(|&r| coupling.iter().any(|column| column[r] != 0.0)));
-        block.a_f = chol.solve(&Vector6::from_fn(|i, _| rhs[o + i]));
-        block.y.clear();
-        block
-            .y
-            .extend(block.active.iter().map(|&r| chol.solve(&row(r))));
-        for &ri in &block.active {
-            let bi = row(ri);
-            g[ri] -= bi.dot(&block.a_f);
-            for (&rj, yj) in block.active.iter().zip(&block.y) {
-                schur[(ri, rj)] -= bi.dot(yj);
-            }
-        }
-    }
-    if ws.out.len() != n {
-        ws.out = DVector::zeros(n);
-    }
-    ws.out.as_mut_slice().fill(0.0);
-    let out = &mut ws.out;
-    let (schur, g) = (&ws.schur, &ws.g);
-    let kept = &ws.kept;
-    let mut route = BlockRoute {
-        kept: kept.len(),
-        definite_schur: false,
-    };
-    if kept.is_empty() {
-        let lambda = &mut out.as_mut_slice()[nf..];
-        if ws.scaled_schur.factor(schur) {
-            route.definite_schur = true;
-            for (l, gi) in lambda.iter_mut().zip(g.iter()) {
-                *l = -gi;
-            }
-            ws.scaled_schur.solve_in_place(lambda);
-        } else {
-            lambda.copy_from_slice(saddle_point_solve(schur, g).as_slice());
-        }
-    } else {
-        let system = &mut ws.kept_system;
-        system.gather(kkt, rhs, nf, kept);
-        let solved = system.dual_schur_solve(&mut ws.scaled_schur, schur, g, frame_scale);
-        route.definite_schur = solved;
-        if !solved {
-            system.reduced_solve(schur, g);
-        }
-        for (i, &b) in kept.iter().enumerate() {
-            out.rows_mut(FRAME_BLOCK * b, FRAME_BLOCK)
-                .copy_from(&system.x.rows(FRAME_BLOCK * i, FRAME_BLOCK));
-        }
-        out.rows_mut(nf, nr).copy_from(&system.lambda);
-    }
-    // x_b = A_b⁻¹ f_b − A_b⁻¹ B_bᵀ λ for every eliminated block.
-    for block in &ws.blocks[..ws.eliminated] {
-        let mut x = block.a_f;
-        for (&r, yr) in block.active.iter().zip(&block.y) {
-            x -= yr * out[nf + r];
-        }
-        out.rows_mut(block.first, FRAME_BLOCK).copy_from(&x);
-    }
+    let route = ws.factor(kkt, nf, frame_scale);
+    ws.solve_factored(rhs);
     route
 }
 
@@ -263,6 +342,10 @@ struct EliminatedBlock {
     first: usize,
     /// The constraint rows it couples to.
     active: Vec<usize>,
+    /// $B_b$ on those rows, one row each.
+    rows: Vec<Vector6<f64>>,
+    /// The Cholesky factor of $A_b$.
+    chol: Option<nalgebra::Cholesky<f64, nalgebra::U6>>,
     /// $A_b^{-1}B_b^T$, one column per active row.
     y: Vec<Vector6<f64>>,
     /// $A_b^{-1}f_b$.
@@ -318,15 +401,17 @@ impl ScaledSchur {
 }
 
 /// The kept frame blocks of [`block_saddle_point_solve`], their coupling to every constraint
-/// row, their forces, and the solution: buffers kept from one call to the next.
+/// row, their forces, the factors and the solution: buffers kept from one call to the next.
 #[derive(Debug, Clone, Default)]
 struct KeptSystem {
     /// $A_S$, $B_S$ and $f_S$ of the kept blocks.
     a_s: DMatrix<f64>,
     b_s: DMatrix<f64>,
     f_s: DVector<f64>,
-    /// $L^{-1}D[B_S, g]$ ($DSD = LL^T$).
+    /// $Y_B = L^{-1}DB_S$ ($DSD = LL^T$).
     columns: DMatrix<f64>,
+    /// $y_g = L^{-1}Dg$.
+    y_g: DVector<f64>,
     /// The factor of $A_S + B_S^TS^{-1}B_S$.
     dual: SmallCholesky,
     /// The kept frames' unknowns and the multipliers.
@@ -335,13 +420,12 @@ struct KeptSystem {
 }
 
 impl KeptSystem {
-    /// $A_S$, $B_S$ and $f_S$ of the `kept` blocks from the system.
-    fn gather(&mut self, kkt: &DMatrix<f64>, rhs: &DVector<f64>, nf: usize, kept: &[usize]) {
+    /// $A_S$ and $B_S$ of the `kept` blocks from the system.
+    fn gather(&mut self, kkt: &DMatrix<f64>, nf: usize, kept: &[usize]) {
         let (top, nr) = (FRAME_BLOCK * kept.len(), kkt.nrows() - nf);
         reshape(&mut self.a_s, top, top);
         self.a_s.fill(0.0);
         reshape(&mut self.b_s, nr, top);
-        resize(&mut self.f_s, top);
         for (i, &b) in kept.iter().enumerate() {
             let (o, ko) = (FRAME_BLOCK * b, FRAME_BLOCK * i);
             self.a_s
@@ -350,61 +434,72 @@ impl KeptSystem {
             self.b_s
                 .columns_mut(ko, FRAME_BLOCK)
                 .copy_from(&kkt.view((nf, o), (nr, FRAME_BLOCK)));
-            self.f_s
-                .rows_mut(ko, FRAME_BLOCK)
-                .copy_from(&rhs.rows(o, FRAME_BLOCK));
         }
     }
 
-    /// The kept frame blocks' $x_S$ and the multipliers when $S$ is definite, by eliminating
-    /// the multipliers instead (the dual range-space step): $\lambda = S^{-1}(B_Sx_S - g)$
-    /// and $(A_S + B_S^TS^{-1}B_S)\,x_S = f_S + B_S^TS^{-1}g$, a positive definite system of
-    /// six rows per kept block even where $A_S$ is round-off (Ψ holding the rigid motions:
-    /// the axis conditions, among the rows, fix the frame). `false` when either matrix is not
-    /// clearly definite (that of the kept frames also judged against `frame_scale`, as the
-    /// blocks were); the indefinite factorisation of the reduced system then decides.
-    fn dual_schur_solve(
+    /// $f_S$ of the `kept` blocks from the right-hand side.
+    fn gather_forces(&mut self, rhs: &DVector<f64>, kept: &[usize]) {
+        resize(&mut self.f_s, FRAME_BLOCK * kept.len());
+        for (i, &b) in kept.iter().enumerate() {
+            self.f_s
+                .rows_mut(FRAME_BLOCK * i, FRAME_BLOCK)
+                .copy_from(&rhs.rows(FRAME_BLOCK * b, FRAME_BLOCK));
+        }
+    }
+
+    /// Factors the dual range-space step when $S$ is definite: $S$, $Y_B$ and
+    /// $A_S + B_S^TS^{-1}B_S = A_S + Y_B^TY_B$, a positive definite system of six rows per
+    /// kept block even where $A_S$ is round-off (Ψ holding the rigid motions: the axis
+    /// conditions, among the rows, fix the frame). `false` when either matrix is not clearly
+    /// definite (that of the kept frames also judged against `frame_scale`, as the blocks
+    /// were); the indefinite factorisation of the reduced system then decides.
+    fn dual_factor(
         &mut self,
         schur: &mut ScaledSchur,
         neg_s: &DMatrix<f64>,
-        g: &DVector<f64>,
         frame_scale: f64,
     ) -> bool {
         if !schur.factor(neg_s) {
             return false;
         }
         let (m, nr) = (self.a_s.nrows(), neg_s.nrows());
-        // Y = L⁻¹D[B_S, g]: half solves; the rest follows from Y alone.
-        reshape(&mut self.columns, nr, m + 1);
-        self.columns.columns_mut(0, m).copy_from(&self.b_s);
-        self.columns.column_mut(m).copy_from(g);
-        for j in 0..=m {
+        // Y_B = L⁻¹DB_S: half solves; the rest follows from Y_B and y_g alone.
+        reshape(&mut self.columns, nr, m);
+        self.columns.copy_from(&self.b_s);
+        for j in 0..m {
             schur.forward_in_place(&mut self.columns.as_mut_slice()[j * nr..(j + 1) * nr]);
         }
-        let columns = &self.columns;
-        let (y_b, y_g) = (columns.columns(0, m), columns.column(m));
-        // A_S + B_SᵀS⁻¹B_S = A_S + Y_BᵀY_B: a mass matrix of the kept frames, its pivots
-        // against the frame blocks' scale too, so frames the rows do not fix (round-off
-        // again) go to the indefinite solver.
-        let definite = self.dual.factor(m, |i, j| {
+        let y_b = &self.columns;
+        // A mass matrix of the kept frames, its pivots against the frame blocks' scale too,
+        // so frames the rows do not fix (round-off again) go to the indefinite solver.
+        self.dual.factor(m, |i, j| {
             self.a_s[(i, j)] + y_b.column(i).dot(&y_b.column(j))
         }) && pivots_ok(self.dual.diagonal())
             && self
                 .dual
                 .diagonal()
-                .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale);
-        if !definite {
-            return false;
-        }
+                .all(|p| p * p > RANGE_SPACE_FRAME_PIVOT * frame_scale)
+    }
+
+    /// The kept frame blocks' $x_S$ and the multipliers from the factors of
+    /// [`Self::dual_factor`] (the dual range-space step): $\lambda = S^{-1}(B_Sx_S - g)$
+    /// and $(A_S + B_S^TS^{-1}B_S)\,x_S = f_S + B_S^TS^{-1}g$. `false` when the solution is
+    /// not finite.
+    fn dual_solve(&mut self, schur: &ScaledSchur, g: &DVector<f64>) -> bool {
+        let m = self.a_s.nrows();
+        resize(&mut self.y_g, g.len());
+        self.y_g.copy_from(g);
+        schur.forward_in_place(self.y_g.as_mut_slice());
+        let (y_b, y_g) = (&self.columns, &self.y_g);
         // x_S from f_S + B_SᵀS⁻¹g = f_S + Y_Bᵀy_g.
         resize(&mut self.x, m);
         self.x.copy_from(&self.f_s);
-        self.x.gemv_tr(1.0, &y_b, &y_g, 1.0);
+        self.x.gemv_tr(1.0, y_b, y_g, 1.0);
         self.dual.solve_in_place(self.x.as_mut_slice());
         // λ = S⁻¹(B_Sx_S − g) = DL⁻ᵀ(Y_Bx_S − y_g).
-        resize(&mut self.lambda, nr);
-        self.lambda.copy_from(&y_g);
-        self.lambda.gemv(1.0, &y_b, &self.x, -1.0);
+        resize(&mut self.lambda, g.len());
+        self.lambda.copy_from(y_g);
+        self.lambda.gemv(1.0, y_b, &self.x, -1.0);
         schur.backward_in_place(self.lambda.as_mut_slice());
         self.x
             .iter()
@@ -503,6 +598,13 @@ mod tests {
         }
         assert_eq!(solve_by_blocks(kkt, rhs, nf, frame_scale, &mut used), route);
         assert_eq!(used.out, ws.out, "a reused workspace");
+        // Another right-hand side solved from the factors is that system solved anew, to the
+        // bit, on every route; and the first right-hand side again gives the first solution.
+        let other = rhs.map(|v| 0.5 - 2.0 * v) + DVector::from_fn(rhs.len(), |i, _| i as f64);
+        let mut fresh = BlockSaddlePointWorkspace::default();
+        assert_eq!(solve_by_blocks(kkt, &other, nf, frame_scale, &mut fresh), route);
+        assert_eq!(used.resolve(&other), &fresh.out, "another right-hand side");
+        assert_eq!(used.resolve(rhs), &ws.out, "the first right-hand side again");
         (ws.out, route)
     }
 
