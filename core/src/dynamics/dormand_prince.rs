@@ -2,6 +2,7 @@
 //! critical step), and where its stability region ends.
 
 use super::DynamicsError;
+use super::projection_factors::ProjectionFactors;
 use crate::error::DivergenceCause;
 use crate::linalg::LinalgError;
 use std::time::Instant;
@@ -266,7 +267,12 @@ pub(super) fn integrate(
     let mut stages = Stages::new(sys);
     // The projected initial state; then each accepted step's state, projected.
     let mut state = initial.clone();
-    sys.project(0.0, &mut state, &mut stages.buffers.evaluation)?;
+    sys.project(
+        0.0,
+        &mut state,
+        &mut stages.buffers.evaluation,
+        ProjectionFactors::Fresh,
+    )?;
     let mut samples = vec![sample(sys, 0.0, &state)];
     let mut y = DVector::zeros(nq + sys.nv());
     y.rows_mut(0, nq).copy_from(&state.q);
@@ -332,7 +338,13 @@ pub(super) fn integrate(
             let y5 = &stages.y5;
             state.q.copy_from(&y5.rows(0, nq));
             state.v.copy_from(&y5.rows(nq, sys.nv()));
-            sys.project(t, &mut state, &mut stages.buffers.evaluation)?;
+            // The last stage was evaluated at y5: its factors correct the velocities.
+            sys.project(
+                t,
+                &mut state,
+                &mut stages.buffers.evaluation,
+                ProjectionFactors::LastEvaluation,
+            )?;
             // First same as last: the last stage is the derivative at y5. The projection
             // moves y5 by round-off after every step; only a correction within
             // FSAL_CORRECTION of the error tolerance keeps it, a larger one is re-evaluated.

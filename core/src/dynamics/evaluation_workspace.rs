@@ -64,6 +64,9 @@ pub(super) struct SaddlePointWorkspace {
     pub(super) blocks: BlockSaddlePointWorkspace,
     /// The solution $x$ (accelerations, or a correction in velocity coordinates).
     pub(super) x: DVector<f64>,
+    /// Whether `blocks` and `bodies` hold the factors of the last system solved (a
+    /// [`System::saddle_point`] that succeeded), for [`System::resolve_saddle_point`].
+    pub(super) factored: bool,
 }
 
 /// Everything one integration reuses between evaluations: the constraint rows, the block
@@ -114,6 +117,7 @@ impl EvaluationWorkspace {
             bodies,
             blocks: BlockSaddlePointWorkspace::default(),
             x: DVector::zeros(system.nv()),
+            factored: false,
         };
         Self {
             modal_rows: system.modal_rows(),

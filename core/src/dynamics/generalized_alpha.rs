@@ -25,6 +25,7 @@
 //! constraints after every step as with the explicit scheme.
 
 use super::DynamicsError;
+use super::projection_factors::ProjectionFactors;
 use crate::error::DivergenceCause;
 use std::time::Instant;
 
@@ -187,7 +188,7 @@ pub(crate) fn integrate(
     let clock = Instant::now();
     let mut ws = EvaluationWorkspace::new(sys);
     let mut s = initial.clone();
-    sys.project(0.0, &mut s, &mut ws)?;
+    sys.project(0.0, &mut s, &mut ws, ProjectionFactors::Fresh)?;
     let mut samples = vec![sample(sys, 0.0, &s)];
     let mut t = 0.0f64;
     sys.accelerations_in(t, &s, &mut ws)?;
@@ -249,7 +250,7 @@ pub(crate) fn integrate(
                 },
             }));
         }
-        sys.project(t1, &mut s1, &mut ws)?;
+        sys.project(t1, &mut s1, &mut ws, ProjectionFactors::Fresh)?;
         t = t1;
         steps += 1;
         s = s1;

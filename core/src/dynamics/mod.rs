@@ -18,6 +18,7 @@ mod inertia_invariants;
 mod integrator;
 mod integrator_parameters;
 mod prescribed;
+mod projection_factors;
 mod rotation;
 mod shake;
 mod simulation;

@@ -8,7 +8,9 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector4};
 use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
     constraint_rows::ConstraintRows,
-    evaluation_workspace::{BodyBlocks, EvaluationWorkspace, SaddlePointWorkspace},
+    evaluation_workspace::{
+        BodyBlocks, BodyElimination, EvaluationWorkspace, SaddlePointWorkspace,
+    },
     rotation::{l_matrix, rotate_body, skew},
 };
 use crate::fem::NodeIndex;
@@ -479,11 +481,56 @@ impl System {
                 rhs[row] -= product[(p, 6 + na)];
             }
         }
+        ws.factored = false;
         let solution = block_saddle_point_solve(kkt, rhs, nf, frame_scale, &mut ws.blocks);
-        let lambda = solution.rows(nf, nr);
-        resize(&mut ws.x, self.nv());
-        let vdot = &mut ws.x;
-        for (b, (body, work)) in self.bodies.iter().zip(ws.bodies.iter_mut()).enumerate() {
+        // The force column is this right-hand side's (zero without forces).
+        self.recover(solution, true, &mut ws.bodies, &mut ws.x)?;
+        ws.factored = true;
+        Ok(())
+    }
+
+    /// $x$ of [`Self::saddle_point`] with $f = 0$ and the constraint right-hand side `g`
+    /// (the mass-weighted correction of [`Self::project`]), from the factors the last
+    /// successful `saddle_point` left in `ws`: the system $M$ and $C$ of that call's state
+    /// and rows, for the cost of the triangular solves and the recovery of the modal
+    /// coordinates. At that state it is the correction a new `saddle_point` gives, to the
+    /// bit ($f = 0$ makes the eliminated right-hand side $[0; g]$ exactly).
+    pub(super) fn resolve_saddle_point(
+        &self,
+        g: &DVector<f64>,
+        ws: &mut SaddlePointWorkspace,
+    ) -> Result<()> {
+        let nf = 6 * self.bodies.len();
+        if !ws.factored || ws.kkt.nrows() != nf + g.len() {
+            return Err(DynamicsError::Misuse {
+                what: "a correction from factors no evaluation of this system left",
+            }
+            .into());
+        }
+        resize(&mut ws.rhs, nf + g.len());
+        ws.rhs.rows_mut(0, nf).fill(0.0);
+        ws.rhs.rows_mut(nf, g.len()).copy_from(g);
+        let solution = ws.blocks.resolve(&ws.rhs);
+        self.recover(solution, false, &mut ws.bodies, &mut ws.x)
+    }
+
+    /// The velocity-coordinate solution `x` from the reduced system's `solution` (frame
+    /// unknowns, then multipliers): the frame rows as they are, each deformable body's modal
+    /// rows recovered from its elimination $X = M_{zz}^{-1}[M_{zf}, C_z^T, Q_z]$, its
+    /// force column read when `forces` (else $f = 0$: the column is not this right-hand
+    /// side's).
+    fn recover(
+        &self,
+        solution: &DVector<f64>,
+        forces: bool,
+        bodies: &mut [BodyElimination],
+        x: &mut DVector<f64>,
+    ) -> Result<()> {
+        let nf = 6 * self.bodies.len();
+        let lambda = solution.rows(nf, solution.len() - nf);
+        resize(x, self.nv());
+        let vdot = x;
+        for (b, (body, work)) in self.bodies.iter().zip(bodies.iter_mut()).enumerate() {
             let (vo, fo) = (self.v_off[b], 6 * b);
             let a_f = solution.rows(fo, 6);
             vdot.rows_mut(vo, 6).copy_from(&a_f);
@@ -493,10 +540,17 @@ impl System {
                 let (k, na) = (x.nrows(), active.len());
                 let z_dd = &mut work.frame_part;
                 resize(z_dd, k);
-                // X_{:, 6 + na} - X_{:, ..6} a_f, then minus λ_r times each active column.
+                // X_{:, 6 + na} - X_{:, ..6} a_f (the force column 0 without forces), then
+                // minus λ_r times each active column.
                 z_dd.gemv(1.0, &x.columns(0, 6), &a_f, 0.0);
-                for (z, &xr) in z_dd.iter_mut().zip(x.column(6 + na).iter()) {
-                    *z = xr - *z;
+                if forces {
+                    for (z, &xr) in z_dd.iter_mut().zip(x.column(6 + na).iter()) {
+                        *z = xr - *z;
+                    }
+                } else {
+                    for z in z_dd.iter_mut() {
+                        *z = 0.0 - *z;
+                    }
                 }
                 for (i, &r) in active.iter().enumerate() {
                     z_dd.axpy(-lambda[r], &x.column(6 + i), 1.0);

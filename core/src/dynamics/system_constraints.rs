@@ -7,6 +7,7 @@ use super::{
     Attachment, AxisType, Constraint, FlexibleBody, InertiaInvariants, State, System,
     constraint_rows::{ConstraintRows, Rows},
     evaluation_workspace::EvaluationWorkspace,
+    projection_factors::ProjectionFactors,
 };
 use crate::{
     Result,
@@ -212,12 +213,15 @@ impl System {
     /// their models are one (slab-sim3), and Simulation 2's orbit start with velocities the
     /// constraints do not allow.
     ///
-    /// The buffers of `ws` are reused: an integration projects after every step.
+    /// The buffers of `ws` are reused: an integration projects after every step. With
+    /// [`ProjectionFactors::LastEvaluation`] the velocity correction solves with the factors
+    /// of the last evaluation in `ws` instead of forming and factoring the system again.
     pub(crate) fn project(
         &self,
         t: f64,
         s: &mut State,
         ws: &mut EvaluationWorkspace,
+        factors: ProjectionFactors,
     ) -> Result<()> {
         for b in 0..self.bodies.len() {
             let qo = self.q_off[b];
@@ -226,11 +230,22 @@ impl System {
         }
         // The rows at the current positions, for the next correction and the velocities.
         self.rows_into(t, s, &mut ws.rows);
-        for _ in 0..3 {
+        for iteration in 0..3 {
             let rows = &ws.rows;
             let held = rows.holonomic.iter().filter(|&&h| h).count();
             if held == 0 || rows.phi.amax() < 1e-13 {
                 break;
+            }
+            // Every row holonomic: the first correction's system is the last evaluation's.
+            if iteration == 0
+                && held == rows.holonomic.len()
+                && factors == ProjectionFactors::LastEvaluation
+            {
+                self.resolve_saddle_point(&rows.phi, &mut ws.saddle)?;
+                ws.saddle.x.neg_mut();
+                self.apply_increment(s, &ws.saddle.x);
+                self.rows_into(t, s, &mut ws.rows);
+                continue;
             }
             let nv = rows.c.ncols();
             reshape(&mut ws.holonomic_c, held, nv);
@@ -271,12 +286,19 @@ impl System {
             resize(&mut ws.residual, rows.c.nrows());
             rows.c.mul_to(&s.v, &mut ws.residual);
             ws.residual -= &rows.target;
-            let all = ConstraintRows {
-                c: &rows.c,
-                g: &ws.residual,
-                modal_rows: &ws.modal_rows,
-            };
-            self.saddle_point(s, &rows.moments, all, false, &mut ws.saddle)?;
+            match factors {
+                ProjectionFactors::Fresh => {
+                    let all = ConstraintRows {
+                        c: &rows.c,
+                        g: &ws.residual,
+                        modal_rows: &ws.modal_rows,
+                    };
+                    self.saddle_point(s, &rows.moments, all, false, &mut ws.saddle)?;
+                }
+                ProjectionFactors::LastEvaluation => {
+                    self.resolve_saddle_point(&ws.residual, &mut ws.saddle)?;
+                }
+            }
             s.v -= &ws.saddle.x;
         }
         Ok(())
@@ -291,6 +313,7 @@ mod tests {
     use crate::{
         dynamics::{
             Body, Constraint, RigidBody,
+            evaluation_workspace::EvaluationWorkspace,
             test_systems::{reduced_plank, set_in_motion},
         },
         reduction::Method,
@@ -355,6 +378,76 @@ mod tests {
                 );
                 assert_eq!(rows.c, fresh.c, "{method:?}, evaluation {k}");
                 assert_eq!(rows.gamma, fresh.gamma, "{method:?}, evaluation {k}");
+            }
+        }
+    }
+
+    /// The velocity correction from the factors an evaluation left is a new correction's,
+    /// to the bit, at the evaluated state; and a projection with those factors, after a
+    /// step that moved the state off its constraints, lands where a projection with its
+    /// own lands, to round-off, on the constraints.
+    #[test]
+    fn a_correction_from_an_evaluations_factors_is_a_new_one() {
+        for method in [Method::NoReduction, Method::CraigBampton] {
+            for plank_first in [true, false] {
+                let (system, state) = plank_on_a_rod(method, 15, plank_first);
+                let mut ws = EvaluationWorkspace::new(&system);
+                system.accelerations_in(0.0, &state, &mut ws).unwrap();
+                let rows = system.rows(0.0, &state);
+                let g = nalgebra::DVector::from_fn(rows.c.nrows(), |i, _| (i as f64 + 1.0).sin());
+                system.resolve_saddle_point(&g, &mut ws.saddle).unwrap();
+                let mut fresh = EvaluationWorkspace::new(&system);
+                let all = ConstraintRows {
+                    c: &rows.c,
+                    g: &g,
+                    modal_rows: &fresh.modal_rows,
+                };
+                system
+                    .saddle_point(&state, &rows.moments, all, false, &mut fresh.saddle)
+                    .unwrap();
+                assert_eq!(ws.saddle.x, fresh.saddle.x, "{method:?}, {plank_first}");
+
+                // A step's end: the state off its constraints by drift, evaluated there.
+                let mut end = state.clone();
+                for _ in 0..10 {
+                    system
+                        .project(0.0, &mut end, &mut fresh, ProjectionFactors::Fresh)
+                        .unwrap();
+                }
+                assert!(
+                    system.violation(0.0, &end).0 < 1e-12,
+                    "{:?}",
+                    system.violation(0.0, &end)
+                );
+                for (i, q) in end.q.iter_mut().enumerate() {
+                    *q += 1e-9 * ((i % 7) as f64 - 3.0);
+                }
+                for (i, v) in end.v.iter_mut().enumerate() {
+                    *v += 1e-6 * ((i % 5) as f64 - 2.0);
+                }
+                system.accelerations_in(0.0, &end, &mut ws).unwrap();
+                let (mut reused, mut own) = (end.clone(), end.clone());
+                system
+                    .project(0.0, &mut reused, &mut ws, ProjectionFactors::LastEvaluation)
+                    .unwrap();
+                system
+                    .project(0.0, &mut own, &mut fresh, ProjectionFactors::Fresh)
+                    .unwrap();
+                let gap_q = (&reused.q - &own.q).amax();
+                let gap_v = (&reused.v - &own.v).amax() / own.v.amax();
+                assert!(
+                    gap_q < 1e-13 && gap_v < 1e-12,
+                    "{method:?}: {gap_q:e}, {gap_v:e}"
+                );
+                let (pos, vel) = system.violation(0.0, &reused);
+                let (own_pos, own_vel) = system.violation(0.0, &own);
+                assert!(
+                    pos < 1e-12 && vel < 1e-12 * own.v.amax() + 2.0 * own_vel,
+                    "{method:?}: |Φ| {pos:e} (own {own_pos:e}), |Cv - target| {vel:e} (own {own_vel:e})"
+                );
+                // The drift and the velocity error were there, and were corrected.
+                let (drift, slip) = system.violation(0.0, &end);
+                assert!(drift > 1e-10 && slip > 1e-7, "{drift:e}, {slip:e}");
             }
         }
     }

@@ -602,9 +602,16 @@ mod tests {
         // bit, on every route; and the first right-hand side again gives the first solution.
         let other = rhs.map(|v| 0.5 - 2.0 * v) + DVector::from_fn(rhs.len(), |i, _| i as f64);
         let mut fresh = BlockSaddlePointWorkspace::default();
-        assert_eq!(solve_by_blocks(kkt, &other, nf, frame_scale, &mut fresh), route);
+        assert_eq!(
+            solve_by_blocks(kkt, &other, nf, frame_scale, &mut fresh),
+            route
+        );
         assert_eq!(used.resolve(&other), &fresh.out, "another right-hand side");
-        assert_eq!(used.resolve(rhs), &ws.out, "the first right-hand side again");
+        assert_eq!(
+            used.resolve(rhs),
+            &ws.out,
+            "the first right-hand side again"
+        );
         (ws.out, route)
     }
 
