@@ -214,8 +214,10 @@ impl System {
     /// constraints do not allow.
     ///
     /// The buffers of `ws` are reused: an integration projects after every step. With
-    /// [`ProjectionFactors::LastEvaluation`] the velocity correction solves with the factors
-    /// of the last evaluation in `ws` instead of forming and factoring the system again.
+    /// [`ProjectionFactors::LastEvaluation`] the velocity correction, and the first position
+    /// correction when every row is holonomic (its system is then the evaluation's), solve
+    /// with the factors of the last evaluation in `ws` instead of forming and factoring the
+    /// system again.
     pub(crate) fn project(
         &self,
         t: f64,
