@@ -686,7 +686,7 @@ mod tests {
     fn kinetic_energy_by_blocks_equals_the_dense_quadratic_form() {
         for method in [Method::NoReduction, Method::CraigBampton] {
             // The reduced plank with a rigid rod beside it, moving and deformed.
-            let (_, body) = reduced_plank(method);
+            let (_, body) = reduced_plank(method, AxisType::Mean);
             let origin = body.origin;
             let system = System::new(
                 vec![

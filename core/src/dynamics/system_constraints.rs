@@ -1,7 +1,7 @@
 //! The system's constraint rows $C\dot v = \gamma$ (joints, prescribed nodes, axis
 //! conditions), their violation, and the projection of a state onto them.
 
-use nalgebra::{DMatrix, Matrix3};
+use nalgebra::{DMatrix, DVector, Matrix3};
 
 use super::{
     Attachment, AxisType, Constraint, FlexibleBody, InertiaInvariants, State, System,
@@ -239,48 +239,17 @@ impl System {
                 break;
             }
             // Every row holonomic: the first correction's system is the last evaluation's.
-            if iteration == 0
+            let increment = if iteration == 0
                 && held == rows.holonomic.len()
                 && factors == ProjectionFactors::LastEvaluation
             {
                 self.resolve_saddle_point(&rows.phi, &mut ws.saddle)?;
-                ws.saddle.x.neg_mut();
-                self.apply_increment(s, &ws.saddle.x);
-                self.rows_into(t, s, &mut ws.rows);
-                continue;
-            }
-            let nv = rows.c.ncols();
-            reshape(&mut ws.holonomic_c, held, nv);
-            resize(&mut ws.holonomic_phi, held);
-            // Row i of the full set is row position[i] of the holonomic one.
-            ws.position.clear();
-            let mut to = 0;
-            for (from, &holonomic) in rows.holonomic.iter().enumerate() {
-                ws.position.push(to);
-                if holonomic {
-                    ws.holonomic_c.row_mut(to).copy_from(&rows.c.row(from));
-                    ws.holonomic_phi[to] = rows.phi[from];
-                    to += 1;
-                }
-            }
-            ws.holonomic_modal_rows
-                .resize_with(ws.modal_rows.len(), Vec::new);
-            for (held, all) in ws.holonomic_modal_rows.iter_mut().zip(&ws.modal_rows) {
-                held.clear();
-                held.extend(
-                    all.iter()
-                        .filter(|&&r| rows.holonomic[r])
-                        .map(|&r| ws.position[r]),
-                );
-            }
-            let held = ConstraintRows {
-                c: &ws.holonomic_c,
-                g: &ws.holonomic_phi,
-                modal_rows: &ws.holonomic_modal_rows,
+                &mut ws.saddle.x
+            } else {
+                self.held_correction(s, held, ws)?
             };
-            self.saddle_point(s, &rows.moments, held, false, &mut ws.held_saddle)?;
-            ws.held_saddle.x.neg_mut();
-            self.apply_increment(s, &ws.held_saddle.x);
+            increment.neg_mut();
+            self.apply_increment(s, increment);
             self.rows_into(t, s, &mut ws.rows);
         }
         let rows = &ws.rows;
@@ -305,6 +274,48 @@ impl System {
         }
         Ok(())
     }
+
+    /// The position correction of [`Self::project`] by the `held` holonomic rows of
+    /// `ws.rows` alone, formed and factored at `s`, into `ws.held_saddle.x`.
+    fn held_correction<'w>(
+        &self,
+        s: &State,
+        held: usize,
+        ws: &'w mut EvaluationWorkspace,
+    ) -> Result<&'w mut DVector<f64>> {
+        let rows = &ws.rows;
+        let nv = rows.c.ncols();
+        reshape(&mut ws.holonomic_c, held, nv);
+        resize(&mut ws.holonomic_phi, held);
+        // Row i of the full set is row position[i] of the holonomic one.
+        ws.position.clear();
+        let mut to = 0;
+        for (from, &holonomic) in rows.holonomic.iter().enumerate() {
+            ws.position.push(to);
+            if holonomic {
+                ws.holonomic_c.row_mut(to).copy_from(&rows.c.row(from));
+                ws.holonomic_phi[to] = rows.phi[from];
+                to += 1;
+            }
+        }
+        ws.holonomic_modal_rows
+            .resize_with(ws.modal_rows.len(), Vec::new);
+        for (held, all) in ws.holonomic_modal_rows.iter_mut().zip(&ws.modal_rows) {
+            held.clear();
+            held.extend(
+                all.iter()
+                    .filter(|&&r| rows.holonomic[r])
+                    .map(|&r| ws.position[r]),
+            );
+        }
+        let held = ConstraintRows {
+            c: &ws.holonomic_c,
+            g: &ws.holonomic_phi,
+            modal_rows: &ws.holonomic_modal_rows,
+        };
+        self.saddle_point(s, &rows.moments, held, false, &mut ws.held_saddle)?;
+        Ok(&mut ws.held_saddle.x)
+    }
 }
 
 #[cfg(test)]
@@ -321,11 +332,16 @@ mod tests {
         reduction::Method,
     };
 
-    /// The plank reduced by `method` on mean axes and a rod hung from the ground by one end,
+    /// The plank reduced by `method` on `axes` and a rod hung from the ground by one end,
     /// its other end joined to plank node `node`; the plank first or second among the
     /// bodies; deformed and moving.
-    fn plank_on_a_rod(method: Method, node: usize, plank_first: bool) -> (System, State) {
-        let (model, body) = reduced_plank(method);
+    fn plank_on_a_rod(
+        method: Method,
+        axes: AxisType,
+        node: usize,
+        plank_first: bool,
+    ) -> (System, State) {
+        let (model, body) = reduced_plank(method, axes);
         let node = model.node_index(node).unwrap();
         let origin = body.origin;
         let (p, r) = if plank_first { (0, 1) } else { (1, 0) };
@@ -362,9 +378,9 @@ mod tests {
     fn reused_constraint_rows_equal_fresh_ones() {
         for method in [Method::NoReduction, Method::CraigBampton] {
             let systems = [
-                plank_on_a_rod(method, 3, true),
-                plank_on_a_rod(method, 15, true),
-                plank_on_a_rod(method, 15, false),
+                plank_on_a_rod(method, AxisType::Mean, 3, true),
+                plank_on_a_rod(method, AxisType::Mean, 15, true),
+                plank_on_a_rod(method, AxisType::Mean, 15, false),
             ];
             let shape = systems[0].0.rows(0.0, &systems[0].1).c.shape();
             let mut rows = Rows::empty();
@@ -387,16 +403,27 @@ mod tests {
     /// The velocity correction from the factors an evaluation left is a new correction's,
     /// to the bit, at the evaluated state; and a projection with those factors, after a
     /// step that moved the state off its constraints, lands where a projection with its
-    /// own lands, to round-off, on the constraints.
+    /// own lands, to round-off, on the constraints. On principal axes every row is
+    /// holonomic, so the first position correction takes the evaluation's factors too; on
+    /// mean axes the rotational rows are not, and it forms its own.
     #[test]
     fn a_correction_from_an_evaluations_factors_is_a_new_one() {
-        for method in [Method::NoReduction, Method::CraigBampton] {
+        let cases = [Method::NoReduction, Method::CraigBampton]
+            .into_iter()
+            .flat_map(|m| [(m, AxisType::Mean), (m, AxisType::Principal)]);
+        for (method, axes) in cases {
             for plank_first in [true, false] {
-                let (system, state) = plank_on_a_rod(method, 15, plank_first);
+                let (system, state) = plank_on_a_rod(method, axes, 15, plank_first);
+                let all_held = system.rows(0.0, &state).holonomic.iter().all(|&h| h);
+                assert_eq!(
+                    all_held,
+                    axes == AxisType::Principal,
+                    "{method:?}, {axes:?}"
+                );
                 let mut ws = EvaluationWorkspace::new(&system);
                 system.accelerations_in(0.0, &state, &mut ws).unwrap();
                 let rows = system.rows(0.0, &state);
-                let g = nalgebra::DVector::from_fn(rows.c.nrows(), |i, _| (i as f64 + 1.0).sin());
+                let g = DVector::from_fn(rows.c.nrows(), |i, _| (i as f64 + 1.0).sin());
                 system.resolve_saddle_point(&g, &mut ws.saddle).unwrap();
                 let mut fresh = EvaluationWorkspace::new(&system);
                 let all = ConstraintRows {
@@ -407,7 +434,10 @@ mod tests {
                 system
                     .saddle_point(&state, &rows.moments, all, false, &mut fresh.saddle)
                     .unwrap();
-                assert_eq!(ws.saddle.x, fresh.saddle.x, "{method:?}, {plank_first}");
+                assert_eq!(
+                    ws.saddle.x, fresh.saddle.x,
+                    "{method:?}, {axes:?}, {plank_first}"
+                );
 
                 // A step's end: the state off its constraints by drift, evaluated there.
                 let mut end = state.clone();
@@ -428,6 +458,19 @@ mod tests {
                     *v += 1e-6 * ((i % 5) as f64 - 2.0);
                 }
                 system.accelerations_in(0.0, &end, &mut ws).unwrap();
+                if all_held {
+                    // The position correction from the evaluation's factors is the one the
+                    // holonomic rows give formed anew, to the bit.
+                    let rows = system.rows(0.0, &end);
+                    system
+                        .resolve_saddle_point(&rows.phi, &mut ws.saddle)
+                        .unwrap();
+                    fresh.rows = rows;
+                    let held = fresh.rows.c.nrows();
+                    let own = system.held_correction(&end, held, &mut fresh).unwrap();
+                    assert_eq!(&ws.saddle.x, own, "{method:?}, {axes:?}, {plank_first}");
+                    assert!(own.amax() > 1e-10, "a correction of {:e}", own.amax());
+                }
                 let (mut reused, mut own) = (end.clone(), end.clone());
                 system
                     .project(0.0, &mut reused, &mut ws, ProjectionFactors::LastEvaluation)
@@ -439,13 +482,13 @@ mod tests {
                 let gap_v = (&reused.v - &own.v).amax() / own.v.amax();
                 assert!(
                     gap_q < 1e-13 && gap_v < 1e-12,
-                    "{method:?}: {gap_q:e}, {gap_v:e}"
+                    "{method:?}, {axes:?}: {gap_q:e}, {gap_v:e}"
                 );
                 let (pos, vel) = system.violation(0.0, &reused);
                 let (own_pos, own_vel) = system.violation(0.0, &own);
                 assert!(
                     pos < 1e-12 && vel < 1e-12 * own.v.amax() + 2.0 * own_vel,
-                    "{method:?}: |Φ| {pos:e} (own {own_pos:e}), |Cv - target| {vel:e} (own {own_vel:e})"
+                    "{method:?}, {axes:?}: |Φ| {pos:e} (own {own_pos:e}), |Cv - target| {vel:e} (own {own_vel:e})"
                 );
                 // The drift and the velocity error were there, and were corrected.
                 let (drift, slip) = system.violation(0.0, &end);

@@ -6,9 +6,9 @@ use crate::{
     reduction::{Method, ModeSelection, ReductionParameters, reduce},
 };
 
-/// The §5.3.3 plank reduced by `method` (6 modes on the boundary nodes 3, 15 and 22) on mean
-/// axes, and its model.
-pub(super) fn reduced_plank(method: Method) -> (FeModel, FlexibleBody) {
+/// The §5.3.3 plank reduced by `method` (6 modes on the boundary nodes 3, 15 and 22) on
+/// `axes`, and its model.
+pub(super) fn reduced_plank(method: Method, axes: AxisType) -> (FeModel, FlexibleBody) {
     let model = plank(&SlabParameters::default());
     let basis = reduce(
         &model,
@@ -20,7 +20,7 @@ pub(super) fn reduced_plank(method: Method) -> (FeModel, FlexibleBody) {
         },
     )
     .unwrap();
-    let body = FlexibleBody::new(model.clone(), basis, AxisType::Mean).unwrap();
+    let body = FlexibleBody::new(model.clone(), basis, axes).unwrap();
     (model, body)
 }
 

@@ -1,7 +1,5 @@
 //! Text an error quotes from a file or a command line.
 
-use std::fmt;
-
 /// Text an error quotes from what a user gave (a field of a matrix file's line, a token on
 /// the command line, the last line a peer wrote): at most [`Excerpt::MAX_CHARS`]
 /// characters, so a line of a binary file read as text, or a megabyte without a newline,
@@ -12,11 +10,6 @@ pub struct Excerpt(Box<str>);
 impl Excerpt {
     /// The most characters an excerpt keeps (the cut one, `…`, included).
     pub const MAX_CHARS: usize = 80;
-
-    /// The quoted text (cut if it was longer than [`Self::MAX_CHARS`]).
-    pub fn as_str(&self) -> &str {
-        &self.0
-    }
 }
 
 impl From<&str> for Excerpt {
@@ -36,54 +29,7 @@ impl From<&str> for Excerpt {
     }
 }
 
-impl From<String> for Excerpt {
-    fn from(text: String) -> Self {
-        Self::from(text.as_str())
-    }
-}
-
-impl From<&String> for Excerpt {
-    fn from(text: &String) -> Self {
-        Self::from(text.as_str())
-    }
-}
-
-impl std::ops::Deref for Excerpt {
-    type Target = str;
-    fn deref(&self) -> &str {
-        &self.0
-    }
-}
-
-impl PartialEq<str> for Excerpt {
-    fn eq(&self, other: &str) -> bool {
-        &*self.0 == other
-    }
-}
-
-impl PartialEq<&str> for Excerpt {
-    fn eq(&self, other: &&str) -> bool {
-        &*self.0 == *other
-    }
-}
-
-impl fmt::Display for Excerpt {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl fmt::Debug for Excerpt {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        fmt::Debug::fmt(&*self.0, f)
-    }
-}
-
-impl serde::Serialize for Excerpt {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(&self.0)
-    }
-}
+super::str_newtype::str_newtype!(Excerpt);
 
 #[cfg(test)]
 mod tests {

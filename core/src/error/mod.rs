@@ -27,6 +27,7 @@ mod r_set_problem;
 mod reduction_error;
 mod serve_error;
 mod size_expectation;
+mod str_newtype;
 mod table_problem;
 mod unknown_id;
 
