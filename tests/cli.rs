@@ -8,7 +8,7 @@ mod scratch;
 
 use common::{flexmodes, json, temp_dir};
 
-const SCENES: [&str; 13] = [
+const SCENES: [&str; 14] = [
     "beam-modes",
     "slab-modes",
     "beam-profiles",
@@ -22,6 +22,7 @@ const SCENES: [&str; 13] = [
     "modes",
     "slab-mode-sets",
     "cantilever-variants",
+    "spin-up",
 ];
 
 #[test]

@@ -119,6 +119,10 @@ pub(super) enum Command {
     /// reduced models (gr, mt, cb, mc) run the same spin-up; each model's history and reaction
     /// against the full body's, its offline and online time.
     Simulate(SimulateArgs),
+    /// A body spun about an axis through its driven interface: its lowest frequencies at each
+    /// rate (the Campbell table), full and reduced, with the dynamic stiffening of its
+    /// preloaded stiffness (`[preload]`) or without.
+    Campbell(CampbellArgs),
     /// Serve the scenes to browsers on the network: the embedded Rerun web viewer (offline,
     /// gzip) and the recordings over Rerun's data server; prints the URL to share; then reads
     /// teacher commands (`show SCENE [--method …] [--modes N] …`, `list`, `quit`) from the
@@ -230,6 +234,61 @@ pub(super) struct SimulateArgs {
     /// step (predicted from its highest frequency), and check that 3× that step diverges.
     #[arg(long)]
     pub(super) explicit: bool,
+    /// Dynamic stiffening from the body's preloaded stiffness (`[preload]` in the body file):
+    /// on (default) or off.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub(super) stiffening: OnOff,
+}
+
+/// The arguments of `campbell`.
+#[derive(Debug, Args)]
+pub(super) struct CampbellArgs {
+    /// The body file (TOML), or `builtin:NAME`.
+    #[arg(long)]
+    pub(super) body: String,
+    /// The driven interface (`rbe2:SET` or an rbe2 interface of the body file), clamped in
+    /// the turning frame.
+    #[arg(long)]
+    pub(super) drive: String,
+    /// Spin axis in body axes, X,Y,Z.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0,0,1",
+        allow_hyphen_values = true
+    )]
+    pub(super) axis: Vec<f64>,
+    /// A point of the spin axis, X,Y,Z in the body's length unit (default: the drive's
+    /// master).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub(super) axis_point: Option<Vec<f64>>,
+    /// Rates, rad/s.
+    #[arg(long, value_delimiter = ',', default_value = "0,500,1000,1500,2000")]
+    pub(super) rates: Vec<f64>,
+    /// Frequencies per rate.
+    #[arg(long, default_value_t = 4)]
+    pub(super) count: usize,
+    /// Models: nr and gr, mt, cb, mc.
+    #[arg(long, value_delimiter = ',', default_value = "nr,cb")]
+    pub(super) method: Vec<Method>,
+    /// Kept modes of the reduced models, one model per count.
+    #[arg(long, value_delimiter = ',', default_value = "10")]
+    pub(super) modes: Vec<usize>,
+    /// Dynamic stiffening from the body's `[preload]`: on (default) or off.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub(super) stiffening: OnOff,
+    /// Print the table as JSON.
+    #[arg(long)]
+    pub(super) json: bool,
+}
+
+/// A switch typed on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub(super) enum OnOff {
+    /// On.
+    On,
+    /// Off.
+    Off,
 }
 
 /// Window options of `gui` and `view`.

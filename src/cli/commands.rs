@@ -83,6 +83,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::View { file, window } => crate::gui::run(None, Some(&file), window.into()),
         Command::Bench(args) => bench(args, &threads),
         Command::Simulate(arguments) => super::simulate::run(arguments),
+        Command::Campbell(arguments) => super::campbell::run(arguments),
         Command::Serve(arguments) => super::serve::run(arguments),
         Command::Convert {
             body,

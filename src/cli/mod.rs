@@ -1,6 +1,7 @@
 //! The command line (`main.rs` only calls [`main`]).
 
 mod arguments;
+mod campbell;
 mod commands;
 mod serve;
 mod simulate;

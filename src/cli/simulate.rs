@@ -33,6 +33,7 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         save,
         explicit,
         axes,
+        stiffening,
     } = arguments;
     let shaking = motion == super::arguments::Motion::Shake;
     let three = |option: &'static str, v: &[f64]| -> Result<[f64; 3]> {
@@ -76,6 +77,7 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         },
         explicit,
         axes,
+        stiffening: stiffening == super::arguments::OnOff::On,
     };
     let full = method.contains(&crate::reduction::Method::NoReduction);
     let reduced: Vec<_> = method

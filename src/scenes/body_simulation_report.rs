@@ -46,6 +46,7 @@ pub fn summary(
             _ => "in the drive's turning frame",
         }
     );
+    text += &stiffening_words(body, parameters, study);
     for c in &study.stability {
         text += &format!(
             "\nExplicit Dormand–Prince on {}: highest frequency {:.6} Hz, critical step \
@@ -83,6 +84,11 @@ pub fn summary(
                    "shake": parameters.shake.map(|(d, a, f)| json!({
                        "direction": d, "amplitude_m": a, "frequency_hz": f}))},
         "gravity": parameters.gravity,
+        "stiffening": match (study.stiffened, &body.preload) {
+            (true, _) => "on",
+            (false, Some(_)) => "off",
+            (false, None) => "none",
+        },
         "integrator": {"scheme": "gen-alpha", "step": parameters.integration.step,
                        "end": parameters.integration.end,
                        "spectral_radius": parameters.integration.spectral_radius},
@@ -99,6 +105,50 @@ pub fn summary(
         "runs": runs,
     });
     (value, text)
+}
+
+/// Whether the runs carried dynamic stiffening, and what leaving it out means at this rate.
+fn stiffening_words(
+    body: &ImportedBody,
+    parameters: &DrivenBodyParameters,
+    study: &DrivenStudy,
+) -> String {
+    if parameters.rate == 0.0 {
+        return String::new();
+    }
+    // The lowest frequency on the frame at rest any reduced run found, rad/s.
+    let lowest = study
+        .runs
+        .iter()
+        .filter_map(|r| r.hz_range.map(|(lo, _)| lo))
+        .fold(f64::INFINITY, f64::min)
+        * 2.0
+        * std::f64::consts::PI;
+    let share = (parameters.rate / lowest).powi(2);
+    let share = if share.is_finite() {
+        format!(
+            " (the spin's share of the lowest stiffness, (Ω/ω₁)², is {share:.1e} at {} rad/s)",
+            parameters.rate
+        )
+    } else {
+        String::new()
+    };
+    match (study.stiffened, &body.preload) {
+        (true, Some(p)) => format!(
+            "\nDynamic stiffening: on, from the body's [preload] (the stiffness its FE code wrote \
+             spun at {:.6} rad/s), its geometric stiffness scaled by (θ̇/Ω₀)²{share}.\n",
+            sig(p.load.rate)
+        ),
+        (false, Some(_)) => format!(
+            "\nDynamic stiffening: OFF (--stiffening off): the body's [preload] is not used, so \
+             the models keep the centrifugal softening but not the stress stiffening{share}.\n"
+        ),
+        _ => format!(
+            "\nDynamic stiffening: none: the body file gives no [preload], so the models keep the \
+             centrifugal softening but not the stress stiffening{share}; a CalculiX run spun \
+             at the rate gives it (docs/bodies.md).\n"
+        ),
+    }
 }
 
 /// One row per run: its size, frequency range, costs and errors against the full body (the

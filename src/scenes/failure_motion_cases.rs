@@ -1,5 +1,5 @@
 //! The failures scene's cases in motion: mean axes with a Guyan mass, an explicit step above
-//! critical, modal truncation and boundary motion.
+//! critical, modal truncation and boundary motion, a spin-up without dynamic stiffening.
 
 use super::SceneOptions;
 use super::failure_cases::Failure;
@@ -9,8 +9,8 @@ use crate::{
     Error, Result,
     fem::FeModel,
     models::{
-        ABOVE_CRITICAL, BELOW_CRITICAL, BELOW_RUN_S, KEPT_MODES, MOVED_NODE, boundary_motion,
-        explicit_step, guyan_mean_axes,
+        ABOVE_CRITICAL, BELOW_CRITICAL, BELOW_RUN_S, KEPT_MODES, MOVED_NODE, SpinUpModels,
+        SpinUpParameters, boundary_motion, explicit_step, guyan_mean_axes,
     },
     record::{Geometry, LogLogChart, LogLogSeries, Visual},
     reduction::Method,
@@ -214,5 +214,58 @@ pub(super) fn boundary_motion_failure(model: &FeModel) -> Result<Failure> {
                 .into(),
         ],
         visuals,
+    })
+}
+
+/// Kane's beam spun up to 10 rad/s by the linear floating-frame model without dynamic
+/// stiffening (NR, the full FE beam): it diverges once the hub's rate has passed the first
+/// bending frequency; the same model with stiffening does not (the `spin-up` scene).
+pub(super) fn spin_up_failure(opts: &SceneOptions) -> Result<Failure> {
+    let parameters = SpinUpParameters {
+        rates: vec![10.0],
+        ..Default::default()
+    };
+    let models = SpinUpModels::new(&parameters)?;
+    let run = models.run(10.0, 0, false, &opts.progress)?;
+    let w1 = models.first_frequency;
+    let (json, what) = match run.divergence {
+        Some(d) => (
+            json!({
+                "diverged_at_s": sig(d.time),
+                "hub_rate_rad_s": sig(d.rate),
+                "first_frequency_rad_s": sig(w1),
+                "passed_first_frequency_at_s": d.rate_passed_first_frequency.map(sig),
+            }),
+            format!(
+                "NR without stiffening: the tip's deflection passed the beam's length \
+                 (10 m) at t = {:.2} s, the hub at {:.2} rad/s; the hub passed the first \
+                 bending frequency ω₁ = {w1:.3} rad/s at t = {}",
+                d.time,
+                d.rate,
+                d.rate_passed_first_frequency
+                    .map_or("–".into(), |t| format!("{t:.2} s")),
+            ),
+        ),
+        None => (
+            json!({"diverged_at_s": null, "peak_m": sig(run.peak())}),
+            format!(
+                "NR without stiffening did not diverge (peak {:.3} m): expected it to",
+                run.peak()
+            ),
+        ),
+    };
+    Ok(Failure {
+        json,
+        line: [
+            "Spin-up without dynamic stiffening (Kane et al.'s beam, ω_s = 10 rad/s)".into(),
+            what,
+            "linear elastic coordinates keep the centrifugal softening −Ω²M but not the \
+             centrifugal tension's geometric stiffness: the in-plane bending stiffness \
+             K − Ω²M turns indefinite at Ω = ω₁ (Lin §1, refs. [16], [18]); with the \
+             geometric stiffness of the frame's loads the model follows the nonlinear \
+             reference (`spin-up` scene)"
+                .into(),
+        ],
+        visuals: Vec::new(),
     })
 }

@@ -15,7 +15,7 @@ use super::failure_cases::{
     too_few_boundary_failure,
 };
 use super::failure_motion_cases::{
-    boundary_motion_failure, explicit_step_failure, guyan_mean_axes_failure,
+    boundary_motion_failure, explicit_step_failure, guyan_mean_axes_failure, spin_up_failure,
 };
 use super::{SceneInfo, SceneOptions, SceneOutput};
 use crate::{
@@ -53,7 +53,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut visuals = Vec::new();
 
     type Study<'a> = Box<dyn Fn() -> Result<Failure> + 'a>;
-    let studies: [(&str, &str, Study); 7] = [
+    let studies: [(&str, &str, Study); 8] = [
         (
             "craig_bampton_too_few_boundary",
             "Craig–Bampton with too few boundary DOF",
@@ -88,6 +88,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             "modal_truncation_boundary",
             "modal truncation and boundary motion",
             Box::new(|| boundary_motion_failure(&slab_model)),
+        ),
+        (
+            "spin_up_without_stiffening",
+            "spin-up without dynamic stiffening",
+            Box::new(|| spin_up_failure(opts)),
         ),
     ];
     for (key, phase, study) in studies {

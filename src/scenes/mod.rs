@@ -35,6 +35,7 @@ mod slab_refined;
 mod slab_sim_report;
 mod slab_sim_views;
 pub mod slab_sims;
+mod spin_up;
 
 pub use options::{SceneOptions, SceneOutput};
 pub use registry::{Scene, all, all_ids, find, get};

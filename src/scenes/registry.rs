@@ -4,7 +4,7 @@ use super::{SceneId, scene_info::SceneInfo};
 use super::{
     SceneOptions, SceneOutput, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
     body_modes, cantilever_variants, failures, plank_symmetry, slab_mode_sets, slab_modes,
-    slab_sims,
+    slab_sims, spin_up,
 };
 use crate::{Error, Result};
 
@@ -99,6 +99,7 @@ pub fn get(id: SceneId) -> Scene {
         SceneId::CantileverVariants => (cantilever_variants::INFO, cantilever_variants::run),
         SceneId::Failures => (failures::INFO, failures::run),
         SceneId::Modes => (body_modes::INFO, body_modes::run),
+        SceneId::SpinUp => (spin_up::INFO, spin_up::run),
     };
     Scene { info, run }
 }

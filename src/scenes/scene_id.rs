@@ -36,11 +36,13 @@ pub enum SceneId {
     Failures,
     /// `modes`: a body file's modes under every method.
     Modes,
+    /// `spin-up`: dynamic stiffening, the Campbell diagram and Kane's spin-up.
+    SpinUp,
 }
 
 impl SceneId {
     /// Every scene, in the catalogue's order.
-    pub const ALL: [SceneId; 13] = [
+    pub const ALL: [SceneId; 14] = [
         SceneId::BeamModes,
         SceneId::SlabModes,
         SceneId::BeamProfiles,
@@ -54,6 +56,7 @@ impl SceneId {
         SceneId::CantileverVariants,
         SceneId::Failures,
         SceneId::Modes,
+        SceneId::SpinUp,
     ];
 
     /// What recording the scene costs, in tenths of a second of one core (release build,
@@ -66,7 +69,7 @@ impl SceneId {
             SceneId::SlabSim2 | SceneId::SlabModeSets => 8,
             SceneId::SlabSim3 => 6,
             SceneId::SlabSim1 | SceneId::Modes => 5,
-            SceneId::Failures | SceneId::CantileverVariants => 2,
+            SceneId::Failures | SceneId::CantileverVariants | SceneId::SpinUp => 2,
             SceneId::BeamModes
             | SceneId::SlabModes
             | SceneId::BeamProfiles
@@ -91,6 +94,7 @@ impl SceneId {
             SceneId::CantileverVariants => "cantilever-variants",
             SceneId::Failures => "failures",
             SceneId::Modes => "modes",
+            SceneId::SpinUp => "spin-up",
         }
     }
 }

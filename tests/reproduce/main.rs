@@ -20,3 +20,4 @@ mod scenes;
 #[path = "../common/scratch.rs"]
 mod scratch;
 mod sparse;
+mod stiffening;

@@ -213,6 +213,7 @@ impl ImportedBody {
             description: format!("{} (in memory)", body.name),
             default_interface: body.default_interface,
             location: BodyLocation::Memory(body.name),
+            preload: None,
         })
     }
 }

@@ -67,6 +67,10 @@ pub struct BodySpec {
     /// `master` point; `--boundary NAME` then means the interface.
     #[serde(default)]
     pub interfaces: BTreeMap<String, InterfaceSpec>,
+    /// The stiffness the FE code wrote for the body spinning (`[preload]`: CalculiX's
+    /// perturbation step after a static `CENTRIF` step), for dynamic stiffening.
+    #[serde(default)]
+    pub preload: Option<super::PreloadSpec>,
 }
 
 /// A multipoint interface of a body file.

@@ -5,7 +5,7 @@ use crate::error::BodySpecProblem;
 use std::{collections::BTreeMap, sync::Arc};
 
 use super::{
-    BodyLocation, BodySpec, DofOrder, InterfaceKind, InterfaceSpec, Units,
+    BodyLocation, BodySpec, DofOrder, InterfaceKind, InterfaceSpec, Preload, Units,
     csv_table::edges,
     matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
     spec_matrices::{SpecText, place_equations, read_matrices, read_nodes},
@@ -55,6 +55,9 @@ pub struct ImportedBody {
     pub interfaces: BTreeMap<String, InterfaceSpec>,
     /// Where it came from.
     pub location: BodyLocation,
+    /// The geometric stiffness of a centrifugal load, from the FE code's preloaded stiffness
+    /// (`[preload]`), if the file gives one.
+    pub preload: Option<Preload>,
 }
 
 /// A shared imported body, compared by identity (scene options carry it).
@@ -202,7 +205,12 @@ impl ImportedBody {
             node_count,
             &spec_text,
         )?;
+        let preload = match &spec.preload {
+            Some(p) => Some(Preload::read(&model, &location, p)?),
+            None => None,
+        };
         Ok(Self {
+            preload,
             model,
             node_sets: spec.node_sets,
             interfaces,

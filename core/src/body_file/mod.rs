@@ -20,6 +20,7 @@ mod nastran_dmig;
 mod nastran_op4;
 mod node_dof_placement;
 mod npy;
+mod preload;
 mod spec_matrices;
 
 pub use crate::error::BodyFileError;
@@ -34,7 +35,10 @@ pub use body_writer::{
     BodyFileParameters, BodyFiles, example_bodies, lower_entries, mass_lower_entries, write_body,
     write_files, write_imported_body,
 };
-pub use calculix_matrix::{calculix_equation_count, parse_calculix_dof_map, parse_calculix_matrix};
+pub use calculix_matrix::{
+    calculix_equation_count, parse_calculix_dof_map, parse_calculix_dof_map_partial,
+    parse_calculix_matrix,
+};
 pub use dof_map_file::parse_dof_map;
 pub use harwell_boeing::parse_harwell_boeing;
 pub use imported_body::{BodyHandle, ImportedBody, RigidSet, SYMMETRY_TOLERANCE};
@@ -45,3 +49,4 @@ pub use matrix_market::{
 pub use nastran_dmig::parse_nastran_dmig;
 pub use nastran_op4::parse_op4;
 pub use npy::{npy_header, read_npy, write_npy};
+pub use preload::{CentrifugalLoad, Preload, PreloadSpec, parse_centrifugal_load};

@@ -15,6 +15,7 @@ use super::{
     dormand_prince::{A, B5, C},
     driven_frame_body::Combination,
     driven_integration::static_start,
+    stiffening_coefficients,
 };
 use crate::{Progress, Result, error::DivergenceCause};
 
@@ -61,6 +62,7 @@ pub fn integrate_driven_explicit(
                 k: 1.0,
                 g: acceleration,
                 h: rate * rate,
+                sigma: stiffening_coefficients(rate, acceleration, g_body),
                 ..Default::default()
             },
             u.as_slice(),

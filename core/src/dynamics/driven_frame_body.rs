@@ -24,6 +24,7 @@ use faer::MatRef;
 use nalgebra::{DMatrix, DVector, Unit, Vector3};
 
 use super::frame_coordinates::{FrameCoordinates, PinnedRing};
+use super::frame_stiffening::{FrameStiffening, STIFFENING_CASES};
 use crate::{
     Error, Result,
     error::LinalgError,
@@ -42,7 +43,9 @@ pub const DRIVEN_SOLVE_TOLERANCE: f64 = 1e-11;
 /// between two directions, for the mass matrix to count as $M_s \otimes I_3$.
 pub const ISOTROPIC_MASS_TOLERANCE: f64 = 1e-9;
 
-/// The coefficients of a combination $c_m M + c_k K + c_g G + c_h H$.
+/// The coefficients of a combination $c_m M + c_k K + c_g G + c_h H + \sum_i c_{\sigma,i}
+/// K_{\sigma,i}$, the last the body's geometric stiffnesses of unit frame loads
+/// ([`FrameStiffening`]; none on a body without stiffening).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Combination {
     /// Of the mass matrix.
@@ -53,6 +56,9 @@ pub struct Combination {
     pub g: f64,
     /// Of the centrifugal matrix $H = ME^2$.
     pub h: f64,
+    /// Of the geometric stiffnesses of the unit frame loads, in [`FrameStiffening`]'s order
+    /// ($\dot\theta^2$, $\ddot\theta$, $g_x$, $g_y$, $g_z$).
+    pub sigma: [f64; STIFFENING_CASES],
 }
 
 /// The full body, sparse.
@@ -65,17 +71,22 @@ pub struct SparseDriven {
     m_ff: MassMatrix,
     axis: Vector3<f64>,
     symbolic: SymbolicFactor,
+    /// The geometric stiffness of the centrifugal load per unit rate² on the coordinates
+    /// (a body's preloaded stiffness, [`crate::body_file::Preload`]), if set.
+    centrifugal: Option<SparseSymmetric>,
     /// $(c_m, c_k)$ and the factor of $c_m M + c_k K$.
     factor: Option<((f64, f64), SymmetricFactor)>,
 }
 
-/// A reduced body, dense: every operator projected on Ψ.
+/// A reduced body, or a small full one, dense: every operator projected on Ψ.
 #[derive(Debug, Clone)]
 pub struct DenseDriven {
     m: DMatrix<f64>,
     k: DMatrix<f64>,
     g: DMatrix<f64>,
     h: DMatrix<f64>,
+    /// The geometric stiffnesses of the unit frame loads, if the body has them.
+    stiffening: Option<FrameStiffening>,
 }
 
 /// The equations' operators.
@@ -199,6 +210,10 @@ impl SparseDriven {
                 .mul(MatRef::from_column_major_slice(x, x.len(), 1));
             add((0..x.len()).map(|i| kx[(i, 0)]).collect(), c.k);
         }
+        if let (Some(kg), true) = (&self.centrifugal, c.sigma[0] != 0.0) {
+            let kx = kg.mul(MatRef::from_column_major_slice(x, x.len(), 1));
+            add((0..x.len()).map(|i| kx[(i, 0)]).collect(), c.sigma[0]);
+        }
         if c.g != 0.0 || c.h != 0.0 {
             let full = self.extend(x);
             if c.g != 0.0 {
@@ -267,11 +282,18 @@ impl DenseDriven {
                 y.gemv(coefficient, matrix, &x, 1.0);
             }
         }
+        if let Some(s) = &self.stiffening {
+            s.add_mul(&c.sigma, &x, &mut y);
+        }
         y.as_slice().to_vec()
     }
 
     fn combine(&self, c: Combination) -> DMatrix<f64> {
-        &self.m * c.m + &self.k * c.k + &self.g * c.g + &self.h * c.h
+        let mut a = &self.m * c.m + &self.k * c.k + &self.g * c.g + &self.h * c.h;
+        if let Some(s) = &self.stiffening {
+            s.add_to(&c.sigma, &mut a);
+        }
+        a
     }
 }
 
@@ -302,6 +324,7 @@ impl DrivenFrameBody {
             m_ff,
             axis: axis.into_inner(),
             symbolic,
+            centrifugal: None,
             factor: None,
         };
         let g_s = sparse.frame_full(&s, false);
@@ -319,14 +342,120 @@ impl DrivenFrameBody {
         })
     }
 
-    /// The body reduced by `psi` (rows: the free DOF of `full`, in its order; columns: the
-    /// modal coordinates): every operator and load projected, $\Psi^T X \Psi$, $\Psi^T f$.
-    pub fn reduced(full: &DrivenFrameBody, psi: MatRef<'_, f64>) -> Result<Self> {
-        let Operators::Sparse(sparse) = &full.operators else {
+    /// A body given by its dense operators in its own coordinates (a small full body such
+    /// as a beam, or a reduced one): $M$, $K$, $G$ (skew), $H$ (symmetric), the loads $Gs$,
+    /// $Hs$ and $M(1\otimes e_a)$, and the geometric stiffnesses of the unit frame loads if
+    /// the body has them.
+    #[allow(clippy::too_many_arguments)]
+    pub fn dense(
+        m: DMatrix<f64>,
+        k: DMatrix<f64>,
+        g: DMatrix<f64>,
+        h: DMatrix<f64>,
+        g_s: Vec<f64>,
+        h_s: Vec<f64>,
+        unit_gravity: [Vec<f64>; 3],
+        stiffening: Option<FrameStiffening>,
+    ) -> Result<Self> {
+        let n = m.nrows();
+        let square = [&m, &k, &g, &h].iter().all(|a| a.shape() == (n, n));
+        let loads = [
+            &g_s,
+            &h_s,
+            &unit_gravity[0],
+            &unit_gravity[1],
+            &unit_gravity[2],
+        ]
+        .iter()
+        .all(|v| v.len() == n);
+        if !(square && loads && stiffening.as_ref().is_none_or(|s| s.dim() == n)) {
             return Err(DynamicsError::Misuse {
-                what: "a reduced body is projected from the full one",
+                what: "a dense driven body's operators and loads share one size",
             }
             .into());
+        }
+        Ok(Self {
+            operators: Operators::Dense(DenseDriven {
+                m,
+                k,
+                g,
+                h,
+                stiffening,
+            }),
+            g_s,
+            h_s,
+            unit_gravity,
+        })
+    }
+
+    /// Whether the body carries geometric stiffnesses of the frame's loads.
+    pub fn has_stiffening(&self) -> bool {
+        match &self.operators {
+            Operators::Dense(d) => d.stiffening.is_some(),
+            Operators::Sparse(s) => s.centrifugal.is_some(),
+        }
+    }
+
+    /// Gives the full (sparse) body the geometric stiffness of the centrifugal load per unit
+    /// rate², `k` on every DOF of the body (a preloaded stiffness, held DOF zero): its
+    /// coefficient is $\dot\theta^2$; reduced bodies project it.
+    pub fn set_centrifugal_stiffening(&mut self, k: &SparseSymmetric) -> Result<()> {
+        let Operators::Sparse(s) = &mut self.operators else {
+            return Err(DynamicsError::Misuse {
+                what: "a preloaded stiffness is set on the full body",
+            }
+            .into());
+        };
+        if k.dim() != s.coords.dofs() {
+            return Err(DynamicsError::Misuse {
+                what: "a preloaded stiffness has a row per DOF of the body",
+            }
+            .into());
+        }
+        s.centrifugal = Some(s.coords.project(k));
+        Ok(())
+    }
+
+    /// The full (sparse) body's stiffening dropped: the linear floating-frame model.
+    pub fn drop_stiffening(&mut self) {
+        match &mut self.operators {
+            Operators::Sparse(s) => s.centrifugal = None,
+            Operators::Dense(d) => d.stiffening = None,
+        }
+    }
+
+    /// A copy of a dense body, with its geometric stiffnesses or without them (`false`: the
+    /// linear floating-frame model of the thesis, whose spinning frequencies fall with the
+    /// rate).
+    pub fn dense_copy(&self, stiffening: bool) -> Result<Self> {
+        let Operators::Dense(d) = &self.operators else {
+            return Err(DynamicsError::Misuse {
+                what: "only a dense driven body carries geometric stiffnesses",
+            }
+            .into());
+        };
+        Ok(Self {
+            operators: Operators::Dense(DenseDriven {
+                stiffening: if stiffening {
+                    d.stiffening.clone()
+                } else {
+                    None
+                },
+                ..d.clone()
+            }),
+            g_s: self.g_s.clone(),
+            h_s: self.h_s.clone(),
+            unit_gravity: self.unit_gravity.clone(),
+        })
+    }
+
+    /// The body reduced by `psi` (rows: the free DOF of `full`, in its order; columns: the
+    /// modal coordinates): every operator and load projected, $\Psi^T X \Psi$, $\Psi^T f$,
+    /// the geometric stiffnesses of a dense body too.
+    pub fn reduced(full: &DrivenFrameBody, psi: MatRef<'_, f64>) -> Result<Self> {
+        let sparse = match &full.operators {
+            Operators::Sparse(sparse) => sparse,
+            Operators::Dense(dense) => return Self::reduced_dense(full, dense, psi),
         };
         let (rows, k) = (psi.nrows(), psi.ncols());
         assert_eq!(rows, sparse.coords.dim(), "Ψ has a row per coordinate");
@@ -343,7 +472,13 @@ impl DrivenFrameBody {
             }
             out
         };
-        let one = |m, kk, g, h| Combination { m, k: kk, g, h };
+        let one = |m, kk, g, h| Combination {
+            m,
+            k: kk,
+            g,
+            h,
+            ..Default::default()
+        };
         let mut m = project(one(1.0, 0.0, 0.0, 0.0));
         let mut kk = project(one(0.0, 1.0, 0.0, 0.0));
         let mut h = project(one(0.0, 0.0, 0.0, 1.0));
@@ -353,14 +488,61 @@ impl DrivenFrameBody {
             *mat = (&*mat + mat.transpose()) * 0.5;
         }
         g = (&g - g.transpose()) * 0.5;
+        let stiffening = if sparse.centrifugal.is_some() {
+            let mut c = Combination::default();
+            c.sigma[0] = 1.0;
+            let kg = project(c);
+            FrameStiffening::new([Some((&kg + kg.transpose()) * 0.5), None, None, None, None])
+        } else {
+            None
+        };
         let project_vector =
             |v: &[f64]| -> Vec<f64> { columns.iter().map(|x| dot(x, v)).collect() };
         Ok(Self {
-            operators: Operators::Dense(DenseDriven { m, k: kk, g, h }),
+            operators: Operators::Dense(DenseDriven {
+                m,
+                k: kk,
+                g,
+                h,
+                stiffening,
+            }),
             g_s: project_vector(&full.g_s),
             h_s: project_vector(&full.h_s),
             unit_gravity: std::array::from_fn(|a| project_vector(&full.unit_gravity[a])),
         })
+    }
+
+    fn reduced_dense(
+        full: &DrivenFrameBody,
+        d: &DenseDriven,
+        psi: MatRef<'_, f64>,
+    ) -> Result<Self> {
+        let n = d.m.nrows();
+        if psi.nrows() != n {
+            return Err(DynamicsError::Misuse {
+                what: "Ψ has a row per coordinate of the dense body",
+            }
+            .into());
+        }
+        let p = DMatrix::from_fn(n, psi.ncols(), |i, j| psi[(i, j)]);
+        let project = |a: &DMatrix<f64>| p.transpose() * a * &p;
+        let symmetric = |a: DMatrix<f64>| (&a + a.transpose()) * 0.5;
+        let g = project(&d.g);
+        let vector = |v: &[f64]| -> Vec<f64> {
+            (p.transpose() * DVector::from_column_slice(v))
+                .as_slice()
+                .to_vec()
+        };
+        Self::dense(
+            symmetric(project(&d.m)),
+            symmetric(project(&d.k)),
+            (&g - g.transpose()) * 0.5,
+            symmetric(project(&d.h)),
+            vector(&full.g_s),
+            vector(&full.h_s),
+            std::array::from_fn(|a| vector(&full.unit_gravity[a])),
+            d.stiffening.as_ref().map(|s| s.projected(&p)),
+        )
     }
 
     /// Coordinates: free DOF or modal coordinates.

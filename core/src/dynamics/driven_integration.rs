@@ -1,6 +1,8 @@
 //! Generalized-α (Chung and Hulbert 1993) for the linear, time-varying equations of a body on
 //! a driven frame, $M\ddot u + C(t)\dot u + K(t)u = f(t)$ with $C = 2\dot\theta G$ and
-//! $K(t) = K + \ddot\theta G + \dot\theta^2 H$ ([`DrivenFrameBody`]).
+//! $K(t) = K + \ddot\theta G + \dot\theta^2 H + K_\sigma(t)$ ([`DrivenFrameBody`]; $K_\sigma$
+//! the geometric stiffness of the frame's loads, [`super::FrameStiffening`], if the body
+//! carries it).
 //!
 //! The balance holds at $t_{n+1-\alpha_f}$ with the accelerations at $t_{n+1-\alpha_m}$:
 //! $M a_{n+1-\alpha_m} + C v_{n+1-\alpha_f} + K u_{n+1-\alpha_f} = f(t_{n+1-\alpha_f})$,
@@ -21,6 +23,7 @@ use nalgebra::Vector3;
 use super::{
     GeneralizedAlphaCoefficients, Shake, SpinUp,
     driven_frame_body::{Combination, DrivenFrameBody},
+    stiffening_coefficients,
 };
 use crate::{Progress, Result};
 
@@ -75,6 +78,9 @@ pub(super) fn static_start(
     let f0 = body.load(rate, acceleration, g_body);
     let stiffness = Combination {
         k: 1.0,
+        g: acceleration,
+        h: rate * rate,
+        sigma: stiffening_coefficients(rate, acceleration, g_body),
         ..Default::default()
     };
     body.solve(stiffness, &f0, vec![0.0; body.dim()])
@@ -150,11 +156,13 @@ pub fn integrate_driven(
             },
             &v_star,
         );
+        let sigma = stiffening_coefficients(rate, acceleration, g_body);
         let ku = body.mul(
             Combination {
                 k: 1.0,
                 g: acceleration,
                 h: rate * rate,
+                sigma,
                 ..Default::default()
             },
             &u_star,
@@ -165,6 +173,7 @@ pub fn integrate_driven(
             k: (1.0 - co.alpha_f) * co.beta * h * h,
             g: (1.0 - co.alpha_f) * (2.0 * co.gamma * h * rate + co.beta * h * h * acceleration),
             h: (1.0 - co.alpha_f) * co.beta * h * h * rate * rate,
+            sigma: sigma.map(|c| (1.0 - co.alpha_f) * co.beta * h * h * c),
         };
         let (a_next, its) = body.solve(effective, &b, a.clone())?;
         iterations += its;

@@ -13,6 +13,7 @@ mod driven_frame_body;
 mod driven_integration;
 mod evaluation_workspace;
 mod frame_coordinates;
+mod frame_stiffening;
 mod generalized_alpha;
 mod inertia_invariants;
 mod integrator;
@@ -40,6 +41,9 @@ pub use driven_frame_body::{
 };
 pub use driven_integration::{DrivenCost, DrivenIntegration, Driving, integrate_driven};
 pub use frame_coordinates::{FrameCoordinates, PinnedRing};
+pub use frame_stiffening::{
+    FrameStiffening, STIFFENING_CASE_NAMES, STIFFENING_CASES, stiffening_coefficients,
+};
 pub use generalized_alpha::GeneralizedAlphaCoefficients;
 pub use inertia_invariants::InertiaInvariants;
 pub use integrator::simulate;

@@ -71,4 +71,7 @@ pub enum BodySpecProblem {
     /// A `dof_order` other than node-major beside a DOF map.
     #[error("with a dof_map the map says where each equation goes: leave dof_order node-major")]
     DofOrderWithMap,
+    /// A `[preload]` on a body whose nodes do not carry x, y, z alone.
+    #[error("a [preload] needs a solid body (dofs = [\"x\", \"y\", \"z\"])")]
+    PreloadNeedsSolid,
 }

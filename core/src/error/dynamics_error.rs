@@ -127,4 +127,26 @@ pub enum DynamicsError {
     /// in `what` (their sample times, outputs, drive or its motion).
     #[error("the driven studies to join differ in their {what}: they are not runs of one drive")]
     StudiesDiffer { what: &'static str },
+
+    /// A body's preloaded stiffness was written for another spin than the driven frame's:
+    /// another axis (the angle between them), an axis through other points (the frame's
+    /// origin's distance from the preload's axis, the body's length unit), or other held DOF
+    /// (how many the preload held, how many the drive's ring clamps, how many of the ring's
+    /// it held).
+    #[error(
+        "the body's [preload] was written for another spin: {}",
+        match (angle_rad, offset, held) {
+            (Some(a), _, _) => format!("its axis is {a:.2e} rad from the spin axis"),
+            (_, Some(d), _) => format!("its axis passes {d:.3e} from the frame's origin"),
+            (_, _, Some((h, r, both))) => format!(
+                "its static step held {h} DOF, the drive's ring clamps {r} ({both} of them in                  both): hold the drive's ring alone in CalculiX's *BOUNDARY"
+            ),
+            _ => "it does not match".to_string(),
+        }
+    )]
+    PreloadMismatch {
+        angle_rad: Option<f64>,
+        offset: Option<f64>,
+        held: Option<(usize, usize, usize)>,
+    },
 }

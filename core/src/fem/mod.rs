@@ -12,6 +12,7 @@ mod l_bracket;
 mod mass_properties;
 mod node_index;
 mod overhang_frame;
+mod spinning_beam;
 mod triplets;
 
 pub use beam2d::{BeamParameters, beam};
@@ -29,4 +30,5 @@ pub use node_index::NodeIndex;
 pub use overhang_frame::{
     OverhangDirection, OverhangFrame, OverhangFrameParameters, overhang_frame,
 };
+pub use spinning_beam::{BEAM_NODE_DOF, BendingPlane, SpinningBeam, SpinningBeamParameters};
 pub use triplets::Triplets;

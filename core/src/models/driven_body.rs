@@ -15,7 +15,7 @@ use nalgebra::{Unit, Vector3};
 use crate::{
     Result,
     analysis::{MeanAxisView, count_zero_energy_modes},
-    body_file::{ImportedBody, InterfaceKind},
+    body_file::{ImportedBody, InterfaceKind, Preload},
     dynamics::{
         AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, FrameCoordinates,
         PinnedRing, Shake, SpinUp, integrate_driven, positions,
@@ -78,6 +78,9 @@ pub struct DrivenBodyParameters {
     /// interface) or the body's mean axes (the same motion, its rigid part in the mass metric
     /// taken out); principal axes are not offered.
     pub axes: AxisKind,
+    /// Dynamic stiffening from the body's preloaded stiffness (`[preload]`), when it has
+    /// one: on by default.
+    pub stiffening: bool,
 }
 
 impl Default for DrivenBodyParameters {
@@ -101,6 +104,7 @@ impl Default for DrivenBodyParameters {
             },
             explicit: false,
             axes: AxisKind::NodalFixed,
+            stiffening: true,
         }
     }
 }
@@ -168,6 +172,9 @@ pub struct DrivenStudy {
     pub dof: usize,
     /// The runs, the full body first when it ran.
     pub runs: Vec<DrivenRun>,
+    /// Whether the runs carried the dynamic stiffening of the body's preloaded stiffness
+    /// (false: stiffening off, or the body has no `[preload]`).
+    pub stiffened: bool,
     /// The explicit scheme's critical step per reduced model, checked (with `explicit`).
     pub stability: Vec<ExplicitCheck>,
     /// The reaction force a rigid body would need at each sample time: what the reaction
@@ -200,6 +207,9 @@ impl DrivenStudy {
             if s.rigid_force != first.rigid_force {
                 return differ("motion (the rigid reaction)");
             }
+            if s.stiffened != first.stiffened {
+                return differ("dynamic stiffening");
+            }
         }
         let mut runs: Vec<DrivenRun> = studies
             .iter()
@@ -228,6 +238,7 @@ impl DrivenStudy {
             drive: first.drive.clone(),
             dof: first.dof,
             rigid_force: first.rigid_force.clone(),
+            stiffened: first.stiffened,
         })
     }
 
@@ -303,6 +314,14 @@ pub fn driven_body_study(
     let started = Instant::now();
     let mut full_body =
         DrivenFrameBody::full(model, &ring, pins.clone(), origin, driving.spin.axis)?;
+    let stiffened = match (&body.preload, parameters.stiffening) {
+        (Some(preload), true) => {
+            check_preload(preload, &driving, origin, &ring, model.size())?;
+            full_body.set_centrifugal_stiffening(&preload.rate_squared)?;
+            true
+        }
+        _ => false,
+    };
     let full_offline = started.elapsed().as_secs_f64();
     let coords = full_body
         .coordinates()
@@ -389,12 +408,13 @@ pub fn driven_body_study(
         runs,
         stability,
         rigid_force,
+        stiffened,
     })
 }
 
 /// The drive: the one rigid interface `item` names (`rbe2:SET` or an rbe2 interface of the
 /// body file).
-fn drive_interface(
+pub(super) fn drive_interface(
     body: &ImportedBody,
     item: &str,
     interfaces: &BodyInterfaces,
@@ -413,6 +433,51 @@ fn drive_interface(
         }
         .into()),
     }
+}
+
+/// A preloaded stiffness applies to a spin about its own axis with the drive's ring held as
+/// its static step held it: the axes parallel (1e-6 rad), the frame's origin on its axis
+/// (1e-6 of the body's size), its held DOF the ring's.
+pub(super) fn check_preload(
+    preload: &Preload,
+    driving: &Driving,
+    origin: [f64; 3],
+    ring: &[usize],
+    size: f64,
+) -> Result<()> {
+    let (a, e) = (
+        preload.load.axis.into_inner(),
+        driving.spin.axis.into_inner(),
+    );
+    let angle = a.cross(&e).norm().atan2(a.dot(&e).abs());
+    let mismatch = |angle_rad, offset, held| {
+        Err(DynamicsError::PreloadMismatch {
+            angle_rad,
+            offset,
+            held,
+        }
+        .into())
+    };
+    if angle > 1e-6 {
+        return mismatch(Some(angle), None, None);
+    }
+    let d = Vector3::from(origin) - Vector3::from(preload.load.point);
+    let offset = (d - a * a.dot(&d)).norm();
+    if offset > 1e-6 * size.max(f64::MIN_POSITIVE) {
+        return mismatch(None, Some(offset), None);
+    }
+    let mut held = preload.held.clone();
+    held.sort_unstable();
+    let mut clamped = ring.to_vec();
+    clamped.sort_unstable();
+    if held != clamped {
+        let both = held
+            .iter()
+            .filter(|d| clamped.binary_search(d).is_ok())
+            .count();
+        return mismatch(None, None, Some((held.len(), clamped.len(), both)));
+    }
+    Ok(())
 }
 
 /// The prescribed motion of the parameters, checked: a nonzero spin axis, a positive ramp

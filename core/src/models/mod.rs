@@ -3,6 +3,7 @@
 //! numbers. A model never imports a scene or the recorder.
 
 mod body_advice;
+mod body_campbell;
 mod body_comparison;
 mod body_import;
 mod body_modes_study;
@@ -17,10 +18,15 @@ mod interface_reduction_sweep;
 mod interface_response;
 mod plank_simulation;
 mod slab_simulation;
+mod spinning_beam_study;
 mod statically_determinate_support;
 
 pub(crate) use body_advice::advise;
 pub use body_advice::{AdvisedModel, BodyAdvice};
+pub use body_campbell::{
+    BodyCampbell, BodyCampbellCurve, BodyCampbellParameters, CAMPBELL_DENSE_LIMIT, body_campbell,
+    spinning_frequencies,
+};
 pub use body_comparison::{
     BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyComparison, BodyComparisonParameters,
     BodyComparisonPoint, ROUND_OFF_ERROR, compare_body_methods,
@@ -71,5 +77,11 @@ pub use slab_simulation::{
     BOUNDARY as SLAB_BOUNDARY, DRIVEN_NODES, DrivenTables, PROBE_NODE, SIM1_END, SIM2_END,
     SIM3_END, Scenario, default_boundary, fixed, held_at_six, probe_history, record_driving_tables,
     reduction_nodes, sim3_rotation, slab_body, slab_node, slab_system,
+};
+pub use spinning_beam_study::{
+    CAMPBELL_SPEEDS, CampbellCurve, CampbellParameters, CampbellStudy, Divergence,
+    PUBLISHED_TOLERANCE, SPIN_UP_TOLERANCE, SpinUpModels, SpinUpParameters, SpinUpRun, SpinUpStudy,
+    campbell_study, model_label, published_flapwise, spin_up_reference, spin_up_study,
+    spinning_beam_body,
 };
 pub use statically_determinate_support::three_two_one_support;
