@@ -95,7 +95,7 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
                 if f < 0.0 {
                     Cell::number(f, format!("unstable ({:.4})", -f))
                 } else {
-                    Cell::number(f, format!("{}", crate::report::sig6(f)))
+                    Cell::number(f, crate::report::sig6(f))
                 }
             }));
             out.push(row);

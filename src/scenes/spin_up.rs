@@ -73,9 +73,15 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let campbell_table = campbell_report(&campbell, &mut report, modes);
     let spin_table = spin_report(&spin, &mut report);
     report.table = format!(
-        "Campbell diagram (flapwise μ against λ; lagwise NR with and without stiffening):\n\n\
-         {campbell_table}\nKane's spin-up (tip deflection in the hub frame against the \
-         co-rotational reference):\n\n{spin_table}"
+        "## Campbell diagram\n\nThe clamped-free beam spun about its root: flapwise and \
+         lagwise frequencies μ = ω√(ρAL⁴/EI) against λ = Ω√(ρAL⁴/EI), beside the published \
+         flapwise values (Wright, Smith, Thresher & Wang 1982; Hodges & Rutkowski 1981), \
+         tolerance {PUBLISHED_TOLERANCE:.0e} for λ ≤ {COMPARED_UP_TO}.\n\n{campbell_table}\n\
+         ## Kane's spin-up\n\nThe 10 m beam (EI = 14 000 N m², ρA = 1.2 kg/m, EA = 2.8e7 N) \
+         on a hub turned by θ(t) = (ω_s/T_s)(t²/2 + (T_s/2π)²(cos 2πt/T_s − 1)), T_s = 15 s: \
+         the tip's deflection in the hub frame against a co-rotational beam computed \
+         independently (assets/generate/spinning_beam_reference.py), tolerance \
+         {SPIN_UP_TOLERANCE:.0e} of its peak.\n\n{spin_table}"
     );
     let markdown = format!(
         "# spin-up\n\nA floating-frame body whose elastic coordinates enter linearly has no \
@@ -84,16 +90,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          first bending frequency it diverges (Lin's thesis §1, refs. [16] Kane et al. 1987, \
          [18] Zhang & Huston 1996). flexmodes adds the geometric stiffness of each unit \
          inertia load of the frame (rate², angular acceleration, gravity), solved statically \
-         once and projected on each model's basis.\n\n\
-         ## Campbell diagram\n\nThe clamped-free beam spun about its root: flapwise and \
-         lagwise frequencies μ = ω√(ρAL⁴/EI) against λ = Ω√(ρAL⁴/EI), beside the published \
-         flapwise values (Wright, Smith, Thresher & Wang 1982; Hodges & Rutkowski 1981), \
-         tolerance {PUBLISHED_TOLERANCE:.0e} for λ ≤ {COMPARED_UP_TO}.\n\n{campbell_table}\n\
-         ## Kane's spin-up\n\nThe 10 m beam (EI = 14 000 N m², ρA = 1.2 kg/m, EA = 2.8e7 N) \
-         on a hub turned by θ(t) = (ω_s/T_s)(t²/2 + (T_s/2π)²(cos 2πt/T_s − 1)), T_s = 15 s: \
-         the tip's deflection in the hub frame against a co-rotational beam computed \
-         independently (assets/generate/spinning_beam_reference.py), tolerance \
-         {SPIN_UP_TOLERANCE:.0e} of its peak.\n\n{spin_table}",
+         once and projected on each model's basis. Views: the Campbell chart (μ against λ, \
+         flapwise and lagwise; the published values as grey points; the lighter lines without \
+         stiffening; λ to the right, μ upwards), and the tip's deflection over time \
+         at each ω_s.\n\n{}",
+        report.table
     );
     let mut visuals = campbell_visuals(&campbell);
     visuals.extend(spin_visuals(&spin));
@@ -102,14 +103,14 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .rates
         .iter()
         .map(|r| Layout::TimeSeries {
-            name: format!("tip deflection, m (ω_s = {r} rad/s)"),
+            name: format!("tip, m: ω_s {r}"),
             origin: format!("/plots/tip_{}", rate_key(*r)),
         })
         .collect();
     plots.insert(
         0,
         Layout::Spatial2D {
-            name: "Campbell: μ against λ".into(),
+            name: "Campbell μ(λ)".into(),
             origin: "/campbell".into(),
         },
     );

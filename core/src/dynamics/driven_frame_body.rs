@@ -93,7 +93,7 @@ pub struct DenseDriven {
 #[derive(Debug)]
 enum Operators {
     Sparse(Box<SparseDriven>),
-    Dense(DenseDriven),
+    Dense(Box<DenseDriven>),
 }
 
 /// A body on a driven frame (see the module documentation): its operators and load vectors
@@ -375,13 +375,13 @@ impl DrivenFrameBody {
             .into());
         }
         Ok(Self {
-            operators: Operators::Dense(DenseDriven {
+            operators: Operators::Dense(Box::new(DenseDriven {
                 m,
                 k,
                 g,
                 h,
                 stiffening,
-            }),
+            })),
             g_s,
             h_s,
             unit_gravity,
@@ -435,14 +435,14 @@ impl DrivenFrameBody {
             .into());
         };
         Ok(Self {
-            operators: Operators::Dense(DenseDriven {
+            operators: Operators::Dense(Box::new(DenseDriven {
                 stiffening: if stiffening {
                     d.stiffening.clone()
                 } else {
                     None
                 },
-                ..d.clone()
-            }),
+                ..(**d).clone()
+            })),
             g_s: self.g_s.clone(),
             h_s: self.h_s.clone(),
             unit_gravity: self.unit_gravity.clone(),
@@ -499,13 +499,13 @@ impl DrivenFrameBody {
         let project_vector =
             |v: &[f64]| -> Vec<f64> { columns.iter().map(|x| dot(x, v)).collect() };
         Ok(Self {
-            operators: Operators::Dense(DenseDriven {
+            operators: Operators::Dense(Box::new(DenseDriven {
                 m,
                 k: kk,
                 g,
                 h,
                 stiffening,
-            }),
+            })),
             g_s: project_vector(&full.g_s),
             h_s: project_vector(&full.h_s),
             unit_gravity: std::array::from_fn(|a| project_vector(&full.unit_gravity[a])),

@@ -204,8 +204,8 @@ impl SpinningBeam {
                     // ẽ(x, y) = (−y, x): Nᵀẽ N = N_vᵀN_u − N_uᵀN_v.
                     outer_add(&mut ge, &s.nv, &s.nu, rho * dx);
                     outer_add(&mut ge, &s.nu, &s.nv, -rho * dx);
-                    for a in 0..6 {
-                        gse[a] += rho * dx * s.nv[a] * radius;
+                    for (g, nv) in gse.iter_mut().zip(&s.nv) {
+                        *g += rho * dx * nv * radius;
                     }
                 }
             }

@@ -507,7 +507,7 @@ impl SpinUpModels {
                 } else {
                     self.tip_row.iter().zip(u).map(|(a, b)| a * b).sum()
                 };
-                if !(y.abs() <= bound) {
+                if y.is_nan() || y.abs() > bound {
                     return Err(DynamicsError::Diverged {
                         time: t,
                         cause: DivergenceCause::StateBeyondBound { bound },
