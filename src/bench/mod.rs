@@ -9,6 +9,7 @@ mod pareto;
 mod simulation_bench;
 mod simulation_size_bench;
 mod size_bench;
+mod spin_up_bench;
 
 pub use crate::analysis::{pareto_flags, three_digits};
 pub use body_bench::bench_body_modes;
@@ -20,3 +21,4 @@ pub use simulation_bench::{BENCH_SCHEMES, BenchPoint, LOOSE_ATOL, LOOSE_RTOL, be
 pub(crate) use simulation_bench::{MODE_SWEEP, bench_scenario};
 pub use simulation_size_bench::{SIZES_RUN_S, bench_sim_sizes};
 pub use size_bench::{BENCH_MODES, SizeBench, bench_sizes, growth_exponent, parse_sizes};
+pub use spin_up_bench::{STABLE_RATE, bench_spin_up};

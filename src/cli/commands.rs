@@ -571,6 +571,8 @@ fn scenes(args: BenchArgs) -> Result<()> {
         let bar = TerminalProgress::start(&handle, &format!("bench {id} ({} of {count})", k + 1));
         let (value, table, recording) = if id == SceneId::SlabModes {
             crate::bench::bench_modes(refine, &handle)?
+        } else if id == SceneId::SpinUp {
+            crate::bench::bench_spin_up(repeats.unwrap_or(3) as usize, &handle)?
         } else {
             crate::bench::bench_simulation(
                 id.as_str(),

@@ -136,7 +136,7 @@ fn stiffening_words(
     match (study.stiffened, &body.preload) {
         (true, Some(p)) => format!(
             "\nDynamic stiffening: on, from the body's [preload] (the stiffness its FE code wrote \
-             spun at {:.6} rad/s), its geometric stiffness scaled by (θ̇/Ω₀)²{share}.\n",
+             spun at {} rad/s), its geometric stiffness scaled by (θ̇/Ω₀)²{share}.\n",
             sig(p.load.rate)
         ),
         (false, Some(_)) => format!(

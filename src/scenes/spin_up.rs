@@ -221,7 +221,7 @@ fn spin_report(study: &SpinUpStudy, report: &mut Report) -> String {
     let mut table = Table::new(&[
         "ω_s, rad/s",
         "model",
-        "peak |tip|, m",
+        "peak tip deflection, m",
         "difference / reference peak",
         "online, s",
         "diverged",

@@ -87,6 +87,9 @@ pub struct DenseDriven {
     h: DMatrix<f64>,
     /// The geometric stiffnesses of the unit frame loads, if the body has them.
     stiffening: Option<FrameStiffening>,
+    /// With stiffening: $H + K_{\sigma,1}$ (both scale with $\dot\theta^2$, so the
+    /// integrators' combinations take them as one matrix), and the other cases.
+    folded: Option<(DMatrix<f64>, FrameStiffening)>,
 }
 
 /// The equations' operators.
@@ -267,30 +270,59 @@ impl SparseDriven {
 }
 
 impl DenseDriven {
-    /// $(c_m M + c_k K + c_g G + c_h H)\,x$ by one product per nonzero coefficient (no
-    /// combined matrix per call: the integrators apply it several times a step).
+    fn new(
+        m: DMatrix<f64>,
+        k: DMatrix<f64>,
+        g: DMatrix<f64>,
+        h: DMatrix<f64>,
+        stiffening: Option<FrameStiffening>,
+    ) -> Self {
+        let folded = stiffening.as_ref().and_then(|s| {
+            let rate_squared = s.case(0)?;
+            Some((&h + rate_squared, s.without_case(0)))
+        });
+        Self {
+            m,
+            k,
+            g,
+            h,
+            stiffening,
+            folded,
+        }
+    }
+
+    /// The matrix that goes with $c_h$ and the stiffening cases still to add: $H +
+    /// K_{\sigma,1}$ when the combination scales $K_{\sigma,1}$ as it scales $H$ (the
+    /// integrators' always do), else $H$ and every case.
+    fn centrifugal(&self, c: &Combination) -> (&DMatrix<f64>, Option<&FrameStiffening>) {
+        match &self.folded {
+            Some((h_sigma, rest)) if c.sigma[0] == c.h => (h_sigma, Some(rest)),
+            _ => (&self.h, self.stiffening.as_ref()),
+        }
+    }
+
+    /// $(c_m M + c_k K + c_g G + c_h H + \sum c_{\sigma,i}K_{\sigma,i})\,x$ by one product
+    /// per nonzero coefficient (no combined matrix per call: the integrators apply it several
+    /// times a step).
     fn mul(&self, c: Combination, x: &[f64]) -> Vec<f64> {
         let x = DVector::from_column_slice(x);
         let mut y = DVector::zeros(x.len());
-        for (coefficient, matrix) in [
-            (c.m, &self.m),
-            (c.k, &self.k),
-            (c.g, &self.g),
-            (c.h, &self.h),
-        ] {
+        let (h, rest) = self.centrifugal(&c);
+        for (coefficient, matrix) in [(c.m, &self.m), (c.k, &self.k), (c.g, &self.g), (c.h, h)] {
             if coefficient != 0.0 {
                 y.gemv(coefficient, matrix, &x, 1.0);
             }
         }
-        if let Some(s) = &self.stiffening {
+        if let Some(s) = rest {
             s.add_mul(&c.sigma, &x, &mut y);
         }
         y.as_slice().to_vec()
     }
 
     fn combine(&self, c: Combination) -> DMatrix<f64> {
-        let mut a = &self.m * c.m + &self.k * c.k + &self.g * c.g + &self.h * c.h;
-        if let Some(s) = &self.stiffening {
+        let (h, rest) = self.centrifugal(&c);
+        let mut a = &self.m * c.m + &self.k * c.k + &self.g * c.g + h * c.h;
+        if let Some(s) = rest {
             s.add_to(&c.sigma, &mut a);
         }
         a
@@ -375,13 +407,7 @@ impl DrivenFrameBody {
             .into());
         }
         Ok(Self {
-            operators: Operators::Dense(Box::new(DenseDriven {
-                m,
-                k,
-                g,
-                h,
-                stiffening,
-            })),
+            operators: Operators::Dense(Box::new(DenseDriven::new(m, k, g, h, stiffening))),
             g_s,
             h_s,
             unit_gravity,
@@ -435,14 +461,17 @@ impl DrivenFrameBody {
             .into());
         };
         Ok(Self {
-            operators: Operators::Dense(Box::new(DenseDriven {
-                stiffening: if stiffening {
+            operators: Operators::Dense(Box::new(DenseDriven::new(
+                d.m.clone(),
+                d.k.clone(),
+                d.g.clone(),
+                d.h.clone(),
+                if stiffening {
                     d.stiffening.clone()
                 } else {
                     None
                 },
-                ..(**d).clone()
-            })),
+            ))),
             g_s: self.g_s.clone(),
             h_s: self.h_s.clone(),
             unit_gravity: self.unit_gravity.clone(),
@@ -499,13 +528,7 @@ impl DrivenFrameBody {
         let project_vector =
             |v: &[f64]| -> Vec<f64> { columns.iter().map(|x| dot(x, v)).collect() };
         Ok(Self {
-            operators: Operators::Dense(Box::new(DenseDriven {
-                m,
-                k: kk,
-                g,
-                h,
-                stiffening,
-            })),
+            operators: Operators::Dense(Box::new(DenseDriven::new(m, kk, g, h, stiffening))),
             g_s: project_vector(&full.g_s),
             h_s: project_vector(&full.h_s),
             unit_gravity: std::array::from_fn(|a| project_vector(&full.unit_gravity[a])),

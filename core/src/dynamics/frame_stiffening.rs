@@ -67,6 +67,18 @@ impl FrameStiffening {
         self.cases.get(i)?.as_ref()
     }
 
+    /// The same cases but `i` (set to none).
+    pub fn without_case(&self, i: usize) -> Self {
+        let mut cases = self.cases.clone();
+        if let Some(c) = cases.get_mut(i) {
+            *c = None;
+        }
+        Self {
+            dim: self.dim,
+            cases,
+        }
+    }
+
     /// $\Psi^T K_{\sigma,i}\Psi$ for every case.
     pub fn projected(&self, psi: &DMatrix<f64>) -> Self {
         let cases = self.cases.clone().map(|c| {
