@@ -13,7 +13,7 @@ use crate::{
         CampbellParameters, CampbellStudy, PUBLISHED_TOLERANCE, SPIN_UP_TOLERANCE,
         SpinUpParameters, SpinUpStudy, campbell_study, spin_up_reference, spin_up_study,
     },
-    record::{Color, Layout, REFERENCE, Visual, method_color},
+    record::{Color, Layout, LogLogChart, LogLogSeries, REFERENCE, Visual, method_color},
     reduction::Method,
     report::{Cell, Report, Table, sig},
 };
@@ -90,10 +90,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          first bending frequency it diverges (Lin's thesis §1, refs. [16] Kane et al. 1987, \
          [18] Zhang & Huston 1996). flexmodes adds the geometric stiffness of each unit \
          inertia load of the frame (rate², angular acceleration, gravity), solved statically \
-         once and projected on each model's basis. Views: the Campbell chart (μ against λ, \
-         flapwise and lagwise; the published values as grey points; the lighter lines without \
-         stiffening; λ to the right, μ upwards), and the tip's deflection over time \
-         at each ω_s.\n\n{}",
+         once and projected on each model's basis. Views: the Campbell charts, flapwise and \
+         lagwise (μ on decades against λ; the published values as grey points; the lighter \
+         lines without stiffening, a lagwise line ending where the model turns unstable), and \
+         the tip's deflection over time at each ω_s.\n\n{}",
         report.table
     );
     let mut visuals = campbell_visuals(&campbell);
@@ -110,8 +110,15 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     plots.insert(
         0,
         Layout::Spatial2D {
-            name: "Campbell μ(λ)".into(),
-            origin: "/campbell".into(),
+            name: "lag μ(λ)".into(),
+            origin: "/campbell/lagwise".into(),
+        },
+    );
+    plots.insert(
+        0,
+        Layout::Spatial2D {
+            name: "flap μ(λ)".into(),
+            origin: "/campbell/flapwise".into(),
         },
     );
     let layout = Layout::Horizontal(
@@ -273,43 +280,59 @@ fn spin_report(study: &SpinUpStudy, report: &mut Report) -> String {
     report.add_table(table)
 }
 
-/// The Campbell chart in a 2-D view: μ against λ, one polyline per model and mode, the
-/// published values as points.
+/// The Campbell charts, flapwise and lagwise: μ against λ on a semi-log chart (λ linear, μ
+/// on decades), one line per model and mode, the published flapwise values as points; a
+/// model's pairs with μ² ≤ 0 (unstable) have no place on the log axis and end its line.
 fn campbell_visuals(study: &CampbellStudy) -> Vec<Visual> {
     let speeds = &study.parameters.speeds;
     let mut visuals = Vec::new();
-    for curve in &study.curves {
-        let plane = match curve.plane {
-            BendingPlane::Flapwise => "flap",
-            BendingPlane::Lagwise => "lag",
-        };
-        let key = curve.label().replace([' ', ','], "_").to_lowercase();
-        for m in 0..2 {
-            let points: Vec<[f64; 2]> = speeds
-                .iter()
-                .zip(curve.mu())
-                .map(|(&l, mu)| [l, -mu[m]])
-                .collect();
-            visuals.push(Visual::Polyline2D {
-                path: format!("campbell/{plane}/{key}/mode{}", m + 1),
-                points,
-                color: model_color(curve.modes, curve.stiffening),
-                label: (m == 0 && curve.modes == 0).then(|| format!("{plane}: {}", curve.label())),
+    for (plane, key) in [
+        (BendingPlane::Flapwise, "flapwise"),
+        (BendingPlane::Lagwise, "lagwise"),
+    ] {
+        let mut series = Vec::new();
+        for curve in study.curves.iter().filter(|c| c.plane == plane) {
+            let id = curve.label().replace([' ', ','], "_").to_lowercase();
+            for m in 0..2 {
+                let points: Vec<(f64, f64)> = speeds
+                    .iter()
+                    .zip(&curve.mu_squared)
+                    .take_while(|(_, mu2)| mu2[m] > 0.0)
+                    .map(|(&l, mu2)| (l, mu2[m].sqrt()))
+                    .collect();
+                series.push(LogLogSeries {
+                    id: format!("{id}_mode{}", m + 1),
+                    label: format!("{} μ{}", curve.label(), ["₁", "₂"][m]),
+                    color: model_color(curve.modes, curve.stiffening),
+                    points,
+                    line: true,
+                });
+            }
+        }
+        if plane == BendingPlane::Flapwise {
+            series.push(LogLogSeries {
+                id: "published".into(),
+                label: "published".into(),
+                color: REFERENCE,
+                points: study
+                    .published
+                    .iter()
+                    .flat_map(|r| [(r[0], r[1]), (r[0], r[2])])
+                    .collect(),
+                line: false,
             });
         }
+        visuals.extend(
+            LogLogChart {
+                path: format!("campbell/{key}"),
+                x_unit: "λ".into(),
+                y_unit: "μ".into(),
+                series,
+                x_linear: true,
+            }
+            .visuals(),
+        );
     }
-    let points: Vec<[f64; 2]> = study
-        .published
-        .iter()
-        .flat_map(|r| [[r[0], -r[1]], [r[0], -r[2]]])
-        .collect();
-    let n = points.len();
-    visuals.push(Visual::Scatter {
-        path: "campbell/published".into(),
-        points,
-        labels: vec![String::new(); n],
-        colors: vec![REFERENCE; n],
-    });
     visuals
 }
 
