@@ -621,6 +621,59 @@ def calculix_body(out, name, h, units, material, description, geometry=bracket_g
                     sets, {"stiffness": "k.mtx.gz", "mass": "m.mtx.gz"}, nodes="../nodes.csv")
     finish(out, name, "CalculiX 2.20 (gmsh C3D10 mesh)", description, units, K, M, X, sets,
            extra={"calculix_hz": ccx_hz}, write=False)
+    return X, tets, holes, sets
+
+
+def calculix_spun_body(out, name, h, rate, description, geometry, drive):
+    """A CalculiX body (as calculix_body) spun about the axis of its hole `drive`, that hole's
+    surface nodes held: CalculiX's stiffness after a static CENTRIF step at `rate` (rad/s),
+    written by a perturbation step with MATRIXSTORAGE (the body file's [preload]), and
+    CalculiX's own prestressed frequencies at `rate` and 2 `rate` (reference.json,
+    `spinning_hz`)."""
+    X, tets, holes, sets = calculix_body(out, name, h, MM, STEEL_MM, description, geometry)
+    (c1, c2), _, axis_index = holes[drive]
+    others = [a for a in range(3) if a != axis_index]
+    point = [0.0, 0.0, 0.0]
+    point[others[0]], point[others[1]] = c1, c2
+    axis = [0.0, 0.0, 0.0]
+    axis[axis_index] = 1.0
+    held = "*NSET,NSET=DRIVE\n" + "".join(f"{n},\n" for n in sets[drive]) + \
+        "*BOUNDARY\nDRIVE,1,3\n"
+
+    def centrif(w2):
+        return (f"*STEP\n*STATIC\n*DLOAD\nEALL,CENTRIF,{w2!r},{point[0]!r},{point[1]!r},"
+                f"{point[2]!r},{axis[0]!r},{axis[1]!r},{axis[2]!r}\n*END STEP\n")
+    decks = {
+        "spun": "*STEP,PERTURBATION\n*FREQUENCY,SOLVER=MATRIXSTORAGE\n*END STEP\n",
+        "rate1": "*STEP,PERTURBATION\n*FREQUENCY\n10\n*END STEP\n",
+        "rate2": "*STEP,PERTURBATION\n*FREQUENCY\n10\n*END STEP\n",
+    }
+    for job, step in decks.items():
+        w2 = (2 * rate) ** 2 if job == "rate2" else rate ** 2
+        calculix_deck(os.path.join(out, job + ".inp"), X, tets, STEEL_MM, held + centrif(w2) + step)
+        run_ccx(out, job)
+    spinning = [calculix_frequencies(os.path.join(out, f"rate{k}.dat")) for k in (1, 2)]
+    for f in ("spun.sti", "spun.dof"):
+        with open(os.path.join(out, f), "rb") as src, \
+                gzip.GzipFile(os.path.join(out, f + ".gz"), "wb", mtime=0) as dst:
+            shutil.copyfileobj(src, dst)
+    for f in os.listdir(out):
+        if f.startswith(("spun.", "rate1.", "rate2.")) and f not in ("spun.sti.gz", "spun.dof.gz",
+                                                                    "spun.inp") \
+                or f == "spooles.out":
+            os.remove(os.path.join(out, f))
+    with open(os.path.join(out, "body.toml"), "a") as f:
+        f.write("\n# CalculiX's stiffness of the body held at its drive and spun about the hole's "
+                "axis (spun.inp's CENTRIF load)\n[preload]\nstiffness = \"spun.sti.gz\"\n"
+                "dof_map = \"spun.dof.gz\"\ndeck = \"spun.inp\"\n")
+    with open(os.path.join(out, "reference.json")) as f:
+        ref = json.load(f)
+    ref.update({"spinning_hz": spinning, "rates_rad_s": [rate, 2 * rate],
+                "spin_drive": f"rbe2:{drive}", "spin_axis": axis, "spin_axis_point": point})
+    with open(os.path.join(out, "reference.json"), "w") as f:
+        json.dump(ref, f, indent=1)
+    print(f"{name}: spun at {rate} and {2 * rate} rad/s, CalculiX's first frequencies "
+          f"{spinning[0][0]} and {spinning[1][0]} Hz", file=sys.stderr)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -670,6 +723,11 @@ BODIES = {
         o, "ccx_block", 12.0, MM, STEEL_MM,
         "steel block with a bore, gmsh C3D10, K and M written by CalculiX 2.20, mm-t-s",
         block_geometry), "small"),
+    "ccx-lever": (lambda o: calculix_spun_body(
+        o, "ccx_lever", 12.0, 3000.0,
+        "steel block with a bore as a lever spun about the bore, gmsh C3D10, K, M and the "
+        "stiffness spun at 3000 rad/s written by CalculiX 2.20, mm-t-s", block_geometry, "bore"),
+        "small"),
     "ccx-bracket": (lambda o: calculix_body(
         o, "ccx_bracket", 18.0, MM, STEEL_MM,
         "steel angle bracket, gmsh C3D10, K and M written by CalculiX 2.20, mm-t-s"), "small"),
