@@ -1197,3 +1197,114 @@ fn thread_counts_are_compared_and_reported() {
         "{err}"
     );
 }
+
+/// A spinning part from the command line: `campbell` prints its frequencies against the spin
+/// with the [preload]'s stiffening (CalculiX's own at 1 000 rad/s, 636.314 Hz, to its printed
+/// digits) and says when it is off; `simulate` says which; `export` writes the geometric
+/// stiffness per unit rate² projected on Ψ (kg_r.mtx, named in model.json) unless told not to.
+#[test]
+fn a_spinning_part_from_the_command_line() {
+    let body = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/bodies/spun-lever/body.toml"
+    );
+    let v = json(&[
+        "campbell",
+        "--body",
+        body,
+        "--drive",
+        "rbe2:root",
+        "--rates",
+        "0,1000",
+        "--method",
+        "nr",
+        "--count",
+        "2",
+        "--json",
+    ]);
+    assert_eq!(v["stiffening"], "on");
+    let first = v["curves"][0]["hz"][1][0].as_f64().unwrap();
+    assert!((first - 636.3141).abs() < 2e-4 * 636.3141, "{first}");
+    let off = json(&[
+        "campbell",
+        "--body",
+        body,
+        "--drive",
+        "rbe2:root",
+        "--rates",
+        "1000",
+        "--method",
+        "nr",
+        "--count",
+        "1",
+        "--stiffening",
+        "off",
+        "--json",
+    ]);
+    assert_eq!(off["stiffening"], "off");
+    assert!(off["curves"][0]["hz"][0][0].as_f64().unwrap() < 0.99 * first);
+    let sim = flexmodes(&[
+        "simulate",
+        "--body",
+        body,
+        "--drive",
+        "rbe2:root",
+        "--rate",
+        "1000",
+        "--ramp",
+        "0.005",
+        "--end",
+        "0.005",
+        "--dt",
+        "1e-4",
+        "--method",
+        "nr,cb",
+        "--modes",
+        "4",
+    ]);
+    assert!(
+        sim.status.success(),
+        "{}",
+        String::from_utf8_lossy(&sim.stderr)
+    );
+    let text = String::from_utf8_lossy(&sim.stdout);
+    assert!(text.contains("Dynamic stiffening: on"), "{text}");
+    let scratch = temp_dir("spun-export");
+    for (flag, written) in [("on", true), ("off", false)] {
+        let out = scratch.join(flag);
+        let run = flexmodes(&[
+            "export",
+            "--body",
+            body,
+            "--method",
+            "cb",
+            "--boundary",
+            "rbe2:root",
+            "--modes",
+            "6",
+            "--out",
+            out.to_str().unwrap(),
+            "--stiffening",
+            flag,
+        ]);
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        assert_eq!(out.join("kg_r.mtx").exists(), written);
+        let model: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("model.json")).unwrap())
+                .unwrap();
+        assert_eq!(
+            model["stiffening"].is_object(),
+            written,
+            "{}",
+            model["stiffening"]
+        );
+        if written {
+            assert_eq!(model["stiffening"]["preload_rate_rad_s"], 1000.0);
+            assert_eq!(model["stiffening"]["held_dofs"], 27);
+        }
+    }
+}

@@ -672,4 +672,8 @@ pub struct ExportArgs {
     /// Print the wall time of each phase on stderr.
     #[arg(long)]
     pub(super) timings: bool,
+    /// With a body file's `[preload]`: also write its geometric stiffness per unit rate²
+    /// projected on Ψ (`kg_r.mtx`, named in model.json): on (default) or off.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub(super) stiffening: OnOff,
 }

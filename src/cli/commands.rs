@@ -612,6 +612,7 @@ fn export(args: ExportArgs) -> Result<()> {
         interface_modes,
         exudyn,
         timings,
+        stiffening,
     } = args;
     let started = Instant::now();
     let body = ImportedBody::load(&body)?;
@@ -625,6 +626,7 @@ fn export(args: ExportArgs) -> Result<()> {
         averaging_interfaces: interfaces.averaging,
         interface_modes,
         exudyn,
+        without_stiffening: stiffening == super::arguments::OnOff::Off,
     };
     let summary = crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
     if timings {

@@ -90,6 +90,8 @@ pub struct ExportParameters {
     /// Also write the body for Exudyn (`exudyn/`, see [`super::exudyn_body`]): the floating
     /// frame on the first rigid interface.
     pub exudyn: bool,
+    /// Leave out the geometric stiffness of a body file's `[preload]` (written by default).
+    pub without_stiffening: bool,
 }
 
 /// What [`export`] wrote.
@@ -177,6 +179,10 @@ pub struct ReducedExport {
     pub free_free_sturm: Option<Option<crate::linalg::SturmCount>>,
     /// The Exudyn body, when asked for.
     pub exudyn: Option<ExudynBody>,
+    /// $\Psi^T K_{\sigma,1}\Psi$: the geometric stiffness of the body's preloaded
+    /// centrifugal load per unit rate², (rad/s)⁻² times the stiffness unit (a body file's
+    /// `[preload]`, unless left out).
+    pub kg_r: Option<Mat<f64>>,
     /// Wall time of each phase, s, in order.
     pub timings: Vec<(&'static str, f64)>,
 }
@@ -305,7 +311,17 @@ pub fn reduce_for_export(
     } else {
         None
     };
+    let kg_r = match (&body.preload, parameters.without_stiffening) {
+        (Some(p), false) => {
+            let image = p.rate_squared.mul(basis.psi.as_ref());
+            let r = basis.psi.transpose() * &image;
+            let k = r.ncols();
+            Some(Mat::from_fn(k, k, |i, j| 0.5 * (r[(i, j)] + r[(j, i)])))
+        }
+        _ => None,
+    };
     Ok(ReducedExport {
+        kg_r,
         method,
         boundary: boundary.to_vec(),
         kept_modes: modes,
@@ -442,6 +458,19 @@ impl ReducedExport {
                 "mass": "m_r.mtx",
             },
             "inertia": inertia,
+            "stiffening": self.kg_r.as_ref().zip(body.preload.as_ref()).map(|(_, p)| json!({
+                "matrix": "kg_r.mtx",
+                "per": "rate squared: K_r + rate^2 kg_r in a frame spinning at rate (rad/s) about the axis",
+                "axis": [p.load.axis.x, p.load.axis.y, p.load.axis.z],
+                "axis_point": p.load.point,
+                "preload_rate_rad_s": p.load.rate,
+                "held_dofs": p.held.len(),
+                "note": "the geometric stiffness of the centrifugal prestress, from the body file's \
+                         [preload] (CalculiX's stiffness spun at preload_rate_rad_s less K and the \
+                         spin softening); the spin softening rate^2 Psi^T M (I x e~^2) Psi is not \
+                         in it: a floating frame's inertia terms make it. It holds for a spin about \
+                         this axis with the held DOF clamped, as CalculiX's static step held them",
+            })),
             "exudyn": exudyn.as_ref().map(|e| json!({
                 "folder": "exudyn",
                 "frame": e.frame,
@@ -521,6 +550,10 @@ impl ReducedExport {
                 "m_r.mtx".into(),
                 "model.json".into(),
             ];
+            if let Some(kg) = &self.kg_r {
+                write_array(&tmp.join("kg_r.mtx"), kg.as_ref(), true, &comment)?;
+                files.push("kg_r.mtx".into());
+            }
             if let Some(e) = &exudyn {
                 files.extend(e.write(body, &tmp.join("exudyn"))?);
                 lap("write the Exudyn body", timings);
