@@ -257,6 +257,7 @@ class Body:
         gravity: Optional[Sequence[float]] = None,
         spectral_radius: float = 0.9,
         axes: str = "nodal_fixed",
+        stiffening: bool = True,
     ) -> dict:
         """The driven body of ``flexmodes simulate --body``: the interface ``drive``
         (``"rbe2:SET"`` or a declared rbe2 interface) spun up about ``axis`` to ``rate``
@@ -271,7 +272,9 @@ class Body:
         point of the spin axis (length unit; default the drive's master, else the drive orbits);
         ``shake``: ``((dx, dy, dz), amplitude m, frequency Hz)`` of the drive; ``gravity``:
         m/s² in ground axes; ``spectral_radius``: generalized-α's ρ∞; ``axes``:
-        ``"nodal_fixed"`` (the drive's frame) or ``"mean"``."""
+        ``"nodal_fixed"`` (the drive's frame) or ``"mean"``; ``stiffening``: the dynamic
+        stiffening of the body file's ``[preload]``, when it has one (``stiffened`` in the
+        result says whether the runs carried it)."""
         if axes not in ("nodal_fixed", "mean"):
             raise InputError(f"axes {axes!r}: a driven body is seen from 'nodal_fixed' or 'mean' axes")
         ids = [str(m) for m in methods]
@@ -297,6 +300,42 @@ class Body:
             None if gravity is None else tuple(float(g) for g in gravity),
             float(spectral_radius),
             axes == "mean",
+            bool(stiffening),
+        )
+
+    def campbell(
+        self,
+        drive: str,
+        rates: Sequence[float],
+        axis: Sequence[float] = (0.0, 0.0, 1.0),
+        axis_point: Optional[Sequence[float]] = None,
+        count: int = 4,
+        methods: Sequence[str] = ("nr", "cb"),
+        modes: Sequence[int] = (10,),
+        stiffening: bool = True,
+        progress: Progress = None,
+    ) -> dict:
+        """The Campbell table of ``flexmodes campbell``: the body spun about ``axis``
+        (through ``axis_point``, default the drive's master) with the interface ``drive``
+        clamped in the turning frame; the lowest ``count`` frequencies (Hz) at each of
+        ``rates`` (rad/s), Coriolis coupling left out, for ``"nr"`` (the full body) and each
+        reduction id at every count of ``modes``. ``stiffening``: the dynamic stiffening of
+        the body file's ``[preload]`` (CalculiX's stiffness of the body spun), when it has
+        one. Returns ``rates``, ``stiffened`` and ``curves``: per model its ``method``,
+        ``modes``, ``coordinates`` and ``hz`` (rates × count; a negative value is an unstable
+        pair)."""
+        ids = [str(m) for m in methods]
+        return self._inner.campbell(
+            str(drive),
+            [float(r) for r in rates],
+            tuple(float(a) for a in axis),
+            None if axis_point is None else tuple(float(x) for x in axis_point),
+            int(count),
+            [m for m in ids if m != "nr"],
+            [int(k) for k in modes],
+            "nr" in ids,
+            bool(stiffening),
+            progress,
         )
 
     def __repr__(self) -> str:

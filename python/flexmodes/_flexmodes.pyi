@@ -88,6 +88,20 @@ class RustBody:
         gravity: Optional[tuple[float, float, float]],
         spectral_radius: float,
         mean_axes: bool,
+        stiffening: bool = True,
+    ) -> dict[str, Any]: ...
+    def campbell(
+        self,
+        drive: str,
+        rates: list[float],
+        axis: tuple[float, float, float],
+        axis_point: Optional[tuple[float, float, float]],
+        count: int,
+        methods: list[str],
+        modes: list[int],
+        full: bool,
+        stiffening: bool,
+        progress: Progress,
     ) -> dict[str, Any]: ...
 
 class RustReducedModel:

@@ -6,25 +6,17 @@
 
 use std::{
     collections::BTreeMap,
-    str::FromStr,
-    sync::{
-        Arc, Mutex,
-        atomic::{AtomicBool, Ordering},
-    },
-    time::Duration,
+    sync::{Arc, Mutex},
 };
 
-use faer::MatRef;
 use flexmodes::{
-    Error, Progress,
     analysis::count_zero_energy_modes,
-    body_file::{BodyMatrices, ImportedBody, InterfaceKind, InterfaceSpec, MatrixEntries, Units},
+    body_file::{BodyMatrices, ImportedBody, InterfaceKind, InterfaceSpec, Units},
     export::{ExportParameters, ReducedExport, reduce_for_export},
     models::{
-        BodyComparisonParameters, BodyInterfaces, DrivenBodyParameters, compare_body_methods,
-        driven_body_study, import_summary, refuse_mechanism,
+        BodyCampbellParameters, BodyComparisonParameters, BodyInterfaces, DrivenBodyParameters,
+        body_campbell, compare_body_methods, driven_body_study, import_summary, refuse_mechanism,
     },
-    reduction::Method,
 };
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, ndarray::Array2};
 use pyo3::{
@@ -32,183 +24,9 @@ use pyo3::{
     types::{PyDict, PyList},
 };
 
-/// Raises `err` as the `flexmodes.errors` class of its layer, with `kind` (the variant's path,
-/// e.g. `BodyFile.NotSymmetric`) and `data` (its fields) as attributes.
-fn raise(py: Python<'_>, err: Error) -> PyErr {
-    let class = match &err {
-        Error::BodyFile(_) => "BodyFileError",
-        Error::Linalg(_) => "LinalgError",
-        Error::Reduction(_) => "ReductionError",
-        Error::Dynamics(_) => "DynamicsError",
-        Error::Mesh(_) => "InputError",
-        Error::Mechanism { .. } => "MechanismError",
-        Error::Cancelled => "Cancelled",
-        Error::Io { .. } => "FileError",
-        Error::InvalidOption { .. } => "InputError",
-        _ => "FlexmodesError",
-    };
-    let message = err.cause_chain();
-    let (kind, data) = variant_path(serde_json::to_value(&err).unwrap_or_default());
-    build_error(py, class, &message, &kind, &data.to_string())
-}
+mod bridge;
 
-/// The externally tagged variant names down to the fields: `{"BodyFile": {"NotSymmetric":
-/// {...}}}` is `("BodyFile.NotSymmetric", {...})`.
-fn variant_path(mut value: serde_json::Value) -> (String, serde_json::Value) {
-    let mut path = Vec::new();
-    loop {
-        match value {
-            serde_json::Value::String(s)
-                if path.is_empty() || s.starts_with(char::is_uppercase) =>
-            {
-                path.push(s);
-                return (path.join("."), serde_json::Value::Null);
-            }
-            serde_json::Value::Object(map)
-                if map.len() == 1 && map.keys().all(|k| k.starts_with(char::is_uppercase)) =>
-            {
-                let (k, v) = map.into_iter().next().expect("one entry");
-                path.push(k);
-                value = v;
-            }
-            other => return (path.join("."), other),
-        }
-    }
-}
-
-fn build_error(py: Python<'_>, class: &str, message: &str, kind: &str, data: &str) -> PyErr {
-    let made = (|| -> PyResult<PyErr> {
-        let errors = py.import("flexmodes.errors")?;
-        let value = errors.getattr(class)?.call1((message,))?;
-        value.setattr("kind", kind)?;
-        value.setattr("data", py.import("json")?.call_method1("loads", (data,))?)?;
-        Ok(PyErr::from_value(value))
-    })();
-    made.unwrap_or_else(|e| e)
-}
-
-/// A bad argument: `flexmodes.errors.InputError` (also a `ValueError`).
-fn input_error(py: Python<'_>, message: String) -> PyErr {
-    build_error(py, "InputError", &message, "Input", "null")
-}
-
-/// Runs `work` with the GIL released. With a callback, a second thread calls
-/// `callback(phase, fraction)` about every 0.2 s while the reading changes (`fraction`: of
-/// the current time integration, or None); if the callback raises, the work is cancelled and
-/// its exception re-raised. The watcher is woken when the work ends, so a call never waits
-/// out its tick.
-fn computing<T: Send>(
-    py: Python<'_>,
-    callback: Option<Py<PyAny>>,
-    work: impl FnOnce(&Progress) -> flexmodes::Result<T> + Send,
-) -> PyResult<T> {
-    let progress = if callback.is_some() {
-        Progress::new()
-    } else {
-        Progress::default()
-    };
-    let done = AtomicBool::new(false);
-    let raised: Mutex<Option<PyErr>> = Mutex::new(None);
-    let result = py.detach(|| {
-        std::thread::scope(|scope| {
-            let watcher = callback.as_ref().map(|callback| {
-                let (progress, done, raised) = (&progress, &done, &raised);
-                scope.spawn(move || {
-                    let mut last = None;
-                    while !done.load(Ordering::SeqCst) {
-                        std::thread::park_timeout(Duration::from_millis(200));
-                        let phase = progress.phase_reading().map(|p| p.name);
-                        let fraction = progress
-                            .reading()
-                            .filter(|r| r.end_time > 0.0)
-                            .map(|r| (r.time / r.end_time).clamp(0.0, 1.0));
-                        let now = (phase.clone(), fraction.map(|f| (f * 1000.0) as i64));
-                        if last.as_ref() == Some(&now) || done.load(Ordering::SeqCst) {
-                            continue;
-                        }
-                        last = Some(now);
-                        let failed =
-                            Python::attach(|py| callback.call1(py, (phase, fraction)).err());
-                        if let Some(e) = failed {
-                            *raised.lock().expect("not poisoned") = Some(e);
-                            progress.cancel();
-                            break;
-                        }
-                    }
-                })
-            });
-            let out = work(&progress);
-            done.store(true, Ordering::SeqCst);
-            if let Some(w) = &watcher {
-                w.thread().unpark();
-            }
-            out
-        })
-    });
-    if let Some(e) = raised.lock().expect("not poisoned").take() {
-        return Err(e);
-    }
-    result.map_err(|e| raise(py, e))
-}
-
-fn matrix<'py>(py: Python<'py>, m: MatRef<'_, f64>) -> Bound<'py, PyArray2<f64>> {
-    Array2::from_shape_fn((m.nrows(), m.ncols()), |(i, j)| m[(i, j)]).into_pyarray(py)
-}
-
-fn vector<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
-    v.to_vec().into_pyarray(py)
-}
-
-fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
-    py.import("json")?
-        .call_method1("loads", (value.to_string(),))
-}
-
-fn method(py: Python<'_>, id: &str) -> PyResult<Method> {
-    Method::from_str(id).map_err(|e| input_error(py, e.to_string()))
-}
-
-/// Entries from three NumPy arrays of equal length.
-fn entries(
-    py: Python<'_>,
-    what: &str,
-    shape: (usize, usize),
-    rows: PyReadonlyArray1<'_, i64>,
-    cols: PyReadonlyArray1<'_, i64>,
-    values: PyReadonlyArray1<'_, f64>,
-) -> PyResult<MatrixEntries> {
-    let (r, c, v) = (rows.as_slice()?, cols.as_slice()?, values.as_slice()?);
-    if r.len() != v.len() || c.len() != v.len() {
-        return Err(input_error(
-            py,
-            format!(
-                "{what}: {} row indices, {} column indices and {} values",
-                r.len(),
-                c.len(),
-                v.len()
-            ),
-        ));
-    }
-    if let Some(k) = r.iter().zip(c).position(|(&i, &j)| i < 0 || j < 0) {
-        return Err(input_error(
-            py,
-            format!(
-                "{what}: entry {k} has a negative index ({}, {})",
-                r[k], c[k]
-            ),
-        ));
-    }
-    Ok(MatrixEntries {
-        rows: shape.0,
-        cols: shape.1,
-        entries: r
-            .iter()
-            .zip(c)
-            .zip(v)
-            .map(|((&i, &j), &x)| (i as usize, j as usize, x))
-            .collect(),
-    })
-}
+use bridge::{computing, entries, input_error, json_to_py, matrix, method, vector};
 
 /// An interface as Python hands it over: kind (`rbe2`, `rbe3`), node set, master point
 /// (None: the set's centroid), RBE3 weights.
@@ -458,8 +276,68 @@ impl RustBody {
         Ok(d)
     }
 
+    /// The Campbell table of `flexmodes campbell`: the lowest `count` frequencies (Hz) in
+    /// the turning frame at each rate, the full body first, then each method at each count.
+    #[pyo3(signature = (drive, rates, axis, axis_point, count, methods, modes, full, stiffening, progress))]
+    #[allow(clippy::too_many_arguments)]
+    fn campbell<'py>(
+        &self,
+        py: Python<'py>,
+        drive: String,
+        rates: Vec<f64>,
+        axis: [f64; 3],
+        axis_point: Option<[f64; 3]>,
+        count: usize,
+        methods: Vec<String>,
+        modes: Vec<usize>,
+        full: bool,
+        stiffening: bool,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let methods = methods
+            .iter()
+            .map(|m| method(py, m))
+            .collect::<PyResult<Vec<_>>>()?;
+        if let Some(r) = rates.iter().find(|r| !(r.is_finite() && **r >= 0.0)) {
+            return Err(input_error(
+                py,
+                format!("rates are rad/s, finite and not negative, not {r}"),
+            ));
+        }
+        let parameters = BodyCampbellParameters {
+            drive,
+            axis,
+            axis_point,
+            rates,
+            count,
+            models: methods
+                .iter()
+                .flat_map(|&m| modes.iter().map(move |&k| (m, k)))
+                .collect(),
+            stiffening,
+        };
+        let body = &self.body;
+        let table = computing(py, progress, |p| body_campbell(body, &parameters, p))?;
+        let d = PyDict::new(py);
+        d.set_item("rates", vector(py, &table.rates))?;
+        d.set_item("stiffened", table.stiffened)?;
+        let curves = PyList::empty(py);
+        for c in table.curves.iter().filter(|c| full || c.method.is_some()) {
+            let r = PyDict::new(py);
+            r.set_item("method", c.method.map(|m| m.id()).unwrap_or("nr"))?;
+            r.set_item("modes", c.modes)?;
+            r.set_item("coordinates", c.coordinates)?;
+            let n = c.hz.first().map_or(0, Vec::len);
+            let hz = Array2::from_shape_fn((c.hz.len(), n), |(i, j)| c.hz[i][j]);
+            r.set_item("hz", hz.into_pyarray(py))?;
+            curves.append(r)?;
+        }
+        d.set_item("curves", curves)?;
+        Ok(d)
+    }
+
     /// The driven body of `flexmodes simulate --body`: histories as NumPy arrays.
-    #[pyo3(signature = (drive, methods, modes, full, boundary, outputs, rate, ramp, axis, end, step, output_every, progress, pinned, axis_point, shake, gravity, spectral_radius, mean_axes))]
+    #[pyo3(signature = (drive, methods, modes, full, boundary, outputs, rate, ramp, axis, end, step, output_every, progress, pinned, axis_point, shake, gravity, spectral_radius, mean_axes, stiffening=true))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -483,6 +361,7 @@ impl RustBody {
         gravity: Option<[f64; 3]>,
         spectral_radius: f64,
         mean_axes: bool,
+        stiffening: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let methods = methods
             .iter()
@@ -511,6 +390,7 @@ impl RustBody {
                 output_every,
                 spectral_radius,
             },
+            stiffening,
             ..defaults
         };
         let body = &self.body;
@@ -521,6 +401,7 @@ impl RustBody {
         d.set_item("times", vector(py, &study.times))?;
         d.set_item("outputs", study.output_names.clone())?;
         d.set_item("drive", study.drive.0.clone())?;
+        d.set_item("stiffened", study.stiffened)?;
         let runs = PyList::empty(py);
         for run in &study.runs {
             let r = PyDict::new(py);

@@ -241,6 +241,33 @@ def test_driven_link_reduced_follows_the_full_body():
 # Bad input: a named exception with its data, never a crash.
 
 
+def test_a_spinning_calculix_lever_at_calculix_frequencies():
+    """The lever CalculiX wrote spinning (assets/generate/spun_body.py): its frequencies in
+    the turning frame at 1 000 and 2 000 rad/s, with the [preload]'s stiffening, equal
+    CalculiX's prestressed ones to 2e-4; without it the first one falls below them; a driven
+    run says it carried the stiffening."""
+    folder = ROOT / "tests" / "bodies" / "spun-lever"
+    body = flexmodes.Body.from_file(folder / "body.toml")
+    reference = json.loads((folder / "reference.json").read_text())
+    table = body.campbell("rbe2:root", [1000.0, 2000.0], count=6, methods=["nr", "cb"], modes=[12])
+    assert table["stiffened"]
+    assert [c["method"] for c in table["curves"]] == ["nr", "cb"]
+    ccx = np.array(reference["spinning_hz"])[:, :6]
+    nr = table["curves"][0]["hz"]
+    assert nr.shape == (2, 6)
+    assert np.max(np.abs(nr - ccx) / ccx) < 2e-4
+    assert np.max(np.abs(table["curves"][1]["hz"] - ccx) / ccx) < 2e-3
+    off = body.campbell("rbe2:root", [2000.0], count=1, methods=["nr"], stiffening=False)
+    assert not off["stiffened"]
+    assert off["curves"][0]["hz"][0, 0] < 0.9 * ccx[1, 0]
+    run = body.simulate("rbe2:root", methods=["nr"], rate=1000.0, ramp=0.002, end=0.002,
+                        step=1e-4, output_every=5)
+    assert run["stiffened"]
+    with pytest.raises(flexmodes.errors.DynamicsError) as e:
+        body.campbell("rbe2:root", [1000.0], axis=(0.0, 1.0, 0.0), methods=["nr"])
+    assert "another spin" in str(e.value)
+
+
 def test_dense_and_mis_shaped_inputs_are_refused(bar):
     K, M, nodes, sets, _ = bar
     with pytest.raises(flexmodes.InputError, match="dense"):

@@ -282,6 +282,19 @@ pub(super) struct CampbellArgs {
     pub(super) json: bool,
 }
 
+/// An option's three numbers `X,Y,Z` (an axis, a point, a direction), or a usage error naming
+/// the option.
+pub(super) fn three_numbers(option: &'static str, v: &[f64]) -> crate::Result<[f64; 3]> {
+    match v {
+        [x, y, z] => Ok([*x, *y, *z]),
+        _ => Err(crate::Error::InvalidOption {
+            option,
+            scene: None,
+            reason: format!("takes three numbers X,Y,Z, not {}", v.len()),
+        }),
+    }
+}
+
 /// A switch typed on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub(super) enum OnOff {

@@ -25,16 +25,7 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
         stiffening,
         json,
     } = arguments;
-    let three = |option: &'static str, v: &[f64]| -> Result<[f64; 3]> {
-        match v {
-            [x, y, z] => Ok([*x, *y, *z]),
-            _ => Err(Error::InvalidOption {
-                option,
-                scene: None,
-                reason: format!("takes three numbers X,Y,Z, not {}", v.len()),
-            }),
-        }
-    };
+    let three = super::arguments::three_numbers;
     if let Some(r) = rates.iter().find(|r| !(r.is_finite() && **r >= 0.0)) {
         return Err(Error::InvalidOption {
             option: "--rates",

@@ -3,7 +3,7 @@
 
 use super::{arguments::SimulateArgs, stderr::progress};
 use crate::{
-    Error, Progress, Result, TerminalProgress, body_file::ImportedBody, record::Recorder, scenes,
+    Progress, Result, TerminalProgress, body_file::ImportedBody, record::Recorder, scenes,
 };
 
 /// Runs `simulate` with its arguments.
@@ -36,16 +36,7 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         stiffening,
     } = arguments;
     let shaking = motion == super::arguments::Motion::Shake;
-    let three = |option: &'static str, v: &[f64]| -> Result<[f64; 3]> {
-        match v {
-            [x, y, z] => Ok([*x, *y, *z]),
-            _ => Err(Error::InvalidOption {
-                option,
-                scene: None,
-                reason: format!("takes three numbers X,Y,Z, not {}", v.len()),
-            }),
-        }
-    };
+    let three = super::arguments::three_numbers;
     let axis = three("--axis", &axis)?;
     let direction = three("--direction", &direction)?;
     let axis_point = axis_point.map(|p| three("--axis-point", &p)).transpose()?;

@@ -14,12 +14,12 @@ use crate::{
     dynamics::{Combination, DrivenFrameBody, Driving, DynamicsError, SpinUp},
     linalg::generalized_eigen,
     progress::Progress,
-    reduction::{ColumnKind, Method},
+    reduction::Method,
 };
 
 use super::{
     BodyInterfaces, BodyReducer,
-    driven_body::{check_preload, drive_interface},
+    driven_body::{check_preload, drive_interface, free_columns},
 };
 
 /// Coordinates above which the dense route refuses a model (its operators are formed
@@ -183,17 +183,7 @@ pub fn body_campbell(
         for &(method, kept) in &parameters.models {
             progress.phase(&format!("{} {kept}", method.name()))?;
             let reduced = reducer.reduce(method, kept)?;
-            let keep: Vec<usize> = reduced
-                .basis
-                .columns
-                .iter()
-                .enumerate()
-                .filter(|(_, c)| {
-                    !matches!(&c.kind, ColumnKind::RigidInterface { interface, .. }
-                        if *interface == drive.name)
-                })
-                .map(|(j, _)| j)
-                .collect();
+            let keep = free_columns(&reduced.basis, &drive.name, &[]);
             let psi_all = &reduced.basis.psi;
             let psi = Mat::from_fn(psi_all.nrows(), keep.len(), |i, j| psi_all[(i, keep[j])]);
             let psi_free = coords.coordinates_of(psi.as_ref())?;

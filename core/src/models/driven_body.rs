@@ -23,7 +23,7 @@ use crate::{
     error::DynamicsError,
     fem::{FeModel, NodeIndex},
     progress::Progress,
-    reduction::{ColumnKind, Method, ReductionError, RigidInterface},
+    reduction::{Basis, ColumnKind, Method, ReductionError, RigidInterface},
 };
 
 use super::{
@@ -664,6 +664,22 @@ fn sample_run(
     })
 }
 
+/// The columns of a basis the driven frame leaves free: all but the drive's unit motions and
+/// the pinned rings' translations.
+pub(super) fn free_columns(basis: &Basis, drive: &str, pins: &[PinnedRing]) -> Vec<usize> {
+    basis
+        .columns
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| {
+            !matches!(&c.kind, ColumnKind::RigidInterface { interface, dof }
+                if interface == drive
+                    || (*dof < 3 && pins.iter().any(|p| p.name == *interface)))
+        })
+        .map(|(j, _)| j)
+        .collect()
+}
+
 /// What every reduced run of one study shares.
 struct ReducedRuns<'a> {
     full_body: &'a DrivenFrameBody,
@@ -699,18 +715,7 @@ impl ReducedRuns<'_> {
         progress.phase(&format!("{} {kept}", method.name()))?;
         let started = Instant::now();
         let reduced = reducer.reduce(method, kept)?;
-        let keep: Vec<usize> = reduced
-            .basis
-            .columns
-            .iter()
-            .enumerate()
-            .filter(|(_, c)| {
-                !matches!(&c.kind, ColumnKind::RigidInterface { interface, dof }
-                    if *interface == self.drive.name
-                        || (*dof < 3 && self.pins.iter().any(|p| p.name == *interface)))
-            })
-            .map(|(j, _)| j)
-            .collect();
+        let keep = free_columns(&reduced.basis, &self.drive.name, self.pins);
         if keep.is_empty() {
             return Err(ReductionError::MethodNeedsContext {
                 method: method.name(),
