@@ -1,6 +1,8 @@
 //! The command line (`main.rs` only calls [`main`]).
 
 mod arguments;
+mod bench;
+mod body_arguments;
 mod campbell;
 mod commands;
 mod serve;

@@ -23,15 +23,16 @@ use super::DynamicsError;
 use faer::MatRef;
 use nalgebra::{DMatrix, DVector, Unit, Vector3};
 
+use super::dense_driven::DenseDriven;
 use super::frame_coordinates::{FrameCoordinates, PinnedRing};
 use super::frame_stiffening::{FrameStiffening, STIFFENING_CASES};
+use super::sparse_driven::{SparseDriven, check_isotropic, mul_mass};
 use crate::{
     Error, Result,
     error::LinalgError,
-    fem::{DofMap, FeModel},
+    fem::FeModel,
     linalg::{
-        GmresParameters, GmresStatistics, MassMatrix, SparseSymmetric, SymbolicFactor,
-        SymmetricFactor, preconditioned_gmres,
+        GmresParameters, GmresStatistics, SparseSymmetric, SymbolicFactor, preconditioned_gmres,
     },
 };
 
@@ -61,37 +62,6 @@ pub struct Combination {
     pub sigma: [f64; STIFFENING_CASES],
 }
 
-/// The full body, sparse.
-#[derive(Debug)]
-pub struct SparseDriven {
-    /// Coordinates: the DOF outside the clamped ring, then the pinned rings' rotations.
-    coords: FrameCoordinates,
-    k_ff: SparseSymmetric,
-    m: MassMatrix,
-    m_ff: MassMatrix,
-    axis: Vector3<f64>,
-    symbolic: SymbolicFactor,
-    /// The geometric stiffness of the centrifugal load per unit rate² on the coordinates
-    /// (a body's preloaded stiffness, [`crate::body_file::Preload`]), if set.
-    centrifugal: Option<SparseSymmetric>,
-    /// $(c_m, c_k)$ and the factor of $c_m M + c_k K$.
-    factor: Option<((f64, f64), SymmetricFactor)>,
-}
-
-/// A reduced body, or a small full one, dense: every operator projected on Ψ.
-#[derive(Debug, Clone)]
-pub struct DenseDriven {
-    m: DMatrix<f64>,
-    k: DMatrix<f64>,
-    g: DMatrix<f64>,
-    h: DMatrix<f64>,
-    /// The geometric stiffnesses of the unit frame loads, if the body has them.
-    stiffening: Option<FrameStiffening>,
-    /// With stiffening: $H + K_{\sigma,1}$ (both scale with $\dot\theta^2$, so the
-    /// integrators' combinations take them as one matrix), and the other cases.
-    folded: Option<(DMatrix<f64>, FrameStiffening)>,
-}
-
 /// The equations' operators.
 #[derive(Debug)]
 enum Operators {
@@ -109,224 +79,6 @@ pub struct DrivenFrameBody {
     h_s: Vec<f64>,
     /// $M(1 \otimes e_a)$ for a = x, y, z: the load of a unit acceleration of gravity.
     unit_gravity: [Vec<f64>; 3],
-}
-
-/// Checks that `m` is $M_s \otimes I_3$ on a node-major solid DOF map.
-fn check_isotropic(model: &FeModel) -> Result<()> {
-    if model.dofs != DofMap::solid() {
-        return Err(DynamicsError::NotSolid {
-            body: (&model.name).into(),
-            frame: "driven",
-        }
-        .into());
-    }
-    let unequal = |node: usize, other: Option<usize>| -> Error {
-        DynamicsError::MassNotIsotropic {
-            body: (&model.name).into(),
-            node,
-            other,
-        }
-        .into()
-    };
-    match &model.m {
-        MassMatrix::Lumped(d) => {
-            for j in 0..d.len() / 3 {
-                let m = d[3 * j];
-                if (1..3).any(|a| (d[3 * j + a] - m).abs() > ISOTROPIC_MASS_TOLERANCE * m.abs()) {
-                    return Err(unequal(j + 1, None));
-                }
-            }
-        }
-        MassMatrix::Consistent(m) => {
-            let a = m.as_faer();
-            let scale = m.max_abs();
-            for j in 0..a.ncols() {
-                let rows = a.symbolic().row_idx_of_col_raw(j);
-                let vals = a.val_of_col(j);
-                for (&i, &v) in rows.iter().zip(vals) {
-                    let (pi, di) = (i / 3, i % 3);
-                    let (pj, dj) = (j / 3, j % 3);
-                    let twin = if di == dj {
-                        // The same entry for the other two directions of the node pair.
-                        (1..3)
-                            .map(|s| {
-                                let d = (di + s) % 3;
-                                m.get(3 * pi + d, 3 * pj + d)
-                            })
-                            .map(|w| (w - v).abs())
-                            .fold(0.0, f64::max)
-                    } else {
-                        v.abs()
-                    };
-                    if twin > ISOTROPIC_MASS_TOLERANCE * scale {
-                        return Err(unequal(pi + 1, Some(pj + 1)));
-                    }
-                }
-            }
-        }
-    }
-    Ok(())
-}
-
-/// $y_j = e \times x_j$ per node (`twice`: $e \times (e \times x_j)$).
-fn cross_nodes(axis: &Vector3<f64>, x: &[f64], twice: bool) -> Vec<f64> {
-    let mut y = vec![0.0; x.len()];
-    for (xj, yj) in x.chunks_exact(3).zip(y.chunks_exact_mut(3)) {
-        let v = Vector3::new(xj[0], xj[1], xj[2]);
-        let mut w = axis.cross(&v);
-        if twice {
-            w = axis.cross(&w);
-        }
-        yj.copy_from_slice(w.as_slice());
-    }
-    y
-}
-
-fn mul_mass(m: &MassMatrix, x: &[f64]) -> Vec<f64> {
-    let y = m.mul(MatRef::from_column_major_slice(x, x.len(), 1));
-    (0..x.len()).map(|i| y[(i, 0)]).collect()
-}
-
-impl SparseDriven {
-    fn extend(&self, x: &[f64]) -> Vec<f64> {
-        self.coords.extend(x)
-    }
-
-    fn restrict(&self, full: &[f64]) -> Vec<f64> {
-        self.coords.restrict(full)
-    }
-
-    /// $M E^p x$ on the free DOF (p = 1: G, p = 2: H) for a full-length `x`.
-    fn frame_full(&self, x_full: &[f64], twice: bool) -> Vec<f64> {
-        self.restrict(&mul_mass(&self.m, &cross_nodes(&self.axis, x_full, twice)))
-    }
-
-    fn mul(&self, c: Combination, x: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; x.len()];
-        let mut add = |z: Vec<f64>, s: f64| y.iter_mut().zip(z).for_each(|(y, z)| *y += s * z);
-        if c.m != 0.0 {
-            add(mul_mass(&self.m_ff, x), c.m);
-        }
-        if c.k != 0.0 {
-            let kx = self
-                .k_ff
-                .mul(MatRef::from_column_major_slice(x, x.len(), 1));
-            add((0..x.len()).map(|i| kx[(i, 0)]).collect(), c.k);
-        }
-        if let (Some(kg), true) = (&self.centrifugal, c.sigma[0] != 0.0) {
-            let kx = kg.mul(MatRef::from_column_major_slice(x, x.len(), 1));
-            add((0..x.len()).map(|i| kx[(i, 0)]).collect(), c.sigma[0]);
-        }
-        if c.g != 0.0 || c.h != 0.0 {
-            let full = self.extend(x);
-            if c.g != 0.0 {
-                add(self.frame_full(&full, false), c.g);
-            }
-            if c.h != 0.0 {
-                add(self.frame_full(&full, true), c.h);
-            }
-        }
-        y
-    }
-
-    /// $\|(|c_m||M| + |c_k||K|)|x|\|$, the scale of the round-off in a product with the
-    /// effective matrix (its small frame terms left out).
-    fn abs_norm(&self, c: Combination, x: &[f64]) -> f64 {
-        let n = x.len();
-        let ax: Vec<f64> = x.iter().map(|v| v.abs()).collect();
-        let col = MatRef::from_column_major_slice(&ax, n, 1);
-        let k = self.k_ff.abs_mul(col);
-        let m: Vec<f64> = match &self.m_ff {
-            MassMatrix::Lumped(d) => d.iter().zip(&ax).map(|(d, x)| d.abs() * x).collect(),
-            MassMatrix::Consistent(m) => {
-                let y = m.abs_mul(col);
-                (0..n).map(|i| y[(i, 0)]).collect()
-            }
-        };
-        (0..n)
-            .map(|i| (c.m.abs() * m[i] + c.k.abs() * k[(i, 0)]).powi(2))
-            .sum::<f64>()
-            .sqrt()
-    }
-
-    /// The factor of $c_m M + c_k K$, kept while the coefficients stay.
-    fn factor(&mut self, c_m: f64, c_k: f64) -> Result<&SymmetricFactor> {
-        let same = self.factor.as_ref().is_some_and(|(c, _)| *c == (c_m, c_k));
-        if !same {
-            self.factor = None;
-            let a = if c_k == 0.0 {
-                return Err(DynamicsError::Misuse {
-                    what: "the sparse effective matrix needs a stiffness part",
-                }
-                .into());
-            } else {
-                self.k_ff.shifted(&self.m_ff, -c_m / c_k)
-            };
-            let f = SymmetricFactor::sparse(a.as_faer(), &self.symbolic, "K + c M (free DOF)")?;
-            self.factor = Some(((c_m, c_k), f));
-        }
-        Ok(&self.factor.as_ref().expect("set above").1)
-    }
-}
-
-impl DenseDriven {
-    fn new(
-        m: DMatrix<f64>,
-        k: DMatrix<f64>,
-        g: DMatrix<f64>,
-        h: DMatrix<f64>,
-        stiffening: Option<FrameStiffening>,
-    ) -> Self {
-        let folded = stiffening.as_ref().and_then(|s| {
-            let rate_squared = s.case(0)?;
-            Some((&h + rate_squared, s.without_case(0)))
-        });
-        Self {
-            m,
-            k,
-            g,
-            h,
-            stiffening,
-            folded,
-        }
-    }
-
-    /// The matrix that goes with $c_h$ and the stiffening cases still to add: $H +
-    /// K_{\sigma,1}$ when the combination scales $K_{\sigma,1}$ as it scales $H$ (the
-    /// integrators' always do), else $H$ and every case.
-    fn centrifugal(&self, c: &Combination) -> (&DMatrix<f64>, Option<&FrameStiffening>) {
-        match &self.folded {
-            Some((h_sigma, rest)) if c.sigma[0] == c.h => (h_sigma, Some(rest)),
-            _ => (&self.h, self.stiffening.as_ref()),
-        }
-    }
-
-    /// $(c_m M + c_k K + c_g G + c_h H + \sum c_{\sigma,i}K_{\sigma,i})\,x$ by one product
-    /// per nonzero coefficient (no combined matrix per call: the integrators apply it several
-    /// times a step).
-    fn mul(&self, c: Combination, x: &[f64]) -> Vec<f64> {
-        let x = DVector::from_column_slice(x);
-        let mut y = DVector::zeros(x.len());
-        let (h, rest) = self.centrifugal(&c);
-        for (coefficient, matrix) in [(c.m, &self.m), (c.k, &self.k), (c.g, &self.g), (c.h, h)] {
-            if coefficient != 0.0 {
-                y.gemv(coefficient, matrix, &x, 1.0);
-            }
-        }
-        if let Some(s) = rest {
-            s.add_mul(&c.sigma, &x, &mut y);
-        }
-        y.as_slice().to_vec()
-    }
-
-    fn combine(&self, c: Combination) -> DMatrix<f64> {
-        let (h, rest) = self.centrifugal(&c);
-        let mut a = &self.m * c.m + &self.k * c.k + &self.g * c.g + h * c.h;
-        if let Some(s) = rest {
-            s.add_to(&c.sigma, &mut a);
-        }
-        a
-    }
 }
 
 impl DrivenFrameBody {

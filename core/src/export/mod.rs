@@ -15,6 +15,7 @@
 //! so an interrupted export leaves the previous folder (or none) as it was.
 
 mod exudyn_body;
+mod model_document;
 mod reduced_export;
 
 pub use exudyn_body::{EXUDYN_FORMAT, ExudynBody, exudyn_body};

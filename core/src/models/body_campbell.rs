@@ -19,7 +19,7 @@ use crate::{
 
 use super::{
     BodyInterfaces, BodyReducer,
-    driven_body::{check_preload, drive_interface, free_columns},
+    driven_setup::{check_preload, drive_interface, free_columns},
 };
 
 /// Coordinates above which the dense route refuses a model (its operators are formed

@@ -6,26 +6,28 @@
 //! model's history (the mean displacement of chosen node sets in the frame, and the reaction
 //! at the drive) is compared with the full body's.
 
-use crate::error::{DofSetName, DofSetProblem};
 use std::{sync::Arc, time::Instant};
 
 use faer::Mat;
-use nalgebra::{Unit, Vector3};
+use nalgebra::Vector3;
 
 use crate::{
     Result,
-    analysis::{MeanAxisView, count_zero_energy_modes},
-    body_file::{ImportedBody, InterfaceKind, Preload},
+    analysis::count_zero_energy_modes,
+    body_file::ImportedBody,
     dynamics::{
-        AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, FrameCoordinates,
-        PinnedRing, Shake, SpinUp, integrate_driven, positions,
+        AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, FrameCoordinates, PinnedRing,
+        integrate_driven, positions,
     },
     error::DynamicsError,
-    fem::{FeModel, NodeIndex},
     progress::Progress,
-    reduction::{Basis, ColumnKind, Method, ReductionError, RigidInterface},
+    reduction::{Method, ReductionError, RigidInterface},
 };
 
+use super::driven_setup::{
+    check_preload, drive_interface, driving_of, free_columns, mean_axes_of, output_names,
+    output_nodes, pinned_rings,
+};
 use super::{
     BodyInterfaces, BodyReducer,
     driven_measure::{FieldMap, Measure, history_error, reaction_error, rigid_reaction, transpose},
@@ -412,215 +414,6 @@ pub fn driven_body_study(
     })
 }
 
-/// The drive: the one rigid interface `item` names (`rbe2:SET` or an rbe2 interface of the
-/// body file).
-pub(super) fn drive_interface(
-    body: &ImportedBody,
-    item: &str,
-    interfaces: &BodyInterfaces,
-) -> Result<RigidInterface> {
-    let (_, sets) = body.boundary_with_interfaces(&[item.to_string()])?;
-    match sets.first() {
-        Some(set) if set.kind == InterfaceKind::Rbe2 && sets.len() == 1 => Ok(interfaces
-            .rigid
-            .iter()
-            .find(|i| i.name == set.name)
-            .cloned()
-            .expect("named above")),
-        _ => Err(ReductionError::InvalidDofSet {
-            set: DofSetName::Given(item.into()),
-            problem: DofSetProblem::DriveNotRigid,
-        }
-        .into()),
-    }
-}
-
-/// A preloaded stiffness applies to a spin about its own axis with the drive's ring held as
-/// its static step held it: the axes parallel (1e-6 rad), the frame's origin on its axis
-/// (1e-6 of the body's size), its held DOF the ring's.
-pub(super) fn check_preload(
-    preload: &Preload,
-    driving: &Driving,
-    origin: [f64; 3],
-    ring: &[usize],
-    size: f64,
-) -> Result<()> {
-    let (a, e) = (
-        preload.load.axis.into_inner(),
-        driving.spin.axis.into_inner(),
-    );
-    let angle = a.cross(&e).norm().atan2(a.dot(&e).abs());
-    let mismatch = |angle_rad, offset, held| {
-        Err(DynamicsError::PreloadMismatch {
-            angle_rad,
-            offset,
-            held,
-        }
-        .into())
-    };
-    if angle > 1e-6 {
-        return mismatch(Some(angle), None, None);
-    }
-    let d = Vector3::from(origin) - Vector3::from(preload.load.point);
-    let offset = (d - a * a.dot(&d)).norm();
-    if offset > 1e-6 * size.max(f64::MIN_POSITIVE) {
-        return mismatch(None, Some(offset), None);
-    }
-    let mut held = preload.held.clone();
-    held.sort_unstable();
-    let mut clamped = ring.to_vec();
-    clamped.sort_unstable();
-    if held != clamped {
-        let both = held
-            .iter()
-            .filter(|d| clamped.binary_search(d).is_ok())
-            .count();
-        return mismatch(None, None, Some((held.len(), clamped.len(), both)));
-    }
-    Ok(())
-}
-
-/// The prescribed motion of the parameters, checked: a nonzero spin axis, a positive ramp
-/// (s) and step (s), gravity and shaking in the body's length unit.
-fn driving_of(body: &ImportedBody, parameters: &DrivenBodyParameters) -> Result<Driving> {
-    let axis = Unit::try_new(Vector3::from(parameters.axis), 1e-12).ok_or(
-        DynamicsError::ZeroDirection {
-            setting: "spin axis",
-        },
-    )?;
-    if parameters.ramp.is_nan() || parameters.ramp <= 0.0 {
-        return Err(DynamicsError::NotPositive {
-            setting: "ramp time (s)",
-            value: parameters.ramp,
-        }
-        .into());
-    }
-    if parameters.integration.step.is_nan() || parameters.integration.step <= 0.0 {
-        return Err(DynamicsError::InvalidStep {
-            step: parameters.integration.step,
-        }
-        .into());
-    }
-    let gravity = match parameters.gravity {
-        Some(g) => Vector3::from(g) / body.units.metres_per_length()?,
-        None => Vector3::zeros(),
-    };
-    let shake = match parameters.shake {
-        Some((direction, amplitude, frequency)) => Some(Shake {
-            direction: Unit::try_new(Vector3::from(direction), 1e-12).ok_or(
-                DynamicsError::ZeroDirection {
-                    setting: "shaking direction",
-                },
-            )?,
-            amplitude: amplitude / body.units.metres_per_length()?,
-            frequency,
-        }),
-        None => None,
-    };
-    Ok(Driving {
-        spin: SpinUp {
-            axis,
-            rate: parameters.rate,
-            ramp: parameters.ramp,
-        },
-        shake,
-        gravity,
-    })
-}
-
-/// The outputs asked for; by default every node set but the drive and the pinned rings, or,
-/// when there is none, the node farthest from the drive's master (`node:N`, 1-based).
-fn output_names(
-    body: &ImportedBody,
-    parameters: &DrivenBodyParameters,
-    drive: &RigidInterface,
-    pinned_names: &[&str],
-) -> Vec<String> {
-    if !parameters.outputs.is_empty() {
-        return parameters.outputs.clone();
-    }
-    let sets: Vec<String> = body
-        .node_sets
-        .keys()
-        .filter(|k| **k != drive.name && !pinned_names.contains(&k.as_str()))
-        .cloned()
-        .collect();
-    if !sets.is_empty() {
-        return sets;
-    }
-    let model = &body.model;
-    let far = (0..model.node_count())
-        .max_by(|&a, &b| {
-            let d = |j: usize| {
-                let p = model.nodes[j];
-                (0..3)
-                    .map(|k| (p[k] - drive.master[k]).powi(2))
-                    .sum::<f64>()
-            };
-            d(a).total_cmp(&d(b))
-        })
-        .unwrap_or(0);
-    vec![format!("node:{}", NodeIndex(far).number())]
-}
-
-/// The nodes (1-based) of output `name`: a node set, or `node:N`.
-fn output_nodes(body: &ImportedBody, name: &str) -> Result<Vec<usize>> {
-    let unknown = || DynamicsError::UnknownOutput {
-        name: name.into(),
-        known: crate::error::Name::all(body.node_sets.keys()),
-    };
-    Ok(match name.strip_prefix("node:") {
-        Some(number) => vec![number.parse::<usize>().map_err(|_| unknown())?],
-        None => body.node_sets.get(name).ok_or_else(unknown)?.clone(),
-    })
-}
-
-/// The histories' mean-axis view and, per output set, its rigid rows' mean (`None` on
-/// nodal-fixed axes; principal axes are not offered for a driven body).
-#[allow(clippy::type_complexity)]
-fn mean_axes_of(
-    model: &FeModel,
-    axes: AxisKind,
-    outputs: &[Vec<usize>],
-) -> Result<Option<(MeanAxisView, Vec<Vec<Vec<f64>>>)>> {
-    match axes {
-        AxisKind::NodalFixed => Ok(None),
-        AxisKind::Mean => {
-            let view = MeanAxisView::of(model)?;
-            let rows = outputs.iter().map(|dofs| view.mean_rows(dofs)).collect();
-            Ok(Some((view, rows)))
-        }
-        AxisKind::Principal => Err(DynamicsError::AxesNotOffered { axes: "principal" }.into()),
-    }
-}
-
-/// Pinned rings: their masters' translations held in the frame, rotations free.
-fn pinned_rings(
-    model: &FeModel,
-    interfaces: &BodyInterfaces,
-    pinned_items: &[String],
-) -> Result<Vec<PinnedRing>> {
-    let mut pins = Vec::new();
-    for item in pinned_items {
-        let name = item.split_once(':').map_or(item.as_str(), |(_, n)| n);
-        let interface = interfaces
-            .rigid
-            .iter()
-            .find(|i| i.name == name)
-            .ok_or_else(|| ReductionError::InvalidDofSet {
-                set: DofSetName::Given(item.into()),
-                problem: DofSetProblem::PinNotRigid,
-            })?;
-        let rows = interface.rigid_motions(model)?;
-        pins.push(PinnedRing {
-            name: interface.name.clone(),
-            dofs: rows.iter().map(|(d, _)| *d).collect(),
-            rows: rows.iter().map(|(_, r)| [r[3], r[4], r[5]]).collect(),
-        });
-    }
-    Ok(pins)
-}
-
 /// One integration's samples: times (s), states, output histories and reactions.
 struct Sampled {
     times: Vec<f64>,
@@ -662,22 +455,6 @@ fn sample_run(
         reaction,
         cost,
     })
-}
-
-/// The columns of a basis the driven frame leaves free: all but the drive's unit motions and
-/// the pinned rings' translations.
-pub(super) fn free_columns(basis: &Basis, drive: &str, pins: &[PinnedRing]) -> Vec<usize> {
-    basis
-        .columns
-        .iter()
-        .enumerate()
-        .filter(|(_, c)| {
-            !matches!(&c.kind, ColumnKind::RigidInterface { interface, dof }
-                if interface == drive
-                    || (*dof < 3 && pins.iter().any(|p| p.name == *interface)))
-        })
-        .map(|(j, _)| j)
-        .collect()
 }
 
 /// What every reduced run of one study shares.

@@ -11,6 +11,7 @@ mod body_reduction;
 mod cantilever_study;
 mod driven_body;
 mod driven_measure;
+mod driven_setup;
 mod driven_stability;
 mod dual_spin_study;
 mod failure_studies;
