@@ -92,8 +92,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          inertia load of the frame (rate², angular acceleration, gravity), solved statically \
          once and projected on each model's basis. Views: the Campbell charts, flapwise and \
          lagwise (μ on decades against λ; the published values as grey points; the lighter \
-         lines without stiffening, a lagwise line ending where the model turns unstable), and \
-         the tip's deflection over time at each ω_s.\n\n{}",
+         lines without stiffening, a lagwise line ending where the model turns unstable); the \
+         tip's deflection (m) over time at each ω_s by the stiffened models beside the \
+         reference (`tip, m: 4`, `tip, m: 10`), and the unstiffened ones running off to the \
+         beam's length (`unstiffened`).\n\n{}",
         report.table
     );
     let mut visuals = campbell_visuals(&campbell);
@@ -103,21 +105,25 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .rates
         .iter()
         .map(|r| Layout::TimeSeries {
-            name: format!("tip, m: ω_s {r}"),
+            name: format!("tip, m: {r}"),
             origin: format!("/plots/tip_{}", rate_key(*r)),
         })
         .collect();
+    plots.push(Layout::TimeSeries {
+        name: "unstiffened".into(),
+        origin: "/plots/unstiffened".into(),
+    });
     plots.insert(
         0,
         Layout::Spatial2D {
-            name: "lag μ(λ)".into(),
+            name: "lag".into(),
             origin: "/campbell/lagwise".into(),
         },
     );
     plots.insert(
         0,
         Layout::Spatial2D {
-            name: "flap μ(λ)".into(),
+            name: "flap".into(),
             origin: "/campbell/flapwise".into(),
         },
     );
@@ -338,16 +344,27 @@ fn campbell_visuals(study: &CampbellStudy) -> Vec<Visual> {
 
 fn spin_visuals(study: &SpinUpStudy) -> Vec<Visual> {
     let mut visuals = Vec::new();
+    // The stiffened models beside the reference, one view per rate; the unstiffened ones,
+    // which run off to the beam's length, in a view of their own so the others keep a scale
+    // their difference shows on.
     for run in &study.runs {
+        let key = run.label().replace([' ', ','], "_").to_lowercase();
+        let (path, name) = if run.stiffening {
+            (
+                format!("plots/tip_{}/{key}", rate_key(run.rate)),
+                run.label(),
+            )
+        } else {
+            (
+                format!("plots/unstiffened/{}_{key}", rate_key(run.rate)),
+                format!("{}, ω_s {}", run.label(), run.rate),
+            )
+        };
         visuals.push(Visual::Series {
-            path: format!(
-                "plots/tip_{}/{}",
-                rate_key(run.rate),
-                run.label().replace([' ', ','], "_").to_lowercase()
-            ),
+            path,
             times: run.times.clone(),
             values: run.tip.clone(),
-            name: run.label(),
+            name,
             color: model_color(run.modes, run.stiffening),
         });
     }
