@@ -5,7 +5,7 @@ use std::{path::PathBuf, sync::Arc};
 use clap::{Args, Parser, Subcommand};
 
 pub(super) use super::body_arguments::{
-    CampbellArgs, ExportArgs, Motion, OnOff, SimulateArgs, three_numbers,
+    CampbellArgs, ExportArgs, Motion, OnOff, SimulateArgs, SpinningBodyArgs, three_numbers,
 };
 
 use crate::{

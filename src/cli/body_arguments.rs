@@ -7,16 +7,40 @@ use clap::Args;
 
 use crate::reduction::Method;
 
-/// The arguments of `simulate`.
+/// What `simulate` and `campbell` share: a body spun about an axis through its driven
+/// interface, with or without its preloaded stiffness.
 #[derive(Debug, Args)]
-pub(super) struct SimulateArgs {
+pub(super) struct SpinningBodyArgs {
     /// The body file (TOML), or `builtin:NAME`.
     #[arg(long)]
     pub(super) body: String,
     /// The driven interface, `rbe2:SET` or an rbe2 interface of the body file: its master
-    /// follows the spin-up, its ring clamped in the turning frame.
+    /// follows the frame, its ring clamped in the turning frame.
     #[arg(long)]
     pub(super) drive: String,
+    /// Spin axis in body axes, X,Y,Z.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0,0,1",
+        allow_hyphen_values = true
+    )]
+    pub(super) axis: Vec<f64>,
+    /// A point of the spin axis, X,Y,Z in the body's length unit (default: the drive's
+    /// master; elsewhere the drive orbits the axis).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub(super) axis_point: Option<Vec<f64>>,
+    /// Dynamic stiffening from the body's preloaded stiffness (`[preload]` in the body file):
+    /// on (default) or off.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub(super) stiffening: OnOff,
+}
+
+/// The arguments of `simulate`.
+#[derive(Debug, Args)]
+pub(super) struct SimulateArgs {
+    #[command(flatten)]
+    pub(super) spin: SpinningBodyArgs,
     /// Other interfaces the reduced models keep (node sets, `rbe2:SET`), free in the
     /// simulation.
     #[arg(long, value_delimiter = ',')]
@@ -40,9 +64,6 @@ pub(super) struct SimulateArgs {
     /// the drive along --direction, no turning).
     #[arg(long, value_enum, default_value_t = Motion::SpinUp)]
     pub(super) motion: Motion,
-    /// With spin-up: a point of the spin axis, X,Y,Z in the body's length unit.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-    pub(super) axis_point: Option<Vec<f64>>,
     /// With shake: the direction in ground axes, X,Y,Z.
     #[arg(
         long,
@@ -57,14 +78,6 @@ pub(super) struct SimulateArgs {
     /// With shake: the frequency, Hz.
     #[arg(long, default_value_t = 50.0)]
     pub(super) frequency: f64,
-    /// Spin axis in body axes, X,Y,Z.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "0,0,1",
-        allow_hyphen_values = true
-    )]
-    pub(super) axis: Vec<f64>,
     /// Steady spin rate, rad/s.
     #[arg(long, default_value_t = 100.0)]
     pub(super) rate: f64,
@@ -101,34 +114,13 @@ pub(super) struct SimulateArgs {
     /// step (predicted from its highest frequency), and check that 3× that step diverges.
     #[arg(long)]
     pub(super) explicit: bool,
-    /// Dynamic stiffening from the body's preloaded stiffness (`[preload]` in the body file):
-    /// on (default) or off.
-    #[arg(long, value_enum, default_value_t = OnOff::On)]
-    pub(super) stiffening: OnOff,
 }
 
 /// The arguments of `campbell`.
 #[derive(Debug, Args)]
 pub(super) struct CampbellArgs {
-    /// The body file (TOML), or `builtin:NAME`.
-    #[arg(long)]
-    pub(super) body: String,
-    /// The driven interface (`rbe2:SET` or an rbe2 interface of the body file), clamped in
-    /// the turning frame.
-    #[arg(long)]
-    pub(super) drive: String,
-    /// Spin axis in body axes, X,Y,Z.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "0,0,1",
-        allow_hyphen_values = true
-    )]
-    pub(super) axis: Vec<f64>,
-    /// A point of the spin axis, X,Y,Z in the body's length unit (default: the drive's
-    /// master).
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-    pub(super) axis_point: Option<Vec<f64>>,
+    #[command(flatten)]
+    pub(super) spin: SpinningBodyArgs,
     /// Rates, rad/s.
     #[arg(long, value_delimiter = ',', default_value = "0,500,1000,1500,2000")]
     pub(super) rates: Vec<f64>,
@@ -141,9 +133,6 @@ pub(super) struct CampbellArgs {
     /// Kept modes of the reduced models, one model per count.
     #[arg(long, value_delimiter = ',', default_value = "10")]
     pub(super) modes: Vec<usize>,
-    /// Dynamic stiffening from the body's `[preload]`: on (default) or off.
-    #[arg(long, value_enum, default_value_t = OnOff::On)]
-    pub(super) stiffening: OnOff,
     /// Print the table as JSON.
     #[arg(long)]
     pub(super) json: bool,

@@ -2,7 +2,7 @@
 //! lowest frequencies at each rate by the full body and each reduced model
 //! (models::body_campbell), with the stiffening of its preloaded stiffness or without.
 
-use super::arguments::{CampbellArgs, OnOff};
+use super::arguments::{CampbellArgs, OnOff, SpinningBodyArgs};
 use crate::{
     Error, Progress, Result, TerminalProgress,
     body_file::ImportedBody,
@@ -14,15 +14,18 @@ use crate::{
 /// Runs `campbell` with its arguments.
 pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
     let CampbellArgs {
-        body,
-        drive,
-        axis,
-        axis_point,
+        spin:
+            SpinningBodyArgs {
+                body,
+                drive,
+                axis,
+                axis_point,
+                stiffening,
+            },
         rates,
         count,
         method,
         modes,
-        stiffening,
         json,
     } = arguments;
     let three = super::arguments::three_numbers;

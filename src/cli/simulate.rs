@@ -1,7 +1,10 @@
 //! `flexmodes simulate`: a body driven through a rigid interface (models::driven_body_study),
 //! printed as a table or JSON and written as a recording.
 
-use super::{arguments::SimulateArgs, stderr::progress};
+use super::{
+    arguments::{SimulateArgs, SpinningBodyArgs},
+    stderr::progress,
+};
 use crate::{
     Progress, Result, TerminalProgress, body_file::ImportedBody, record::Recorder, scenes,
 };
@@ -9,19 +12,23 @@ use crate::{
 /// Runs `simulate` with its arguments.
 pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
     let SimulateArgs {
-        body,
-        drive,
+        spin:
+            SpinningBodyArgs {
+                body,
+                drive,
+                axis,
+                axis_point,
+                stiffening,
+            },
         boundary,
         output,
         pinned,
         method,
         modes,
         motion,
-        axis_point,
         direction,
         amplitude,
         frequency,
-        axis,
         rate,
         ramp,
         end,
@@ -33,7 +40,6 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         save,
         explicit,
         axes,
-        stiffening,
     } = arguments;
     let shaking = motion == super::arguments::Motion::Shake;
     let three = super::arguments::three_numbers;

@@ -221,13 +221,16 @@ pub(super) fn boundary_motion_failure(model: &FeModel) -> Result<Failure> {
 /// stiffening (NR, the full FE beam): it diverges once the hub's rate has passed the first
 /// bending frequency; the same model with stiffening does not (the `spin-up` scene).
 pub(super) fn spin_up_failure(opts: &SceneOptions) -> Result<Failure> {
+    /// The steady rate of Kane et al.'s faster case, rad/s.
+    const RATE: f64 = 10.0;
     let parameters = SpinUpParameters {
-        rates: vec![10.0],
+        rates: vec![RATE],
         ..Default::default()
     };
     let models = SpinUpModels::new(&parameters)?;
-    let run = models.run(10.0, 0, false, &opts.progress)?;
+    let run = models.run(RATE, 0, false, &opts.progress)?;
     let w1 = models.first_frequency;
+    let length = parameters.beam.length;
     let (json, what) = match run.divergence {
         Some(d) => (
             json!({
@@ -238,7 +241,7 @@ pub(super) fn spin_up_failure(opts: &SceneOptions) -> Result<Failure> {
             }),
             format!(
                 "NR without stiffening: the tip's deflection passed the beam's length \
-                 (10 m) at t = {:.2} s, the hub at {:.2} rad/s; the hub passed the first \
+                 ({length} m) at t = {:.2} s, the hub at {:.2} rad/s; the hub passed the first \
                  bending frequency ω₁ = {w1:.3} rad/s at t = {}",
                 d.time,
                 d.rate,
@@ -257,7 +260,7 @@ pub(super) fn spin_up_failure(opts: &SceneOptions) -> Result<Failure> {
     Ok(Failure {
         json,
         line: [
-            "Spin-up without dynamic stiffening (Kane et al.'s beam, ω_s = 10 rad/s)".into(),
+            format!("Spin-up without dynamic stiffening (Kane et al.'s beam, ω_s = {RATE} rad/s)"),
             what,
             "linear elastic coordinates keep the centrifugal softening −Ω²M but not the \
              centrifugal tension's geometric stiffness: the in-plane bending stiffness \

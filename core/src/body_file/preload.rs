@@ -103,8 +103,10 @@ pub fn parse_centrifugal_load(bytes: &[u8], path: &str) -> Result<CentrifugalLoa
     ))
 }
 
-/// $H = M(I \otimes \tilde e^2)$ for a mass $M_s \otimes I_3$ (solid DOF), as triplets scaled
-/// by `scale`: the block of a node pair is $m_{ab}(ee^T - I)$.
+/// $H = M(I \otimes \tilde e^2)$, the spin softening per unit rate² as the floating frame
+/// applies it ($M\tilde e^2$ node by node), as triplets scaled by `scale`: each stored entry
+/// $M_{i,3b+c}$ gives $M_{i,3b+c}\,(\tilde e^2)_{cd}$ at $(i, 3b+d)$, with $\tilde e^2 =
+/// ee^T - I$.
 fn centrifugal_triplets(
     m: &MassMatrix,
     axis: &Vector3<f64>,
@@ -112,30 +114,23 @@ fn centrifugal_triplets(
 ) -> Vec<(usize, usize, f64)> {
     let e2 = axis * axis.transpose() - nalgebra::Matrix3::identity();
     let mut out = Vec::new();
-    let mut block = |a: usize, b: usize, mab: f64| {
-        for c in 0..3 {
-            for d in 0..3 {
-                let v = scale * mab * e2[(c, d)];
-                if v != 0.0 {
-                    out.push((3 * a + c, 3 * b + d, v));
-                }
+    let mut entry = |i: usize, j: usize, v: f64| {
+        let (b, c) = (j / 3, j % 3);
+        for d in 0..3 {
+            let w = scale * v * e2[(c, d)];
+            if w != 0.0 {
+                out.push((i, 3 * b + d, w));
             }
         }
     };
     match m {
-        MassMatrix::Lumped(d) => {
-            for a in 0..d.len() / 3 {
-                block(a, a, d[3 * a]);
-            }
-        }
+        MassMatrix::Lumped(d) => d.iter().enumerate().for_each(|(i, &v)| entry(i, i, v)),
         MassMatrix::Consistent(s) => {
             let inner = s.as_faer();
-            for j in (0..inner.ncols()).step_by(3) {
+            for j in 0..inner.ncols() {
                 let rows = inner.symbolic().row_idx_of_col_raw(j);
                 for (&i, &v) in rows.iter().zip(inner.val_of_col(j)) {
-                    if i % 3 == 0 {
-                        block(i / 3, j / 3, v);
-                    }
+                    entry(i, j, v);
                 }
             }
         }

@@ -194,14 +194,6 @@ impl DrivenFrameBody {
         Ok(())
     }
 
-    /// The full (sparse) body's stiffening dropped: the linear floating-frame model.
-    pub fn drop_stiffening(&mut self) {
-        match &mut self.operators {
-            Operators::Sparse(s) => s.centrifugal = None,
-            Operators::Dense(d) => d.stiffening = None,
-        }
-    }
-
     /// A copy of a dense body, with its geometric stiffnesses or without them (`false`: the
     /// linear floating-frame model of the thesis, whose spinning frequencies fall with the
     /// rate).
@@ -273,7 +265,13 @@ impl DrivenFrameBody {
             let mut c = Combination::default();
             c.sigma[0] = 1.0;
             let kg = project(c);
-            FrameStiffening::new([Some((&kg + kg.transpose()) * 0.5), None, None, None, None])
+            Some(FrameStiffening::new([
+                Some((&kg + kg.transpose()) * 0.5),
+                None,
+                None,
+                None,
+                None,
+            ])?)
         } else {
             None
         };
@@ -318,6 +316,28 @@ impl DrivenFrameBody {
             std::array::from_fn(|a| vector(&full.unit_gravity[a])),
             d.stiffening.as_ref().map(|s| s.projected(&p)),
         )
+    }
+
+    /// The combination $c_m M + c_k K + c_g G + c_h H + \sum c_{\sigma,i}K_{\sigma,i}$ as a
+    /// dense matrix: a dense body's own, a sparse body's formed column by column from its
+    /// products (for frequency checks of bodies of a few thousand coordinates at most).
+    pub fn dense_matrix(&self, c: Combination) -> faer::Mat<f64> {
+        let n = self.dim();
+        if let Operators::Dense(d) = &self.operators {
+            let a = d.combine(c);
+            return faer::Mat::from_fn(n, n, |i, j| a[(i, j)]);
+        }
+        let mut a = faer::Mat::<f64>::zeros(n, n);
+        let mut e = vec![0.0; n];
+        for j in 0..n {
+            e[j] = 1.0;
+            let column = self.mul(c, &e);
+            e[j] = 0.0;
+            for (i, v) in column.into_iter().enumerate() {
+                a[(i, j)] = v;
+            }
+        }
+        a
     }
 
     /// Coordinates: free DOF or modal coordinates.

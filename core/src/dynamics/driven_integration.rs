@@ -168,12 +168,16 @@ pub fn integrate_driven(
             &u_star,
         );
         let b: Vec<f64> = (0..n).map(|i| f[i] - ma[i] - cv[i] - ku[i]).collect();
+        let centrifugal = (1.0 - co.alpha_f) * co.beta * h * h * rate * rate;
+        let mut stiffening = sigma.map(|c| (1.0 - co.alpha_f) * co.beta * h * h * c);
+        // The rate² case scales exactly as H does: the dense body adds the two as one matrix.
+        stiffening[0] = centrifugal;
         let effective = Combination {
             m: 1.0 - co.alpha_m,
             k: (1.0 - co.alpha_f) * co.beta * h * h,
             g: (1.0 - co.alpha_f) * (2.0 * co.gamma * h * rate + co.beta * h * h * acceleration),
-            h: (1.0 - co.alpha_f) * co.beta * h * h * rate * rate,
-            sigma: sigma.map(|c| (1.0 - co.alpha_f) * co.beta * h * h * c),
+            h: centrifugal,
+            sigma: stiffening,
         };
         let (a_next, its) = body.solve(effective, &b, a.clone())?;
         iterations += its;

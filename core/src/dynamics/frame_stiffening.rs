@@ -22,6 +22,9 @@
 
 use nalgebra::{DMatrix, DVector, Vector3};
 
+use super::DynamicsError;
+use crate::Result;
+
 /// Unit load cases: $\dot\theta^2$, $\ddot\theta$, $g_x$, $g_y$, $g_z$.
 pub const STIFFENING_CASES: usize = 5;
 
@@ -47,14 +50,43 @@ pub fn stiffening_coefficients(
 }
 
 impl FrameStiffening {
-    /// The body's unit geometric stiffnesses ($n \times n$ each, symmetric). `None` if a
-    /// matrix is not square of the first one's size or not symmetric to round-off.
-    pub fn new(cases: [Option<DMatrix<f64>>; STIFFENING_CASES]) -> Option<Self> {
-        let dim = cases.iter().flatten().map(|c| c.nrows()).next()?;
-        let fits = cases.iter().flatten().all(|c| {
-            c.shape() == (dim, dim) && (c - c.transpose()).amax() <= 1e-12 * c.amax().max(1e-300)
-        });
-        fits.then_some(Self { dim, cases })
+    /// The body's unit geometric stiffnesses ($n \times n$ each, symmetric to $10^{-12}$ of
+    /// their largest entry), checked: a matrix of another shape or unsymmetric, or no case at
+    /// all, is [`DynamicsError::GeometricStiffnessInvalid`].
+    pub fn new(cases: [Option<DMatrix<f64>>; STIFFENING_CASES]) -> Result<Self> {
+        let none = DynamicsError::GeometricStiffnessInvalid {
+            case: None,
+            rows: 0,
+            cols: 0,
+            dim: 0,
+            defect: 0.0,
+        };
+        let dim = cases
+            .iter()
+            .flatten()
+            .map(|c| c.nrows())
+            .next()
+            .ok_or(none)?;
+        for (c, name) in cases.iter().zip(STIFFENING_CASE_NAMES) {
+            let Some(c) = c else { continue };
+            let square = c.shape() == (dim, dim);
+            let defect = if square {
+                (c - c.transpose()).amax() / c.amax().max(f64::MIN_POSITIVE)
+            } else {
+                f64::NAN
+            };
+            if !(square && defect <= 1e-12) {
+                return Err(DynamicsError::GeometricStiffnessInvalid {
+                    case: Some(name),
+                    rows: c.nrows(),
+                    cols: c.ncols(),
+                    dim,
+                    defect,
+                }
+                .into());
+            }
+        }
+        Ok(Self { dim, cases })
     }
 
     /// Coordinates.
@@ -148,7 +180,14 @@ mod tests {
             if n > 1 {
                 let mut bad = sym(0.3);
                 bad[(0, 1)] += 1.0;
-                assert!(FrameStiffening::new([Some(bad), None, None, None, None]).is_none());
+                assert!(FrameStiffening::new([None, None, None, None, None]).is_err());
+                let refused = FrameStiffening::new([Some(bad), None, None, None, None]);
+                assert!(
+                    refused
+                        .unwrap_err()
+                        .to_string()
+                        .contains("geometric stiffness of the rate² case"),
+                );
             }
         }
     }

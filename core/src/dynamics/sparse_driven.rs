@@ -92,7 +92,7 @@ pub(super) fn check_isotropic(model: &FeModel) -> Result<()> {
 }
 
 /// $y_j = e \times x_j$ per node (`twice`: $e \times (e \times x_j)$).
-pub(super) fn cross_nodes(axis: &Vector3<f64>, x: &[f64], twice: bool) -> Vec<f64> {
+fn cross_nodes(axis: &Vector3<f64>, x: &[f64], twice: bool) -> Vec<f64> {
     let mut y = vec![0.0; x.len()];
     for (xj, yj) in x.chunks_exact(3).zip(y.chunks_exact_mut(3)) {
         let v = Vector3::new(xj[0], xj[1], xj[2]);
@@ -111,7 +111,7 @@ pub(super) fn mul_mass(m: &MassMatrix, x: &[f64]) -> Vec<f64> {
 }
 
 impl SparseDriven {
-    pub(super) fn extend(&self, x: &[f64]) -> Vec<f64> {
+    fn extend(&self, x: &[f64]) -> Vec<f64> {
         self.coords.extend(x)
     }
 

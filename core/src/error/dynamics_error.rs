@@ -149,4 +149,33 @@ pub enum DynamicsError {
         offset: Option<f64>,
         held: Option<(usize, usize, usize)>,
     },
+
+    /// A geometric stiffness of a unit frame load (`case`: rate², angular acceleration,
+    /// g_x, …) that is not square of the body's size or not symmetric (`defect`: largest
+    /// |K − Kᵀ| over largest |K|); `case` none: no case given at all.
+    #[error(
+        "{}",
+        match case {
+            Some(c) => format!(
+                "the geometric stiffness of the {c} case is {rows} × {cols} with a symmetry \
+                 defect {defect:.1e}: it must be {dim} × {dim} and symmetric"
+            ),
+            None => "a body's stiffening needs at least one geometric stiffness".to_string(),
+        }
+    )]
+    GeometricStiffnessInvalid {
+        case: Option<&'static str>,
+        rows: usize,
+        cols: usize,
+        dim: usize,
+        defect: f64,
+    },
+
+    /// A model too large for a dense route that forms its operators column by column.
+    #[error("{what} takes models of at most {limit} coordinates; this one has {coordinates}")]
+    DenseRouteTooLarge {
+        what: &'static str,
+        coordinates: usize,
+        limit: usize,
+    },
 }

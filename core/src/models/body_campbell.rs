@@ -11,15 +11,15 @@ use crate::{
     Result,
     analysis::count_zero_energy_modes,
     body_file::ImportedBody,
-    dynamics::{Combination, DrivenFrameBody, Driving, DynamicsError, SpinUp},
-    linalg::generalized_eigen,
+    dynamics::{Combination, DrivenFrameBody, DynamicsError},
+    linalg::{PairSelection, generalized_eigen_selected},
     progress::Progress,
     reduction::Method,
 };
 
 use super::{
     BodyInterfaces, BodyReducer,
-    driven_setup::{check_preload, drive_interface, free_columns},
+    driven_setup::{apply_preload, drive_interface, free_columns},
 };
 
 /// Coordinates above which the dense route refuses a model (its operators are formed
@@ -70,12 +70,16 @@ pub struct BodyCampbell {
     pub curves: Vec<BodyCampbellCurve>,
 }
 
-/// The lowest `count` frequencies (Hz) of `body` spun at `rate` (rad/s), Coriolis left out.
+/// The lowest `count` frequencies (Hz) of `body` spun at `rate` (rad/s), Coriolis left out:
+/// $(K + \Omega^2(H + K_{\sigma,1}))\phi = \omega^2 M\phi$, solved densely and checked pair by
+/// pair; a body above [`CAMPBELL_DENSE_LIMIT`] coordinates is refused.
 pub fn spinning_frequencies(body: &DrivenFrameBody, rate: f64, count: usize) -> Result<Vec<f64>> {
     let n = body.dim();
     if n > CAMPBELL_DENSE_LIMIT {
-        return Err(DynamicsError::Misuse {
-            what: "a Campbell table's dense route takes models of at most 6000 coordinates",
+        return Err(DynamicsError::DenseRouteTooLarge {
+            what: "a Campbell table's dense route",
+            coordinates: n,
+            limit: CAMPBELL_DENSE_LIMIT,
         }
         .into());
     }
@@ -89,27 +93,15 @@ pub fn spinning_frequencies(body: &DrivenFrameBody, rate: f64, count: usize) -> 
         m: 1.0,
         ..Default::default()
     };
-    let dense = |c: Combination| {
-        let mut a = Mat::<f64>::zeros(n, n);
-        let mut e = vec![0.0; n];
-        for j in 0..n {
-            e[j] = 1.0;
-            let col = body.mul(c, &e);
-            e[j] = 0.0;
-            for i in 0..n {
-                a[(i, j)] = col[i];
-            }
-        }
-        Mat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]))
-    };
-    let e = generalized_eigen(
-        dense(stiffness).as_ref(),
-        dense(mass).as_ref(),
+    let symmetric = |a: Mat<f64>| Mat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
+    let e = generalized_eigen_selected(
+        symmetric(body.dense_matrix(stiffness)).as_ref(),
+        symmetric(body.dense_matrix(mass)).as_ref(),
         "body spinning on the driven frame",
+        PairSelection::Lowest(count),
     )?;
     Ok(e.values
         .iter()
-        .take(count)
         .map(|&l| l.signum() * l.abs().sqrt() / (2.0 * std::f64::consts::PI))
         .collect())
 }
@@ -135,23 +127,13 @@ pub fn body_campbell(
     let ring = model.dofs_of_nodes(&drive.nodes)?;
     progress.phase("full body on the turning frame")?;
     let mut full = DrivenFrameBody::full(model, &ring, vec![], origin, axis)?;
-    let stiffened = match (&body.preload, parameters.stiffening) {
-        (Some(preload), true) => {
-            let driving = Driving {
-                spin: SpinUp {
-                    axis,
-                    rate: 1.0,
-                    ramp: 1.0,
-                },
-                shake: None,
-                gravity: Vector3::zeros(),
-            };
-            check_preload(preload, &driving, origin, &ring, model.size())?;
-            full.set_centrifugal_stiffening(&preload.rate_squared)?;
-            true
-        }
-        _ => false,
-    };
+    let stiffened = apply_preload(
+        body,
+        &mut full,
+        parameters.stiffening,
+        (axis, origin),
+        &ring,
+    )?;
     let coords = full
         .coordinates()
         .cloned()

@@ -25,7 +25,7 @@ use crate::{
 };
 
 use super::driven_setup::{
-    check_preload, drive_interface, driving_of, free_columns, mean_axes_of, output_names,
+    apply_preload, drive_interface, driving_of, free_columns, mean_axes_of, output_names,
     output_nodes, pinned_rings,
 };
 use super::{
@@ -316,14 +316,13 @@ pub fn driven_body_study(
     let started = Instant::now();
     let mut full_body =
         DrivenFrameBody::full(model, &ring, pins.clone(), origin, driving.spin.axis)?;
-    let stiffened = match (&body.preload, parameters.stiffening) {
-        (Some(preload), true) => {
-            check_preload(preload, &driving, origin, &ring, model.size())?;
-            full_body.set_centrifugal_stiffening(&preload.rate_squared)?;
-            true
-        }
-        _ => false,
-    };
+    let stiffened = apply_preload(
+        body,
+        &mut full_body,
+        parameters.stiffening,
+        (driving.spin.axis, origin),
+        &ring,
+    )?;
     let full_offline = started.elapsed().as_secs_f64();
     let coords = full_body
         .coordinates()

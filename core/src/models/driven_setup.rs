@@ -9,7 +9,7 @@ use crate::{
     Result,
     analysis::MeanAxisView,
     body_file::{ImportedBody, InterfaceKind, Preload},
-    dynamics::{AxisKind, Driving, DynamicsError, PinnedRing, Shake, SpinUp},
+    dynamics::{AxisKind, DrivenFrameBody, Driving, DynamicsError, PinnedRing, Shake, SpinUp},
     error::{DofSetName, DofSetProblem},
     fem::{FeModel, NodeIndex},
     reduction::{Basis, ColumnKind, ReductionError, RigidInterface},
@@ -38,20 +38,38 @@ pub(super) fn drive_interface(
     }
 }
 
+/// The full body `full` (turning about `axis` through `origin`, the DOF `ring` clamped)
+/// given the dynamic stiffening of `body`'s preloaded stiffness when `stiffening` asks for it
+/// and the body has one, checked against the spin ([`check_preload`]). Returns whether it
+/// was given.
+pub(super) fn apply_preload(
+    body: &ImportedBody,
+    full: &mut DrivenFrameBody,
+    stiffening: bool,
+    (axis, origin): (Unit<Vector3<f64>>, [f64; 3]),
+    ring: &[usize],
+) -> Result<bool> {
+    match (&body.preload, stiffening) {
+        (Some(preload), true) => {
+            check_preload(preload, axis, origin, ring, body.model.size())?;
+            full.set_centrifugal_stiffening(&preload.rate_squared)?;
+            Ok(true)
+        }
+        _ => Ok(false),
+    }
+}
+
 /// A preloaded stiffness applies to a spin about its own axis with the drive's ring held as
 /// its static step held it: the axes parallel (1e-6 rad), the frame's origin on its axis
 /// (1e-6 of the body's size), its held DOF the ring's.
-pub(super) fn check_preload(
+fn check_preload(
     preload: &Preload,
-    driving: &Driving,
+    axis: Unit<Vector3<f64>>,
     origin: [f64; 3],
     ring: &[usize],
     size: f64,
 ) -> Result<()> {
-    let (a, e) = (
-        preload.load.axis.into_inner(),
-        driving.spin.axis.into_inner(),
-    );
+    let (a, e) = (preload.load.axis.into_inner(), axis.into_inner());
     let angle = a.cross(&e).norm().atan2(a.dot(&e).abs());
     let mismatch = |angle_rad, offset, held| {
         Err(DynamicsError::PreloadMismatch {

@@ -4,8 +4,6 @@
 //! history compared with the full body's like theirs), and a run at [`ABOVE_CRITICAL`] of it
 //! that must diverge.
 
-use faer::Mat;
-
 use crate::{
     Error, Result,
     dynamics::{
@@ -123,16 +121,6 @@ pub(super) fn explicit_runs(
 /// The lowest and highest natural frequencies of a reduced body on its frame at rest, Hz,
 /// checked by the dense generalised eigensolver.
 pub(super) fn frame_frequencies(body: &DrivenFrameBody) -> Result<Option<(f64, f64)>> {
-    let k = body.dim();
-    let columns = |c| -> Vec<Vec<f64>> {
-        (0..k)
-            .map(|j| {
-                let mut e = vec![0.0; k];
-                e[j] = 1.0;
-                body.mul(c, &e)
-            })
-            .collect()
-    };
     let stiffness = Combination {
         k: 1.0,
         ..Default::default()
@@ -141,9 +129,7 @@ pub(super) fn frame_frequencies(body: &DrivenFrameBody) -> Result<Option<(f64, f
         m: 1.0,
         ..Default::default()
     };
-    let (kc, mc) = (columns(stiffness), columns(mass));
-    let kk = Mat::from_fn(k, k, |i, j| kc[j][i]);
-    let mm = Mat::from_fn(k, k, |i, j| mc[j][i]);
+    let (kk, mm) = (body.dense_matrix(stiffness), body.dense_matrix(mass));
     let e: GeneralizedEigen =
         generalized_eigen(kk.as_ref(), mm.as_ref(), "reduced body on the driven frame")?;
     let hz = e.hz();
