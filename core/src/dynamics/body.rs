@@ -6,10 +6,10 @@ use crate::linalg::LinalgError;
 use faer::Mat;
 use nalgebra::{DMatrix, DVector, Dyn, IsContiguous, Matrix3, Matrix3xX, Storage, Vector3};
 
-use super::{AxisType, InertiaInvariants, inertia_invariants::Modal};
+use super::{AxisType, FreeFrameStiffening, InertiaInvariants, inertia_invariants::Modal};
 use crate::{
     Error, Result,
-    fem::{DofMap, FeModel},
+    fem::{BrickElements, DofMap, FeModel},
     linalg::{MassMatrix, SparseSymmetric},
     reduction::Basis,
 };
@@ -86,6 +86,9 @@ pub struct FlexibleBody {
     pub m_zz_inverse: ModalMassInverse,
     /// The inertia invariants, computed once.
     pub invariants: InertiaInvariants,
+    /// The geometric stiffness of the frame's loads ([`FreeFrameStiffening`]), when the body
+    /// was given it ([`Self::with_stiffening`]): its dynamic stiffening.
+    pub stiffening: Option<FreeFrameStiffening>,
 }
 
 /// The inverse of a constant modal mass block $M_{zz} = \Psi^T M \Psi$: a reciprocal
@@ -202,7 +205,8 @@ impl FlexibleBody {
             + 3 * F64 * (self.model.nodes.len() + self.s_bar.len())
             + F64 * self.masses.len();
         let basis = F64 * self.basis.psi.nrows() * self.basis.psi.ncols()
-            + self.psi_nodes.iter().map(|p| F64 * p.len()).sum::<usize>();
+            + self.psi_nodes.iter().map(|p| F64 * p.len()).sum::<usize>()
+            + self.stiffening.as_ref().map_or(0, |s| s.heap_bytes());
         let modal = F64 * (self.m_zz.len() + self.k_zz.len())
             + self.k_zz_sparse.as_ref().map_or(0, |k| 16 * k.nnz())
             + match &self.m_zz_inverse {
@@ -293,7 +297,21 @@ impl FlexibleBody {
             k_zz_sparse,
             m_zz_inverse,
             invariants,
+            stiffening: None,
         })
+    }
+
+    /// The body with the dynamic stiffening of its frame's loads, formed from the stresses of
+    /// its mesh `elements` ([`FreeFrameStiffening::new`] on its own basis, axes and origin).
+    pub fn with_stiffening(mut self, elements: &BrickElements) -> Result<Self> {
+        self.stiffening = Some(FreeFrameStiffening::new(
+            &self.model,
+            elements,
+            &self.axes,
+            self.origin,
+            &self.basis.psi,
+        )?);
+        Ok(self)
     }
 
     /// The elastic force $K_{zz} z$ (N in modal units).

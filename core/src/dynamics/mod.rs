@@ -15,6 +15,7 @@ mod driven_integration;
 mod evaluation_workspace;
 mod frame_coordinates;
 mod frame_stiffening;
+mod free_frame_stiffening;
 mod generalized_alpha;
 mod inertia_invariants;
 mod integrator;
@@ -28,6 +29,7 @@ mod sparse_driven;
 mod spin_up;
 mod system;
 mod system_constraints;
+mod system_elimination;
 mod system_kinematics;
 #[cfg(test)]
 mod test_systems;
@@ -45,6 +47,10 @@ pub use driven_integration::{DrivenCost, DrivenIntegration, Driving, integrate_d
 pub use frame_coordinates::{FrameCoordinates, PinnedRing};
 pub use frame_stiffening::{
     FrameStiffening, STIFFENING_CASE_NAMES, STIFFENING_CASES, stiffening_coefficients,
+};
+pub use free_frame_stiffening::{
+    FREE_FRAME_CASE_NAMES, FREE_FRAME_CASES, FreeFrameStiffening, free_frame_coefficients,
+    unit_field,
 };
 pub use generalized_alpha::GeneralizedAlphaCoefficients;
 pub use inertia_invariants::InertiaInvariants;

@@ -178,4 +178,20 @@ pub enum DynamicsError {
         coordinates: usize,
         limit: usize,
     },
+
+    /// The geometric stiffness of a free frame's loads cannot be formed for this body: its
+    /// rigid motions are not known (mean or principal axes need them for inertia relief),
+    /// or the three nodes that would hold it statically determinately lie on a line.
+    #[error("the dynamic stiffening of `{body}` cannot be formed: {why}")]
+    StiffeningSupport {
+        body: super::Name,
+        why: &'static str,
+    },
+
+    /// The stiffened bodies' coupling of their frame accelerations into their modal
+    /// equations leaves the equations of motion singular.
+    #[error(
+        "the frame accelerations that stiffen {bodies} bodies leave the equations of motion singular"
+    )]
+    StiffeningSingular { bodies: usize },
 }

@@ -43,4 +43,12 @@ pub enum MeshError {
         node: usize,
         nodes: usize,
     },
+
+    /// Elements that do not fit the mesh they are applied to.
+    #[error("{what} {value}, but the mesh has {available}")]
+    ElementsMismatch {
+        what: &'static str,
+        value: usize,
+        available: usize,
+    },
 }

@@ -33,7 +33,10 @@ pub const EDGES: [(usize, usize); 12] = [
 /// Shape functions $N_a$, their natural derivatives $\partial N_a/\partial\xi$ and the
 /// Jacobian $J = \sum_a (\partial N_a/\partial\xi)\, x_a^T$ at natural point `xi` of a brick
 /// with node positions `x` (local order of [`LOCAL_NODES`]).
-fn shape_at(xi: [f64; 3], x: &[[f64; 3]; 8]) -> ([f64; 8], [[f64; 3]; 8], nalgebra::Matrix3<f64>) {
+pub(super) fn shape_at(
+    xi: [f64; 3],
+    x: &[[f64; 3]; 8],
+) -> ([f64; 8], [[f64; 3]; 8], nalgebra::Matrix3<f64>) {
     let mut n = [0.0; 8];
     let mut dn = [[0.0; 3]; 8];
     for (a, l) in LOCAL_NODES.iter().enumerate() {
@@ -58,7 +61,7 @@ fn shape_at(xi: [f64; 3], x: &[[f64; 3]; 8]) -> ([f64; 8], [[f64; 3]; 8], nalgeb
 
 /// Isotropic linear-elastic constitutive matrix (Voigt order xx, yy, zz, xy, yz, zx;
 /// engineering shear strains). `e` in Pa.
-fn elasticity(e: f64, nu: f64) -> [[f64; 6]; 6] {
+pub(super) fn elasticity(e: f64, nu: f64) -> [[f64; 6]; 6] {
     let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
     let mut d = [[0.0; 6]; 6];
     for i in 0..3 {

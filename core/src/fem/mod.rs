@@ -2,12 +2,14 @@
 //! plank of §5.3.3.
 
 mod beam2d;
+mod brick_elements;
 mod brick_mesh;
 mod dof_map;
 mod dual_spin;
 mod fe_model;
 mod frame3d;
 mod hex8;
+mod hex8_geometric;
 mod l_bracket;
 mod mass_properties;
 mod node_index;
@@ -16,6 +18,7 @@ mod spinning_beam;
 mod triplets;
 
 pub use beam2d::{BeamParameters, beam};
+pub use brick_elements::BrickElements;
 pub use brick_mesh::{SlabParameters, plank, slab, slab_bricks};
 pub use dof_map::{DofMap, NodeDof};
 pub use dual_spin::{DualSpin, DualSpinParameters, add_lumped, dual_spin};
@@ -24,6 +27,7 @@ pub use frame3d::{FrameSection, frame, frame_of_sections, frame_stiffness};
 pub use hex8::{
     EDGES as HEX8_EDGES, LOCAL_NODES as HEX8_LOCAL_NODES, hex8_consistent_mass, hex8_stiffness,
 };
+pub use hex8_geometric::{GaussStresses, hex8_geometric_stiffness, hex8_stresses};
 pub use l_bracket::{LBracketParameters, l_bracket};
 pub use mass_properties::MassProperties;
 pub use node_index::NodeIndex;
