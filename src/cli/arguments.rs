@@ -290,6 +290,10 @@ pub(super) struct OptionArgs {
     /// Bricks of the slab mesh along x, y, z (slab-modes; App. B is 4,2,1).
     #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_refine, allow_hyphen_values = true)]
     pub(super) refine: Option<[usize; 3]>,
+    /// Dynamic (geometric) stiffening of the slab simulations' floating frame: on or off
+    /// (default off, Lin's thesis' model, which leaves it out).
+    #[arg(long, value_enum)]
+    pub(super) stiffening: Option<super::body_arguments::OnOff>,
 }
 
 /// `NX,NY,NZ`: three positive brick counts.
@@ -363,6 +367,9 @@ impl OptionArgs {
             refine: self.refine,
             deformation_scale: self.deformation_scale,
             body,
+            stiffening: self
+                .stiffening
+                .map(|s| s == super::body_arguments::OnOff::On),
             ..Default::default()
         })
     }

@@ -46,6 +46,9 @@ pub struct SceneOptions {
     pub dt: Option<f64>,
     /// `--refine NX,NY,NZ`: bricks of the slab mesh (App. B: 4, 2, 1).
     pub refine: Option<[usize; 3]>,
+    /// `--stiffening on|off`: the dynamic (geometric) stiffening of the slab simulations'
+    /// floating frame (`None`: off, the thesis' model).
+    pub stiffening: Option<bool>,
     /// `--deformation-scale`: factor on the drawn elastic deflections of the simulations
     /// (`None`: automatic).
     pub deformation_scale: Option<f64>,

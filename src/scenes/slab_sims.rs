@@ -14,7 +14,7 @@ use crate::models::{
 use crate::{
     Progress, Result,
     dynamics::{AxisType, IntegratorParameters, Simulation, System, simulate},
-    fem::{SlabParameters, slab},
+    fem::{BrickElements, SlabParameters, slab},
     record::{Geometry, Layout, Visual},
     reduction::{Method, NodalFixedAxes},
     report::Report,
@@ -132,14 +132,20 @@ pub fn run_scenario(
         .unwrap_or_else(|| default_boundary(&model));
     let probe = slab_node(&model, PROBE_NODE);
     let params = opts.integrator_parameters(info)?;
+    let stiffened = opts.stiffening.unwrap_or(false);
+    let elements = BrickElements::of_slab(&SlabParameters::refined(bricks)?);
     let integrate = |m: Method, progress: &Progress| {
         let key = format!(
-            "{}/{bricks:?}",
-            run_key(info.id, m, axes, &boundary, modes, &params)
+            "{}/{bricks:?}/{}",
+            run_key(info.id, m, axes, &boundary, modes, &params),
+            if stiffened { "stiffened" } else { "linear" }
         );
         opts.cache.get_or_run(key, || {
             progress.phase(&format!("{} integration", m.name()))?;
-            let body = slab_body(&model, m, axes, &boundary, modes)?;
+            let mut body = slab_body(&model, m, axes, &boundary, modes)?;
+            if stiffened {
+                body = body.with_stiffening(&elements)?;
+            }
             let (system, state) = slab_system(&scenario, body)?;
             let sim = simulate(&system, &state, &params, progress)?;
             Ok((system, sim))
@@ -169,6 +175,9 @@ pub fn run_scenario(
         &model,
         &methods,
     );
+    report
+        .parameters
+        .insert("stiffening".into(), json!(stiffened));
     let reference = runs
         .iter()
         .find(|r| r.0 == Method::NoReduction)

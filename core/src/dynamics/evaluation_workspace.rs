@@ -64,11 +64,6 @@ pub(super) struct SaddlePointWorkspace {
     pub(super) blocks: BlockSaddlePointWorkspace,
     /// The solution $x$ (accelerations, or a correction in velocity coordinates).
     pub(super) x: DVector<f64>,
-    /// The accelerations before the stiffening of the frame accelerations was settled
-    /// ([`System::settle_stiffening`]), and the responses to each frame acceleration's
-    /// modal forces.
-    pub(super) settled: DVector<f64>,
-    pub(super) responses: Vec<DVector<f64>>,
     /// Whether `blocks` and `bodies` hold the factors of the last system solved (a
     /// [`System::saddle_point`] that succeeded), for [`System::resolve_saddle_point`].
     pub(super) factored: bool,
@@ -122,8 +117,6 @@ impl EvaluationWorkspace {
             bodies,
             blocks: BlockSaddlePointWorkspace::default(),
             x: DVector::zeros(system.nv()),
-            settled: DVector::zeros(0),
-            responses: Vec::new(),
             factored: false,
         };
         Self {

@@ -247,6 +247,9 @@ impl System {
                         .m_fz
                         .generic_view_mut((3, 0), (nalgebra::U3, nalgebra::Dyn(k))),
                 );
+                if let Some(st) = &fb.stiffening {
+                    st.add_mass_coupling(&f.a, &f.z, &mut out.m_fz);
+                }
                 if forces {
                     // Gravity acts on every node: sum m_j A^T g, its moment and modal force.
                     let at = f.a.transpose();
@@ -269,7 +272,7 @@ impl System {
                     *q_z -= &*a_z;
                     fb.subtract_elastic_force(&f.z, q_z);
                     // Dynamic stiffening by the angular velocity and gravity; the frame
-                    // accelerations' part is settled after the solve (`settle_stiffening`).
+                    // accelerations' part sits in the mass matrix (`add_mass_coupling`).
                     if let Some(st) = &fb.stiffening {
                         let c = free_frame_coefficients(&f.w, &Vector3::zeros(), &g_local);
                         st.subtract_force(&c, 0..FREE_FRAME_CASES, &f.z, q_z);
@@ -368,11 +371,7 @@ impl System {
             g: &rows.gamma,
             modal_rows: &ws.modal_rows,
         };
-        self.saddle_point(s, &rows.moments, all, true, &mut ws.saddle)?;
-        if self.stiffening_needs_accelerations() {
-            self.settle_stiffening(s, &mut ws.saddle)?;
-        }
-        Ok(())
+        self.saddle_point(s, &rows.moments, all, true, &mut ws.saddle)
     }
 
     /// The accelerations of [`Self::accelerations`] from the dense regularised system

@@ -1,16 +1,12 @@
 //! The block elimination of the system's saddle-point equations (see
-//! [`System::accelerations`]) and the settling of the frame accelerations that load
-//! stiffened bodies.
+//! [`System::accelerations`]).
 
-use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3};
 
 use super::{
     Body, DynamicsError, State, System,
     constraint_rows::ConstraintRows,
     evaluation_workspace::{BodyElimination, SaddlePointWorkspace},
-    free_frame_stiffening::{
-        ANGULAR_ACCELERATION_CASES, FREE_FRAME_CASES, free_frame_coefficients,
-    },
 };
 use crate::{
     Error, Result,
@@ -218,121 +214,5 @@ impl System {
                 rcond: None,
             }))
         }
-    }
-
-    /// Whether a stiffened body's stiffness depends on the frame accelerations (the unit
-    /// cases of angular acceleration and specific force stress it).
-    pub(super) fn stiffening_needs_accelerations(&self) -> bool {
-        self.bodies.iter().any(|b| match b {
-            Body::Flexible(fb) => fb
-                .stiffening
-                .as_ref()
-                .is_some_and(|st| st.depends_on_accelerations()),
-            Body::Rigid(_) => false,
-        })
-    }
-
-    /// The accelerations of a system whose stiffened bodies are loaded by their frames'
-    /// accelerations, from those [`Self::saddle_point`] left in `ws.x` with the acceleration
-    /// cases left out ($x_0$). The modal equations of such a body gain
-    /// $\big(\sum_a \dot{\bar\omega}_a K_{\sigma,\alpha_a} - \sum_{a,i} A_{ai}\ddot r_a
-    /// K_{\sigma,b_i}\big) z$ on the left, a term $P\dot v = UV^T\dot v$ linear in its six frame
-    /// accelerations ($V^T$ picks them, $U$ holds $\partial(K_\sigma z)/\partial\dot v_f$):
-    /// the mass matrix loses its symmetry. With $L$ the symmetric system's response to modal
-    /// forces alone, from the factors `ws` holds (triangular solves only), the
-    /// Sherman–Morrison–Woodbury identity gives the exact solution:
-    /// $W = -LU$ (six responses per stiffened body), $(I - V^TW)\,y = V^Tx_0$,
-    /// $\dot v = x_0 + Wy$.
-    pub(super) fn settle_stiffening(&self, s: &State, ws: &mut SaddlePointWorkspace) -> Result<()> {
-        let nf = 6 * self.bodies.len();
-        ws.settled.clone_from(&ws.x);
-        let columns: Vec<(usize, usize)> = self
-            .bodies
-            .iter()
-            .enumerate()
-            .filter(|(_, body)| match body {
-                Body::Flexible(fb) => fb
-                    .stiffening
-                    .as_ref()
-                    .is_some_and(|st| st.depends_on_accelerations()),
-                Body::Rigid(_) => false,
-            })
-            .flat_map(|(b, _)| (0..6).map(move |c| (b, c)))
-            .collect();
-        let m = columns.len();
-        ws.responses.resize_with(m, || DVector::zeros(0));
-        for (j, &(bj, cj)) in columns.iter().enumerate() {
-            let rows = ws.kkt.nrows();
-            resize(&mut ws.rhs, rows);
-            ws.rhs.fill(0.0);
-            for (b, (body, work)) in self.bodies.iter().zip(ws.bodies.iter_mut()).enumerate() {
-                let Body::Flexible(fb) = body else { continue };
-                let na = work.active.len();
-                if b != bj {
-                    // No modal force on this body: its force column reads zero.
-                    work.x.column_mut(6 + na).fill(0.0);
-                    continue;
-                }
-                let st = fb
-                    .stiffening
-                    .as_ref()
-                    .expect("the columns are those of stiffened bodies");
-                let k = fb.modes();
-                let qo = self.q_off[b];
-                // δQ = −U_c: a unit acceleration of frame coordinate c.
-                let (mut alpha, mut r_dd) = (Vector3::zeros(), Vector3::zeros());
-                if cj < 3 {
-                    r_dd[cj] = 1.0;
-                } else {
-                    alpha[cj - 3] = 1.0;
-                }
-                let f = self.frame(b, s);
-                let c =
-                    free_frame_coefficients(&Vector3::zeros(), &alpha, &(-f.a.transpose() * r_dd));
-                let dq = &mut work.frame_part;
-                resize(dq, k);
-                dq.fill(0.0);
-                st.subtract_force(
-                    &c,
-                    ANGULAR_ACCELERATION_CASES..FREE_FRAME_CASES,
-                    &s.q.rows(qo + 7, k),
-                    dq,
-                );
-                // Eliminated right-hand side: −X_pᵀ δQ for the frame rows and the active
-                // constraint rows; the force column becomes M_zz⁻¹ δQ.
-                for p in 0..6 {
-                    ws.rhs[6 * b + p] -= work.x.column(p).dot(dq);
-                }
-                for (i, &r) in work.active.iter().enumerate() {
-                    ws.rhs[nf + r] -= work.x.column(6 + i).dot(dq);
-                }
-                reshape(&mut work.w, k, 1);
-                work.w.column_mut(0).copy_from(dq);
-                reshape(&mut work.product, k, 1);
-                fb.m_zz_inverse.solve_into(&work.w, &mut work.product);
-                let (x, product) = (&mut work.x, &work.product);
-                x.column_mut(6 + na).copy_from(&product.column(0));
-            }
-            let solution = ws.blocks.resolve(&ws.rhs);
-            self.recover(solution, true, &mut ws.bodies, &mut ws.responses[j])?;
-        }
-        // (I − VᵀW) y = Vᵀ x₀, then v̇ = x₀ + W y.
-        let picked = |(b, c): (usize, usize)| self.v_off[b] + c;
-        let g = DMatrix::from_fn(m, m, |i, j| {
-            f64::from(u8::from(i == j)) - ws.responses[j][picked(columns[i])]
-        });
-        let rhs = DVector::from_fn(m, |i, _| ws.settled[picked(columns[i])]);
-        let y = g
-            .lu()
-            .solve(&rhs)
-            .filter(|y| y.iter().all(|v| v.is_finite()));
-        let Some(y) = y else {
-            return Err(DynamicsError::StiffeningSingular { bodies: m / 6 }.into());
-        };
-        ws.x.clone_from(&ws.settled);
-        for (yj, w) in y.iter().zip(&ws.responses) {
-            ws.x.axpy(*yj, w, 1.0);
-        }
-        Ok(())
     }
 }

@@ -187,11 +187,4 @@ pub enum DynamicsError {
         body: super::Name,
         why: &'static str,
     },
-
-    /// The stiffened bodies' coupling of their frame accelerations into their modal
-    /// equations leaves the equations of motion singular.
-    #[error(
-        "the frame accelerations that stiffen {bodies} bodies leave the equations of motion singular"
-    )]
-    StiffeningSingular { bodies: usize },
 }
