@@ -27,6 +27,20 @@ impl Scene {
             });
         }
         opts.check_integrator(&self.info)?;
+        if opts.stiffening.is_some()
+            && !matches!(
+                self.info.id,
+                SceneId::SlabSim1 | SceneId::SlabSim2 | SceneId::SlabSim3
+            )
+        {
+            return Err(Error::InvalidOption {
+                option: "--stiffening",
+                scene: Some(self.info.id.as_str()),
+                reason: "--stiffening applies to slab-sim1, slab-sim2 and slab-sim3 (spin-up \
+                         shows the models with and without it; simulate --body takes its own)"
+                    .into(),
+            });
+        }
         if opts.band_hz.is_some() && self.info.id != super::body_modes::INFO.id {
             return Err(Error::InvalidOption {
                 option: "--band",

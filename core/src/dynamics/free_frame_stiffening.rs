@@ -317,7 +317,7 @@ fn statically_determinate_support(model: &FeModel) -> Result<Vec<usize>> {
     let c3 = farthest(&|x| (x - p[a]).cross(&axis).norm());
     let normal = (p[c3] - p[a]).cross(&axis);
     let size = (p[b] - p[a]).norm();
-    if !(normal.norm() > 1e-6 * size * size) {
+    if normal.norm().is_nan() || normal.norm() <= 1e-6 * size * size {
         return Err(DynamicsError::StiffeningSupport {
             body: (&model.name).into(),
             why: "its nodes lie on a line",
@@ -379,7 +379,7 @@ fn restrained_solve(
             .map(|d| (ku[(d, j)] - loads[(d, j)]).abs())
             .fold(0.0f64, f64::max)
             / scale;
-        if !(residual <= STATIC_TOLERANCE) {
+        if residual.is_nan() || residual > STATIC_TOLERANCE {
             return Err(Error::Linalg(LinalgError::SolveInaccurate {
                 matrix: label,
                 residual,
