@@ -73,53 +73,63 @@ pub(super) fn elasticity(e: f64, nu: f64) -> [[f64; 6]; 6] {
     d
 }
 
-/// Element stiffness (24×24, N/m) of a brick with node positions `x` (m) in the local order of
-/// [`LOCAL_NODES`], Young's modulus `e` (Pa) and Poisson's ratio `nu`.
-/// $K_e = \sum_g B^T D B \,\det J\, w_g$ over the 2×2×2 Gauss points.
-pub fn hex8_stiffness(x: &[[f64; 3]; 8], e: f64, nu: f64) -> Mat<f64> {
-    let d = elasticity(e, nu);
+/// Derivatives $\partial N_a / \partial x = J^{-1}\partial N_a/\partial\xi$ and $\det J$ at
+/// each of the 2×2×2 Gauss points (unit weights), in the order every brick matrix sums them.
+pub(super) fn gauss_gradients(x: &[[f64; 3]; 8]) -> [([[f64; 3]; 8], f64); 8] {
     let g = 1.0 / 3.0f64.sqrt();
-    let mut k = Mat::<f64>::zeros(24, 24);
+    let mut out = [([[0.0; 3]; 8], 0.0); 8];
+    let mut p = 0;
     for &gx in &[-g, g] {
         for &gy in &[-g, g] {
             for &gz in &[-g, g] {
                 let (_, dn, j) = shape_at([gx, gy, gz], x);
-                let det = j.determinant();
                 let jinv = j
                     .try_inverse()
                     .unwrap_or_else(nalgebra::Matrix3::<f64>::zeros);
-                // dN/dx = J^{-1} dN/dξ
                 let mut dx = [[0.0; 3]; 8];
                 for (dxa, dna) in dx.iter_mut().zip(&dn) {
                     for (r, v) in dxa.iter_mut().enumerate() {
                         *v = (0..3).map(|c| jinv[(r, c)] * dna[c]).sum();
                     }
                 }
-                let mut b = [[0.0; 24]; 6];
-                for (a, &[nx, ny, nz]) in dx.iter().enumerate() {
-                    let c = 3 * a;
-                    b[0][c] = nx;
-                    b[1][c + 1] = ny;
-                    b[2][c + 2] = nz;
-                    b[3][c] = ny;
-                    b[3][c + 1] = nx;
-                    b[4][c + 1] = nz;
-                    b[4][c + 2] = ny;
-                    b[5][c] = nz;
-                    b[5][c + 2] = nx;
-                }
-                let mut db = [[0.0; 24]; 6];
-                for r in 0..6 {
-                    for c in 0..24 {
-                        db[r][c] = (0..6).map(|s| d[r][s] * b[s][c]).sum();
-                    }
-                }
-                for r in 0..24 {
-                    for c in 0..24 {
-                        let v: f64 = (0..6).map(|s| b[s][r] * db[s][c]).sum();
-                        k[(r, c)] += v * det;
-                    }
-                }
+                out[p] = (dx, j.determinant());
+                p += 1;
+            }
+        }
+    }
+    out
+}
+
+/// Element stiffness (24×24, N/m) of a brick with node positions `x` (m) in the local order of
+/// [`LOCAL_NODES`], Young's modulus `e` (Pa) and Poisson's ratio `nu`.
+/// $K_e = \sum_g B^T D B \,\det J\, w_g$ over the 2×2×2 Gauss points.
+pub fn hex8_stiffness(x: &[[f64; 3]; 8], e: f64, nu: f64) -> Mat<f64> {
+    let d = elasticity(e, nu);
+    let mut k = Mat::<f64>::zeros(24, 24);
+    for (dx, det) in gauss_gradients(x) {
+        let mut b = [[0.0; 24]; 6];
+        for (a, &[nx, ny, nz]) in dx.iter().enumerate() {
+            let c = 3 * a;
+            b[0][c] = nx;
+            b[1][c + 1] = ny;
+            b[2][c + 2] = nz;
+            b[3][c] = ny;
+            b[3][c + 1] = nx;
+            b[4][c + 1] = nz;
+            b[4][c + 2] = ny;
+            b[5][c] = nz;
+            b[5][c + 2] = nx;
+        }
+        let mut db = [[0.0; 24]; 6];
+        for r in 0..6 {
+            for c in 0..24 {
+                db[r][c] = (0..6).map(|s| d[r][s] * b[s][c]).sum();
+            }
+        }
+        for r in 0..24 {
+            for c in 0..24 {
+                let v: f64 = (0..6).map(|s| b[s][r] * db[s][c]).sum();
+                k[(r, c)] += v * det;
             }
         }
     }

@@ -11,37 +11,10 @@
 
 use faer::Mat;
 
-use super::hex8::{elasticity, shape_at};
+use super::hex8::{elasticity, gauss_gradients};
 
 /// The stress (Pa, Voigt order xx, yy, zz, xy, yz, zx) at each Gauss point.
 pub type GaussStresses = [[f64; 6]; 8];
-
-/// Derivatives $\partial N_a / \partial x$ and $\det J$ at each Gauss point, in the order the
-/// stiffness and the stresses share.
-fn gauss_gradients(x: &[[f64; 3]; 8]) -> [([[f64; 3]; 8], f64); 8] {
-    let g = 1.0 / 3.0f64.sqrt();
-    let mut out = [([[0.0; 3]; 8], 0.0); 8];
-    let mut p = 0;
-    for &gx in &[-g, g] {
-        for &gy in &[-g, g] {
-            for &gz in &[-g, g] {
-                let (_, dn, j) = shape_at([gx, gy, gz], x);
-                let jinv = j
-                    .try_inverse()
-                    .unwrap_or_else(nalgebra::Matrix3::<f64>::zeros);
-                let mut dx = [[0.0; 3]; 8];
-                for (dxa, dna) in dx.iter_mut().zip(&dn) {
-                    for (r, v) in dxa.iter_mut().enumerate() {
-                        *v = (0..3).map(|c| jinv[(r, c)] * dna[c]).sum();
-                    }
-                }
-                out[p] = (dx, j.determinant());
-                p += 1;
-            }
-        }
-    }
-    out
-}
 
 /// The stresses of the displacement `u` (24 values, node-major x, y, z, m) of a brick with node
 /// positions `x` (m), Young's modulus `e` (Pa) and Poisson's ratio `nu`, at its Gauss points.
