@@ -410,7 +410,7 @@ mod tests {
     /// $N(x) = \rho A\Omega^2(L^2/4 - x^2)/2$; on the field $v_y = x^2$ the geometric
     /// stiffness' energy is $\int N v'^2 dx = \rho A \Omega^2 L^5 / 60$ (closed form, per
     /// unit $\Omega^2$). The bricks (Poisson's ratio 0, lumped masses, inertia relief on
-    /// mean axes) converge to it as the bar is refined.
+    /// mean axes) converge to it as $h^2$: 4.9 %, 1.2 %, 0.31 % at 10, 20, 40 bricks.
     #[test]
     fn a_spun_bar_stiffens_by_its_centrifugal_tension() {
         let (length, mass) = (10.0f64, 12.0);
@@ -456,7 +456,7 @@ mod tests {
             );
         }
         assert!(
-            errors[2] < 0.01 && errors[2] < 0.5 * errors[0],
+            errors[2] < 0.005 && errors[1] < 0.3 * errors[0] && errors[2] < 0.3 * errors[1],
             "relative errors at 10, 20, 40 bricks: {errors:?}"
         );
     }
