@@ -32,7 +32,7 @@ use crate::{
     Error, Result,
     error::MatrixLabel,
     fem::{BrickElements, FeModel, RigidMotions},
-    linalg::{LinalgError, MassMatrix, SymbolicFactor, SymmetricFactor},
+    linalg::{LinalgError, SparseSymmetric, SymbolicFactor, SymmetricFactor},
 };
 
 /// Unit cases of a free frame: six products of the angular velocity, three angular
@@ -128,11 +128,68 @@ pub fn free_frame_coefficients(
     ]
 }
 
+/// How the body is held while a unit load case is solved statically.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CaseSupport {
+    /// These DOF (0-based) held at zero; their reactions carry the load's resultant.
+    Held(Vec<usize>),
+    /// Free, by inertia relief: each load less its rigid-body resultant, on six statically
+    /// determinate supports that must then carry nothing.
+    Relieved,
+}
+
+/// The geometric stiffness (the model's DOF, N/m per unit coefficient) of each unit case in
+/// `cases` for the body `model` meshed by `elements`, on a frame with `origin` (model
+/// coordinates, m), solved statically held as `support` says: $K_{\sigma}(u_i)$ with
+/// $K u_i = M f_i$, $f_i$ the case's [`unit_field`] at the nodes (for a consistent mass the
+/// exact load of a linear field, as CalculiX's `CENTRIF` applies it). `None` where the case
+/// stresses nothing (a rigid acceleration field relieved whole). Every solve is checked:
+/// relative residual at most $10^{-9}$ on the free DOF, and on every DOF when relieved.
+pub fn unit_case_stiffnesses(
+    model: &FeModel,
+    elements: &BrickElements,
+    origin: Vector3<f64>,
+    support: &CaseSupport,
+    cases: &[usize],
+) -> Result<Vec<Option<SparseSymmetric>>> {
+    let n = model.dof_count();
+    let fields = Mat::from_fn(n, cases.len(), |d, c| {
+        let p = model.nodes[d / 3];
+        unit_field(cases[c], &(Vector3::new(p[0], p[1], p[2]) - origin))[d % 3]
+    });
+    let mut loads = model.m.mul(fields.as_ref());
+    let (held, relieved) = match support {
+        CaseSupport::Held(dofs) => (dofs.clone(), false),
+        CaseSupport::Relieved => {
+            if model.rigid_motions != RigidMotions::FromGeometry {
+                return Err(DynamicsError::StiffeningSupport {
+                    body: (&model.name).into(),
+                    why: "its rigid motions are not known, and mean axes relieve the loads by them",
+                }
+                .into());
+            }
+            relieve(model, &mut loads);
+            (statically_determinate_support(model)?, true)
+        }
+    };
+    let displacements = restrained_solve(model, &held, &loads, relieved)?;
+    (0..cases.len())
+        .map(|c| {
+            let u: Vec<f64> = (0..n).map(|d| displacements[(d, c)]).collect();
+            if u.iter().all(|&x| x == 0.0) {
+                return Ok(None);
+            }
+            elements.geometric_stiffness(&model.nodes, &u).map(Some)
+        })
+        .collect()
+}
+
 impl FreeFrameStiffening {
-    /// The unit cases of `model` (lumped mass, 3 DOF per node) meshed by `elements`, on a
-    /// frame with `origin` (model coordinates, m) held as `axes` hold it, projected on `psi`
-    /// (the body's basis, $n \times k$). Every static solve is checked (relative residual
-    /// at most $10^{-9}$), and on mean or principal axes the supports' reactions must vanish.
+    /// The unit cases of `model` (3 DOF per node) meshed by `elements`, on a frame with
+    /// `origin` (model coordinates, m) held as `axes` hold it ([`unit_case_stiffnesses`]:
+    /// at the anchored coordinates of nodal-fixed axes, relieved on mean and principal axes),
+    /// projected on `psi` (the body's basis, $n \times k$). The angular accelerations' cases
+    /// are left out (`KEPT_OUT`).
     pub fn new(
         model: &FeModel,
         elements: &BrickElements,
@@ -140,64 +197,28 @@ impl FreeFrameStiffening {
         origin: Vector3<f64>,
         psi: &Mat<f64>,
     ) -> Result<Self> {
-        let n = model.dof_count();
-        let MassMatrix::Lumped(masses) = &model.m else {
-            return Err(DynamicsError::MassNotLumped {
-                body: (&model.name).into(),
-            }
-            .into());
-        };
-        let s: Vec<Vector3<f64>> = model
-            .nodes
-            .iter()
-            .map(|p| Vector3::new(p[0], p[1], p[2]) - origin)
-            .collect();
-        let mut loads = Mat::<f64>::zeros(n, FREE_FRAME_CASES);
-        for (j, sj) in s.iter().enumerate() {
-            for case in 0..FREE_FRAME_CASES {
-                let f = unit_field(case, sj);
-                for a in 0..3 {
-                    loads[(3 * j + a, case)] = masses[3 * j + a] * f[a];
-                }
-            }
-        }
-        let (held, relieved) = match axes {
-            AxisType::NodalFixed(nf) => (
+        let support = match axes {
+            AxisType::NodalFixed(nf) => CaseSupport::Held(
                 nf.anchored_dofs(model)?
                     .into_iter()
                     .map(|(_, _, d)| d)
                     .collect(),
-                false,
             ),
-            AxisType::Mean | AxisType::Principal => {
-                if model.rigid_motions != RigidMotions::FromGeometry {
-                    return Err(DynamicsError::StiffeningSupport {
-                        body: (&model.name).into(),
-                        why: "its rigid motions are not known, and mean axes relieve the loads by them",
-                    }
-                    .into());
-                }
-                relieve(model, masses, &mut loads);
-                (statically_determinate_support(model)?, true)
-            }
+            AxisType::Mean | AxisType::Principal => CaseSupport::Relieved,
         };
-        let displacements = restrained_solve(model, &held, &loads, relieved)?;
+        let kept: Vec<usize> = (0..FREE_FRAME_CASES)
+            .filter(|c| !KEPT_OUT.contains(c))
+            .collect();
+        let stiffnesses = unit_case_stiffnesses(model, elements, origin, &support, &kept)?;
         let mut cases: [Option<DMatrix<f64>>; FREE_FRAME_CASES] = Default::default();
-        for (case, out) in cases.iter_mut().enumerate() {
-            if KEPT_OUT.contains(&case) {
-                continue;
-            }
-            let u: Vec<f64> = (0..n).map(|d| displacements[(d, case)]).collect();
-            if u.iter().all(|&x| x == 0.0) {
-                continue;
-            }
-            let k_sigma = elements.geometric_stiffness(&model.nodes, &u)?;
+        for (&case, k_sigma) in kept.iter().zip(stiffnesses) {
+            let Some(k_sigma) = k_sigma else { continue };
             let kp = k_sigma.mul(psi.as_ref());
             let product = psi.transpose() * &kp;
             let k = psi.ncols();
-            let projected =
-                DMatrix::from_fn(k, k, |a, b| 0.5 * (product[(a, b)] + product[(b, a)]));
-            *out = Some(projected);
+            cases[case] = Some(DMatrix::from_fn(k, k, |a, b| {
+                0.5 * (product[(a, b)] + product[(b, a)])
+            }));
         }
         Ok(Self {
             dim: psi.ncols(),
@@ -280,9 +301,9 @@ impl FreeFrameStiffening {
 /// relieved whole: on mean and principal axes the angular accelerations and the specific
 /// force stress nothing (the body accelerates freely), only the angular velocity's
 /// centrifugal field does.
-fn relieve(model: &FeModel, masses: &[f64], loads: &mut Mat<f64>) {
+fn relieve(model: &FeModel, loads: &mut Mat<f64>) {
     let r = model.rigid_body_modes();
-    let mr = Mat::from_fn(r.nrows(), r.ncols(), |i, j| masses[i] * r[(i, j)]);
+    let mr = model.m.mul(r.as_ref());
     let rmr = r.transpose() * &mr;
     let rf = r.transpose() * &*loads;
     let coefficients = rmr.as_ref().llt(faer::Side::Lower).map(|l| l.solve(&rf));

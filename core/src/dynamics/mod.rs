@@ -49,8 +49,8 @@ pub use frame_stiffening::{
     FrameStiffening, STIFFENING_CASE_NAMES, STIFFENING_CASES, stiffening_coefficients,
 };
 pub use free_frame_stiffening::{
-    FREE_FRAME_CASE_NAMES, FREE_FRAME_CASES, FreeFrameStiffening, free_frame_coefficients,
-    unit_field,
+    CaseSupport, FREE_FRAME_CASE_NAMES, FREE_FRAME_CASES, FreeFrameStiffening,
+    free_frame_coefficients, unit_case_stiffnesses, unit_field,
 };
 pub use generalized_alpha::GeneralizedAlphaCoefficients;
 pub use inertia_invariants::InertiaInvariants;
