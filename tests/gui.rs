@@ -282,6 +282,26 @@ fn the_integrator_of_a_simulation_is_a_control() {
 }
 
 #[test]
+fn the_dynamic_stiffening_of_a_slab_simulation_is_a_control() {
+    let mut h = harness("slab-sim2");
+    h.state_mut().controls.methods = vec![Method::CraigBampton];
+    h.state_mut().controls.end_time = 0.25;
+    h.get_by_label("dynamic stiffening").click();
+    settle(&mut h);
+    assert!(h.state().controls.stiffening);
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(report.parameters["stiffening"], true);
+    h.get_by_label("dynamic stiffening").click();
+    settle(&mut h);
+    assert!(!h.state().controls.stiffening);
+    let report = &h.state().current.as_ref().unwrap().report;
+    assert_eq!(report.parameters["stiffening"], false);
+    // A scene that takes no stiffening offers no switch.
+    let h = harness("slab-modes");
+    assert!(h.query_by_label("dynamic stiffening").is_none());
+}
+
+#[test]
 fn a_newer_request_cancels_a_running_simulation() {
     use flexmodes::{gui::Worker, scenes::SceneOptions};
     let mut w = Worker::new();

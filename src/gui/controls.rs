@@ -44,6 +44,9 @@ pub struct Controls {
     /// (`None`: its modes).
     #[serde(default)]
     pub simulation: Option<SimulationControls>,
+    /// Dynamic stiffening of the slab simulations' floating frame (off: the thesis' model).
+    #[serde(default)]
+    pub stiffening: bool,
 }
 
 /// The largest preset a simulation scene offers, DOF (its full model is integrated too).
@@ -71,7 +74,16 @@ impl Controls {
             deformation_scale: 0.0,
             integrator: None,
             simulation: None,
+            stiffening: false,
         }
+    }
+
+    /// Whether scene `id` takes the dynamic-stiffening switch (the slab simulations).
+    pub fn takes_stiffening(id: SceneId) -> bool {
+        matches!(
+            id,
+            SceneId::SlabSim1 | SceneId::SlabSim2 | SceneId::SlabSim3
+        )
     }
 
     /// The defaults of the `modes` scene on the body file `body`.
@@ -163,6 +175,7 @@ impl Controls {
                 .then_some(self.deformation_scale),
             refine,
             integrator: c.end_time.and(self.integrator),
+            stiffening: Self::takes_stiffening(self.scene).then_some(self.stiffening),
             ..Default::default()
         })
     }
@@ -236,6 +249,8 @@ pub enum Change {
     EndTime(f64),
     /// Drive the body as these controls say (`None`: show its modes).
     Simulation(Option<SimulationControls>),
+    /// Simulate the slab with (`true`) or without dynamic stiffening.
+    Stiffening(bool),
 }
 
 impl Controls {
@@ -261,6 +276,7 @@ impl Controls {
             Change::Integrator(scheme) => self.integrator = Some(scheme),
             Change::DeformationScale(f) => self.deformation_scale = f,
             Change::EndTime(t) => self.end_time = t,
+            Change::Stiffening(on) => self.stiffening = on,
             Change::Simulation(simulation) => {
                 if simulation.is_some() && self.simulation.is_none() {
                     // `simulate`'s models: CB and MC (Guyan needs an interface besides the

@@ -9,6 +9,7 @@ mod app;
 mod capture;
 mod controls;
 mod explorer;
+mod model_panel;
 mod report_view;
 mod simulation_controls;
 mod simulation_panel;

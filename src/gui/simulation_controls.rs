@@ -42,6 +42,14 @@ pub struct SimulationControls {
     pub end: f64,
     /// Also integrate the full body, the reference of every error.
     pub full_body: bool,
+    /// Dynamic stiffening from the body file's `[preload]` (bodies without one have none).
+    #[serde(default = "stiffening_default")]
+    pub stiffening: bool,
+}
+
+/// `simulate`'s default: stiffened wherever the body file gives the preload.
+fn stiffening_default() -> bool {
+    DrivenBodyParameters::default().stiffening
 }
 
 /// The models a drive is first simulated with, as `flexmodes simulate` (beside the full body).
@@ -70,6 +78,7 @@ impl SimulationControls {
             frequency: 50.0,
             end: d.integration.end,
             full_body: true,
+            stiffening: d.stiffening,
         }
     }
 
@@ -85,6 +94,7 @@ impl SimulationControls {
             shake: (self.motion == DriveMotion::Shake).then_some((self.amplitude, self.frequency)),
             end: self.end,
             full_body: self.full_body,
+            stiffening: self.stiffening,
         })
     }
 }

@@ -103,6 +103,13 @@ impl Explorer {
             "integrates every DOF of the body: the reference the reduced models' history \
                  and reaction errors are measured against, and the slowest run",
         );
+        if self.body_has_preload() {
+            ui.checkbox(&mut changed.stiffening, "dynamic stiffening")
+                .on_hover_text(
+                    "the stress stiffening of the spin, from the stiffness the body file's \
+                     [preload] gives at its rate, scaled with the rate²",
+                );
+        }
         if changed != s {
             out.push(Command::Set(Change::Simulation(Some(changed))));
         }

@@ -41,6 +41,8 @@ pub struct DriveRequest<'a> {
     pub end: f64,
     /// Also integrate the full body.
     pub full_body: bool,
+    /// Dynamic stiffening from the body file's `[preload]`.
+    pub stiffening: bool,
 }
 
 /// Samples of the histories over a requested interval (as `simulate`'s default).
@@ -95,6 +97,7 @@ impl BodySimulation {
                     output_every: (steps / REQUEST_SAMPLES).max(1),
                     ..defaults.integration
                 },
+                stiffening: request.stiffening,
                 ..defaults
             },
             full_body: request.full_body,
