@@ -88,3 +88,47 @@ def load(folder: str | Path, rigid_body_node_type: str = "NodeType.RotationEuler
     fem, body = load_fem(folder)
     cms = ObjectFFRFreducedOrderInterface(fem, rigidBodyNodeType=rigid_body_node_type)
     return fem, cms, body
+
+
+def add_stiffening(mbs, parts: dict, folder: str | Path, body: dict | None = None) -> np.ndarray:
+    """Puts the export's dynamic stiffening into Exudyn; returns the modal matrix it uses.
+
+    A body file with a `[preload]` gives `geometric_stiffness.npy`: the modal geometric
+    stiffness of the centrifugal prestress per unit rate², K_g. Exudyn's
+    `ObjectFFRFreducedOrder` has no such term; this sets the object's force user function to
+    f_z = -(omega . a)^2 K_g z, with omega the frame's angular velocity in body axes (from the
+    rigid node's Tait-Bryan angles or Euler parameters and their rates) and a the preload's
+    axis: the stiffness `flexmodes simulate` adds for a spin about that axis. `parts` is what
+    `cms.AddObjectFFRFreducedOrder` returned.
+    """
+    from exudyn.rigidBodyUtilities import EulerParameters2GLocal, RotXYZ2GLocal
+
+    folder = Path(folder)
+    body = body if body is not None else read_body(folder)
+    stiffening = body.get("stiffening")
+    if not stiffening:
+        raise ExportError(
+            f"{folder / 'body.json'}: no geometric stiffness (the body file gives no [preload], "
+            "or the export left it out with --stiffening off)"
+        )
+    kg = np.load(folder / stiffening["matrix"])
+    m = body["modes"]
+    if kg.shape != (m, m):
+        raise ExportError(f"{folder / stiffening['matrix']}: {kg.shape}, expected {(m, m)}")
+    axis = np.asarray(stiffening["axis"], dtype=float)
+
+    def force(mbs, t, item, q, q_t):
+        q, q_t = np.asarray(q), np.asarray(q_t)
+        rigid = len(q) - m
+        if rigid == 6:
+            w = np.asarray(RotXYZ2GLocal(q[3:6])) @ q_t[3:6]
+        elif rigid == 7:
+            w = np.asarray(EulerParameters2GLocal(q[3:7])) @ q_t[3:7]
+        else:
+            raise ExportError(f"{rigid} rigid coordinates: expected Tait-Bryan angles or Euler parameters")
+        f = np.zeros(len(q))
+        f[rigid:] = -float(w @ axis) ** 2 * (kg @ q[rigid:])
+        return f
+
+    mbs.SetObjectParameter(parts["oFFRFreducedOrder"], "forceUserFunction", force)
+    return kg

@@ -29,7 +29,7 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 sys.path.insert(0, str(HERE))
 
-from flexmodes_exudyn import ExportError, load  # noqa: E402
+from flexmodes_exudyn import ExportError, add_stiffening, load  # noqa: E402
 
 exu = pytest.importorskip("exudyn")
 from exudyn.itemInterface import (  # noqa: E402
@@ -71,12 +71,15 @@ def spin_up(rate: float, ramp: float):
     return theta
 
 
-def exudyn_history(folder: Path, output: str, point, rate, ramp, step, end, rho):
-    """The output set's mean displacement in the frame, Exudyn's gen-alpha, every step."""
+def exudyn_history(folder: Path, output: str, point, rate, ramp, step, end, rho, stiffen=False):
+    """The output set's mean displacement in the frame, Exudyn's gen-alpha, every step; with
+    `stiffen`, the export's geometric stiffness added by the adapter's `add_stiffening`."""
     fem, cms, body = load(folder, "NodeType.RotationRxyz")
     sc = exu.SystemContainer()
     mbs = sc.AddSystem()
     parts = cms.AddObjectFFRFreducedOrder(mbs, positionRef=[0.0, 0.0, 0.0])
+    if stiffen:
+        add_stiffening(mbs, parts, folder, body)
     theta = spin_up(rate, ramp)
     p = np.asarray(point, dtype=float)
 
@@ -179,6 +182,44 @@ def test_exudyn_matches_flexmodes(name, tmp_path):
     error = np.abs(exudyn_u - history).max() / peak
     print(f"{name}: peak {peak:.4e} {body['units']['length']}, largest difference {error:.2e} of it")
     assert error < 0.01, f"{name}: Exudyn and flexmodes differ by {error:.2%} of the peak"
+
+
+def test_exudyn_stiffens_as_flexmodes_does(tmp_path):
+    """The steel lever with CalculiX's preloaded stiffness (tests/bodies/spun-lever, mm-t-s)
+    spun up to 2 000 rad/s about its root: `export --exudyn` writes the modal geometric
+    stiffness, the adapter's `add_stiffening` puts it into Exudyn as a user force, and the tip's
+    history agrees with `flexmodes simulate` (stiffening on) to 1 % of its peak, while the
+    stiffening itself moves it by several times that."""
+    body, drive, output, modes = "tests/bodies/spun-lever/body.toml", "root", "tip", 10
+    rate, ramp, end, step, rho = 2000.0, 0.01, 0.02, 1e-5, 0.9
+    out = tmp_path / "export"
+    run("export", "--body", body, "--method", "cb", "--boundary", f"rbe2:{drive}",
+        "--modes", str(modes), "--out", str(out), "--exudyn")
+    exported = json.loads((out / "exudyn" / "body.json").read_text())
+    assert exported["stiffening"]["preload_rate_rad_s"] == 1000.0
+    assert exported["stiffening"]["axis"] == [0.0, 0.0, 1.0]
+    steps = int(round(end / step))
+
+    def simulated(stiffening: str):
+        sim = json.loads(run(
+            "simulate", "--body", body, "--drive", f"rbe2:{drive}", "--method", "cb",
+            "--modes", str(modes), "--output", output, "--rate", str(rate), "--ramp", str(ramp),
+            "--end", str(end), "--dt", str(step), "--rho", str(rho), "--samples", str(steps),
+            "--stiffening", stiffening, "--json"))
+        [cb] = sim["runs"]
+        return sim, np.asarray(cb["outputs"][0])
+
+    sim, stiffened = simulated("on")
+    _, linear = simulated("off")
+    t, exudyn_u, _, _ = exudyn_history(out / "exudyn", output, sim["drive"]["master"], rate, ramp,
+                                       step, end, rho, stiffen=True)
+    assert len(t) == len(stiffened)
+    peak = np.abs(stiffened).max()
+    error = np.abs(exudyn_u - stiffened).max() / peak
+    effect = np.abs(linear - stiffened).max() / peak
+    print(f"lever: peak {peak:.4e} mm, Exudyn against flexmodes {error:.2e}, "
+          f"the stiffening's effect {effect:.2e} of it")
+    assert error < 0.01 and effect > 5 * error, (error, effect)
 
 
 def test_adapter_names_a_wrong_folder(tmp_path):

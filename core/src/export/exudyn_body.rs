@@ -15,7 +15,11 @@
 //! Files, in `exudyn/` of the export folder: `nodes.npy` (n × 3), `mass.mtx` and
 //! `stiffness.mtx` (3n × 3n, Matrix Market `coordinate real symmetric`), `modes.npy`
 //! (3n × m, `float64`) and `body.json` (units, the frame, node sets and interfaces by 0-based
-//! node numbers, the basis' eigenvalues ω² and frequencies). `assets/python/flexmodes_exudyn.py`
+//! node numbers, the basis' eigenvalues ω² and frequencies); with a body file's `[preload]`,
+//! `geometric_stiffness.npy` (m × m): the modal geometric stiffness of the centrifugal
+//! prestress per unit rate², $\Psi^TK_{\sigma,1}\Psi$, which a spin Ω about the preload's axis
+//! adds as $\Omega^2$ times it (the adapter's `add_stiffening` puts it into Exudyn as a user
+//! force). `assets/python/flexmodes_exudyn.py`
 //! builds Exudyn's `FEMinterface` and `ObjectFFRFreducedOrderInterface` from them with numpy
 //! and scipy only.
 
@@ -55,6 +59,9 @@ pub struct ExudynBody {
     /// Exudyn's name for the basis: `NormalModes` (fixed-interface modes only) or `HCBmodes`
     /// (with other interfaces' constraint modes).
     pub mode_type: &'static str,
+    /// The modal geometric stiffness of the body file's `[preload]` per unit rate² (m × m,
+    /// the modes' order), when the export keeps it.
+    pub geometric: Option<Mat<f64>>,
     /// For each of Exudyn's coordinates, the body's DOF.
     order: Vec<usize>,
     doc: serde_json::Value,
@@ -117,12 +124,14 @@ fn frame_ring_still(model: &FeModel, frame: &RigidInterface, modes: &Mat<f64>) -
     Ok(())
 }
 
-/// Builds the Exudyn body of `basis` (see the module): the frame on `rigid[0]`.
+/// Builds the Exudyn body of `basis` (see the module): the frame on `rigid[0]`; with
+/// `stiffening`, the `[preload]`'s modal geometric stiffness.
 pub fn exudyn_body(
     body: &ImportedBody,
     basis: &Basis,
     rigid: &[RigidInterface],
     averaging: &[AveragingInterface],
+    stiffening: bool,
 ) -> Result<ExudynBody> {
     let model = &body.model;
     if !body.has_coordinates {
@@ -166,6 +175,11 @@ pub fn exudyn_body(
         statistics: basis.statistics,
     };
     let (k_r, m_r) = (kept.reduced_stiffness(model), kept.reduced_mass(model));
+    let geometric = body.preload.as_ref().filter(|_| stiffening).map(|p| {
+        let r = kept.psi.transpose() * p.rate_squared.mul(kept.psi.as_ref());
+        let m = r.ncols();
+        Mat::from_fn(m, m, |i, j| 0.5 * (r[(i, j)] + r[(j, i)]))
+    });
     let eig = generalized_eigen(k_r.as_ref(), m_r.as_ref(), "Exudyn mode basis")?;
     let hz = eig.hz();
     let zero = zero_energy_below(&hz, zero_energy_threshold_hz(model));
@@ -212,6 +226,15 @@ pub fn exudyn_body(
             }))
         }))
         .collect::<Result<Vec<_>>>()?;
+    let mut files = json!({
+        "nodes": "nodes.npy",
+        "mass": "mass.mtx",
+        "stiffness": "stiffness.mtx",
+        "modes": "modes.npy",
+    });
+    if geometric.is_some() {
+        files["geometric_stiffness"] = json!("geometric_stiffness.npy");
+    }
     let doc = json!({
         "format": EXUDYN_FORMAT,
         "body_name": model.name,
@@ -237,12 +260,17 @@ pub fn exudyn_body(
         "residuals": sig_vec(&eig.residuals),
         "node_sets": node_sets,
         "interfaces": interfaces,
-        "files": {
-            "nodes": "nodes.npy",
-            "mass": "mass.mtx",
-            "stiffness": "stiffness.mtx",
-            "modes": "modes.npy",
-        },
+        "stiffening": body.preload.as_ref().filter(|_| geometric.is_some()).map(|p| json!({
+            "matrix": "geometric_stiffness.npy",
+            "per": "rate squared: a spin Omega (rad/s) about the axis adds Omega^2 times it to \
+                    the modal stiffness",
+            "axis": [p.load.axis.x, p.load.axis.y, p.load.axis.z],
+            "axis_point": p.load.point,
+            "preload_rate_rad_s": p.load.rate,
+            "note": "the centrifugal prestress' geometric stiffness, from the body file's \
+                     [preload]; the spin softening is the floating frame's own",
+        })),
+        "files": files,
     });
     Ok(ExudynBody {
         frame: frame.name.clone(),
@@ -250,6 +278,7 @@ pub fn exudyn_body(
         eigenvalues: eig.values.clone(),
         residuals: eig.residuals.clone(),
         mode_type,
+        geometric,
         order,
         doc,
     })
@@ -311,17 +340,14 @@ impl ExudynBody {
             ),
         )?;
         write_npy(&dir.join("modes.npy"), self.modes.as_ref())?;
+        let mut written = vec!["nodes.npy", "mass.mtx", "stiffness.mtx", "modes.npy"];
+        if let Some(g) = &self.geometric {
+            write_npy(&dir.join("geometric_stiffness.npy"), g.as_ref())?;
+            written.push("geometric_stiffness.npy");
+        }
         let text = serde_json::to_string_pretty(&self.doc).expect("JSON of plain values");
         write_atomically(&dir.join("body.json"), |w| w.write_all(text.as_bytes()))?;
-        Ok([
-            "nodes.npy",
-            "mass.mtx",
-            "stiffness.mtx",
-            "modes.npy",
-            "body.json",
-        ]
-        .iter()
-        .map(|f| format!("exudyn/{f}"))
-        .collect())
+        written.push("body.json");
+        Ok(written.iter().map(|f| format!("exudyn/{f}")).collect())
     }
 }

@@ -303,6 +303,7 @@ pub fn reduce_for_export(
             &basis,
             &parameters.rigid_interfaces,
             &parameters.averaging_interfaces,
+            !parameters.without_stiffening,
         )?;
         lap("Exudyn basis", &mut timings);
         Some(ex)
@@ -348,6 +349,7 @@ impl ReducedExport {
                 &self.basis,
                 &self.parameters.rigid_interfaces,
                 &self.parameters.averaging_interfaces,
+                !self.parameters.without_stiffening,
             )?);
             self.timings
                 .push(("Exudyn basis", started.elapsed().as_secs_f64()));
