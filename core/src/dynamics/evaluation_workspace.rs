@@ -19,6 +19,8 @@ pub(super) struct BodyBlocks {
     pub(super) q_z: DVector<f64>,
     /// The modal velocity-dependent inertia forces (k entries).
     pub(super) a_z: DVector<f64>,
+    /// Scratch of the Coriolis sums, one 3 × 3 per mode.
+    pub(super) coriolis: Vec<nalgebra::Matrix3<f64>>,
 }
 
 impl BodyBlocks {
@@ -30,6 +32,7 @@ impl BodyBlocks {
             q: DVector::zeros(6 + k),
             q_z: DVector::zeros(k),
             a_z: DVector::zeros(k),
+            coriolis: Vec::new(),
         }
     }
 }

@@ -48,8 +48,17 @@ pub struct InertiaInvariants {
     /// so the sums over $(c, d)$ and the storage cost $O(k)$ instead of $O(k^2)$ (a refined
     /// slab of 1 092 DOF would otherwise need 86 MB).
     q: Vec<Vec<(usize, Matrix3<f64>)>>,
+    /// The same $Q_{cd}$ stored densely, column by column ($d$, then $c$, then the nine
+    /// entries column-major), when most pairs are nonzero (a reduced body's modes move every
+    /// node): the sums $\sum_d z_d Q_{cd}$ of every evaluation, for all $c$ at once, are then
+    /// $k$ products of a scalar and a contiguous $9k$ vector.
+    q_dense: Option<Vec<f64>>,
     modes: usize,
 }
+
+/// Most pairs $Q_{cd}$ nonzero, and at most this many modes: [`InertiaInvariants`] keeps them
+/// dense too (at 96 modes, 0.66 MB).
+const DENSE_Q_MODES: usize = 96;
 
 impl InertiaInvariants {
     /// Bytes held on the heap: $P$, the $L_c$ and the stored $Q_{cd}$ with their indices.
@@ -58,6 +67,10 @@ impl InertiaInvariants {
         std::mem::size_of::<f64>() * self.p_sum.len()
             + std::mem::size_of::<Matrix3<f64>>() * self.l.len()
             + self.q.iter().map(|row| entry * row.len()).sum::<usize>()
+            + self
+                .q_dense
+                .as_ref()
+                .map_or(0, |q| std::mem::size_of::<f64>() * q.len())
     }
 
     /// Computes the invariants from node masses (kg), undeformed positions in the body frame
@@ -71,6 +84,7 @@ impl InertiaInvariants {
             s_outer: Matrix3::zeros(),
             l: vec![Matrix3::zeros(); k],
             q: vec![Vec::new(); k],
+            q_dense: None,
             modes: k,
         };
         // Q_cd for c <= d, accumulated over the nodes whose rows of Ψ have both columns.
@@ -104,7 +118,49 @@ impl InertiaInvariants {
         for row in &mut out.q {
             row.sort_by_key(|&(d, _)| d);
         }
+        let pairs: usize = out.q.iter().map(Vec::len).sum();
+        if k <= DENSE_Q_MODES && 2 * pairs > k * k {
+            let mut dense = vec![0.0; 9 * k * k];
+            for (c, row) in out.q.iter().enumerate() {
+                for &(d, ref q) in row {
+                    dense[9 * (k * d + c)..9 * (k * d + c) + 9].copy_from_slice(q.as_slice());
+                }
+            }
+            out.q_dense = Some(dense);
+        }
         out
+    }
+
+    /// `out[c]` $\mathrel{+}= \sum_d v_d Q_{cd}$ for every mode $c$ (`out` holds $k$ matrices):
+    /// over the dense columns when kept (one matrix–vector product), else over the stored
+    /// pairs with $v_d \neq 0$ in ascending $d$.
+    fn add_q_sums<S: Storage<f64, Dyn>>(&self, v: &Modal<S>, out: &mut [Matrix3<f64>]) {
+        let k = self.modes;
+        match &self.q_dense {
+            Some(dense) => {
+                // One product of the 9k × k columns with v, on faer's SIMD kernels (the
+                // release build's baseline target leaves a plain loop scalar).
+                let flat: &mut [f64] = bytemuck::cast_slice_mut(out);
+                let vs: &[f64] = &(0..k).map(|d| v[d]).collect::<Vec<_>>();
+                faer::linalg::matmul::matmul(
+                    faer::MatMut::from_column_major_slice_mut(flat, 9 * k, 1),
+                    faer::Accum::Add,
+                    faer::MatRef::from_column_major_slice(dense, 9 * k, k),
+                    faer::MatRef::from_column_major_slice(vs, k, 1),
+                    1.0,
+                    faer::Par::Seq,
+                );
+            }
+            None => {
+                for (c, acc) in out.iter_mut().enumerate() {
+                    for &(d, ref q) in &self.q[c] {
+                        if v[d] != 0.0 {
+                            *acc += q * v[d];
+                        }
+                    }
+                }
+            }
+        }
     }
 
     /// Number of modal coordinates k.
@@ -135,15 +191,8 @@ impl InertiaInvariants {
     /// [`Self::h`] into `out`, whose storage is reused.
     pub fn h_into<S: Storage<f64, Dyn>>(&self, z: &Modal<S>, out: &mut Vec<Matrix3<f64>>) {
         out.clear();
-        out.extend((0..self.modes).map(|c| {
-            let mut h = self.l[c].transpose();
-            for &(d, ref q) in &self.q[c] {
-                if z[d] != 0.0 {
-                    h += q * z[d];
-                }
-            }
-            h
-        }));
+        out.extend(self.l.iter().map(|l| l.transpose()));
+        self.add_q_sums(z, out);
     }
 
     /// $\sum_j m_j b_j b_j^T = S + \sum_c z_c (L_c + H_c)$, kg m², from $H$ of [`Self::h`].
@@ -217,6 +266,7 @@ impl InertiaInvariants {
     /// (body axes; the generalised forces subtract them). `h` and `inertia` are those of the
     /// same `z` ([`Self::h`], [`Self::inertia_from`]), which the mass matrix needs too. The
     /// modal forces are written into `modal` (k entries); the other two are returned.
+    /// `coriolis` is scratch ($\sum_d \dot z_d Q_{cd}$ per mode), reused.
     pub fn velocity_forces<S: Storage<f64, Dyn>, T: Storage<f64, Dyn>>(
         &self,
         w: &Vector3<f64>,
@@ -225,6 +275,7 @@ impl InertiaInvariants {
         h: &[Matrix3<f64>],
         inertia: &Matrix3<f64>,
         modal: &mut DVector<f64>,
+        coriolis: &mut Vec<Matrix3<f64>>,
     ) -> (Vector3<f64>, Vector3<f64>) {
         let first = self.first_moment(z);
         let u_sum = &self.p_sum * zd;
@@ -240,15 +291,12 @@ impl InertiaInvariants {
         // w^T H_c w - |w|^2 tr H_c. And psi_c . (w x u) = w . (u x psi_c), summed:
         // w . axial(sum m psi_c u^T) = w . axial(sum_d zd_d Q_cd).
         let w2 = w.norm_squared();
-        for c in 0..self.modes {
+        coriolis.clear();
+        coriolis.resize(self.modes, Matrix3::zeros());
+        self.add_q_sums(zd, coriolis);
+        for (c, qc) in coriolis.iter().enumerate() {
             let centrifugal = (w.transpose() * h[c] * w)[0] - w2 * h[c].trace();
-            let mut qc = Matrix3::zeros();
-            for &(d, ref q) in &self.q[c] {
-                if zd[d] != 0.0 {
-                    qc += q * zd[d];
-                }
-            }
-            modal[c] = centrifugal + 2.0 * w.dot(&axial(&qc));
+            modal[c] = centrifugal + 2.0 * w.dot(&axial(qc));
         }
         (translational, rotational)
     }

@@ -13,4 +13,9 @@ pub(crate) enum ProjectionFactors {
     /// their constraints but for that difference times the correction, and the correction
     /// is still the least kinetic energy one, the same for every basis of one space.
     LastEvaluation,
+    /// [`Self::LastEvaluation`], its velocity correction checked: where the corrected
+    /// velocities miss their constraints by more than $10^{-12}$ of the velocities' size (a
+    /// longer step's drift moved $M$ and $C$ further), a correction with
+    /// [`Self::Fresh`] factors follows. Generalized-α's fixed steps take it.
+    LastEvaluationChecked,
 }

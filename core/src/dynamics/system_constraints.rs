@@ -241,7 +241,7 @@ impl System {
             // Every row holonomic: the first correction's system is the last evaluation's.
             let increment = if iteration == 0
                 && held == rows.holonomic.len()
-                && factors == ProjectionFactors::LastEvaluation
+                && factors != ProjectionFactors::Fresh
             {
                 self.resolve_saddle_point(&rows.phi, &mut ws.saddle)?;
                 &mut ws.saddle.x
@@ -266,11 +266,25 @@ impl System {
                     };
                     self.saddle_point(s, &rows.moments, all, false, &mut ws.saddle)?;
                 }
-                ProjectionFactors::LastEvaluation => {
+                ProjectionFactors::LastEvaluation | ProjectionFactors::LastEvaluationChecked => {
                     self.resolve_saddle_point(&ws.residual, &mut ws.saddle)?;
                 }
             }
             s.v -= &ws.saddle.x;
+            if factors == ProjectionFactors::LastEvaluationChecked {
+                rows.c.mul_to(&s.v, &mut ws.residual);
+                ws.residual -= &rows.target;
+                let scale = s.v.amax().max(rows.target.amax()).max(1.0);
+                if ws.residual.amax() > 1e-12 * scale {
+                    let all = ConstraintRows {
+                        c: &rows.c,
+                        g: &ws.residual,
+                        modal_rows: &ws.modal_rows,
+                    };
+                    self.saddle_point(s, &rows.moments, all, false, &mut ws.saddle)?;
+                    s.v -= &ws.saddle.x;
+                }
+            }
         }
         Ok(())
     }
