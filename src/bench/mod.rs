@@ -7,6 +7,7 @@ mod export_bench;
 mod mode_bench;
 mod pareto;
 mod simulation_bench;
+mod simulation_bench_text;
 mod simulation_size_bench;
 mod size_bench;
 mod spin_up_bench;

@@ -10,6 +10,7 @@ use std::time::Instant;
 use serde_json::{Map, Value, json};
 
 use super::mark_pareto;
+use super::simulation_bench_text::{bench_json, bench_text, point_rows};
 use crate::{
     Error, Progress, Result,
     analysis::reduced_modes,
@@ -24,17 +25,17 @@ use crate::{
     },
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent, method_color},
     reduction::{Method, NodalFixedAxes},
-    report::{markdown_table, sig},
+    report::sig,
 };
 
 /// Simulated interval of the fixed-step run below the critical step, s (the run above it
 /// takes the scene's whole interval: a weakly excited highest mode needs its steps to grow).
-const STABILITY_RUN_S: f64 = 1.0;
+pub(super) const STABILITY_RUN_S: f64 = 1.0;
 /// Fixed steps of the stability runs as multiples of the predicted critical step: 10 % below,
 /// and three times above, where Dormand–Prince grows 1.44× per step on the highest mode
 /// (just above the limit the growth is too slow to see: 1.003 per step at 1.5×).
-const BELOW_CRITICAL: f64 = 0.9;
-const ABOVE_CRITICAL: f64 = 3.0;
+pub(super) const BELOW_CRITICAL: f64 = 0.9;
+pub(super) const ABOVE_CRITICAL: f64 = 3.0;
 
 /// Relative and absolute tolerances (m, m/s, rad) of the loose Dormand–Prince runs: the
 /// error control then lets the step grow until stability bounds it, so a reduced model's
@@ -62,6 +63,11 @@ pub struct BenchPoint {
     pub rel_rms_error: f64,
     /// Accepted integration steps.
     pub steps: usize,
+    /// Evaluations of the equations of motion in the integration.
+    pub evaluations: usize,
+    /// The online cost per evaluation (the median wall time over the evaluations, the
+    /// steps' and projections' own work included), µs.
+    pub us_per_evaluation: f64,
     /// The integrator.
     pub integrator: IntegrationScheme,
     /// Relative tolerance of an adaptive Dormand–Prince run (None: generalized-α).
@@ -236,6 +242,8 @@ pub fn bench_simulation(
                 online_s_per_sim_s: online_wall_s / t_end,
                 rel_rms_error: err,
                 steps: sim.steps,
+                evaluations: sim.evaluations,
+                us_per_evaluation: online_wall_s * 1e6 / sim.evaluations.max(1) as f64,
                 integrator: scheme,
                 rtol,
                 pareto: false,
@@ -244,7 +252,7 @@ pub fn bench_simulation(
     }
     mark_pareto(&mut points);
     let rows = point_rows(&points);
-    let table = bench_text(&schemes, repeats, &rows, &stability_rows);
+    let table = bench_text(&schemes, repeats, &rows, &stability_rows, &points);
     let json = bench_json(scene, model.dof_count(), &points, stability);
     let recording = speed_accuracy_charts(scene, &points, &table);
     Ok((json, table, recording))
@@ -393,118 +401,6 @@ impl StabilityChecks {
             implicit_above_bounded,
         })
     }
-}
-
-/// The points' table rows; the speed-up is against the first point (NR).
-fn point_rows(points: &[BenchPoint]) -> Vec<Vec<String>> {
-    let nr_online = points[0].online_s_per_sim_s;
-    points
-        .iter()
-        .map(|p| {
-            vec![
-                p.method.id().into(),
-                p.integrator_label(),
-                p.modes.to_string(),
-                p.dofs.to_string(),
-                format!("{:.2e}", p.offline_s),
-                format!("{:.3}", p.online_s_per_sim_s),
-                format!("{:.1}", nr_online / p.online_s_per_sim_s),
-                format!("{:.4}", p.rel_rms_error),
-                p.steps.to_string(),
-                if p.pareto { "★" } else { "" }.to_string(),
-            ]
-        })
-        .collect()
-}
-
-/// The bench as JSON: every point and the stability checks per model.
-fn bench_json(
-    scene: &str,
-    dofs: usize,
-    points: &[BenchPoint],
-    stability: Map<String, Value>,
-) -> Value {
-    json!({
-        "scene": scene,
-        "dofs": dofs,
-        "points": points.iter().map(|p| json!({
-            "method": p.method.id(),
-            "modes": p.modes,
-            "dofs": p.dofs,
-            "offline_s": sig(p.offline_s),
-            "online_s_per_sim_s": sig(p.online_s_per_sim_s),
-            "rel_rms_error": sig(p.rel_rms_error),
-            "steps": p.steps,
-            "integrator": p.integrator.id(),
-            "rtol": p.rtol,
-            "pareto": p.pareto,
-        })).collect::<Vec<_>>(),
-        "stability": Value::Object(stability),
-    })
-}
-
-/// The bench's text: how it measured, the points' table and the stability table.
-fn bench_text(
-    schemes: &[IntegrationScheme],
-    repeats: usize,
-    rows: &[Vec<String>],
-    stability_rows: &[Vec<String>],
-) -> String {
-    let y_star = imaginary_stability_limit();
-    let defaults = IntegratorParameters::default();
-    let (scene_rtol, scene_atol, output_ms) =
-        (defaults.rtol, defaults.atol, defaults.output_interval * 1e3);
-    format!(
-        "Errors are node 8's mean relative RMS against the full model integrated by {}; online \
-     cost is the median of {repeats} runs; speed-up is against the first row. `dp5` runs \
-     at the scenes' tolerances (rtol {scene_rtol:.0e}, atol {scene_atol:.0e}), `dp5 rtol \
-     {LOOSE_RTOL:.0e}` at rtol {LOOSE_RTOL:.0e}, atol {LOOSE_ATOL:.0e}: there the error \
-     control no longer binds and the step grows to the stability bound (or to the \
-     {output_ms} ms output interval), \
-     which is where a reduced model's lower highest frequency buys an explicit scheme \
-     fewer steps. ★ marks the Pareto front: no other point is both faster \
-     online and more accurate (errors equal to three digits count as equal).\n\n{}\nUndamped modes sit on the imaginary axis, where Dormand-Prince 5(4) keeps \
-     |R(iωh)| ≤ 1 only for ωh ≤ {y_star:.3} (beyond it the growth per step stays below \
-     1e-4 up to ωh ≈ 1.1, so at the scenes' tolerances the error control, not stability, \
-     sets the step). \
-     `stability.<method>.critical_dt_s` = {y_star:.3} / ω_max of the reduced model held \
-     by the nodal-fixed frame: Guyan's and the full model's stiff high modes bound the \
-     step most. Checked by fixed-step runs without error control, at {BELOW_CRITICAL}× \
-     the critical step over {STABILITY_RUN_S} s (must stay bounded) and at \
-     {ABOVE_CRITICAL}× over the whole interval (must diverge, `Error::Diverged`). The \
-     implicit generalized-α scheme is unconditionally stable for linear systems; the last \
-     column runs it with the step that breaks the explicit one \
-     (`stability.<method>.implicit_above_bounded`; FAILED: it diverged or its Newton \
-     iterations did not converge, a named error). Reduction buys the implicit scheme \
-     cheaper steps, not larger ones:\n\n{}",
-        schemes[0].name(),
-        markdown_table(
-            &[
-                "method",
-                "integrator",
-                "modes",
-                "DOF",
-                "offline s",
-                "online s per sim s",
-                "speed-up vs NR",
-                "rel. RMS error",
-                "steps",
-                "Pareto",
-            ],
-            rows,
-        ),
-        markdown_table(
-            &[
-                "method",
-                "highest Hz",
-                "critical step s",
-                &format!("{BELOW_CRITICAL}× step"),
-                &format!("{ABOVE_CRITICAL}× step"),
-                &format!("gen-alpha at {ABOVE_CRITICAL}×"),
-            ],
-            stability_rows,
-        )
-    )
 }
 
 /// The recording of a simulation bench: error against online cost (log–log), one line per

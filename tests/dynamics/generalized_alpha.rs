@@ -336,3 +336,26 @@ fn a_rebuilt_iteration_matrix_lets_newton_converge_on_long_steps() {
     assert!(sim.rejected >= 1, "no iteration matrix was rebuilt");
     assert_eq!(sim.samples.len(), 61);
 }
+
+/// The evaluations a generalized-α run counts are those it makes: the initial accelerations,
+/// the finite-difference derivatives (a base point and two per velocity coordinate, again at
+/// each rebuild) and one per Newton iteration; the projections solve with kept factors and
+/// evaluate nothing.
+#[test]
+fn generalized_alpha_counts_its_evaluations() {
+    let model = slab(&SlabParameters::default());
+    let axes = flexmodes::dynamics::AxisType::Mean;
+    let body = slab_body(&model, Method::CraigBampton, axes, &BOUNDARY, 6).unwrap();
+    let (system, state) = slab_system(&Scenario::Orbit, body).unwrap();
+    let sim = run(&system, &state, &implicit(0.1, 0.8, 1e-3));
+    let nv = system.nv();
+    assert!(sim.newton_iterations >= sim.steps);
+    assert_eq!(
+        sim.evaluations,
+        2 + 2 * nv + sim.newton_iterations + sim.rejected * (1 + 2 * nv),
+        "{} steps, {} Newton iterations, {} rebuilds",
+        sim.steps,
+        sim.newton_iterations,
+        sim.rejected
+    );
+}

@@ -394,6 +394,7 @@ pub(super) fn integrate(
         steps,
         rejected,
         newton_iterations: 0,
+        evaluations: stages.buffers.evaluation.evaluations,
         wall_time_s: start.elapsed().as_secs_f64(),
     })
 }

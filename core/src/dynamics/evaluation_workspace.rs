@@ -92,6 +92,8 @@ pub struct EvaluationWorkspace {
     /// buffers, so that neither is reshaped, zeroed and refilled at every step when the
     /// two have different rows (mean axes' rotational rows are not holonomic).
     pub(super) held_saddle: SaddlePointWorkspace,
+    /// Evaluations of the equations of motion made with these buffers.
+    pub(super) evaluations: usize,
 }
 
 impl EvaluationWorkspace {
@@ -132,6 +134,7 @@ impl EvaluationWorkspace {
             residual: DVector::zeros(0),
             held_saddle: saddle.clone(),
             saddle,
+            evaluations: 0,
         }
     }
 

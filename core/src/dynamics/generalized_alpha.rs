@@ -306,6 +306,7 @@ pub(crate) fn integrate(
         steps,
         rejected: rebuilt,
         newton_iterations: newton,
+        evaluations: ws.evaluations,
         wall_time_s: clock.elapsed().as_secs_f64(),
     })
 }

@@ -28,6 +28,9 @@ pub struct Simulation {
     pub rejected: usize,
     /// Newton iterations (implicit scheme; 0 for the explicit one).
     pub newton_iterations: usize,
+    /// Evaluations of the equations of motion ([`System::accelerations`](super::System::accelerations)):
+    /// every stage, Newton iteration and finite difference of the integration.
+    pub evaluations: usize,
     /// Wall-clock time of the integration, s.
     pub wall_time_s: f64,
 }

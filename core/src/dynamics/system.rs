@@ -365,6 +365,7 @@ impl System {
         s: &State,
         ws: &mut EvaluationWorkspace,
     ) -> Result<()> {
+        ws.evaluations += 1;
         self.rows_into(t, s, &mut ws.rows);
         let rows = &ws.rows;
         let all = ConstraintRows {
