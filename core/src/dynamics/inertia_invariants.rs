@@ -53,6 +53,11 @@ pub struct InertiaInvariants {
     /// node): the sums $\sum_d z_d Q_{cd}$ of every evaluation, for all $c$ at once, are then
     /// $k$ products of a scalar and a contiguous $9k$ vector.
     q_dense: Option<Vec<f64>>,
+    /// Otherwise the nonzero entries of each stored $Q_{cd}$, row by row: $(d$, the entry's
+    /// index in the column-major 3 × 3, its value$)$. Without reduction each $Q_{cd}$ has one
+    /// (a node's mass at one pair of directions): the sums cost a multiply-add per entry, not
+    /// a 3 × 3 product per pair.
+    q_entries: Vec<Vec<(usize, usize, f64)>>,
     modes: usize,
 }
 
@@ -85,6 +90,7 @@ impl InertiaInvariants {
             l: vec![Matrix3::zeros(); k],
             q: vec![Vec::new(); k],
             q_dense: None,
+            q_entries: Vec::new(),
             modes: k,
         };
         // Q_cd for c <= d, accumulated over the nodes whose rows of Ψ have both columns.
@@ -127,6 +133,22 @@ impl InertiaInvariants {
                 }
             }
             out.q_dense = Some(dense);
+        } else {
+            out.q_entries = out
+                .q
+                .iter()
+                .map(|row| {
+                    row.iter()
+                        .flat_map(|&(d, ref q)| {
+                            q.as_slice()
+                                .iter()
+                                .enumerate()
+                                .filter(|&(_, &x)| x != 0.0)
+                                .map(move |(i, &x)| (d, i, x))
+                        })
+                        .collect()
+                })
+                .collect();
         }
         out
     }
@@ -152,10 +174,14 @@ impl InertiaInvariants {
                 );
             }
             None => {
-                for (c, acc) in out.iter_mut().enumerate() {
-                    for &(d, ref q) in &self.q[c] {
-                        if v[d] != 0.0 {
-                            *acc += q * v[d];
+                // Per entry of each H_c the same additions in the same ascending d as the
+                // 3 × 3 sums, without the zero entries' (exact) additions of nothing.
+                for (acc, row) in out.iter_mut().zip(&self.q_entries) {
+                    let acc = acc.as_mut_slice();
+                    for &(d, i, x) in row {
+                        let vd = v[d];
+                        if vd != 0.0 {
+                            acc[i] += x * vd;
                         }
                     }
                 }
