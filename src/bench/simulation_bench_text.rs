@@ -3,7 +3,7 @@
 
 use serde_json::{Map, Value, json};
 
-use super::simulation_bench::{
+use super::bench_point::{
     ABOVE_CRITICAL, BELOW_CRITICAL, BenchPoint, LOOSE_ATOL, LOOSE_RTOL, STABILITY_RUN_S,
 };
 use crate::{

@@ -4,7 +4,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::{driven_frame_body::Combination, frame_stiffening::FrameStiffening};
+use super::{combination::Combination, frame_stiffening::FrameStiffening};
 
 /// A reduced body, or a small full one, dense: every operator projected on Ψ.
 #[derive(Debug, Clone)]

@@ -12,8 +12,8 @@ use nalgebra::{DMatrix, DVector};
 
 use super::{
     DrivenCost, DrivenFrameBody, Driving, DynamicsError,
+    combination::Combination,
     dormand_prince::{A, B5, C},
-    driven_frame_body::Combination,
     driven_integration::static_start,
     stiffening_coefficients,
 };

@@ -23,9 +23,10 @@ use super::DynamicsError;
 use faer::MatRef;
 use nalgebra::{DMatrix, DVector, Unit, Vector3};
 
+use super::combination::Combination;
 use super::dense_driven::DenseDriven;
 use super::frame_coordinates::{FrameCoordinates, PinnedRing};
-use super::frame_stiffening::{FrameStiffening, STIFFENING_CASES};
+use super::frame_stiffening::FrameStiffening;
 use super::sparse_driven::{SparseDriven, check_isotropic, mul_mass};
 use crate::{
     Error, Result,
@@ -39,28 +40,6 @@ use crate::{
 /// Backward error every solve of the effective matrix meets,
 /// $\|b - Ax\| \le \tau(\|b\| + \||A||x|\|)$.
 pub const DRIVEN_SOLVE_TOLERANCE: f64 = 1e-11;
-
-/// Largest relative difference between a node's three direction masses, and of a coupling
-/// between two directions, for the mass matrix to count as $M_s \otimes I_3$.
-pub const ISOTROPIC_MASS_TOLERANCE: f64 = 1e-9;
-
-/// The coefficients of a combination $c_m M + c_k K + c_g G + c_h H + \sum_i c_{\sigma,i}
-/// K_{\sigma,i}$, the last the body's geometric stiffnesses of unit frame loads
-/// ([`FrameStiffening`]; none on a body without stiffening).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Combination {
-    /// Of the mass matrix.
-    pub m: f64,
-    /// Of the stiffness matrix.
-    pub k: f64,
-    /// Of the gyroscopic matrix $G = ME$.
-    pub g: f64,
-    /// Of the centrifugal matrix $H = ME^2$.
-    pub h: f64,
-    /// Of the geometric stiffnesses of the unit frame loads, in [`FrameStiffening`]'s order
-    /// ($\dot\theta^2$, $\ddot\theta$, $g_x$, $g_y$, $g_z$).
-    pub sigma: [f64; STIFFENING_CASES],
-}
 
 /// The equations' operators.
 #[derive(Debug)]

@@ -21,9 +21,8 @@ use std::time::Instant;
 use nalgebra::Vector3;
 
 use super::{
-    GeneralizedAlphaCoefficients, Shake, SpinUp,
-    driven_frame_body::{Combination, DrivenFrameBody},
-    stiffening_coefficients,
+    GeneralizedAlphaCoefficients, Shake, SpinUp, combination::Combination,
+    driven_frame_body::DrivenFrameBody, stiffening_coefficients,
 };
 use crate::{Progress, Result};
 

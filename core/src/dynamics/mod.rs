@@ -5,6 +5,7 @@
 
 mod axes;
 mod body;
+mod combination;
 mod constraint;
 mod constraint_rows;
 mod dense_driven;
@@ -37,12 +38,11 @@ mod test_systems;
 pub use crate::error::{DivergenceCause, DynamicsError};
 pub use axes::{AxisKind, AxisType};
 pub use body::{Body, FlexibleBody, ModalMassInverse, RigidBody};
+pub use combination::Combination;
 pub use constraint::{Attachment, Constraint};
 pub use dormand_prince::{critical_step, imaginary_stability_limit, stability_polynomial};
 pub use driven_explicit::{DrivenExplicit, integrate_driven_explicit};
-pub use driven_frame_body::{
-    Combination, DRIVEN_SOLVE_TOLERANCE, DrivenFrameBody, ISOTROPIC_MASS_TOLERANCE, positions,
-};
+pub use driven_frame_body::{DRIVEN_SOLVE_TOLERANCE, DrivenFrameBody, positions};
 pub use driven_integration::{DrivenCost, DrivenIntegration, Driving, integrate_driven};
 pub use frame_coordinates::{FrameCoordinates, PinnedRing};
 pub use frame_stiffening::{
@@ -62,5 +62,6 @@ pub use prescribed::Motion;
 pub use rotation::{euler_parameters_from_matrix, rotation_matrix, skew};
 pub use shake::Shake;
 pub use simulation::{Sample, Simulation};
+pub use sparse_driven::ISOTROPIC_MASS_TOLERANCE;
 pub use spin_up::SpinUp;
 pub use system::{STANDARD_GRAVITY, State, System};

@@ -6,16 +6,16 @@
 use faer::MatRef;
 use nalgebra::Vector3;
 
-use super::{
-    DynamicsError,
-    driven_frame_body::{Combination, ISOTROPIC_MASS_TOLERANCE},
-    frame_coordinates::FrameCoordinates,
-};
+use super::{DynamicsError, combination::Combination, frame_coordinates::FrameCoordinates};
 use crate::{
     Error, Result,
     fem::{DofMap, FeModel},
     linalg::{MassMatrix, SparseSymmetric, SymbolicFactor, SymmetricFactor},
 };
+
+/// Largest relative difference between a node's three direction masses, and of a coupling
+/// between two directions, for the mass matrix to count as $M_s \otimes I_3$.
+pub const ISOTROPIC_MASS_TOLERANCE: f64 = 1e-9;
 
 /// The full body, sparse.
 #[derive(Debug)]
