@@ -78,14 +78,6 @@ impl Controls {
         }
     }
 
-    /// Whether scene `id` takes the dynamic-stiffening switch (the slab simulations).
-    pub fn takes_stiffening(id: SceneId) -> bool {
-        matches!(
-            id,
-            SceneId::SlabSim1 | SceneId::SlabSim2 | SceneId::SlabSim3
-        )
-    }
-
     /// The defaults of the `modes` scene on the body file `body`.
     pub fn for_body(body: &str) -> Result<Self> {
         Ok(Self {
@@ -175,7 +167,7 @@ impl Controls {
                 .then_some(self.deformation_scale),
             refine,
             integrator: c.end_time.and(self.integrator),
-            stiffening: Self::takes_stiffening(self.scene).then_some(self.stiffening),
+            stiffening: self.scene.takes_stiffening().then_some(self.stiffening),
             ..Default::default()
         })
     }

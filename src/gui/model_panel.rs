@@ -3,7 +3,7 @@
 
 use rerun::external::egui;
 
-use super::{Change, Command, Controls, Explorer};
+use super::{Change, Command, Explorer};
 use crate::{
     dynamics::{AxisKind, IntegrationScheme},
     fem::SlabParameters,
@@ -68,7 +68,7 @@ impl Explorer {
                 }
             });
         }
-        if Controls::takes_stiffening(info.id) {
+        if info.id.takes_stiffening() {
             let mut on = self.controls.stiffening;
             ui.checkbox(&mut on, "dynamic stiffening").on_hover_text(
                 "the geometric stiffness of the frame's loads (spin, gravity, the frame's \

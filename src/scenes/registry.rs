@@ -27,12 +27,7 @@ impl Scene {
             });
         }
         opts.check_integrator(&self.info)?;
-        if opts.stiffening.is_some()
-            && !matches!(
-                self.info.id,
-                SceneId::SlabSim1 | SceneId::SlabSim2 | SceneId::SlabSim3
-            )
-        {
+        if opts.stiffening.is_some() && !self.info.id.takes_stiffening() {
             return Err(Error::InvalidOption {
                 option: "--stiffening",
                 scene: Some(self.info.id.as_str()),

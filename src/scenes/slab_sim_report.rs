@@ -143,9 +143,9 @@ pub(super) fn scenario_text(
              and projected on its basis), which Lin's thesis leaves out; the thesis' numbers \
              are those without it."
         } else {
-            " Dynamic stiffening is off, as in Lin's thesis (`--stiffening on` adds it): the \
-             slab's frame turns slowly against its first frequency in simulations 1 and 3, \
-             at 1 Hz against 5.5 Hz fixed-interface in simulation 2."
+            " Dynamic stiffening is off, as in Lin's thesis (`--stiffening on` adds it): it \
+             matters most in simulation 2, where the slab turns once per period of its orbit \
+             (`slab-modes` gives the frequencies it turns against)."
         },
         table
     )

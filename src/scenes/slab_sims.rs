@@ -133,7 +133,9 @@ pub fn run_scenario(
     let probe = slab_node(&model, PROBE_NODE);
     let params = opts.integrator_parameters(info)?;
     let stiffened = opts.stiffening.unwrap_or(false);
-    let elements = BrickElements::of_slab(&SlabParameters::refined(bricks)?);
+    let elements = stiffened
+        .then(|| SlabParameters::refined(bricks).map(|p| BrickElements::of_slab(&p)))
+        .transpose()?;
     let integrate = |m: Method, progress: &Progress| {
         let key = format!(
             "{}/{bricks:?}/{}",
@@ -143,8 +145,8 @@ pub fn run_scenario(
         opts.cache.get_or_run(key, || {
             progress.phase(&format!("{} integration", m.name()))?;
             let mut body = slab_body(&model, m, axes, &boundary, modes)?;
-            if stiffened {
-                body = body.with_stiffening(&elements)?;
+            if let Some(elements) = &elements {
+                body = body.with_stiffening(elements)?;
             }
             let (system, state) = slab_system(&scenario, body)?;
             let sim = simulate(&system, &state, &params, progress)?;

@@ -309,7 +309,7 @@ impl FlexibleBody {
             elements,
             &self.axes,
             self.origin,
-            &self.basis.psi,
+            &self.basis,
         )?);
         Ok(self)
     }

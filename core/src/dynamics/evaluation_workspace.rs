@@ -21,6 +21,8 @@ pub(super) struct BodyBlocks {
     pub(super) a_z: DVector<f64>,
     /// Scratch of the Coriolis sums, one 3 × 3 per mode.
     pub(super) coriolis: Vec<nalgebra::Matrix3<f64>>,
+    /// Scratch of a stiffened body's $K_{\sigma,i}z$ (k entries).
+    pub(super) coupling: DVector<f64>,
 }
 
 impl BodyBlocks {
@@ -33,6 +35,7 @@ impl BodyBlocks {
             q_z: DVector::zeros(k),
             a_z: DVector::zeros(k),
             coriolis: Vec::new(),
+            coupling: DVector::zeros(k),
         }
     }
 }

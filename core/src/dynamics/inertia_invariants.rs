@@ -163,12 +163,17 @@ impl InertiaInvariants {
                 // One product of the 9k × k columns with v, on faer's SIMD kernels (the
                 // release build's baseline target leaves a plain loop scalar).
                 let flat: &mut [f64] = bytemuck::cast_slice_mut(out);
-                let vs: &[f64] = &(0..k).map(|d| v[d]).collect::<Vec<_>>();
+                // v copied to the stack: a view of a state need not be contiguous.
+                let mut buffer = [0.0; DENSE_Q_MODES];
+                let vs = &mut buffer[..k];
+                for (d, x) in vs.iter_mut().enumerate() {
+                    *x = v[d];
+                }
                 faer::linalg::matmul::matmul(
                     faer::MatMut::from_column_major_slice_mut(flat, 9 * k, 1),
                     faer::Accum::Add,
                     faer::MatRef::from_column_major_slice(dense, 9 * k, k),
-                    faer::MatRef::from_column_major_slice(vs, k, 1),
+                    faer::MatRef::from_column_major_slice(&*vs, k, 1),
                     1.0,
                     faer::Par::Seq,
                 );

@@ -9,7 +9,7 @@ use super::{
     Attachment, AxisType, Body, Constraint, FlexibleBody, InertiaInvariants,
     constraint_rows::ConstraintRows,
     evaluation_workspace::{BodyBlocks, EvaluationWorkspace},
-    free_frame_stiffening::{FREE_FRAME_CASES, free_frame_coefficients},
+    free_frame_stiffening::free_frame_coefficients,
     rotation::{l_matrix, rotate_body, skew},
 };
 use crate::fem::NodeIndex;
@@ -248,7 +248,7 @@ impl System {
                         .generic_view_mut((3, 0), (nalgebra::U3, nalgebra::Dyn(k))),
                 );
                 if let Some(st) = &fb.stiffening {
-                    st.add_mass_coupling(&f.a, &f.z, &mut out.m_fz);
+                    st.add_mass_coupling(&f.a, &f.z, &mut out.m_fz, &mut out.coupling);
                 }
                 if forces {
                     // Gravity acts on every node: sum m_j A^T g, its moment and modal force.
@@ -276,7 +276,7 @@ impl System {
                     // accelerations' part sits in the mass matrix (`add_mass_coupling`).
                     if let Some(st) = &fb.stiffening {
                         let c = free_frame_coefficients(&f.w, &Vector3::zeros(), &g_local);
-                        st.subtract_force(&c, 0..FREE_FRAME_CASES, &f.z, q_z);
+                        st.subtract_force(&c, &f.z, q_z);
                     }
                     out.q.fixed_rows_mut::<3>(0).copy_from(&(f.a * (q_r - ar)));
                     out.q.fixed_rows_mut::<3>(3).copy_from(&q_w);

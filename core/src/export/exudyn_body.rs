@@ -175,11 +175,11 @@ pub fn exudyn_body(
         statistics: basis.statistics,
     };
     let (k_r, m_r) = (kept.reduced_stiffness(model), kept.reduced_mass(model));
-    let geometric = body.preload.as_ref().filter(|_| stiffening).map(|p| {
-        let r = kept.psi.transpose() * p.rate_squared.mul(kept.psi.as_ref());
-        let m = r.ncols();
-        Mat::from_fn(m, m, |i, j| 0.5 * (r[(i, j)] + r[(j, i)]))
-    });
+    let geometric = body
+        .preload
+        .as_ref()
+        .filter(|_| stiffening)
+        .map(|p| kept.project(&p.rate_squared));
     let eig = generalized_eigen(k_r.as_ref(), m_r.as_ref(), "Exudyn mode basis")?;
     let hz = eig.hz();
     let zero = zero_energy_below(&hz, zero_energy_threshold_hz(model));

@@ -311,12 +311,7 @@ pub fn reduce_for_export(
         None
     };
     let kg_r = match (&body.preload, parameters.without_stiffening) {
-        (Some(p), false) => {
-            let image = p.rate_squared.mul(basis.psi.as_ref());
-            let r = basis.psi.transpose() * &image;
-            let k = r.ncols();
-            Some(Mat::from_fn(k, k, |i, j| 0.5 * (r[(i, j)] + r[(j, i)])))
-        }
+        (Some(p), false) => Some(basis.project(&p.rate_squared)),
         _ => None,
     };
     Ok(ReducedExport {

@@ -103,6 +103,11 @@ impl Basis {
         symmetric_product(self.psi.as_ref(), model.m.mul(self.psi.as_ref()).as_ref())
     }
 
+    /// $\Psi^T A \Psi$ of any symmetric matrix on the body's DOF (a geometric stiffness).
+    pub fn project(&self, a: &crate::linalg::SparseSymmetric) -> Mat<f64> {
+        symmetric_product(self.psi.as_ref(), a.mul(self.psi.as_ref()).as_ref())
+    }
+
     /// Indices of the columns of a kind (by discriminant).
     pub fn columns_of(&self, pred: impl Fn(&ColumnKind) -> bool) -> Vec<usize> {
         (0..self.columns.len())
