@@ -324,7 +324,9 @@ fn a_newer_request_cancels_a_running_simulation() {
 fn a_running_simulation_shows_its_simulated_time() {
     let mut h = harness("slab-sim1");
     h.state_mut().controls.methods = vec![Method::NoReduction];
-    h.state_mut().controls.end_time = 2.0;
+    // Longer than the scene's default (whose run the first request may have cached), and long
+    // enough that a frame of a loaded machine sees it running: the full model's 8 s.
+    h.state_mut().controls.end_time = 8.0;
     h.get_by_label("more modes").click();
     let start = Instant::now();
     loop {
