@@ -278,12 +278,23 @@ pub fn fmt_hz(v: &[f64]) -> String {
     v.iter().map(|f| sig6(*f)).collect::<Vec<_>>().join(", ")
 }
 
-/// Six significant digits, as the thesis prints.
+/// Six significant digits, as the thesis prints: fixed-point from 1e-3 up to 1e6
+/// (`0.0193103`, `2478.27`), scientific outside it (`3.33519e-21`, `1.23457e7`), where a
+/// fixed-point number would be a run of zeros a person has to count.
 pub fn sig6(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
+    if x == 0.0 || !x.is_finite() {
+        return if x == 0.0 { "0".into() } else { format!("{x}") };
     }
-    let mag = x.abs().log10().floor() as i32;
+    // The exponent after rounding to six digits (9.9999999 is 1.00000e1, printed 10.0000).
+    let scientific = format!("{x:.5e}");
+    let mag: i32 = scientific
+        .rsplit('e')
+        .next()
+        .and_then(|e| e.parse().ok())
+        .expect("`{:e}` ends in its exponent");
+    if !(-3..6).contains(&mag) {
+        return scientific;
+    }
     let decimals = (5 - mag).max(0) as usize;
     format!("{x:.decimals$}")
 }
@@ -311,6 +322,30 @@ mod tests {
             ]);
         }
         t
+    }
+
+    #[test]
+    fn six_digits_read_without_counting_zeros() {
+        for (x, printed) in [
+            (2478.2736, "2478.27"),
+            (0.019310345, "0.0193103"),
+            (0.001, "0.00100000"),
+            (0.000999999, "9.99999e-4"),
+            (3.335191e-21, "3.33519e-21"),
+            (-5.293964e-23, "-5.29396e-23"),
+            (999_999.4, "999999"),
+            (9.99999999, "10.0000"),
+            (999_999.7, "1.00000e6"),
+            (1_234_567.0, "1.23457e6"),
+            (0.0, "0"),
+        ] {
+            assert_eq!(sig6(x), printed, "{x}");
+        }
+        // No printed number has more than 8 leading zeros after the point.
+        for e in -30..30 {
+            let s = sig6(1.234567 * 10f64.powi(e));
+            assert!(!s.contains("0.000"), "{s}");
+        }
     }
 
     #[test]

@@ -80,6 +80,17 @@ pub fn parse_dof_map(
         if eq == 0 {
             return Err(error(number, MatrixLineProblem::EquationZero));
         }
+        // One equation per DOF: a number beyond the body's DOF count names no equation of
+        // its matrices (and must not size anything).
+        if eq > taken.len() {
+            return Err(error(
+                number,
+                MatrixLineProblem::EquationBeyond {
+                    equation: eq,
+                    count: taken.len(),
+                },
+            ));
+        }
         let dof = index.get() * per + position;
         if let Some(before) = taken[dof] {
             return Err(error(

@@ -68,7 +68,7 @@ fn fields<'a>(
     path: &str,
     what: &'static str,
 ) -> Result<Vec<(usize, &'a str)>> {
-    let mut out = Vec::with_capacity(count);
+    let mut out = Vec::with_capacity(super::matrix_bytes::capacity_hint(count));
     for card in 0..cards {
         let index = start + card;
         let line = lines.get(index).ok_or_else(|| {
@@ -279,7 +279,7 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
             },
         ));
     }
-    let mut entries = Vec::with_capacity(nnz);
+    let mut entries = Vec::with_capacity(super::matrix_bytes::capacity_hint(nnz));
     for j in 0..cols {
         let (from, to) = (pointers[j], pointers[j + 1]);
         if to < from {

@@ -6,6 +6,12 @@ use std::{borrow::Cow, io::Read};
 use super::BodyFileError;
 use crate::{Error, Result, error::MatrixLineProblem};
 
+/// Items reserved ahead for a count read from a file: a vector grows with what the file
+/// actually holds, so a header promising 2³² entries allocates nothing it does not read.
+pub(super) fn capacity_hint(count: usize) -> usize {
+    count.min(1 << 16)
+}
+
 /// A line of a matrix file that does not parse (line 0: the file as a whole).
 pub(super) fn line_error(path: &str, line: usize, problem: MatrixLineProblem) -> Error {
     Error::BodyFile(BodyFileError::MatrixLine {

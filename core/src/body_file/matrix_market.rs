@@ -267,10 +267,17 @@ fn parse_size_line(
         ));
     }
     let count = match format {
-        MatrixMarketFormat::Coordinate => sizes[2],
-        MatrixMarketFormat::Array if symmetric => rows * (rows + 1) / 2,
-        MatrixMarketFormat::Array => rows * cols,
-    };
+        MatrixMarketFormat::Coordinate => Some(sizes[2]),
+        MatrixMarketFormat::Array if symmetric => rows.checked_mul(rows + 1).map(|n| n / 2),
+        MatrixMarketFormat::Array => rows.checked_mul(cols),
+    }
+    .ok_or_else(|| {
+        line_error(
+            name,
+            size_no,
+            MatrixLineProblem::SizeOverflow { rows, cols },
+        )
+    })?;
     Ok(SizeLine {
         line: size_no,
         rows,
@@ -323,7 +330,7 @@ fn coordinate_entries(
     symmetric: bool,
 ) -> Result<Vec<(usize, usize, f64)>> {
     let (rows, cols, count) = (size.rows, size.cols, size.count);
-    let mut entries = Vec::with_capacity(count);
+    let mut entries = Vec::with_capacity(super::matrix_bytes::capacity_hint(count));
     while entries.len() < count {
         let (no, line) = promised_line(lines, name, size, entries.len(), "entries")?;
         let t: Vec<&str> = line.split_whitespace().collect();
@@ -379,7 +386,7 @@ fn array_entries(
     symmetric: bool,
 ) -> Result<Vec<(usize, usize, f64)>> {
     let (rows, count) = (size.rows, size.count);
-    let mut entries = Vec::with_capacity(count);
+    let mut entries = Vec::with_capacity(super::matrix_bytes::capacity_hint(count));
     let (mut i, mut j) = (0usize, 0usize);
     while entries.len() < count {
         let (no, line) = promised_line(lines, name, size, entries.len(), "values")?;

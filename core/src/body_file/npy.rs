@@ -57,7 +57,7 @@ pub fn read_npy(bytes: &[u8]) -> Option<(usize, usize, Vec<f64>)> {
     let rows: usize = dims.next()?.parse().ok()?;
     let cols: usize = dims.next()?.parse().ok()?;
     let data = &bytes[10 + len..];
-    if data.len() != 8 * rows * cols {
+    if Some(data.len()) != rows.checked_mul(cols).and_then(|n| n.checked_mul(8)) {
         return None;
     }
     let values = data

@@ -109,6 +109,20 @@ pub(super) fn read_matrices(
             expected: SizeExpectation::Square,
         }));
     }
+    // Every DOF needs a positive mass, so the mass file holds at least one entry per DOF: a
+    // stiffness size beyond that is refused here, before anything is sized by it.
+    if k_file.rows > m_file.entries.len() {
+        return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+            path: k_name.into(),
+            what: "stiffness",
+            rows: k_file.rows,
+            cols: k_file.cols,
+            expected: SizeExpectation::MassEntries {
+                mass: m_name.as_str().into(),
+                entries: m_file.entries.len(),
+            },
+        }));
+    }
     Ok(SpecMatrices {
         k_file,
         k_name,

@@ -27,8 +27,9 @@ pub enum BodyFileError {
         problem: super::TableProblem,
     },
 
-    /// A line of a matrix file (line 0: the file as a whole) that does not parse.
-    #[error("{}:{line}: {problem}", path.display())]
+    /// A line of a matrix file (line 0: the file as a whole, printed without a line) that
+    /// does not parse.
+    #[error("{}{}: {problem}", path.display(), at_line(*line))]
     MatrixLine {
         path: PathBuf,
         line: usize,
@@ -167,4 +168,13 @@ pub enum BodyFileError {
          command line, `boundary=` in Python)"
     )]
     NoNodeSets { body: super::Name },
+}
+
+/// `:LINE` after a path, or nothing for line 0 (a problem of the file as a whole).
+fn at_line(line: usize) -> String {
+    if line == 0 {
+        String::new()
+    } else {
+        format!(":{line}")
+    }
 }

@@ -71,6 +71,9 @@ pub enum MatrixLineProblem {
     /// A symmetric matrix whose size line is not square.
     #[error("a symmetric matrix must be square, the file says {rows} × {cols}")]
     NotSquare { rows: usize, cols: usize },
+    /// A size line whose rows times columns overflow: more values than any file holds.
+    #[error("{rows} × {cols} values are more than any file can hold")]
+    SizeOverflow { rows: usize, cols: usize },
     /// A file that ends before the entries (or values, pointers, …) its header announces.
     #[error("the file ends after {read} of the {expected} {what} its header announces")]
     EndsEarly {
@@ -144,11 +147,14 @@ pub enum MatrixLineProblem {
     /// Equation 0 in a map numbered from 1.
     #[error("equations are numbered from 1")]
     EquationZero,
+    /// An equation number beyond the body's DOF count (a map gives each DOF one equation).
+    #[error("equation {equation} is beyond the body's {count} DOF (one equation per DOF)")]
+    EquationBeyond { equation: usize, count: usize },
     /// A DOF map that maps one equation twice.
     #[error("equation {equation} is mapped twice")]
     EquationTwice { equation: usize },
     /// A DOF map without a node and DOF for an equation.
-    #[error("equation {equation} has no node and DOF")]
+    #[error("no line of the map names equation {equation}")]
     EquationUnplaced { equation: usize },
     /// A DOF of the body without an equation; `left_out` when the FE code leaves out DOF that
     /// are held or belong to no element (CalculiX).

@@ -13,6 +13,9 @@ pub enum SizeExpectation {
     /// Without coordinates, the DOF must divide into nodes of `per` DOF.
     #[error("its DOF do not divide into nodes of {per} DOF (`dofs` in {body_file})")]
     WholeNodes { per: usize, body_file: super::Name },
+    /// No more DOF than the mass file's entries: every DOF needs a positive mass.
+    #[error("every DOF needs a positive mass, and the mass {mass} holds only {entries} entries")]
+    MassEntries { mass: super::Name, entries: usize },
     /// As many rows as the DOF map has equations.
     #[error("the DOF map {map} has {equations} equations")]
     DofMapEquations { map: super::Name, equations: usize },
