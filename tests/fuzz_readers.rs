@@ -238,8 +238,8 @@ fn load_case(dir: &Path, spec: &str, mutated: &str, lines: usize) -> Result<Outc
     }
 }
 
-/// Runs seeds `seeds` over every target: per seed one target, one of its files, one mutation.
-fn run(seeds: std::ops::Range<u64>) {
+/// Runs `seeds` over every target: per seed one target, one of its files, one mutation.
+fn run(seeds: Vec<u64>) {
     let targets = targets();
     assert!(targets.len() >= 10, "{} body specs", targets.len());
     let formats = [
@@ -271,7 +271,7 @@ fn run(seeds: std::ops::Range<u64>) {
     let (mut loaded, mut named, mut failures) = (0usize, 0usize, Vec::new());
     let mut by_file = std::collections::BTreeMap::<String, usize>::new();
     let started = Instant::now();
-    for seed in seeds.clone() {
+    for &seed in &seeds {
         let mut rng = Rng::new(seed);
         let t = rng.below(targets.len());
         let target = &targets[t];
@@ -313,11 +313,11 @@ fn run(seeds: std::ops::Range<u64>) {
         }
     }
     println!(
-        "{} cases (seeds {}..{}) in {:.1} s: {named} named errors, {loaded} loads, {} failures; \
+        "{} cases (seeds {}..={}) in {:.1} s: {named} named errors, {loaded} loads, {} failures; \
          cases per kind of file: {by_file:?}",
-        seeds.end - seeds.start,
-        seeds.start,
-        seeds.end,
+        seeds.len(),
+        seeds.first().unwrap_or(&0),
+        seeds.last().unwrap_or(&0),
         started.elapsed().as_secs_f64(),
         failures.len()
     );
@@ -331,13 +331,25 @@ fn run(seeds: std::ops::Range<u64>) {
 
 #[test]
 fn a_hundred_mutated_body_files_load_or_give_named_errors() {
-    run(0..QUICK_CASES);
+    run((0..QUICK_CASES).collect());
 }
 
+/// The thorough set; `FLEXMODES_FUZZ_SEEDS=821,1370` replays those seeds alone.
 #[test]
 #[ignore = "thousands of cases: CI runs them (`cargo test --test fuzz_readers -- --ignored`)"]
 fn thousands_of_mutated_body_files_load_or_give_named_errors() {
-    run(QUICK_CASES..QUICK_CASES + THOROUGH_CASES);
+    let seeds = match std::env::var("FLEXMODES_FUZZ_SEEDS") {
+        Ok(list) => list
+            .split(',')
+            .map(|s| {
+                s.trim()
+                    .parse()
+                    .expect("FLEXMODES_FUZZ_SEEDS: comma-separated seeds")
+            })
+            .collect(),
+        Err(_) => (QUICK_CASES..QUICK_CASES + THOROUGH_CASES).collect(),
+    };
+    run(seeds);
 }
 
 /// Every file under `tests/fuzz/regressions/` replaces its namesake in the body its

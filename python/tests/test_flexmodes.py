@@ -284,6 +284,32 @@ def test_dense_and_mis_shaped_inputs_are_refused(bar):
         flexmodes.Body(K, M, node_sets={"a": [1.5, 2.0]})
 
 
+def test_absurd_sizes_and_fatal_files_raise_named_errors(bar, tmp_path):
+    # A shape of 10^12 DOF with a handful of entries once sized an allocation from the shape;
+    # the files the reader fuzzer keeps (tests/fuzz/regressions) once aborted `import`. Each
+    # is a named exception, and the interpreter goes on to load a good body.
+    import shutil
+    import tomllib
+
+    huge = 10**12
+    few = sp.coo_array((np.ones(3), ([0, 1, 2], [0, 1, 2])), shape=(huge, huge))
+    with pytest.raises(flexmodes.BodyFileError) as caught:
+        flexmodes.Body(few, few)
+    assert caught.value.kind == "BodyFile.MatrixSizeMismatch"
+    assert caught.value.data["rows"] == huge
+    regressions = ROOT / "tests" / "fuzz" / "regressions"
+    manifest = tomllib.loads((regressions / "regressions.toml").read_text())
+    for file, entry in manifest.items():
+        case = tmp_path / file
+        shutil.copytree(ROOT / entry["body"], case)
+        shutil.copy(regressions / file, case / entry["replaces"])
+        with pytest.raises(flexmodes.BodyFileError) as caught:
+            flexmodes.Body.from_file(case / entry["spec"])
+        assert entry["error"] in str(caught.value), (file, str(caught.value))
+    K, M, *_ = bar
+    assert flexmodes.Body(K, M).summary()
+
+
 def test_a_nan_names_its_entry(bar):
     K, M, *_ = bar
     bad = sp.coo_array(K)

@@ -266,8 +266,8 @@ fn charts(points: &[ModeBenchPoint], table: &str) -> RecordingContent {
         .collect();
     let mut visuals = LogLogChart {
         path: "bench/error_vs_offline".into(),
-        x_unit: "s".into(),
-        y_unit: "".into(),
+        x_unit: "offline time, s".into(),
+        y_unit: "larger of freq. and static rel. error".into(),
         series: cost,
         x_linear: false,
     }
@@ -275,8 +275,8 @@ fn charts(points: &[ModeBenchPoint], table: &str) -> RecordingContent {
     visuals.extend(
         LogLogChart {
             path: "bench/error_vs_modes".into(),
-            x_unit: "modes".into(),
-            y_unit: "".into(),
+            x_unit: "kept modes".into(),
+            y_unit: "rel. error".into(),
             series: convergence,
             x_linear: false,
         }

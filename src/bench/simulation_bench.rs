@@ -432,8 +432,8 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
         .collect();
     let mut visuals = LogLogChart {
         path: "bench/error_vs_cost".into(),
-        x_unit: "s/s".into(),
-        y_unit: "".into(),
+        x_unit: "online s per simulated s".into(),
+        y_unit: "node 8 rel. RMS error".into(),
         series: cost_series,
         x_linear: false,
     }
@@ -441,8 +441,8 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
     visuals.extend(
         LogLogChart {
             path: "bench/error_vs_modes".into(),
-            x_unit: "".into(),
-            y_unit: "".into(),
+            x_unit: "kept modes".into(),
+            y_unit: "node 8 rel. RMS error".into(),
             series: mode_series,
             x_linear: false,
         }

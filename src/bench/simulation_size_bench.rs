@@ -199,7 +199,7 @@ pub fn bench_sim_sizes(
     let visuals = LogLogChart {
         path: "bench/online_cost".into(),
         x_unit: "DOF".into(),
-        y_unit: "s/s".into(),
+        y_unit: "online s per simulated s".into(),
         series: METHODS
             .iter()
             .map(|&m| LogLogSeries {

@@ -422,7 +422,7 @@ fn log_log_chart(
     let visuals = LogLogChart {
         path: "bench/offline_time".into(),
         x_unit: "DOF".into(),
-        y_unit: "s".into(),
+        y_unit: "offline time, s".into(),
         series,
         x_linear: false,
     }

@@ -124,7 +124,7 @@ pub(super) fn condensation_failure() -> Result<Failure> {
     let chart = LogLogChart {
         path: "charts/cost".into(),
         x_unit: "DOF".into(),
-        y_unit: "s".into(),
+        y_unit: "wall time, s".into(),
         series: vec![
             series("mc", "MC (complete eigen)", Method::ModeCondensation, mc_s),
             series("cb", "CB (6 modes)", Method::CraigBampton, cb_s),

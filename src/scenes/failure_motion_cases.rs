@@ -81,8 +81,8 @@ pub(super) fn explicit_step_failure(model: &FeModel, opts: &SceneOptions) -> Res
     }
     let chart = LogLogChart {
         path: "charts/explicit_step".into(),
-        x_unit: "s".into(),
-        y_unit: "m".into(),
+        x_unit: "time, s".into(),
+        y_unit: "deflection, m".into(),
         series: histories
             .into_iter()
             .enumerate()

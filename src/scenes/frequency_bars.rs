@@ -17,6 +17,11 @@ const GROUP_WIDTH: f64 = 0.8;
 /// Modes per model a scene shows unless it has its own count.
 pub const SHOWN_MODES: usize = 12;
 
+/// Empty mode slots left of mode 1 (zero-height bars), where the legend sits: in the view's
+/// top-left corner it covered the first modes' bars of a chart of eight models at 1 280 × 800.
+/// The first slot's label is mode 1 − this.
+pub const LEGEND_SLOTS: usize = 3;
+
 /// The title of the chart: what the bars are (y), in which unit, against what (x).
 pub const TITLE: &str = "f, Hz, by mode no.";
 
@@ -49,19 +54,25 @@ impl FrequencyBars {
     }
 
     /// One bar series per model: mode number $k$ (from 1) at abscissa $k + o_j$, the models'
-    /// offsets $o_j$ spread over [`GROUP_WIDTH`] in the order they were pushed.
+    /// offsets $o_j$ spread over [`GROUP_WIDTH`] in the order they were pushed; before mode 1,
+    /// [`LEGEND_SLOTS`] zero-height bars keep the legend's corner clear of the data.
     pub fn visuals(&self) -> Vec<Visual> {
         let n = self.series.len().max(1) as f64;
         let width = GROUP_WIDTH / n;
+        let first = 1 - LEGEND_SLOTS as i64;
         self.series
             .iter()
             .enumerate()
             .map(|(j, (method, hz))| {
                 let offset = (j as f64 - (n - 1.0) / 2.0) * width;
+                let mut values = vec![0.0; LEGEND_SLOTS];
+                values.extend_from_slice(hz);
                 Visual::SeriesBars {
                     path: format!("{ORIGIN}/{}", method.id()),
-                    abscissa: (1..=hz.len()).map(|k| k as f64 + offset).collect(),
-                    values: hz.clone(),
+                    abscissa: (first..=hz.len() as i64)
+                        .map(|k| k as f64 + offset)
+                        .collect(),
+                    values,
                     width,
                     color: method_color(*method),
                 }
@@ -87,7 +98,8 @@ impl FrequencyBars {
             .collect();
         format!(
             "The bar chart \"{TITLE}\" shows the lowest {} elastic frequencies (Hz, y) of {} \
-             by mode number (x), one bar per model in its colour.",
+             by mode number (x, from 1; the empty places left of mode 1 hold the legend), one bar \
+             per model in its colour.",
             self.shown,
             names.join(", ")
         )
@@ -126,9 +138,14 @@ mod tests {
                 else {
                     panic!("not a bar series: {v:?}");
                 };
-                assert_eq!(abscissa.len(), 12);
+                assert_eq!(abscissa.len(), 12 + LEGEND_SLOTS);
                 assert_eq!(values.len(), abscissa.len());
                 assert!((width * models as f64 - GROUP_WIDTH).abs() < 1e-12);
+                // The legend's slots: empty, left of mode 1.
+                assert!(values[..LEGEND_SLOTS].iter().all(|&v| v == 0.0));
+                assert!(abscissa[LEGEND_SLOTS - 1] < 1.0 - GROUP_WIDTH / 2.0);
+                let (abscissa, values) = (&abscissa[LEGEND_SLOTS..], &values[LEGEND_SLOTS..]);
+                assert!(values.iter().all(|&v| v > 0.0));
                 for (k, x) in abscissa.iter().enumerate() {
                     // Inside mode k+1's unit, no closer to the next mode than the gap.
                     assert!((x - (k + 1) as f64).abs() <= GROUP_WIDTH / 2.0, "{x}");

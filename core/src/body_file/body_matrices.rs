@@ -8,7 +8,9 @@ use super::{
     BodyFileError, BodyLocation, ImportedBody, InterfaceSpec, MatrixMarket, MatrixMarketFormat,
     Units,
     imported_body::{SetsAndInterfaces, checked_sets, dof_map},
-    matrix_checks::{check_mass, mass_matrix, rigid_motions_are_null_space, symmetric_matrix},
+    matrix_checks::{
+        check_mass, check_size_held, mass_matrix, rigid_motions_are_null_space, symmetric_matrix,
+    },
     spec_matrices::{SpecText, check_node_count},
 };
 use crate::{
@@ -153,6 +155,7 @@ impl ImportedBody {
                 expected: SizeExpectation::Square,
             }));
         }
+        check_size_held(&k_name, n, &m_name, body.mass.entries.len())?;
         let node_count = match &body.nodes {
             Some(nodes) => nodes.len(),
             None => n / per,

@@ -11,6 +11,30 @@ use crate::{
     linalg::{MassMatrix, SparseSymmetric, SymbolicFactor, SymmetricFactor},
 };
 
+/// Every DOF needs a positive mass, so the mass holds at least one entry per DOF: a stiffness
+/// size `n` beyond the mass's `mass_entries` is refused before anything is sized by it (a
+/// header or a Python shape of 10¹² DOF with a few entries).
+pub(super) fn check_size_held(
+    k_name: &str,
+    n: usize,
+    m_name: &str,
+    mass_entries: usize,
+) -> Result<()> {
+    if n <= mass_entries {
+        return Ok(());
+    }
+    Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
+        path: k_name.into(),
+        what: "stiffness",
+        rows: n,
+        cols: n,
+        expected: SizeExpectation::MassEntries {
+            mass: m_name.into(),
+            entries: mass_entries,
+        },
+    }))
+}
+
 /// A symmetric matrix from a file: a `symmetric` file mirrored, a `general` one checked for
 /// symmetry (largest defect reported) and symmetrised.
 pub(super) fn symmetric_matrix(

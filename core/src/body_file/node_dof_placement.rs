@@ -7,6 +7,11 @@ use crate::{
     fem::{DofMap, NodeIndex},
 };
 
+/// The largest node number a matrix file may name: NASTRAN's grid identifiers and Abaqus'
+/// node labels stop below 10⁹. The body's size is the largest node named times its DOF per
+/// node, so a larger number would size a matrix no file holds.
+pub const MAX_NODE_NUMBER: usize = 999_999_999;
+
 /// The placement of (node, component) pairs on a body whose nodes carry `dofs`.
 pub(super) struct NodeDofPlacement {
     per: usize,
@@ -29,6 +34,12 @@ impl NodeDofPlacement {
         let Some(index) = NodeIndex::of_number(node) else {
             return Err(MatrixLineProblem::NodeZero);
         };
+        if node > MAX_NODE_NUMBER {
+            return Err(MatrixLineProblem::NodeNumberTooLarge {
+                node,
+                largest: MAX_NODE_NUMBER,
+            });
+        }
         let name = ["x", "y", "z", "θx", "θy", "θz"]
             .get(component.wrapping_sub(1))
             .copied()

@@ -10,6 +10,7 @@ use super::{
     csv_table::read_table,
     dof_map_file::parse_dof_map,
     harwell_boeing::parse_harwell_boeing,
+    matrix_checks::check_size_held,
     matrix_market::MatrixMarket,
     nastran_dmig::parse_nastran_dmig,
     nastran_op4::parse_op4,
@@ -109,20 +110,7 @@ pub(super) fn read_matrices(
             expected: SizeExpectation::Square,
         }));
     }
-    // Every DOF needs a positive mass, so the mass file holds at least one entry per DOF: a
-    // stiffness size beyond that is refused here, before anything is sized by it.
-    if k_file.rows > m_file.entries.len() {
-        return Err(Error::BodyFile(BodyFileError::MatrixSizeMismatch {
-            path: k_name.into(),
-            what: "stiffness",
-            rows: k_file.rows,
-            cols: k_file.cols,
-            expected: SizeExpectation::MassEntries {
-                mass: m_name.as_str().into(),
-                entries: m_file.entries.len(),
-            },
-        }));
-    }
+    check_size_held(&k_name, k_file.rows, &m_name, m_file.entries.len())?;
     Ok(SpecMatrices {
         k_file,
         k_name,

@@ -134,6 +134,9 @@ pub enum MatrixLineProblem {
         dof: super::Excerpt,
         body: Vec<&'static str>,
     },
+    /// A node number beyond what FE codes write (and what would size the body).
+    #[error("node {node} is beyond the largest node number a matrix file may name, {largest}")]
+    NodeNumberTooLarge { node: usize, largest: usize },
     /// A node outside the body's nodes.
     #[error("node {node} is not one of the body's nodes 1 to {count}")]
     NodeNotInBody { node: usize, count: usize },
