@@ -10,7 +10,8 @@
 //! cargo test --test fuzz_readers -- --ignored --nocapture
 //! ```
 //!
-//! A case that ever failed is kept under `tests/fuzz/regressions/` (see its README) and
+//! A case that ever failed is kept under `tests/fuzz/regressions/` (listed in its
+//! `regressions.toml`) and
 //! replayed by [`every_regression_file_gives_a_named_error`].
 
 use std::{
@@ -270,14 +271,18 @@ fn run(seeds: Vec<u64>) {
         .collect();
     let (mut loaded, mut named, mut failures) = (0usize, 0usize, Vec::new());
     let mut by_file = std::collections::BTreeMap::<String, usize>::new();
+    let mut originals = std::collections::HashMap::<(usize, String), Vec<u8>>::new();
     let started = Instant::now();
     for &seed in &seeds {
         let mut rng = Rng::new(seed);
         let t = rng.below(targets.len());
         let target = &targets[t];
         let file = &target.files[rng.below(target.files.len())];
-        let original = plain(&target.dir.join(file));
-        let (bytes, what) = mutate(&original, &mut rng);
+        // Decompressed once per file: the largest committed bodies' matrices are ~10 MB.
+        let original = originals
+            .entry((t, file.clone()))
+            .or_insert_with(|| plain(&target.dir.join(file)));
+        let (bytes, what) = mutate(original, &mut rng);
         let lines = bytes.split(|&b| b == b'\n').count();
         let case = format!(
             "seed {seed}: {}/{} with {file}: {what}",
@@ -309,7 +314,7 @@ fn run(seeds: Vec<u64>) {
                 named += 1;
                 eprintln!("  -> {}", message.lines().next().unwrap_or(""));
             }
-            Err(problem) => failures.push(format!("{case}\n  {problem}")),
+            Err(problem) => failures.push(format!("FAILED {case}\n  {problem}")),
         }
     }
     println!(

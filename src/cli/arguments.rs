@@ -154,6 +154,10 @@ pub(super) struct WindowArgs {
     /// Window size in points, WIDTHxHEIGHT.
     #[arg(long, value_parser = parse_size)]
     pub(super) window_size: Option<[f32; 2]>,
+    /// The viewer's theme: `light` or `dark` (default: the one last chosen, else the
+    /// system's).
+    #[arg(long, value_parser = ["light", "dark"])]
+    pub(super) theme: Option<String>,
     /// With --screenshot: toggle this method once the first recording shows, and capture
     /// the recomputed one; `more-modes` or `fewer-modes` presses that button instead.
     #[arg(long, requires = "screenshot")]
@@ -197,6 +201,7 @@ impl From<WindowArgs> for crate::gui::ViewerOptions {
         Self {
             screenshot: w.screenshot,
             window_size: w.window_size,
+            light_theme: w.theme.map(|t| t == "light"),
             toggle: w.toggle,
             repeat: w.repeat,
             pause: std::time::Duration::from_secs_f64(w.pause.max(0.0)),

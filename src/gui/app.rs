@@ -24,6 +24,8 @@ pub struct ViewerOptions {
     pub screenshot: Option<PathBuf>,
     /// Inner window size in points.
     pub window_size: Option<[f32; 2]>,
+    /// The light (`true`) or dark theme; `None`: the viewer's own choice.
+    pub light_theme: Option<bool>,
     /// Once the first recording shows, toggle this method (as a user would) and recompute;
     /// [`MORE_MODES`] or [`FEWER_MODES`] presses that button instead.
     pub toggle: Option<String>,
@@ -44,6 +46,7 @@ impl Default for ViewerOptions {
         Self {
             screenshot: None,
             window_size: None,
+            light_theme: None,
             toggle: None,
             repeat: 0,
             pause: std::time::Duration::ZERO,
@@ -207,6 +210,7 @@ pub fn run_with_body(
         )
     });
     let atomic = opts.atomic;
+    let light_theme = opts.light_theme;
     let runtime =
         tokio::runtime::Runtime::new().map_err(|e| Error::rerun("desktop app's runtime", e))?;
     let handle = runtime.handle().clone();
@@ -230,6 +234,15 @@ pub fn run_with_body(
                 None,
                 re_viewer::AsyncRuntimeHandle::new_native(handle),
             );
+            if let Some(light) = light_theme {
+                cc.egui_ctx.options_mut(|o| {
+                    o.theme_preference = if light {
+                        egui::ThemePreference::Light
+                    } else {
+                        egui::ThemePreference::Dark
+                    }
+                });
+            }
             let (tx, rx) = re_log_channel::log_channel(LogSource::Sdk);
             viewer.add_log_receiver(rx);
             // Restore the last session's controls when they still name a scene.

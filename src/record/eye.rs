@@ -100,6 +100,11 @@ impl Bounds {
                 }
                 Visual::FrameAxes { origins, .. } => origins.iter().for_each(|&p| add(p)),
                 Visual::Label3D { position, .. } => add(*position),
+                // A chart's text anchors, its picture's corners among them, drawn y down:
+                // stored y up as the views' bounds are (the blueprint flips them back).
+                Visual::Text2D { points, .. } => {
+                    points.iter().for_each(|p| add([p[0], -p[1], 0.0]));
+                }
                 _ => {}
             }
         }

@@ -10,12 +10,10 @@ use super::{Color, Visual};
 
 /// A series drawn as a line with more points than this gets no point markers.
 const DENSE_SERIES: usize = 100;
-/// Height of one legend row, as a fraction of the data area's height (a label is about 20
-/// pixels high where the chart is 300–600).
-const LEGEND_ROW: f64 = 0.09;
-/// Legend labels up to this many characters sit two to a row (each has half the chart's
-/// width to itself, ~150–300 pixels); longer ones one to a row.
-const TWO_COLUMN_LABEL: usize = 22;
+/// One row of text, as a fraction of the whole picture's height (data area and text).
+const ROW: f64 = 0.12;
+/// Room left of the y axis for its tick labels, as a fraction of the picture's height.
+const LEFT: f64 = 0.35;
 /// Colour of the grid lines: mid grey, faint on dark and light backgrounds alike.
 const GRID: Color = [128, 128, 128, 70];
 /// Colour of the axes, ticks and titles.
@@ -87,8 +85,6 @@ impl LogLogChart {
         let stretch = height / (x1 - x0);
         let width = stretch * (x1 - x0);
         let at = |x: f64, y: f64| [stretch * (fx(x) - x0), -y.log10()];
-        // Below the data area (larger drawn y): the x ticks, the x title, then the legend.
-        let bottom = -y0;
         let mut visuals = Vec::new();
         let path = |rest: &str| format!("{}/{rest}", self.path);
         // The grid first, so the data is drawn over it.
@@ -145,74 +141,130 @@ impl LogLogChart {
             color: AXES,
             label: None,
         });
-        // Tick labels: a point's label is drawn centred below it, so an x tick's anchor is
-        // the axis itself and a y tick's sits a label's half-height above its grid line,
-        // left of the axis.
-        let mut tick_points = Vec::new();
-        let mut tick_labels = Vec::new();
-        for (x, label) in &x_ticks {
-            tick_points.push([stretch * (x - x0), bottom + 0.01 * height]);
-            tick_labels.push(label.clone());
-        }
-        for e in (y0 as i32)..=(y1 as i32) {
-            tick_points.push([-0.15 * width, -f64::from(e) - 0.035 * height]);
-            tick_labels.push(decade(e));
-        }
-        visuals.push(Visual::Scatter {
-            path: path("axes/ticks"),
-            colors: vec![AXES; tick_points.len()],
-            points: tick_points,
-            labels: tick_labels,
-        });
-        // Axis titles: x centred below its ticks, y above the top of its axis.
-        let mut title_points = Vec::new();
+        visuals.extend(self.text(&x_ticks, [x0, y0, y1], stretch));
+        visuals
+    }
+
+    /// The ticks, titles and legend, laid out in rows of `ROW` of the whole picture.s
+    /// height `t`: the viewer fits a 2-D view to its height and draws text at a fixed size
+    /// (~18 pixels, ~7 per character), so rows of `t / 10` stay apart in any view at least
+    /// ~200 pixels tall. The y title sits a row above the data area; below it, the x ticks,
+    /// the x title, then the legend's rows (as many entries to a row as their estimated
+    /// widths allow beside one another under the chart).
+    fn text(&self, x_ticks: &[(f64, String)], [x0, y0, y1]: [f64; 3], stretch: f64) -> Vec<Visual> {
+        let height = y1 - y0;
+        let width = height;
+        let entries = self.legend_entries();
+        let (t, columns) = self.picture(height);
+        let u = ROW * t;
+        let (top, bottom) = (-y1, -y0);
+        let mut out = Vec::new();
+        let mut text = |id: &str, anchors: Vec<([f64; 2], String, Color)>| {
+            if anchors.is_empty() {
+                return;
+            }
+            out.push(Visual::Text2D {
+                path: format!("{}/{id}", self.path),
+                colors: anchors.iter().map(|a| a.2).collect(),
+                labels: anchors.iter().map(|a| a.1.clone()).collect(),
+                points: anchors.into_iter().map(|a| a.0).collect(),
+            });
+        };
+        // x ticks just below the axis, every `step`-th where labels would touch.
+        let x_step = thinning(x_ticks.len(), label_width(5, t), width);
+        text(
+            "axes/x_ticks",
+            x_ticks
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| k % x_step == 0)
+                .map(|(_, (x, label))| ([stretch * (x - x0), bottom], label.clone(), AXES))
+                .collect(),
+        );
+        // y ticks left of the axis, centred on their grid lines.
+        let decades: Vec<i32> = ((y0 as i32)..=(y1 as i32)).collect();
+        let y_step = thinning(decades.len(), u, height);
+        text(
+            "axes/y_ticks",
+            decades
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| k % y_step == 0)
+                .map(|(_, &e)| ([-0.22 * t, -f64::from(e) - 0.5 * u], decade(e), AXES))
+                .collect(),
+        );
         let mut titles = Vec::new();
         if !self.x_unit.is_empty() {
-            title_points.push([0.5 * width, bottom + 0.09 * height]);
-            titles.push(format!("{} →", self.x_unit));
+            titles.push((
+                [0.5 * width, bottom + u],
+                format!("{} →", self.x_unit),
+                AXES,
+            ));
         }
         if !self.y_unit.is_empty() {
-            title_points.push([0.0, -y1 - 0.15 * height]);
-            titles.push(format!("↑ {}", self.y_unit));
+            titles.push(([0.0, top - 1.5 * u], format!("↑ {}", self.y_unit), AXES));
         }
-        if !titles.is_empty() {
-            visuals.push(Visual::Scatter {
-                path: path("axes/titles"),
-                colors: vec![AXES; titles.len()],
-                points: title_points,
-                labels: titles,
-            });
-        }
-        // The legend: rows below the x title, each entry in its series' colour.
-        let entries: Vec<&LogLogSeries> = self
-            .series
-            .iter()
-            .filter(|s| !s.label.is_empty() && s.points.iter().any(positive))
-            .collect();
-        let columns = if entries
-            .iter()
-            .all(|s| s.label.chars().count() <= TWO_COLUMN_LABEL)
-        {
-            2
-        } else {
-            1
-        };
-        let top = bottom + 0.2 * height;
+        text("axes/titles", titles);
+        // The picture's corners, unlabelled: the view is fitted to the anchors, and the text
+        // of the last row hangs a row below its own.
+        let rows = entries.len().div_ceil(columns);
+        text(
+            "axes/extent",
+            vec![
+                ([-LEFT * t, top - 1.5 * u], String::new(), AXES),
+                (
+                    [width, bottom + (2.0 + rows as f64) * u],
+                    String::new(),
+                    AXES,
+                ),
+            ],
+        );
         for (i, s) in entries.iter().enumerate() {
             let (row, column) = (i / columns, i % columns);
-            let x = if columns == 1 {
-                0.5 * width
-            } else {
-                (0.25 + 0.5 * column as f64) * width
-            };
-            visuals.push(Visual::Scatter {
-                path: path(&format!("legend/{}", s.id)),
-                labels: vec![s.label.clone()],
-                colors: vec![s.color],
-                points: vec![[x, top + LEGEND_ROW * height * row as f64]],
-            });
+            let span = width + LEFT * t;
+            let x = -LEFT * t + span * (column as f64 + 0.5) / columns as f64;
+            let y = bottom + (2.0 + row as f64) * u;
+            text(
+                &format!("legend/{}", s.id),
+                vec![([x, y], s.label.clone(), s.color)],
+            );
         }
-        visuals
+        out
+    }
+
+    /// The series the legend names: those with a label and a drawable point.
+    fn legend_entries(&self) -> Vec<&LogLogSeries> {
+        self.series
+            .iter()
+            .filter(|s| !s.label.is_empty() && s.points.iter().any(|&(x, y)| self.drawable(x, y)))
+            .collect()
+    }
+
+    /// The whole picture's height `t` for a data area `height` high (and wide), and the
+    /// legend's entries to a row: rows of `ROW · t` for the y title, the x ticks, the x title
+    /// and the legend. The columns depend on `t` (the label widths are in pixels): two
+    /// passes settle them. With more legend rows than room, the data area keeps 20 %.
+    fn picture(&self, height: f64) -> (f64, usize) {
+        let entries = self.legend_entries();
+        let widest = entries
+            .iter()
+            .map(|s| s.label.chars().count())
+            .max()
+            .unwrap_or(0);
+        let fraction = |columns: usize| 1.0 - ROW * (3.5 + entries.len().div_ceil(columns) as f64);
+        let mut columns = entries.len().max(1);
+        for _ in 0..3 {
+            let t = height / fraction(columns).max(0.2);
+            let column = label_width(widest, t) + 0.5 * ROW * t;
+            columns =
+                (((height + LEFT * t) / column).floor() as usize).clamp(1, entries.len().max(1));
+        }
+        (height / fraction(columns).max(0.2), columns)
+    }
+
+    /// Whether a point has a place on the chart's axes.
+    fn drawable(&self, x: f64, y: f64) -> bool {
+        (x > 0.0 || (self.x_linear && x >= 0.0)) && y > 0.0 && x.is_finite() && y.is_finite()
     }
 
     /// The x axis' ticks: (value on the drawn axis, label), every decade of a logarithmic
@@ -225,7 +277,7 @@ impl LogLogChart {
             (first..=last)
                 .map(|k| {
                     let x = k as f64 * step;
-                    (x, crate::report::sig6(crate::report::sig(x)))
+                    (x, format!("{}", crate::report::sig(x)))
                 })
                 .collect()
         } else {
@@ -247,6 +299,22 @@ pub fn decade(e: i32) -> String {
         out.push(DIGITS[usize::from(d - b'0')]);
     }
     out
+}
+
+/// The estimated width of a label of `chars` characters in a picture `t` high: ~7 pixels per
+/// character where the picture is ~200 pixels, and the label's background margins.
+fn label_width(chars: usize, t: f64) -> f64 {
+    (0.035 * chars as f64 + 0.06) * t
+}
+
+/// Every how many of `count` evenly spaced labels over `length` are drawn so that their
+/// spacing is at least `size`.
+fn thinning(count: usize, size: f64, length: f64) -> usize {
+    if count < 2 {
+        return 1;
+    }
+    let spacing = length / (count - 1) as f64;
+    ((size / spacing).ceil() as usize).max(1)
 }
 
 /// A tick spacing of 1, 2 or 5 times a power of ten, at least `raw`.
@@ -278,13 +346,19 @@ mod tests {
         }
     }
 
-    /// Every labelled point the chart draws: (entity path, anchor, text).
+    /// Every text the chart draws: (entity path, anchor, text).
     fn labels(chart: &LogLogChart) -> Vec<(String, [f64; 2], String)> {
         chart
             .visuals()
             .into_iter()
             .flat_map(|v| match v {
-                Visual::Scatter {
+                Visual::Text2D {
+                    path,
+                    labels,
+                    points,
+                    ..
+                }
+                | Visual::Scatter {
                     path,
                     labels,
                     points,
@@ -319,42 +393,85 @@ mod tests {
         }
     }
 
+    /// No text in the data area, none on another, for charts of 1 to 9 series with short
+    /// and long names: each text is a box centred below its anchor (5 pixels down), ~18
+    /// pixels tall and ~7 per character wide in a picture 200 pixels tall.
     #[test]
     fn no_label_sits_on_the_data_or_on_another_label() {
+        let names = ["CB", "GR", "MC", "MT", "NR", "MR", "BH", "MM", "BT"];
         for x_linear in [false, true] {
-            let chart = LogLogChart {
-                x_linear,
-                ..chart()
-            };
-            let labels = labels(&chart);
-            // The data area: x from 0 to its width, drawn y from -y1 to -y0 (here 10^-3..10^0).
-            let width = 3.0;
-            let inside = |p: &[f64; 2]| p[0] > 0.0 && p[0] < width && p[1] > 0.0 && p[1] < 3.0;
-            for (path, p, text) in &labels {
-                assert!(!inside(p), "{path} `{text}` at {p:?} lies in the data area");
-            }
-            // A label is drawn centred below its anchor, ~0.06 of the chart's height tall
-            // and ~0.03 of it wide per character (20 and 9 pixels where the chart is 300):
-            // boxes that meet in both directions overlap.
-            let wide = |t: &str| 0.03 * 3.0 * t.chars().count() as f64 + 0.04;
-            for (i, a) in labels.iter().enumerate() {
-                for b in &labels[i + 1..] {
-                    let apart = (a.1[0] - b.1[0]).abs() >= 0.5 * (wide(&a.2) + wide(&b.2))
-                        || (a.1[1] - b.1[1]).abs() >= 0.06 * 3.0;
-                    assert!(apart, "`{}` at {:?} and `{}` at {:?}", a.2, a.1, b.2, b.1);
+            for count in 1..=9 {
+                for long in [false, true] {
+                    let mut chart = LogLogChart {
+                        x_linear,
+                        ..chart()
+                    };
+                    chart.series = (0..count)
+                        .map(|k| {
+                            let mut s =
+                                series(names[k], vec![(2.0, 0.5 / (k + 1) as f64), (15.0, 0.0055)]);
+                            if long {
+                                s.label = format!("{}, N characteristic constraint modes", s.label);
+                            }
+                            s
+                        })
+                        .collect();
+                    check_layout(&chart);
                 }
             }
-            // Each series named once, in the legend, in its order.
-            let legend: Vec<&str> = labels
-                .iter()
-                .filter(|(path, ..)| path.starts_with("c/legend/"))
-                .map(|(.., t)| t.as_str())
-                .collect();
-            assert_eq!(legend, ["CB", "GR", "MC", "MT"]);
-            // The titles name both axes.
-            assert!(labels.iter().any(|(.., t)| t == "online s →"));
-            assert!(labels.iter().any(|(.., t)| t == "↑ rel. error"));
         }
+    }
+
+    fn check_layout(chart: &LogLogChart) {
+        let labels = labels(chart);
+        // Data area: y from 10^-3 to 10^0 (3 decades), square.
+        let height = 3.0;
+        let (t, _) = chart.picture(height);
+        let px = t / 200.0;
+        let inside = |p: &[f64; 2]| p[0] > 0.0 && p[0] < height && p[1] > 0.0 && p[1] < height;
+        let boxed = |p: &[f64; 2], text: &str| {
+            let w = (7.0 * text.chars().count() as f64 + 12.0) * px;
+            let top = p[1] + 5.0 * px;
+            [
+                p[0] - 0.5 * w,
+                top - 4.0 * px,
+                p[0] + 0.5 * w,
+                top + 18.0 * px,
+            ]
+        };
+        let meets =
+            |a: [f64; 4], b: [f64; 4]| a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+        let data = [0.0, 0.0, height, height];
+        for (path, p, text) in &labels {
+            assert!(!inside(p), "{path} `{text}` at {p:?} lies in the data area");
+            assert!(
+                !meets(boxed(p, text), data),
+                "{path} `{text}` at {p:?} reaches the data"
+            );
+        }
+        for (i, a) in labels.iter().enumerate() {
+            for b in &labels[i + 1..] {
+                assert!(
+                    !meets(boxed(&a.1, &a.2), boxed(&b.1, &b.2)),
+                    "{} series: `{}` at {:?} and `{}` at {:?} overlap",
+                    chart.series.len(),
+                    a.2,
+                    a.1,
+                    b.2,
+                    b.1
+                );
+            }
+        }
+        // Each series named once, in the legend, in its order; both axes titled.
+        let legend: Vec<String> = labels
+            .iter()
+            .filter(|(path, ..)| path.starts_with("c/legend/"))
+            .map(|(.., t)| t.clone())
+            .collect();
+        let expected: Vec<String> = chart.series.iter().map(|s| s.label.clone()).collect();
+        assert_eq!(legend, expected);
+        assert!(labels.iter().any(|(.., t)| t == "online s →"));
+        assert!(labels.iter().any(|(.., t)| t == "↑ rel. error"));
     }
 
     #[test]

@@ -384,6 +384,23 @@ fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Result<()> {
             )
             .or_rerun()?;
         }
+        Visual::Text2D {
+            path,
+            points,
+            labels,
+            colors,
+        } => {
+            // Radius 0: the viewer draws the labels at their anchors and no point there.
+            rec.log_static(
+                path.as_str(),
+                &rerun_sdk::Points2D::new(points.iter().map(|p| [p[0] as f32, p[1] as f32]))
+                    .with_labels(labels.clone())
+                    .with_colors(colors.iter().map(|c| color(*c)))
+                    .with_radii([rerun_sdk::Radius::new_ui_points(0.0)])
+                    .with_show_labels(true),
+            )
+            .or_rerun()?;
+        }
         Visual::Polyline2D {
             path,
             points,

@@ -191,6 +191,18 @@ pub enum Visual {
         /// One colour per point.
         colors: Vec<Color>,
     },
+    /// Text in a plane, each label centred below its anchor and no marker drawn there (a
+    /// chart's ticks, titles and legend).
+    Text2D {
+        /// Entity path.
+        path: String,
+        /// Anchors (x, y).
+        points: Vec<[f64; 2]>,
+        /// One text per anchor.
+        labels: Vec<String>,
+        /// One colour per text.
+        colors: Vec<Color>,
+    },
     /// A labelled point in space (static), naming what is drawn beside it.
     Label3D {
         /// Entity path.
@@ -241,6 +253,7 @@ impl Visual {
             | Visual::Series { path, .. }
             | Visual::FrameAxes { path, .. }
             | Visual::Scatter { path, .. }
+            | Visual::Text2D { path, .. }
             | Visual::Label3D { path, .. }
             | Visual::Polyline2D { path, .. }
             | Visual::SeriesBars { path, .. } => path,
