@@ -299,6 +299,26 @@ pub fn sig6(x: f64) -> String {
     format!("{x:.decimals$}")
 }
 
+/// Three significant digits, read as [`sig6`] prints: fixed-point from 1e-3 up to 1e6
+/// (`2.54`, `0.0103`, `1450`), scientific outside it (`7.23e-5`): a table's errors and
+/// angles, where `2.54e0` made a reader convert.
+pub fn sig3(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x == 0.0 { "0".into() } else { format!("{x}") };
+    }
+    let scientific = format!("{x:.2e}");
+    let mag: i32 = scientific
+        .rsplit('e')
+        .next()
+        .and_then(|e| e.parse().ok())
+        .expect("`{:e}` ends in its exponent");
+    if !(-3..6).contains(&mag) {
+        return scientific;
+    }
+    let decimals = (2 - mag).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
 /// Five significant digits in MATLAB's `short g` manner (`2.5e+05`, `416.07`).
 pub fn sig5(x: f64) -> f64 {
     if x == 0.0 || !x.is_finite() {
@@ -322,6 +342,21 @@ mod tests {
             ]);
         }
         t
+    }
+
+    #[test]
+    fn three_digits_read_as_a_person_writes_them() {
+        for (x, printed) in [
+            (2.5432, "2.54"),
+            (0.010312, "0.0103"),
+            (1450.2, "1450"),
+            (7.2345e-5, "7.23e-5"),
+            (9.996, "10.0"),
+            (2.5e7, "2.50e7"),
+            (0.0, "0"),
+        ] {
+            assert_eq!(sig3(x), printed, "{x}");
+        }
     }
 
     #[test]

@@ -99,13 +99,13 @@ fn table_text(
                 format!("{:.3}", q.offline_s),
                 q.peak_mb.map_or("–".into(), |m| format!("{m:.0}")),
                 if q.freq_rel_error.is_finite() {
-                    format!("{:.2e}", q.freq_rel_error)
+                    crate::report::sig3(q.freq_rel_error)
                 } else {
                     "too few modes".into()
                 },
                 format!("{:.4}", q.min_mac),
-                format!("{:.2e}", q.static_error),
-                q.frf_error.map_or("–".into(), |e| format!("{e:.2e}")),
+                crate::report::sig3(q.static_error),
+                q.frf_error.map_or("–".into(), crate::report::sig3),
                 if q.pareto { "★" } else { "" }.to_string(),
             ]
         })
@@ -118,7 +118,7 @@ fn table_text(
                 m.id().into(),
                 k.to_string(),
                 c.to_string(),
-                format!("{e:.2e}"),
+                crate::report::sig3(*e),
             ],
             None => vec![
                 m.id().into(),

@@ -153,9 +153,9 @@ pub fn bench_modes(
                 p.method.id().into(),
                 p.modes.to_string(),
                 p.coordinates.to_string(),
-                format!("{:.2e}", p.offline_s),
-                format!("{:.2e}", p.freq_rel_error),
-                format!("{:.2e}", p.static_rel_error),
+                crate::report::sig3(p.offline_s),
+                crate::report::sig3(p.freq_rel_error),
+                crate::report::sig3(p.static_rel_error),
                 if p.pareto { "★" } else { "" }.to_string(),
             ]
         })

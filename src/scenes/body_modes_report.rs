@@ -35,7 +35,7 @@ pub(super) fn sweep_section(
         sweep.push(vec![
             Cell::text(shapes),
             Cell::number(p.size as f64, format!("{}", p.size)),
-            Cell::number(p.worst_error, format!("{:.3e}", p.worst_error)),
+            Cell::number(p.worst_error, crate::report::sig3(p.worst_error)),
         ]);
         if p.worst_error.is_finite() && p.worst_error > 0.0 {
             chart.push((p.size as f64, p.worst_error));
@@ -283,15 +283,15 @@ pub(super) fn method_rows(
             if worst.is_nan() {
                 Cell::text(format!("{} elastic mode(s) only", hz.len()))
             } else {
-                Cell::number(worst, format!("{worst:.2e}"))
+                Cell::number(worst, crate::report::sig3(worst))
             },
             if min_mac.is_nan() {
                 Cell::text("–")
             } else {
                 Cell::number(min_mac, format!("{min_mac:.4}"))
             },
-            Cell::number(angle, format!("{angle:.2e}")),
-            Cell::number(rigid_hz, format!("{rigid_hz:.2e}")),
+            Cell::number(angle, crate::report::sig3(angle)),
+            Cell::number(rigid_hz, crate::report::sig3(rigid_hz)),
             Cell::number(q.offline_s, format!("{:.3}", q.offline_s)),
         ]);
         freq_bars.push(m, hz);

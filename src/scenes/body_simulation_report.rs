@@ -161,7 +161,7 @@ pub fn runs_table(study: &DrivenStudy) -> Table {
         .map(|r| r.cost.online_s);
     let none = || Cell::text("–");
     let hz = |x: Option<f64>| x.map_or_else(none, |x| Cell::number(x, format!("{:.6}", sig(x))));
-    let error = |x: Option<f64>| x.map_or_else(none, |e| Cell::number(e, format!("{e:.2e}")));
+    let error = |x: Option<f64>| x.map_or_else(none, |e| Cell::number(e, crate::report::sig3(e)));
     let mut table = Table::new(&[
         "model",
         "coordinates",

@@ -84,7 +84,7 @@ pub fn mutate(bytes: &[u8], rng: &mut Rng) -> (Vec<u8>, String) {
             out.extend_from_slice(&bytes[to..]);
             (out, format!("line {} repeated {times}×", line + 1))
         }
-        4 | 5 | 6 => {
+        4..=6 => {
             let numbers = number_spans(bytes);
             if numbers.is_empty() {
                 return junk(bytes, rng);
