@@ -228,7 +228,7 @@ fn charts(points: &[BodyComparisonPoint], text: &str) -> RecordingContent {
     cost.push(LogLogSeries {
         id: "pareto_front".into(),
         label: "Pareto".into(),
-        color: [255, 255, 255, 255],
+        color: crate::record::PARETO,
         points: front,
         line: true,
     });
@@ -257,7 +257,7 @@ fn charts(points: &[BodyComparisonPoint], text: &str) -> RecordingContent {
         markdown: format!(
             "# bench modes\n\nLeft: each model's largest relative frequency error against the \
              offline cost of building it (log–log), one line per method through its kept-mode \
-             counts, the Pareto front in white. Right: the same error against the reduced \
+             counts, the Pareto front in dark grey. Right: the same error against the reduced \
              model's size. Points with zero error (exact to round-off) or too few modes have \
              no place on a log axis and are in the table only.\n\n{text}"
         ),

@@ -235,7 +235,7 @@ fn charts(points: &[ModeBenchPoint], table: &str) -> RecordingContent {
     cost.push(LogLogSeries {
         id: "pareto_front".into(),
         label: "Pareto".into(),
-        color: [255, 255, 255, 255],
+        color: crate::record::PARETO,
         points: front,
         line: true,
     });
@@ -289,7 +289,7 @@ fn charts(points: &[ModeBenchPoint], table: &str) -> RecordingContent {
         markdown: format!(
             "# bench slab-modes\n\nLeft: the larger of frequency and static error against \
              the offline cost of building the basis (log–log), one line per method through \
-             2, 4, 6, 12 kept modes, the Pareto front in white. Right: frequency error \
+             2, 4, 6, 12 kept modes, the Pareto front in dark grey. Right: frequency error \
              (bright) and static error (pale) against kept modes. Craig–Bampton and mode \
              condensation span one space, so their errors coincide; on App. B's 90 DOF every \
              reduction takes about a millisecond and the cost axis is mostly timer noise — \

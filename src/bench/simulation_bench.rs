@@ -347,7 +347,7 @@ impl StabilityChecks {
 }
 
 /// The recording of a simulation bench: error against online cost (log–log), one line per
-/// method and integrator through its kept-mode counts and the Pareto front in white; error
+/// method and integrator through its kept-mode counts and the Pareto front in dark grey; error
 /// against kept modes per method (explicit scheme); the table beside them. The reference
 /// (error 0) has no place on a log axis and is left out of the charts.
 fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> RecordingContent {
@@ -412,7 +412,7 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
     cost_series.push(LogLogSeries {
         id: "pareto_front".into(),
         label: "Pareto".into(),
-        color: [255, 255, 255, 255],
+        color: crate::record::PARETO,
         points: front,
         line: true,
     });
@@ -457,7 +457,7 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
              (wall seconds per simulated second), log–log; one line per method and \
              integrator through 2, 4, 6, 12 kept modes (gen-alpha in the paler shade, \
              Dormand–Prince at rtol {LOOSE_RTOL:.0e} in the darker one), the \
-             Pareto front in white. Right: error against kept modes (Dormand–Prince).\n\n\
+             Pareto front in dark grey. Right: error against kept modes (Dormand–Prince).\n\n\
              {table}"
         ),
         visuals,

@@ -1,16 +1,18 @@
-//! A log–log chart drawn in a 2-D view, as a chart reads: the data area square (the viewer
-//! fits a 2-D view to its height: a wider chart would be cut in views that are not wide),
-//! a faint grid line at every decade, the decade ticks (`10⁻³`) and the axis titles outside
-//! the data area, and the series named in a legend below it, one row each in the series'
-//! colour: no label on the data, none on another. Rerun's plots have no log axes (rerun
-//! issue #6773); this is the workaround its users name, log₁₀ of the values on plain axes,
-//! drawn once for every chart whose axes span decades.
+//! A log–log chart drawn in a 2-D view, as a chart reads: the data area square, a faint grid
+//! line at every decade, the decade ticks (`10⁻³`) and the axis titles outside the data area,
+//! and the series named in a legend below it in the series' colours: no label on the data,
+//! none on another. Rerun's plots have no log axes (rerun issue #6773); this is the
+//! workaround its users name, log₁₀ of the values on plain axes, drawn once for every chart
+//! whose axes span decades. The viewer draws text at a fixed pixel size, so the text is laid
+//! out in rows of a fixed share of the whole picture, and the chart's view is bounded to the
+//! picture (see [`LogLogChart::visuals`]).
 
 use super::{Color, Visual};
 
 /// A series drawn as a line with more points than this gets no point markers.
 const DENSE_SERIES: usize = 100;
-/// One row of text, as a fraction of the whole picture's height (data area and text).
+/// One row of text, as a fraction of the whole picture's height (data area and text): 24
+/// pixels where the picture is 200, room for one label (~18 pixels and its margins).
 const ROW: f64 = 0.12;
 /// Room left of the y axis for its tick labels, as a fraction of the picture's height.
 const LEFT: f64 = 0.35;
@@ -56,9 +58,7 @@ impl LogLogChart {
     /// is higher. The data area is `[0, h] × [−y₁, −y₀]` with `h = y₁ − y₀` decades.
     pub fn visuals(&self) -> Vec<Visual> {
         let x_linear = self.x_linear;
-        let positive = |&(x, y): &(f64, f64)| {
-            (x > 0.0 || (x_linear && x >= 0.0)) && y > 0.0 && x.is_finite() && y.is_finite()
-        };
+        let positive = |&(x, y): &(f64, f64)| self.drawable(x, y);
         let all: Vec<(f64, f64)> = self
             .series
             .iter()
@@ -145,12 +145,12 @@ impl LogLogChart {
         visuals
     }
 
-    /// The ticks, titles and legend, laid out in rows of `ROW` of the whole picture.s
-    /// height `t`: the viewer fits a 2-D view to its height and draws text at a fixed size
-    /// (~18 pixels, ~7 per character), so rows of `t / 10` stay apart in any view at least
-    /// ~200 pixels tall. The y title sits a row above the data area; below it, the x ticks,
-    /// the x title, then the legend's rows (as many entries to a row as their estimated
-    /// widths allow beside one another under the chart).
+    /// The ticks, titles and legend, laid out in rows of [`ROW`] times the whole picture's
+    /// height `t`: the viewer fits a chart's 2-D view to the picture (its corners are the
+    /// `axes/extent` anchors) and draws text at a fixed size (~18 pixels, ~7 per character),
+    /// so rows of `ROW · t` stay apart in any view at least ~200 pixels tall. The y title
+    /// sits above the data area; below it, the x ticks, the x title, then the legend's rows
+    /// (as many entries to a row as their estimated widths allow side by side).
     fn text(&self, x_ticks: &[(f64, String)], [x0, y0, y1]: [f64; 3], stretch: f64) -> Vec<Visual> {
         let height = y1 - y0;
         let width = height;

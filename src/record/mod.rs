@@ -18,7 +18,7 @@ pub use blueprint_key::BlueprintKey;
 pub use eye::{Bounds, Eye};
 pub use layout::Layout;
 pub use log_log_chart::{LogLogChart, LogLogSeries};
-pub use palette::{REFERENCE, REFERENCE_GHOST, method_color};
+pub use palette::{PARETO, REFERENCE, REFERENCE_GHOST, method_color};
 pub use recorder::{Recorder, encode_messages};
 pub use recording_content::RecordingContent;
 pub use recording_digest::RecordingDigest;

@@ -26,6 +26,9 @@ pub fn method_color(m: Method) -> Color {
 /// Colour of the undeformed bodies and references (mid grey: it reads on both themes).
 pub const REFERENCE: Color = [150, 150, 150, 255];
 
+/// Colour of a chart's Pareto front: dark grey, where white vanished on the light theme.
+pub const PARETO: Color = [110, 110, 110, 255];
+
 /// Colour of the undeformed ghost beside a body drawn with magnified deflections.
 pub const REFERENCE_GHOST: Color = [150, 150, 150, 110];
 
@@ -52,7 +55,7 @@ mod palette_tests {
     #[test]
     fn every_colour_reads_on_both_themes_and_the_methods_differ() {
         let contrast = |a: f64, b: f64| (a.max(b) + 0.05) / (a.min(b) + 0.05);
-        for c in ALL.map(method_color).into_iter().chain([REFERENCE]) {
+        for c in ALL.map(method_color).into_iter().chain([REFERENCE, PARETO]) {
             let l = luminance(c);
             assert!(
                 contrast(l, 0.0) >= 2.5 && contrast(l, 1.0) >= 2.5,

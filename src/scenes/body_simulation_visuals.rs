@@ -174,7 +174,7 @@ pub fn recording(model: &FeModel, study: &DrivenStudy, text: &str) -> RecordingC
              model (the full body and each method's largest model), its deflection magnified; \
              below, each output's largest component over time per model. Right: each reduced \
              model's history error against its online time (log–log), one line per method \
-             through its mode counts, the Pareto front in white.\n\n{text}"
+             through its mode counts, the Pareto front in dark grey.\n\n{text}"
         ),
         visuals,
         layout: Layout::Horizontal(vec![left, right], vec![2.0, 1.0]),
@@ -237,7 +237,7 @@ fn chart(study: &DrivenStudy) -> Vec<Visual> {
     series.push(LogLogSeries {
         id: "pareto_front".into(),
         label: "Pareto".into(),
-        color: [255, 255, 255, 255],
+        color: crate::record::PARETO,
         points: front,
         line: true,
     });
