@@ -4,6 +4,7 @@
 
 mod blueprint;
 mod blueprint_key;
+mod chart_text_check;
 mod eye;
 mod layout;
 mod log_log_chart;
@@ -15,6 +16,7 @@ mod rerun_sdk;
 mod visual;
 
 pub use blueprint_key::BlueprintKey;
+pub use chart_text_check::{VIEW_PIXELS, chart_count, chart_text_clashes};
 pub use eye::{Bounds, Eye};
 pub use layout::Layout;
 pub use log_log_chart::{LogLogChart, LogLogSeries};

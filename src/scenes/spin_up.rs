@@ -92,7 +92,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          inertia load of the frame (rate², angular acceleration, gravity), solved statically \
          once and projected on each model's basis. Views: the Campbell charts, flapwise and \
          lagwise (μ on decades against λ; the published values as grey points; the lighter \
-         lines without stiffening, a lagwise line ending where the model turns unstable); the \
+         lines, `unstiff.` in the legend, without stiffening; μ₁ and μ₂ of a model share its \
+         colour; a lagwise line ending where the model turns unstable); the \
          tip's deflection (m) over time at each ω_s by the stiffened models beside the \
          reference (`tip, m: 4`, `tip, m: 10`), and the unstiffened ones running off to the \
          beam's length (`unstiffened`).\n\n{}",
@@ -143,6 +144,21 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
 
 fn rate_key(rate: f64) -> String {
     format!("{rate}").replace('.', "_")
+}
+
+/// A model's name in a Campbell chart's legend, short enough for two to a row in the
+/// smallest view (`CB 6 unstiff.`: without the dynamic stiffening).
+fn legend_label(modes: usize, stiffening: bool) -> String {
+    let model = if modes == 0 {
+        "NR".to_string()
+    } else {
+        format!("CB {modes}")
+    };
+    if stiffening {
+        model
+    } else {
+        format!("{model} unstiff.")
+    }
 }
 
 fn model_color(modes: usize, stiffening: bool) -> Color {
@@ -287,7 +303,8 @@ fn spin_report(study: &SpinUpStudy, report: &mut Report) -> String {
 }
 
 /// The Campbell charts, flapwise and lagwise: μ against λ on a semi-log chart (λ linear, μ
-/// on decades), one line per model and mode, the published flapwise values as points; a
+/// on decades), one line per model and mode (the model named once in the legend), the
+/// published flapwise values as points; a
 /// model's pairs with μ² ≤ 0 (unstable) have no place on the log axis and end its line.
 fn campbell_visuals(study: &CampbellStudy) -> Vec<Visual> {
     let speeds = &study.parameters.speeds;
@@ -306,9 +323,14 @@ fn campbell_visuals(study: &CampbellStudy) -> Vec<Visual> {
                     .take_while(|(_, mu2)| mu2[m] > 0.0)
                     .map(|(&l, mu2)| (l, mu2[m].sqrt()))
                     .collect();
+                // One legend entry per model: its two modes share its colour.
                 series.push(LogLogSeries {
                     id: format!("{id}_mode{}", m + 1),
-                    label: format!("{} μ{}", curve.label(), ["₁", "₂"][m]),
+                    label: if m == 0 {
+                        legend_label(curve.modes, curve.stiffening)
+                    } else {
+                        String::new()
+                    },
                     color: model_color(curve.modes, curve.stiffening),
                     points,
                     line: true,
@@ -332,7 +354,7 @@ fn campbell_visuals(study: &CampbellStudy) -> Vec<Visual> {
             LogLogChart {
                 path: format!("campbell/{key}"),
                 x_unit: "λ".into(),
-                y_unit: "μ".into(),
+                y_unit: "μ₁, μ₂".into(),
                 series,
                 x_linear: true,
             }

@@ -21,6 +21,7 @@ mod cli_common;
 mod scratch;
 
 mod body_methods;
+mod charts;
 mod cli;
 mod driven_body;
 mod external_bodies;
