@@ -1,6 +1,7 @@
 //! No file can kill the process: every reader of body files (Matrix Market, Harwell–Boeing,
 //! Abaqus, NASTRAN DMIG, binary and ASCII OP4, CalculiX `.sti/.mas/.dof`, DOF maps, node
-//! tables, body.toml) fed deterministic mutations of the committed bodies' files, in process:
+//! tables, body.toml; and `.npy`, on a written array) fed deterministic mutations of the
+//! committed bodies' files, in process:
 //! each must load or give a named error, never panic, abort, run away or allocate beyond
 //! [`CASE_MEMORY`]. An error that names a line of the mutated file names a line it has.
 //!
@@ -390,4 +391,32 @@ fn every_regression_file_gives_a_named_error() {
             Err(problem) => panic!("{file}: {problem}"),
         }
     }
+}
+
+/// The `.npy` reader (the exports' Ψ, read back by tests and users' scripts) on 2 000
+/// mutations of a written array: an array or `None`, never a panic or an allocation beyond
+/// [`CASE_MEMORY`].
+#[test]
+fn mutated_npy_files_read_or_are_refused() {
+    let a = faer::Mat::<f64>::from_fn(37, 5, |i, j| (i * 5 + j) as f64 - 20.0);
+    let scratch = Scratch::new("fuzz-npy");
+    flexmodes::body_file::write_npy(&scratch.join("a.npy"), a.as_ref()).unwrap();
+    let bytes = std::fs::read(scratch.join("a.npy")).unwrap();
+    let (mut read, mut refused) = (0, 0);
+    for seed in 0..2_000u64 {
+        let mut rng = Rng::new(seed);
+        let (mutated, what) = mutate(&bytes, &mut rng);
+        IN_CASE.store(true, Ordering::Relaxed);
+        let outcome = std::panic::catch_unwind(|| flexmodes::body_file::read_npy(&mutated));
+        IN_CASE.store(false, Ordering::Relaxed);
+        match outcome {
+            Ok(Some((rows, cols, values))) => {
+                assert_eq!(rows * cols, values.len(), "seed {seed}: {what}");
+                read += 1;
+            }
+            Ok(None) => refused += 1,
+            Err(_) => panic!("seed {seed}: read_npy panicked on {what}"),
+        }
+    }
+    assert!(read > 0 && refused > 0, "{read} read, {refused} refused");
 }
