@@ -100,7 +100,8 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
     drop(bar);
     let (value, text) = scenes::body_simulation::summary(&body, &parameters, &study);
     if let Some(path) = &save {
-        let content = scenes::body_simulation::recording(&body.model, &study, &text);
+        let content =
+            scenes::body_simulation::recording(&body.model, &study, &text, &body.units.length);
         Recorder::default().save(&content, path)?;
         progress(&format!("wrote {}", path.display()));
     }

@@ -189,7 +189,7 @@ pub fn simulated(
         concurrent,
     )?;
     let (_, text) = summary(body, &simulation.parameters, &study);
-    Ok(recording(&body.model, &study, &text))
+    Ok(recording(&body.model, &study, &text, &body.units.length))
 }
 
 /// A hash of what a driven body's runs depend on: its DOF map, node coordinates and every

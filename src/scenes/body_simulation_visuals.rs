@@ -37,8 +37,13 @@ fn drawn(study: &DrivenStudy) -> Vec<&DrivenRun> {
     out
 }
 
-/// The recording: `text` is the table the CLI prints.
-pub fn recording(model: &FeModel, study: &DrivenStudy, text: &str) -> RecordingContent {
+/// The recording: `text` is the table the CLI prints; `length_unit` the body's (`m`, `mm`).
+pub fn recording(
+    model: &FeModel,
+    study: &DrivenStudy,
+    text: &str,
+    length_unit: &str,
+) -> RecordingContent {
     let geometry = Geometry::of(model);
     let lanes = drawn(study);
     let largest = study
@@ -124,17 +129,24 @@ pub fn recording(model: &FeModel, study: &DrivenStudy, text: &str) -> RecordingC
             })
             .unwrap_or(0);
         let axis_name = ["x", "y", "z"][axis];
+        // In the unit whose values read as 1 to 1 000 (nm, not "−0.000 000 01" m).
+        let amplitude = study
+            .runs
+            .iter()
+            .flat_map(|r| r.outputs[o].iter().map(|u| u[axis].abs()))
+            .fold(0.0, f64::max);
+        let (factor, unit) = readable_length(amplitude, length_unit);
         for run in &study.runs {
             visuals.push(Visual::Series {
                 path: format!("plots/{name}_{axis_name}/{}", run.label().replace(' ', "_")),
                 times: study.times.clone(),
-                values: run.outputs[o].iter().map(|u| u[axis]).collect(),
+                values: run.outputs[o].iter().map(|u| u[axis] * factor).collect(),
                 name: run.label(),
                 color: color(run),
             });
         }
         plots.push(Layout::TimeSeries {
-            name: format!("{axis_name} of {name} (mean, turning frame)"),
+            name: format!("{axis_name} of {name}, {unit} (mean, turning frame)"),
             origin: format!("/plots/{name}_{axis_name}"),
         });
     }
@@ -249,4 +261,43 @@ fn chart(study: &DrivenStudy) -> Vec<Visual> {
         x_linear: false,
     }
     .visuals()
+}
+
+/// The factor and unit that show lengths of magnitude up to `amplitude` (in `unit`) as
+/// numbers from 1 to 1 000: `m` becomes `mm`, `µm` or `nm`, `mm` becomes `µm` or `nm`; any
+/// other unit, or an amplitude of 0, keeps its own.
+pub fn readable_length(amplitude: f64, unit: &str) -> (f64, String) {
+    let prefixes: &[(f64, &str)] = match unit {
+        "m" => &[(1.0, "m"), (1e3, "mm"), (1e6, "µm"), (1e9, "nm")],
+        "mm" => &[(1.0, "mm"), (1e3, "µm"), (1e6, "nm")],
+        _ => &[],
+    };
+    prefixes
+        .iter()
+        .find(|(f, _)| amplitude * f >= 1.0)
+        .or(prefixes.last().filter(|_| amplitude > 0.0))
+        .filter(|_| amplitude > 0.0 && amplitude.is_finite())
+        .map_or((1.0, unit.to_string()), |&(f, u)| (f, u.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lengths_are_shown_in_the_unit_that_reads_one_to_a_thousand() {
+        let case = |a: f64, unit: &str| {
+            let (f, u) = readable_length(a, unit);
+            (format!("{}", crate::report::sig(a * f)), u)
+        };
+        assert_eq!(case(1.3e-8, "m"), ("13".into(), "nm".into()));
+        assert_eq!(case(2.5e-5, "m"), ("25".into(), "µm".into()));
+        assert_eq!(case(0.004, "m"), ("4".into(), "mm".into()));
+        assert_eq!(case(1.5, "m"), ("1.5".into(), "m".into()));
+        assert_eq!(case(3e-4, "mm"), ("300".into(), "nm".into()));
+        assert_eq!(case(2e-12, "m"), ("0.002".into(), "nm".into()));
+        // Another unit, or nothing to scale: as given.
+        assert_eq!(case(1e-6, "in"), ("0.000001".into(), "in".into()));
+        assert_eq!(readable_length(0.0, "m"), (1.0, "m".into()));
+    }
 }
