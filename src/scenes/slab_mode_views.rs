@@ -102,13 +102,14 @@ pub fn slab_mode_views(
         tabs.insert(0, front);
     }
     // The charts (the grouped frequency chart, and an imported body's interface sweep and
-    // response where asked for) in one row under the modes, a third of the height: the
-    // frequency chart's legend needs room.
+    // response where asked for) in one row under the modes, four ninths of the height: the
+    // frequency chart's legend of nine models (NR and eight methods) needs ~230 pixels, and
+    // at a third of 800 its last two entries were cut.
     let layout = Layout::Horizontal(
         vec![
             Layout::Vertical(
                 vec![Layout::Tabs(tabs), Layout::Horizontal(charts, vec![])],
-                vec![2.0, 1.0],
+                vec![5.0, 4.0],
             ),
             Layout::scene_text(),
         ],
