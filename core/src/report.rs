@@ -282,31 +282,24 @@ pub fn fmt_hz(v: &[f64]) -> String {
 /// (`0.0193103`, `2478.27`), scientific outside it (`3.33519e-21`, `1.23457e7`), where a
 /// fixed-point number would be a run of zeros a person has to count.
 pub fn sig6(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return if x == 0.0 { "0".into() } else { format!("{x}") };
-    }
-    // The exponent after rounding to six digits (9.9999999 is 1.00000e1, printed 10.0000).
-    let scientific = format!("{x:.5e}");
-    let mag: i32 = scientific
-        .rsplit('e')
-        .next()
-        .and_then(|e| e.parse().ok())
-        .expect("`{:e}` ends in its exponent");
-    if !(-3..6).contains(&mag) {
-        return scientific;
-    }
-    let decimals = (5 - mag).max(0) as usize;
-    format!("{x:.decimals$}")
+    significant(x, 6)
 }
 
 /// Three significant digits, read as [`sig6`] prints: fixed-point from 1e-3 up to 1e6
 /// (`2.54`, `0.0103`, `1450`), scientific outside it (`7.23e-5`): a table's errors and
 /// angles, where `2.54e0` made a reader convert.
 pub fn sig3(x: f64) -> String {
+    significant(x, 3)
+}
+
+/// `digits` significant digits (at least 1), fixed-point from 1e-3 up to 1e6, scientific
+/// outside it; the magnitude is the one after rounding (9.9999999 to six digits is 10.0000).
+fn significant(x: f64, digits: usize) -> String {
     if x == 0.0 || !x.is_finite() {
         return if x == 0.0 { "0".into() } else { format!("{x}") };
     }
-    let scientific = format!("{x:.2e}");
+    let after = digits.max(1) - 1;
+    let scientific = format!("{x:.after$e}");
     let mag: i32 = scientific
         .rsplit('e')
         .next()
@@ -315,7 +308,7 @@ pub fn sig3(x: f64) -> String {
     if !(-3..6).contains(&mag) {
         return scientific;
     }
-    let decimals = (2 - mag).max(0) as usize;
+    let decimals = (after as i32 - mag).max(0) as usize;
     format!("{x:.decimals$}")
 }
 

@@ -14,6 +14,7 @@ mod recording_content;
 mod recording_digest;
 mod rerun_sdk;
 mod visual;
+mod visual_log;
 
 pub use blueprint_key::BlueprintKey;
 pub use chart_text_check::{VIEW_PIXELS, chart_count, chart_text_clashes};

@@ -149,11 +149,7 @@ fn rate_key(rate: f64) -> String {
 /// A model's name in a Campbell chart's legend, short enough for two to a row in the
 /// smallest view (`CB 6 unstiff.`: without the dynamic stiffening).
 fn legend_label(modes: usize, stiffening: bool) -> String {
-    let model = if modes == 0 {
-        "NR".to_string()
-    } else {
-        format!("CB {modes}")
-    };
+    let model = crate::models::model_name(modes);
     if stiffening {
         model
     } else {

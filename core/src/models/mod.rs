@@ -20,6 +20,7 @@ mod interface_response;
 mod plank_simulation;
 mod slab_simulation;
 mod spinning_beam_study;
+mod spinning_model_label;
 mod statically_determinate_support;
 
 pub(crate) use body_advice::advise;
@@ -82,7 +83,7 @@ pub use slab_simulation::{
 pub use spinning_beam_study::{
     CAMPBELL_SPEEDS, CampbellCurve, CampbellParameters, CampbellStudy, Divergence,
     PUBLISHED_TOLERANCE, SPIN_UP_TOLERANCE, SpinUpModels, SpinUpParameters, SpinUpRun, SpinUpStudy,
-    campbell_study, model_label, published_flapwise, spin_up_reference, spin_up_study,
-    spinning_beam_body,
+    campbell_study, published_flapwise, spin_up_reference, spin_up_study, spinning_beam_body,
 };
+pub use spinning_model_label::{model_label, model_name};
 pub use statically_determinate_support::three_two_one_support;

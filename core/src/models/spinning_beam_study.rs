@@ -11,6 +11,8 @@
 
 use std::time::Instant;
 
+use super::spinning_model_label::model_label;
+
 use faer::Mat;
 use nalgebra::{DMatrix, Vector3};
 
@@ -38,20 +40,6 @@ pub const PUBLISHED_TOLERANCE: f64 = 1e-3;
 /// Relative peak-normalised difference from the nonlinear reference that NR and CB with
 /// stiffening meet over 0–20 s.
 pub const SPIN_UP_TOLERANCE: f64 = 0.05;
-
-/// `NR` (`modes` 0) or `CB 6`, and `, no stiffening`.
-pub fn model_label(modes: usize, stiffening: bool) -> String {
-    let model = if modes == 0 {
-        "NR".to_string()
-    } else {
-        format!("CB {modes}")
-    };
-    if stiffening {
-        model
-    } else {
-        format!("{model}, no stiffening")
-    }
-}
 
 /// The Campbell diagram's set-up.
 #[derive(Debug, Clone, PartialEq)]

@@ -7,7 +7,7 @@ use faer::Mat;
 
 use super::{
     Basis, COMPLETE_EIGEN_LIMIT, Column, ColumnKind, Method, ModeSelection, Partition,
-    ReductionStatistics, SolverPath, partition::InteriorProblem,
+    ReductionStatistics, SolverPath, interior_problem::InteriorProblem,
 };
 use crate::{Error, Result, fem::FeModel, linalg::generalized_eigen};
 

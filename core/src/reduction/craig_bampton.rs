@@ -3,8 +3,8 @@
 use faer::Mat;
 
 use super::{
-    Basis, ColumnKind, Method, ModeSelection, SolverPath,
-    partition::{InteriorProblem, normal_columns},
+    Basis, ColumnKind, Method, ModeSelection, SolverPath, interior_problem::InteriorProblem,
+    partition::normal_columns,
 };
 use crate::{Result, fem::FeModel};
 

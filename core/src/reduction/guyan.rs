@@ -1,6 +1,6 @@
 //! Guyan reduction / static condensation (§6.2).
 
-use super::{Basis, ColumnKind, Method, SolverPath, partition::InteriorProblem};
+use super::{Basis, ColumnKind, Method, SolverPath, interior_problem::InteriorProblem};
 use crate::{Result, fem::FeModel};
 
 /// $\Psi = [I;\ \Psi_s]$ with $\Psi_s = -K_{ii}^{-1}K_{ib}$ (Eq. 6.5): the masters' constraint

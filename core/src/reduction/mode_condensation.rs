@@ -4,7 +4,8 @@ use faer::Mat;
 
 use super::{
     Basis, ColumnKind, Method, ModeSelection, SolverPath,
-    partition::{DENSE_INTERIOR_LIMIT, InteriorProblem, normal_columns},
+    interior_problem::{DENSE_INTERIOR_LIMIT, InteriorProblem},
+    partition::normal_columns,
 };
 use crate::{Result, fem::FeModel};
 
