@@ -75,6 +75,10 @@ struct FlexmodesApp {
     viewer: re_viewer::App,
     handoff: ViewerHandoff,
     capture: Option<Capture>,
+    /// A saved recording's messages were sent and the capture is not told yet (a file is
+    /// sent whole, outside the handoff's phases; the capture's settling frames then let the
+    /// viewer take it in).
+    file_sent: bool,
 }
 
 impl eframe::App for FlexmodesApp {
@@ -132,6 +136,13 @@ impl eframe::App for FlexmodesApp {
             self.explorer = Some(explorer);
         } else {
             self.handoff.step(ctx);
+            // A saved recording (`view FILE --screenshot`): the capture told once it is sent,
+            // then it waits its settling frames; before, nothing told it and it waited for ever.
+            if std::mem::take(&mut self.file_sent)
+                && let Some(c) = &mut self.capture
+            {
+                c.on_shown(ctx);
+            }
         }
         eframe::App::logic(&mut self.viewer, ctx, frame);
     }
@@ -260,6 +271,7 @@ pub fn run_with_body(
                 viewer,
                 handoff,
                 capture,
+                file_sent: false,
             };
             if let Some(bytes) = &file_bytes {
                 app.handoff.show_file(
@@ -267,6 +279,7 @@ pub fn run_with_body(
                         .flatten()
                         .collect(),
                 );
+                app.file_sent = true;
             }
             Ok(Box::new(app))
         }),

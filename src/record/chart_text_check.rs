@@ -106,6 +106,7 @@ mod tests {
                 points: vec![[2.0, 2.0], [0.0, 2.0], [0.0, 0.0]],
                 color: [0; 4],
                 label: None,
+                radius: super::super::LINE,
             },
             Visual::Text2D {
                 path: "c/axes/extent".into(),

@@ -22,8 +22,9 @@ const LEFT: f64 = 0.35;
 /// The picture's width over its height: the explorer's smallest views at 1 280 × 800 are
 /// ~280 × 230 pixels, so a picture this wide is fitted by its height there.
 const ASPECT: f64 = 1.2;
-/// Colour of the grid lines: mid grey, faint on dark and light backgrounds alike.
-const GRID: Color = [128, 128, 128, 70];
+/// Colour of the grid lines: mid grey hairlines ([`super::GRID_LINE`]), faint on dark and
+/// light backgrounds alike.
+const GRID: Color = [128, 128, 128, 255];
 /// Colour of the axes, ticks and titles.
 const AXES: Color = [150, 150, 150, 255];
 
@@ -95,23 +96,28 @@ impl LogLogChart {
         let at = |x: f64, y: f64| [stretch * (fx(x) - x0), -y.log10()];
         let mut visuals = Vec::new();
         let path = |rest: &str| format!("{}/{rest}", self.path);
-        // The grid first, so the data is drawn over it.
+        // The grid first, so the data is drawn over it: a line at each labelled tick (every
+        // decade, or every few where their labels would touch: fifteen decades drawn in a
+        // short chart were a hatching).
         let x_ticks = self.x_ticks(x0, x1);
-        for (k, &(x, _)) in x_ticks.iter().enumerate() {
+        let (x_step, y_step) = self.tick_steps(x_ticks.len(), height, t);
+        for (k, &(x, _)) in x_ticks.iter().enumerate().filter(|(k, _)| k % x_step == 0) {
             let u = stretch * (x - x0);
             visuals.push(Visual::Polyline2D {
                 path: path(&format!("grid/x{k}")),
                 points: vec![[u, -y0], [u, -y1]],
                 color: GRID,
                 label: None,
+                radius: super::GRID_LINE,
             });
         }
-        for e in (y0 as i32)..=(y1 as i32) {
+        for e in ((y0 as i32)..=(y1 as i32)).step_by(y_step) {
             visuals.push(Visual::Polyline2D {
                 path: path(&format!("grid/y{}", e - y0 as i32)),
                 points: vec![[0.0, -f64::from(e)], [width, -f64::from(e)]],
                 color: GRID,
                 label: None,
+                radius: super::GRID_LINE,
             });
         }
         for s in &self.series {
@@ -130,6 +136,7 @@ impl LogLogChart {
                     points: points.clone(),
                     color: s.color,
                     label: None,
+                    radius: super::LINE,
                 });
             }
             // Markers for sparse data; a densely sampled curve (a frequency response) is
@@ -148,6 +155,7 @@ impl LogLogChart {
             points: vec![[width, -y0], [0.0, -y0], [0.0, -y1]],
             color: AXES,
             label: None,
+            radius: super::LINE,
         });
         visuals.extend(self.text(&x_ticks, [x0, y0, y1], stretch));
         visuals
@@ -179,7 +187,7 @@ impl LogLogChart {
             });
         };
         // x ticks just below the axis, every `step`-th where labels would touch.
-        let x_step = thinning(x_ticks.len(), label_width(5, t), width);
+        let (x_step, y_step) = self.tick_steps(x_ticks.len(), height, t);
         text(
             "axes/x_ticks",
             x_ticks
@@ -191,7 +199,6 @@ impl LogLogChart {
         );
         // y ticks left of the axis, centred on their grid lines.
         let decades: Vec<i32> = ((y0 as i32)..=(y1 as i32)).collect();
-        let y_step = thinning(decades.len(), u, height);
         text(
             "axes/y_ticks",
             decades
@@ -266,6 +273,18 @@ impl LogLogChart {
         let rows = entries.len().div_ceil(columns);
         let fraction = 1.0 - ROW * (3.5 + rows as f64);
         (height / fraction.max(DATA_SHARE), columns)
+    }
+
+    /// Every how many x ticks (of `x_ticks`) and y decades are labelled and gridded in a data
+    /// area `height` high in a picture `t` high: labels at least their width (x, five
+    /// characters) or a row (y) apart.
+    fn tick_steps(&self, x_ticks: usize, height: f64, t: f64) -> (usize, usize) {
+        let width = (ASPECT - LEFT) * t;
+        let decades = height.round() as usize + 1;
+        (
+            thinning(x_ticks, label_width(5, t), width),
+            thinning(decades, ROW * t, height),
+        )
     }
 
     /// Whether a point has a place on the chart's axes.

@@ -25,4 +25,4 @@ pub use palette::{PARETO, REFERENCE, REFERENCE_GHOST, method_color};
 pub use recorder::{Recorder, encode_messages};
 pub use recording_content::RecordingContent;
 pub use recording_digest::RecordingDigest;
-pub use visual::{Color, Geometry, PHASE_STEPS, Visual};
+pub use visual::{Color, GRID_LINE, Geometry, LINE, PHASE_STEPS, Visual};

@@ -6,6 +6,13 @@ pub const PHASE_STEPS: usize = 32;
 /// RGBA colour.
 pub type Color = [u8; 4];
 
+/// Radius of a drawn line in a plane (a chart's series and axes), UI points.
+pub const LINE: f32 = 2.0;
+
+/// Radius of a chart's grid lines, UI points: hairlines (the viewer draws a line's colour
+/// opaque, so a grid is faint by being thin).
+pub const GRID_LINE: f32 = 0.4;
+
 /// A body's drawable geometry: node positions (m) and polylines through them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Geometry {
@@ -224,6 +231,9 @@ pub enum Visual {
         color: Color,
         /// Label shown at the line.
         label: Option<String>,
+        /// Line radius, UI points: [`LINE`] for a chart's series and axes, [`GRID_LINE`] for
+        /// its grid.
+        radius: f32,
     },
     /// One series of a grouped bar chart: bars of one colour at given abscissae (several
     /// series under one bar-chart view sit side by side when their abscissae are offset).

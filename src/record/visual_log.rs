@@ -248,13 +248,14 @@ pub(super) fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Res
             points,
             color: c,
             label,
+            radius,
         } => {
             let mut strips = rerun_sdk::LineStrips2D::new([points
                 .iter()
                 .map(|p| [p[0] as f32, p[1] as f32])
                 .collect::<Vec<_>>()])
             .with_colors([color(*c)])
-            .with_radii([rerun_sdk::Radius::new_ui_points(2.0)]);
+            .with_radii([rerun_sdk::Radius::new_ui_points(*radius)]);
             if let Some(l) = label {
                 strips = strips.with_labels([l.clone()]);
             }

@@ -89,6 +89,7 @@ pub(super) fn static_visuals(case: &StaticCase) -> Vec<Visual> {
         points: draw(&case.full_line),
         color: REFERENCE,
         label: None,
+        radius: crate::record::LINE,
     }];
     let mut legend = vec![
         (case.text.to_string(), REFERENCE),
@@ -103,6 +104,7 @@ pub(super) fn static_visuals(case: &StaticCase) -> Vec<Visual> {
             points: draw(line),
             color: method_color(m),
             label: None,
+            radius: crate::record::LINE,
         });
         legend.push((
             format!("{}: error {err:.1e}", m.id().to_uppercase()),
