@@ -25,6 +25,9 @@ const ASPECT: f64 = 1.2;
 /// Colour of the grid lines: mid grey hairlines ([`super::GRID_LINE`]), faint on dark and
 /// light backgrounds alike.
 const GRID: Color = [128, 128, 128, 255];
+/// Colour of the picture's corner anchors: transparent (a point of radius 0 still showed a
+/// pixel).
+const INVISIBLE: Color = [0, 0, 0, 0];
 /// Colour of the axes, ticks and titles.
 const AXES: Color = [150, 150, 150, 255];
 
@@ -226,11 +229,11 @@ impl LogLogChart {
         text(
             "axes/extent",
             vec![
-                ([-LEFT * t, top - 1.5 * u], String::new(), AXES),
+                ([-LEFT * t, top - 1.5 * u], String::new(), INVISIBLE),
                 (
                     [width, bottom + (2.0 + rows as f64) * u],
                     String::new(),
-                    AXES,
+                    INVISIBLE,
                 ),
             ],
         );
