@@ -414,13 +414,52 @@ impl StepStart<'_> {
                 return Err(f64::INFINITY);
             }
             b.x -= &b.correction;
-            let stalled =
-                iteration >= 2 && correction <= NEWTON_FLOOR && correction > 0.5 * previous;
-            if correction <= NEWTON_TOLERANCE || stalled {
+            if newton_converged(iteration, correction, previous) {
                 self.advance(sys, h, c, b);
                 return Ok(());
             }
         }
         Err(correction)
+    }
+}
+
+/// Whether Newton's iterations stop after iteration `iteration` (from 0) with the relative
+/// `correction`, `previous` the one before: below [`NEWTON_TOLERANCE`], or, from the third
+/// on, below [`NEWTON_FLOOR`] and no longer halving (the accelerations' round-off floor).
+fn newton_converged(iteration: usize, correction: f64, previous: f64) -> bool {
+    correction <= NEWTON_TOLERANCE
+        || (iteration >= 2 && correction <= NEWTON_FLOOR && correction > 0.5 * previous)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The iterations stop at the tolerance when they contract, and at the floor only when
+    /// they have stopped contracting: a run that still halves goes on to 1e-10.
+    #[test]
+    fn newton_stops_at_the_tolerance_or_where_it_stalls_on_round_off() {
+        let stop = |corrections: &[f64]| {
+            let mut previous = f64::INFINITY;
+            corrections.iter().enumerate().position(|(i, &c)| {
+                let done = newton_converged(i, c, previous);
+                previous = c;
+                done
+            })
+        };
+        // Contracting by 10 per iteration: the tolerance, not the floor, ends it.
+        assert_eq!(
+            stop(&[1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10]),
+            Some(8)
+        );
+        // Halving below the floor: still contracting, it goes on.
+        let halving: Vec<f64> = (0..12).map(|k| 4e-9 * 0.45f64.powi(k)).collect();
+        assert_eq!(stop(&halving), Some(5));
+        // The 16 x 8 x 4 slab's NR: stuck near 2e-10 (the failure before the floor).
+        assert_eq!(stop(&[3e-3, 4e-7, 2.1e-10, 2.07e-10, 2.2e-10]), Some(3));
+        // Stuck above the floor: never converged.
+        assert_eq!(stop(&[1e-6, 9e-7, 9e-7, 9e-7]), None);
+        // The first two iterations never stop at the floor.
+        assert_eq!(stop(&[5e-9, 5e-9, 5e-9]), Some(2));
     }
 }
