@@ -112,6 +112,8 @@ def run_explorer(args, display):
     ]
     if args.progressive:
         command.append("--progressive-switch")
+    if args.theme:
+        command += ["--theme", args.theme]
     env = dict(os.environ, DISPLAY=display)
     env.setdefault("XDG_RUNTIME_DIR", "/tmp")
     print("running:", " ".join(command), flush=True)
@@ -195,6 +197,8 @@ def main():
     # frames the check needs, so a slow run failed although every frame was clean.
     p.add_argument("--frames", type=int, default=100, help="frames kept per toggle")
     p.add_argument("--window", default="1280x800")
+    p.add_argument("--theme", choices=["light", "dark"],
+                   help="the viewer's theme (default: the explorer's own choice)")
     # The pointer starts at the screen's centre: outside the window (at the top left), so it
     # hovers no plot (a hover tooltip coming and going changes the picture).
     p.add_argument("--screen", default="2600x1800")

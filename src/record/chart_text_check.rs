@@ -1,14 +1,24 @@
 //! The check that a chart's text reads: in every [`LogLogChart`](super::LogLogChart) of a
 //! recording, no tick, title or legend label reaches into the data area, and no two labels
-//! overlap, with each label's box as the viewer draws it (centred below its anchor, 5 pixels
-//! down, ~18 pixels tall with 4 pixels of margin, ~7 pixels per character and 6 of margin
-//! each side) in a view that shows the chart's picture [`VIEW_PIXELS`] tall: the smallest of
-//! the explorer's views at 1 280 × 800. Larger views only move the labels further apart.
+//! overlap, with each label's box as the viewer draws it (centred below its anchor, from 1
+//! pixel down, 23 pixels tall, ~7 pixels per character and 6 of margin each side) in a view
+//! that shows the chart's picture [`VIEW_PIXELS`] tall: the smallest of the explorer's views
+//! at 1 280 × 800. Larger views only move the labels further apart. It is the model of what
+//! `assets/gui/chart_labels.py` checks in the explorer's screenshots, pixel by pixel.
 
 use super::Visual;
 
-/// The height, in pixels, of the smallest view a chart's picture is checked in.
-pub const VIEW_PIXELS: f64 = 200.0;
+/// The height, in pixels, of the smallest picture a chart is checked at: the explorer's
+/// interface chart at 1 280 × 800 shows its picture ~190 pixels tall (measured in the pixel
+/// check's screenshots, `assets/gui/chart_labels.py`).
+pub const VIEW_PIXELS: f64 = 185.0;
+/// A label's box as the viewer draws it, pixels: from 1 below its anchor (the text 5 below,
+/// less 4 of margin), 23 tall, and one more between two boxes (the viewer's translucent boxes
+/// overlapping by one pixel row showed as a darker line).
+const BOX_TOP: f64 = 1.0;
+const BOX_HEIGHT: f64 = 24.0;
+/// Half the axis line's thickness, pixels: the data area reaches this far beyond the axes.
+const AXIS_HALF_WIDTH: f64 = 3.0;
 
 /// A label's box in chart units: [left, top, right, bottom] (y grows downwards).
 type TextBox = [f64; 4];
@@ -30,24 +40,20 @@ pub fn chart_text_clashes(visuals: &[Visual]) -> Vec<String> {
         let px = height / VIEW_PIXELS;
         let boxed = |p: &[f64; 2], text: &str| -> TextBox {
             let w = (7.0 * text.chars().count() as f64 + 12.0) * px;
-            let top = p[1] + 5.0 * px;
-            [
-                p[0] - 0.5 * w,
-                top - 4.0 * px,
-                p[0] + 0.5 * w,
-                top + 18.0 * px,
-            ]
+            let top = p[1] + BOX_TOP * px;
+            [p[0] - 0.5 * w, top, p[0] + 0.5 * w, top + BOX_HEIGHT * px]
         };
         let under = |path: &str| path.starts_with(&format!("{root}/"));
         let data = visuals.iter().find_map(|v| match v {
             Visual::Polyline2D { path, points, .. } if path == &format!("{root}/axes") => {
                 let xs = points.iter().map(|p| p[0]);
                 let ys = points.iter().map(|p| p[1]);
+                let line = AXIS_HALF_WIDTH * px;
                 Some([
-                    xs.clone().fold(f64::MAX, f64::min),
-                    ys.clone().fold(f64::MAX, f64::min),
-                    xs.fold(f64::MIN, f64::max),
-                    ys.fold(f64::MIN, f64::max),
+                    xs.clone().fold(f64::MAX, f64::min) - line,
+                    ys.clone().fold(f64::MAX, f64::min) - line,
+                    xs.fold(f64::MIN, f64::max) + line,
+                    ys.fold(f64::MIN, f64::max) + line,
                 ])
             }
             _ => None,
@@ -97,7 +103,7 @@ pub fn chart_count(visuals: &[Visual]) -> usize {
 mod tests {
     use super::*;
 
-    /// A chart's frame: corners 0..2 × -0.5..2.5 (3 units tall, 200 pixels), data area
+    /// A chart's frame: corners 0..2 × -0.5..2.5 (3 units tall, 185 pixels), data area
     /// 0..2 × 0..2, and the given labels.
     fn chart(labels: Vec<([f64; 2], &str)>) -> Vec<Visual> {
         vec![
@@ -125,7 +131,7 @@ mod tests {
 
     #[test]
     fn labels_on_the_data_or_on_each_other_are_found_and_apart_ones_pass() {
-        // 1 pixel = 0.015 units: a label is ~0.4 units tall.
+        // 1 pixel = 0.016 units: a label is ~0.39 units tall.
         assert!(
             chart_text_clashes(&chart(vec![([1.0, 2.1], "CB"), ([1.0, 2.5], "MC")])).is_empty()
         );

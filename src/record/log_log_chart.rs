@@ -11,12 +11,19 @@ use super::{Color, Visual};
 
 /// A series drawn as a line with more points than this gets no point markers.
 const DENSE_SERIES: usize = 100;
-/// One row of text, as a fraction of the whole picture's height (data area and text): 23
-/// pixels where the picture is 200, room for one label (18 pixels and 4 of margin).
-const ROW: f64 = 0.115;
+/// One row of text, as a fraction of the whole picture's height (data area and text): 25
+/// pixels where the picture is 185 (the smallest explorer view's), room for one label's box
+/// (23 pixels: its text and 4 of margin above and below).
+const ROW: f64 = 0.135;
+/// How far below the x axis its tick labels hang, in rows: their boxes clear the axis line
+/// (4 pixels thick; at 0 the line ran along the boxes' top edge).
+const TICK_DROP: f64 = 0.2;
+/// Rows of text besides the legend's: the y title (1.5 above the data area), the x ticks and
+/// the x title below it ([`TICK_DROP`] and one row each).
+const TEXT_ROWS: f64 = 1.5 + TICK_DROP + 2.0;
 /// The smallest share of the picture the data area keeps; a legend of more rows than leave
 /// it this is laid out for views taller than [`super::VIEW_PIXELS`].
-const DATA_SHARE: f64 = 0.25;
+const DATA_SHARE: f64 = 0.2;
 /// Room left of the y axis for its tick labels, as a fraction of the picture's height.
 const LEFT: f64 = 0.35;
 /// The picture's width over its height: the explorer's smallest views at 1 280 × 800 are
@@ -173,7 +180,7 @@ impl LogLogChart {
     fn text(&self, x_ticks: &[(f64, String)], [x0, y0, y1]: [f64; 3], stretch: f64) -> Vec<Visual> {
         let height = y1 - y0;
         let entries = self.legend_entries();
-        let (t, columns) = self.picture(height);
+        let (t, places) = self.picture(height);
         let width = (ASPECT - LEFT) * t;
         let u = ROW * t;
         let (top, bottom) = (-y1, -y0);
@@ -197,7 +204,13 @@ impl LogLogChart {
                 .iter()
                 .enumerate()
                 .filter(|(k, _)| k % x_step == 0)
-                .map(|(_, (x, label))| ([stretch * (x - x0), bottom], label.clone(), AXES))
+                .map(|(_, (x, label))| {
+                    (
+                        [stretch * (x - x0), bottom + TICK_DROP * u],
+                        label.clone(),
+                        AXES,
+                    )
+                })
                 .collect(),
         );
         // y ticks left of the axis, centred on their grid lines.
@@ -214,7 +227,7 @@ impl LogLogChart {
         let mut titles = Vec::new();
         if !self.x_unit.is_empty() {
             titles.push((
-                [0.5 * width, bottom + u],
+                [0.5 * width, bottom + (1.0 + TICK_DROP) * u],
                 format!("{} →", self.x_unit),
                 AXES,
             ));
@@ -225,23 +238,21 @@ impl LogLogChart {
         text("axes/titles", titles);
         // The picture's corners, unlabelled: the view is fitted to the anchors, and the text
         // of the last row hangs a row below its own.
-        let rows = entries.len().div_ceil(columns);
+        let rows = places.iter().map(|p| p.0 + 1).max().unwrap_or(0);
         text(
             "axes/extent",
             vec![
                 ([-LEFT * t, top - 1.5 * u], String::new(), INVISIBLE),
                 (
-                    [width, bottom + (2.0 + rows as f64) * u],
+                    [width, bottom + (2.0 + TICK_DROP + rows as f64) * u],
                     String::new(),
                     INVISIBLE,
                 ),
             ],
         );
-        for (i, s) in entries.iter().enumerate() {
-            let (row, column) = (i / columns, i % columns);
-            let span = width + LEFT * t;
-            let x = -LEFT * t + span * (column as f64 + 0.5) / columns as f64;
-            let y = bottom + (2.0 + row as f64) * u;
+        for (s, &(row, centre)) in entries.iter().zip(&places) {
+            let x = (centre - LEFT) * t;
+            let y = bottom + (2.0 + TICK_DROP + row as f64) * u;
             text(
                 &format!("legend/{}", s.id),
                 vec![([x, y], s.label.clone(), s.color)],
@@ -258,24 +269,43 @@ impl LogLogChart {
             .collect()
     }
 
-    /// The whole picture's height `t` for a data area `height` high, and the legend's
-    /// entries to a row. The picture is [`ASPECT`] times as wide as high (the y ticks take
-    /// [`LEFT`] of it, the data area the rest) and has rows of `ROW · t` for the y title, the
-    /// x ticks, the x title and the legend. A label's width is a share of `t` too (pixels
-    /// per character over pixels per picture), so the columns follow from the widest label
-    /// alone. With more legend rows than room, the data area keeps [`DATA_SHARE`].
-    fn picture(&self, height: f64) -> (f64, usize) {
-        let entries = self.legend_entries();
-        let widest = entries
+    /// The whole picture's height `t` for a data area `height` high, and where each legend
+    /// entry goes: its row and its centre's distance from the picture's left edge, in `t`.
+    /// The picture is [`ASPECT`] times as wide as high (the y ticks take [`LEFT`] of it, the
+    /// data area the rest) and has rows of `ROW · t` for the y title, the x ticks, the x
+    /// title and the legend. A label's width is a share of `t` too (pixels per character
+    /// over pixels per picture), so the entries flow into rows by their own widths, each row
+    /// centred. With more legend rows than room, the data area keeps [`DATA_SHARE`].
+    fn picture(&self, height: f64) -> (f64, Vec<(usize, f64)>) {
+        let gap = 0.5 * ROW;
+        let widths: Vec<f64> = self
+            .legend_entries()
             .iter()
-            .map(|s| s.label.chars().count())
-            .max()
-            .unwrap_or(0);
-        let column = label_width(widest, 1.0) + 0.5 * ROW;
-        let columns = ((ASPECT / column).floor() as usize).clamp(1, entries.len().max(1));
-        let rows = entries.len().div_ceil(columns);
-        let fraction = 1.0 - ROW * (3.5 + rows as f64);
-        (height / fraction.max(DATA_SHARE), columns)
+            .map(|s| label_width(s.label.chars().count(), 1.0))
+            .collect();
+        // Rows of entries, each as wide as the picture allows (at least one entry).
+        let mut rows: Vec<Vec<usize>> = Vec::new();
+        let mut used = f64::INFINITY;
+        for (i, &w) in widths.iter().enumerate() {
+            if used + gap + w > ASPECT {
+                rows.push(Vec::new());
+                used = -gap;
+            }
+            used += gap + w;
+            rows.last_mut().expect("a row was started").push(i);
+        }
+        let mut places = vec![(0, 0.0); widths.len()];
+        for (r, row) in rows.iter().enumerate() {
+            let span: f64 =
+                row.iter().map(|&i| widths[i]).sum::<f64>() + gap * (row.len() - 1) as f64;
+            let mut x = 0.5 * (ASPECT - span);
+            for &i in row {
+                places[i] = (r, x + 0.5 * widths[i]);
+                x += widths[i] + gap;
+            }
+        }
+        let fraction = 1.0 - ROW * (TEXT_ROWS + rows.len() as f64);
+        (height / fraction.max(DATA_SHARE), places)
     }
 
     /// Every how many x ticks (of `x_ticks`) and y decades are labelled and gridded in a data
@@ -330,9 +360,10 @@ pub fn decade(e: i32) -> String {
 }
 
 /// The estimated width of a label of `chars` characters in a picture `t` high: ~7 pixels per
-/// character where the picture is ~200 pixels, and the label's background margins.
+/// character where the picture is 185 pixels ([`super::VIEW_PIXELS`]), and the label's
+/// background margins (6 pixels each side).
 fn label_width(chars: usize, t: f64) -> f64 {
-    (0.035 * chars as f64 + 0.06) * t
+    (7.0 * chars as f64 + 12.0) / super::VIEW_PIXELS * t
 }
 
 /// Every how many of `count` evenly spaced labels over `length` are drawn so that their
@@ -422,15 +453,16 @@ mod tests {
     }
 
     /// No text in the data area, none on another, for charts of 1 to 9 series with short
-    /// and long names: each text is a box centred below its anchor (5 pixels down), ~18
-    /// pixels tall and ~7 per character wide in a picture 200 pixels tall.
+    /// and long names, each text's box as [`crate::record::chart_text_clashes`] models it in
+    /// a picture 185 pixels tall.
     #[test]
     fn no_label_sits_on_the_data_or_on_another_label() {
         let names = ["CB", "GR", "MC", "MT", "NR", "MR", "BH", "MM", "BT"];
         for x_linear in [false, true] {
             for count in 1..=9 {
-                // Three long names fill the rows a 200-pixel view has below a chart.
-                for long in [false, true].into_iter().filter(|&l| !l || count <= 3) {
+                // Two long names (one to a row) fill the rows a 185-pixel view has below a
+                // chart.
+                for long in [false, true].into_iter().filter(|&l| !l || count <= 2) {
                     let mut chart = LogLogChart {
                         x_linear,
                         ..chart()
@@ -481,8 +513,9 @@ mod tests {
             .iter()
             .filter(|v| matches!(v, Visual::Polyline2D { path, .. } if path.contains("/grid/")))
             .count();
-        // x: 10^0..10^2 (3 lines), y: 10^-3..10^0 (4 lines).
-        assert_eq!(grid, 7);
+        // x: 10^0..10^2 (3 lines), y: 10^-3..10^0 (4 lines; every other where the rows
+        // allow no more: 10^-3, 10^-1).
+        assert_eq!(grid, 5);
         // Every series still draws its line.
         let lines = visuals
             .iter()
