@@ -107,9 +107,12 @@ def run_explorer(args, display):
     command = [
         args.binary, "gui", *opened, "--window-size", args.window,
         "--screenshot", os.path.join(args.out, "final.png"),
-        "--toggle", args.toggle, "--repeat", str(args.repeat), "--pause", str(args.pause),
-        "--frames", args.out, "--frame-every-ms", "1", "--frame-count", str(args.frames),
     ]
+    if args.toggle != "none":
+        command += [
+            "--toggle", args.toggle, "--repeat", str(args.repeat), "--pause", str(args.pause),
+            "--frames", args.out, "--frame-every-ms", "1", "--frame-count", str(args.frames),
+        ]
     if args.progressive:
         command.append("--progressive-switch")
     if args.theme:
@@ -188,7 +191,9 @@ def main():
     p.add_argument("--simulate", help="with --body: drive this node set (`gui --simulate`)")
     p.add_argument("--interval", type=float, default=0.1,
                    help="with --simulate: the simulated interval, s")
-    p.add_argument("--toggle", default="gr")
+    p.add_argument("--toggle", default="gr",
+                   help="the method to toggle; `none`: the first picture alone (final.png), "
+                        "for the chart check in another theme")
     p.add_argument("--repeat", type=int, default=2)
     p.add_argument("--pause", type=float, default=8.0,
                    help="seconds between a result shown and the next toggle")
@@ -222,6 +227,9 @@ def main():
             stop_xvfb(xvfb)
     numbers = measured(log)
     switches = []
+    if args.toggle == "none":
+        print(f"ok: the first picture in {wall:.0f} s: {args.out}/final.png")
+        return
     for n in range(1, args.repeat + 1):
         paths = sorted(glob.glob(os.path.join(args.out, f"switch-{n:02}-*.png")))
         if len(paths) < 5:
