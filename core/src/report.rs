@@ -238,12 +238,15 @@ pub fn residual_note(hz: &[f64], residuals: &[f64]) -> String {
         .iter()
         .zip(residuals)
         .filter(|(_, r)| **r > RESIDUAL_FLAG || r.is_nan())
-        .map(|(f, r)| format!("{} Hz ({r:.1e})", sig6(*f)))
+        .map(|(f, r)| format!("{} Hz ({r})", sig6(*f), r = crate::report::readable(r, 2)))
         .collect();
     // The first few name the trouble; a model of a thousand flagged pairs is one line.
     const NAMED: usize = 6;
     if flagged.is_empty() {
-        format!("relative residuals ≤ {worst:.1e}")
+        format!(
+            "relative residuals ≤ {worst}",
+            worst = crate::report::readable(worst, 2)
+        )
     } else if flagged.len() <= NAMED {
         format!(
             "**residual above {RESIDUAL_FLAG:.0e}, not to be trusted:** {}",
@@ -251,11 +254,12 @@ pub fn residual_note(hz: &[f64], residuals: &[f64]) -> String {
         )
     } else {
         format!(
-            "**residual above {RESIDUAL_FLAG:.0e} in {} of {} pairs (worst {worst:.1e}), not to \
+            "**residual above {RESIDUAL_FLAG:.0e} in {} of {} pairs (worst {worst}), not to \
              be trusted:** {}, …",
             flagged.len(),
             hz.len(),
-            flagged[..NAMED].join(", ")
+            flagged[..NAMED].join(", "),
+            worst = crate::report::readable(worst, 2)
         )
     }
 }
@@ -282,19 +286,21 @@ pub fn fmt_hz(v: &[f64]) -> String {
 /// (`0.0193103`, `2478.27`), scientific outside it (`3.33519e-21`, `1.23457e7`), where a
 /// fixed-point number would be a run of zeros a person has to count.
 pub fn sig6(x: f64) -> String {
-    significant(x, 6)
+    readable(x, 6)
 }
 
 /// Three significant digits, read as [`sig6`] prints: fixed-point from 1e-3 up to 1e6
 /// (`2.54`, `0.0103`, `1450`), scientific outside it (`7.23e-5`): a table's errors and
 /// angles, where `2.54e0` made a reader convert.
 pub fn sig3(x: f64) -> String {
-    significant(x, 3)
+    readable(x, 3)
 }
 
 /// `digits` significant digits (at least 1), fixed-point from 1e-3 up to 1e6, scientific
 /// outside it; the magnitude is the one after rounding (9.9999999 to six digits is 10.0000).
-fn significant(x: f64, digits: usize) -> String {
+/// Every number a sentence prints goes through it (`0.023`, not `2.3e-2`).
+pub fn readable(x: impl std::borrow::Borrow<f64>, digits: usize) -> String {
+    let x = *x.borrow();
     if x == 0.0 || !x.is_finite() {
         return if x == 0.0 { "0".into() } else { format!("{x}") };
     }

@@ -58,7 +58,7 @@ impl BenchPoint {
             (IntegrationScheme::DormandPrince, Some(r))
                 if r != IntegratorParameters::default().rtol =>
             {
-                format!("dp5 rtol {r:.0e}")
+                format!("dp5 rtol {r}", r = flexmodes_core::report::readable(r, 1))
             }
             (scheme, _) => scheme.id().into(),
         }

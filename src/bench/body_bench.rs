@@ -141,7 +141,7 @@ fn table_text(
          the process's peak resident memory while it was built. ★: the Pareto front in \
          (offline s, frequency error equal to three significant digits, errors below 1e-10 \
          equal).{}{}{refused_text}\n\n{}\n\
-         Advice for 0 to {:.4} Hz at {:.0e} relative error: the smallest measured model of \
+         Advice for 0 to {:.4} Hz at {} relative error: the smallest measured model of \
          each method that meets it{}.\n\n{}",
         body.model.name,
         body.model.dof_count(),

@@ -108,11 +108,15 @@ pub fn bench_driven_sizes(
                 p.file.clone(),
                 p.dof.to_string(),
                 p.factor_nnz.to_string(),
-                format!("{:.2e}", p.nr_step_s),
+                format!("{}", flexmodes_core::report::readable(p.nr_step_s, 3)),
                 format!("{:.2}", p.iterations_per_step),
-                p.cb.map_or("–".into(), |c| format!("{:.2e}", c.0)),
+                p.cb.map_or("–".into(), |c| {
+                    format!("{}", flexmodes_core::report::readable(c.0, 3))
+                }),
                 p.cb.map_or("–".into(), |c| format!("{:.0}", p.nr_step_s / c.0)),
-                p.cb.map_or("–".into(), |c| format!("{:.2e}", c.1)),
+                p.cb.map_or("–".into(), |c| {
+                    format!("{}", flexmodes_core::report::readable(c.1, 3))
+                }),
             ]
         })
         .collect();

@@ -184,10 +184,11 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
                  flexmodes / SciPy: {:.2}× of its whole process, {:.2}× of its CB alone \
                  ({cb_s:.2} s; the process also reads the body, imports SciPy and solves the \
                  free-free problem). The {compared} lowest elastic frequencies agree to \
-                 {agreement:.1e}.\n",
+                 {agreement}.\n",
                 fmt_runs(&runs.seconds),
                 ours_s / peer_s,
                 ours_s / cb_s,
+                agreement = flexmodes_core::report::readable(agreement, 2),
             ));
         }
         Err(reason) => {

@@ -163,10 +163,10 @@ pub fn bench_modes(
     let table = format!(
         "The slab with {} DOF held at nodes {boundary:?} (Guyan adds App. B's nodes 5 and 11). \
          Frequency error: the largest relative error of the lowest {COMPARED_MODES} elastic \
-         free-free frequencies against the full model's ({:.2e} s by the partial eigensolver). \
+         free-free frequencies against the full model's ({} s by the partial eigensolver). \
          Static error: the sag under gravity held at Simulation 1's six coordinates (d16 x y z, \
          d18 x, d28 z, d30 z), Ritz solution in each basis against the full model's sparse \
-         solve ({:.2e} s), relative 2-norm. Offline s: building the basis, median of {repeats}. \
+         solve ({} s), relative 2-norm. Offline s: building the basis, median of {repeats}. \
          ★ marks the Pareto front in (offline s, the larger of the two errors, equal when equal to three significant digits).\n\n{}",
         model.dof_count(),
         reference_eigen_s,

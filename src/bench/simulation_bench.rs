@@ -161,7 +161,10 @@ pub fn bench_simulation(
         stability_rows.push(vec![
             key,
             format!("{highest_hz:.1}"),
-            format!("{critical:.3e}"),
+            format!(
+                "{critical}",
+                critical = flexmodes_core::report::readable(critical, 4)
+            ),
             if below_ok { "bounded" } else { "DIVERGED" }.to_string(),
             if above_diverged {
                 "diverged"

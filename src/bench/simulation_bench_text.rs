@@ -122,7 +122,7 @@ pub(super) fn point_rows(points: &[BenchPoint]) -> Vec<Vec<String>> {
                 p.integrator_label(),
                 p.modes.to_string(),
                 p.dofs.to_string(),
-                format!("{:.2e}", p.offline_s),
+                format!("{}", flexmodes_core::report::readable(p.offline_s, 3)),
                 format!("{:.3}", p.online_s_per_sim_s),
                 format!("{:.1}", nr_online / p.online_s_per_sim_s),
                 format!("{:.4}", p.rel_rms_error),
@@ -177,7 +177,7 @@ pub(super) fn bench_text(
     format!(
         "Errors are node 8's mean relative RMS against the full model integrated by {}; online \
      cost is the median of {repeats} runs; speed-up is against the first row. `dp5` runs \
-     at the scenes' tolerances (rtol {scene_rtol:.0e}, atol {scene_atol:.0e}), `dp5 rtol \
+     at the scenes' tolerances (rtol {scene_rtol}, atol {scene_atol}), `dp5 rtol \
      {LOOSE_RTOL:.0e}` at rtol {LOOSE_RTOL:.0e}, atol {LOOSE_ATOL:.0e}: there the error \
      control no longer binds and the step grows to the stability bound (or to the \
      {output_ms} ms output interval), \
@@ -223,7 +223,9 @@ pub(super) fn bench_text(
                 &format!("gen-alpha at {ABOVE_CRITICAL}×"),
             ],
             stability_rows,
-        )
+        ),
+        scene_rtol = flexmodes_core::report::readable(scene_rtol, 1),
+        scene_atol = flexmodes_core::report::readable(scene_atol, 1)
     ) + &evaluation_cost_text(points)
 }
 

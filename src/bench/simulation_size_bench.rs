@@ -145,7 +145,7 @@ pub fn bench_sim_sizes(
                 dofs.to_string(),
                 p.method.id().into(),
                 p.coordinates.to_string(),
-                format!("{:.2e}", p.offline_s),
+                format!("{}", flexmodes_core::report::readable(p.offline_s, 3)),
                 format!("{:.3}", p.online_s_per_sim_s),
                 format!("{:.1}", nr / p.online_s_per_sim_s),
                 format!("{:.4}", p.rel_rms_error),

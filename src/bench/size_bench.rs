@@ -271,7 +271,7 @@ pub fn bench_sizes(
          (complete dense interior eigenproblem, up to {COMPLETE_EIGEN_LIMIT} interior DOF). \
          Peak memory is the process's peak so far (sizes run ascending). Threads: what the \
          kernels may use (`--threads`; this machine has {}); a factorisation of more than \
-         {:.0e} flops and products of more than {:.0e} use them all, smaller kernels one. \
+         {} flops and products of more than {} use them all, smaller kernels one. \
          Series keys `cb_2t`: CB with 2 threads.\n\n{}\nGrowth exponents p (offline s grows as DOF^p): \
          {}\n",
         repeats.max(1),

@@ -108,9 +108,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report.table = format!(
         "Restored M⁻¹K (1/s², rows/columns: boundary DOF of nodes {masters:?}):\n\n{matrix}\n\
          {hz_table}\n\
-         Largest relative difference to Guyan's M⁻¹K: {:.1e} (R S Rᵀ has condition number \
-         {:.1e}, so about five digits are lost to round-off); largest principal angle between \
-         the implied basis and Ψ_Guyan: {:.1e} rad; zero singular values of A / restored A_r: \
+         Largest relative difference to Guyan's M⁻¹K: {} (R S Rᵀ has condition number \
+         {}, so about five digits are lost to round-off); largest principal angle between \
+         the implied basis and Ψ_Guyan: {} rad; zero singular values of A / restored A_r: \
          {} / {}.\n",
         diff,
         eit.gramian_condition,

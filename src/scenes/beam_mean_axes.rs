@@ -128,9 +128,21 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         );
         table.push(vec![
             Cell::text(m.id().to_uppercase()),
-            Cell::number(static_diff, format!("{static_diff:.1e}")),
+            Cell::number(
+                static_diff,
+                format!(
+                    "{static_diff}",
+                    static_diff = flexmodes_core::report::readable(static_diff, 2)
+                ),
+            ),
             Cell::text(crate::report::fmt_hz(&ev.normal_hz)),
-            Cell::number(angle, format!("{angle:.1e}")),
+            Cell::number(
+                angle,
+                format!(
+                    "{angle}",
+                    angle = flexmodes_core::report::readable(angle, 2)
+                ),
+            ),
         ]);
         let (sets, [constraint_tab, normal_tab]) = method_views(&model, &part, m, &ev);
         visuals.extend(sets);

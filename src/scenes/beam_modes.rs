@@ -136,7 +136,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         ],
     );
     report.table = format!(
-        "{}\nLargest principal angle between span(Ψ_CB) and span(Ψ_MC): {:.2e} rad (§6.5.4: they \
+        "{}\nLargest principal angle between span(Ψ_CB) and span(Ψ_MC): {} rad (§6.5.4: they \
          span one space).\n",
         report.add_table(Table::from_text(
             &["mode set", "computed, Hz", "published, Hz"],

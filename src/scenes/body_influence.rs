@@ -36,7 +36,13 @@ pub fn influence_table(
             Cell::number((rank + 1) as f64, format!("{}", rank + 1)),
             Cell::number((i + 1) as f64, format!("{}", i + 1)),
             Cell::number(hz[i], format!("{:.6}", hz[i])),
-            Cell::number(relative, format!("{relative:.2e}")),
+            Cell::number(
+                relative,
+                format!(
+                    "{relative}",
+                    relative = flexmodes_core::report::readable(relative, 3)
+                ),
+            ),
         ]);
     }
     let lowest_in_top = ranking.iter().take(kept).filter(|&&i| i < kept).count();

@@ -39,7 +39,10 @@ pub fn response_table(
         errors.insert(id.into(), json!(sig(e)));
         table.push(vec![
             Cell::text(id.to_uppercase()),
-            Cell::number(e, format!("{e:.2e}")),
+            Cell::number(
+                e,
+                format!("{e}", e = flexmodes_core::report::readable(e, 3)),
+            ),
         ]);
         series.push(LogLogSeries {
             id: id.into(),

@@ -50,7 +50,7 @@ pub fn summary(
     for c in &study.stability {
         text += &format!(
             "\nExplicit Dormand–Prince on {}: highest frequency {:.6} Hz, critical step \
-             {:.3e} s; the run below it ({} DP5) {}; at {:.3e} s ({:.0}× critical) {}.\n",
+             {} s; the run below it ({} DP5) {}; at {} s ({:.0}× critical) {}.\n",
             c.label,
             sig(c.highest_hz),
             c.critical_s,
@@ -127,8 +127,9 @@ fn stiffening_words(
     let share = (parameters.rate / lowest).powi(2);
     let share = if share.is_finite() {
         format!(
-            " (the spin's share of the lowest stiffness, (Ω/ω₁)², is {share:.1e} at {} rad/s)",
-            parameters.rate
+            " (the spin's share of the lowest stiffness, (Ω/ω₁)², is {share} at {} rad/s)",
+            parameters.rate,
+            share = flexmodes_core::report::readable(share, 2)
         )
     } else {
         String::new()

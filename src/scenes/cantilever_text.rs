@@ -86,8 +86,11 @@ pub(super) fn claims_text(study: &CantileverStudy) -> String {
             static_of(case, Method::BalancedTruncation),
         ) {
             out.push_str(&format!(
-                "- {text}: CB {cb:.1e}, MM {mm:.1e}, BT {bt:.1e} — {}.\n",
-                verdict(cb < 1e-8 && mm < 1e-8 && bt > 0.01)
+                "- {text}: CB {cb}, MM {mm}, BT {bt} — {}.\n",
+                verdict(cb < 1e-8 && mm < 1e-8 && bt > 0.01),
+                cb = flexmodes_core::report::readable(cb, 2),
+                mm = flexmodes_core::report::readable(mm, 2),
+                bt = flexmodes_core::report::readable(bt, 2)
             ));
         }
     }

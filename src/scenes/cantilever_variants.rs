@@ -154,7 +154,10 @@ fn statics_section(
         let peak = case.peak();
         let mut row = vec![
             Cell::text(case.id.to_uppercase()),
-            Cell::number(peak, format!("{peak:.4e}")),
+            Cell::number(
+                peak,
+                format!("{peak}", peak = flexmodes_core::report::readable(peak, 5)),
+            ),
         ];
         for m in AVAILABLE {
             match case.error(m) {
@@ -164,7 +167,10 @@ fn statics_section(
                         .or_insert_with(|| Value::Object(Map::new()))
                         .as_object_mut()
                         .map(|o| o.insert(case.id.into(), json!(sig(err))));
-                    row.push(Cell::number(err, format!("{err:.2e}")));
+                    row.push(Cell::number(
+                        err,
+                        format!("{err}", err = flexmodes_core::report::readable(err, 3)),
+                    ));
                 }
                 None => row.push(Cell::text("–")),
             }

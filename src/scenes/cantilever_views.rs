@@ -93,7 +93,13 @@ pub(super) fn static_visuals(case: &StaticCase) -> Vec<Visual> {
     }];
     let mut legend = vec![
         (case.text.to_string(), REFERENCE),
-        (format!("full: peak {peak:.3e} mm"), REFERENCE),
+        (
+            format!(
+                "full: peak {peak} mm",
+                peak = flexmodes_core::report::readable(peak, 4)
+            ),
+            REFERENCE,
+        ),
     ];
     for m in AVAILABLE {
         let Some((_, line, err)) = case.methods.iter().find(|(mm, _, _)| *mm == m) else {
@@ -107,7 +113,11 @@ pub(super) fn static_visuals(case: &StaticCase) -> Vec<Visual> {
             radius: crate::record::LINE,
         });
         legend.push((
-            format!("{}: error {err:.1e}", m.id().to_uppercase()),
+            format!(
+                "{}: error {err}",
+                m.id().to_uppercase(),
+                err = flexmodes_core::report::readable(err, 2)
+            ),
             method_color(m),
         ));
     }

@@ -82,10 +82,11 @@ pub(super) fn eitelberg_failure(model: &FeModel) -> Result<Failure> {
                 "with_feedback_hz": sig_vec(with),
             }),
             format!(
-                "`UnstableSystem`: largest real part of A's eigenvalues {max_real_part:.1e} \
+                "`UnstableSystem`: largest real part of A's eigenvalues {max_real_part} \
                  (rigid-body poles at 0, undamped poles on the imaginary axis); with L = [I I] \
                  it reduces and gives {:.4} Hz",
-                with.first().copied().unwrap_or(f64::NAN)
+                with.first().copied().unwrap_or(f64::NAN),
+                max_real_part = flexmodes_core::report::readable(max_real_part, 2)
             ),
         ),
         Ok(_) => (
@@ -147,11 +148,12 @@ pub(super) fn condensation_failure() -> Result<Failure> {
             format!(
                 "at {} DOF: MC {:.3} s against CB {:.3} s ({:.0}×); time grows as DOF^{mc_exp:.1} \
                  (CB DOF^{cb_exp:.1}) between the two largest meshes; both span one space \
-                 (largest principal angle {max_angle:.1e} rad)",
+                 (largest principal angle {max_angle} rad)",
                 dofs[n],
                 mc_s[n],
                 cb_s[n],
-                mc_s[n] / cb_s[n]
+                mc_s[n] / cb_s[n],
+                max_angle = flexmodes_core::report::readable(max_angle, 2)
             ),
             "Eq. 6.29 condenses every deleted interior mode, so it needs the complete interior \
              eigenproblem (~n³); Craig–Bampton computes only the kept modes and one \
@@ -179,7 +181,10 @@ pub(super) fn guyan_symmetry_failure(model: &FeModel) -> Result<Failure> {
         let (hz, defect) = (case.hz, case.defect);
         defects.insert(case.id.to_string(), json!(sig(defect)));
         hz_json.insert(case.id.to_string(), json!(sig(hz)));
-        said.push(format!("{name} {defect:.1e} at {hz:.4} Hz"));
+        said.push(format!(
+            "{name} {defect} at {hz:.4} Hz",
+            defect = flexmodes_core::report::readable(defect, 2)
+        ));
         let path = format!("modes/beam_{}/1", case.id);
         visuals.push(Visual::Offset {
             path: path.clone(),
@@ -193,7 +198,10 @@ pub(super) fn guyan_symmetry_failure(model: &FeModel) -> Result<Failure> {
                 strips: Geometry::of(model).strips,
             },
             shape: standing(&shape),
-            label: format!("{name}: {hz:.4} Hz, mirror defect {defect:.1e}"),
+            label: format!(
+                "{name}: {hz:.4} Hz, mirror defect {defect}",
+                defect = flexmodes_core::report::readable(defect, 2)
+            ),
             color,
         });
     }

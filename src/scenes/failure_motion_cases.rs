@@ -33,8 +33,8 @@ pub(super) fn guyan_mean_axes_failure(model: &FeModel) -> Result<Failure> {
                 .into(),
             format!(
                 "the condensed M's 3×3 nodal blocks are {:.0} % anisotropic (lumped: \
-                 {:.0e}); δ̇̃ᵀMδ̇ for two modes' velocities is {:.1} % of its \
-                 scale (full body: {:.0e}); the deformation term δ̃ᵀMδ̇ of the \
+                 {}); δ̇̃ᵀMδ̇ for two modes' velocities is {:.1} % of its \
+                 scale (full body: {}); the deformation term δ̃ᵀMδ̇ of the \
                  angular mean-axis condition is off by {:.0} %",
                 100.0 * g.anisotropy_guyan,
                 g.anisotropy_lumped,
@@ -126,13 +126,14 @@ pub(super) fn explicit_step_failure(model: &FeModel, opts: &SceneOptions) -> Res
         line: [
             "Explicit step above critical (slab-sim1, CB 6 modes, DP5 fixed step)".into(),
             format!(
-                "critical step {critical:.2e} s; at {BELOW_CRITICAL}× it runs {BELOW_RUN_S} s \
-                 ({}); at {ABOVE_CRITICAL}×: {above_text}. NR's bound is {:.1e} s \
+                "critical step {critical} s; at {BELOW_CRITICAL}× it runs {BELOW_RUN_S} s \
+                 ({}); at {ABOVE_CRITICAL}×: {above_text}. NR's bound is {} s \
                  ({:.0} Hz), {:.0}× smaller",
                 if below_ok { "bounded" } else { "FAILED" },
                 nr.critical_s,
                 nr.highest_hz,
-                critical / nr.critical_s
+                critical / nr.critical_s,
+                critical = flexmodes_core::report::readable(critical, 3)
             ),
             format!(
                 "Dormand–Prince 5(4) is stable on the imaginary axis (undamped modes) only for \
@@ -205,8 +206,9 @@ pub(super) fn boundary_motion_failure(model: &FeModel) -> Result<Failure> {
             format!(
                 "static response to a displacement of node {MOVED_NODE} (z): modal \
                  truncation's best response is {:.0} % off (strain energy {ratio:.1}× \
-                 the exact), Craig–Bampton's {cb_error:.0e}",
-                100.0 * mt_error
+                 the exact), Craig–Bampton's {cb_error}",
+                100.0 * mt_error,
+                cb_error = flexmodes_core::report::readable(cb_error, 1)
             ),
             "MT's boundary columns move no interior node (Eq. 6.17), so boundary motion reaches \
              the body only through the kept fixed-interface modes; CB's constraint modes are \

@@ -122,10 +122,31 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         table.push(vec![
             Cell::text(v.method.id().to_uppercase()),
             Cell::text(v.axes.id()),
-            Cell::number(before, format!("{before:.2e}")),
-            Cell::number(max_defect, format!("{max_defect:.2e}")),
-            Cell::number(drift, format!("{drift:.2e}")),
-            Cell::number(viol, format!("{viol:.1e}")),
+            Cell::number(
+                before,
+                format!(
+                    "{before}",
+                    before = flexmodes_core::report::readable(before, 3)
+                ),
+            ),
+            Cell::number(
+                max_defect,
+                format!(
+                    "{max_defect}",
+                    max_defect = flexmodes_core::report::readable(max_defect, 3)
+                ),
+            ),
+            Cell::number(
+                drift,
+                format!(
+                    "{drift}",
+                    drift = flexmodes_core::report::readable(drift, 3)
+                ),
+            ),
+            Cell::number(
+                viol,
+                format!("{viol}", viol = flexmodes_core::report::readable(viol, 2)),
+            ),
             Cell::number(sim.wall_time_s, format!("{:.2}", sim.wall_time_s)),
         ]);
         visuals.extend(variant_visuals(

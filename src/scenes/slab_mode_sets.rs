@@ -72,7 +72,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         for c in set.coordinates {
             row.push(Cell::number(c as f64, format!("{c}")));
         }
-        row.push(Cell::number(set.error, format!("{:.2e}", set.error)));
+        row.push(Cell::number(
+            set.error,
+            format!("{}", flexmodes_core::report::readable(set.error, 3)),
+        ));
         row
     };
     for set in &study.sets {
@@ -109,7 +112,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         sel_table.push(vec![
             Cell::text(*label),
             Cell::number(kept.len() as f64, format!("{} of {elastic}", kept.len())),
-            Cell::number(chosen.error, format!("{:.2e}", chosen.error)),
+            Cell::number(
+                chosen.error,
+                format!("{}", flexmodes_core::report::readable(chosen.error, 3)),
+            ),
         ]);
     }
     report
@@ -143,12 +149,21 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         let mut row = vec![Cell::text(format!("{degrees}°"))];
         for (m, e) in methods.iter().zip(set_err) {
             entry.insert(m.id().into(), json!(sig(*e)));
-            row.push(Cell::number(*e, format!("{e:.2e}")));
+            row.push(Cell::number(
+                *e,
+                format!("{e}", e = flexmodes_core::report::readable(e, 3)),
+            ));
         }
         entry.insert("influence".into(), json!(sig(*inf)));
         entry.insert("lowest".into(), json!(sig(*low)));
-        row.push(Cell::number(*inf, format!("{inf:.2e}")));
-        row.push(Cell::number(*low, format!("{low:.2e}")));
+        row.push(Cell::number(
+            *inf,
+            format!("{inf}", inf = flexmodes_core::report::readable(inf, 3)),
+        ));
+        row.push(Cell::number(
+            *low,
+            format!("{low}", low = flexmodes_core::report::readable(low, 3)),
+        ));
         art_table.push(row);
         articulation.insert(format!("{degrees}"), Value::Object(entry));
     }
@@ -251,9 +266,10 @@ fn claims_text(study: &DualSpinStudy) -> String {
         let [inf, low] = selections;
         out.push_str(&format!(
             "- C2 \"no error apparent with the influence-ranked modes, in spite of eliminating \
-             most rotor modes\": {} of {elastic} rotor modes kept, error {inf:.1e} — {}.\n",
+             most rotor modes\": {} of {elastic} rotor modes kept, error {inf} — {}.\n",
             ranking.influence.len(),
-            verdict(inf < 0.02)
+            verdict(inf < 0.02),
+            inf = flexmodes_core::report::readable(inf, 2)
         ));
         let last = ranking
             .influence
@@ -262,8 +278,10 @@ fn claims_text(study: &DualSpinStudy) -> String {
         out.push_str(&format!(
             "- C4 \"the kept modes are not ordered by frequency; the lowest as many give a \
              large error\": the kept set reaches up to mode {last} of {elastic}; lowest-mode \
-             error {low:.1e} against {inf:.1e} — {}.\n",
-            verdict(low > 5.0 * inf && low > 0.02)
+             error {low} against {inf} — {}.\n",
+            verdict(low > 5.0 * inf && low > 0.02),
+            low = flexmodes_core::report::readable(low, 2),
+            inf = flexmodes_core::report::readable(inf, 2)
         ));
     }
     out

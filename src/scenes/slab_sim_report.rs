@@ -74,7 +74,13 @@ pub(super) fn errors_table(
             IntegrationScheme::DormandPrince => format!("{} / {}", sim.steps, sim.rejected),
             _ => format!("{} / {}", sim.steps, sim.newton_iterations),
         }));
-        cells.push(Cell::number(max_pos, format!("{max_pos:.1e}")));
+        cells.push(Cell::number(
+            max_pos,
+            format!(
+                "{max_pos}",
+                max_pos = flexmodes_core::report::readable(max_pos, 2)
+            ),
+        ));
         table.push(cells);
     }
     report

@@ -232,13 +232,16 @@ fn campbell_report(study: &CampbellStudy, report: &mut Report, modes: usize) -> 
     );
     format!(
         "{}\nLargest difference from the published flapwise values for λ ≤ {COMPARED_UP_TO}: \
-         NR {nr_diff:.1e}, CB {modes} {cb_diff:.1e} (without stiffening: {off_diff:.1e}: the \
+         NR {nr_diff}, CB {modes} {cb_diff} (without stiffening: {off_diff}: the \
          frequency at rest at every speed). Without stiffening the lagwise frequency is \
          √(μ₁² − λ²): it reaches zero at λ = μ₁ = {mu1:.4} and the model is unstable from \
-         λ = {} on. Largest relative eigenpair residual {:.0e}.\n",
+         λ = {} on. Largest relative eigenpair residual {}.\n",
         report.add_table(table),
         unstable.map_or("–".into(), |u| format!("{u}")),
         study.max_residual,
+        nr_diff = flexmodes_core::report::readable(nr_diff, 2),
+        cb_diff = flexmodes_core::report::readable(cb_diff, 2),
+        off_diff = flexmodes_core::report::readable(off_diff, 2),
     )
 }
 

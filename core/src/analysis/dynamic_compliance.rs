@@ -54,9 +54,10 @@ pub fn full_dynamic_compliance(
     let mut values = Vec::with_capacity(hz.len());
     for (k, &f) in hz.iter().enumerate() {
         progress.phase(&format!(
-            "full body's response at {f:.4e} Hz ({} of {})",
+            "full body's response at {f} Hz ({} of {})",
             k + 1,
-            hz.len()
+            hz.len(),
+            f = crate::report::readable(f, 5)
         ))?;
         let omega = 2.0 * std::f64::consts::PI * f;
         let a = model.k.shifted(&model.m, omega * omega);

@@ -99,9 +99,8 @@ pub enum BodyFileError {
     /// A stiffness or consistent mass that is not symmetric.
     #[error(
         "{}: the {what} is not symmetric: entry ({row}, {col}) differs from ({col}, {row}) \
-         by {asymmetry:.3e} relative to the largest entry (tolerance {tolerance:.0e})",
-        path.display()
-    )]
+         by {asymmetry} relative to the largest entry (tolerance {tolerance})",
+        path.display(), asymmetry = crate::report::readable(.asymmetry, 4), tolerance = crate::report::readable(.tolerance, 1))]
     NotSymmetric {
         path: PathBuf,
         what: &'static str,

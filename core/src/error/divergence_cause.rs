@@ -22,8 +22,7 @@ pub enum DivergenceCause {
     /// A fixed step (no error control) took the state past the bound or to non-finite
     /// values.
     #[error(
-        "with the fixed step {step:.4e} s the state grew beyond {bound:e} or became non-finite"
-    )]
+        "with the fixed step {step} s the state grew beyond {bound:e} or became non-finite", step = crate::report::readable(.step, 5))]
     FixedStepBeyondBound {
         /// The step, s.
         step: f64,
@@ -31,7 +30,7 @@ pub enum DivergenceCause {
         bound: f64,
     },
     /// A fixed step reached a state whose system matrix lost definiteness in floating point.
-    #[error("with the fixed step {step:.4e} s the {matrix} became singular")]
+    #[error("with the fixed step {step} s the {matrix} became singular", step = crate::report::readable(.step, 5))]
     FixedStepSingular {
         /// The step, s.
         step: f64,
@@ -40,8 +39,7 @@ pub enum DivergenceCause {
     },
     /// A coordinate of a fixed-step integration passed the bound.
     #[error(
-        "a coordinate reached {largest:.3e}, beyond {bound:.3e}, with fixed steps of {step:.3e} s"
-    )]
+        "a coordinate reached {largest}, beyond {bound}, with fixed steps of {step} s", largest = crate::report::readable(.largest, 4), bound = crate::report::readable(.bound, 4), step = crate::report::readable(.step, 4))]
     CoordinateBeyondBound {
         /// The largest coordinate's magnitude.
         largest: f64,

@@ -77,9 +77,8 @@ pub enum DynamicsError {
 
     /// A basis column that moves a DOF the driven frame holds.
     #[error(
-        "column {column} of the basis moves DOF {dof} (1-based) by {motion:.3e}, which the frame \
-         holds (the drive's ring does not move; a pinned ring only turns about its master)"
-    )]
+        "column {column} of the basis moves DOF {dof} (1-based) by {motion}, which the frame \
+         holds (the drive's ring does not move; a pinned ring only turns about its master)", motion = crate::report::readable(.motion, 4))]
     BasisMovesHeldDof {
         column: usize,
         dof: usize,
@@ -136,8 +135,8 @@ pub enum DynamicsError {
     #[error(
         "the body's [preload] was written for another spin: {}",
         match (angle_rad, offset, held) {
-            (Some(a), _, _) => format!("its axis is {a:.2e} rad from the spin axis"),
-            (_, Some(d), _) => format!("its axis passes {d:.3e} from the frame's origin"),
+            (Some(a), _, _) => format!("its axis is {a} rad from the spin axis", a = crate::report::readable(a, 3)),
+            (_, Some(d), _) => format!("its axis passes {d} from the frame's origin", d = crate::report::readable(d, 4)),
             (_, _, Some((h, r, both))) => format!(
                 "its static step held {h} DOF, the drive's ring clamps {r} ({both} of them in                  both): hold the drive's ring alone in CalculiX's *BOUNDARY"
             ),
@@ -158,8 +157,8 @@ pub enum DynamicsError {
         match case {
             Some(c) => format!(
                 "the geometric stiffness of the {c} case is {rows} × {cols} with a symmetry \
-                 defect {defect:.1e}: it must be {dim} × {dim} and symmetric"
-            ),
+                 defect {defect}: it must be {dim} × {dim} and symmetric"
+            , defect = crate::report::readable(defect, 2)),
             None => "a body's stiffening needs at least one geometric stiffness".to_string(),
         }
     )]

@@ -42,7 +42,8 @@ impl std::fmt::Display for EigenRoute {
                 null_vectors,
             } => write!(
                 f,
-                "shift {shift:.2e} (rad/s)², {null_vectors} null vectors deflated"
+                "shift {shift} (rad/s)², {null_vectors} null vectors deflated",
+                shift = crate::report::readable(shift, 3)
             ),
             Self::SpectrumShift {
                 shift,
@@ -50,8 +51,9 @@ impl std::fmt::Display for EigenRoute {
                 restarts,
             } => write!(
                 f,
-                "shift {shift:.2e} (rad/s)² from the lowest elastic estimate, block {block}, \
-                 {restarts} restarts"
+                "shift {shift} (rad/s)² from the lowest elastic estimate, block {block}, \
+                 {restarts} restarts",
+                shift = crate::report::readable(shift, 3)
             ),
             Self::CompleteDense => f.write_str("complete dense solve"),
         }
@@ -66,8 +68,10 @@ impl std::fmt::Display for EigenAttempt {
         }
         write!(
             f,
-            ": {} of {} pairs, worst residual {:.1e}",
-            self.converged, self.wanted, self.residual
+            ": {} of {} pairs, worst residual {}",
+            self.converged,
+            self.wanted,
+            crate::report::readable(self.residual, 2)
         )
     }
 }
@@ -90,7 +94,7 @@ mod tests {
         };
         assert_eq!(
             missed.to_string(),
-            "shift -7.50e3 (rad/s)², 6 null vectors deflated (Sturm count: 2 missed): 8 of 10 \
+            "shift -7500 (rad/s)², 6 null vectors deflated (Sturm count: 2 missed): 8 of 10 \
              pairs, worst residual NaN"
         );
         let stalled = EigenAttempt {
@@ -106,7 +110,7 @@ mod tests {
         };
         assert_eq!(
             stalled.to_string(),
-            "shift -2.00e5 (rad/s)² from the lowest elastic estimate, block 8, 150 restarts: 3 \
+            "shift -200000 (rad/s)² from the lowest elastic estimate, block 8, 150 restarts: 3 \
              of 10 pairs, worst residual 2.5e-6"
         );
     }

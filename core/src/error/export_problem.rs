@@ -25,9 +25,8 @@ pub enum ExportProblem {
 
     /// The basis moves a node of the frame's ring (m, per unit modal coordinate).
     #[error(
-        "the kept basis moves node {node} of the frame's ring `{ring}` by {moved:.2e} (largest \
-         entry {largest:.2e}): the frame would not be attached to it"
-    )]
+        "the kept basis moves node {node} of the frame's ring `{ring}` by {moved} (largest \
+         entry {largest}): the frame would not be attached to it", moved = crate::report::readable(.moved, 3), largest = crate::report::readable(.largest, 3))]
     FrameRingMoves {
         node: usize,
         ring: super::Name,
@@ -56,8 +55,7 @@ pub enum ExportProblem {
     /// The basis without the ring's constraint modes still has zero-energy modes.
     #[error(
         "the basis without `{ring}`'s constraint modes keeps {zero} zero-energy mode(s) (lowest \
-         {lowest_hz:.3e} Hz): the frame's interface alone does not hold the body"
-    )]
+         {lowest_hz} Hz): the frame's interface alone does not hold the body", lowest_hz = crate::report::readable(.lowest_hz, 4))]
     ZeroEnergyLeft {
         ring: super::Name,
         zero: usize,

@@ -156,9 +156,8 @@ pub enum Error {
     /// A stiffness with more zero-energy modes than a free body has rigid motions.
     #[error(
         "the body `{body}` is a mechanism: its stiffness has {zero_modes} zero-energy modes \
-         (below {threshold_hz:.1e} Hz), more than the {rigid} rigid-body motions of a free \
-         body; some DOF are unconnected or a joint is missing"
-    )]
+         (below {threshold_hz} Hz), more than the {rigid} rigid-body motions of a free \
+         body; some DOF are unconnected or a joint is missing", threshold_hz = crate::report::readable(.threshold_hz, 2))]
     Mechanism {
         body: super::Name,
         zero_modes: usize,

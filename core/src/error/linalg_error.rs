@@ -48,8 +48,7 @@ pub enum LinalgError {
     /// The partial eigensolver stopped before every wanted pair was accurate.
     #[error(
         "the partial eigensolver did not converge: {converged} of {wanted} pairs converged, \
-         worst relative residual {residual:.1e}"
-    )]
+         worst relative residual {residual}", residual = crate::report::readable(.residual, 2))]
     EigenNotConverged {
         converged: usize,
         wanted: usize,
@@ -71,8 +70,7 @@ pub enum LinalgError {
     /// `tries` shifts tried; `last` is why the last one failed.
     #[error(
         "the Sturm sequence check failed: K - σ'M could not be factored accurately at any of \
-         {tries} shifts, the last σ' = {shift:.6e} (rad/s)²"
-    )]
+         {tries} shifts, the last σ' = {shift} (rad/s)²", shift = crate::report::readable(.shift, 7))]
     SturmCheckFailed {
         shift: f64,
         tries: usize,
@@ -83,9 +81,8 @@ pub enum LinalgError {
     /// An unpivoted $LDL^T$ factor of $K - \sigma' M$ that grew: its solves' backward error
     /// is above the bound, so its inertia may be wrong.
     #[error(
-        "the LDLᵀ factor of K - σ'M at σ' = {shift:.6e} (rad/s)² solves with a backward error \
-         of {backward:.1e}, above {bound:.0e}"
-    )]
+        "the LDLᵀ factor of K - σ'M at σ' = {shift} (rad/s)² solves with a backward error \
+         of {backward}, above {bound}", shift = crate::report::readable(.shift, 7), backward = crate::report::readable(.backward, 2), bound = crate::report::readable(.bound, 1))]
     SturmFactorInaccurate {
         shift: f64,
         backward: f64,
@@ -105,9 +102,8 @@ pub enum LinalgError {
     /// A partial eigensolution that the Sturm count shows to have skipped eigenvalues, after
     /// every retry.
     #[error(
-        "the partial eigensolver missed {missed} mode(s) below {hz:.6e} Hz: the Sturm count \
-         finds {below} eigenvalues below the shift, the solver {found}"
-    )]
+        "the partial eigensolver missed {missed} mode(s) below {hz} Hz: the Sturm count \
+         finds {below} eigenvalues below the shift, the solver {found}", hz = crate::report::readable(.hz, 7))]
     MissedModes {
         missed: usize,
         below: usize,
@@ -118,9 +114,8 @@ pub enum LinalgError {
     /// A dense eigen-decomposition whose pairs failed their residual or orthonormality check
     /// with every kernel tried.
     #[error(
-        "the {what} eigenproblem failed its check: worst residual {residual:.1e} against a \
-         tolerance of {tolerance:.1e} (faer and nalgebra both tried)"
-    )]
+        "the {what} eigenproblem failed its check: worst residual {residual} against a \
+         tolerance of {tolerance} (faer and nalgebra both tried)", residual = crate::report::readable(.residual, 2), tolerance = crate::report::readable(.tolerance, 2))]
     EigenCheckFailed {
         what: MatrixLabel,
         residual: f64,
@@ -144,7 +139,7 @@ pub enum LinalgError {
     /// computed.
     #[error(
         "the {matrix} matrix is singular{}",
-        rcond.map(|r| format!(" (reciprocal condition estimate {r:.1e})")).unwrap_or_default()
+        rcond.map(|r| format!(" (reciprocal condition estimate {r})", r = crate::report::readable(r, 2))).unwrap_or_default()
     )]
     SingularMatrix {
         matrix: MatrixLabel,
@@ -166,15 +161,14 @@ pub enum LinalgError {
     /// The Lyapunov equation solve left a residual larger than its tolerance.
     /// A solve with a factor left a residual above its tolerance after refinement.
     #[error(
-        "the solve with the {matrix} matrix left a relative residual {residual:.1e} after \
-         refinement (tolerance {tolerance:.0e})"
-    )]
+        "the solve with the {matrix} matrix left a relative residual {residual} after \
+         refinement (tolerance {tolerance})", residual = crate::report::readable(.residual, 2), tolerance = crate::report::readable(.tolerance, 1))]
     SolveInaccurate {
         matrix: MatrixLabel,
         residual: f64,
         tolerance: f64,
     },
 
-    #[error("the Lyapunov equation was solved with relative residual {residual:.1e}")]
+    #[error("the Lyapunov equation was solved with relative residual {residual}", residual = crate::report::readable(.residual, 2))]
     LyapunovInaccurate { residual: f64 },
 }

@@ -13,8 +13,7 @@ pub enum MassDefect {
     /// A consistent mass whose Cholesky pivot is not positive, even after `regularisation`
     /// of its diagonal was added (a mass semi-definite beyond round-off).
     #[error(
-        "the Cholesky pivot of this DOF is not positive, even with {regularisation:.0e} of the \
-         diagonal added"
-    )]
+        "the Cholesky pivot of this DOF is not positive, even with {regularisation} of the \
+         diagonal added", regularisation = crate::report::readable(.regularisation, 1))]
     Pivot { regularisation: f64 },
 }

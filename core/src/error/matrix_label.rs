@@ -96,7 +96,9 @@ impl fmt::Display for MatrixLabel {
         }
         match &self.context {
             Some(LabelContext::Body(body)) => write!(f, " of {body}"),
-            Some(LabelContext::AtHz(hz)) => write!(f, " at {hz:.4e} Hz"),
+            Some(LabelContext::AtHz(hz)) => {
+                write!(f, " at {hz} Hz", hz = crate::report::readable(hz, 5))
+            }
             _ => Ok(()),
         }
     }
@@ -127,7 +129,7 @@ mod tests {
             ),
             (
                 MatrixLabel::at_hz("K - ω²M", 1234.5),
-                "K - ω²M at 1.2345e3 Hz",
+                "K - ω²M at 1234.5 Hz",
             ),
         ] {
             assert_eq!(label.to_string(), text);

@@ -28,8 +28,7 @@ pub enum ReductionError {
     /// largest coupling entry over the largest entry of $K_r$.
     #[error(
         "the Craig-Bampton structure check failed: the constraint modes couple to the normal \
-         modes through K_r at {coupling:.1e} of its largest entry (tolerance {tolerance:.0e})"
-    )]
+         modes through K_r at {coupling} of its largest entry (tolerance {tolerance})", coupling = crate::report::readable(.coupling, 2), tolerance = crate::report::readable(.tolerance, 1))]
     ConstraintModesCouple { coupling: f64, tolerance: f64 },
 
     /// An export another code cannot take as it is (`to`: the code).
@@ -126,8 +125,7 @@ pub enum ReductionError {
     /// Eitelberg's method needs every pole of A in the open left half-plane.
     #[error(
         "Eitelberg's method needs a stable A, but its largest real eigenvalue part is \
-         {max_real_part:.3e} >= 0 (use the output-feedback trick A - B L C)"
-    )]
+         {max_real_part} >= 0 (use the output-feedback trick A - B L C)", max_real_part = crate::report::readable(.max_real_part, 4))]
     UnstableSystem { max_real_part: f64 },
 
     /// Nodal-fixed axes whose plane is given by one axis twice.

@@ -107,7 +107,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
     let text = format!(
         "# {} ({})\n\n{}\n\n- {} nodes × {} DOF ({}) = {} DOF, node-major\n- K: {} stored \
          entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
-         coordinates: {}\n- zero-energy modes: {} (below {:.2e} Hz; a free {} body has {}){}\n\
+         coordinates: {}\n- zero-energy modes: {} (below {} Hz; a free {} body has {}){}\n\
          - lowest elastic frequencies, Hz: {} ({})\n- missed modes: {}\n- mass centre: {}; inertia about it: {}\n\
          - node sets: {}\n- units: {}, {}, {}",
         model.name,

@@ -298,7 +298,7 @@ impl<'a> BodyReducer<'a> {
         let lowest = self.lowest_elastic_omega()?;
         let blocks = kept.div_ceil(loads.count()).max(1);
         let note = format!(
-            "Krylov blocks about s0 = {:.4e} rad/s (the lowest elastic ω) of the {} \
+            "Krylov blocks about s0 = {} rad/s (the lowest elastic ω) of the {} \
              interface loads made self-equilibrated, {blocks} block(s), beside the \
              zero-energy modes",
             lowest,

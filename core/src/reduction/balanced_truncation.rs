@@ -243,7 +243,11 @@ pub fn balanced_basis(model: &FeModel, p: &BalancedBasisParameters) -> Result<Ba
         columns.push(Column {
             kind: ColumnKind::Balanced { value: s[src] },
             dof: None,
-            label: format!("balanced {} ({:.3e})", c + 1, s[src]),
+            label: format!(
+                "balanced {} ({})",
+                c + 1,
+                crate::report::readable(s[src], 4)
+            ),
         });
     }
     Ok(Basis {

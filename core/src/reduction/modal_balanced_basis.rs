@@ -133,7 +133,11 @@ pub fn modal_balanced_basis(
                 value: evd.values[src],
             },
             dof: None,
-            label: format!("balanced {} ({:.3e})", c + 1, evd.values[src]),
+            label: format!(
+                "balanced {} ({})",
+                c + 1,
+                crate::report::readable(evd.values[src], 4)
+            ),
         });
     }
     let statistics = ReductionStatistics {
