@@ -340,11 +340,13 @@ fn a_hundred_mutated_body_files_load_or_give_named_errors() {
     run((0..QUICK_CASES).collect());
 }
 
-/// The thorough set; `FLEXMODES_FUZZ_SEEDS=821,1370` replays those seeds alone.
+/// The thorough set; `FLEXMODES_FUZZ_SEEDS=821,1370` replays those seeds alone, and
+/// `FLEXMODES_FUZZ_SHARD=2/3` runs every third seed from the second on (CI runs one process
+/// per core: the counting allocator measures one case at a time per process).
 #[test]
 #[ignore = "thousands of cases: CI runs them (`cargo test --test fuzz_readers -- --ignored`)"]
 fn thousands_of_mutated_body_files_load_or_give_named_errors() {
-    let seeds = match std::env::var("FLEXMODES_FUZZ_SEEDS") {
+    let seeds: Vec<u64> = match std::env::var("FLEXMODES_FUZZ_SEEDS") {
         Ok(list) => list
             .split(',')
             .map(|s| {
@@ -354,6 +356,17 @@ fn thousands_of_mutated_body_files_load_or_give_named_errors() {
             })
             .collect(),
         Err(_) => (QUICK_CASES..QUICK_CASES + THOROUGH_CASES).collect(),
+    };
+    let seeds = match std::env::var("FLEXMODES_FUZZ_SHARD") {
+        Ok(shard) => {
+            let (i, n) = shard
+                .split_once('/')
+                .and_then(|(i, n)| Some((i.parse::<usize>().ok()?, n.parse::<usize>().ok()?)))
+                .filter(|&(i, n)| (1..=n).contains(&i))
+                .expect("FLEXMODES_FUZZ_SHARD: I/N with 1 <= I <= N");
+            seeds.into_iter().skip(i - 1).step_by(n).collect()
+        }
+        Err(_) => seeds,
     };
     run(seeds);
 }
