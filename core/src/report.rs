@@ -249,17 +249,19 @@ pub fn residual_note(hz: &[f64], residuals: &[f64]) -> String {
         )
     } else if flagged.len() <= NAMED {
         format!(
-            "**residual above {RESIDUAL_FLAG:.0e}, not to be trusted:** {}",
-            flagged.join(", ")
+            "**residual above {RESIDUAL_FLAG}, not to be trusted:** {}",
+            flagged.join(", "),
+            RESIDUAL_FLAG = crate::report::readable(RESIDUAL_FLAG, 1)
         )
     } else {
         format!(
-            "**residual above {RESIDUAL_FLAG:.0e} in {} of {} pairs (worst {worst}), not to \
+            "**residual above {RESIDUAL_FLAG} in {} of {} pairs (worst {worst}), not to \
              be trusted:** {}, …",
             flagged.len(),
             hz.len(),
             flagged[..NAMED].join(", "),
-            worst = crate::report::readable(worst, 2)
+            worst = crate::report::readable(worst, 2),
+            RESIDUAL_FLAG = crate::report::readable(RESIDUAL_FLAG, 1)
         )
     }
 }

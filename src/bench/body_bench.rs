@@ -177,7 +177,7 @@ fn table_text(
             &rows,
         ),
         advice.band_hz,
-        advice.tolerance,
+        flexmodes_core::report::readable(advice.tolerance, 1),
         match advice.rule_of_thumb {
             Some((a, b)) => format!(
                 "; the rule of thumb (fixed-interface modes up to 1.5–2× the band's top) keeps \

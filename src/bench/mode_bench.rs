@@ -169,8 +169,8 @@ pub fn bench_modes(
          solve ({} s), relative 2-norm. Offline s: building the basis, median of {repeats}. \
          ★ marks the Pareto front in (offline s, the larger of the two errors, equal when equal to three significant digits).\n\n{}",
         model.dof_count(),
-        reference_eigen_s,
-        reference_static_s,
+        flexmodes_core::report::readable(reference_eigen_s, 3),
+        flexmodes_core::report::readable(reference_static_s, 3),
         markdown_table(
             &[
                 "method",

@@ -459,9 +459,10 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
             "# bench {scene}\n\nLeft: node 8's relative RMS error against the online cost \
              (wall seconds per simulated second), log–log; one line per method and \
              integrator through 2, 4, 6, 12 kept modes (gen-alpha in the paler shade, \
-             Dormand–Prince at rtol {LOOSE_RTOL:.0e} in the darker one), the \
+             Dormand–Prince at rtol {LOOSE_RTOL} in the darker one), the \
              Pareto front in dark grey. Right: error against kept modes (Dormand–Prince).\n\n\
-             {table}"
+             {table}",
+            LOOSE_RTOL = flexmodes_core::report::readable(LOOSE_RTOL, 1)
         ),
         visuals,
         layout: Layout::bench_charts(

@@ -178,7 +178,7 @@ pub(super) fn bench_text(
         "Errors are node 8's mean relative RMS against the full model integrated by {}; online \
      cost is the median of {repeats} runs; speed-up is against the first row. `dp5` runs \
      at the scenes' tolerances (rtol {scene_rtol}, atol {scene_atol}), `dp5 rtol \
-     {LOOSE_RTOL:.0e}` at rtol {LOOSE_RTOL:.0e}, atol {LOOSE_ATOL:.0e}: there the error \
+     {LOOSE_RTOL}` at rtol {LOOSE_RTOL}, atol {LOOSE_ATOL}: there the error \
      control no longer binds and the step grows to the stability bound (or to the \
      {output_ms} ms output interval), \
      which is where a reduced model's lower highest frequency buys an explicit scheme \
@@ -225,7 +225,9 @@ pub(super) fn bench_text(
             stability_rows,
         ),
         scene_rtol = flexmodes_core::report::readable(scene_rtol, 1),
-        scene_atol = flexmodes_core::report::readable(scene_atol, 1)
+        scene_atol = flexmodes_core::report::readable(scene_atol, 1),
+        LOOSE_RTOL = flexmodes_core::report::readable(LOOSE_RTOL, 1),
+        LOOSE_ATOL = flexmodes_core::report::readable(LOOSE_ATOL, 1)
     ) + &evaluation_cost_text(points)
 }
 

@@ -276,8 +276,8 @@ pub fn bench_sizes(
          {}\n",
         repeats.max(1),
         crate::linalg::machine_threads(),
-        crate::linalg::PARALLEL_FACTOR_FLOPS,
-        crate::linalg::PARALLEL_FLOPS,
+        flexmodes_core::report::readable(crate::linalg::PARALLEL_FACTOR_FLOPS, 1),
+        flexmodes_core::report::readable(crate::linalg::PARALLEL_FLOPS, 1),
         markdown_table(
             &[
                 "mesh",

@@ -112,9 +112,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          {}, so about five digits are lost to round-off); largest principal angle between \
          the implied basis and Ψ_Guyan: {} rad; zero singular values of A / restored A_r: \
          {} / {}.\n",
-        diff,
-        eit.gramian_condition,
-        max_angle,
+        flexmodes_core::report::readable(diff, 2),
+        flexmodes_core::report::readable(eit.gramian_condition, 2),
+        flexmodes_core::report::readable(max_angle, 2),
         eit.zero_singular_values.0,
         eit.zero_singular_values.1,
     );

@@ -142,7 +142,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             &["mode set", "computed, Hz", "published, Hz"],
             &rows
         )),
-        sig(max_angle)
+        flexmodes_core::report::readable(sig(max_angle), 3)
     );
 
     let markdown = scene_text(&b, kept, &report.table);

@@ -1,10 +1,7 @@
 //! The body modes scene's text: the body, its interface and every frequency and residual, and what each method keeps.
 
 use super::SceneOptions;
-use crate::{
-    body_file::ImportedBody,
-    report::{fmt_hz, sig},
-};
+use crate::{body_file::ImportedBody, report::fmt_hz};
 
 /// The tables and sections of the body modes scene's text, already written.
 pub(super) struct BodyTables<'a> {
@@ -59,13 +56,13 @@ pub(super) fn body_text(
                 "; rbe2 `{}`: {} nodes tied to a master at ({})",
                 i.name,
                 i.nodes.len(),
-                i.master.map(|x| format!("{}", sig(x))).join(", ")
+                i.master.map(flexmodes_core::report::sig6).join(", ")
             ))
             .chain(opts.averaging_interfaces.iter().map(|i| format!(
                 "; rbe3 `{}`: {} nodes averaged into a master at ({}), loading it and free",
                 i.name,
                 i.nodes.len(),
-                i.master.map(|x| format!("{}", sig(x))).join(", ")
+                i.master.map(flexmodes_core::report::sig6).join(", ")
             )))
             .collect::<String>(),
         tables.summary,

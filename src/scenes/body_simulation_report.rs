@@ -53,13 +53,16 @@ pub fn summary(
              {} s; the run below it ({} DP5) {}; at {} s ({:.0}× critical) {}.\n",
             c.label,
             sig(c.highest_hz),
-            c.critical_s,
+            flexmodes_core::report::readable(c.critical_s, 4),
             c.label,
             "is bounded (its row above)",
-            c.above_step_s,
+            flexmodes_core::report::readable(c.above_step_s, 4),
             c.above_step_s / c.critical_s,
             match c.diverged_at {
-                Some(t) => format!("it diverged at t = {t:.4e} s, as predicted"),
+                Some(t) => format!(
+                    "it diverged at t = {t} s, as predicted",
+                    t = flexmodes_core::report::readable(t, 5)
+                ),
                 None => "it did NOT diverge: the prediction is not confirmed".into(),
             }
         );
@@ -236,7 +239,11 @@ fn final_values(study: &DrivenStudy, force: &str) -> String {
                 .zip(&run.outputs)
                 .map(|(name, h)| {
                     let u = h.last().copied().unwrap_or([0.0; 3]);
-                    format!("{name} ({})", u.map(|x| format!("{x:.6e}")).join(", "))
+                    format!(
+                        "{name} ({})",
+                        u.map(|x| format!("{x}", x = flexmodes_core::report::readable(x, 7)))
+                            .join(", ")
+                    )
                 })
                 .collect();
             let r = run.reaction.last().copied().unwrap_or([0.0; 6]);
@@ -246,7 +253,7 @@ fn final_values(study: &DrivenStudy, force: &str) -> String {
                 finals.join("; "),
                 r[..3]
                     .iter()
-                    .map(|x| format!("{x:.6e}"))
+                    .map(|x| format!("{x}", x = flexmodes_core::report::readable(x, 7)))
                     .collect::<Vec<_>>()
                     .join(", ")
             );

@@ -93,13 +93,7 @@ pub(super) fn static_visuals(case: &StaticCase) -> Vec<Visual> {
     }];
     let mut legend = vec![
         (case.text.to_string(), REFERENCE),
-        (
-            format!(
-                "full: peak {peak} mm",
-                peak = flexmodes_core::report::readable(peak, 4)
-            ),
-            REFERENCE,
-        ),
+        (format!("full: peak {peak:.3e} mm"), REFERENCE),
     ];
     for m in AVAILABLE {
         let Some((_, line, err)) = case.methods.iter().find(|(mm, _, _)| *mm == m) else {
@@ -113,11 +107,7 @@ pub(super) fn static_visuals(case: &StaticCase) -> Vec<Visual> {
             radius: crate::record::LINE,
         });
         legend.push((
-            format!(
-                "{}: error {err}",
-                m.id().to_uppercase(),
-                err = flexmodes_core::report::readable(err, 2)
-            ),
+            format!("{}: error {err:.1e}", m.id().to_uppercase()),
             method_color(m),
         ));
     }

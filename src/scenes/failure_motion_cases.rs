@@ -37,9 +37,9 @@ pub(super) fn guyan_mean_axes_failure(model: &FeModel) -> Result<Failure> {
                  scale (full body: {}); the deformation term δ̃ᵀMδ̇ of the \
                  angular mean-axis condition is off by {:.0} %",
                 100.0 * g.anisotropy_guyan,
-                g.anisotropy_lumped,
+                flexmodes_core::report::readable(g.anisotropy_lumped, 1),
                 100.0 * g.identity_guyan,
-                g.identity_full,
+                flexmodes_core::report::readable(g.identity_full, 1),
                 100.0 * g.coupling_error
             ),
             "Eqs. 3.26 and 4.17 need M's nodal blocks to be multiples of I (lumped or \
@@ -130,7 +130,7 @@ pub(super) fn explicit_step_failure(model: &FeModel, opts: &SceneOptions) -> Res
                  ({}); at {ABOVE_CRITICAL}×: {above_text}. NR's bound is {} s \
                  ({:.0} Hz), {:.0}× smaller",
                 if below_ok { "bounded" } else { "FAILED" },
-                nr.critical_s,
+                flexmodes_core::report::readable(nr.critical_s, 2),
                 nr.highest_hz,
                 critical / nr.critical_s,
                 critical = flexmodes_core::report::readable(critical, 3)

@@ -229,7 +229,7 @@ fn scene_text(study: &DualSpinStudy, tables: &str) -> String {
          **Second stage** (the rotor's CB set diagonalised, the hub's six DOF as inputs and \
          outputs, Eq. 44): modes with σ ≥ {INFLUENCE_FRACTION:e} σ_max are kept — {kept} of \
          {elastic}: elastic modes {kept_numbers:?}; against the same number of lowest modes. The \
-         stator keeps its whole CB set. Eq. (45)'s closeness is {closeness:.3e} (much less than 1 is \
+         stator keeps its whole CB set. Eq. (45)'s closeness is {closeness} (much less than 1 is \
          required: repeated boom modes violate it, as Galileo's ten modes at 5.83 Hz did).\n\n\
          {tables}",
         booms = params.booms,
@@ -239,7 +239,7 @@ fn scene_text(study: &DualSpinStudy, tables: &str) -> String {
         dofs = study.full.size(),
         kept = ranking.influence.len(),
         elastic = study.rotor_elastic(),
-        closeness = ranking.closeness,
+        closeness = flexmodes_core::report::readable(ranking.closeness, 4),
     )
 }
 
@@ -256,7 +256,11 @@ fn claims_text(study: &DualSpinStudy) -> String {
             "- C1 \"all mode sets performed equally well, virtually no error in 0–10 Hz\": \
              errors {} — {} (read as: every set below 2 % of the peak).\n",
             sets.iter()
-                .map(|(m, e)| format!("{} {e:.1e}", m.id().to_uppercase()))
+                .map(|(m, e)| format!(
+                    "{} {e}",
+                    m.id().to_uppercase(),
+                    e = flexmodes_core::report::readable(e, 2)
+                ))
                 .collect::<Vec<_>>()
                 .join(", "),
             verdict(worst < 0.02),

@@ -76,12 +76,14 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         "## Campbell diagram\n\nThe clamped-free beam spun about its root: flapwise and \
          lagwise frequencies μ = ω√(ρAL⁴/EI) against λ = Ω√(ρAL⁴/EI), beside the published \
          flapwise values (Wright, Smith, Thresher & Wang 1982; Hodges & Rutkowski 1981), \
-         tolerance {PUBLISHED_TOLERANCE:.0e} for λ ≤ {COMPARED_UP_TO}.\n\n{campbell_table}\n\
+         tolerance {PUBLISHED_TOLERANCE} for λ ≤ {COMPARED_UP_TO}.\n\n{campbell_table}\n\
          ## Kane's spin-up\n\nThe 10 m beam (EI = 14 000 N m², ρA = 1.2 kg/m, EA = 2.8e7 N) \
          on a hub turned by θ(t) = (ω_s/T_s)(t²/2 + (T_s/2π)²(cos 2πt/T_s − 1)), T_s = 15 s: \
          the tip's deflection in the hub frame against a co-rotational beam computed \
          independently (assets/generate/spinning_beam_reference.py), tolerance \
-         {SPIN_UP_TOLERANCE:.0e} of its peak.\n\n{spin_table}"
+         {SPIN_UP_TOLERANCE} of its peak.\n\n{spin_table}",
+        PUBLISHED_TOLERANCE = flexmodes_core::report::readable(PUBLISHED_TOLERANCE, 1),
+        SPIN_UP_TOLERANCE = flexmodes_core::report::readable(SPIN_UP_TOLERANCE, 1)
     );
     let markdown = format!(
         "# spin-up\n\nA floating-frame body whose elastic coordinates enter linearly has no \
@@ -238,7 +240,7 @@ fn campbell_report(study: &CampbellStudy, report: &mut Report, modes: usize) -> 
          λ = {} on. Largest relative eigenpair residual {}.\n",
         report.add_table(table),
         unstable.map_or("–".into(), |u| format!("{u}")),
-        study.max_residual,
+        flexmodes_core::report::readable(study.max_residual, 1),
         nr_diff = flexmodes_core::report::readable(nr_diff, 2),
         cb_diff = flexmodes_core::report::readable(cb_diff, 2),
         off_diff = flexmodes_core::report::readable(off_diff, 2),

@@ -7,14 +7,17 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error, serde::Serialize)]
 pub enum DivergenceCause {
     /// A state component passed the divergence bound between steps.
-    #[error("the state grew beyond {bound:e}")]
+    #[error("the state grew beyond {bound}", bound = crate::report::readable(.bound, 2))]
     StateBeyondBound {
         /// The bound (m, m/s, rad/s, modal units).
         bound: f64,
     },
     /// Adaptive steps shrank below the smallest step while the state kept leaving the bound
     /// or turning non-finite.
-    #[error("the state grew beyond {bound:e} or became non-finite")]
+    #[error(
+        "the state grew beyond {bound} or became non-finite",
+        bound = crate::report::readable(.bound, 2)
+    )]
     StepsCannotHold {
         /// The bound.
         bound: f64,
@@ -22,7 +25,10 @@ pub enum DivergenceCause {
     /// A fixed step (no error control) took the state past the bound or to non-finite
     /// values.
     #[error(
-        "with the fixed step {step} s the state grew beyond {bound:e} or became non-finite", step = crate::report::readable(.step, 5))]
+        "with the fixed step {step} s the state grew beyond {bound} or became non-finite",
+        step = crate::report::readable(.step, 5),
+        bound = crate::report::readable(.bound, 2)
+    )]
     FixedStepBeyondBound {
         /// The step, s.
         step: f64,

@@ -130,7 +130,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
             "none (report and export work; drawing does not)".into()
         },
         full.zero_modes,
-        full.threshold_hz,
+        crate::report::readable(full.threshold_hz, 3),
         if model.spatial_dim() == 2 {
             "planar"
         } else {
@@ -141,13 +141,14 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
             " — the body was restrained before export".to_string()
         } else if let Some(defect) = defect {
             format!(
-                "; they are the rigid motions of the node coordinates (K R = {defect:.1e} of \
+                "; they are the rigid motions of the node coordinates (K R = {defect} of \
                  |K||R|{})",
                 if defect > 1e-13 {
                     ": the matrices' own precision, which every residual check allows for"
                 } else {
                     ""
-                }
+                },
+                defect = crate::report::readable(defect, 2)
             )
         } else {
             String::new()

@@ -301,7 +301,7 @@ impl<'a> BodyReducer<'a> {
             "Krylov blocks about s0 = {} rad/s (the lowest elastic ω) of the {} \
              interface loads made self-equilibrated, {blocks} block(s), beside the \
              zero-energy modes",
-            lowest,
+            crate::report::readable(lowest, 5),
             loads.count()
         );
         self.progress.phase("moment matching")?;
