@@ -5,6 +5,12 @@ and of every other label.
 
     python3 assets/gui/chart_labels.py target/gui-check/l-bracket/final.png ...
     python3 assets/gui/chart_labels.py --self-test target/gui-check/l-bracket/final.png
+    python3 assets/gui/chart_labels.py --recordings target/ci-recordings \
+        --binary target/debug/flexmodes --out target/gui-check/recordings
+
+With --recordings every `.rrd` in the folder is opened by `flexmodes view FILE --screenshot`
+(the gui build) under a private Xvfb, in both themes, and each screenshot is checked (the
+viewer alone: no explorer panel).
 
 The viewer (Rerun 0.36) draws a label as its text on a rounded box of one translucent colour,
 6 px wider and 4 px taller than the text on each side; on a 2-D view's plain background that
@@ -28,6 +34,9 @@ each copy is caught: a check that cannot fail proves nothing.
 """
 
 import argparse
+import glob
+import os
+import subprocess
 import sys
 
 import numpy as np
@@ -93,6 +102,37 @@ def patches(pixels, colour, min_size=MIN_BOX, solid=False):
     return found
 
 
+def rounded(pixels, box, colour):
+    """Whether a patch has a rounded corner, as the viewer's label boxes and plot legends do
+    (a text view's table rows, of the same colour, are square)."""
+    top, bottom, left, right = box
+    same = lambda y, x: np.abs(pixels[y, x].astype(int) - colour).max() <= 1
+    corners = [(top, left, top, left + CORNER), (top, right, top, right - CORNER),
+               (bottom, left, bottom, left + CORNER), (bottom, right, bottom, right - CORNER)]
+    return any(not same(y, x) and same(y2, x2) for y, x, y2, x2 in corners)
+
+
+def on_view_background(pixels, box, theme):
+    """Whether most of the band of 2 px around a patch is a 2-D view's background (a label
+    on a chart; a striped table row of a text view has that view's own grey around it)."""
+    top, bottom, left, right = box
+    h, w, _ = pixels.shape
+    t, b, l, r = max(top - 2, 0), min(bottom + 2, h - 1), max(left - 2, 0), min(right + 2, w - 1)
+    band = np.concatenate([pixels[t:top, l:r + 1].reshape(-1, 3),
+                           pixels[bottom + 1:b + 1, l:r + 1].reshape(-1, 3),
+                           pixels[top:bottom + 1, l:left].reshape(-1, 3),
+                           pixels[top:bottom + 1, right + 1:r + 1].reshape(-1, 3)])
+    if len(band) == 0:
+        return False
+    return np.all(band == BACKGROUND[theme], axis=1).mean() > 0.5
+
+
+def label_boxes(pixels, theme):
+    """The label boxes: rounded patches of the box colour on a 2-D view's background."""
+    return [b for b in patches(pixels, BOX[theme])
+            if rounded(pixels, b, BOX[theme]) and on_view_background(pixels, b, theme)]
+
+
 def margin_problems(pixels, box, colour, coloured_only=False):
     """Pixels of the box's margin (less its rounded corners) that are not the box colour
     (`coloured_only`: and not grey either, as a plot's grid lines behind its legend are)."""
@@ -144,24 +184,15 @@ def plot_legends(pixels, theme):
             joined[-1] = (min(last[0], box[0]), max(last[1], box[1]), last[2], box[3])
         else:
             joined.append(box)
-    same = lambda y, x: np.abs(pixels[y, x].astype(int) - colour).max() <= 1
-    found = []
-    for top, bottom, left, right in joined:
-        if bottom - top + 1 < MIN_PLOT_LEGEND or right - left + 1 < MIN_BOX:
-            continue
-        # Rounded: a corner pixel is not the frame's colour, the pixel a corner further is.
-        corners = [(top, left, top, left + CORNER), (top, right, top, right - CORNER),
-                   (bottom, left, bottom, left + CORNER), (bottom, right, bottom, right - CORNER)]
-        if not any(not same(y, x) and same(y2, x2) for y, x, y2, x2 in corners):
-            continue
-        found.append((top, bottom, left, right))
-    return found
+    return [b for b in joined
+            if b[1] - b[0] + 1 >= MIN_PLOT_LEGEND and b[3] - b[2] + 1 >= MIN_BOX
+            and rounded(pixels, b, colour)]
 
 
 def clean_boxes(pixels, theme):
     """The label boxes with nothing found in them (the ones a fault is drawn into)."""
     colour = BOX[theme]
-    return [b for b in patches(pixels, colour)
+    return [b for b in label_boxes(pixels, theme)
             if len(margin_problems(pixels, b, colour)) <= TOLERATED
             and len(foreign_inside(pixels, b, colour)) <= TOLERATED]
 
@@ -180,7 +211,7 @@ def check(path, panel=340, theme=None):
     theme = theme or theme_of(pixels)
     problems = []
     checked = 0
-    kinds = [("label", BOX[theme], patches(pixels, BOX[theme]))]
+    kinds = [("label", BOX[theme], label_boxes(pixels, theme))]
     if theme in PLOT_LEGEND:
         kinds.append(("plot legend", PLOT_LEGEND[theme], plot_legends(pixels, theme)))
     for kind, colour, boxes in kinds:
@@ -211,8 +242,7 @@ def spoiled(path, out, panel=340):
     image = Image.open(path).convert("RGB")
     pixels, (oy, ox) = viewer_area(np.asarray(image), panel)
     theme = theme_of(pixels)
-    clean = set(clean_boxes(pixels, theme))
-    boxes = [b for b in patches(pixels, BOX[theme]) if b in clean]
+    boxes = clean_boxes(pixels, theme)
     copies = []
     if boxes:
         # A curve of another colour drawn across the widest label.
@@ -259,21 +289,73 @@ def spoiled(path, out, panel=340):
     return written
 
 
+def screenshots_of_recordings(folder, binary, out, window):
+    """`flexmodes view FILE --screenshot` of every recording in `folder`, dark and light,
+    under a private Xvfb; the screenshots' paths (failing if one is not written)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import check_switches  # noqa: E402 (its Xvfb helpers)
+
+    recordings = sorted(glob.glob(os.path.join(folder, "*.rrd")))
+    if not recordings:
+        print(f"chart_labels: FAILED: no recording in {folder}", file=sys.stderr)
+        sys.exit(1)
+    os.makedirs(out, exist_ok=True)
+    display, xvfb = check_switches.start_xvfb("2600x1800")
+    written = []
+    try:
+        for rrd in recordings:
+            for theme in ("dark", "light"):
+                name = os.path.basename(rrd)[:-4]
+                shot = os.path.join(out, f"{name}-{theme}.png")
+                env = dict(os.environ, DISPLAY=display, HOME=os.path.join(out, "home"))
+                env.setdefault("XDG_RUNTIME_DIR", "/tmp")
+                done = subprocess.run(
+                    [binary, "view", rrd, "--screenshot", shot, "--window-size", window,
+                     "--theme", theme],
+                    env=env, capture_output=True, text=True, timeout=600)
+                if done.returncode != 0 or not os.path.exists(shot):
+                    print((done.stdout + done.stderr)[-2000:], file=sys.stderr)
+                    print(f"chart_labels: FAILED: no screenshot of {rrd} ({theme})",
+                          file=sys.stderr)
+                    sys.exit(1)
+                written.append(shot)
+    finally:
+        check_switches.stop_xvfb(xvfb)
+    return written
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("screenshots", nargs="+")
+    p.add_argument("screenshots", nargs="*")
+    p.add_argument("--recordings", help="screenshot every .rrd in this folder and check them")
+    p.add_argument("--binary", default="target/debug/flexmodes",
+                   help="with --recordings: the gui build that opens them")
+    p.add_argument("--out", default="target/gui-check/recordings",
+                   help="with --recordings: where the screenshots go")
+    p.add_argument("--window", default="1280x800")
     p.add_argument("--panel", type=int, default=340,
                    help="width of the explorer's panel left of the viewer, px (0 for `view`)")
     p.add_argument("--self-test", action="store_true",
                    help="check spoiled copies of the screenshots: each must be caught")
     args = p.parse_args()
     failed = False
-    for path in args.screenshots:
+    shots = [(path, args.panel) for path in args.screenshots]
+    if args.recordings:
+        shots += [(path, 0) for path in screenshots_of_recordings(
+            args.recordings, args.binary, args.out, args.window)]
+    if not shots:
+        p.error("no screenshot given and no --recordings")
+    total = 0
+    for path, panel in shots:
+        args.panel = panel
         problems, checked, theme = check(path, args.panel)
-        if checked == 0:
+        total += checked
+        if checked == 0 and panel != 0:
             print(f"chart_labels: FAILED: {path}: no label found ({theme} theme): the check "
                   "saw nothing to check", file=sys.stderr)
             failed = True
+        elif checked == 0:
+            print(f"{path}: no chart labels or plot legends ({theme} theme)")
         for problem in problems:
             print(f"chart_labels: {problem}", file=sys.stderr)
             failed = True
@@ -292,8 +374,12 @@ def main():
                     print(f"chart_labels: FAILED: {copy}: {fault} drawn, not caught",
                           file=sys.stderr)
                     failed = True
+    if total == 0:
+        print("chart_labels: FAILED: no label in any screenshot", file=sys.stderr)
+        failed = True
     if failed:
         sys.exit(1)
+    print(f"ok: {total} labels and legends in {len(shots)} screenshots")
 
 
 if __name__ == "__main__":

@@ -324,14 +324,35 @@ fn log_mode(
             strips(geometry, &nodes)
         })
         .collect();
+    // A planar shape's name hangs below the lowest point it reaches over the cycle (the
+    // viewer draws a strip's label on the strip, over the curve it names); a 3D one keeps
+    // the strip's own label.
     let style = Lines {
         strips: Vec::new(),
         color: color(c),
         radius: r,
-        label: Some(label.to_string()),
+        label: (!planar).then(|| label.to_string()),
     };
     rec.log_static(path, style.style(planar).as_ref())
         .or_rerun()?;
+    if planar {
+        let undeformed = geometry.nodes.iter().map(|p| [p[0] as f32, p[1] as f32]);
+        let deformed = frames.iter().flatten().flatten().map(|p| [p[0], p[1]]);
+        let (mut x0, mut x1, mut y0) = (f32::INFINITY, f32::NEG_INFINITY, f32::INFINITY);
+        for p in undeformed.chain(deformed) {
+            x0 = x0.min(p[0]);
+            x1 = x1.max(p[0]);
+            y0 = y0.min(p[1]);
+        }
+        // 2D views point y down: the lowest point is at −y0; the label's box hangs below
+        // its anchor, which clears the line by its width.
+        let anchor = [0.5 * f64::from(x0 + x1), f64::from(-y0 + 2.0 * r)];
+        rec.log_static(
+            format!("{path}/label"),
+            &labelled_points(&[anchor], &[label.to_string()], &[c], 0.0).with_show_labels(true),
+        )
+        .or_rerun()?;
+    }
     send_strip_frames(
         rec,
         path,

@@ -36,7 +36,10 @@ pub(super) fn scene_text(study: &CantileverStudy, tables: &str) -> String {
          **Measures**: static error = max over the bottom section of |ũ − u| in the direction \
          of interest over max |u|; modes of the full model up to {band} Hz paired with the \
          reduced mode of best MAC (Eq. 43, on all DOF: mm and rad together, as the gramian \
-         sees them); frequency error (f̃ − f)/f (Eq. 42); ✗ marks MAC < 0.95.\n\n\
+         sees them); frequency error (f̃ − f)/f (Eq. 42); ✗ marks MAC < 0.95. The charts \
+         \"Δf %\" and \"MAC\" show them by mode number, one bar per method in the methods' \
+         colours: CB blue, MM olive, BT brown (no legend: wherever it sat, it covered \
+         bars).\n\n\
          {tables}",
         el = params.element_length,
         dofs = study.frame.model.dof_count(),

@@ -93,7 +93,13 @@ pub(super) fn static_visuals(case: &StaticCase) -> Vec<Visual> {
     }];
     let mut legend = vec![
         (case.text.to_string(), REFERENCE),
-        (format!("full: peak {peak:.3e} mm"), REFERENCE),
+        (
+            format!(
+                "full: peak {peak} mm",
+                peak = flexmodes_core::report::readable(peak, 4)
+            ),
+            REFERENCE,
+        ),
     ];
     for m in AVAILABLE {
         let Some((_, line, err)) = case.methods.iter().find(|(mm, _, _)| *mm == m) else {
@@ -107,16 +113,22 @@ pub(super) fn static_visuals(case: &StaticCase) -> Vec<Visual> {
             radius: crate::record::LINE,
         });
         legend.push((
-            format!("{}: error {err:.1e}", m.id().to_uppercase()),
+            format!(
+                "{}: error {err}",
+                m.id().to_uppercase(),
+                err = flexmodes_core::report::readable(err, 2)
+            ),
             method_color(m),
         ));
     }
-    // The legend: labelled points in a column under the curves (the curves coincide where
-    // the methods are exact, so labels on them would overlap).
-    visuals.push(Visual::Scatter {
+    // The legend: labels without markers in a column under the curves (the curves coincide
+    // where the methods are exact, so labels on them would overlap), a row apart wherever
+    // the view shows the column at least ~270 pixels tall: 160 of the drawing's units are 29
+    // pixels there, a label's box 23 (110 were 24: the boxes touched).
+    visuals.push(Visual::Text2D {
         path: format!("statics/{}/legend", case.id),
         points: (0..legend.len())
-            .map(|k| [500.0, 380.0 + 110.0 * k as f64])
+            .map(|k| [500.0, 400.0 + 160.0 * k as f64])
             .collect(),
         labels: legend.iter().map(|(t, _)| t.clone()).collect(),
         colors: legend.iter().map(|(_, c)| *c).collect(),
@@ -129,10 +141,12 @@ pub(super) fn layout(statics: &[StaticCase]) -> Layout {
     let tabs_of = |what: &str, name: &str| {
         Layout::Tabs(
             (1..=3)
+                // No legend (the scene's text names the colours): errors of either sign and
+                // MACs near 1 leave no corner of these charts free of bars.
                 .map(|v| Layout::BarChart {
                     name: format!("{name} v{v}"),
                     origin: format!("/metrics/{what}/v{v}"),
-                    legend: true,
+                    legend: false,
                 })
                 .collect(),
         )
