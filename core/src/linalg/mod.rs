@@ -17,6 +17,7 @@ mod saddle_point;
 mod small_cholesky;
 mod sparse_symmetric;
 mod sturm_count;
+mod substructure_tree;
 mod symmetric_eigen;
 mod symmetric_factor;
 mod threads;
@@ -53,6 +54,7 @@ pub use saddle_point::{
 pub use small_cholesky::SmallCholesky;
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
 pub use sturm_count::{SturmCount, sturm_count};
+pub use substructure_tree::{SubstructureNode, SubstructureTree};
 pub use symmetric_eigen::{
     SymmetricEigen, SymmetricEigenKernel, dense_eigen_tolerance, symmetric_eigen,
     symmetric_eigen_prefix, symmetric_eigen_with,
