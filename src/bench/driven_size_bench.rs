@@ -111,11 +111,11 @@ pub fn bench_driven_sizes(
                 format!("{}", flexmodes_core::report::readable(p.nr_step_s, 3)),
                 format!("{:.2}", p.iterations_per_step),
                 p.cb.map_or("–".into(), |c| {
-                    format!("{}", flexmodes_core::report::readable(c.0, 3))
+                    flexmodes_core::report::readable(c.0, 3).to_string()
                 }),
                 p.cb.map_or("–".into(), |c| format!("{:.0}", p.nr_step_s / c.0)),
                 p.cb.map_or("–".into(), |c| {
-                    format!("{}", flexmodes_core::report::readable(c.1, 3))
+                    flexmodes_core::report::readable(c.1, 3).to_string()
                 }),
             ]
         })

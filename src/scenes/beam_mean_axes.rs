@@ -130,18 +130,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             Cell::text(m.id().to_uppercase()),
             Cell::number(
                 static_diff,
-                format!(
-                    "{static_diff}",
-                    static_diff = flexmodes_core::report::readable(static_diff, 2)
-                ),
+                flexmodes_core::report::readable(static_diff, 2).to_string(),
             ),
             Cell::text(crate::report::fmt_hz(&ev.normal_hz)),
             Cell::number(
                 angle,
-                format!(
-                    "{angle}",
-                    angle = flexmodes_core::report::readable(angle, 2)
-                ),
+                flexmodes_core::report::readable(angle, 2).to_string(),
             ),
         ]);
         let (sets, [constraint_tab, normal_tab]) = method_views(&model, &part, m, &ev);

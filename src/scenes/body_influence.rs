@@ -38,10 +38,7 @@ pub fn influence_table(
             Cell::number(hz[i], format!("{:.6}", hz[i])),
             Cell::number(
                 relative,
-                format!(
-                    "{relative}",
-                    relative = flexmodes_core::report::readable(relative, 3)
-                ),
+                flexmodes_core::report::readable(relative, 3).to_string(),
             ),
         ]);
     }

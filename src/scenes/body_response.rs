@@ -39,10 +39,7 @@ pub fn response_table(
         errors.insert(id.into(), json!(sig(e)));
         table.push(vec![
             Cell::text(id.to_uppercase()),
-            Cell::number(
-                e,
-                format!("{e}", e = flexmodes_core::report::readable(e, 3)),
-            ),
+            Cell::number(e, flexmodes_core::report::readable(e, 3).to_string()),
         ]);
         series.push(LogLogSeries {
             id: id.into(),

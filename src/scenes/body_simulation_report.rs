@@ -241,7 +241,7 @@ fn final_values(study: &DrivenStudy, force: &str) -> String {
                     let u = h.last().copied().unwrap_or([0.0; 3]);
                     format!(
                         "{name} ({})",
-                        u.map(|x| format!("{x}", x = flexmodes_core::report::readable(x, 7)))
+                        u.map(|x| flexmodes_core::report::readable(x, 7).to_string())
                             .join(", ")
                     )
                 })
@@ -253,7 +253,7 @@ fn final_values(study: &DrivenStudy, force: &str) -> String {
                 finals.join("; "),
                 r[..3]
                     .iter()
-                    .map(|x| format!("{x}", x = flexmodes_core::report::readable(x, 7)))
+                    .map(|x| flexmodes_core::report::readable(x, 7).to_string())
                     .collect::<Vec<_>>()
                     .join(", ")
             );

@@ -154,10 +154,7 @@ fn statics_section(
         let peak = case.peak();
         let mut row = vec![
             Cell::text(case.id.to_uppercase()),
-            Cell::number(
-                peak,
-                format!("{peak}", peak = flexmodes_core::report::readable(peak, 5)),
-            ),
+            Cell::number(peak, flexmodes_core::report::readable(peak, 5).to_string()),
         ];
         for m in AVAILABLE {
             match case.error(m) {
@@ -169,7 +166,7 @@ fn statics_section(
                         .map(|o| o.insert(case.id.into(), json!(sig(err))));
                     row.push(Cell::number(
                         err,
-                        format!("{err}", err = flexmodes_core::report::readable(err, 3)),
+                        flexmodes_core::report::readable(err, 3).to_string(),
                     ));
                 }
                 None => row.push(Cell::text("–")),

@@ -124,29 +124,17 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             Cell::text(v.axes.id()),
             Cell::number(
                 before,
-                format!(
-                    "{before}",
-                    before = flexmodes_core::report::readable(before, 3)
-                ),
+                flexmodes_core::report::readable(before, 3).to_string(),
             ),
             Cell::number(
                 max_defect,
-                format!(
-                    "{max_defect}",
-                    max_defect = flexmodes_core::report::readable(max_defect, 3)
-                ),
+                flexmodes_core::report::readable(max_defect, 3).to_string(),
             ),
             Cell::number(
                 drift,
-                format!(
-                    "{drift}",
-                    drift = flexmodes_core::report::readable(drift, 3)
-                ),
+                flexmodes_core::report::readable(drift, 3).to_string(),
             ),
-            Cell::number(
-                viol,
-                format!("{viol}", viol = flexmodes_core::report::readable(viol, 2)),
-            ),
+            Cell::number(viol, flexmodes_core::report::readable(viol, 2).to_string()),
             Cell::number(sim.wall_time_s, format!("{:.2}", sim.wall_time_s)),
         ]);
         visuals.extend(variant_visuals(

@@ -74,7 +74,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         }
         row.push(Cell::number(
             set.error,
-            format!("{}", flexmodes_core::report::readable(set.error, 3)),
+            flexmodes_core::report::readable(set.error, 3).to_string(),
         ));
         row
     };
@@ -114,7 +114,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             Cell::number(kept.len() as f64, format!("{} of {elastic}", kept.len())),
             Cell::number(
                 chosen.error,
-                format!("{}", flexmodes_core::report::readable(chosen.error, 3)),
+                flexmodes_core::report::readable(chosen.error, 3).to_string(),
             ),
         ]);
     }
@@ -151,18 +151,18 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             entry.insert(m.id().into(), json!(sig(*e)));
             row.push(Cell::number(
                 *e,
-                format!("{e}", e = flexmodes_core::report::readable(e, 3)),
+                flexmodes_core::report::readable(e, 3).to_string(),
             ));
         }
         entry.insert("influence".into(), json!(sig(*inf)));
         entry.insert("lowest".into(), json!(sig(*low)));
         row.push(Cell::number(
             *inf,
-            format!("{inf}", inf = flexmodes_core::report::readable(inf, 3)),
+            flexmodes_core::report::readable(inf, 3).to_string(),
         ));
         row.push(Cell::number(
             *low,
-            format!("{low}", low = flexmodes_core::report::readable(low, 3)),
+            flexmodes_core::report::readable(low, 3).to_string(),
         ));
         art_table.push(row);
         articulation.insert(format!("{degrees}"), Value::Object(entry));

@@ -76,10 +76,7 @@ pub(super) fn errors_table(
         }));
         cells.push(Cell::number(
             max_pos,
-            format!(
-                "{max_pos}",
-                max_pos = flexmodes_core::report::readable(max_pos, 2)
-            ),
+            flexmodes_core::report::readable(max_pos, 2).to_string(),
         ));
         table.push(cells);
     }

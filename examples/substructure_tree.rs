@@ -1,0 +1,127 @@
+//! The substructure tree of the refined slab, level by level: how many parts, how large the
+//! separators and leaves are, and what a multi-level elimination over it holds (each node's
+//! front: its own unknowns and the ancestors' unknowns its subtree touches, dense). The
+//! factor's size from the fronts is checked against faer's symbolic analysis of the same
+//! order where that is affordable.
+//!
+//! ```sh
+//! cargo run --release --example substructure_tree -- 24x12x6 50x25x12 --leaf 2000
+//! ```
+
+use std::time::Instant;
+
+use flexmodes_core::{
+    fem::{SlabParameters, slab},
+    linalg::{SubstructureTree, SymbolicFactor},
+};
+
+fn main() {
+    let mut sizes = Vec::new();
+    let mut leaf = 2000;
+    let mut check_up_to = 200_000;
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--leaf" => leaf = args.next().and_then(|s| s.parse().ok()).expect("--leaf N"),
+            "--check-up-to" => {
+                check_up_to = args
+                    .next()
+                    .and_then(|s| s.parse().ok())
+                    .expect("--check-up-to N")
+            }
+            size => {
+                let b: Vec<usize> = size
+                    .split('x')
+                    .map(|s| s.parse().expect("NXxNYxNZ"))
+                    .collect();
+                assert_eq!(b.len(), 3, "NXxNYxNZ");
+                sizes.push([b[0], b[1], b[2]]);
+            }
+        }
+    }
+    if sizes.is_empty() {
+        sizes = vec![[24, 12, 6], [40, 20, 10]];
+    }
+    for bricks in sizes {
+        let started = Instant::now();
+        let model = slab(&SlabParameters::refined(bricks).expect("a slab"));
+        let n = model.dof_count();
+        let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
+        let assembled = started.elapsed().as_secs_f64();
+        let k = model.k.as_faer();
+        let tree = SubstructureTree::new(k, &coords, leaf).expect("coordinates");
+        let of = tree.node_of();
+        let nodes = tree.nodes();
+        let mut front_entries = 0f64;
+        let mut largest_front = 0usize;
+        let mut per_level: Vec<(usize, usize, usize, usize)> = vec![(0, 0, 0, 0); tree.levels()];
+        // Each node's boundary: the ancestors' unknowns coupled to its subtree, bottom-up (a
+        // child's set kept only until its parent has merged it).
+        let mut bsize = vec![0usize; nodes.len()];
+        {
+            let mut sets: Vec<Vec<usize>> = vec![Vec::new(); nodes.len()];
+            for (j, node) in nodes.iter().enumerate() {
+                let mut b: Vec<usize> = node
+                    .children
+                    .iter()
+                    .flat_map(|&c| sets[c].iter().copied())
+                    .chain(
+                        node.unknowns
+                            .iter()
+                            .flat_map(|&i| k.symbolic().row_idx_of_col_raw(i).iter().copied()),
+                    )
+                    .filter(|&r| of[r] != j && tree.is_ancestor(of[r], j))
+                    .collect();
+                b.sort_unstable();
+                b.dedup();
+                for &c in &node.children {
+                    sets[c] = Vec::new();
+                }
+                bsize[j] = b.len();
+                sets[j] = b;
+            }
+        }
+        for (j, node) in nodes.iter().enumerate() {
+            let s = node.unknowns.len() as f64;
+            front_entries += s * (s + 1.0) / 2.0 + s * bsize[j] as f64;
+            largest_front = largest_front.max(node.unknowns.len() + bsize[j]);
+            let e = &mut per_level[node.level];
+            e.0 += 1;
+            e.1 += node.unknowns.len();
+            e.2 = e.2.max(node.unknowns.len());
+            e.3 = e.3.max(bsize[j]);
+        }
+        let built = started.elapsed().as_secs_f64() - assembled;
+        println!(
+            "slab {}×{}×{} bricks: {n} DOF, {} tree nodes over {} levels (leaves ≤ {leaf}); \
+             assembled in {assembled:.1} s, tree and fronts in {built:.1} s",
+            bricks[0],
+            bricks[1],
+            bricks[2],
+            nodes.len(),
+            tree.levels()
+        );
+        println!("| level | nodes | unknowns | largest node | largest boundary |");
+        println!("|---|---|---|---|---|");
+        for (level, (count, unknowns, largest, bnd)) in per_level.iter().enumerate() {
+            println!("| {level} | {count} | {unknowns} | {largest} | {bnd} |");
+        }
+        println!(
+            "factor from the fronts (dense within each node): {:.3e} entries, {:.2} GB; the \
+             largest front {largest_front} unknowns, {:.2} GB dense",
+            front_entries,
+            front_entries * 8.0 / 1e9,
+            (largest_front as f64).powi(2) * 8.0 / 1e9
+        );
+        if n <= check_up_to {
+            let symbolic =
+                SymbolicFactor::analyse_ordered(k, Some(&tree.order())).expect("analysis");
+            println!(
+                "faer's supernodal factor of the same order: {:.3e} entries ({:.2} of the fronts')",
+                symbolic.factor_nnz() as f64,
+                symbolic.factor_nnz() as f64 / front_entries
+            );
+        }
+        println!();
+    }
+}
