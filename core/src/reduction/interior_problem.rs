@@ -402,6 +402,18 @@ impl<'a> InteriorProblem<'a> {
     }
 }
 
+/// Fixed-interface (fixed-constraint) normal modes, $[\Psi_n, \Lambda_n] =
+/// \mathrm{eig}(K_{ii}, M_{ii})$ (Eq. 6.11), mass-normalised, ascending: every mode (dense).
+pub fn fixed_interface_modes(model: &FeModel, p: &Partition) -> Result<GeneralizedEigen> {
+    let mut problem = InteriorProblem::new(model, &p.boundary_nodes, SolverPath::Dense)?;
+    problem.complete_modes("fixed-interface modes")
+}
+
+/// Static constraint modes' interior part $\Psi_s = -K_{ii}^{-1}K_{ib}$ (Eq. 6.3).
+pub fn constraint_modes(model: &FeModel, p: &Partition) -> Result<Mat<f64>> {
+    InteriorProblem::new(model, &p.boundary_nodes, SolverPath::Auto)?.constraint_modes()
+}
+
 fn first_modes(all: &GeneralizedEigen, kept: usize) -> GeneralizedEigen {
     all.first(kept)
 }

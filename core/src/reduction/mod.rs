@@ -57,6 +57,7 @@ pub use interface_loads::InterfaceLoads;
 pub use interior_problem::{
     COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, InteriorProblem, ReductionStatistics,
 };
+pub use interior_problem::{constraint_modes, fixed_interface_modes};
 pub use macneal_rubin::{MacNealRubinParameters, macneal_rubin};
 pub use method::{Method, ModeSelection, ReductionParameters, SolverPath, reduce, reduce_interior};
 pub use modal_balanced_basis::{ModalBalancedParameters, modal_balanced_basis};
@@ -69,7 +70,7 @@ pub use mode_condensation::{
 };
 pub use moment_matching::{Deflation, MomentMatching, MomentMatchingParameters, moment_matching};
 pub use nodal_fixed::{NodalFixedAxes, TableConfiguration};
-pub use partition::{Partition, constraint_modes, fixed_interface_modes};
+pub use partition::Partition;
 pub use reduced_matrices::{CONSTRAINT_COUPLING_TOLERANCE, ReducedMatrices};
 pub use restrained_ritz::RestrainedRitzModel;
 pub use rigid_interface::{MASTER_DOF_NAMES, RigidInterface, tie_rigid_interfaces};

@@ -1,17 +1,15 @@
 //! The boundary/interior split of Eq. (6.1), the rigid motions of a free body's interior,
 //! the checks of DOF sets, and the column descriptions every CMS method's basis carries (the
-//! interior problem itself: `interior_problem.rs`).
+//! interior problem itself, its modes and constraint modes: `interior_problem.rs`).
 
 use super::ReductionError;
 use crate::error::{DofSetName, DofSetProblem, FreeMotion};
 
 use faer::{Mat, MatRef};
 
-use super::{SolverPath, interior_problem::InteriorProblem};
 use crate::{
     Error, Result,
     fem::{FeModel, NodeIndex},
-    linalg::GeneralizedEigen,
 };
 
 /// DOF sets b (boundary) and i (interior) of Eq. (6.1), and the DOF held at zero (a clamp)
@@ -301,16 +299,4 @@ pub(crate) fn normal_columns(hz: &[f64]) -> Vec<super::Column> {
             label: format!("normal {} ({hz:.4} Hz)", k + 1),
         })
         .collect()
-}
-
-/// Fixed-interface (fixed-constraint) normal modes, $[\Psi_n, \Lambda_n] =
-/// \mathrm{eig}(K_{ii}, M_{ii})$ (Eq. 6.11), mass-normalised, ascending: every mode (dense).
-pub fn fixed_interface_modes(model: &FeModel, p: &Partition) -> Result<GeneralizedEigen> {
-    let mut problem = InteriorProblem::new(model, &p.boundary_nodes, SolverPath::Dense)?;
-    problem.complete_modes("fixed-interface modes")
-}
-
-/// Static constraint modes' interior part $\Psi_s = -K_{ii}^{-1}K_{ib}$ (Eq. 6.3).
-pub fn constraint_modes(model: &FeModel, p: &Partition) -> Result<Mat<f64>> {
-    InteriorProblem::new(model, &p.boundary_nodes, SolverPath::Auto)?.constraint_modes()
 }
