@@ -36,7 +36,7 @@ pub use generalized_eigen::{
 };
 pub use gmres::{GmresParameters, GmresStatistics, preconditioned_gmres};
 pub use indefinite_factor::{INDEFINITE_SOLVE_TOLERANCE, IndefiniteFactor};
-pub use leaf_modes::{LeafModes, leaf_modes};
+pub use leaf_modes::{LeafModes, LeafModesParameters, leaf_modes};
 pub use lyapunov::{solve_block_diagonal_lyapunov, solve_lyapunov};
 pub use mass_matrix::MassMatrix;
 pub use memory::{
