@@ -27,6 +27,12 @@ type TextBox = [f64; 4];
 /// of one chart over each other, each described with the chart's path and the texts. Charts
 /// are found by their picture's corners (`…/axes/extent`).
 pub fn chart_text_clashes(visuals: &[Visual]) -> Vec<String> {
+    chart_text_clashes_at(visuals, VIEW_PIXELS)
+}
+
+/// [`chart_text_clashes`] with the charts' pictures shown `view_pixels` tall (a chart whose
+/// legend leaves its data area less than its share is laid out for a taller view).
+pub fn chart_text_clashes_at(visuals: &[Visual], view_pixels: f64) -> Vec<String> {
     let mut clashes = Vec::new();
     for chart in visuals.iter().filter_map(|v| match v {
         Visual::Text2D { path, points, .. } if path.ends_with("/axes/extent") => {
@@ -37,7 +43,7 @@ pub fn chart_text_clashes(visuals: &[Visual]) -> Vec<String> {
         let (root, corners) = chart;
         let height = corners.iter().map(|p| p[1]).fold(f64::MIN, f64::max)
             - corners.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
-        let px = height / VIEW_PIXELS;
+        let px = height / view_pixels;
         let boxed = |p: &[f64; 2], text: &str| -> TextBox {
             let w = (7.0 * text.chars().count() as f64 + 12.0) * px;
             let top = p[1] + BOX_TOP * px;

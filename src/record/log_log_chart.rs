@@ -38,6 +38,18 @@ const INVISIBLE: Color = [0, 0, 0, 0];
 /// Colour of the axes, ticks and titles.
 const AXES: Color = [150, 150, 150, 255];
 
+/// A chart's picture, laid out once for its drawing and its text ([`LogLogChart::picture`]).
+struct Picture {
+    /// The whole picture's height, in the chart's y units (decades).
+    t: f64,
+    /// Each legend entry's row and its centre's distance from the picture's left edge, in `t`.
+    places: Vec<(usize, f64)>,
+    /// Every how many x ticks are labelled and gridded.
+    x_step: usize,
+    /// Every how many y decades are labelled and gridded.
+    y_step: usize,
+}
+
 /// One series of a [`LogLogChart`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct LogLogSeries {
@@ -100,7 +112,9 @@ impl LogLogChart {
         };
         let (y0, y1) = span(&|p| p.1.log10());
         let height = y1 - y0;
-        let (t, _) = self.picture(height);
+        let x_ticks = self.x_ticks(x0, x1);
+        let picture = self.picture(height, x_ticks.len());
+        let t = picture.t;
         let width = (ASPECT - LEFT) * t;
         let stretch = width / (x1 - x0);
         let at = |x: f64, y: f64| [stretch * (fx(x) - x0), -y.log10()];
@@ -109,8 +123,7 @@ impl LogLogChart {
         // The grid first, so the data is drawn over it: a line at each labelled tick (every
         // decade, or every few where their labels would touch: fifteen decades drawn in a
         // short chart were a hatching).
-        let x_ticks = self.x_ticks(x0, x1);
-        let (x_step, y_step) = self.tick_steps(x_ticks.len(), height, t);
+        let (x_step, y_step) = (picture.x_step, picture.y_step);
         for (k, &(x, _)) in x_ticks.iter().enumerate().filter(|(k, _)| k % x_step == 0) {
             let u = stretch * (x - x0);
             visuals.push(Visual::Polyline2D {
@@ -167,20 +180,26 @@ impl LogLogChart {
             label: None,
             radius: super::LINE,
         });
-        visuals.extend(self.text(&x_ticks, [x0, y0, y1], stretch));
+        visuals.extend(self.text(&x_ticks, [x0, y0, y1], stretch, &picture));
         visuals
     }
 
     /// The ticks, titles and legend, laid out in rows of [`ROW`] times the whole picture's
     /// height `t`: the viewer fits a chart's 2-D view to the picture (its corners are the
-    /// `axes/extent` anchors) and draws text at a fixed size (~18 pixels, ~7 per character),
-    /// so rows of `ROW · t` stay apart in any view at least ~200 pixels tall. The y title
+    /// `axes/extent` anchors) and draws text at a fixed size (boxes 23 pixels tall, ~7 per
+    /// character), so rows of `ROW · t` stay apart in any view showing the picture at least
+    /// [`super::VIEW_PIXELS`] tall. The y title
     /// sits above the data area; below it, the x ticks, the x title, then the legend's rows
     /// (as many entries to a row as their estimated widths allow side by side).
-    fn text(&self, x_ticks: &[(f64, String)], [x0, y0, y1]: [f64; 3], stretch: f64) -> Vec<Visual> {
-        let height = y1 - y0;
+    fn text(
+        &self,
+        x_ticks: &[(f64, String)],
+        [x0, y0, y1]: [f64; 3],
+        stretch: f64,
+        picture: &Picture,
+    ) -> Vec<Visual> {
         let entries = self.legend_entries();
-        let (t, places) = self.picture(height);
+        let (t, places) = (picture.t, &picture.places);
         let width = (ASPECT - LEFT) * t;
         let u = ROW * t;
         let (top, bottom) = (-y1, -y0);
@@ -197,7 +216,7 @@ impl LogLogChart {
             });
         };
         // x ticks just below the axis, every `step`-th where labels would touch.
-        let (x_step, y_step) = self.tick_steps(x_ticks.len(), height, t);
+        let (x_step, y_step) = (picture.x_step, picture.y_step);
         text(
             "axes/x_ticks",
             x_ticks
@@ -250,7 +269,7 @@ impl LogLogChart {
                 ),
             ],
         );
-        for (s, &(row, centre)) in entries.iter().zip(&places) {
+        for (s, &(row, centre)) in entries.iter().zip(places) {
             let x = (centre - LEFT) * t;
             let y = bottom + (2.0 + TICK_DROP + row as f64) * u;
             text(
@@ -269,14 +288,14 @@ impl LogLogChart {
             .collect()
     }
 
-    /// The whole picture's height `t` for a data area `height` high, and where each legend
-    /// entry goes: its row and its centre's distance from the picture's left edge, in `t`.
+    /// The whole picture's height `t` for a data area `height` high and `x_ticks` candidate
+    /// x ticks, where each legend entry goes, and how densely the ticks are labelled.
     /// The picture is [`ASPECT`] times as wide as high (the y ticks take [`LEFT`] of it, the
     /// data area the rest) and has rows of `ROW · t` for the y title, the x ticks, the x
     /// title and the legend. A label's width is a share of `t` too (pixels per character
     /// over pixels per picture), so the entries flow into rows by their own widths, each row
     /// centred. With more legend rows than room, the data area keeps [`DATA_SHARE`].
-    fn picture(&self, height: f64) -> (f64, Vec<(usize, f64)>) {
+    fn picture(&self, height: f64, x_ticks: usize) -> Picture {
         let gap = 0.5 * ROW;
         let widths: Vec<f64> = self
             .legend_entries()
@@ -305,19 +324,16 @@ impl LogLogChart {
             }
         }
         let fraction = 1.0 - ROW * (TEXT_ROWS + rows.len() as f64);
-        (height / fraction.max(DATA_SHARE), places)
-    }
-
-    /// Every how many x ticks (of `x_ticks`) and y decades are labelled and gridded in a data
-    /// area `height` high in a picture `t` high: labels at least their width (x, five
-    /// characters) or a row (y) apart.
-    fn tick_steps(&self, x_ticks: usize, height: f64, t: f64) -> (usize, usize) {
-        let width = (ASPECT - LEFT) * t;
+        let t = height / fraction.max(DATA_SHARE);
+        // Every how many x ticks and y decades are labelled and gridded: labels at least
+        // their width (x, five characters) or a row (y) apart.
         let decades = height.round() as usize + 1;
-        (
-            thinning(x_ticks, label_width(5, t), width),
-            thinning(decades, ROW * t, height),
-        )
+        Picture {
+            t,
+            places,
+            x_step: thinning(x_ticks, label_width(5, t), (ASPECT - LEFT) * t),
+            y_step: thinning(decades, ROW * t, height),
+        }
     }
 
     /// Whether a point has a place on the chart's axes.
@@ -461,8 +477,9 @@ mod tests {
         for x_linear in [false, true] {
             for count in 1..=9 {
                 // Two long names (one to a row) fill the rows a 185-pixel view has below a
-                // chart.
-                for long in [false, true].into_iter().filter(|&l| !l || count <= 2) {
+                // chart; three are laid out for a taller view (the data area keeps its
+                // share) and checked there.
+                for long in [false, true].into_iter().filter(|&l| !l || count <= 3) {
                     let mut chart = LogLogChart {
                         x_linear,
                         ..chart()
@@ -477,14 +494,16 @@ mod tests {
                             s
                         })
                         .collect();
-                    check_layout(&chart);
+                    let rows = if long { count } else { 1 };
+                    let needed = DATA_SHARE + ROW * (TEXT_ROWS + rows as f64);
+                    check_layout(&chart, crate::record::VIEW_PIXELS * needed.max(1.0));
                 }
             }
         }
     }
 
-    fn check_layout(chart: &LogLogChart) {
-        let clashes = crate::record::chart_text_clashes(&chart.visuals());
+    fn check_layout(chart: &LogLogChart, view_pixels: f64) {
+        let clashes = crate::record::chart_text_clashes_at(&chart.visuals(), view_pixels);
         assert!(
             clashes.is_empty(),
             "{} series: {clashes:?}",

@@ -17,7 +17,7 @@ mod visual;
 mod visual_log;
 
 pub use blueprint_key::BlueprintKey;
-pub use chart_text_check::{VIEW_PIXELS, chart_count, chart_text_clashes};
+pub use chart_text_check::{VIEW_PIXELS, chart_count, chart_text_clashes, chart_text_clashes_at};
 pub use eye::{Bounds, Eye};
 pub use layout::Layout;
 pub use log_log_chart::{LogLogChart, LogLogSeries};

@@ -115,9 +115,12 @@ fn leaf(
             },
         )?
     } else {
-        // The separators held, K_LL is positive definite: its own factor is the operator.
-        let symbolic = SymbolicFactor::analyse(k_ll.as_faer())?;
-        let factor = SymmetricFactor::sparse(k_ll.as_faer(), &symbolic, "leaf substructure K_LL")?;
+        // The separators held, K_LL is positive definite: its own factor is the operator,
+        // on the pattern K - ω_c²M was analysed with (K_LL - 0·M_LL has the same union of
+        // patterns, so one analysis serves both factors).
+        let k_on_union = k_ll.shifted(&m_ll, 0.0);
+        let factor =
+            SymmetricFactor::sparse(k_on_union.as_faer(), &symbolic, "leaf substructure K_LL")?;
         lowest_modes(
             &k_ll,
             &m_ll,

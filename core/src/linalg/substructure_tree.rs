@@ -68,11 +68,6 @@ impl SubstructureTree {
         self.nodes.len() - 1
     }
 
-    /// The number of unknowns the tree holds.
-    pub fn unknowns(&self) -> usize {
-        self.unknowns
-    }
-
     /// The elimination order (new position → old index): the nodes' unknowns in postorder.
     pub fn order(&self) -> Vec<usize> {
         self.nodes
