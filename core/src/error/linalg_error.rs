@@ -21,6 +21,12 @@ pub enum LinalgError {
     )]
     TooManyPairs { wanted: usize, dof: usize },
 
+    /// Multi-level substructuring kept fewer modes below its cut-off than the pairs asked for.
+    #[error(
+        "multi-level substructuring kept {kept} modes below {hz} Hz, fewer than the {wanted} \
+         asked for: raise the cut-off", hz = crate::report::readable(.hz, 4))]
+    CutoffTooLow { kept: usize, wanted: usize, hz: f64 },
+
     /// An allocation the computation needs could not be made.
     #[error(
         "out of memory: {what}{}{}",

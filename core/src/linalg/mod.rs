@@ -2,6 +2,7 @@
 //! the thesis' models (at most a few hundred DOF), sparse symmetric matrices, sparse Cholesky
 //! and a partial generalised eigensolver for refined meshes of up to ~150 000 DOF.
 
+mod amls_eigen;
 mod buffers;
 mod dense;
 mod generalized_eigen;
@@ -11,6 +12,7 @@ mod leaf_modes;
 mod lyapunov;
 mod mass_matrix;
 mod memory;
+mod multilevel_substructures;
 mod nested_dissection;
 mod orthonormality;
 mod partial_eigen;
@@ -24,6 +26,7 @@ mod symmetric_factor;
 mod threads;
 
 pub use crate::error::LinalgError;
+pub use amls_eigen::{AmlsEigenParameters, AmlsStatistics, amls_lowest_modes};
 pub use buffers::{reshape, resize};
 pub use dense::{
     frobenius, identity, max_abs, max_abs_diff, null_space, numerical_rank, principal_angles,
@@ -43,8 +46,9 @@ pub use memory::{
     available_bytes, check_reduction_memory, estimated_reduction_bytes, peak_resident_bytes,
     reset_peak_resident, resident_bytes,
 };
+pub use multilevel_substructures::{AmlsParameters, MultilevelSubstructures};
 pub use nested_dissection::nested_dissection;
-pub use orthonormality::orthonormality_defect;
+pub use orthonormality::{m_orthonormal, orthonormality_defect};
 pub(crate) use partial_eigen::next_uniform;
 pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,

@@ -6,7 +6,7 @@ use faer::{
     linalg::matmul::triangular::{BlockStructure, matmul},
 };
 
-use super::par_for_flops;
+use super::{MassMatrix, par_for_flops};
 
 /// $\max_{i \ge j} |(A^TB)_{ij} - \delta_{ij}|$ for $A^TB$ symmetric in exact arithmetic
 /// ($U^TU$, or $\Psi^TM\Psi$ with `b` $= M\Psi$): half the flops of the whole product; the
@@ -43,6 +43,32 @@ pub fn orthonormality_defect(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> f64 {
         }
     }
     worst
+}
+
+/// The columns of `x` made M-orthonormal in order (Gram–Schmidt, each column twice against the
+/// ones before it, Kahan's rule); a column that vanishes is left at zero.
+pub fn m_orthonormal(mut x: Mat<f64>, m: &MassMatrix) -> Mat<f64> {
+    let mut mx = m.mul(x.as_ref());
+    for j in 0..x.ncols() {
+        for _ in 0..2 {
+            if j > 0 {
+                let coeffs = mx.subcols(0, j).transpose() * x.col(j);
+                let proj = x.subcols(0, j) * &coeffs;
+                let mut col = x.col_mut(j);
+                col -= &proj;
+            }
+        }
+        let mcol = m.mul(x.col(j).as_mat());
+        let norm = (x.col(j).transpose() * mcol.col(0)).max(0.0).sqrt();
+        let inv = if norm > 0.0 { 1.0 / norm } else { 0.0 };
+        for i in 0..x.nrows() {
+            x[(i, j)] *= inv;
+        }
+        for i in 0..x.nrows() {
+            mx[(i, j)] = mcol[(i, 0)] * inv;
+        }
+    }
+    x
 }
 
 #[cfg(test)]

@@ -36,8 +36,8 @@ use crate::{
     linalg::{
         GeneralizedEigen, MassMatrix, PartialEigenParameters, PartialEigenStatistics,
         SparseSymmetric, SturmCount, SymbolicFactor, SymmetricFactor, ZERO_ENERGY_RATIO,
-        eigenvalue_scale, generalized_eigen, hz_from_eigenvalue, lowest_modes, negative_shift,
-        nested_dissection, next_uniform, sturm_count,
+        eigenvalue_scale, generalized_eigen, hz_from_eigenvalue, lowest_modes, m_orthonormal,
+        negative_shift, nested_dissection, next_uniform, sturm_count,
     },
 };
 
@@ -331,30 +331,4 @@ fn refined_null_space(
         vectors: z.subcols(0, nulls).to_owned(),
         lowest_elastic: values.get(nulls).copied().filter(|v| *v > threshold),
     })
-}
-
-/// The columns of `x` made M-orthonormal in order (Gram–Schmidt, each column twice against the
-/// ones before it, Kahan's rule); a column that vanishes is left at zero.
-fn m_orthonormal(mut x: Mat<f64>, m: &MassMatrix) -> Mat<f64> {
-    let mut mx = m.mul(x.as_ref());
-    for j in 0..x.ncols() {
-        for _ in 0..2 {
-            if j > 0 {
-                let coeffs = mx.subcols(0, j).transpose() * x.col(j);
-                let proj = x.subcols(0, j) * &coeffs;
-                let mut col = x.col_mut(j);
-                col -= &proj;
-            }
-        }
-        let mcol = m.mul(x.col(j).as_mat());
-        let norm = (x.col(j).transpose() * mcol.col(0)).max(0.0).sqrt();
-        let inv = if norm > 0.0 { 1.0 / norm } else { 0.0 };
-        for i in 0..x.nrows() {
-            x[(i, j)] *= inv;
-        }
-        for i in 0..x.nrows() {
-            mx[(i, j)] = mcol[(i, 0)] * inv;
-        }
-    }
-    x
 }

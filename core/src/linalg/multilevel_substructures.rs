@@ -1,0 +1,653 @@
+//! Automated multi-level substructuring (AMLS, Bennighof and Lehoucq 2004): component mode
+//! synthesis applied at every node of a [`SubstructureTree`], the leaves first.
+//!
+//! Each node's unknowns $P$ are eliminated from its front $F = P \cup B$ ($B$: the unknowns of
+//! its ancestors that its subtree touches), the children's Schur complements added in. With
+//! $K_\sigma = K - \sigma M$ (positive definite: $\sigma$ below the lowest eigenvalue, negative
+//! for a free body), the static part and the front's updates are
+//!
+//! $$\Phi = -K_{PP}^{-1}K_{PB},\quad
+//! \hat K_{BB} = K_{BB} + K_{BP}\Phi,\quad
+//! N = M_{PB} + M_{PP}\Phi,\quad
+//! \hat M_{BB} = M_{BB} + M_{BP}\Phi + \Phi^T N,$$
+//!
+//! and the node's fixed-interface modes $K_{PP}\psi = \mu M_{PP}\psi$ with $\mu$ below the
+//! cut-off $\omega_c^2 - \sigma$ are kept: $x_P = \Psi y + \Phi x_B$. In the kept coordinates
+//! $K_\sigma$ is $\mathrm{diag}(\mu)$ (the static part is $K$-orthogonal to the modes), and
+//! $M$ is the identity but for the coupling of each node's modes with its descendants' modes:
+//! a descendant mode's coupling row $C_d = [C_{dP}, C_{dB}]$ over the front becomes
+//! $C_{dP}\Psi$ (with this node's modes) and $C_{dB} + C_{dP}\Phi$ (passed up), and the new
+//! modes' rows are $\Psi^T N$.
+//!
+//! With every mode kept the transformation is a congruence: the projected pencil has the
+//! body's eigenvalues exactly. The stored $\Phi$ and the factors of $K_{PP}$ are the block
+//! $LDL^T$ factor of $K_\sigma$ in the tree's order: [`MultilevelSubstructures::solve_in_place`]
+//! applies $K_\sigma^{-1}$ with them.
+
+use faer::{
+    Accum, Mat, MatMut, MatRef, Par, Side,
+    linalg::matmul::matmul,
+    linalg::solvers::{Llt, Solve},
+};
+
+use super::{
+    GeneralizedEigen, LeafModesParameters, LinalgError, MassMatrix, PairSelection, SparseSymmetric,
+    SubstructureTree, generalized_eigen_selected, leaf_modes, par_for_flops,
+};
+use crate::{Error, Result};
+
+/// How [`MultilevelSubstructures::new`] reduces a body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AmlsParameters {
+    /// Each node keeps its fixed-interface modes up to this frequency, Hz (infinite: all).
+    pub cutoff_hz: f64,
+    /// $\sigma$ of $K - \sigma M$, (rad/s)²: below the body's lowest eigenvalue (negative for a
+    /// free body, see [`super::negative_shift`]).
+    pub shift: f64,
+    /// How the leaves' modes are solved.
+    pub leaves: LeafModesParameters,
+}
+
+impl Default for AmlsParameters {
+    fn default() -> Self {
+        Self {
+            cutoff_hz: f64::INFINITY,
+            shift: 0.0,
+            leaves: LeafModesParameters::default(),
+        }
+    }
+}
+
+/// One eliminated node: its part of the block factor and its kept modes.
+struct Front {
+    /// $P$: the node's unknowns.
+    unknowns: Vec<usize>,
+    /// $B$: its ancestors' unknowns its subtree touches, in the elimination order.
+    boundary: Vec<usize>,
+    /// $K_{PP} = LL^T$ after its descendants' elimination.
+    factor: Llt<f64>,
+    /// $\Phi = -K_{PP}^{-1}K_{PB}$, $|P| \times |B|$.
+    phi: Mat<f64>,
+    /// $\Psi$: the kept modes, $M_{PP}$-orthonormal, $|P| \times k$.
+    modes: Mat<f64>,
+    /// The index of its first mode among all kept ones.
+    first_mode: usize,
+}
+
+/// What a node hands to its parent.
+struct Update {
+    boundary: Vec<usize>,
+    k: Mat<f64>,
+    m: Mat<f64>,
+    /// Mass coupling of every kept mode of the subtree with `boundary`.
+    coupling: Mat<f64>,
+    /// Those modes' indices.
+    modes: Vec<usize>,
+}
+
+/// A body reduced by AMLS: the kept modes of every node of its substructure tree, the
+/// projected pencil $(\mathrm{diag}(\mu), M_A)$ and the block factor of $K_\sigma$.
+pub struct MultilevelSubstructures {
+    dim: usize,
+    shift: f64,
+    fronts: Vec<Front>,
+    /// $\mu$ of each kept mode ($K_\sigma$'s projection), in the order of the coordinates.
+    stiffness: Vec<f64>,
+    /// $M_A$, symmetric, unit diagonal.
+    mass: Mat<f64>,
+    /// The tree node each kept mode belongs to.
+    node_of_mode: Vec<usize>,
+}
+
+impl std::fmt::Debug for MultilevelSubstructures {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MultilevelSubstructures")
+            .field("dim", &self.dim)
+            .field("nodes", &self.fronts.len())
+            .field("modes", &self.stiffness.len())
+            .finish()
+    }
+}
+
+impl MultilevelSubstructures {
+    /// Reduces $(K, M)$ over `tree` (of the same unknowns) as the module says.
+    ///
+    /// Fails with [`LinalgError::NonPositivePivot`] when a node's $K_{PP}$ is not positive
+    /// definite (the shift is not below the lowest eigenvalue) and with the eigensolvers'
+    /// errors (see [`leaf_modes`], [`generalized_eigen_selected`]).
+    pub fn new(
+        k: &SparseSymmetric,
+        m: &MassMatrix,
+        tree: &SubstructureTree,
+        params: &AmlsParameters,
+    ) -> Result<Self> {
+        let n = k.dim();
+        assert_eq!(m.dim(), n, "K and M of one body");
+        let nodes = tree.nodes();
+        let node_of = tree.node_of();
+        let mut position = vec![0; n];
+        for (p, &u) in tree.order().iter().enumerate() {
+            position[u] = p;
+        }
+        let sigma = params.shift;
+        let mu_cutoff = (2.0 * std::f64::consts::PI * params.cutoff_hz).powi(2) - sigma;
+        // The leaves' modes first (on the threads, each count proved by its inertia); with
+        // every mode kept there is no count to prove and the leaves go the way of the others.
+        let mut leaf_modes_of: Vec<Option<GeneralizedEigen>> =
+            (0..nodes.len()).map(|_| None).collect();
+        if params.cutoff_hz.is_finite() {
+            for leaf in leaf_modes(k, m, tree, params.cutoff_hz, &params.leaves)? {
+                leaf_modes_of[leaf.node] = Some(leaf.modes);
+            }
+        }
+        let mut pending: Vec<Vec<Update>> = (0..nodes.len()).map(|_| Vec::new()).collect();
+        let mut local = vec![usize::MAX; n];
+        let mut stamp = vec![usize::MAX; n];
+        let mut fronts = Vec::with_capacity(nodes.len());
+        let mut stiffness = Vec::new();
+        let mut node_of_mode = Vec::new();
+        let mut blocks: Vec<(Vec<usize>, usize, Mat<f64>)> = Vec::new();
+        for (j, node) in nodes.iter().enumerate() {
+            let updates = std::mem::take(&mut pending[j]);
+            let unknowns = &node.unknowns;
+            // B: ancestors' unknowns coupled to P, and those of the children's fronts.
+            let mut boundary = Vec::new();
+            let mut touch = |v: usize, boundary: &mut Vec<usize>| {
+                let a = node_of[v];
+                if a != j && stamp[v] != j && tree.is_ancestor(a, j) {
+                    stamp[v] = j;
+                    boundary.push(v);
+                }
+            };
+            for &u in unknowns {
+                for &v in column_rows(k, u) {
+                    touch(v, &mut boundary);
+                }
+                if let MassMatrix::Consistent(mm) = m {
+                    for &v in column_rows(mm, u) {
+                        touch(v, &mut boundary);
+                    }
+                }
+            }
+            for up in &updates {
+                for &v in &up.boundary {
+                    touch(v, &mut boundary);
+                }
+            }
+            boundary.sort_unstable_by_key(|&v| position[v]);
+            let (p, q) = (unknowns.len(), boundary.len());
+            for (i, &u) in unknowns.iter().chain(&boundary).enumerate() {
+                local[u] = i;
+            }
+            // The front: K - σM and M's own entries in P's columns, then the children's.
+            let f = p + q;
+            let mut kf = Mat::<f64>::zeros(f, f);
+            let mut mf = Mat::<f64>::zeros(f, f);
+            for (lu, &u) in unknowns.iter().enumerate() {
+                add_column(&mut kf, k, u, lu, p, &local, 1.0);
+                match m {
+                    MassMatrix::Consistent(mm) => {
+                        add_column(&mut kf, mm, u, lu, p, &local, -sigma);
+                        add_column(&mut mf, mm, u, lu, p, &local, 1.0);
+                    }
+                    MassMatrix::Lumped(d) => {
+                        kf[(lu, lu)] -= sigma * d[u];
+                        mf[(lu, lu)] += d[u];
+                    }
+                }
+            }
+            let descendants: usize = updates.iter().map(|u| u.modes.len()).sum();
+            let mut coupling = Mat::<f64>::zeros(descendants, f);
+            let mut descendant_modes = Vec::with_capacity(descendants);
+            for up in &updates {
+                let at: Vec<usize> = up.boundary.iter().map(|&v| local[v]).collect();
+                for (b, &lb) in at.iter().enumerate() {
+                    for (a, &la) in at.iter().enumerate() {
+                        kf[(la, lb)] += up.k[(a, b)];
+                        mf[(la, lb)] += up.m[(a, b)];
+                    }
+                }
+                let row0 = descendant_modes.len();
+                for (b, &lb) in at.iter().enumerate() {
+                    for r in 0..up.modes.len() {
+                        coupling[(row0 + r, lb)] = up.coupling[(r, b)];
+                    }
+                }
+                descendant_modes.extend_from_slice(&up.modes);
+            }
+            drop(updates);
+            for &u in unknowns.iter().chain(&boundary) {
+                local[u] = usize::MAX;
+            }
+            // Elimination of P.
+            let k_pp = kf.submatrix(0, 0, p, p).to_owned();
+            let factor = k_pp.llt(Side::Lower).map_err(|e| {
+                let faer::linalg::solvers::LltError::NonPositivePivot { index } = e;
+                Error::Linalg(LinalgError::NonPositivePivot {
+                    matrix: "substructure K - σM (the shift is not below the lowest eigenvalue)"
+                        .into(),
+                    index: unknowns[index.min(p.saturating_sub(1))],
+                })
+            })?;
+            let mut phi = kf.submatrix(0, p, p, q).to_owned();
+            factor.solve_in_place(phi.as_mut());
+            for x in phi.col_iter_mut().flat_map(|c| c.iter_mut()) {
+                *x = -*x;
+            }
+            let par = par_for_flops((p * q * q) as f64);
+            // K̂_BB = K_BB + K_BP Φ, N = M_PB + M_PP Φ, M̂_BB = M_BB + M_BP Φ + Φᵀ N.
+            let mut k_bb = kf.submatrix(p, p, q, q).to_owned();
+            product(
+                k_bb.as_mut(),
+                kf.submatrix(0, p, p, q).transpose(),
+                phi.as_ref(),
+                par,
+            );
+            let mut n_pb = mf.submatrix(0, p, p, q).to_owned();
+            product(n_pb.as_mut(), mf.submatrix(0, 0, p, p), phi.as_ref(), par);
+            let mut m_bb = mf.submatrix(p, p, q, q).to_owned();
+            product(
+                m_bb.as_mut(),
+                mf.submatrix(0, p, p, q).transpose(),
+                phi.as_ref(),
+                par,
+            );
+            product(m_bb.as_mut(), phi.transpose(), n_pb.as_ref(), par);
+            symmetrize(k_bb.as_mut());
+            symmetrize(m_bb.as_mut());
+            // The node's modes below the cut-off (values of K_σ's block: μ = λ - σ).
+            let modes = match leaf_modes_of[j].take() {
+                Some(leaf) => {
+                    stiffness.extend(leaf.values.iter().map(|&l| l - sigma));
+                    leaf.vectors
+                }
+                None => {
+                    let selection = if mu_cutoff.is_finite() {
+                        PairSelection::UpToHz {
+                            hz: super::hz_from_eigenvalue(mu_cutoff),
+                            always: 0,
+                        }
+                    } else {
+                        PairSelection::All
+                    };
+                    let eigen = generalized_eigen_selected(
+                        k_pp.as_ref(),
+                        mf.submatrix(0, 0, p, p),
+                        "substructure (ancestors held)",
+                        selection,
+                    )?;
+                    stiffness.extend_from_slice(&eigen.values);
+                    eigen.vectors
+                }
+            };
+            let kept = modes.ncols();
+            let first_mode = node_of_mode.len();
+            node_of_mode.extend(std::iter::repeat_n(j, kept));
+            // The descendants' couplings: with this node's modes, and on to B.
+            if descendants > 0 && kept > 0 {
+                let mut block = Mat::<f64>::zeros(descendants, kept);
+                product(
+                    block.as_mut(),
+                    coupling.submatrix(0, 0, descendants, p),
+                    modes.as_ref(),
+                    par,
+                );
+                blocks.push((descendant_modes.clone(), first_mode, block));
+            }
+            if let Some(parent) = node.parent.filter(|_| q > 0) {
+                let mut up_coupling = Mat::<f64>::zeros(descendants + kept, q);
+                up_coupling
+                    .submatrix_mut(0, 0, descendants, q)
+                    .copy_from(coupling.submatrix(0, p, descendants, q));
+                product(
+                    up_coupling.submatrix_mut(0, 0, descendants, q),
+                    coupling.submatrix(0, 0, descendants, p),
+                    phi.as_ref(),
+                    par,
+                );
+                product(
+                    up_coupling.submatrix_mut(descendants, 0, kept, q),
+                    modes.transpose(),
+                    n_pb.as_ref(),
+                    par,
+                );
+                let mut modes_up = descendant_modes;
+                modes_up.extend(first_mode..first_mode + kept);
+                pending[parent].push(Update {
+                    boundary: boundary.clone(),
+                    k: k_bb,
+                    m: m_bb,
+                    coupling: up_coupling,
+                    modes: modes_up,
+                });
+            }
+            fronts.push(Front {
+                unknowns: unknowns.clone(),
+                boundary,
+                factor,
+                phi,
+                modes,
+                first_mode,
+            });
+        }
+        let r = stiffness.len();
+        let mut mass = Mat::<f64>::identity(r, r);
+        for (rows, first, block) in &blocks {
+            for b in 0..block.ncols() {
+                for (a, &row) in rows.iter().enumerate() {
+                    mass[(row, first + b)] = block[(a, b)];
+                    mass[(first + b, row)] = block[(a, b)];
+                }
+            }
+        }
+        Ok(Self {
+            dim: n,
+            shift: sigma,
+            fronts,
+            stiffness,
+            mass,
+            node_of_mode,
+        })
+    }
+
+    /// The body's unknowns.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// $\sigma$ of $K_\sigma = K - \sigma M$.
+    pub fn shift(&self) -> f64 {
+        self.shift
+    }
+
+    /// The kept modes (the projected problem's size).
+    pub fn modes(&self) -> usize {
+        self.stiffness.len()
+    }
+
+    /// $\mu$ of each kept mode: the projected $K_\sigma$ is $\mathrm{diag}(\mu)$.
+    pub fn projected_stiffness(&self) -> &[f64] {
+        &self.stiffness
+    }
+
+    /// $M_A$, the projected mass.
+    pub fn projected_mass(&self) -> MatRef<'_, f64> {
+        self.mass.as_ref()
+    }
+
+    /// The tree node each kept mode belongs to.
+    pub fn node_of_mode(&self) -> &[usize] {
+        &self.node_of_mode
+    }
+
+    /// How many modes each tree node keeps.
+    pub fn modes_per_node(&self) -> Vec<usize> {
+        self.fronts.iter().map(|f| f.modes.ncols()).collect()
+    }
+
+    /// Entries of the block factor ($L_{PP}$'s lower triangles and the $\Phi$ blocks).
+    pub fn factor_entries(&self) -> usize {
+        self.fronts
+            .iter()
+            .map(|f| f.unknowns.len() * (f.unknowns.len() + 1) / 2 + f.phi.nrows() * f.phi.ncols())
+            .sum()
+    }
+
+    /// $x = T y$: the body's vectors of projected coordinates `y` (`modes()` rows), each
+    /// node's $x_P = \Psi y_P + \Phi x_B$ from the root down.
+    pub fn expand(&self, y: MatRef<'_, f64>) -> Mat<f64> {
+        assert_eq!(y.nrows(), self.modes(), "projected coordinates");
+        let s = y.ncols();
+        let mut x = Mat::<f64>::zeros(self.dim, s);
+        for front in self.fronts.iter().rev() {
+            let p = front.unknowns.len();
+            let mut x_p = Mat::<f64>::zeros(p, s);
+            let kept = front.modes.ncols();
+            if kept > 0 {
+                product(
+                    x_p.as_mut(),
+                    front.modes.as_ref(),
+                    y.subrows(front.first_mode, kept),
+                    Par::Seq,
+                );
+            }
+            self.add_static(front, &mut x_p, &x);
+            for (i, &u) in front.unknowns.iter().enumerate() {
+                for c in 0..s {
+                    x[(u, c)] = x_p[(i, c)];
+                }
+            }
+        }
+        x
+    }
+
+    /// $x_P \mathrel{+}= \Phi x_B$ with $x_B$ read from `x`.
+    fn add_static(&self, front: &Front, x_p: &mut Mat<f64>, x: &Mat<f64>) {
+        let q = front.boundary.len();
+        if q == 0 {
+            return;
+        }
+        let s = x.ncols();
+        let x_b = Mat::from_fn(q, s, |i, c| x[(front.boundary[i], c)]);
+        product(x_p.as_mut(), front.phi.as_ref(), x_b.as_ref(), Par::Seq);
+    }
+
+    /// $B \leftarrow K_\sigma^{-1}B$ by the block factor: the tree's nodes up (each node's
+    /// right-hand side solved by its $K_{PP}$, $\Phi^T b_P$ added to its ancestors'), then
+    /// down ($x_P = K_{PP}^{-1}b_P + \Phi x_B$).
+    pub fn solve_in_place(&self, mut b: MatMut<'_, f64>) {
+        assert_eq!(b.nrows(), self.dim, "right-hand sides");
+        let s = b.ncols();
+        let mut solved: Vec<Mat<f64>> = Vec::with_capacity(self.fronts.len());
+        for front in &self.fronts {
+            let p = front.unknowns.len();
+            let b_p = Mat::from_fn(p, s, |i, c| b[(front.unknowns[i], c)]);
+            let q = front.boundary.len();
+            if q > 0 {
+                let mut up = Mat::<f64>::zeros(q, s);
+                product(up.as_mut(), front.phi.transpose(), b_p.as_ref(), Par::Seq);
+                for (i, &v) in front.boundary.iter().enumerate() {
+                    for c in 0..s {
+                        b[(v, c)] += up[(i, c)];
+                    }
+                }
+            }
+            let mut z = b_p;
+            front.factor.solve_in_place(z.as_mut());
+            solved.push(z);
+        }
+        for (front, z) in self.fronts.iter().zip(solved).rev() {
+            let mut x_p = z;
+            let q = front.boundary.len();
+            if q > 0 {
+                let x_b = Mat::from_fn(q, s, |i, c| b[(front.boundary[i], c)]);
+                product(x_p.as_mut(), front.phi.as_ref(), x_b.as_ref(), Par::Seq);
+            }
+            for (i, &u) in front.unknowns.iter().enumerate() {
+                for c in 0..s {
+                    b[(u, c)] = x_p[(i, c)];
+                }
+            }
+        }
+    }
+}
+
+/// The row indices stored in column `u`.
+fn column_rows(a: &SparseSymmetric, u: usize) -> &[usize] {
+    a.as_faer().symbolic().row_idx_of_col_raw(u)
+}
+
+/// Adds `scale` times column `u` of `a` (front column `lu`, a pivot) into the front: rows in
+/// $P$ (below `p`) once (their own columns add the other triangle), rows in $B$ both ways.
+/// Rows outside the front (descendants', already eliminated) are skipped.
+fn add_column(
+    front: &mut Mat<f64>,
+    a: &SparseSymmetric,
+    u: usize,
+    lu: usize,
+    p: usize,
+    local: &[usize],
+    scale: f64,
+) {
+    let values = a.as_faer().val_of_col(u);
+    for (&v, &value) in column_rows(a, u).iter().zip(values) {
+        let lv = local[v];
+        if lv == usize::MAX {
+            continue;
+        }
+        front[(lv, lu)] += scale * value;
+        if lv >= p {
+            front[(lu, lv)] += scale * value;
+        }
+    }
+}
+
+/// `dst += a b`.
+fn product(dst: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>, par: Par) {
+    if a.ncols() == 0 || dst.nrows() == 0 || dst.ncols() == 0 {
+        return;
+    }
+    matmul(dst, Accum::Add, a, b, 1.0, par);
+}
+
+/// $A \leftarrow (A + A^T)/2$.
+fn symmetrize(mut a: MatMut<'_, f64>) {
+    for j in 0..a.ncols() {
+        for i in 0..j {
+            let v = 0.5 * (a[(i, j)] + a[(j, i)]);
+            a[(i, j)] = v;
+            a[(j, i)] = v;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::{FeModel, SlabParameters, slab};
+    use crate::linalg::{generalized_eigen, negative_shift};
+
+    fn slab_and_tree(bricks: [usize; 3], leaf: usize) -> (FeModel, SubstructureTree) {
+        let model = slab(&SlabParameters::refined(bricks).unwrap());
+        let coords: Vec<[f64; 3]> = (0..model.dof_count())
+            .map(|d| model.dof_position(d))
+            .collect();
+        let tree = SubstructureTree::new(model.k.as_faer(), &coords, leaf).unwrap();
+        (model, tree)
+    }
+
+    /// The body's own eigenvalues, dense.
+    fn dense_values(model: &FeModel) -> Vec<f64> {
+        generalized_eigen(
+            model.k.to_dense().as_ref(),
+            model.m.to_dense().as_ref(),
+            "test body",
+        )
+        .unwrap()
+        .values
+    }
+
+    /// The projected pencil's eigenvalues (λ = μ + σ).
+    fn projected_values(reduced: &MultilevelSubstructures) -> Vec<f64> {
+        let mu = reduced.projected_stiffness();
+        let r = mu.len();
+        let k_a = Mat::from_fn(r, r, |i, j| if i == j { mu[i] } else { 0.0 });
+        generalized_eigen(k_a.as_ref(), reduced.projected_mass(), "test projected")
+            .unwrap()
+            .values
+            .iter()
+            .map(|&v| v + reduced.shift())
+            .collect()
+    }
+
+    #[test]
+    fn with_every_mode_kept_the_projected_pencil_has_the_bodys_eigenvalues() {
+        for (bricks, leaf) in [([4, 2, 1], 20), ([6, 3, 2], 40), ([8, 4, 2], 100)] {
+            let (model, tree) = slab_and_tree(bricks, leaf);
+            assert!(tree.levels() >= 3, "{bricks:?}: {} levels", tree.levels());
+            let params = AmlsParameters {
+                shift: negative_shift(&model.k, &model.m),
+                ..AmlsParameters::default()
+            };
+            let reduced = MultilevelSubstructures::new(&model.k, &model.m, &tree, &params).unwrap();
+            assert_eq!(reduced.modes(), model.dof_count());
+            let expected = dense_values(&model);
+            let top = expected.last().unwrap().abs();
+            let got = projected_values(&reduced);
+            assert_eq!(got.len(), expected.len());
+            for (i, (a, b)) in got.iter().zip(&expected).enumerate() {
+                assert!(
+                    (a - b).abs() <= 1e-10 * top + 1e-8 * b.abs(),
+                    "{bricks:?} pair {i}: {a} against {b}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_cut_off_keeps_upper_bounds_close_to_the_lowest_eigenvalues() {
+        let (model, tree) = slab_and_tree([8, 4, 2], 60);
+        let expected = dense_values(&model);
+        let mut previous = usize::MAX;
+        for cutoff_hz in [60.0, 45.0] {
+            let params = AmlsParameters {
+                cutoff_hz,
+                shift: negative_shift(&model.k, &model.m),
+                ..AmlsParameters::default()
+            };
+            let reduced = MultilevelSubstructures::new(&model.k, &model.m, &tree, &params).unwrap();
+            let r = reduced.modes();
+            assert!(
+                r > 20 && r < model.dof_count() / 2 && r < previous,
+                "{r} modes kept"
+            );
+            previous = r;
+            assert_eq!(reduced.modes_per_node().iter().sum::<usize>(), r);
+            let got = projected_values(&reduced);
+            // Rayleigh–Ritz values of a subspace: above the true ones, and the lowest elastic
+            // ones (up to a quarter of the cut-off) within a few per cent.
+            let limit = (2.0 * std::f64::consts::PI * cutoff_hz / 4.0).powi(2);
+            let mut close = 0;
+            for (i, (a, b)) in got.iter().zip(&expected).enumerate().skip(6) {
+                assert!(*a >= b * (1.0 - 1e-9), "pair {i}: {a} below {b}");
+                if *b <= limit {
+                    assert!(a / b - 1.0 <= 0.05, "pair {i}: {a} against {b}");
+                    close += 1;
+                }
+            }
+            assert!(
+                close >= 2,
+                "{close} pairs below a quarter of {cutoff_hz} Hz"
+            );
+        }
+    }
+
+    #[test]
+    fn the_block_factor_solves_with_k_minus_sigma_m() {
+        for (bricks, leaf) in [([4, 2, 1], 20), ([8, 4, 2], 60)] {
+            let (model, tree) = slab_and_tree(bricks, leaf);
+            let sigma = negative_shift(&model.k, &model.m);
+            let params = AmlsParameters {
+                cutoff_hz: 30.0,
+                shift: sigma,
+                ..AmlsParameters::default()
+            };
+            let reduced = MultilevelSubstructures::new(&model.k, &model.m, &tree, &params).unwrap();
+            let n = model.dof_count();
+            let b = Mat::from_fn(n, 3, |i, j| ((i * 7 + j * 13) % 11) as f64 - 5.0);
+            let mut x = b.clone();
+            reduced.solve_in_place(x.as_mut());
+            let shifted = model.k.shifted(&model.m, sigma);
+            let ax = shifted.mul(x.as_ref());
+            let scale = shifted.abs_mul(x.as_ref());
+            for j in 0..3 {
+                let (mut r, mut s) = (0.0f64, 0.0f64);
+                for i in 0..n {
+                    r = r.max((ax[(i, j)] - b[(i, j)]).abs());
+                    s = s.max(scale[(i, j)] + b[(i, j)].abs());
+                }
+                assert!(r <= 1e-9 * s, "{bricks:?}: residual {r} of {s}");
+            }
+        }
+    }
+}
