@@ -7,9 +7,15 @@
 //! With `--cutoff HZ`, AMLS's first level too: every leaf's fixed-interface modes below the
 //! cut-off ([`flexmodes_core::linalg::leaf_modes`]), timed on `--threads N` (default: all).
 //!
+//! With `--amls WANTED` as well, the lowest `WANTED` free-free pairs by AMLS over the whole
+//! tree ([`flexmodes_core::linalg::amls_lowest_modes`], every node keeping its modes below the
+//! cut-off, then refined) beside flexmodes' Lanczos ([`flexmodes_core::reduction::free_body_pairs`])
+//! in the same run: times, peak memory, and the largest difference of their frequencies.
+//!
 //! ```sh
 //! cargo run --release --example substructure_tree -- 24x12x6 50x25x12 --leaf 2000
 //! cargo run --release --example substructure_tree -- 40x20x10 --leaf 2000 --cutoff 60
+//! cargo run --release --example substructure_tree -- 40x20x10 --leaf 500 --cutoff 8 --amls 50
 //! ```
 
 use std::time::Instant;
@@ -17,9 +23,11 @@ use std::time::Instant;
 use flexmodes_core::{
     fem::{SlabParameters, slab},
     linalg::{
-        LeafModesParameters, SubstructureTree, SymbolicFactor, leaf_modes, machine_threads,
-        set_threads,
+        AmlsEigenParameters, AmlsParameters, LeafModesParameters, SubstructureTree, SymbolicFactor,
+        amls_lowest_modes, leaf_modes, machine_threads, negative_shift, peak_resident_bytes,
+        reset_peak_resident, set_threads,
     },
+    reduction::{FreeBodyParameters, free_body_pairs},
 };
 
 fn main() {
@@ -27,12 +35,14 @@ fn main() {
     let mut leaf = 2000;
     let mut check_up_to = 200_000;
     let mut cutoff = None;
+    let mut amls = None;
     let mut threads = machine_threads();
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
             "--leaf" => leaf = args.next().and_then(|s| s.parse().ok()).expect("--leaf N"),
             "--cutoff" => cutoff = args.next().and_then(|s| s.parse::<f64>().ok()),
+            "--amls" => amls = args.next().and_then(|s| s.parse::<usize>().ok()),
             "--threads" => {
                 threads = args
                     .next()
@@ -168,6 +178,82 @@ fn main() {
                 started.elapsed().as_secs_f64()
             );
         }
+        if let (Some(hz), Some(wanted)) = (cutoff, amls) {
+            compare_amls_and_lanczos(&model, &tree, hz, wanted, threads);
+        }
         println!();
     }
+}
+
+/// The lowest `wanted` free-free pairs by AMLS (cut-off `hz`) and by Lanczos, timed one after
+/// the other, each with its own peak resident memory.
+fn compare_amls_and_lanczos(
+    model: &flexmodes_core::fem::FeModel,
+    tree: &SubstructureTree,
+    hz: f64,
+    wanted: usize,
+    threads: usize,
+) {
+    let gb = |b: Option<u64>| b.map_or(f64::NAN, |b| b as f64 / 1e9);
+    let params = AmlsEigenParameters {
+        reduction: AmlsParameters {
+            cutoff_hz: hz,
+            shift: negative_shift(&model.k, &model.m),
+            ..AmlsParameters::default()
+        },
+        ..AmlsEigenParameters::default()
+    };
+    let rigid = model.rigid_body_modes();
+    reset_peak_resident();
+    let started = Instant::now();
+    let (amls, stats) = amls_lowest_modes(
+        &model.k,
+        &model.m,
+        tree,
+        wanted,
+        Some(rigid.as_ref()),
+        &params,
+    )
+    .expect("AMLS");
+    let amls_s = started.elapsed().as_secs_f64();
+    let amls_peak = gb(peak_resident_bytes());
+    println!(
+        "AMLS, {wanted} pairs, first cut-off {hz} Hz: {amls_s:.2} s, peak {amls_peak:.2} GB on \
+         {threads} thread(s); {} reduction(s), the last at {:.1} Hz keeping {} modes, block \
+         factor {:.3e} entries; reductions {:.2} s, projected \
+         solve {:.2} s, refinement {:.2} s ({} refinement steps, worst residual {:.1e} before, \
+         {:.1e} after), Sturm {:.2} s (missed {})",
+        stats.reductions,
+        stats.cutoff_hz,
+        stats.projected,
+        stats.factor_entries as f64,
+        stats.seconds[0],
+        stats.seconds[1],
+        stats.seconds[2],
+        stats.iterations,
+        stats.unrefined_residual,
+        stats.max_residual,
+        stats.seconds[3],
+        amls.sturm.map_or(0, |s| s.missed())
+    );
+    reset_peak_resident();
+    let started = Instant::now();
+    let lanczos = free_body_pairs(model, wanted, &FreeBodyParameters::default()).expect("Lanczos");
+    let lanczos_s = started.elapsed().as_secs_f64();
+    let lanczos_peak = gb(peak_resident_bytes());
+    // The elastic pairs (the rigid ones' eigenvalues are round-off in both).
+    let rigid = amls.zero_energy.max(lanczos.zero_energy);
+    let worst = amls
+        .values
+        .iter()
+        .zip(&lanczos.values)
+        .skip(rigid)
+        .map(|(a, b)| (a - b).abs() / b.abs())
+        .fold(0.0f64, f64::max);
+    println!(
+        "Lanczos, {wanted} pairs: {lanczos_s:.2} s, peak {lanczos_peak:.2} GB; AMLS / Lanczos \
+         {:.2}; largest relative difference of the elastic eigenvalues {worst:.1e}; highest {:.4} Hz",
+        amls_s / lanczos_s,
+        lanczos.hz().last().copied().unwrap_or(0.0)
+    );
 }

@@ -4,10 +4,10 @@
 //!
 //! The projected pencil $(\mathrm{diag}(\mu), M_A)$ is solved dense; its lowest $s$ pairs
 //! (the wanted ones and a guard) are expanded to the body, $X = TY$. AMLS's truncation leaves
-//! them accurate to about $(\lambda/\omega_c^2)$; subspace iteration on the block factor AMLS
-//! already built, $X \leftarrow K_\sigma^{-1}MX$ followed by Rayleigh–Ritz with the body's own
-//! $K$ and $M$, closes the rest: each step divides a pair's error by about
-//! $(\lambda_{s+1} - \sigma)/(\lambda_i - \sigma)$.
+//! them accurate to about $(\lambda/\omega_c^2)$. The refinement closes the rest with the block
+//! factor AMLS already built: Rayleigh–Ritz with the body's own $K$ and $M$ on the span of the
+//! Ritz vectors $X_k$, their images $K_\sigma^{-1}MX_k$ and the previous $X_{k-1}$ (LOBPCG's
+//! three blocks with the exact inverse as its preconditioner), until every wanted pair passes.
 
 use std::time::Instant;
 
@@ -16,22 +16,31 @@ use faer::{Mat, MatRef};
 use super::{
     AmlsParameters, GeneralizedEigen, LinalgError, MassMatrix, MultilevelSubstructures,
     PairSelection, SparseSymmetric, SubstructureTree, SymbolicFactor, ZERO_ENERGY_RATIO,
-    eigenvalue_scale, fix_sign, generalized_eigen, generalized_eigen_selected, hz_from_eigenvalue,
-    m_orthonormal, sturm_count,
+    eigenvalue_scale, fix_sign, generalized_eigen_selected, hz_from_eigenvalue, m_orthonormal,
+    m_orthonormal_basis, sturm_count,
 };
 use crate::{Error, Result};
+
+/// A column of the refinement's search space whose $M$-norm falls below this share of its
+/// norm when the columns before it are projected out adds nothing but round-off.
+const BASIS_DROP: f64 = 1e-10;
 
 /// How [`amls_lowest_modes`] solves and refines.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AmlsEigenParameters {
-    /// The reduction (cut-off, shift, leaves).
+    /// The reduction (the first cut-off, the shift, the leaves).
     pub reduction: AmlsParameters,
     /// Pairs carried beside the wanted ones through the refinement (their Ritz values also
     /// place the Sturm shift).
     pub guard: usize,
     /// Largest accepted relative residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
     pub tolerance: f64,
-    /// Subspace iterations before the refinement gives up.
+    /// The cut-off at least this multiple of the highest pair carried (wanted and guard): a
+    /// reduction whose projected pairs reach higher is made again with the cut-off raised.
+    pub cutoff_ratio: f64,
+    /// Reductions tried before the last cut-off is kept as it is.
+    pub max_reductions: usize,
+    /// Refinement steps before it gives up.
     pub max_iterations: usize,
 }
 
@@ -40,6 +49,8 @@ impl Default for AmlsEigenParameters {
         Self {
             reduction: AmlsParameters::default(),
             guard: 16,
+            cutoff_ratio: 2.0,
+            max_reductions: 3,
             tolerance: 1e-8,
             max_iterations: 60,
         }
@@ -49,11 +60,15 @@ impl Default for AmlsEigenParameters {
 /// Where an AMLS solve spent its effort.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct AmlsStatistics {
+    /// Reductions made (more than one when the first cut-off was too low).
+    pub reductions: usize,
+    /// The cut-off of the last, Hz.
+    pub cutoff_hz: f64,
     /// Modes the substructures kept (the projected problem's size).
     pub projected: usize,
     /// Entries of the block factor.
     pub factor_entries: usize,
-    /// Subspace iterations of the refinement.
+    /// Refinement steps.
     pub iterations: usize,
     /// The worst residual of the wanted pairs before refinement.
     pub unrefined_residual: f64,
@@ -85,50 +100,89 @@ pub fn amls_lowest_modes(
 ) -> Result<(GeneralizedEigen, AmlsStatistics)> {
     let n = k.dim();
     let mut stats = AmlsStatistics::default();
-    let clock = Instant::now();
-    let reduced = MultilevelSubstructures::new(k, m, tree, &params.reduction)?;
-    stats.seconds[0] = clock.elapsed().as_secs_f64();
-    stats.projected = reduced.modes();
-    stats.factor_entries = reduced.factor_entries();
-    let r = reduced.modes();
-    if r < wanted {
-        return Err(Error::Linalg(LinalgError::CutoffTooLow {
-            kept: r,
-            wanted,
-            hz: params.reduction.cutoff_hz,
-        }));
-    }
     let null = null_space
         .map(|v| m_orthonormal(v.subcols(0, v.ncols().min(wanted)).to_owned(), m))
         .unwrap_or_else(|| Mat::zeros(n, 0));
     let z = null.ncols();
     let m_null = m.mul(null.as_ref());
     let elastic = wanted - z;
-    let s = (elastic + params.guard).min(r - z);
+    // The reduction, again with a higher cut-off while the projected problem's highest pair
+    // (the guard's top) lies above the cut-off over `cutoff_ratio`: AMLS is accurate only well
+    // below its cut-off, and the first cut-off is a guess.
+    let mut reduction = params.reduction.clone();
+    let (reduced, projected, s) = loop {
+        stats.reductions += 1;
+        let retry = stats.reductions < params.max_reductions;
+        let clock = Instant::now();
+        let reduced = MultilevelSubstructures::new(k, m, tree, &reduction)?;
+        stats.seconds[0] += clock.elapsed().as_secs_f64();
+        let r = reduced.modes();
+        if r < (wanted + params.guard).min(n) && retry {
+            reduction.cutoff_hz *= 2.0;
+            continue;
+        }
+        if r < wanted {
+            return Err(Error::Linalg(LinalgError::CutoffTooLow {
+                kept: r,
+                wanted,
+                hz: reduction.cutoff_hz,
+            }));
+        }
+        let s = (elastic + params.guard).min(r - z);
+        let clock = Instant::now();
+        let mu = reduced.projected_stiffness();
+        let k_a = Mat::from_fn(r, r, |i, j| if i == j { mu[i] } else { 0.0 });
+        let projected = generalized_eigen_selected(
+            k_a.as_ref(),
+            reduced.projected_mass(),
+            "AMLS projected",
+            PairSelection::Lowest(z + s),
+        )?;
+        stats.seconds[1] += clock.elapsed().as_secs_f64();
+        let top_hz = hz_from_eigenvalue(projected.values[z + s - 1] + reduction.shift);
+        if params.cutoff_ratio * top_hz > reduction.cutoff_hz && retry {
+            reduction.cutoff_hz = 1.05 * params.cutoff_ratio * top_hz;
+            continue;
+        }
+        break (reduced, projected, s);
+    };
+    stats.cutoff_hz = reduction.cutoff_hz;
+    stats.projected = reduced.modes();
+    stats.factor_entries = reduced.factor_entries();
     let clock = Instant::now();
-    let mu = reduced.projected_stiffness();
-    let k_a = Mat::from_fn(r, r, |i, j| if i == j { mu[i] } else { 0.0 });
-    let projected = generalized_eigen_selected(
-        k_a.as_ref(),
-        reduced.projected_mass(),
-        "AMLS projected",
-        PairSelection::Lowest(z + s),
-    )?;
     // The lowest z projected pairs approximate the null space, which is given exactly.
-    let mut x = reduced.expand(projected.vectors.subcols(z, s));
-    stats.seconds[1] = clock.elapsed().as_secs_f64();
+    let x = reduced.expand(projected.vectors.subcols(z, s));
+    stats.seconds[1] += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
     let scale = eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
     let (norm_k, norm_m) = (norm1(k), m_norm1(m));
     let mut iteration = 0;
+    // The search space: the current Ritz vectors, their images under K_σ⁻¹M and the previous
+    // Ritz vectors (LOBPCG's three blocks, with the exact inverse as its preconditioner).
+    let mut blocks = vec![x];
     let (values, vectors, residuals) = loop {
-        for _ in 0..2 {
-            let coefficients = m_null.transpose() * &x;
-            x -= &null * &coefficients;
+        let columns: usize = blocks.iter().map(|b| b.ncols()).sum();
+        let mut space = Mat::<f64>::zeros(n, columns);
+        let mut at = 0;
+        for block in &blocks {
+            space.subcols_mut(at, block.ncols()).copy_from(block);
+            at += block.ncols();
         }
-        let basis = m_orthonormal(x, m);
+        for _ in 0..2 {
+            let coefficients = m_null.transpose() * &space;
+            space -= &null * &coefficients;
+        }
+        let basis = m_orthonormal_basis(space.as_ref(), m, BASIS_DROP)?;
+        drop(space);
+        if basis.ncols() < s {
+            return Err(Error::Linalg(LinalgError::EigenNotConverged {
+                converged: 0,
+                wanted: elastic,
+                residual: f64::INFINITY,
+            }));
+        }
         let (values, vectors, residuals) =
-            rayleigh_ritz(k, m, basis.as_ref(), norm_k, norm_m, scale)?;
+            rayleigh_ritz(k, m, basis.as_ref(), s, norm_k, norm_m, scale)?;
         let worst = residuals[..elastic].iter().fold(0.0f64, |a, &b| a.max(b));
         if iteration == 0 {
             stats.unrefined_residual = worst;
@@ -148,8 +202,23 @@ pub fn amls_lowest_modes(
             }));
         }
         iteration += 1;
-        x = m.mul(vectors.as_ref());
-        reduced.solve_in_place(x.as_mut());
+        // Soft locking: the image and the step only of the pairs still short of the
+        // tolerance (and the guard's, which set how fast the others converge).
+        let active: Vec<usize> = (0..vectors.ncols())
+            .filter(|&j| j >= elastic || residuals[j] > params.tolerance)
+            .collect();
+        let pick = |a: &Mat<f64>| Mat::from_fn(n, active.len(), |i, c| a[(i, active[c])]);
+        let m_vectors = m.mul(vectors.as_ref());
+        let mut image = pick(&m_vectors);
+        reduced.solve_in_place(image.as_mut());
+        // The step's direction: what the new Ritz vectors hold beyond the previous ones
+        // (M-orthogonal to them; the previous vectors themselves would lie along the new ones
+        // to round-off and drop out of the basis).
+        let previous = blocks.swap_remove(0);
+        let overlap = m_vectors.transpose() * &previous;
+        let direction = &previous * overlap.transpose();
+        let step = pick(&(&vectors - &direction));
+        blocks = vec![vectors, image, step];
     };
     stats.iterations = iteration;
     stats.seconds[2] = clock.elapsed().as_secs_f64();
@@ -205,13 +274,14 @@ pub fn amls_lowest_modes(
     ))
 }
 
-/// The Ritz pairs of $(K, M)$ on the span of `x`, ascending, $M$-orthonormal, and each pair's
+/// The lowest `count` Ritz pairs of $(K, M)$ on the span of `x`, ascending, $M$-orthonormal, and each pair's
 /// relative residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ (the backward error for a
 /// zero-energy pair, whose $K\varphi$ is round-off).
 fn rayleigh_ritz(
     k: &SparseSymmetric,
     m: &MassMatrix,
     x: MatRef<'_, f64>,
+    count: usize,
     norm_k: f64,
     norm_m: f64,
     scale: f64,
@@ -220,7 +290,12 @@ fn rayleigh_ritz(
     let mx = m.mul(x);
     let k_r = x.transpose() * &kx;
     let m_r = x.transpose() * &mx;
-    let small = generalized_eigen(k_r.as_ref(), m_r.as_ref(), "AMLS Rayleigh–Ritz")?;
+    let small = generalized_eigen_selected(
+        k_r.as_ref(),
+        m_r.as_ref(),
+        "AMLS Rayleigh–Ritz",
+        PairSelection::Lowest(count),
+    )?;
     let mut vectors = x * &small.vectors;
     let kv = &kx * &small.vectors;
     let mv = &mx * &small.vectors;
@@ -296,7 +371,7 @@ mod tests {
     #[test]
     fn refined_pairs_equal_the_dense_pencils_and_none_is_missed() {
         for (bricks, leaf, cutoff_hz, wanted) in
-            [([8, 4, 2], 60, 60.0, 12), ([12, 6, 3], 150, 45.0, 20)]
+            [([8, 4, 2], 60, 15.0, 12), ([12, 6, 3], 150, 45.0, 20)]
         {
             let model = slab(&SlabParameters::refined(bricks).unwrap());
             let coords: Vec<[f64; 3]> = (0..model.dof_count())
@@ -348,9 +423,15 @@ mod tests {
                 "{stats:?}"
             );
             assert!(
-                stats.iterations >= 1 && stats.projected < model.dof_count() / 2,
+                stats.iterations >= 1 && stats.projected < model.dof_count(),
                 "{stats:?}"
             );
+            // A first cut-off below twice the pairs carried is raised, once at least.
+            let carried = hz_from_eigenvalue(expected.values[wanted + params.guard - 1]);
+            assert!(stats.cutoff_hz >= 2.0 * carried * (1.0 - 1e-3), "{stats:?}");
+            if cutoff_hz < 2.0 * carried {
+                assert!(stats.reductions >= 2, "{stats:?}");
+            }
         }
     }
 }

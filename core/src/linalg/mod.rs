@@ -48,7 +48,7 @@ pub use memory::{
 };
 pub use multilevel_substructures::{AmlsParameters, MultilevelSubstructures};
 pub use nested_dissection::nested_dissection;
-pub use orthonormality::{m_orthonormal, orthonormality_defect};
+pub use orthonormality::{m_orthonormal, m_orthonormal_basis, orthonormality_defect};
 pub(crate) use partial_eigen::next_uniform;
 pub use partial_eigen::{
     PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,

@@ -408,7 +408,7 @@ impl MultilevelSubstructures {
                     x_p.as_mut(),
                     front.modes.as_ref(),
                     y.subrows(front.first_mode, kept),
-                    Par::Seq,
+                    par_for_flops((p * kept * s) as f64),
                 );
             }
             self.add_static(front, &mut x_p, &x);
@@ -429,7 +429,8 @@ impl MultilevelSubstructures {
         }
         let s = x.ncols();
         let x_b = Mat::from_fn(q, s, |i, c| x[(front.boundary[i], c)]);
-        product(x_p.as_mut(), front.phi.as_ref(), x_b.as_ref(), Par::Seq);
+        let par = par_for_flops((front.phi.nrows() * q * s) as f64);
+        product(x_p.as_mut(), front.phi.as_ref(), x_b.as_ref(), par);
     }
 
     /// $B \leftarrow K_\sigma^{-1}B$ by the block factor: the tree's nodes up (each node's
@@ -445,7 +446,8 @@ impl MultilevelSubstructures {
             let q = front.boundary.len();
             if q > 0 {
                 let mut up = Mat::<f64>::zeros(q, s);
-                product(up.as_mut(), front.phi.transpose(), b_p.as_ref(), Par::Seq);
+                let par = par_for_flops((p * q * s) as f64);
+                product(up.as_mut(), front.phi.transpose(), b_p.as_ref(), par);
                 for (i, &v) in front.boundary.iter().enumerate() {
                     for c in 0..s {
                         b[(v, c)] += up[(i, c)];
@@ -461,7 +463,8 @@ impl MultilevelSubstructures {
             let q = front.boundary.len();
             if q > 0 {
                 let x_b = Mat::from_fn(q, s, |i, c| b[(front.boundary[i], c)]);
-                product(x_p.as_mut(), front.phi.as_ref(), x_b.as_ref(), Par::Seq);
+                let par = par_for_flops((front.unknowns.len() * q * s) as f64);
+                product(x_p.as_mut(), front.phi.as_ref(), x_b.as_ref(), par);
             }
             for (i, &u) in front.unknowns.iter().enumerate() {
                 for c in 0..s {

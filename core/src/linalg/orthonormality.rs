@@ -6,7 +6,8 @@ use faer::{
     linalg::matmul::triangular::{BlockStructure, matmul},
 };
 
-use super::{MassMatrix, par_for_flops};
+use super::{MassMatrix, par_for_flops, symmetric_eigen};
+use crate::Result;
 
 /// $\max_{i \ge j} |(A^TB)_{ij} - \delta_{ij}|$ for $A^TB$ symmetric in exact arithmetic
 /// ($U^TU$, or $\Psi^TM\Psi$ with `b` $= M\Psi$): half the flops of the whole product; the
@@ -69,6 +70,59 @@ pub fn m_orthonormal(mut x: Mat<f64>, m: &MassMatrix) -> Mat<f64> {
         }
     }
     x
+}
+
+/// An $M$-orthonormal basis of the span of `x`'s columns by SVQB (Stathopoulos and Wu 2002):
+/// with $D$ the columns' inverse $M$-norms and $DX^TMXD = V\Theta V^T$, the basis is
+/// $XDV\Theta^{-1/2}$ over the eigenvalues above `drop`² times the largest (directions below
+/// lie in the span of the others to round-off and are left out), twice for orthonormality to
+/// round-off. All of it is matrix products: the columns are not handled one at a time.
+pub fn m_orthonormal_basis(x: MatRef<'_, f64>, m: &MassMatrix, drop: f64) -> Result<Mat<f64>> {
+    let mut basis = x.to_owned();
+    for _ in 0..2 {
+        let p = basis.ncols();
+        if p == 0 {
+            break;
+        }
+        let m_basis = m.mul(basis.as_ref());
+        let mut gram = Mat::<f64>::zeros(p, p);
+        matmul(
+            gram.as_mut(),
+            BlockStructure::TriangularLower,
+            Accum::Replace,
+            basis.transpose(),
+            BlockStructure::Rectangular,
+            m_basis.as_ref(),
+            BlockStructure::Rectangular,
+            1.0,
+            par_for_flops((p * p * basis.nrows()) as f64),
+        );
+        let d: Vec<f64> = (0..p)
+            .map(|j| {
+                let g = gram[(j, j)];
+                if g > 0.0 && g.is_finite() {
+                    1.0 / g.sqrt()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let scaled = Mat::from_fn(p, p, |i, j| {
+            let (i, j) = if i >= j { (i, j) } else { (j, i) };
+            gram[(i, j)] * d[i] * d[j]
+        });
+        let eigen = symmetric_eigen(scaled.as_ref(), "SVQB Gram matrix")?;
+        let top = eigen.values.iter().fold(0.0f64, |a, &v| a.max(v));
+        let kept: Vec<usize> = (0..p)
+            .filter(|&j| eigen.values[j] > drop * drop * top)
+            .collect();
+        let transform = Mat::from_fn(p, kept.len(), |i, c| {
+            let j = kept[c];
+            d[i] * eigen.vectors[(i, j)] / eigen.values[j].sqrt()
+        });
+        basis = &basis * &transform;
+    }
+    Ok(basis)
 }
 
 #[cfg(test)]
