@@ -10,7 +10,8 @@
 //! With `--amls WANTED` as well, the lowest `WANTED` free-free pairs by AMLS over the whole
 //! tree ([`flexmodes_core::linalg::amls_lowest_modes`], every node keeping its modes below the
 //! cut-off, then refined) beside flexmodes' Lanczos ([`flexmodes_core::reduction::free_body_pairs`])
-//! in the same run: times, peak memory, and the largest difference of their frequencies.
+//! in the same run: times, peak memory, and the largest difference of their frequencies
+//! (`--guard N`: pairs carried beside the wanted ones through AMLS's refinement).
 //!
 //! ```sh
 //! cargo run --release --example substructure_tree -- 24x12x6 50x25x12 --leaf 2000
@@ -36,6 +37,7 @@ fn main() {
     let mut check_up_to = 200_000;
     let mut cutoff = None;
     let mut amls = None;
+    let mut guard = AmlsEigenParameters::default().guard;
     let mut threads = machine_threads();
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -43,6 +45,7 @@ fn main() {
             "--leaf" => leaf = args.next().and_then(|s| s.parse().ok()).expect("--leaf N"),
             "--cutoff" => cutoff = args.next().and_then(|s| s.parse::<f64>().ok()),
             "--amls" => amls = args.next().and_then(|s| s.parse::<usize>().ok()),
+            "--guard" => guard = args.next().and_then(|s| s.parse().ok()).expect("--guard N"),
             "--threads" => {
                 threads = args
                     .next()
@@ -179,7 +182,7 @@ fn main() {
             );
         }
         if let (Some(hz), Some(wanted)) = (cutoff, amls) {
-            compare_amls_and_lanczos(&model, &tree, hz, wanted, threads);
+            compare_amls_and_lanczos(&model, &tree, hz, wanted, guard, threads);
         }
         println!();
     }
@@ -192,6 +195,7 @@ fn compare_amls_and_lanczos(
     tree: &SubstructureTree,
     hz: f64,
     wanted: usize,
+    guard: usize,
     threads: usize,
 ) {
     let gb = |b: Option<u64>| b.map_or(f64::NAN, |b| b as f64 / 1e9);
@@ -201,6 +205,7 @@ fn compare_amls_and_lanczos(
             shift: negative_shift(&model.k, &model.m),
             ..AmlsParameters::default()
         },
+        guard,
         ..AmlsEigenParameters::default()
     };
     let rigid = model.rigid_body_modes();

@@ -117,8 +117,14 @@ pub fn amls_lowest_modes(
         let reduced = MultilevelSubstructures::new(k, m, tree, &reduction)?;
         stats.seconds[0] += clock.elapsed().as_secs_f64();
         let r = reduced.modes();
-        if r < (wanted + params.guard).min(n) && retry {
-            reduction.cutoff_hz *= 2.0;
+        let needed = (wanted + params.guard).min(n);
+        if r < needed && retry {
+            // Too few modes to carry: the next cut-off from the count the projected problem
+            // holds below this one, as a solid's eigenvalue count grows (N ∝ f³), with the
+            // margin the ratio asks for (doubled at least).
+            let below = projected_count_below(&reduced, reduction.cutoff_hz)?;
+            let growth = (needed as f64 / below.max(1) as f64).cbrt();
+            reduction.cutoff_hz *= (1.1 * params.cutoff_ratio * growth).max(2.0);
             continue;
         }
         if r < wanted {
@@ -272,6 +278,25 @@ pub fn amls_lowest_modes(
         },
         stats,
     ))
+}
+
+/// How many eigenvalues of the projected pencil lie below `hz` (all its pairs solved: called
+/// when the reduction kept too few modes to carry, so the problem is small).
+fn projected_count_below(reduced: &MultilevelSubstructures, hz: f64) -> Result<usize> {
+    let mu = reduced.projected_stiffness();
+    let r = mu.len();
+    let k_a = Mat::from_fn(r, r, |i, j| if i == j { mu[i] } else { 0.0 });
+    let all = generalized_eigen_selected(
+        k_a.as_ref(),
+        reduced.projected_mass(),
+        "AMLS projected",
+        PairSelection::All,
+    )?;
+    Ok(all
+        .values
+        .iter()
+        .filter(|&&v| hz_from_eigenvalue(v + reduced.shift()) <= hz)
+        .count())
 }
 
 /// The lowest `count` Ritz pairs of $(K, M)$ on the span of `x`, ascending, $M$-orthonormal, and each pair's

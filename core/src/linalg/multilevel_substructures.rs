@@ -26,7 +26,7 @@
 
 use faer::{
     Accum, Mat, MatMut, MatRef, Par, Side,
-    linalg::matmul::matmul,
+    linalg::matmul::{matmul, triangular},
     linalg::solvers::{Llt, Solve},
 };
 
@@ -235,9 +235,12 @@ impl MultilevelSubstructures {
                 *x = -*x;
             }
             let par = par_for_flops((p * q * q) as f64);
-            // K̂_BB = K_BB + K_BP Φ, N = M_PB + M_PP Φ, M̂_BB = M_BB + M_BP Φ + Φᵀ N.
+            // K̂_BB = K_BB + K_BP Φ, N = M_PB + M_PP Φ, M̂_BB = M_BB + M_BP Φ + Φᵀ N: both
+            // symmetric, so only their lower triangles are formed (M_BP Φ alone is not
+            // symmetric, but the lower triangles of the two products add up to the sum's),
+            // then mirrored.
             let mut k_bb = kf.submatrix(p, p, q, q).to_owned();
-            product(
+            lower_product(
                 k_bb.as_mut(),
                 kf.submatrix(0, p, p, q).transpose(),
                 phi.as_ref(),
@@ -246,15 +249,15 @@ impl MultilevelSubstructures {
             let mut n_pb = mf.submatrix(0, p, p, q).to_owned();
             product(n_pb.as_mut(), mf.submatrix(0, 0, p, p), phi.as_ref(), par);
             let mut m_bb = mf.submatrix(p, p, q, q).to_owned();
-            product(
+            lower_product(
                 m_bb.as_mut(),
                 mf.submatrix(0, p, p, q).transpose(),
                 phi.as_ref(),
                 par,
             );
-            product(m_bb.as_mut(), phi.transpose(), n_pb.as_ref(), par);
-            symmetrize(k_bb.as_mut());
-            symmetrize(m_bb.as_mut());
+            lower_product(m_bb.as_mut(), phi.transpose(), n_pb.as_ref(), par);
+            mirror_lower(k_bb.as_mut());
+            mirror_lower(m_bb.as_mut());
             // The node's modes below the cut-off (values of K_σ's block: μ = λ - σ).
             let modes = match leaf_modes_of[j].take() {
                 Some(leaf) => {
@@ -513,13 +516,29 @@ fn product(dst: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>, par: Pa
     matmul(dst, Accum::Add, a, b, 1.0, par);
 }
 
-/// $A \leftarrow (A + A^T)/2$.
-fn symmetrize(mut a: MatMut<'_, f64>) {
+/// The lower triangle of `dst += a b` (the upper left as it was).
+fn lower_product(dst: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>, par: Par) {
+    if a.ncols() == 0 || dst.nrows() == 0 {
+        return;
+    }
+    triangular::matmul(
+        dst,
+        triangular::BlockStructure::TriangularLower,
+        Accum::Add,
+        a,
+        triangular::BlockStructure::Rectangular,
+        b,
+        triangular::BlockStructure::Rectangular,
+        1.0,
+        par,
+    );
+}
+
+/// The upper triangle of `a` set to its lower one's mirror.
+fn mirror_lower(mut a: MatMut<'_, f64>) {
     for j in 0..a.ncols() {
         for i in 0..j {
-            let v = 0.5 * (a[(i, j)] + a[(j, i)]);
-            a[(i, j)] = v;
-            a[(j, i)] = v;
+            a[(i, j)] = a[(j, i)];
         }
     }
 }
