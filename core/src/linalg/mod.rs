@@ -12,6 +12,7 @@ mod leaf_modes;
 mod lyapunov;
 mod mass_matrix;
 mod memory;
+mod multilevel_solve;
 mod multilevel_substructures;
 mod nested_dissection;
 mod orthonormality;

@@ -59,19 +59,19 @@ impl Default for AmlsParameters {
 }
 
 /// One eliminated node: its part of the block factor and its kept modes.
-struct Front {
+pub(super) struct Front {
     /// $P$: the node's unknowns.
-    unknowns: Vec<usize>,
+    pub(super) unknowns: Vec<usize>,
     /// $B$: its ancestors' unknowns its subtree touches, in the elimination order.
-    boundary: Vec<usize>,
+    pub(super) boundary: Vec<usize>,
     /// $K_{PP} = LL^T$ after its descendants' elimination.
-    factor: Llt<f64>,
+    pub(super) factor: Llt<f64>,
     /// $\Phi = -K_{PP}^{-1}K_{PB}$, $|P| \times |B|$.
-    phi: Mat<f64>,
+    pub(super) phi: Mat<f64>,
     /// $\Psi$: the kept modes, $M_{PP}$-orthonormal, $|P| \times k$.
-    modes: Mat<f64>,
+    pub(super) modes: Mat<f64>,
     /// The index of its first mode among all kept ones.
-    first_mode: usize,
+    pub(super) first_mode: usize,
 }
 
 /// What a node hands to its parent.
@@ -88,9 +88,9 @@ struct Update {
 /// A body reduced by AMLS: the kept modes of every node of its substructure tree, the
 /// projected pencil $(\mathrm{diag}(\mu), M_A)$ and the block factor of $K_\sigma$.
 pub struct MultilevelSubstructures {
-    dim: usize,
+    pub(super) dim: usize,
     shift: f64,
-    fronts: Vec<Front>,
+    pub(super) fronts: Vec<Front>,
     /// $\mu$ of each kept mode ($K_\sigma$'s projection), in the order of the coordinates.
     stiffness: Vec<f64>,
     /// $M_A$, symmetric, unit diagonal.
@@ -395,87 +395,6 @@ impl MultilevelSubstructures {
             .map(|f| f.unknowns.len() * (f.unknowns.len() + 1) / 2 + f.phi.nrows() * f.phi.ncols())
             .sum()
     }
-
-    /// $x = T y$: the body's vectors of projected coordinates `y` (`modes()` rows), each
-    /// node's $x_P = \Psi y_P + \Phi x_B$ from the root down.
-    pub fn expand(&self, y: MatRef<'_, f64>) -> Mat<f64> {
-        assert_eq!(y.nrows(), self.modes(), "projected coordinates");
-        let s = y.ncols();
-        let mut x = Mat::<f64>::zeros(self.dim, s);
-        for front in self.fronts.iter().rev() {
-            let p = front.unknowns.len();
-            let mut x_p = Mat::<f64>::zeros(p, s);
-            let kept = front.modes.ncols();
-            if kept > 0 {
-                product(
-                    x_p.as_mut(),
-                    front.modes.as_ref(),
-                    y.subrows(front.first_mode, kept),
-                    par_for_flops((p * kept * s) as f64),
-                );
-            }
-            self.add_static(front, &mut x_p, &x);
-            for (i, &u) in front.unknowns.iter().enumerate() {
-                for c in 0..s {
-                    x[(u, c)] = x_p[(i, c)];
-                }
-            }
-        }
-        x
-    }
-
-    /// $x_P \mathrel{+}= \Phi x_B$ with $x_B$ read from `x`.
-    fn add_static(&self, front: &Front, x_p: &mut Mat<f64>, x: &Mat<f64>) {
-        let q = front.boundary.len();
-        if q == 0 {
-            return;
-        }
-        let s = x.ncols();
-        let x_b = Mat::from_fn(q, s, |i, c| x[(front.boundary[i], c)]);
-        let par = par_for_flops((front.phi.nrows() * q * s) as f64);
-        product(x_p.as_mut(), front.phi.as_ref(), x_b.as_ref(), par);
-    }
-
-    /// $B \leftarrow K_\sigma^{-1}B$ by the block factor: the tree's nodes up (each node's
-    /// right-hand side solved by its $K_{PP}$, $\Phi^T b_P$ added to its ancestors'), then
-    /// down ($x_P = K_{PP}^{-1}b_P + \Phi x_B$).
-    pub fn solve_in_place(&self, mut b: MatMut<'_, f64>) {
-        assert_eq!(b.nrows(), self.dim, "right-hand sides");
-        let s = b.ncols();
-        let mut solved: Vec<Mat<f64>> = Vec::with_capacity(self.fronts.len());
-        for front in &self.fronts {
-            let p = front.unknowns.len();
-            let b_p = Mat::from_fn(p, s, |i, c| b[(front.unknowns[i], c)]);
-            let q = front.boundary.len();
-            if q > 0 {
-                let mut up = Mat::<f64>::zeros(q, s);
-                let par = par_for_flops((p * q * s) as f64);
-                product(up.as_mut(), front.phi.transpose(), b_p.as_ref(), par);
-                for (i, &v) in front.boundary.iter().enumerate() {
-                    for c in 0..s {
-                        b[(v, c)] += up[(i, c)];
-                    }
-                }
-            }
-            let mut z = b_p;
-            front.factor.solve_in_place(z.as_mut());
-            solved.push(z);
-        }
-        for (front, z) in self.fronts.iter().zip(solved).rev() {
-            let mut x_p = z;
-            let q = front.boundary.len();
-            if q > 0 {
-                let x_b = Mat::from_fn(q, s, |i, c| b[(front.boundary[i], c)]);
-                let par = par_for_flops((front.unknowns.len() * q * s) as f64);
-                product(x_p.as_mut(), front.phi.as_ref(), x_b.as_ref(), par);
-            }
-            for (i, &u) in front.unknowns.iter().enumerate() {
-                for c in 0..s {
-                    b[(u, c)] = x_p[(i, c)];
-                }
-            }
-        }
-    }
 }
 
 /// The row indices stored in column `u`.
@@ -509,7 +428,7 @@ fn add_column(
 }
 
 /// `dst += a b`.
-fn product(dst: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>, par: Par) {
+pub(super) fn product(dst: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>, par: Par) {
     if a.ncols() == 0 || dst.nrows() == 0 || dst.ncols() == 0 {
         return;
     }
