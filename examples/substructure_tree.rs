@@ -227,7 +227,7 @@ fn compare_amls_and_lanczos(
          {threads} thread(s); {} reduction(s), the last at {:.1} Hz keeping {} modes, block \
          factor {:.3e} entries; reductions {:.2} s, projected \
          solve {:.2} s, refinement {:.2} s ({} refinement steps, worst residual {:.1e} before, \
-         {:.1e} after), Sturm {:.2} s (missed {})",
+         {:.1e} after; eigenvalues {:.1e} apart before), Sturm {:.2} s (missed {})",
         stats.reductions,
         stats.cutoff_hz,
         stats.projected,
@@ -238,6 +238,7 @@ fn compare_amls_and_lanczos(
         stats.iterations,
         stats.unrefined_residual,
         stats.max_residual,
+        stats.unrefined_value_error,
         stats.seconds[3],
         amls.sturm.map_or(0, |s| s.missed())
     );
