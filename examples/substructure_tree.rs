@@ -77,41 +77,15 @@ fn main() {
         let started = Instant::now();
         let model = slab(&SlabParameters::refined(bricks).expect("a slab"));
         let n = model.dof_count();
-        let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
         let assembled = started.elapsed().as_secs_f64();
         let k = model.k.as_faer();
-        let tree = SubstructureTree::new(k, &coords, leaf).expect("coordinates");
-        let of = tree.node_of();
+        let tree = model.substructure_tree(leaf).expect("coordinates");
         let nodes = tree.nodes();
         let mut front_entries = 0f64;
         let mut largest_front = 0usize;
         let mut per_level: Vec<(usize, usize, usize, usize)> = vec![(0, 0, 0, 0); tree.levels()];
-        // Each node's boundary: the ancestors' unknowns coupled to its subtree, bottom-up (a
-        // child's set kept only until its parent has merged it).
-        let mut bsize = vec![0usize; nodes.len()];
-        {
-            let mut sets: Vec<Vec<usize>> = vec![Vec::new(); nodes.len()];
-            for (j, node) in nodes.iter().enumerate() {
-                let mut b: Vec<usize> = node
-                    .children
-                    .iter()
-                    .flat_map(|&c| sets[c].iter().copied())
-                    .chain(
-                        node.unknowns
-                            .iter()
-                            .flat_map(|&i| k.symbolic().row_idx_of_col_raw(i).iter().copied()),
-                    )
-                    .filter(|&r| of[r] != j && tree.is_ancestor(of[r], j))
-                    .collect();
-                b.sort_unstable();
-                b.dedup();
-                for &c in &node.children {
-                    sets[c] = Vec::new();
-                }
-                bsize[j] = b.len();
-                sets[j] = b;
-            }
-        }
+        // Each node's boundary: the ancestors' unknowns coupled to its subtree.
+        let bsize: Vec<usize> = tree.boundaries(&[k]).iter().map(|b| b.len()).collect();
         for (j, node) in nodes.iter().enumerate() {
             let s = node.unknowns.len() as f64;
             front_entries += s * (s + 1.0) / 2.0 + s * bsize[j] as f64;

@@ -45,9 +45,7 @@ pub fn full_dynamic_compliance(
     hz: &[f64],
     progress: &Progress,
 ) -> Result<FrequencyResponse> {
-    let coords: Vec<[f64; 3]> = (0..model.dof_count())
-        .map(|d| model.dof_position(d))
-        .collect();
+    let coords = model.dof_positions();
     let pattern = model.k.shifted(&model.m, 1.0);
     let order = nested_dissection(pattern.as_faer(), &coords);
     let symbolic = SymbolicFactor::analyse_ordered(pattern.as_faer(), order.as_deref())?;

@@ -155,6 +155,19 @@ impl FeModel {
         self.nodes[self.dofs.locate(dof).0]
     }
 
+    /// Every DOF's position (m), in DOF order: what nested dissection cuts by.
+    pub fn dof_positions(&self) -> Vec<[f64; 3]> {
+        (0..self.dof_count())
+            .map(|d| self.dof_position(d))
+            .collect()
+    }
+
+    /// The body's substructure tree (nested dissection of $K$'s pattern by the DOF positions,
+    /// parts of at most `leaf` unknowns left whole).
+    pub fn substructure_tree(&self, leaf: usize) -> Option<crate::linalg::SubstructureTree> {
+        crate::linalg::SubstructureTree::new(self.k.as_faer(), &self.dof_positions(), leaf)
+    }
+
     /// `node 3 y` (or `node 3 θz`) style label of a DOF.
     pub fn dof_label(&self, dof: usize) -> String {
         let (node, d) = self.dof_node(dof);

@@ -13,11 +13,15 @@ use std::time::Instant;
 
 use faer::{Mat, MatRef};
 
+#[cfg(doc)]
+use super::PartialEigenParameters;
 use super::{
     AmlsParameters, GeneralizedEigen, LinalgError, MassMatrix, MultilevelSubstructures,
     PairSelection, SparseSymmetric, SubstructureTree, SymbolicFactor, ZERO_ENERGY_RATIO,
     eigenvalue_scale, fix_sign, generalized_eigen_selected, hz_from_eigenvalue, m_orthonormal,
-    m_orthonormal_basis, sturm_count,
+    m_orthonormal_basis,
+    pair_residuals::{PairResiduals, pair_residuals},
+    sturm_count,
 };
 use crate::{Error, Result};
 
@@ -35,6 +39,9 @@ pub struct AmlsEigenParameters {
     pub guard: usize,
     /// Largest accepted relative residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
     pub tolerance: f64,
+    /// The relative precision $K$ and $M$ are known to (at least ε): residuals below what it
+    /// allows pass (see [`PartialEigenParameters::data_precision`]).
+    pub data_precision: f64,
     /// The cut-off at least this multiple of the highest pair carried (wanted and guard): a
     /// reduction whose projected pairs reach higher is made again with the cut-off raised.
     pub cutoff_ratio: f64,
@@ -52,6 +59,7 @@ impl Default for AmlsEigenParameters {
             cutoff_ratio: 2.0,
             max_reductions: 3,
             tolerance: 1e-8,
+            data_precision: f64::EPSILON,
             max_iterations: 60,
         }
     }
@@ -139,14 +147,7 @@ pub fn amls_lowest_modes(
         }
         let s = (elastic + params.guard).min(r - z);
         let clock = Instant::now();
-        let mu = reduced.projected_stiffness();
-        let k_a = Mat::from_fn(r, r, |i, j| if i == j { mu[i] } else { 0.0 });
-        let projected = generalized_eigen_selected(
-            k_a.as_ref(),
-            reduced.projected_mass(),
-            "AMLS projected",
-            PairSelection::Lowest(z + s),
-        )?;
+        let projected = projected_pairs(&reduced, PairSelection::Lowest(z + s))?;
         stats.seconds[1] += clock.elapsed().as_secs_f64();
         let top_hz = hz_from_eigenvalue(projected.values[z + s - 1] + reduction.shift);
         if params.cutoff_ratio * top_hz > reduction.cutoff_hz && retry {
@@ -164,7 +165,6 @@ pub fn amls_lowest_modes(
     stats.seconds[1] += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
     let scale = eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
-    let (norm_k, norm_m) = (norm1(k), m_norm1(m));
     let mut iteration = 0;
     // The search space: the current Ritz vectors, their images under K_σ⁻¹M and the previous
     // Ritz vectors (LOBPCG's three blocks, with the exact inverse as its preconditioner).
@@ -191,23 +191,21 @@ pub fn amls_lowest_modes(
                 residual: f64::INFINITY,
             }));
         }
-        let (values, vectors, residuals) =
-            rayleigh_ritz(k, m, basis.as_ref(), s, norm_k, norm_m, scale)?;
+        let (values, vectors, checked) = rayleigh_ritz(k, m, basis.as_ref(), s, scale, params)?;
+        let residuals = checked.residuals;
         let worst = residuals[..elastic].iter().fold(0.0f64, |a, &b| a.max(b));
+        let passed = checked.passed[..elastic].iter().all(|&p| p);
         if iteration == 0 {
             stats.unrefined_residual = worst;
             unrefined = values[..elastic].to_vec();
         }
         stats.max_residual = worst;
-        if worst <= params.tolerance {
+        if passed {
             break (values, vectors, residuals);
         }
         if iteration == params.max_iterations {
             return Err(Error::Linalg(LinalgError::EigenNotConverged {
-                converged: residuals[..elastic]
-                    .iter()
-                    .filter(|&&r| r <= params.tolerance)
-                    .count(),
+                converged: checked.passed[..elastic].iter().filter(|&&p| p).count(),
                 wanted: elastic,
                 residual: worst,
             }));
@@ -216,7 +214,7 @@ pub fn amls_lowest_modes(
         // Soft locking: the image and the step only of the pairs still short of the
         // tolerance (and the guard's, which set how fast the others converge).
         let active: Vec<usize> = (0..vectors.ncols())
-            .filter(|&j| j >= elastic || residuals[j] > params.tolerance)
+            .filter(|&j| j >= elastic || !checked.passed[j])
             .collect();
         let pick = |a: &Mat<f64>| Mat::from_fn(n, active.len(), |i, c| a[(i, active[c])]);
         let m_vectors = m.mul(vectors.as_ref());
@@ -244,15 +242,17 @@ pub fn amls_lowest_modes(
     let null_values: Vec<f64> = (0..z)
         .map(|j| null.col(j).transpose() * k_null.col(j))
         .collect();
-    let null_residuals = residuals_of(
+    let null_residuals = pair_residuals(
+        k,
         &null_values,
         null.as_ref(),
         k_null.as_ref(),
         m_null.as_ref(),
-        norm_k,
-        norm_m,
-        scale,
-    );
+        z,
+        params.tolerance,
+        params.data_precision,
+    )
+    .residuals;
     let mut all_values = null_values;
     all_values.extend_from_slice(&values[..elastic]);
     let clock = Instant::now();
@@ -293,15 +293,7 @@ pub fn amls_lowest_modes(
 /// How many eigenvalues of the projected pencil lie below `hz` (all its pairs solved: called
 /// when the reduction kept too few modes to carry, so the problem is small).
 fn projected_count_below(reduced: &MultilevelSubstructures, hz: f64) -> Result<usize> {
-    let mu = reduced.projected_stiffness();
-    let r = mu.len();
-    let k_a = Mat::from_fn(r, r, |i, j| if i == j { mu[i] } else { 0.0 });
-    let all = generalized_eigen_selected(
-        k_a.as_ref(),
-        reduced.projected_mass(),
-        "AMLS projected",
-        PairSelection::All,
-    )?;
+    let all = projected_pairs(reduced, PairSelection::All)?;
     Ok(all
         .values
         .iter()
@@ -309,18 +301,16 @@ fn projected_count_below(reduced: &MultilevelSubstructures, hz: f64) -> Result<u
         .count())
 }
 
-/// The lowest `count` Ritz pairs of $(K, M)$ on the span of `x`, ascending, $M$-orthonormal, and each pair's
-/// relative residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ (the backward error for a
-/// zero-energy pair, whose $K\varphi$ is round-off).
+/// The lowest `count` Ritz pairs of $(K, M)$ on the span of `x`, ascending, $M$-orthonormal,
+/// with the residual check every sparse solver's pairs pass ([`pair_residuals`]).
 fn rayleigh_ritz(
     k: &SparseSymmetric,
     m: &MassMatrix,
     x: MatRef<'_, f64>,
     count: usize,
-    norm_k: f64,
-    norm_m: f64,
     scale: f64,
-) -> Result<(Vec<f64>, Mat<f64>, Vec<f64>)> {
+    params: &AmlsEigenParameters,
+) -> Result<(Vec<f64>, Mat<f64>, PairResiduals)> {
     let kx = k.mul(x);
     let mx = m.mul(x);
     let k_r = x.transpose() * &kx;
@@ -334,67 +324,42 @@ fn rayleigh_ritz(
     let mut vectors = x * &small.vectors;
     let kv = &kx * &small.vectors;
     let mv = &mx * &small.vectors;
-    let residuals = residuals_of(
+    let zero_energy = small
+        .values
+        .iter()
+        .take_while(|&&l| l.abs() <= ZERO_ENERGY_RATIO * scale)
+        .count();
+    let checked = pair_residuals(
+        k,
         &small.values,
         vectors.as_ref(),
         kv.as_ref(),
         mv.as_ref(),
-        norm_k,
-        norm_m,
-        scale,
+        zero_energy,
+        params.tolerance,
+        params.data_precision,
     );
     for j in 0..vectors.ncols() {
         fix_sign(vectors.as_mut().col_mut(j));
     }
-    Ok((small.values, vectors, residuals))
+    Ok((small.values, vectors, checked))
 }
 
-/// Each pair's relative residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$, or its
-/// backward error $\|K\varphi - \lambda M\varphi\| / ((\|K\|_1 + |\lambda|\|M\|_1)\|\varphi\|)$
-/// when it has zero energy, from the vectors and their images `kv`, `mv`.
-fn residuals_of(
-    values: &[f64],
-    vectors: MatRef<'_, f64>,
-    kv: MatRef<'_, f64>,
-    mv: MatRef<'_, f64>,
-    norm_k: f64,
-    norm_m: f64,
-    scale: f64,
-) -> Vec<f64> {
-    values
-        .iter()
-        .enumerate()
-        .map(|(j, &lambda)| {
-            let (mut r2, mut k2, mut x2) = (0.0, 0.0, 0.0);
-            for i in 0..vectors.nrows() {
-                let ki = kv[(i, j)];
-                r2 += (ki - lambda * mv[(i, j)]).powi(2);
-                k2 += ki * ki;
-                x2 += vectors[(i, j)].powi(2);
-            }
-            if lambda.abs() <= ZERO_ENERGY_RATIO * scale {
-                r2.sqrt() / ((norm_k + lambda.abs() * norm_m) * x2.sqrt()).max(f64::MIN_POSITIVE)
-            } else {
-                r2.sqrt() / k2.sqrt().max(f64::MIN_POSITIVE)
-            }
-        })
-        .collect()
-}
-
-/// $\|K\|_1$.
-fn norm1(a: &SparseSymmetric) -> f64 {
-    let f = a.as_faer();
-    (0..f.ncols())
-        .map(|j| f.val_of_col(j).iter().map(|v| v.abs()).sum::<f64>())
-        .fold(0.0, f64::max)
-}
-
-/// $\|M\|_1$.
-fn m_norm1(m: &MassMatrix) -> f64 {
-    match m {
-        MassMatrix::Lumped(d) => d.iter().fold(0.0f64, |a, &b| a.max(b.abs())),
-        MassMatrix::Consistent(a) => norm1(a),
-    }
+/// The lowest pairs of the projected pencil $(\mathrm{diag}(\mu), M_A)$ that `selection` keeps
+/// (values of $K_\sigma$'s projection, $\mu = \lambda - \sigma$), solved dense.
+fn projected_pairs(
+    reduced: &MultilevelSubstructures,
+    selection: PairSelection,
+) -> Result<GeneralizedEigen> {
+    let mu = reduced.projected_stiffness();
+    let r = mu.len();
+    let k_a = Mat::from_fn(r, r, |i, j| if i == j { mu[i] } else { 0.0 });
+    generalized_eigen_selected(
+        k_a.as_ref(),
+        reduced.projected_mass(),
+        "AMLS projected",
+        selection,
+    )
 }
 
 #[cfg(test)]
@@ -409,10 +374,7 @@ mod tests {
             [([8, 4, 2], 60, 15.0, 12), ([12, 6, 3], 150, 45.0, 20)]
         {
             let model = slab(&SlabParameters::refined(bricks).unwrap());
-            let coords: Vec<[f64; 3]> = (0..model.dof_count())
-                .map(|d| model.dof_position(d))
-                .collect();
-            let tree = SubstructureTree::new(model.k.as_faer(), &coords, leaf).unwrap();
+            let tree = model.substructure_tree(leaf).unwrap();
             let params = AmlsEigenParameters {
                 reduction: AmlsParameters {
                     cutoff_hz,

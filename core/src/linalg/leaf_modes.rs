@@ -158,10 +158,7 @@ mod tests {
     fn each_leaf_keeps_every_mode_below_the_cut_off_and_none_above() {
         for (bricks, leaf, cutoff_hz) in [([8, 4, 2], 120, 30.0), ([12, 6, 3], 300, 30.0)] {
             let model = slab(&SlabParameters::refined(bricks).unwrap());
-            let coords: Vec<[f64; 3]> = (0..model.dof_count())
-                .map(|d| model.dof_position(d))
-                .collect();
-            let tree = SubstructureTree::new(model.k.as_faer(), &coords, leaf).unwrap();
+            let tree = model.substructure_tree(leaf).unwrap();
             // Both routes: every leaf dense, and every leaf with its modes by the partial
             // solver.
             for dense_up_to in [usize::MAX, 0] {

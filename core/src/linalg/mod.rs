@@ -14,8 +14,10 @@ mod mass_matrix;
 mod memory;
 mod multilevel_solve;
 mod multilevel_substructures;
+mod negative_shift;
 mod nested_dissection;
 mod orthonormality;
+mod pair_residuals;
 mod partial_eigen;
 mod saddle_point;
 mod small_cholesky;
@@ -48,12 +50,11 @@ pub use memory::{
     reset_peak_resident, resident_bytes,
 };
 pub use multilevel_substructures::{AmlsParameters, MultilevelSubstructures};
+pub use negative_shift::negative_shift;
 pub use nested_dissection::nested_dissection;
 pub use orthonormality::{m_orthonormal, m_orthonormal_basis, orthonormality_defect};
 pub(crate) use partial_eigen::next_uniform;
-pub use partial_eigen::{
-    PartialEigenParameters, PartialEigenStatistics, lowest_modes, negative_shift,
-};
+pub use partial_eigen::{PartialEigenParameters, PartialEigenStatistics, lowest_modes};
 pub use saddle_point::{
     BlockSaddlePointWorkspace, REDUNDANT_PSD, REDUNDANT_SADDLE, block_saddle_point_solve,
     pinv_solve, saddle_point_solve,

@@ -95,8 +95,6 @@ pub struct MultilevelSubstructures {
     stiffness: Vec<f64>,
     /// $M_A$, symmetric, unit diagonal.
     mass: Mat<f64>,
-    /// The tree node each kept mode belongs to.
-    node_of_mode: Vec<usize>,
 }
 
 impl std::fmt::Debug for MultilevelSubstructures {
@@ -124,11 +122,11 @@ impl MultilevelSubstructures {
         let n = k.dim();
         assert_eq!(m.dim(), n, "K and M of one body");
         let nodes = tree.nodes();
-        let node_of = tree.node_of();
-        let mut position = vec![0; n];
-        for (p, &u) in tree.order().iter().enumerate() {
-            position[u] = p;
-        }
+        // Every node's front: its unknowns and the ancestors' its subtree touches through K or M.
+        let mut boundaries = match m {
+            MassMatrix::Consistent(mm) => tree.boundaries(&[k.as_faer(), mm.as_faer()]),
+            MassMatrix::Lumped(_) => tree.boundaries(&[k.as_faer()]),
+        };
         let sigma = params.shift;
         let mu_cutoff = (2.0 * std::f64::consts::PI * params.cutoff_hz).powi(2) - sigma;
         // The leaves' modes first (on the threads, each count proved by its inertia); with
@@ -142,39 +140,13 @@ impl MultilevelSubstructures {
         }
         let mut pending: Vec<Vec<Update>> = (0..nodes.len()).map(|_| Vec::new()).collect();
         let mut local = vec![usize::MAX; n];
-        let mut stamp = vec![usize::MAX; n];
         let mut fronts = Vec::with_capacity(nodes.len());
         let mut stiffness = Vec::new();
-        let mut node_of_mode = Vec::new();
         let mut blocks: Vec<(Vec<usize>, usize, Mat<f64>)> = Vec::new();
         for (j, node) in nodes.iter().enumerate() {
             let updates = std::mem::take(&mut pending[j]);
             let unknowns = &node.unknowns;
-            // B: ancestors' unknowns coupled to P, and those of the children's fronts.
-            let mut boundary = Vec::new();
-            let mut touch = |v: usize, boundary: &mut Vec<usize>| {
-                let a = node_of[v];
-                if a != j && stamp[v] != j && tree.is_ancestor(a, j) {
-                    stamp[v] = j;
-                    boundary.push(v);
-                }
-            };
-            for &u in unknowns {
-                for &v in column_rows(k, u) {
-                    touch(v, &mut boundary);
-                }
-                if let MassMatrix::Consistent(mm) = m {
-                    for &v in column_rows(mm, u) {
-                        touch(v, &mut boundary);
-                    }
-                }
-            }
-            for up in &updates {
-                for &v in &up.boundary {
-                    touch(v, &mut boundary);
-                }
-            }
-            boundary.sort_unstable_by_key(|&v| position[v]);
+            let boundary = std::mem::take(&mut boundaries[j]);
             let (p, q) = (unknowns.len(), boundary.len());
             for (i, &u) in unknowns.iter().chain(&boundary).enumerate() {
                 local[u] = i;
@@ -284,8 +256,7 @@ impl MultilevelSubstructures {
                 }
             };
             let kept = modes.ncols();
-            let first_mode = node_of_mode.len();
-            node_of_mode.extend(std::iter::repeat_n(j, kept));
+            let first_mode = stiffness.len() - kept;
             // The descendants' couplings: with this node's modes, and on to B.
             if descendants > 0 && kept > 0 {
                 let mut block = Mat::<f64>::zeros(descendants, kept);
@@ -349,7 +320,6 @@ impl MultilevelSubstructures {
             fronts,
             stiffness,
             mass,
-            node_of_mode,
         })
     }
 
@@ -376,11 +346,6 @@ impl MultilevelSubstructures {
     /// $M_A$, the projected mass.
     pub fn projected_mass(&self) -> MatRef<'_, f64> {
         self.mass.as_ref()
-    }
-
-    /// The tree node each kept mode belongs to.
-    pub fn node_of_mode(&self) -> &[usize] {
-        &self.node_of_mode
     }
 
     /// How many modes each tree node keeps.
@@ -470,10 +435,7 @@ mod tests {
 
     fn slab_and_tree(bricks: [usize; 3], leaf: usize) -> (FeModel, SubstructureTree) {
         let model = slab(&SlabParameters::refined(bricks).unwrap());
-        let coords: Vec<[f64; 3]> = (0..model.dof_count())
-            .map(|d| model.dof_position(d))
-            .collect();
-        let tree = SubstructureTree::new(model.k.as_faer(), &coords, leaf).unwrap();
+        let tree = model.substructure_tree(leaf).unwrap();
         (model, tree)
     }
 

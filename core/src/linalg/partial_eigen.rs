@@ -16,7 +16,7 @@ use faer::{Mat, MatRef};
 
 use super::{
     GeneralizedEigen, MassMatrix, SparseSymmetric, SymmetricFactor, ZERO_ENERGY_RATIO,
-    eigenvalue_scale, fix_sign, generalized_eigen, symmetric_eigen,
+    eigenvalue_scale, fix_sign, generalized_eigen, pair_residuals::pair_residuals, symmetric_eigen,
 };
 use crate::{Error, Result};
 
@@ -56,10 +56,6 @@ impl Default for PartialEigenParameters {
         }
     }
 }
-
-/// Multiple of $\varepsilon\,\||K||\varphi|\| / \|K\varphi\|$ (the round-off of the residual
-/// itself) below which a pair passes whatever the tolerance.
-const ROUND_OFF_FLOOR: f64 = 64.0;
 
 /// Relative Ritz residual below which a set of pairs that stopped improving (by half over two
 /// restarts) is handed to the residual check on the original pencil.
@@ -379,20 +375,6 @@ impl RitzStep {
     }
 }
 
-/// A shift $\sigma < 0$ for a singular (positive semi-definite) $K$:
-/// $\sigma = -10^{-10}\lambda_{max}$ (estimated by [`eigenvalue_scale`]), a hundred times the
-/// zero-energy threshold, so $K - \sigma M$ is positive definite with a condition number of
-/// $10^{10}$, and below the lowest elastic eigenvalue of any but the most extreme body, so
-/// $1/(\lambda - \sigma)$ separates the elastic pairs nearly as $1/\lambda$ would. The
-/// known rigid motions are deflated exactly (see [`lowest_modes`]), so the factor's
-/// inaccuracy in their directions costs nothing. $10^{-6}\lambda_{max}$, used before, lay
-/// above the lowest elastic eigenvalue of a slender rod (tests/bodies/steel-rod,
-/// $\lambda_7 = 3.5\cdot 10^{-11}\lambda_{max}$) and near it on a 34 k-DOF part, and Lanczos
-/// then converged to nothing.
-pub fn negative_shift(k: &SparseSymmetric, m: &MassMatrix) -> f64 {
-    -1e-10 * eigenvalue_scale((0..k.dim()).map(|j| (k.get(j, j), m.get(j, j))))
-}
-
 /// Makes the columns of `x` $M$-orthonormal to `v[:, ..cols]` and to each other, appends them
 /// and returns how many were appended (a column that vanishes is replaced by a random one).
 ///
@@ -563,7 +545,6 @@ fn checked_pairs(
     params: &PartialEigenParameters,
 ) -> Result<CheckedPairs> {
     let n = k.dim();
-    let mut max_residual = 0.0f64;
     let mut values = Vec::with_capacity(wanted);
     let mut vectors = Mat::<f64>::zeros(n, wanted);
     for (c, &t) in theta.iter().take(wanted).enumerate() {
@@ -572,38 +553,27 @@ fn checked_pairs(
         fix_sign(vectors.col_mut(c));
     }
     let kv = k.mul(vectors.as_ref());
-    let kv_abs = k.abs_mul(vectors.as_ref());
     let mvv = m.mul(vectors.as_ref());
     // The known null vectors and the zero-energy pairs (the lowest) have Kφ ≈ 0: measured
     // against ‖K‖‖φ‖.
-    let k_scale = k.max_abs();
     let scale = eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
     let zero_energy = values
         .iter()
         .take_while(|&&l| l.abs() <= ZERO_ENERGY_RATIO * scale)
         .count()
         .max(known);
-    let mut converged = 0;
-    let mut residuals = Vec::with_capacity(wanted);
-    for c in 0..wanted {
-        let r = Mat::from_fn(n, 1, |i, _| kv[(i, c)] - values[c] * mvv[(i, c)]);
-        let denom = if c < zero_energy {
-            k_scale * vectors.col(c).norm_l2()
-        } else {
-            kv.col(c).norm_l2()
-        };
-        let rel = r.norm_l2() / denom.max(f64::MIN_POSITIVE);
-        // Computing Kφ alone costs ε |K||φ| of round-off: a residual at that floor is as
-        // small as any solver can make it (a body whose λ_max/λ is 1e8 has a floor of ~1e-8).
-        let floor = (ROUND_OFF_FLOOR * f64::EPSILON).max(4.0 * params.data_precision)
-            * kv_abs.col(c).norm_l2()
-            / denom.max(f64::MIN_POSITIVE);
-        if rel <= params.residual_tolerance.max(floor) {
-            converged += 1;
-        }
-        max_residual = max_residual.max(rel);
-        residuals.push(if rel.is_nan() { f64::INFINITY } else { rel });
-    }
+    let checked = pair_residuals(
+        k,
+        &values,
+        vectors.as_ref(),
+        kv.as_ref(),
+        mvv.as_ref(),
+        zero_energy,
+        params.residual_tolerance,
+        params.data_precision,
+    );
+    let (converged, max_residual, residuals) =
+        (checked.converged(), checked.max, checked.residuals);
     if max_residual.is_nan() {
         return Err(Error::Linalg(LinalgError::EigenNotConverged {
             converged,

@@ -99,6 +99,39 @@ impl SubstructureTree {
         false
     }
 
+    /// Each node's boundary $B$: the ancestors' unknowns coupled to its subtree through any of
+    /// `patterns` (entries of the node's own unknowns' columns, and the children's boundaries),
+    /// in the elimination order ([`Self::order`]). With $P$ the node's unknowns, $P \cup B$ is
+    /// its front in a multi-level elimination.
+    pub fn boundaries(&self, patterns: &[&SparseColMat<usize, f64>]) -> Vec<Vec<usize>> {
+        let node_of = self.node_of();
+        let mut position = vec![0; self.unknowns];
+        for (p, &u) in self.order().iter().enumerate() {
+            position[u] = p;
+        }
+        let mut stamp = vec![usize::MAX; self.unknowns];
+        let mut out: Vec<Vec<usize>> = Vec::with_capacity(self.nodes.len());
+        for (j, node) in self.nodes.iter().enumerate() {
+            let mut boundary = Vec::new();
+            let children = node.children.iter().flat_map(|&c| out[c].iter().copied());
+            let own = node.unknowns.iter().flat_map(|&u| {
+                patterns
+                    .iter()
+                    .flat_map(move |a| a.symbolic().row_idx_of_col_raw(u).iter().copied())
+            });
+            for v in own.chain(children) {
+                let a = node_of[v];
+                if a != j && stamp[v] != j && self.is_ancestor(a, j) {
+                    stamp[v] = j;
+                    boundary.push(v);
+                }
+            }
+            boundary.sort_unstable_by_key(|&v| position[v]);
+            out.push(boundary);
+        }
+        out
+    }
+
     /// The number of levels (the deepest node's level plus one).
     pub fn levels(&self) -> usize {
         self.nodes.iter().map(|n| n.level + 1).max().unwrap_or(0)
@@ -196,10 +229,7 @@ mod tests {
 
     fn tree_of(bricks: [usize; 3], leaf: usize) -> (SubstructureTree, crate::fem::FeModel) {
         let model = slab(&SlabParameters::refined(bricks).unwrap());
-        let coords: Vec<[f64; 3]> = (0..model.dof_count())
-            .map(|d| model.dof_position(d))
-            .collect();
-        let tree = SubstructureTree::new(model.k.as_faer(), &coords, leaf).unwrap();
+        let tree = model.substructure_tree(leaf).unwrap();
         (tree, model)
     }
 

@@ -154,9 +154,7 @@ impl InterfaceStatics {
         let started = Instant::now();
         let sigma = STATIC_SHIFT * lowest;
         let shifted = model.k.shifted(&model.m, -sigma);
-        let coords: Vec<[f64; 3]> = (0..model.dof_count())
-            .map(|d| model.dof_position(d))
-            .collect();
+        let coords = model.dof_positions();
         let order = nested_dissection(shifted.as_faer(), &coords);
         let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
         let factor = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "K + σM")?;

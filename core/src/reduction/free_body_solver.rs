@@ -87,7 +87,7 @@ pub fn free_body_pairs(
     let scale = eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
     let sigma0 = negative_shift(k, m);
     let shifted = k.shifted(m, sigma0);
-    let coords: Vec<[f64; 3]> = (0..n).map(|d| model.dof_position(d)).collect();
+    let coords = model.dof_positions();
     let order = nested_dissection(shifted.as_faer(), &coords);
     let symbolic = SymbolicFactor::analyse_ordered(shifted.as_faer(), order.as_deref())?;
     let factor0 =
