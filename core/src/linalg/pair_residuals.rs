@@ -73,7 +73,8 @@ pub(crate) fn pair_residuals(
     let mut passed: Vec<bool> = residuals.iter().map(|&r| r <= tolerance).collect();
     let near: Vec<usize> = (0..count)
         .filter(|&c| {
-            let bound = coefficient * norm1 * vectors.col(c).norm_l2()
+            // (1 % above it: the bound's own round-off never decides a pair.)
+            let bound = 1.01 * coefficient * norm1 * vectors.col(c).norm_l2()
                 / denominators[c].max(f64::MIN_POSITIVE);
             !passed[c] && residuals[c] <= bound
         })
