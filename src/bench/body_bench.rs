@@ -31,7 +31,7 @@ pub fn bench_body_modes(
     let compared = c.reference_hz.len();
     let (full_hz, reference_s) = (&c.reference_hz, c.reference_s);
     let frf_note = Some(format!(
-        " Static error: the elastic static compliance across the interfaces, G = LᵀK⁺L with \
+        " Static error: the elastic static compliance across the interfaces, G = L^T K⁺ L with \
          the loads self-equilibrated by inertia relief (the full body by a fixed point on one \
          sparse Cholesky of K + σM, checked by ‖Kx − Lₑ‖ ≤ 1e-8‖Lₑ‖: {:.2} s; each model \
          from its own elastic modes), relative Frobenius difference.{}",

@@ -108,7 +108,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report.table = format!(
         "Restored M⁻¹K (1/s², rows/columns: boundary DOF of nodes {masters:?}):\n\n{matrix}\n\
          {hz_table}\n\
-         Largest relative difference to Guyan's M⁻¹K: {} (R S Rᵀ has condition number \
+         Largest relative difference to Guyan's M⁻¹K: {} (R S R^T has condition number \
          {}, so about five digits are lost to round-off); largest principal angle between \
          the implied basis and Ψ_Guyan: {} rad; zero singular values of A / restored A_r: \
          {} / {}.\n",
@@ -125,7 +125,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          the boundary) is reduced and A_r + B_r L C_r restored afterwards. The restored M⁻¹K and \
          its frequencies equal Guyan reduction's: for structures Eitelberg's method *is* Guyan \
          reduction (§6.6.4). The views animate the reduced model's modes expanded by the implied \
-         basis S Rᵀ(R S Rᵀ)⁻¹ beside Guyan (a)'s.\n\n{}",
+         basis S R^T(R S R^T)⁻¹ beside Guyan (a)'s.\n\n{}",
         report.table
     );
     let guyan_modes = {

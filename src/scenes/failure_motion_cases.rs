@@ -33,8 +33,8 @@ pub(super) fn guyan_mean_axes_failure(model: &FeModel) -> Result<Failure> {
                 .into(),
             format!(
                 "the condensed M's 3×3 nodal blocks are {:.0} % anisotropic (lumped: \
-                 {}); δ̇̃ᵀMδ̇ for two modes' velocities is {:.1} % of its \
-                 scale (full body: {}); the deformation term δ̃ᵀMδ̇ of the \
+                 {}); δ̇̃^T M δ̇ for two modes' velocities is {:.1} % of its \
+                 scale (full body: {}); the deformation term δ̃^T M δ̇ of the \
                  angular mean-axis condition is off by {:.0} %",
                 100.0 * g.anisotropy_guyan,
                 flexmodes_core::report::readable(g.anisotropy_lumped, 1),

@@ -30,7 +30,7 @@ impl MeanAxisView {
         let llt = gram
             .llt(Side::Lower)
             .map_err(|_| LinalgError::NotPositiveDefinite {
-                matrix: MatrixLabel::of_body("rigid-body mass PᵀMP", model.name.clone()),
+                matrix: MatrixLabel::of_body("rigid-body mass P^TMP", model.name.clone()),
             })?;
         let gram_inverse = llt.solve(Mat::<f64>::identity(r, r));
         Ok(Self {

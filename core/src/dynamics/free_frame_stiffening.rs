@@ -301,7 +301,7 @@ fn relieve(model: &FeModel, loads: &mut Mat<f64>) -> Result<()> {
     let Ok(a) = coefficients else {
         return Err(DynamicsError::StiffeningSupport {
             body: (&model.name).into(),
-            why: "the mass of its rigid motions, RᵀMR, is not positive definite",
+            why: "the mass of its rigid motions, R^TMR, is not positive definite",
         }
         .into());
     };

@@ -87,7 +87,7 @@ pub enum LinalgError {
     /// An unpivoted $LDL^T$ factor of $K - \sigma' M$ that grew: its solves' backward error
     /// is above the bound, so its inertia may be wrong.
     #[error(
-        "the LDLᵀ factor of K - σ'M at σ' = {shift} (rad/s)² solves with a backward error \
+        "the LDL^T factor of K - σ'M at σ' = {shift} (rad/s)² solves with a backward error \
          of {backward}, above {bound}", shift = crate::report::readable(.shift, 7), backward = crate::report::readable(.backward, 2), bound = crate::report::readable(.bound, 1))]
     SturmFactorInaccurate {
         shift: f64,

@@ -42,7 +42,7 @@ impl IndefiniteFactor {
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {
             Error::Linalg(LinalgError::OutOfMemory {
-                what: "LDLᵀ factor",
+                what: "LDL^T factor",
                 matrix: Some(what.clone()),
                 entries: Some(sym.len_val()),
             })
@@ -53,7 +53,7 @@ impl IndefiniteFactor {
             MemBuffer::try_new(sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()))
                 .map_err(|_| {
                     Error::Linalg(LinalgError::OutOfMemory {
-                        what: "LDLᵀ workspace",
+                        what: "LDL^T workspace",
                         matrix: Some(what.clone()),
                         entries: None,
                     })
