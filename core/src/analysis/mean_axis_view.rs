@@ -2,7 +2,7 @@
 //! body's rigid motion in the mass metric, so that the deformation it sees carries neither
 //! linear nor angular momentum, $P^T M u_e = 0$ (Eqs. 4.20–4.21 for small rotations of the
 //! frame), with $P$ the rigid-body modes. A field $u$ in any frame splits into the mean frame's
-//! motion $q = (P^TMP)^{-1}P^TMu$ and the deformation $u_e = u - Pq$ it sees.
+//! motion $q = (P^T M P)^{-1}P^TMu$ and the deformation $u_e = u - Pq$ it sees.
 
 use crate::error::MatrixLabel;
 use faer::{Mat, MatRef, Side, linalg::solvers::Solve};
@@ -16,7 +16,7 @@ pub struct MeanAxisView {
     p: Mat<f64>,
     /// $MP$, n × r.
     mp: Mat<f64>,
-    /// $(P^TMP)^{-1}$, r × r.
+    /// $(P^T M P)^{-1}$, r × r.
     gram_inverse: Mat<f64>,
 }
 
@@ -30,7 +30,7 @@ impl MeanAxisView {
         let llt = gram
             .llt(Side::Lower)
             .map_err(|_| LinalgError::NotPositiveDefinite {
-                matrix: MatrixLabel::of_body("rigid-body mass P^TMP", model.name.clone()),
+                matrix: MatrixLabel::of_body("rigid-body mass P^T M P", model.name.clone()),
             })?;
         let gram_inverse = llt.solve(Mat::<f64>::identity(r, r));
         Ok(Self {

@@ -114,7 +114,7 @@ impl ModalMassInverse {
         let off_diagonal = (0..n).any(|i| (0..n).any(|j| i != j && m_zz[(i, j)] != 0.0));
         let singular = |rcond: Option<f64>| {
             Error::Linalg(LinalgError::SingularMatrix {
-                matrix: MatrixLabel::of_body("modal mass Ψ^TMΨ", body),
+                matrix: MatrixLabel::of_body("modal mass Ψ^T M Ψ", body),
                 rcond,
             })
         };

@@ -13,7 +13,7 @@
 //! components of the specific force $\bar b$. Each unit case is applied to the body's nodes
 //! and solved statically with the body held as its axes hold it: at the anchored
 //! coordinates of nodal-fixed axes (Table 4-1), or by inertia relief on mean and principal
-//! axes (the load less its rigid-body resultant, $f - MR(R^TMR)^{-1}R^Tf$, so the body is
+//! axes (the load less its rigid-body resultant, $f - MR(R^T M R)^{-1}R^Tf$, so the body is
 //! free and no support carries anything). The stresses of case $i$ give
 //! $K_{\sigma,i}$ (the elements' geometric stiffness), projected once on the body's basis:
 //! $\Psi^T K_{\sigma,i}\Psi$. At every evaluation the modal equations gain
@@ -287,7 +287,7 @@ impl FreeFrameStiffening {
     }
 }
 
-/// `loads` less their rigid-body resultant: $f - MR(R^TMR)^{-1}R^Tf$ with $R$ the model's
+/// `loads` less their rigid-body resultant: $f - MR(R^T M R)^{-1}R^Tf$ with $R$ the model's
 /// rigid motions, so that each column is self-equilibrated. A rigid acceleration field is
 /// relieved whole: on mean and principal axes the angular accelerations and the specific
 /// force stress nothing (the body accelerates freely), only the angular velocity's
@@ -301,7 +301,7 @@ fn relieve(model: &FeModel, loads: &mut Mat<f64>) -> Result<()> {
     let Ok(a) = coefficients else {
         return Err(DynamicsError::StiffeningSupport {
             body: (&model.name).into(),
-            why: "the mass of its rigid motions, R^TMR, is not positive definite",
+            why: "the mass of its rigid motions, R^T M R, is not positive definite",
         }
         .into());
     };

@@ -50,7 +50,7 @@ pub enum DofSetProblem {
     NonPositiveWeight { node: usize, weight: f64 },
     /// An averaging interface whose nodes do not fix a rigid motion (all on one line).
     #[error(
-        "its {nodes} nodes do not fix a rigid motion (R^TDR has condition {condition}: nodes \
+        "its {nodes} nodes do not fix a rigid motion (R^T D R has condition {condition}: nodes \
          on one line leave the rotation about it free)", condition = crate::report::readable(.condition, 2))]
     NoRigidMotion { nodes: usize, condition: f64 },
     /// A frequency response without an input or an output.

@@ -120,8 +120,8 @@ mod tests {
                 "assembly mass",
             ),
             (
-                MatrixLabel::of_body("modal mass Ψ^TMΨ", "slab"),
-                "modal mass Ψ^TMΨ of slab",
+                MatrixLabel::of_body("modal mass Ψ^T M Ψ", "slab"),
+                "modal mass Ψ^T M Ψ of slab",
             ),
             (
                 MatrixLabel::of_method("static saddle-point system", "cb"),

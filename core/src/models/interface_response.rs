@@ -69,7 +69,7 @@ impl InterfaceResponse {
     /// What was compared, in words, for tables.
     pub fn describe(&self) -> String {
         format!(
-            "the interface response H = L^T(K − ω²M)⁻¹L of the {} interface loads, undamped, at \
+            "the interface response H = L^T (K − ω²M)⁻¹ L of the {} interface loads, undamped, at \
              {} frequencies over (0, {:.4}] Hz at least {:.0} % from every full-body resonance \
              (the full body by a sparse LDL^T per frequency, every solve refined to a residual \
              of 1e-9: {:.2} s); per channel the largest magnitude difference over the band \
