@@ -23,6 +23,7 @@ const SCENES: [&str; 14] = [
     "slab-mode-sets",
     "cantilever-variants",
     "spin-up",
+    "amls",
 ];
 
 #[test]

@@ -29,6 +29,24 @@ pub const REFERENCE: Color = [150, 150, 150, 255];
 /// Colour of a chart's Pareto front: dark grey, where white vanished on the light theme.
 pub const PARETO: Color = [110, 110, 110, 255];
 
+/// Colour of multi-level substructuring (AMLS), which is no [`Method`] of a single body's
+/// reduction: violet, apart from every method's colour.
+pub const AMLS: Color = [120, 60, 210, 255];
+
+/// Colour of the separators of a substructure tree's `level` (0: the root), cycling through
+/// six of the palette's colours; the leaves are drawn in [`REFERENCE`] grey.
+pub fn level_color(level: usize) -> Color {
+    const LEVELS: [Color; 6] = [
+        [230, 120, 0, 255],
+        [40, 110, 230, 255],
+        [30, 150, 60, 255],
+        AMLS,
+        [220, 60, 140, 255],
+        [0, 150, 160, 255],
+    ];
+    LEVELS[level % LEVELS.len()]
+}
+
 /// Colour of the undeformed ghost beside a body drawn with magnified deflections.
 pub const REFERENCE_GHOST: Color = [150, 150, 150, 110];
 
@@ -55,7 +73,12 @@ mod palette_tests {
     #[test]
     fn every_colour_reads_on_both_themes_and_the_methods_differ() {
         let contrast = |a: f64, b: f64| (a.max(b) + 0.05) / (a.min(b) + 0.05);
-        for c in ALL.map(method_color).into_iter().chain([REFERENCE, PARETO]) {
+        for c in ALL
+            .map(method_color)
+            .into_iter()
+            .chain([REFERENCE, PARETO])
+            .chain((0..6).map(level_color))
+        {
             let l = luminance(c);
             assert!(
                 contrast(l, 0.0) >= 2.5 && contrast(l, 1.0) >= 2.5,

@@ -36,6 +36,13 @@ impl Geometry {
         }
     }
 
+    /// The edges `edges` (pairs of 0-based indices into `nodes`) joined into straight strips:
+    /// a part of a mesh drawn on its own.
+    pub fn of_edges(nodes: Vec<[f64; 3]>, edges: &[[usize; 2]]) -> Self {
+        let strips = straight_strips(&nodes, edges);
+        Self { nodes, strips }
+    }
+
     /// The same strips through other node positions.
     pub fn with_nodes(&self, nodes: Vec<[f64; 3]>) -> Self {
         Self {

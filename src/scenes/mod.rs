@@ -1,5 +1,6 @@
 //! The scene registry behind `flexmodes list`, `record` and `report`.
 
+mod amls;
 mod beam_eitelberg;
 mod beam_mean_axes;
 mod beam_modes;

@@ -2,7 +2,7 @@
 
 use super::{SceneId, scene_info::SceneInfo};
 use super::{
-    SceneOptions, SceneOutput, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
+    SceneOptions, SceneOutput, amls, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
     body_modes, cantilever_variants, failures, plank_symmetry, slab_mode_sets, slab_modes,
     slab_sims, spin_up,
 };
@@ -109,6 +109,7 @@ pub fn get(id: SceneId) -> Scene {
         SceneId::Failures => (failures::INFO, failures::run),
         SceneId::Modes => (body_modes::INFO, body_modes::run),
         SceneId::SpinUp => (spin_up::INFO, spin_up::run),
+        SceneId::Amls => (amls::INFO, amls::run),
     };
     Scene { info, run }
 }

@@ -38,11 +38,13 @@ pub enum SceneId {
     Modes,
     /// `spin-up`: dynamic stiffening, the Campbell diagram and Kane's spin-up.
     SpinUp,
+    /// `amls`: multi-level substructuring, the last rung of the component-mode ladder.
+    Amls,
 }
 
 impl SceneId {
     /// Every scene, in the catalogue's order.
-    pub const ALL: [SceneId; 14] = [
+    pub const ALL: [SceneId; 15] = [
         SceneId::BeamModes,
         SceneId::SlabModes,
         SceneId::BeamProfiles,
@@ -57,6 +59,7 @@ impl SceneId {
         SceneId::Failures,
         SceneId::Modes,
         SceneId::SpinUp,
+        SceneId::Amls,
     ];
 
     /// Whether the scene takes `--stiffening on|off` (the slab simulations: their floating
@@ -78,6 +81,7 @@ impl SceneId {
             SceneId::SlabSim2 | SceneId::SlabModeSets => 8,
             SceneId::SlabSim3 => 6,
             SceneId::SlabSim1 | SceneId::Modes => 5,
+            SceneId::Amls => 4,
             SceneId::Failures | SceneId::CantileverVariants | SceneId::SpinUp => 2,
             SceneId::BeamModes
             | SceneId::SlabModes
@@ -104,6 +108,7 @@ impl SceneId {
             SceneId::Failures => "failures",
             SceneId::Modes => "modes",
             SceneId::SpinUp => "spin-up",
+            SceneId::Amls => "amls",
         }
     }
 }

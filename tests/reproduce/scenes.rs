@@ -88,6 +88,18 @@ fn every_scene_reports_its_stable_keys_and_logs_its_views() {
                 "first_frequency_rad_s",
             ],
         ),
+        (
+            "amls",
+            &[
+                "reference_hz",
+                "guyan.max_rel_error",
+                "craig_bampton",
+                "amls",
+                "tree.per_level",
+                "refined.sturm_missed",
+                "refined.max_residual",
+            ],
+        ),
     ];
     for (id, ks) in keys {
         let out = run(id, SceneOptions::default());
@@ -105,7 +117,7 @@ fn every_scene_reports_its_stable_keys_and_logs_its_views() {
         assert!(out.markdown.contains(&out.report.table));
         // The explorer's viewer beside its panel at 1 280 × 800 (gui::VIEWER_AREA): the new
         // scene's titles fit as written (the explorer shortens others: tests/gui.rs).
-        if *id == "spin-up" {
+        if *id == "spin-up" || *id == "amls" {
             let cut = out.layout.cut_titles((950.0, 730.0));
             assert!(cut.is_empty(), "{id}: tab titles cut: {cut:?}");
         }
@@ -249,4 +261,45 @@ fn a_view_of_a_subset_says_how_many_of_how_many() {
     let mut tabs = Vec::new();
     names(&slab.layout, &mut tabs);
     assert!(tabs.contains(&"guyan_c".to_string()), "{tabs:?}");
+}
+
+/// The `amls` scene's text says, at each cut-off, AMLS has fewer coordinates and a larger
+/// error than Craig–Bampton on the root separator, Guyan the largest error of all, and
+/// AMLS refined equal to Lanczos with no mode missed: each is checked on its numbers.
+#[test]
+fn the_amls_ladder_says_what_its_numbers_show() {
+    let out = run("amls", SceneOptions::default());
+    let r = |k: &str| out.report.result(k).unwrap().clone();
+    let points = |k: &str| -> Vec<(f64, f64)> {
+        r(k).as_array()
+            .unwrap()
+            .iter()
+            .map(|p| {
+                (
+                    p["coordinates"].as_f64().unwrap(),
+                    p["max_rel_error"].as_f64().unwrap(),
+                )
+            })
+            .collect()
+    };
+    let (cb, amls) = (points("craig_bampton"), points("amls"));
+    assert_eq!(cb.len(), amls.len());
+    assert!(cb.len() >= 3);
+    let guyan = r("guyan.max_rel_error").as_f64().unwrap();
+    for ((c_n, c_e), (a_n, a_e)) in cb.iter().zip(&amls) {
+        assert!(a_n < c_n && a_e > c_e, "AMLS {a_n} {a_e}, CB {c_n} {c_e}");
+        assert!(guyan > *a_e && guyan > *c_e);
+    }
+    assert_eq!(r("refined.sturm_missed").as_u64(), Some(0));
+    assert!(r("refined.max_residual").as_f64().unwrap() <= 1e-8);
+    assert!(r("refined.eigenvalues_apart").as_f64().unwrap() <= 1e-10);
+    // Every DOF of the body sits in one part of the tree.
+    let per_level = r("tree.per_level");
+    let unknowns: u64 = per_level
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["unknowns"].as_u64().unwrap())
+        .sum();
+    assert_eq!(Some(unknowns), out.report.parameters["dof"].as_u64());
 }

@@ -147,7 +147,7 @@ pub fn amls_lowest_modes(
         }
         let s = (elastic + params.guard).min(r - z);
         let clock = Instant::now();
-        let projected = projected_pairs(&reduced, PairSelection::Lowest(z + s))?;
+        let projected = reduced.projected_pairs(PairSelection::Lowest(z + s))?;
         stats.seconds[1] += clock.elapsed().as_secs_f64();
         let top_hz = hz_from_eigenvalue(projected.values[z + s - 1] + reduction.shift);
         if params.cutoff_ratio * top_hz > reduction.cutoff_hz && retry {
@@ -293,7 +293,7 @@ pub fn amls_lowest_modes(
 /// How many eigenvalues of the projected pencil lie below `hz` (all its pairs solved: called
 /// when the reduction kept too few modes to carry, so the problem is small).
 fn projected_count_below(reduced: &MultilevelSubstructures, hz: f64) -> Result<usize> {
-    let all = projected_pairs(reduced, PairSelection::All)?;
+    let all = reduced.projected_pairs(PairSelection::All)?;
     Ok(all
         .values
         .iter()
@@ -343,23 +343,6 @@ fn rayleigh_ritz(
         fix_sign(vectors.as_mut().col_mut(j));
     }
     Ok((small.values, vectors, checked))
-}
-
-/// The lowest pairs of the projected pencil $(\mathrm{diag}(\mu), M_A)$ that `selection` keeps
-/// (values of $K_\sigma$'s projection, $\mu = \lambda - \sigma$), solved dense.
-fn projected_pairs(
-    reduced: &MultilevelSubstructures,
-    selection: PairSelection,
-) -> Result<GeneralizedEigen> {
-    let mu = reduced.projected_stiffness();
-    let r = mu.len();
-    let k_a = Mat::from_fn(r, r, |i, j| if i == j { mu[i] } else { 0.0 });
-    generalized_eigen_selected(
-        k_a.as_ref(),
-        reduced.projected_mass(),
-        "AMLS projected",
-        selection,
-    )
 }
 
 #[cfg(test)]

@@ -353,6 +353,22 @@ impl MultilevelSubstructures {
         self.fronts.iter().map(|f| f.modes.ncols()).collect()
     }
 
+    /// The pairs of the projected pencil $(\mathrm{diag}(\mu), M_A)$ that `selection` keeps,
+    /// solved dense and residual-checked: eigenvalues of $K_\sigma$'s projection,
+    /// $\mu = \lambda - \sigma$ (add [`Self::shift`] for the body's), vectors in projected
+    /// coordinates ([`Self::expand`] maps them to the body).
+    pub fn projected_pairs(&self, selection: PairSelection) -> Result<GeneralizedEigen> {
+        let mu = self.projected_stiffness();
+        let r = mu.len();
+        let k_a = Mat::from_fn(r, r, |i, j| if i == j { mu[i] } else { 0.0 });
+        generalized_eigen_selected(
+            k_a.as_ref(),
+            self.projected_mass(),
+            "AMLS projected",
+            selection,
+        )
+    }
+
     /// Entries of the block factor ($L_{PP}$'s lower triangles and the $\Phi$ blocks).
     pub fn factor_entries(&self) -> usize {
         self.fronts

@@ -22,6 +22,7 @@ mod slab_simulation;
 mod spinning_beam_study;
 mod spinning_model_label;
 mod statically_determinate_support;
+mod substructuring_ladder;
 
 pub(crate) use body_advice::advise;
 pub use body_advice::{AdvisedModel, BodyAdvice};
@@ -87,3 +88,7 @@ pub use spinning_beam_study::{
 };
 pub use spinning_model_label::{model_label, model_name};
 pub use statically_determinate_support::three_two_one_support;
+pub use substructuring_ladder::{
+    LadderPoint, RefinedComparison, SubstructuringParameters, SubstructuringStudy, TreePart,
+    substructuring_study,
+};
