@@ -156,7 +156,9 @@ pub fn substructuring_study(params: &SubstructuringParameters) -> Result<Substru
         &reference_hz,
     );
     let mut craig_bampton = Vec::new();
-    for &hz in &cutoffs {
+    // The highest cut-off first: the lower ones' modes are its first ones (kept by the
+    // interior problem), not solved again.
+    for &hz in cutoffs.iter().rev() {
         let basis = craig_bampton_from(&mut problem, ModeSelection::UpToHz(hz))?;
         craig_bampton.push(ladder_point(
             hz,
@@ -165,6 +167,7 @@ pub fn substructuring_study(params: &SubstructuringParameters) -> Result<Substru
             &reference_hz,
         ));
     }
+    craig_bampton.reverse();
     drop(problem);
 
     // Every level.
