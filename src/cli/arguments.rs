@@ -98,6 +98,12 @@ pub(super) enum Command {
         /// Print the summary as JSON.
         #[arg(long)]
         json: bool,
+        /// The free-free pairs' solver: `lanczos` (shift-invert Lanczos; the default, faster
+        /// at every size measured on two cores) or `amls` (multi-level substructuring over
+        /// the body's nested-dissection tree, refined to the same residual check and
+        /// Sturm-counted; docs/amls.md).
+        #[arg(long, value_enum, default_value_t = EigensolverArg::Lanczos)]
+        eigensolver: EigensolverArg,
     },
     /// Write a body read from any supported format (Matrix Market, Harwell–Boeing with a DOF
     /// map, dof-major) as a node-major Matrix Market body file in a folder, and print what was
@@ -491,4 +497,22 @@ pub struct BenchArgs {
         requires = "body"
     )]
     pub(super) peer: PathBuf,
+}
+
+/// `--eigensolver`: which solver finds a body's lowest free-free pairs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum EigensolverArg {
+    /// Shift-invert block Lanczos on one sparse factor.
+    Lanczos,
+    /// Multi-level substructuring (AMLS), refined and Sturm-counted.
+    Amls,
+}
+
+impl From<EigensolverArg> for crate::reduction::Eigensolver {
+    fn from(a: EigensolverArg) -> Self {
+        match a {
+            EigensolverArg::Lanczos => Self::Lanczos,
+            EigensolverArg::Amls => Self::Amls,
+        }
+    }
 }

@@ -99,9 +99,13 @@ fn run(cli: Cli) -> Result<()> {
             );
             Ok(())
         }
-        Command::Import { body, json } => {
+        Command::Import {
+            body,
+            json,
+            eigensolver,
+        } => {
             let body = ImportedBody::load(&body)?;
-            let (value, text) = crate::models::import_summary(&body)?;
+            let (value, text) = crate::models::import_summary_by(&body, eigensolver.into())?;
             if json {
                 println!("{value}");
             } else {

@@ -5,10 +5,10 @@ use crate::{
     Error, Result,
     fem::FeModel,
     linalg::{
-        GeneralizedEigen, ZERO_ENERGY_RATIO, eigenvalue_scale, generalized_eigen,
+        AmlsStatistics, GeneralizedEigen, ZERO_ENERGY_RATIO, eigenvalue_scale, generalized_eigen,
         hz_from_eigenvalue,
     },
-    reduction::{Basis, COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT},
+    reduction::{Basis, COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, Eigensolver},
 };
 
 /// Free-free modes of the full body, $[V, \Lambda] = \mathrm{eig}(K, M)$ (§6.2.1): every mode,
@@ -101,21 +101,36 @@ pub fn zero_energy_below(hz: &[f64], threshold_hz: f64) -> usize {
 /// complete dense eigenproblem for small bodies; above [`DENSE_INTERIOR_LIMIT`] DOF
 /// shift-invert Lanczos on $K - \sigma M$ with a small negative shift.
 pub fn count_zero_energy_modes(model: &FeModel, elastic: usize) -> Result<ZeroEnergyCount> {
+    Ok(count_zero_energy_modes_by(model, elastic, Eigensolver::Lanczos)?.0)
+}
+
+/// [`count_zero_energy_modes`] with the large body's pairs by `solver`: Lanczos (the small
+/// bodies' complete dense problem below [`DENSE_INTERIOR_LIMIT`] DOF), or multi-level
+/// substructuring whatever the size when asked for (then with its statistics).
+pub fn count_zero_energy_modes_by(
+    model: &FeModel,
+    elastic: usize,
+    solver: Eigensolver,
+) -> Result<(ZeroEnergyCount, Option<AmlsStatistics>)> {
     let n = model.dof_count();
     let rigid = model.dofs.rigid_body_count();
     let wanted = (rigid + 1 + elastic).min(n);
-    let modes = if n <= DENSE_INTERIOR_LIMIT {
-        free_free_modes(model)?.first(wanted)
-    } else {
-        crate::reduction::lowest_free_body_pairs(model, wanted)?
+    let (modes, statistics) = match solver {
+        Eigensolver::Lanczos if n <= DENSE_INTERIOR_LIMIT => {
+            (free_free_modes(model)?.first(wanted), None)
+        }
+        _ => crate::reduction::free_pairs_by(model, wanted, solver)?,
     };
     let threshold_hz = zero_energy_threshold_hz(model);
     let zero_modes = modes.hz().iter().filter(|&&f| f < threshold_hz).count();
-    Ok(ZeroEnergyCount {
-        modes,
-        zero_modes,
-        threshold_hz,
-    })
+    Ok((
+        ZeroEnergyCount {
+            modes,
+            zero_modes,
+            threshold_hz,
+        },
+        statistics,
+    ))
 }
 
 /// Frequency (Hz) below which a mode of `model` (or of a model reduced from it) counts as

@@ -17,8 +17,9 @@ pub use dynamic_compliance::{
     reduced_dynamic_compliance,
 };
 pub use frequencies::{
-    ZeroEnergyCount, count_zero_energy_modes, elastic_hz, free_free_modes, lowest_free_free_modes,
-    reduced_hz, reduced_modes, zero_energy_below, zero_energy_threshold_hz,
+    ZeroEnergyCount, count_zero_energy_modes, count_zero_energy_modes_by, elastic_hz,
+    free_free_modes, lowest_free_free_modes, reduced_hz, reduced_modes, zero_energy_below,
+    zero_energy_threshold_hz,
 };
 pub use frequency_response::{FrequencyResponse, band_frequencies, modes_in_band};
 pub use mean_axes::{MeanAxesEvaluation, evaluate_with_mean_axes, rigid_modes_about_mass_centre};

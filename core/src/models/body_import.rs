@@ -5,8 +5,10 @@ use serde_json::{Map, Value, json};
 
 use crate::{
     Error, Result,
-    analysis::count_zero_energy_modes,
+    analysis::count_zero_energy_modes_by,
     body_file::ImportedBody,
+    linalg::AmlsStatistics,
+    reduction::Eigensolver,
     report::{fmt_hz, residual_note, sig, sig_vec, sig6},
 };
 
@@ -49,8 +51,14 @@ pub fn missed_note(modes: &crate::linalg::GeneralizedEigen) -> String {
 /// What `flexmodes import` prints: the body's size, mass, zero-energy modes and lowest
 /// frequencies, its node sets; JSON and text. A mechanism is [`Error::Mechanism`].
 pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
+    import_summary_by(body, Eigensolver::Lanczos)
+}
+
+/// [`import_summary`] with the free-free pairs by `solver` (`import --eigensolver`); the
+/// summary names the route, and AMLS's reductions and refinement.
+pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Value, String)> {
     let model = &body.model;
-    let full = count_zero_energy_modes(model, FULL_MODES)?;
+    let (full, amls) = count_zero_energy_modes_by(model, FULL_MODES, solver)?;
     refuse_mechanism(model, &full)?;
     let hz = full.elastic_hz();
     let properties = model.mass_properties();
@@ -90,6 +98,8 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         "lowest_elastic_hz": sig_vec(&hz),
         "lowest_elastic_residuals": sig_vec(&full.elastic_residuals()),
         "missed_modes": full.modes.sturm.map_or(0, |c| c.missed()),
+        "eigensolver": solver.id(),
+        "amls": amls.as_ref().map(amls_json),
         "sturm_check": full.modes.sturm.map(|c| json!({
             "shift_hz": sig(crate::linalg::hz_from_eigenvalue(c.shift)),
             "eigenvalues_below": c.below,
@@ -108,7 +118,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         "# {} ({})\n\n{}\n\n- {} nodes × {} DOF ({}) = {} DOF, node-major\n- K: {} stored \
          entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
          coordinates: {}\n- zero-energy modes: {} (below {} Hz; a free {} body has {}){}\n\
-         - lowest elastic frequencies, Hz: {} ({})\n- missed modes: {}\n- mass centre: {}; inertia about it: {}\n\
+         - lowest elastic frequencies, Hz: {} ({})\n- eigensolver: {}\n- missed modes: {}\n- mass centre: {}; inertia about it: {}\n\
          - node sets: {}\n- units: {}, {}, {}",
         model.name,
         body.location.display(),
@@ -155,6 +165,7 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         },
         fmt_hz(&hz),
         residual_note(&hz, &full.elastic_residuals()),
+        route(model.dof_count(), solver, amls.as_ref()),
         missed_note(&full.modes),
         if body.has_coordinates {
             format!(
@@ -190,4 +201,37 @@ pub fn import_summary(body: &ImportedBody) -> Result<(Value, String)> {
         body.units.force,
     );
     Ok((value, text))
+}
+
+/// An AMLS solve's counts for the JSON summary.
+fn amls_json(s: &AmlsStatistics) -> Value {
+    json!({
+        "reductions": s.reductions,
+        "cutoff_hz": sig(s.cutoff_hz),
+        "projected": s.projected,
+        "iterations": s.iterations,
+        "unrefined_value_error": sig(s.unrefined_value_error),
+        "max_residual": sig(s.max_residual),
+    })
+}
+
+/// Which route made the pairs, as the summary says it.
+fn route(dofs: usize, solver: Eigensolver, amls: Option<&AmlsStatistics>) -> String {
+    match amls {
+        Some(s) => format!(
+            "{}: {} reduction(s), the last at {} Hz keeping {} modes (worst wanted eigenvalue \
+             {} high before refinement), {} refinement step(s) to a worst residual of {}",
+            solver.name(),
+            s.reductions,
+            crate::report::readable(s.cutoff_hz, 3),
+            s.projected,
+            crate::report::readable(s.unrefined_value_error, 2),
+            s.iterations,
+            crate::report::readable(s.max_residual, 2),
+        ),
+        None if dofs <= crate::reduction::DENSE_INTERIOR_LIMIT => {
+            "the complete dense eigenproblem (a small body)".into()
+        }
+        None => solver.name().into(),
+    }
 }

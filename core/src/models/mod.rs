@@ -34,7 +34,9 @@ pub use body_comparison::{
     BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyComparison, BodyComparisonParameters,
     BodyComparisonPoint, ROUND_OFF_ERROR, compare_body_methods,
 };
-pub use body_import::{FULL_MODES, import_summary, missed_note, refuse_mechanism};
+pub use body_import::{
+    FULL_MODES, import_summary, import_summary_by, missed_note, refuse_mechanism,
+};
 pub use body_modes_study::{
     BODY_MODES_COMPARED, BodyModesParameters, BodyModesStudy, HeldModes, MethodMeasure,
     body_modes_study,

@@ -408,3 +408,33 @@ mod tests {
         );
     }
 }
+
+#[cfg(test)]
+mod calibrate {
+    use super::*;
+    #[test]
+    #[ignore]
+    fn weyl_print() {
+        for (b, wanted) in [
+            ([12, 6, 3], 12),
+            ([24, 12, 6], 36),
+            ([40, 20, 10], 56),
+            ([24, 12, 6], 106),
+        ] {
+            let model = slab(&SlabParameters::refined(b).unwrap());
+            let n = model.dof_count();
+            let mut r: Vec<f64> = (0..n)
+                .map(|j| model.k.get(j, j) / model.m.get(j, j))
+                .collect();
+            r.sort_by(f64::total_cmp);
+            let med = r[n / 2];
+            let e = free_body_pairs(&model, wanted, &FreeBodyParameters::default()).unwrap();
+            let lam = *e.values.last().unwrap();
+            println!(
+                "{b:?} n {n} wanted {wanted} median {med:.4e} lambda_N {lam:.4e} ratio {:.4e} C {:.4}",
+                lam / med,
+                lam / med / (wanted as f64 / n as f64).powf(2.0 / 3.0)
+            );
+        }
+    }
+}

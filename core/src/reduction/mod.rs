@@ -1,6 +1,7 @@
 //! Reduction methods: each builds a transformation $\delta = \Psi z$ with labelled columns, on
 //! dense linear algebra for small bodies and sparse for refined meshes.
 
+mod amls_free_modes;
 mod averaging_interface;
 mod balanced_truncation;
 mod basis;
@@ -31,6 +32,9 @@ mod restrained_ritz;
 mod rigid_interface;
 
 pub use crate::error::ReductionError;
+pub use amls_free_modes::{
+    AMLS_LEAF, Eigensolver, amls_free_pairs, first_cutoff_hz, free_pairs_by,
+};
 pub use averaging_interface::AveragingInterface;
 pub use balanced_truncation::{
     BalancedBasisParameters, BalancedTruncation, balanced_basis, balanced_truncation,
