@@ -8,7 +8,7 @@ mod scratch;
 
 use common::{flexmodes, json, temp_dir};
 
-const SCENES: [&str; 14] = [
+const SCENES: [&str; 15] = [
     "beam-modes",
     "slab-modes",
     "beam-profiles",
@@ -1308,4 +1308,65 @@ fn a_spinning_part_from_the_command_line() {
             assert_eq!(model["stiffening"]["held_dofs"], 27);
         }
     }
+}
+
+/// `import --eigensolver amls` on a committed body written by another FE code gives the
+/// frequencies Lanczos gives, says which route made them, and misses none; `bench slab-modes
+/// --eigensolver` times both solvers on a slab and finds their eigenvalues equal.
+#[test]
+fn amls_gives_lanczos_pairs_on_import_and_in_the_bench() {
+    let body = "tests/bodies/hb-bar/body.toml";
+    let lanczos = json(&["import", body, "--json"]);
+    let amls = json(&["import", body, "--json", "--eigensolver", "amls"]);
+    assert_eq!(lanczos["eigensolver"], "lanczos");
+    assert_eq!(amls["eigensolver"], "amls");
+    assert!(lanczos["amls"].is_null());
+    assert!(amls["amls"]["reductions"].as_u64().unwrap() >= 1);
+    assert_eq!(amls["missed_modes"], 0);
+    assert_eq!(amls["zero_energy_modes"], lanczos["zero_energy_modes"]);
+    let hz = |v: &serde_json::Value| -> Vec<f64> {
+        v["lowest_elastic_hz"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (a, l) = (hz(&amls), hz(&lanczos));
+    assert_eq!(a.len(), l.len());
+    for (x, y) in a.iter().zip(&l) {
+        // Both printed to six significant digits.
+        assert!((x - y).abs() <= 1e-5 * y, "{x} against {y}");
+    }
+
+    let bench = json(&[
+        "bench",
+        "slab-modes",
+        "--sizes",
+        "8x4x2",
+        "--eigensolver",
+        "lanczos,amls",
+        "--pairs",
+        "10",
+        "--json",
+    ]);
+    let points = bench["points"].as_array().unwrap();
+    assert_eq!(points.len(), 2);
+    for p in points {
+        assert_eq!(p["sturm_missed"], 0);
+        assert!(p["max_residual"].as_f64().unwrap() <= 1e-8);
+        assert!(p["eigenvalues_apart"].as_f64().unwrap() <= 1e-9);
+    }
+    assert_eq!(points[1]["eigensolver"], "amls");
+    assert!(points[1]["amls"]["projected"].as_u64().unwrap() >= 16);
+    // --eigensolver times the slab's pairs only.
+    let out = flexmodes(&[
+        "bench",
+        "slab-sim1",
+        "--sizes",
+        "4x2x1",
+        "--eigensolver",
+        "amls",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
 }

@@ -4,6 +4,7 @@
 mod bench_point;
 mod body_bench;
 mod driven_size_bench;
+mod eigensolver_bench;
 mod export_bench;
 mod mode_bench;
 mod pareto;
@@ -17,6 +18,7 @@ pub use crate::analysis::{pareto_flags, three_digits};
 pub use bench_point::{BenchPoint, LOOSE_ATOL, LOOSE_RTOL};
 pub use body_bench::bench_body_modes;
 pub use driven_size_bench::{DrivenSizePoint, bench_driven_sizes, driven_size_parameters};
+pub use eigensolver_bench::bench_eigensolvers;
 pub use export_bench::{ExportBenchParameters, bench_export};
 pub use mode_bench::{COMPARED_MODES, ModeBenchPoint, bench_modes};
 pub use pareto::mark_pareto;

@@ -490,6 +490,14 @@ pub struct BenchArgs {
     /// the full body's cost against DOF.
     #[arg(long, value_delimiter = ',', requires = "drive")]
     pub(super) larger: Vec<PathBuf>,
+    /// With `slab-modes --sizes`: time the free slab's lowest free-free pairs by these
+    /// eigensolvers instead of the reductions (`amls,lanczos`), each after the other in one
+    /// process, with its peak memory.
+    #[arg(long, value_delimiter = ',', requires = "sizes")]
+    pub(super) eigensolver: Vec<EigensolverArg>,
+    /// With --eigensolver: the elastic pairs asked of each (default 50).
+    #[arg(long, requires = "eigensolver")]
+    pub(super) pairs: Option<usize>,
     /// With --body: the SciPy peer script.
     #[arg(
         long,

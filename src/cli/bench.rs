@@ -188,9 +188,18 @@ fn size_bench(args: BenchArgs, sizes: &str, threads: &[usize]) -> Result<()> {
         json,
         save,
         repeats,
+        eigensolver,
+        pairs,
         ..
     } = args;
     let ids = parse_scene_ids(&ids)?;
+    if !eigensolver.is_empty() && ids.iter().any(|id| *id != SceneId::SlabModes) {
+        return Err(Error::InvalidOption {
+            option: "--eigensolver",
+            scene: None,
+            reason: "--eigensolver times the free slab's pairs: `bench slab-modes --sizes`".into(),
+        });
+    }
     let simulation = match ids.as_slice() {
         [id @ (SceneId::SlabSim1 | SceneId::SlabSim2)] => Some(*id),
         _ if ids.iter().all(|id| *id == SceneId::SlabModes) => None,
@@ -210,6 +219,12 @@ fn size_bench(args: BenchArgs, sizes: &str, threads: &[usize]) -> Result<()> {
             let bench = crate::bench::bench_sim_sizes(id.as_str(), &meshes, &handle)?;
             drop(bar);
             bench
+        }
+        None if !eigensolver.is_empty() => {
+            let solvers: Vec<_> = eigensolver.iter().map(|&e| e.into()).collect();
+            crate::bench::bench_eigensolvers(&meshes, &solvers, pairs.unwrap_or(50), &|s| {
+                progress(s)
+            })?
         }
         None => {
             crate::bench::bench_sizes(&meshes, threads, repeats.map_or(1, |r| r as usize), &|s| {
