@@ -29,6 +29,10 @@ pub const AMLS_LEAF: usize = 1500;
 /// otherwise (a matrix written with fewer digits) AMLS finds them as pairs like the others.
 const EXACT_NULL_SPACE: f64 = 1e-12;
 
+/// The first cut-off is this many times the guessed frequency times the cut-off ratio: the
+/// guess errs low ([`first_cutoff_hz`]), and a second reduction costs as much as the first.
+const FIRST_GUESS_MARGIN: f64 = 2.0;
+
 /// Which solver finds a body's lowest free-free pairs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Eigensolver {
@@ -108,7 +112,9 @@ pub fn amls_free_pairs(
     let defaults = AmlsEigenParameters::default();
     let params = AmlsEigenParameters {
         reduction: AmlsParameters {
-            cutoff_hz: defaults.cutoff_ratio * first_cutoff_hz(model, wanted + defaults.guard),
+            cutoff_hz: FIRST_GUESS_MARGIN
+                * defaults.cutoff_ratio
+                * first_cutoff_hz(model, wanted + defaults.guard),
             shift: negative_shift(&model.k, &model.m),
             ..AmlsParameters::default()
         },
