@@ -1359,6 +1359,45 @@ fn amls_gives_lanczos_pairs_on_import_and_in_the_bench() {
     }
     assert_eq!(points[1]["eigensolver"], "amls");
     assert!(points[1]["amls"]["projected"].as_u64().unwrap() >= 16);
+    // export: CB's fixed-interface pairs of the L-bracket (1 290 interior DOF, the sparse
+    // path) by AMLS equal Lanczos', and model.json names the route.
+    let dir = temp_dir("amls-export");
+    let mut hz = Vec::new();
+    for solver in ["lanczos", "amls"] {
+        let out = dir.join(solver);
+        let run = flexmodes(&[
+            "export",
+            "--body",
+            "builtin:l-bracket",
+            "--method",
+            "cb",
+            "--boundary",
+            "bolt_hole",
+            "--modes",
+            "6",
+            "--eigensolver",
+            solver,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let doc: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("model.json")).unwrap()).unwrap();
+        assert_eq!(doc["eigensolver"], solver);
+        assert_eq!(
+            doc["amls_reductions"].as_u64().unwrap() > 0,
+            solver == "amls"
+        );
+        hz.push(doc["reduced_elastic_hz"].as_array().unwrap().clone());
+    }
+    for (a, l) in hz[1].iter().zip(&hz[0]) {
+        let (a, l) = (a.as_f64().unwrap(), l.as_f64().unwrap());
+        assert!((a - l).abs() <= 1e-8 * l, "{a} against {l}");
+    }
     // --eigensolver times the slab's pairs only.
     let out = flexmodes(&[
         "bench",

@@ -208,4 +208,10 @@ pub struct ExportArgs {
     /// projected on Ψ (`kg_r.mtx`, named in model.json): on (default) or off.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub(super) stiffening: OnOff,
+    /// The solver of the fixed-interface pairs (bodies whose interior exceeds 600 DOF) and of
+    /// the free-free pairs BH, MM and BT start from: `lanczos` (default) or `amls`
+    /// (multi-level substructuring, refined and Sturm-counted; docs/amls.md). model.json
+    /// names it.
+    #[arg(long, value_enum, default_value_t = super::arguments::EigensolverArg::Lanczos)]
+    pub(super) eigensolver: super::arguments::EigensolverArg,
 }

@@ -323,6 +323,7 @@ fn export(args: ExportArgs) -> Result<()> {
         exudyn,
         timings,
         stiffening,
+        eigensolver,
     } = args;
     let started = Instant::now();
     let body = ImportedBody::load(&body)?;
@@ -337,6 +338,7 @@ fn export(args: ExportArgs) -> Result<()> {
         interface_modes,
         exudyn,
         without_stiffening: stiffening == super::arguments::OnOff::Off,
+        eigensolver: eigensolver.into(),
     };
     let summary = crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
     if timings {

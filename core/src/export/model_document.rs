@@ -95,6 +95,10 @@ impl ReducedExport {
                     "master_motion": a_psi.ok(),
                 })
             }).collect::<Vec<_>>(),
+            // The route of the fixed-interface pairs (sparse path) and of the free-free pairs
+            // the load-built methods start from; AMLS's reductions when it made them.
+            "eigensolver": parameters.eigensolver.id(),
+            "amls_reductions": basis.statistics.amls_reductions,
             "reduced_elastic_hz": sig_vec(hz),
             "reduced_elastic_residuals": sig_vec(residuals),
             "reduced_zero_energy_modes": zero_energy,

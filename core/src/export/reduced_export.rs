@@ -11,13 +11,13 @@ use faer::Mat;
 
 use crate::{
     Error, Progress, Result,
-    analysis::{count_zero_energy_modes, zero_energy_below, zero_energy_threshold_hz},
+    analysis::{count_zero_energy_modes_by, zero_energy_below, zero_energy_threshold_hz},
     atomic_file::write_atomically,
     body_file::{ImportedBody, write_array, write_npy},
     linalg::generalized_eigen,
     models::{BodyInterfaces, BodyReducer},
     reduction::{
-        AveragingInterface, Basis, CONSTRAINT_COUPLING_TOLERANCE, InteriorProblem,
+        AveragingInterface, Basis, CONSTRAINT_COUPLING_TOLERANCE, Eigensolver, InteriorProblem,
         MacNealRubinParameters, Method, ModeSelection, ReducedMatrices, ReductionParameters,
         RigidInterface, SolverPath, macneal_rubin, reduce, reduce_interface, reduce_interior,
         tie_rigid_interfaces,
@@ -90,6 +90,9 @@ pub struct ExportParameters {
     pub exudyn: bool,
     /// Leave out the geometric stiffness of a body file's `[preload]` (written by default).
     pub without_stiffening: bool,
+    /// The solver of the fixed-interface pairs on the sparse path and of the free-free pairs
+    /// the load-built methods start from (`--eigensolver`; Lanczos by default).
+    pub eigensolver: Eigensolver,
 }
 
 /// What [`export`] wrote.
@@ -224,6 +227,7 @@ pub fn reduce_for_export(
         _ => Some(reduce_interior(
             method,
             &mut InteriorProblem::new(model, boundary, SolverPath::Auto)?
+                .with_eigensolver(parameters.eigensolver)
                 .with_rigid_interfaces(&parameters.rigid_interfaces)?,
             ModeSelection::Count(modes),
         )?),
@@ -252,7 +256,7 @@ pub fn reduce_for_export(
         None => {
             // Built from the interface loads and the body's free-free modes (models'
             // BodyReducer): rigid interfaces give their masters' six loads, nothing to tie.
-            let full = count_zero_energy_modes(model, 10)?;
+            let full = count_zero_energy_modes_by(model, 10, parameters.eigensolver)?.0;
             free_free_sturm = Some(full.modes.sturm);
             let interfaces = BodyInterfaces {
                 boundary: boundary.to_vec(),

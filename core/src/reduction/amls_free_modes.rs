@@ -31,7 +31,7 @@ const EXACT_NULL_SPACE: f64 = 1e-12;
 
 /// The first cut-off is this many times the guessed frequency times the cut-off ratio: the
 /// guess errs low ([`first_cutoff_hz`]), and a second reduction costs as much as the first.
-const FIRST_GUESS_MARGIN: f64 = 2.0;
+pub(super) const FIRST_GUESS_MARGIN: f64 = 2.0;
 
 /// Which solver finds a body's lowest free-free pairs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

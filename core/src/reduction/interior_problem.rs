@@ -7,8 +7,9 @@ use std::time::Instant;
 use faer::{Mat, MatRef, sparse::SparseColMat};
 
 use super::{
-    BoundaryCoordinates, Column, ColumnKind, ModeSelection, ReductionError, RigidInterface,
-    SolverPath,
+    AMLS_LEAF, BoundaryCoordinates, Column, ColumnKind, Eigensolver, ModeSelection, ReductionError,
+    RigidInterface, SolverPath,
+    amls_free_modes::{FIRST_GUESS_MARGIN, first_cutoff_hz},
     free_body_solver::{FreeBodyParameters, sturm_checked},
     partition::{Partition, free_rigid_motions},
 };
@@ -17,9 +18,10 @@ use crate::{
     error::FreeMotion,
     fem::{FeModel, RigidMotions},
     linalg::{
-        GeneralizedEigen, IndefiniteFactor, MassMatrix, PairSelection, PartialEigenParameters,
-        SparseSymmetric, SymbolicFactor, SymmetricFactor, generalized_eigen_selected,
-        negative_shift, nested_dissection,
+        AmlsEigenParameters, AmlsParameters, GeneralizedEigen, IndefiniteFactor, MassMatrix,
+        PairSelection, PartialEigenParameters, SparseSymmetric, SubstructureTree, SymbolicFactor,
+        SymmetricFactor, amls_lowest_modes, generalized_eigen_selected, negative_shift,
+        nested_dissection,
     },
 };
 
@@ -43,6 +45,10 @@ pub struct ReductionStatistics {
     /// Largest residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ of the partial
     /// eigensolver's pairs (0 on the dense path).
     pub eigen_max_residual: f64,
+    /// The solver of the fixed-interface pairs on the sparse path.
+    pub eigensolver: Eigensolver,
+    /// AMLS's reductions, when it made them.
+    pub amls_reductions: usize,
 }
 
 /// Interior DOF up to which [`SolverPath::Auto`] stays dense: there a complete dense
@@ -73,6 +79,8 @@ pub struct InteriorProblem<'a> {
     symbolic: Option<SymbolicFactor>,
     free_motions: Option<Vec<FreeMotion>>,
     partial_modes: Option<GeneralizedEigen>,
+    /// The solver of the fixed-interface pairs on the sparse path.
+    eigensolver: Eigensolver,
     /// Phase timings and sizes so far.
     pub statistics: ReductionStatistics,
     progress: Progress,
@@ -110,6 +118,7 @@ impl<'a> InteriorProblem<'a> {
             symbolic: None,
             free_motions: None,
             partial_modes: None,
+            eigensolver: Eigensolver::Lanczos,
             progress: Progress::default(),
             statistics: ReductionStatistics {
                 sparse,
@@ -120,6 +129,14 @@ impl<'a> InteriorProblem<'a> {
 
     /// Reports each phase (factorisation, constraint modes, eigensolve) to `progress` and stops
     /// with [`Error::Cancelled`] at the next phase boundary once it is cancelled.
+    /// The fixed-interface pairs on the sparse path by `solver` (Lanczos by default; AMLS over
+    /// the interior's own nested-dissection tree when asked, `export --eigensolver amls`).
+    pub fn with_eigensolver(mut self, solver: Eigensolver) -> Self {
+        self.eigensolver = solver;
+        self.statistics.eigensolver = solver;
+        self
+    }
+
     pub fn with_progress(mut self, progress: Progress) -> Self {
         self.progress = progress;
         self
@@ -391,6 +408,9 @@ impl<'a> InteriorProblem<'a> {
         {
             return Ok(first_modes(cached, wanted));
         }
+        if self.eigensolver == Eigensolver::Amls {
+            return self.amls_partial(wanted);
+        }
         self.factor()?;
         self.progress.phase("fixed-interface eigensolve")?;
         let started = Instant::now();
@@ -414,6 +434,47 @@ impl<'a> InteriorProblem<'a> {
         )?;
         self.statistics.eigen_s += started.elapsed().as_secs_f64();
         self.statistics.eigen_block_solves += stats.block_solves;
+        self.statistics.eigen_max_residual =
+            self.statistics.eigen_max_residual.max(stats.max_residual);
+        self.partial_modes = Some(eig.clone());
+        Ok(eig)
+    }
+
+    /// The `wanted` lowest fixed-interface pairs by AMLS over the interior's own tree (parts
+    /// of at most [`AMLS_LEAF`] unknowns, a quarter of a smaller interior), the first cut-off
+    /// from the free body's guess (fixed-interface frequencies lie above the free ones, so
+    /// the guess errs low), refined and Sturm-counted like every AMLS solve.
+    fn amls_partial(&mut self, wanted: usize) -> Result<GeneralizedEigen> {
+        self.progress.phase("fixed-interface eigensolve (AMLS)")?;
+        let started = Instant::now();
+        let coords: Vec<[f64; 3]> = self
+            .partition
+            .i
+            .iter()
+            .map(|&d| self.model.dof_position(d))
+            .collect();
+        let leaf = AMLS_LEAF.min(coords.len() / 4).max(1);
+        let tree = SubstructureTree::new(self.k_ii.as_faer(), &coords, leaf).ok_or(
+            Error::Reduction(ReductionError::MethodNeedsContext {
+                method: "multi-level substructuring (--eigensolver amls)",
+                needs: "node coordinates to cut the body by (this body's nodes all sit at one \
+                        point)",
+            }),
+        )?;
+        let defaults = AmlsEigenParameters::default();
+        let guess = first_cutoff_hz(self.model, wanted + defaults.guard);
+        let params = AmlsEigenParameters {
+            reduction: AmlsParameters {
+                cutoff_hz: FIRST_GUESS_MARGIN * defaults.cutoff_ratio * guess,
+                shift: negative_shift(&self.k_ii, &self.m_ii),
+                ..AmlsParameters::default()
+            },
+            max_reductions: 4,
+            ..defaults
+        };
+        let (eig, stats) = amls_lowest_modes(&self.k_ii, &self.m_ii, &tree, wanted, None, &params)?;
+        self.statistics.eigen_s += started.elapsed().as_secs_f64();
+        self.statistics.amls_reductions += stats.reductions;
         self.statistics.eigen_max_residual =
             self.statistics.eigen_max_residual.max(stats.max_residual);
         self.partial_modes = Some(eig.clone());
