@@ -202,11 +202,13 @@ class Body:
         """``(length, mass, force)``."""
         return self._inner.units
 
-    def summary(self) -> dict:
+    def summary(self, eigensolver: str = "lanczos") -> dict:
         """What ``flexmodes import`` prints: DOF, mass and inertia, zero-energy modes, modes
         the Sturm count says were missed, the lowest elastic Hz and their residuals. A
-        mechanism raises ``MechanismError``."""
-        return self._inner.summary()
+        mechanism raises ``MechanismError``. ``eigensolver``: ``"lanczos"`` (shift-invert
+        Lanczos) or ``"amls"`` (multi-level substructuring, refined and Sturm-counted); the
+        dict's ``eigensolver`` and ``amls`` say which made the pairs."""
+        return self._inner.summary(str(eigensolver))
 
     def free_modes(self, n: int = 10) -> dict:
         """The ``n`` lowest elastic free-free modes: ``hz``, ``residuals``, ``vectors``
@@ -222,6 +224,7 @@ class Body:
         modes: int = 10,
         interface_modes: Optional[int] = None,
         exudyn: bool = False,
+        eigensolver: str = "lanczos",
     ) -> "ReducedModel":
         """Reduces the body as ``flexmodes export`` does.
 
@@ -230,10 +233,17 @@ class Body:
         its centroid: six coordinates), ``"rbe3:SET"`` (averaged); default the body's
         default interface. ``modes``: kept normal modes. ``interface_modes``: reduce the
         constraint modes to this many characteristic constraint modes. ``exudyn``: also
-        build the Exudyn body (floating frame on the first rigid interface)."""
+        build the Exudyn body (floating frame on the first rigid interface).
+        ``eigensolver``: the fixed-interface (and free-free) pairs by ``"lanczos"`` or
+        ``"amls"``, as ``export --eigensolver``."""
         return ReducedModel(
             self._inner.reduce(
-                str(method), _items(boundary), int(modes), interface_modes, bool(exudyn)
+                str(method),
+                _items(boundary),
+                int(modes),
+                interface_modes,
+                bool(exudyn),
+                str(eigensolver),
             )
         )
 

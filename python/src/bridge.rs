@@ -12,7 +12,11 @@ use std::{
 };
 
 use faer::MatRef;
-use flexmodes::{Error, Progress, body_file::MatrixEntries, reduction::Method};
+use flexmodes::{
+    Error, Progress,
+    body_file::MatrixEntries,
+    reduction::{Eigensolver, Method},
+};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, ndarray::Array2};
 use pyo3::prelude::*;
 
@@ -155,6 +159,15 @@ pub(crate) fn json_to_py<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?
         .call_method1("loads", (value.to_string(),))
+}
+
+pub(crate) fn eigensolver(py: Python<'_>, id: &str) -> PyResult<Eigensolver> {
+    Eigensolver::from_id(id).ok_or_else(|| {
+        input_error(
+            py,
+            format!("unknown eigensolver {id:?}: \"lanczos\" or \"amls\""),
+        )
+    })
 }
 
 pub(crate) fn method(py: Python<'_>, id: &str) -> PyResult<Method> {

@@ -15,7 +15,8 @@ use flexmodes::{
     export::{ExportParameters, ReducedExport, reduce_for_export},
     models::{
         BodyCampbellParameters, BodyComparisonParameters, BodyInterfaces, DrivenBodyParameters,
-        body_campbell, compare_body_methods, driven_body_study, import_summary, refuse_mechanism,
+        body_campbell, compare_body_methods, driven_body_study, import_summary_by,
+        refuse_mechanism,
     },
 };
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, ndarray::Array2};
@@ -146,10 +147,12 @@ impl RustBody {
         (u.length.clone(), u.mass.clone(), u.force.clone())
     }
 
-    /// What `flexmodes import` prints, as a dict.
-    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+    /// What `flexmodes import` prints, as a dict, the free-free pairs by `eigensolver`.
+    #[pyo3(signature = (eigensolver))]
+    fn summary<'py>(&self, py: Python<'py>, eigensolver: &str) -> PyResult<Bound<'py, PyAny>> {
+        let solver = bridge::eigensolver(py, eigensolver)?;
         let body = &self.body;
-        let (value, _) = computing(py, None, |_| import_summary(body))?;
+        let (value, _) = computing(py, None, |_| import_summary_by(body, solver))?;
         json_to_py(py, &value)
     }
 
@@ -184,7 +187,8 @@ impl RustBody {
     }
 
     /// Reduces the body as `flexmodes export` does.
-    #[pyo3(signature = (method, boundary, modes, interface_modes, exudyn))]
+    #[pyo3(signature = (method, boundary, modes, interface_modes, exudyn, eigensolver))]
+    #[allow(clippy::too_many_arguments)]
     fn reduce(
         &self,
         py: Python<'_>,
@@ -193,8 +197,10 @@ impl RustBody {
         modes: usize,
         interface_modes: Option<usize>,
         exudyn: bool,
+        eigensolver: &str,
     ) -> PyResult<RustReducedModel> {
         let method = self::method(py, method)?;
+        let eigensolver = bridge::eigensolver(py, eigensolver)?;
         let body = &self.body;
         let reduced = computing(py, None, |_| {
             let interfaces =
@@ -204,6 +210,7 @@ impl RustBody {
                 averaging_interfaces: interfaces.averaging,
                 interface_modes,
                 exudyn,
+                eigensolver,
                 ..ExportParameters::default()
             };
             reduce_for_export(body, method, &interfaces.boundary, modes, &parameters)

@@ -85,6 +85,19 @@ def test_scikit_fem_bar_free_modes_match_lapack(bar):
     assert np.abs(K @ phi - (M @ phi) * lam).max() <= 1e-7 * np.abs(K @ phi).max()
 
 
+def test_amls_gives_lapacks_frequencies_and_says_it_made_them(bar):
+    K, M, nodes, sets, reference = bar
+    body = flexmodes.Body(K, M, nodes=nodes, node_sets=sets, name="skfem bar")
+    amls = body.summary(eigensolver="amls")
+    assert amls["eigensolver"] == "amls" and amls["amls"]["reductions"] >= 1
+    assert amls["zero_energy_modes"] == 6 and amls["missed_modes"] == 0
+    hz = np.array(amls["lowest_elastic_hz"])
+    np.testing.assert_allclose(hz, reference[6 : 6 + len(hz)], rtol=1e-5)
+    assert body.summary()["eigensolver"] == "lanczos"
+    with pytest.raises(flexmodes.InputError, match="eigensolver"):
+        body.summary(eigensolver="arpack")
+
+
 @pytest.mark.parametrize("fmt", ["csr", "csc", "coo", "lower", "upper"])
 def test_every_sparse_format_and_one_triangle_give_the_same_body(bar, fmt):
     K, M, nodes, sets, reference = bar

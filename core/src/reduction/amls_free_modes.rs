@@ -54,6 +54,13 @@ impl Eigensolver {
         }
     }
 
+    /// The solver named `id` (`lanczos`, `amls`).
+    pub fn from_id(id: &str) -> Option<Self> {
+        [Eigensolver::Lanczos, Eigensolver::Amls]
+            .into_iter()
+            .find(|e| e.id() == id.trim())
+    }
+
     /// The route as a sentence names it.
     pub fn name(self) -> &'static str {
         match self {
