@@ -127,8 +127,6 @@ impl<'a> InteriorProblem<'a> {
         })
     }
 
-    /// Reports each phase (factorisation, constraint modes, eigensolve) to `progress` and stops
-    /// with [`Error::Cancelled`] at the next phase boundary once it is cancelled.
     /// The fixed-interface pairs on the sparse path by `solver` (Lanczos by default; AMLS over
     /// the interior's own nested-dissection tree when asked, `export --eigensolver amls`).
     pub fn with_eigensolver(mut self, solver: Eigensolver) -> Self {
@@ -137,6 +135,8 @@ impl<'a> InteriorProblem<'a> {
         self
     }
 
+    /// Reports each phase (factorisation, constraint modes, eigensolve) to `progress` and stops
+    /// with [`Error::Cancelled`] at the next phase boundary once it is cancelled.
     pub fn with_progress(mut self, progress: Progress) -> Self {
         self.progress = progress;
         self
