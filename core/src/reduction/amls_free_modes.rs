@@ -8,9 +8,10 @@ use crate::{
     Error, Result,
     fem::{FeModel, RigidMotions},
     linalg::{
-        AmlsEigenParameters, AmlsParameters, AmlsStatistics, GeneralizedEigen, PairSelection,
-        ZERO_ENERGY_RATIO, amls_lowest_modes, eigenvalue_scale, generalized_eigen_selected,
-        hz_from_eigenvalue, m_orthonormal_basis, negative_shift,
+        AmlsEigenParameters, AmlsParameters, AmlsStatistics, GeneralizedEigen, MassMatrix,
+        PairSelection, SparseSymmetric, SubstructureTree, ZERO_ENERGY_RATIO, amls_lowest_modes,
+        eigenvalue_scale, generalized_eigen_selected, hz_from_eigenvalue, m_orthonormal_basis,
+        negative_shift,
     },
 };
 
@@ -31,7 +32,7 @@ const EXACT_NULL_SPACE: f64 = 1e-12;
 
 /// The first cut-off is this many times the guessed frequency times the cut-off ratio: the
 /// guess errs low ([`first_cutoff_hz`]), and a second reduction costs as much as the first.
-pub(super) const FIRST_GUESS_MARGIN: f64 = 2.0;
+const FIRST_GUESS_MARGIN: f64 = 2.0;
 
 /// Which solver finds a body's lowest free-free pairs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -101,36 +102,68 @@ pub fn amls_free_pairs(
     model: &FeModel,
     wanted: usize,
 ) -> Result<(GeneralizedEigen, AmlsStatistics)> {
-    // At least one cut: a leaf must be held by a separator (a whole free body's K is
-    // singular), so a small body's leaves are a quarter of it.
-    let leaf = AMLS_LEAF.min(model.dof_count() / 4).max(1);
-    let tree = model.substructure_tree(leaf).ok_or(Error::Reduction(
-        ReductionError::MethodNeedsContext {
-            method: "multi-level substructuring (--eigensolver amls)",
-            needs: "node coordinates to cut the body by (this body's nodes all sit at one point)",
-        },
-    ))?;
     let defect =
         (model.rigid_motions == RigidMotions::FromGeometry).then(|| model.rigid_motion_defect());
     let rigid = model.rigid_body_modes();
     let null = defect
         .filter(|&d| d <= EXACT_NULL_SPACE)
         .map(|_| rigid.as_ref());
+    amls_pairs(
+        &model.k,
+        &model.m,
+        &model.dof_positions(),
+        AmlsProblem {
+            wanted,
+            null,
+            data_precision: defect.unwrap_or(0.0).max(f64::EPSILON),
+            guess_hz: first_cutoff_hz(model, wanted + AmlsEigenParameters::default().guard),
+        },
+    )
+}
+
+/// What [`amls_pairs`] is asked for beside the pencil.
+pub(super) struct AmlsProblem<'a> {
+    /// Pairs wanted.
+    pub(super) wanted: usize,
+    /// Known eigenvectors of eigenvalue 0 (a free body's rigid motions), if exact.
+    pub(super) null: Option<faer::MatRef<'a, f64>>,
+    /// The relative precision of $K$ and $M$.
+    pub(super) data_precision: f64,
+    /// The guessed frequency of the highest pair carried, Hz ([`first_cutoff_hz`]).
+    pub(super) guess_hz: f64,
+}
+
+/// The lowest pairs of $(K, M)$ by AMLS over the tree of the unknowns at `coords` (parts of at
+/// most [`AMLS_LEAF`] unknowns, a quarter of a smaller problem, so that every leaf is held by
+/// a separator: a whole free body's K is singular), the first cut-off
+/// [`FIRST_GUESS_MARGIN`] times the cut-off ratio times the guess, raised by up to four
+/// reductions. Without coordinates to cut by: [`ReductionError::MethodNeedsContext`].
+pub(super) fn amls_pairs(
+    k: &SparseSymmetric,
+    m: &MassMatrix,
+    coords: &[[f64; 3]],
+    problem: AmlsProblem<'_>,
+) -> Result<(GeneralizedEigen, AmlsStatistics)> {
+    let leaf = AMLS_LEAF.min(coords.len() / 4).max(1);
+    let tree = SubstructureTree::new(k.as_faer(), coords, leaf).ok_or(Error::Reduction(
+        ReductionError::MethodNeedsContext {
+            method: "multi-level substructuring (--eigensolver amls)",
+            needs: "node coordinates to cut the body by (this body's nodes all sit at one point)",
+        },
+    ))?;
     let defaults = AmlsEigenParameters::default();
     let params = AmlsEigenParameters {
         reduction: AmlsParameters {
-            cutoff_hz: FIRST_GUESS_MARGIN
-                * defaults.cutoff_ratio
-                * first_cutoff_hz(model, wanted + defaults.guard),
-            shift: negative_shift(&model.k, &model.m),
+            cutoff_hz: FIRST_GUESS_MARGIN * defaults.cutoff_ratio * problem.guess_hz,
+            shift: negative_shift(k, m),
             ..AmlsParameters::default()
         },
-        data_precision: defect.unwrap_or(0.0).max(f64::EPSILON),
+        data_precision: problem.data_precision,
         // The guess errs low: room for the reductions that raise it.
         max_reductions: 4,
         ..defaults
     };
-    amls_lowest_modes(&model.k, &model.m, &tree, wanted, null, &params)
+    amls_lowest_modes(k, m, &tree, problem.wanted, problem.null, &params)
 }
 
 /// A guess of the `count`-th eigenfrequency (Hz) from the body alone, the smaller of two

@@ -7,9 +7,9 @@ use std::time::Instant;
 use faer::{Mat, MatRef, sparse::SparseColMat};
 
 use super::{
-    AMLS_LEAF, BoundaryCoordinates, Column, ColumnKind, Eigensolver, ModeSelection, ReductionError,
+    BoundaryCoordinates, Column, ColumnKind, Eigensolver, ModeSelection, ReductionError,
     RigidInterface, SolverPath,
-    amls_free_modes::{FIRST_GUESS_MARGIN, first_cutoff_hz},
+    amls_free_modes::{AmlsProblem, amls_pairs, first_cutoff_hz},
     free_body_solver::{FreeBodyParameters, sturm_checked},
     partition::{Partition, free_rigid_motions},
 };
@@ -18,10 +18,9 @@ use crate::{
     error::FreeMotion,
     fem::{FeModel, RigidMotions},
     linalg::{
-        AmlsEigenParameters, AmlsParameters, GeneralizedEigen, IndefiniteFactor, MassMatrix,
-        PairSelection, PartialEigenParameters, SparseSymmetric, SubstructureTree, SymbolicFactor,
-        SymmetricFactor, amls_lowest_modes, generalized_eigen_selected, negative_shift,
-        nested_dissection,
+        AmlsEigenParameters, GeneralizedEigen, IndefiniteFactor, MassMatrix, PairSelection,
+        PartialEigenParameters, SparseSymmetric, SymbolicFactor, SymmetricFactor,
+        generalized_eigen_selected, negative_shift, nested_dissection,
     },
 };
 
@@ -441,7 +440,7 @@ impl<'a> InteriorProblem<'a> {
     }
 
     /// The `wanted` lowest fixed-interface pairs by AMLS over the interior's own tree (parts
-    /// of at most [`AMLS_LEAF`] unknowns, a quarter of a smaller interior), the first cut-off
+    /// of at most [`super::AMLS_LEAF`] unknowns, a quarter of a smaller interior), the first cut-off
     /// from the free body's guess (fixed-interface frequencies lie above the free ones, so
     /// the guess errs low), refined and Sturm-counted like every AMLS solve.
     fn amls_partial(&mut self, wanted: usize) -> Result<GeneralizedEigen> {
@@ -453,26 +452,20 @@ impl<'a> InteriorProblem<'a> {
             .iter()
             .map(|&d| self.model.dof_position(d))
             .collect();
-        let leaf = AMLS_LEAF.min(coords.len() / 4).max(1);
-        let tree = SubstructureTree::new(self.k_ii.as_faer(), &coords, leaf).ok_or(
-            Error::Reduction(ReductionError::MethodNeedsContext {
-                method: "multi-level substructuring (--eigensolver amls)",
-                needs: "node coordinates to cut the body by (this body's nodes all sit at one \
-                        point)",
-            }),
-        )?;
-        let defaults = AmlsEigenParameters::default();
-        let guess = first_cutoff_hz(self.model, wanted + defaults.guard);
-        let params = AmlsEigenParameters {
-            reduction: AmlsParameters {
-                cutoff_hz: FIRST_GUESS_MARGIN * defaults.cutoff_ratio * guess,
-                shift: negative_shift(&self.k_ii, &self.m_ii),
-                ..AmlsParameters::default()
+        let (eig, stats) = amls_pairs(
+            &self.k_ii,
+            &self.m_ii,
+            &coords,
+            AmlsProblem {
+                wanted,
+                null: None,
+                data_precision: f64::EPSILON,
+                guess_hz: first_cutoff_hz(
+                    self.model,
+                    wanted + AmlsEigenParameters::default().guard,
+                ),
             },
-            max_reductions: 4,
-            ..defaults
-        };
-        let (eig, stats) = amls_lowest_modes(&self.k_ii, &self.m_ii, &tree, wanted, None, &params)?;
+        )?;
         self.statistics.eigen_s += started.elapsed().as_secs_f64();
         self.statistics.amls_reductions += stats.reductions;
         self.statistics.eigen_max_residual =
