@@ -221,15 +221,7 @@ fn compare_amls_and_lanczos(
     let lanczos = free_body_pairs(model, wanted, &FreeBodyParameters::default()).expect("Lanczos");
     let lanczos_s = started.elapsed().as_secs_f64();
     let lanczos_peak = gb(peak_resident_bytes());
-    // The elastic pairs (the rigid ones' eigenvalues are round-off in both).
-    let rigid = amls.zero_energy.max(lanczos.zero_energy);
-    let worst = amls
-        .values
-        .iter()
-        .zip(&lanczos.values)
-        .skip(rigid)
-        .map(|(a, b)| (a - b).abs() / b.abs())
-        .fold(0.0f64, f64::max);
+    let worst = amls.elastic_values_apart(&lanczos);
     println!(
         "Lanczos, {wanted} pairs: {lanczos_s:.2} s, peak {lanczos_peak:.2} GB; AMLS / Lanczos \
          {:.2}; largest relative difference of the elastic eigenvalues {worst:.1e}; highest {:.4} Hz",

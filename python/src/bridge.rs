@@ -162,12 +162,7 @@ pub(crate) fn json_to_py<'py>(
 }
 
 pub(crate) fn eigensolver(py: Python<'_>, id: &str) -> PyResult<Eigensolver> {
-    Eigensolver::from_id(id).ok_or_else(|| {
-        input_error(
-            py,
-            format!("unknown eigensolver {id:?}: \"lanczos\" or \"amls\""),
-        )
-    })
+    Eigensolver::from_str(id).map_err(|e| input_error(py, e.to_string()))
 }
 
 pub(crate) fn method(py: Python<'_>, id: &str) -> PyResult<Method> {

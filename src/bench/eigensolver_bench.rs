@@ -15,6 +15,7 @@ use crate::{
     Result,
     fem::{SlabParameters, slab},
     linalg::{GeneralizedEigen, check_reduction_memory, peak_resident_bytes, reset_peak_resident},
+    models::amls_json,
     record::{AMLS, Color, Layout, LogLogChart, LogLogSeries, RecordingContent, method_color},
     reduction::{Eigensolver, Method, free_pairs_by},
     report::{Report, markdown_table, readable, sig},
@@ -77,20 +78,12 @@ pub fn bench_eigensolvers(
             .unwrap_or(0);
         let (first, first_s) = (&runs[reference].pairs, runs[reference].seconds);
         for run in &runs {
-            let apart = run
-                .pairs
-                .values
-                .iter()
-                .zip(&first.values)
-                .skip(run.pairs.zero_energy.max(first.zero_energy))
-                .map(|(a, b)| (a - b).abs() / b.abs())
-                .fold(0.0f64, f64::max);
+            let apart = run.pairs.elastic_values_apart(first);
             let worst = run
                 .pairs
-                .residuals
-                .iter()
-                .skip(run.pairs.zero_energy)
-                .fold(0.0f64, |a, &b| a.max(b));
+                .elastic_residuals()
+                .into_iter()
+                .fold(0.0f64, f64::max);
             let missed = run.pairs.sturm.map_or(0, |s| s.missed());
             let ratio = run.seconds / first_s;
             let gb = run.peak.map(|b| b as f64 / 1e9);
@@ -126,19 +119,16 @@ pub fn bench_eigensolvers(
                 "sturm_missed": missed,
                 "eigenvalues_apart": sig(apart),
                 "highest_hz": run.pairs.hz().last().copied().map(sig),
-                "amls": amls.map(|s| json!({
-                    "reductions": s.reductions,
-                    "cutoff_hz": sig(s.cutoff_hz),
-                    "projected": s.projected,
-                    "iterations": s.iterations,
-                    "unrefined_value_error": sig(s.unrefined_value_error),
-                    "seconds": {
+                "amls": amls.map(|s| {
+                    let mut v = amls_json(s);
+                    v["seconds"] = json!({
                         "reductions": sig(s.seconds[0]),
                         "projected": sig(s.seconds[1]),
                         "refinement": sig(s.seconds[2]),
                         "sturm": sig(s.seconds[3]),
-                    },
-                })),
+                    });
+                    v
+                }),
             }));
             if let Some(entry) = times.iter_mut().find(|(s, _)| *s == run.solver) {
                 entry.1.push((dofs as f64, run.seconds));

@@ -12,7 +12,7 @@ use crate::{
     Result,
     body_file::{BodyHandle, ImportedBody},
     dynamics::{AxisKind, IntegrationScheme},
-    reduction::Method,
+    reduction::{Eigensolver, Method},
     scenes::{SceneId, SceneOptions},
 };
 
@@ -102,8 +102,8 @@ pub(super) enum Command {
         /// at every size measured on two cores) or `amls` (multi-level substructuring over
         /// the body's nested-dissection tree, refined to the same residual check and
         /// Sturm-counted; docs/amls.md).
-        #[arg(long, value_enum, default_value_t = EigensolverArg::Lanczos)]
-        eigensolver: EigensolverArg,
+        #[arg(long, default_value = "lanczos")]
+        eigensolver: Eigensolver,
     },
     /// Write a body read from any supported format (Matrix Market, Harwell–Boeing with a DOF
     /// map, dof-major) as a node-major Matrix Market body file in a folder, and print what was
@@ -494,7 +494,7 @@ pub struct BenchArgs {
     /// eigensolvers instead of the reductions (`amls,lanczos`), each after the other in one
     /// process, with its peak memory.
     #[arg(long, value_delimiter = ',', requires = "sizes")]
-    pub(super) eigensolver: Vec<EigensolverArg>,
+    pub(super) eigensolver: Vec<Eigensolver>,
     /// With --eigensolver: the elastic pairs asked of each (default 50).
     #[arg(long, requires = "eigensolver")]
     pub(super) pairs: Option<usize>,
@@ -505,22 +505,4 @@ pub struct BenchArgs {
         requires = "body"
     )]
     pub(super) peer: PathBuf,
-}
-
-/// `--eigensolver`: which solver finds a body's lowest free-free pairs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum EigensolverArg {
-    /// Shift-invert block Lanczos on one sparse factor.
-    Lanczos,
-    /// Multi-level substructuring (AMLS), refined and Sturm-counted.
-    Amls,
-}
-
-impl From<EigensolverArg> for crate::reduction::Eigensolver {
-    fn from(a: EigensolverArg) -> Self {
-        match a {
-            EigensolverArg::Lanczos => Self::Lanczos,
-            EigensolverArg::Amls => Self::Amls,
-        }
-    }
 }

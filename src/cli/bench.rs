@@ -221,8 +221,7 @@ fn size_bench(args: BenchArgs, sizes: &str, threads: &[usize]) -> Result<()> {
             bench
         }
         None if !eigensolver.is_empty() => {
-            let solvers: Vec<_> = eigensolver.iter().map(|&e| e.into()).collect();
-            crate::bench::bench_eigensolvers(&meshes, &solvers, pairs.unwrap_or(50), &|s| {
+            crate::bench::bench_eigensolvers(&meshes, &eigensolver, pairs.unwrap_or(50), &|s| {
                 progress(s)
             })?
         }

@@ -212,6 +212,6 @@ pub struct ExportArgs {
     /// the free-free pairs BH, MM and BT start from: `lanczos` (default) or `amls`
     /// (multi-level substructuring, refined and Sturm-counted; docs/amls.md). model.json
     /// names it.
-    #[arg(long, value_enum, default_value_t = super::arguments::EigensolverArg::Lanczos)]
-    pub(super) eigensolver: super::arguments::EigensolverArg,
+    #[arg(long, default_value = "lanczos")]
+    pub(super) eigensolver: crate::reduction::Eigensolver,
 }

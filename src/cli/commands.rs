@@ -105,7 +105,7 @@ fn run(cli: Cli) -> Result<()> {
             eigensolver,
         } => {
             let body = ImportedBody::load(&body)?;
-            let (value, text) = crate::models::import_summary_by(&body, eigensolver.into())?;
+            let (value, text) = crate::models::import_summary_by(&body, eigensolver)?;
             if json {
                 println!("{value}");
             } else {
@@ -338,7 +338,7 @@ fn export(args: ExportArgs) -> Result<()> {
         interface_modes,
         exudyn,
         without_stiffening: stiffening == super::arguments::OnOff::Off,
-        eigensolver: eigensolver.into(),
+        eigensolver,
     };
     let summary = crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
     if timings {

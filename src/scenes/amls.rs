@@ -9,7 +9,9 @@ use serde_json::{Value, json};
 use super::{SceneInfo, SceneOptions, SceneOutput};
 use crate::{
     Result,
-    models::{LadderPoint, SubstructuringParameters, SubstructuringStudy, substructuring_study},
+    models::{
+        LadderPoint, SubstructuringParameters, SubstructuringStudy, amls_json, substructuring_study,
+    },
     record::{
         AMLS, Geometry, Layout, LogLogChart, LogLogSeries, REFERENCE, Visual, level_color,
         method_color,
@@ -188,22 +190,18 @@ fn report(study: &SubstructuringStudy) -> Report {
     );
     let r = &study.refined;
     let s = &r.statistics;
-    report.results.insert(
-        "refined".into(),
-        json!({
-            "pairs": 6 + params.wanted,
-            "reductions": s.reductions,
-            "cutoff_hz": sig(s.cutoff_hz),
-            "projected": s.projected,
-            "iterations": s.iterations,
-            "unrefined_value_error": sig(s.unrefined_value_error),
-            "max_residual": sig(s.max_residual),
-            "eigenvalues_apart": sig(r.apart),
-            "sturm_missed": r.missed,
-            "amls_s": sig(r.amls_s),
-            "lanczos_s": sig(r.lanczos_s),
-        }),
-    );
+    let rigid = study.model.dofs.rigid_body_count();
+    let mut refined = amls_json(s);
+    for (key, value) in [
+        ("pairs", json!(rigid + params.wanted)),
+        ("eigenvalues_apart", json!(sig(r.apart))),
+        ("sturm_missed", json!(r.missed)),
+        ("amls_s", json!(sig(r.amls_s))),
+        ("lanczos_s", json!(sig(r.lanczos_s))),
+    ] {
+        refined[key] = value;
+    }
+    report.results.insert("refined".into(), refined);
 
     let mut ladder = Table::new(&[
         "model",
@@ -283,7 +281,7 @@ fn report(study: &SubstructuringStudy) -> Report {
          pairs are only as good as its cut-off, so flexmodes refines them (Rayleigh–Ritz with \
          the body's own K and M on the Ritz vectors, their images under AMLS's block factor \
          and the last step) until every residual ‖Kφ − λMφ‖/‖Kφ‖ is at most 1e-8, then counts \
-         by Sturm. The lowest {pairs} pairs (6 rigid): first cut-off {first} Hz, {reductions} \
+         by Sturm. The lowest {pairs} pairs ({rigid} rigid): first cut-off {first} Hz, {reductions} \
          reduction(s), the last at {cutoff} Hz keeping {projected} modes; before refinement \
          the worst wanted eigenvalue was {unrefined} too high; {iterations} refinement steps \
          to a worst residual of {residual}; eigenvalues within {apart} of Lanczos', the Sturm \
@@ -293,8 +291,8 @@ fn report(study: &SubstructuringStudy) -> Report {
         wanted = params.wanted,
         root = study.guyan.coordinates,
         shown = sig3(shown_hz),
-        pairs = 6 + params.wanted,
-        first = sig3(params.shown_ratio * study.reference_hz.last().copied().unwrap_or(0.0)),
+        pairs = rigid + params.wanted,
+        first = sig3(shown_hz),
         reductions = s.reductions,
         cutoff = sig3(s.cutoff_hz),
         projected = s.projected,

@@ -91,6 +91,18 @@ impl GeneralizedEigen {
         self.residuals.iter().copied().fold(0.0, f64::max)
     }
 
+    /// The largest relative difference of the elastic eigenvalues of two solves of one pencil,
+    /// paired by order after the zero-energy pairs of either (their values are round-off in
+    /// both); 0 when neither has an elastic pair.
+    pub fn elastic_values_apart(&self, other: &Self) -> f64 {
+        self.values
+            .iter()
+            .zip(&other.values)
+            .skip(self.zero_energy.max(other.zero_energy))
+            .map(|(a, b)| (a - b).abs() / b.abs())
+            .fold(0.0f64, f64::max)
+    }
+
     /// The first `count` pairs.
     pub fn first(&self, count: usize) -> Self {
         let count = count.min(self.values.len());

@@ -203,8 +203,10 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
     Ok((value, text))
 }
 
-/// An AMLS solve's counts for the JSON summary.
-fn amls_json(s: &AmlsStatistics) -> Value {
+/// An AMLS solve's counts as every JSON output gives them (`import`, the `amls` scene, the
+/// eigensolver bench): reductions, the last cut-off, the modes kept, refinement steps, the
+/// wanted eigenvalues' error before refinement and the worst residual after.
+pub fn amls_json(s: &AmlsStatistics) -> Value {
     json!({
         "reductions": s.reductions,
         "cutoff_hz": sig(s.cutoff_hz),

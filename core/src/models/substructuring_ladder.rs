@@ -120,15 +120,13 @@ pub struct SubstructuringStudy {
     pub refined: RefinedComparison,
 }
 
-/// The rigid motions a free solid has.
-const RIGID: usize = 6;
-
 /// Builds the ladder on the refined slab and refines AMLS at the shown cut-off.
 pub fn substructuring_study(params: &SubstructuringParameters) -> Result<SubstructuringStudy> {
     let model = slab(&SlabParameters::refined(params.bricks)?);
     let wanted = params.wanted;
+    let rigid = model.dofs.rigid_body_count();
     let started = Instant::now();
-    let reference = free_body_pairs(&model, RIGID + wanted, &FreeBodyParameters::default())?;
+    let reference = free_body_pairs(&model, rigid + wanted, &FreeBodyParameters::default())?;
     let lanczos_s = started.elapsed().as_secs_f64();
     let reference_hz: Vec<f64> = reference.elastic_hz().into_iter().take(wanted).collect();
     let top_hz = *reference_hz.last().unwrap_or(&0.0);
@@ -191,19 +189,19 @@ pub fn substructuring_study(params: &SubstructuringParameters) -> Result<Substru
             shown_modes = Some(reduced.modes_per_node());
         }
         if i < cutoffs.len() {
-            amls.push(amls_point(&reduced, hz, &reference_hz)?);
+            amls.push(amls_point(&reduced, hz, rigid, &reference_hz)?);
         }
     }
     let parts = tree_parts(&model, &tree, &shown_modes.unwrap_or_default());
 
     let started = Instant::now();
-    let rigid = model.rigid_body_modes();
+    let rigid_modes = model.rigid_body_modes();
     let (refined, statistics) = amls_lowest_modes(
         &model.k,
         &model.m,
         &tree,
-        RIGID + wanted,
-        Some(rigid.as_ref()),
+        rigid + wanted,
+        Some(rigid_modes.as_ref()),
         &AmlsEigenParameters {
             reduction: AmlsParameters {
                 cutoff_hz: shown_hz,
@@ -215,13 +213,7 @@ pub fn substructuring_study(params: &SubstructuringParameters) -> Result<Substru
         },
     )?;
     let amls_s = started.elapsed().as_secs_f64();
-    let apart = refined
-        .values
-        .iter()
-        .zip(&reference.values)
-        .skip(refined.zero_energy.max(reference.zero_energy))
-        .map(|(a, b)| (a - b).abs() / b.abs())
-        .fold(0.0f64, f64::max);
+    let apart = refined.elastic_values_apart(&reference);
     Ok(SubstructuringStudy {
         parameters: params.clone(),
         reference_hz,
@@ -264,16 +256,17 @@ fn ladder_point(
 fn amls_point(
     reduced: &MultilevelSubstructures,
     cutoff_hz: f64,
+    rigid: usize,
     reference_hz: &[f64],
 ) -> Result<LadderPoint> {
-    let count = (RIGID + reference_hz.len()).min(reduced.modes());
+    let count = (rigid + reference_hz.len()).min(reduced.modes());
     let pairs = reduced.projected_pairs(PairSelection::Lowest(count))?;
     // The projected pencil is shifted: its rigid pairs sit at -σ, not at round-off, so they
-    // are told by position (a free solid's six come first).
+    // are told by position (the body's `rigid` come first).
     let hz: Vec<f64> = pairs
         .values
         .iter()
-        .skip(RIGID)
+        .skip(rigid)
         .map(|&mu| hz_from_eigenvalue(mu + reduced.shift()))
         .collect();
     Ok(LadderPoint {

@@ -47,6 +47,9 @@ pub enum Eigensolver {
 }
 
 impl Eigensolver {
+    /// Every solver, the default first.
+    pub const ALL: [Eigensolver; 2] = [Eigensolver::Lanczos, Eigensolver::Amls];
+
     /// The name on the command line (`lanczos`, `amls`).
     pub fn id(self) -> &'static str {
         match self {
@@ -55,19 +58,29 @@ impl Eigensolver {
         }
     }
 
-    /// The solver named `id` (`lanczos`, `amls`).
-    pub fn from_id(id: &str) -> Option<Self> {
-        [Eigensolver::Lanczos, Eigensolver::Amls]
-            .into_iter()
-            .find(|e| e.id() == id.trim())
-    }
-
     /// The route as a sentence names it.
     pub fn name(self) -> &'static str {
         match self {
             Eigensolver::Lanczos => "shift-invert Lanczos",
             Eigensolver::Amls => "multi-level substructuring (AMLS), refined",
         }
+    }
+}
+
+impl std::str::FromStr for Eigensolver {
+    type Err = crate::error::UnknownId;
+
+    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
+        Eigensolver::ALL
+            .into_iter()
+            .find(|e| e.id() == s.trim())
+            .ok_or_else(|| {
+                crate::error::UnknownId::new(
+                    "eigensolver",
+                    s.trim(),
+                    &Eigensolver::ALL.map(Eigensolver::id),
+                )
+            })
     }
 }
 

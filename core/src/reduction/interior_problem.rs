@@ -431,17 +431,27 @@ impl<'a> InteriorProblem<'a> {
             symbolic,
             &FreeBodyParameters::default(),
         )?;
-        self.statistics.eigen_s += started.elapsed().as_secs_f64();
         self.statistics.eigen_block_solves += stats.block_solves;
-        self.statistics.eigen_max_residual =
-            self.statistics.eigen_max_residual.max(stats.max_residual);
+        Ok(self.keep_partial(eig, started, stats.max_residual))
+    }
+
+    /// Keeps `eig` as the partial solve's pairs, with the time since `started` and its worst
+    /// residual in the statistics.
+    fn keep_partial(
+        &mut self,
+        eig: GeneralizedEigen,
+        started: Instant,
+        max_residual: f64,
+    ) -> GeneralizedEigen {
+        self.statistics.eigen_s += started.elapsed().as_secs_f64();
+        self.statistics.eigen_max_residual = self.statistics.eigen_max_residual.max(max_residual);
         self.partial_modes = Some(eig.clone());
-        Ok(eig)
+        eig
     }
 
     /// The `wanted` lowest fixed-interface pairs by AMLS over the interior's own tree (parts
-    /// of at most [`super::AMLS_LEAF`] unknowns, a quarter of a smaller interior), the first cut-off
-    /// from the free body's guess (fixed-interface frequencies lie above the free ones, so
+    /// of at most [`super::AMLS_LEAF`] unknowns, a quarter of a smaller interior), the first
+    /// cut-off from the free body's guess (fixed-interface frequencies lie above the free ones, so
     /// the guess errs low), refined and Sturm-counted like every AMLS solve.
     fn amls_partial(&mut self, wanted: usize) -> Result<GeneralizedEigen> {
         self.progress.phase("fixed-interface eigensolve (AMLS)")?;
@@ -466,12 +476,8 @@ impl<'a> InteriorProblem<'a> {
                 ),
             },
         )?;
-        self.statistics.eigen_s += started.elapsed().as_secs_f64();
         self.statistics.amls_reductions += stats.reductions;
-        self.statistics.eigen_max_residual =
-            self.statistics.eigen_max_residual.max(stats.max_residual);
-        self.partial_modes = Some(eig.clone());
-        Ok(eig)
+        Ok(self.keep_partial(eig, started, stats.max_residual))
     }
 }
 
