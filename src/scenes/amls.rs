@@ -286,8 +286,8 @@ fn report(study: &SubstructuringStudy) -> Report {
          the worst wanted eigenvalue was {unrefined} too high; {iterations} refinement steps \
          to a worst residual of {residual}; eigenvalues within {apart} of Lanczos', the Sturm \
          count missing {missed}. {amls_s} s against Lanczos' {lanczos_s} s on this body (one \
-         process, the machine's threads): on two cores AMLS does not yet pay at any size \
-         measured (docs/amls.md: 6.8 k to 91 k DOF, 3.9–4.6 times Lanczos' time).\n",
+         process, its kernels on up to {threads} thread(s)); `flexmodes bench slab-modes --sizes 7k,28k \
+         --eigensolver lanczos,amls` times both at scale (docs/amls.md).\n",
         wanted = params.wanted,
         root = study.guyan.coordinates,
         shown = sig3(shown_hz),
@@ -303,6 +303,7 @@ fn report(study: &SubstructuringStudy) -> Report {
         missed = r.missed,
         amls_s = sig3(r.amls_s),
         lanczos_s = sig3(r.lanczos_s),
+        threads = crate::linalg::threads(),
     );
     report
 }
