@@ -21,6 +21,7 @@ mod pair_residuals;
 mod partial_eigen;
 mod saddle_point;
 mod small_cholesky;
+mod sparse_rhs_solve;
 mod sparse_symmetric;
 mod sturm_count;
 mod substructure_tree;
@@ -60,6 +61,7 @@ pub use saddle_point::{
     pinv_solve, saddle_point_solve,
 };
 pub use small_cholesky::SmallCholesky;
+pub use sparse_rhs_solve::ForwardReach;
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
 pub use sturm_count::{SturmCount, sturm_count};
 pub use substructure_tree::{SubstructureNode, SubstructureTree};

@@ -21,6 +21,7 @@ use faer::{
     },
 };
 
+use super::sparse_rhs_solve::{ForwardReach, solve_sparse_rhs_in_place};
 use crate::{Error, Result, error::MatrixLabel};
 
 /// Right-hand sides from which a sparse solve runs on every core.
@@ -165,6 +166,15 @@ impl std::fmt::Debug for SymmetricFactor {
 }
 
 impl SymmetricFactor {
+    /// The sparse path's analysis and the values of $L$ (`None` on the dense path).
+    #[cfg(test)]
+    pub(super) fn sparse_parts(&self) -> Option<(&SymbolicCholesky<usize>, &[f64])> {
+        match &self.kind {
+            Kind::Sparse { symbolic, values } => Some((&symbolic.inner, values)),
+            Kind::Dense(_) => None,
+        }
+    }
+
     /// Factors a dense symmetric positive definite `a`. `what` names the matrix in errors.
     pub fn dense(a: MatRef<'_, f64>, what: impl Into<MatrixLabel>) -> Result<Self> {
         let llt = a.llt(Side::Lower).map_err(|e| {
@@ -288,6 +298,48 @@ impl SymmetricFactor {
             }
         }
     }
+
+    /// `x` ← $A^{-1}x$ in place for right-hand sides with many zero rows (a boundary's
+    /// couplings): on the sparse supernodal path the forward solve skips the supernodes the
+    /// nonzero rows never reach ([`ForwardReach`], summed over the blocks of columns solved
+    /// side by side); otherwise [`Self::solve_in_place`], and `None`.
+    pub fn solve_sparse_rhs_in_place(&self, x: faer::MatMut<'_, f64>) -> Option<ForwardReach> {
+        let Kind::Sparse { symbolic, values } = &self.kind else {
+            self.solve_in_place(x);
+            return None;
+        };
+        let parts = match super::par_for_flops(symbolic.solve_flops(x.ncols())) {
+            Par::Rayon(n) if x.ncols() >= WIDE_SOLVE => n.get().min(x.ncols()),
+            _ => 1,
+        };
+        sparse_rhs_columns(&symbolic.inner, values, x, parts)
+    }
+}
+
+/// [`solve_sparse_rhs_in_place`] on `parts` blocks of the columns of `x` side by side, the
+/// reaches summed.
+fn sparse_rhs_columns(
+    symbolic: &SymbolicCholesky<usize>,
+    values: &[f64],
+    x: faer::MatMut<'_, f64>,
+    parts: usize,
+) -> Option<ForwardReach> {
+    if parts <= 1 || x.ncols() < 2 {
+        return solve_sparse_rhs_in_place(symbolic, values, x);
+    }
+    let left = parts / 2;
+    let mid = x.ncols() * left / parts;
+    let (a, b) = x.split_at_col_mut(mid);
+    let (a, b) = rayon::join(
+        || sparse_rhs_columns(symbolic, values, a, left),
+        || sparse_rhs_columns(symbolic, values, b, parts - left),
+    );
+    Some(ForwardReach {
+        visited: a?.visited + b?.visited,
+        supernodes: a?.supernodes + b?.supernodes,
+        visited_entries: a?.visited_entries + b?.visited_entries,
+        entries: a?.entries + b?.entries,
+    })
 }
 
 /// Solves $LL^Tx = b$ in place for the columns of `x`, split into `parts` blocks of columns

@@ -5,6 +5,8 @@ use faer::{
     linalg::matmul::triangular::{BlockStructure, matmul},
 };
 
+use rayon::prelude::*;
+
 use super::{Basis, ColumnKind};
 use crate::fem::FeModel;
 
@@ -54,16 +56,27 @@ impl ReducedMatrices {
         };
         let r = psi.ncols();
         let others: Vec<usize> = (0..r).filter(|j| !constraint.contains(j)).collect();
-        // (K Ψ_c) on the boundary rows: K is symmetric, so row b_j is column b_j.
+        // (K Ψ_c) on the boundary rows: K is symmetric, so row b_j is column b_j. One column
+        // of Ψ_c at a time (contiguous), the columns side by side on the pool.
         let a = model.k.as_faer().as_ref();
         let (col_ptr, row_idx, val) = (a.col_ptr(), a.row_idx(), a.val());
+        let boundary_block: Vec<Vec<f64>> = constraint
+            .par_iter()
+            .map(|&cq| {
+                let column = psi.col(cq).try_as_col_major().expect("Ψ is column-major");
+                let column = column.as_slice();
+                b.iter()
+                    .map(|&bp| {
+                        (col_ptr[bp]..col_ptr[bp + 1])
+                            .map(|e| val[e] * column[row_idx[e]])
+                            .sum()
+                    })
+                    .collect()
+            })
+            .collect();
         let mut k = Mat::<f64>::zeros(r, r);
-        for (p, &bp) in b.iter().enumerate() {
-            for (q, &cq) in constraint.iter().enumerate() {
-                let mut s = 0.0;
-                for e in col_ptr[bp]..col_ptr[bp + 1] {
-                    s += val[e] * psi[(row_idx[e], cq)];
-                }
+        for (q, column) in boundary_block.iter().enumerate() {
+            for (p, &s) in column.iter().enumerate() {
                 k[(constraint[p], constraint[q])] = s;
             }
         }
