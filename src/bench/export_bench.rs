@@ -32,26 +32,96 @@ pub struct ExportBenchParameters {
     pub peer: PathBuf,
 }
 
-/// One process's wall times and what it printed.
+/// One process's wall times, peak resident memory and what it printed.
 #[derive(Debug, Clone)]
 struct Runs {
     seconds: Vec<f64>,
+    /// The largest peak resident set of the runs, MB (`None` where the system does not say).
+    peak_mb: Option<f64>,
     stdout: String,
     stderr: String,
 }
 
+/// Runs `command` to its end, its output captured: its exit status, stdout, stderr and its
+/// peak resident memory in MB (the kernel's `ru_maxrss` of this child alone, from `wait4`).
+fn run_measured(command: &mut Command) -> std::io::Result<(std::process::Output, Option<f64>)> {
+    use std::io::Read;
+    let mut child = command
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()?;
+    // Both pipes drained side by side, so a child that fills one never blocks.
+    let mut err_pipe = child.stderr.take().expect("piped above");
+    let err_reader = std::thread::spawn(move || {
+        let mut buf = Vec::new();
+        err_pipe.read_to_end(&mut buf).map(|_| buf)
+    });
+    let mut stdout = Vec::new();
+    child
+        .stdout
+        .take()
+        .expect("piped above")
+        .read_to_end(&mut stdout)?;
+    let stderr = err_reader
+        .join()
+        .map_err(|_| std::io::Error::other("stderr reader panicked"))??;
+    let (status, peak_mb) = wait_with_peak(child)?;
+    Ok((
+        std::process::Output {
+            status,
+            stdout,
+            stderr,
+        },
+        peak_mb,
+    ))
+}
+
+/// Waits for `child`, with its peak resident memory in MB.
+#[cfg(target_os = "linux")]
+fn wait_with_peak(
+    child: std::process::Child,
+) -> std::io::Result<(std::process::ExitStatus, Option<f64>)> {
+    use std::os::unix::process::ExitStatusExt;
+    let pid = child.id() as libc::pid_t;
+    let mut status: libc::c_int = 0;
+    // SAFETY: a zeroed rusage is a valid value for wait4 to fill; the pid is our own child,
+    // not yet waited for (the Child handle is dropped without wait).
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let reaped = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
+    if reaped != pid {
+        return Err(std::io::Error::last_os_error());
+    }
+    // ru_maxrss is in KiB on Linux.
+    Ok((
+        std::process::ExitStatus::from_raw(status),
+        Some(usage.ru_maxrss as f64 / 1024.0),
+    ))
+}
+
+#[cfg(not(target_os = "linux"))]
+fn wait_with_peak(
+    mut child: std::process::Child,
+) -> std::io::Result<(std::process::ExitStatus, Option<f64>)> {
+    Ok((child.wait()?, None))
+}
+
 fn run_timed(mut command: Command, repeats: usize, what: &'static str) -> Result<Runs> {
     let mut seconds = Vec::with_capacity(repeats);
+    let mut peak_mb: Option<f64> = None;
     let mut stdout = String::new();
     let mut stderr = String::new();
     for _ in 0..repeats {
         let started = Instant::now();
         // A program that cannot be started is named by its path (`what` names the run).
-        let out = command.output().map_err(|source| Error::Io {
+        let (out, peak) = run_measured(&mut command).map_err(|source| Error::Io {
             path: command.get_program().into(),
             source,
         })?;
         seconds.push(started.elapsed().as_secs_f64());
+        peak_mb = match (peak_mb, peak) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
         if !out.status.success() {
             return Err(Error::PeerFailed {
                 peer: what,
@@ -68,6 +138,7 @@ fn run_timed(mut command: Command, repeats: usize, what: &'static str) -> Result
     seconds.sort_by(f64::total_cmp);
     Ok(Runs {
         seconds,
+        peak_mb,
         stdout,
         stderr,
     })
@@ -139,6 +210,7 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
         "flexmodes_median_s": sig(ours_s),
         "flexmodes_hz": our_hz.iter().take(10).map(|&f| sig(f)).collect::<Vec<_>>(),
         "flexmodes_threads": threads,
+        "flexmodes_peak_mb": ours.peak_mb.map(sig),
         "flexmodes_phases_s": our_phases
             .iter()
             .map(|(name, s)| json!({ "phase": name, "s": sig(*s) }))
@@ -146,13 +218,15 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
     });
     let mut text = format!(
         "# export bench: Craig–Bampton of {} on {} with {} modes, {} run(s) each\n\n\
-         | process | median s | runs s |\n|---|---|---|\n| flexmodes export | {:.2} | {} |\n",
+         | process | median s | runs s | peak MB |\n|---|---|---|---|\n\
+         | flexmodes export | {:.2} | {} | {} |\n",
         p.body.display(),
         p.boundary.join(","),
         p.modes,
         p.repeats,
         ours_s,
-        fmt_runs(&ours.seconds)
+        fmt_runs(&ours.seconds),
+        fmt_peak(ours.peak_mb)
     );
     match peer {
         Ok((runs, peer_json)) => {
@@ -176,16 +250,18 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
             value["peer_s"] = json!(runs.seconds.iter().map(|&s| sig(s)).collect::<Vec<_>>());
             value["peer_median_s"] = json!(sig(peer_s));
             value["peer_cb_only_s"] = json!(sig(cb_s));
+            value["peer_peak_mb"] = json!(runs.peak_mb.map(sig));
             value["ratio_to_peer_process"] = json!(sig(ours_s / peer_s));
             value["ratio_to_peer_cb_only"] = json!(sig(ours_s / cb_s));
             value["max_rel_hz_difference"] = json!(sig(agreement));
             text.push_str(&format!(
-                "| SciPy + CHOLMOD (peers_body_cb.py --cholmod) | {peer_s:.2} | {} |\n\n\
+                "| SciPy + CHOLMOD (peers_body_cb.py --cholmod) | {peer_s:.2} | {} | {} |\n\n\
                  flexmodes / SciPy: {:.2}× of its whole process, {:.2}× of its CB alone \
                  ({cb_s:.2} s; the process also reads the body, imports SciPy and solves the \
                  free-free problem). The {compared} lowest elastic frequencies agree to \
-                 {agreement}.\n",
+                 {agreement}. Peak MB: the largest resident set of any run of the process.\n",
                 fmt_runs(&runs.seconds),
+                fmt_peak(runs.peak_mb),
                 ours_s / peer_s,
                 ours_s / cb_s,
                 agreement = flexmodes_core::report::readable(agreement, 2),
@@ -207,6 +283,10 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
             .join(", ")
     ));
     Ok((value, text))
+}
+
+fn fmt_peak(mb: Option<f64>) -> String {
+    mb.map_or("–".into(), |mb| format!("{mb:.0}"))
 }
 
 fn fmt_runs(s: &[f64]) -> String {
