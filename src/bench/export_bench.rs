@@ -316,3 +316,29 @@ fn peer_runs(p: &ExportBenchParameters) -> std::result::Result<(Runs, Value), St
     let json: Value = serde_json::from_str(&line).map_err(|e| format!("peer output: {e}"))?;
     Ok((runs, json))
 }
+
+#[cfg(all(test, target_os = "linux"))]
+mod tests {
+    use super::*;
+
+    /// A process whose pipeline holds an 80 MB line (`sort` keeps it whole) reports at least
+    /// that, its descendants' peaks included; a trivial one a few MB. Output and exit status
+    /// come through.
+    #[test]
+    fn a_child_s_peak_memory_is_measured_with_its_descendants() {
+        let mut big = Command::new("sh");
+        big.args(["-c", "head -c 80000000 /dev/zero | sort | wc -c"]);
+        let (out, peak) = run_measured(&mut big).unwrap();
+        assert!(out.status.success());
+        // `sort` ends the line.
+        assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "80000001");
+        let big_peak = peak.expect("Linux reports ru_maxrss");
+        assert!(big_peak >= 70.0, "{big_peak} MB for an 80 MB line");
+        let (out, small_peak) = run_measured(&mut Command::new("true")).unwrap();
+        assert!(out.status.success());
+        let small_peak = small_peak.unwrap();
+        assert!(small_peak < 20.0, "{small_peak} MB for `true`");
+        let (out, _) = run_measured(&mut Command::new("false")).unwrap();
+        assert!(!out.status.success());
+    }
+}
