@@ -122,9 +122,12 @@ fn main() {
             let symbolic =
                 SymbolicFactor::analyse_ordered(k, Some(&tree.order())).expect("analysis");
             println!(
-                "faer's supernodal factor of the same order: {:.3e} entries ({:.2} of the fronts')",
+                "faer's supernodal factor of the same order: {:.3e} entries ({:.2} of the fronts'), \
+                 {:.2} GB, {:.3e} flops to factor",
                 symbolic.factor_nnz() as f64,
-                symbolic.factor_nnz() as f64 / front_entries
+                symbolic.factor_nnz() as f64 / front_entries,
+                symbolic.factor_nnz() as f64 * 8.0 / 1e9,
+                symbolic.flops()
             );
         }
         if let Some(hz) = cutoff {
