@@ -11,6 +11,7 @@ reduced ones). Nothing here imports or mirrors flexmodes' own assembly.
     python3 assets/generate/make_bodies.py --only steel-rod
     python3 assets/generate/make_bodies.py --large DIR     # the 32 k-DOF link for the slow tests
     python3 assets/generate/make_bodies.py --large DIR --h 0.002 --no-cases   # 92 k DOF
+    python3 assets/generate/make_bodies.py --large DIR --h 0.0012 --no-cases --cholmod  # ~500 k
 
 The committed bodies: a steel link in m-kg-s (two bores), a flanged hub in mm-t-s (a bore and
 four bolt holes) and a slender rod with a cross hole at each end (its coarse mesh has one badly
@@ -216,7 +217,23 @@ def mass_properties(M, X):
     return mass, centre.tolist(), ((J + J.T) / 2).tolist()
 
 
-def free_free(K, M, X, count=18):
+def cholmod_inverse(A):
+    """x = A^-1 b by CHOLMOD (cholespy): a sparse Cholesky factor, where SuperLU's LU of a
+    500 k-DOF part would not fit in memory."""
+    from cholespy import CholeskySolverD, MatrixType
+    C = sp.coo_matrix(A)
+    ch = CholeskySolverD(A.shape[0], C.row.astype(np.int32), C.col.astype(np.int32), C.data,
+                         MatrixType.COO)
+
+    def solve(b):
+        b = np.ascontiguousarray(np.asarray(b, dtype=np.float64).reshape(A.shape[0], -1))
+        x = np.zeros_like(b)
+        ch.solve(b, x)
+        return x[:, 0]
+    return sla.LinearOperator(A.shape, matvec=solve, dtype=float)
+
+
+def free_free(K, M, X, count=18, cholmod=False):
     # A shift well below zero in the body's own scale: a tenth of the lowest elastic
     # eigenvalue estimated from a first, rough solve with a larger negative shift.
     # A shift of 1e-9 of the stiffest diagonal ratio: K - sigma M stays well conditioned
@@ -226,7 +243,9 @@ def free_free(K, M, X, count=18):
     # of its six rigid modes and skipped the rest.)
     diag = K.diagonal() / M.diagonal()
     sigma = -1e-9 * diag.max()
-    lam, phi = sla.eigsh(K.tocsc(), k=count, M=M.tocsc(), sigma=sigma, which="LM", tol=1e-14)
+    opinv = cholmod_inverse((K - sigma * M).tocsc()) if cholmod else None
+    lam, phi = sla.eigsh(K.tocsc(), k=count, M=M.tocsc(), sigma=sigma, which="LM", tol=1e-14,
+                         OPinv=opinv)
     order = np.argsort(lam)
     lam, phi = lam[order], phi[:, order]
     res = np.linalg.norm(K @ phi - (M @ phi) * lam, axis=0) / (
@@ -305,7 +324,7 @@ def nodes_on_bore(X, centre, radius, tol, axis=2):
 
 
 def make(out, name, description, geometry, h, units, young, poisson, density, cases, default,
-         bore_axis=2, curvature=12, **kw):
+         bore_axis=2, curvature=12, cholmod=False, **kw):
     os.makedirs(out, exist_ok=True)
     coords, tets, bores = mesh_p2(geometry, h, curvature, **kw)
     K, M, X, tri = assemble(coords, tets, young, poisson, density)
@@ -339,7 +358,7 @@ def make(out, name, description, geometry, h, units, young, poisson, density, ca
         f.write('[geometry]\nnodes = "nodes.csv"\nedges = "edges.csv"\n\n[node_sets]\n')
         for set_name, nodes in sets.items():
             f.write(f"{set_name} = {nodes}\n")
-    lam, res, zero = free_free(K, M, X)
+    lam, res, zero = free_free(K, M, X, cholmod=cholmod)
     mass, centre, inertia = mass_properties(M, X)
     ref = {
         "generator": {"scikit-fem": skfem.__version__, "gmsh": gmsh.__version__,
@@ -393,6 +412,10 @@ def main():
     ap.add_argument("--only", help="write only this body (steel-link, flange-hub, steel-rod)")
     ap.add_argument("--h", type=float, default=0.003,
                     help="with --large: the mesh size, m (0.003: 32 k DOF, 0.002: ~100 k)")
+    ap.add_argument("--cholmod", action="store_true",
+                    help="with --large: the free-free reference's shift-invert by CHOLMOD "
+                         "(pip install cholespy) instead of SuperLU, whose LU of a 500 k-DOF "
+                         "part does not fit in 24 GB")
     ap.add_argument("--no-cases", action="store_true",
                     help="with --large: free-free references only (no Craig-Bampton cases)")
     args = ap.parse_args()
@@ -400,7 +423,7 @@ def main():
         spec = {**LINK, "name": "steel_link_large"}
         if args.no_cases:
             spec["cases"] = []
-        make(args.large, h=args.h, **spec)
+        make(args.large, h=args.h, cholmod=args.cholmod, **spec)
         return
     bodies = {"steel-link": (0.0095, LINK), "flange-hub": (16.0, FLANGE),
               "steel-rod": (0.012, ROD)}
