@@ -11,7 +11,7 @@ reduced ones). Nothing here imports or mirrors flexmodes' own assembly.
     python3 assets/generate/make_bodies.py --only steel-rod
     python3 assets/generate/make_bodies.py --large DIR     # the 32 k-DOF link for the slow tests
     python3 assets/generate/make_bodies.py --large DIR --h 0.002 --no-cases   # 92 k DOF
-    python3 assets/generate/make_bodies.py --large DIR --h 0.0012 --no-cases --cholmod  # ~500 k
+    python3 assets/generate/make_bodies.py --large DIR --h 0.00105 --no-cases --cholmod  # ~500 k
 
 The committed bodies: a steel link in m-kg-s (two bores), a flanged hub in mm-t-s (a bore and
 four bolt holes) and a slender rod with a cross hole at each end (its coarse mesh has one badly

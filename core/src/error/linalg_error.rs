@@ -40,6 +40,21 @@ pub enum LinalgError {
         entries: Option<usize>,
     },
 
+    /// A sparse factor whose values and workspace exceed the memory the machine has free,
+    /// refused after the symbolic analysis and before any of it is allocated (Linux would grant
+    /// the allocation and end the process when its pages are touched).
+    #[error(
+        "the {what} of the {matrix} matrix needs {needed_gb:.2} GB ({entries} entries and its workspace), \
+         more than the {available_gb:.2} GB this machine has free"
+    )]
+    FactorTooLarge {
+        what: &'static str,
+        matrix: MatrixLabel,
+        entries: usize,
+        needed_gb: f64,
+        available_gb: f64,
+    },
+
     /// A mesh whose estimated memory exceeds what the machine has.
     #[error(
         "a {dofs}-DOF mesh needs about {estimated_gb:.1} GB, more than the {available_gb:.1} GB \

@@ -39,6 +39,15 @@ impl IndefiniteFactor {
         let what = what.into();
         symbolic.check_pattern(a.as_faer(), &what)?;
         let sym = symbolic.inner();
+        let par = super::par_for_factor(symbolic.flops());
+        let scratch = sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default());
+        super::memory::check_factor_memory(
+            "LDL^T factor",
+            &what,
+            sym.len_val(),
+            scratch.size_bytes(),
+            super::available_bytes(),
+        )?;
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {
             Error::Linalg(LinalgError::OutOfMemory {
@@ -48,16 +57,13 @@ impl IndefiniteFactor {
             })
         })?;
         values.resize(sym.len_val(), 0.0);
-        let par = super::par_for_factor(symbolic.flops());
-        let mut mem =
-            MemBuffer::try_new(sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()))
-                .map_err(|_| {
-                    Error::Linalg(LinalgError::OutOfMemory {
-                        what: "LDL^T workspace",
-                        matrix: Some(what.clone()),
-                        entries: None,
-                    })
-                })?;
+        let mut mem = MemBuffer::try_new(scratch).map_err(|_| {
+            Error::Linalg(LinalgError::OutOfMemory {
+                what: "LDL^T workspace",
+                matrix: Some(what.clone()),
+                entries: None,
+            })
+        })?;
         let result = sym.factorize_numeric_ldlt(
             &mut values,
             a.as_faer().as_ref(),

@@ -34,6 +34,31 @@ pub fn check_reduction_memory(dofs: usize) -> crate::Result<u64> {
     Ok(needed)
 }
 
+/// Refuses a sparse factor of `entries` values (8 bytes each) and `workspace` bytes of
+/// scratch when they exceed `available` bytes ([`available_bytes`]; no check where the
+/// system does not say), with [`LinalgError::FactorTooLarge`] naming `what` and `matrix`.
+pub(crate) fn check_factor_memory(
+    what: &'static str,
+    matrix: &crate::error::MatrixLabel,
+    entries: usize,
+    workspace: usize,
+    available: Option<u64>,
+) -> crate::Result<()> {
+    let needed = 8.0 * entries as f64 + workspace as f64;
+    match available {
+        Some(free) if needed > free as f64 => {
+            Err(crate::Error::Linalg(LinalgError::FactorTooLarge {
+                what,
+                matrix: matrix.clone(),
+                entries,
+                needed_gb: needed / 1e9,
+                available_gb: free as f64 / 1e9,
+            }))
+        }
+        _ => Ok(()),
+    }
+}
+
 /// `MemAvailable` of `/proc/meminfo`, bytes (None where it cannot be read).
 pub fn available_bytes() -> Option<u64> {
     proc_kib("/proc/meminfo", "MemAvailable:")
@@ -80,5 +105,33 @@ mod tests {
         // A test process holds at least its own code: over a megabyte.
         assert!(now > 1 << 20, "{now}");
         assert!(now <= peak, "resident {now} above peak {peak}");
+    }
+
+    /// A factor is refused when its values and workspace exceed what is free, with the
+    /// numbers in the message; it passes when they fit or when the system does not say.
+    #[test]
+    fn a_factor_larger_than_the_free_memory_is_refused_naming_its_size() {
+        let label = crate::error::MatrixLabel::from("interior stiffness K_ii");
+        // 2.481e9 entries: faer's factor of the 1 M-DOF slab under nested dissection.
+        let entries = 2_481_000_000usize;
+        let err = check_factor_memory(
+            "Cholesky factor",
+            &label,
+            entries,
+            1 << 30,
+            Some(20e9 as u64),
+        )
+        .unwrap_err();
+        let text = err.to_string();
+        assert!(
+            text.contains("Cholesky factor of the interior stiffness K_ii matrix")
+                && text.contains("needs 20.92 GB (2481000000 entries")
+                && text.contains("20.00 GB this machine has free"),
+            "{text}"
+        );
+        assert!(
+            check_factor_memory("Cholesky factor", &label, entries, 0, Some(21e9 as u64)).is_ok()
+        );
+        assert!(check_factor_memory("Cholesky factor", &label, entries, 0, None).is_ok());
     }
 }

@@ -201,6 +201,15 @@ impl SymmetricFactor {
         let what = what.into();
         symbolic.check_pattern(a, &what)?;
         let sym = &symbolic.inner;
+        let par = super::par_for_factor(symbolic.flops);
+        let scratch = sym.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+        super::memory::check_factor_memory(
+            "Cholesky factor",
+            &what,
+            sym.len_val(),
+            scratch.size_bytes(),
+            super::available_bytes(),
+        )?;
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {
             Error::Linalg(LinalgError::OutOfMemory {
@@ -210,16 +219,13 @@ impl SymmetricFactor {
             })
         })?;
         values.resize(sym.len_val(), 0.0);
-        let par = super::par_for_factor(symbolic.flops);
-        let mut mem =
-            MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
-                .map_err(|_| {
-                Error::Linalg(LinalgError::OutOfMemory {
-                    what: "Cholesky workspace",
-                    matrix: Some(what.clone()),
-                    entries: None,
-                })
-            })?;
+        let mut mem = MemBuffer::try_new(scratch).map_err(|_| {
+            Error::Linalg(LinalgError::OutOfMemory {
+                what: "Cholesky workspace",
+                matrix: Some(what.clone()),
+                entries: None,
+            })
+        })?;
         let result = sym.factorize_numeric_llt(
             &mut values,
             a.as_ref(),
