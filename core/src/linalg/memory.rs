@@ -5,14 +5,15 @@ use super::LinalgError;
 /// estimated before anything is allocated: $K$ and $K_{ii}$ (~81 entries per row, 16 bytes
 /// each), the Cholesky factor and the Lanczos basis (three n × 64 blocks).
 ///
-/// The factor's fill under AMD ordering was measured on the refined slab as 378, 790 and 1196
-/// entries per DOF at 6 825, 28 413 and 74 385 DOF, i.e. growing as $n^{1/2}$; the estimate
-/// takes $380\sqrt{n / 6825}$ entries per DOF. The nested-dissection ordering now used fills
-/// less (280, 526, 779 and 1051 per DOF up to 153 957 DOF), so this is a conservative bound.
+/// The factor's fill under the eigensolvers' nested-dissection ordering, from faer's symbolic
+/// analysis of the refined slab (`examples/substructure_tree.rs`): 844, 1 052, 1 533 and 2 163
+/// entries per DOF at 90 768, 153 957, 401 778 and 992 565 DOF (280 at 6 825), i.e. growing as
+/// about $n^{0.4}$; the estimate takes $844\,(n / 90\,768)^{0.4}$ with a tenth to spare (1.09 to
+/// 1.18 times the measured fill at those sizes).
 pub fn estimated_reduction_bytes(dofs: usize) -> u64 {
     let n = dofs as f64;
     let stiffness = 2.0 * 16.0 * 81.0 * n;
-    let factor = 8.0 * 380.0 * n * (n / 6825.0).sqrt();
+    let factor = 8.0 * 1.1 * 844.0 * n * (n / 90_768.0).powf(0.4);
     let lanczos = 3.0 * 8.0 * 64.0 * n;
     (stiffness + factor + lanczos) as u64
 }
