@@ -12,6 +12,12 @@ mirrors flexmodes.
 
 writes rbe2_reference.json beside the body file;
 
+    python3 assets/generate/rbe2_reference.py --cholmod --modes=20 DIR bore_a
+
+does the same with CHOLMOD (pip install cholespy) in place of SuperLU and 20 fixed-interface
+modes: the 512 k-DOF link (`make_bodies.py --large DIR --h 0.00105 --no-cases --cholmod`),
+whose SuperLU factor would not fit in 24 GB;
+
     python3 assets/generate/rbe2_reference.py --ccm tests/bodies/steel-link bore_a 6,12,24,48
 
 writes ccm_reference.json: Craig-Bampton on the set with its interface reduced to n_c
@@ -100,25 +106,46 @@ def lapack_hz(k, m):
     return (np.sqrt(np.clip(w, 0.0, None)) / (2 * np.pi)).tolist()
 
 
-def interior_pieces(K, M, b, modes):
-    """The interior i, the constraint modes' interior rows -K_ii^-1 K_ib (SuperLU) and the
-    lowest fixed-interface modes (ARPACK shift-invert at 0 through the same factor)."""
+def cholmod_solver(A):
+    """B -> A^-1 B by CHOLMOD (cholespy), for parts whose SuperLU factor would not fit."""
+    from cholespy import CholeskySolverD, MatrixType
+    C = sp.coo_matrix(A)
+    ch = CholeskySolverD(A.shape[0], C.row.astype(np.int32), C.col.astype(np.int32), C.data,
+                         MatrixType.COO)
+
+    def solve(B):
+        B = np.asarray(B, dtype=np.float64)
+        flat = B.ndim == 1
+        B = np.ascontiguousarray(B.reshape(A.shape[0], -1))
+        X = np.zeros_like(B)
+        ch.solve(B, X)
+        return X[:, 0] if flat else X
+    return solve
+
+
+def interior_pieces(K, M, b, modes, cholmod=False):
+    """The interior i, the constraint modes' interior rows -K_ii^-1 K_ib (SuperLU, or CHOLMOD
+    with `cholmod`) and the lowest fixed-interface modes (ARPACK shift-invert at 0 through the
+    same factor)."""
     n = K.shape[0]
     i = np.setdiff1d(np.arange(n), b)
     K, M = K.tocsr(), M.tocsr()
     Kii, Kib = K[i][:, i].tocsc(), K[i][:, b].toarray()
     Mii = M[i][:, i].tocsc()
-    lu = sla.splu(Kii, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                  options={"SymmetricMode": True})
-    op = sla.LinearOperator(Kii.shape, matvec=lu.solve, dtype=float)
+    if cholmod:
+        solve = cholmod_solver(Kii)
+    else:
+        solve = sla.splu(Kii, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                         options={"SymmetricMode": True}).solve
+    op = sla.LinearOperator(Kii.shape, matvec=solve, dtype=float)
     lam, Phi = sla.eigsh(Kii, k=modes, M=Mii, sigma=0.0, OPinv=op, which="LM", tol=1e-14)
     order = np.argsort(lam)
-    return i, -lu.solve(Kib), lam[order], Phi[:, order]
+    return i, -solve(Kib), lam[order], Phi[:, order]
 
 
-def craig_bampton(K, M, b, modes):
+def craig_bampton(K, M, b, modes, cholmod=False):
     n = K.shape[0]
-    i, psi_s, lam, Phi = interior_pieces(K, M, b, modes)
+    i, psi_s, lam, Phi = interior_pieces(K, M, b, modes, cholmod)
     K, M = K.tocsr(), M.tocsr()
     nb = len(b)
     Psi = np.zeros((n, nb + modes))
@@ -132,7 +159,13 @@ def craig_bampton(K, M, b, modes):
 
 
 def main():
-    folder, cases = sys.argv[1], sys.argv[2:]
+    args = sys.argv[1:]
+    cholmod = "--cholmod" in args
+    args = [a for a in args if a != "--cholmod"]
+    modes = MODES
+    if args and args[0].startswith("--modes="):
+        modes = int(args.pop(0).split("=", 1)[1])
+    folder, cases = args[0], args[1:]
     spec = tomllib.load(open(os.path.join(folder, "body.toml"), "rb"))
     K = read_matrix(os.path.join(folder, spec["matrices"]["stiffness"]))
     M = read_matrix(os.path.join(folder, spec["matrices"]["mass"]))
@@ -144,8 +177,8 @@ def main():
         sets = [spec["node_sets"][name] for name in names]
         T, b, masters = transformation(len(nodes), nodes, sets)
         Kt, Mt = (T.T @ K @ T).tocsr(), (T.T @ M @ T).tocsr()
-        result = craig_bampton(Kt, Mt, b, MODES)
-        result.update({"interfaces": names, "modes": MODES, "master_points": masters})
+        result = craig_bampton(Kt, Mt, b, modes, cholmod)
+        result.update({"interfaces": names, "modes": modes, "master_points": masters})
         out["cases"].append(result)
         print(names, "CB", ["%.6g" % f for f in result["cb_hz"][:10]], file=sys.stderr)
     with open(os.path.join(folder, "rbe2_reference.json"), "w") as f:
