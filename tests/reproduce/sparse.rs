@@ -433,3 +433,37 @@ fn eitelberg_refuses_large_bodies_by_name() {
         e => panic!("{e}"),
     }
 }
+
+/// `--timings` splits a reduction into phases: the factorisation, the constraint modes and
+/// the fixed-interface eigensolve are each counted once, so together they never exceed the
+/// reduction's wall time (the constraint modes had counted the factorisation they triggered).
+#[test]
+fn a_sparse_reductions_phases_add_up_to_at_most_its_time() {
+    for bricks in [[8, 4, 2], [12, 6, 3]] {
+        let p = SlabParameters::refined(bricks).unwrap();
+        let model = slab(&p);
+        let started = std::time::Instant::now();
+        let basis = reduce(
+            &model,
+            Method::CraigBampton,
+            &ReductionParameters {
+                boundary_nodes: p.bottom_corners().to_vec(),
+                modes: ModeSelection::Count(6),
+                solver: SolverPath::Sparse,
+            },
+        )
+        .unwrap();
+        let wall = started.elapsed().as_secs_f64();
+        let s = &basis.statistics;
+        assert!(s.factorization_s > 0.0 && s.constraint_modes_s > 0.0 && s.eigen_s > 0.0);
+        let phases = s.factorization_s + s.constraint_modes_s + s.eigen_s;
+        assert!(
+            phases <= wall,
+            "{bricks:?}: factorisation {} + constraint modes {} + eigensolve {} = {phases} s \
+             over the {wall} s the reduction took",
+            s.factorization_s,
+            s.constraint_modes_s,
+            s.eigen_s
+        );
+    }
+}
