@@ -220,17 +220,8 @@ def mass_properties(M, X):
 def cholmod_inverse(A):
     """x = A^-1 b by CHOLMOD (cholespy): a sparse Cholesky factor, where SuperLU's LU of a
     500 k-DOF part would not fit in memory."""
-    from cholespy import CholeskySolverD, MatrixType
-    C = sp.coo_matrix(A)
-    ch = CholeskySolverD(A.shape[0], C.row.astype(np.int32), C.col.astype(np.int32), C.data,
-                         MatrixType.COO)
-
-    def solve(b):
-        b = np.ascontiguousarray(np.asarray(b, dtype=np.float64).reshape(A.shape[0], -1))
-        x = np.zeros_like(b)
-        ch.solve(b, x)
-        return x[:, 0]
-    return sla.LinearOperator(A.shape, matvec=solve, dtype=float)
+    from rbe2_reference import cholmod_solver  # the same solver the rigid references use
+    return sla.LinearOperator(A.shape, matvec=cholmod_solver(A), dtype=float)
 
 
 def free_free(K, M, X, count=18, cholmod=False):

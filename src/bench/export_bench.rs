@@ -43,7 +43,8 @@ struct Runs {
 }
 
 /// Runs `command` to its end, its output captured: its exit status, stdout, stderr and its
-/// peak resident memory in MB (the kernel's `ru_maxrss` of this child alone, from `wait4`).
+/// peak resident memory in MB (the kernel's `ru_maxrss` from `wait4`: the largest resident
+/// set of the child and of the descendants it waited for).
 fn run_measured(command: &mut Command) -> std::io::Result<(std::process::Output, Option<f64>)> {
     use std::io::Read;
     let mut child = command

@@ -286,29 +286,40 @@ impl SymmetricFactor {
     }
 
     /// `x` ← $A^{-1}x$, in place (no copy of a wide block of right-hand sides).
-    pub fn solve_in_place(&self, mut x: faer::MatMut<'_, f64>) {
+    pub fn solve_in_place(&self, x: faer::MatMut<'_, f64>) {
         match &self.kind {
-            Kind::Dense(llt) => llt.solve_in_place(x.as_mut()),
+            Kind::Dense(llt) => llt.solve_in_place(x),
+            Kind::Sparse { .. } if x.ncols() >= WIDE_SOLVE => {
+                self.solve_sparse_rhs_in_place(x);
+            }
+            // The Lanczos blocks of four: faer's solve on the calling thread.
             Kind::Sparse { symbolic, values } => {
-                // Many right-hand sides (constraint modes: one per interface DOF) are split
-                // into one block of columns per thread, each solved on its own: the columns
-                // are independent. Sharing each supernode's kernels among the threads instead
-                // (faer's parallel solve) gained nothing on two cores (the 1 386 constraint
-                // modes of the scikit-fem eye-bar: 5.4 s on one thread, 6.5 s on two). The
-                // Lanczos blocks of four stay on the calling thread.
-                let parts = match super::par_for_flops(symbolic.solve_flops(x.ncols())) {
-                    Par::Rayon(n) if x.ncols() >= WIDE_SOLVE => n.get().min(x.ncols()),
-                    _ => 1,
-                };
-                solve_columns(&symbolic.inner, values, x, parts);
+                let mut mem = MemBuffer::new(
+                    symbolic
+                        .inner
+                        .solve_in_place_scratch::<f64>(x.ncols(), Par::Seq),
+                );
+                LltRef::<'_, usize, f64>::new(&symbolic.inner, values).solve_in_place_with_conj(
+                    Conj::No,
+                    x,
+                    Par::Seq,
+                    MemStack::new(&mut mem),
+                );
             }
         }
     }
 
-    /// `x` ← $A^{-1}x$ in place for right-hand sides with many zero rows (a boundary's
-    /// couplings): on the sparse supernodal path the forward solve skips the supernodes the
-    /// nonzero rows never reach ([`ForwardReach`], summed over the blocks of columns solved
-    /// side by side); otherwise [`Self::solve_in_place`], and `None`.
+    /// `x` ← $A^{-1}x$ in place, on the sparse supernodal path with the forward solve
+    /// skipping the supernodes the nonzero rows of `x` never reach (to the bit the plain
+    /// solve's result; a boundary's couplings $K_{ib}R$, nonzero only next to it, reach a
+    /// fraction of $L$), and what it visited ([`ForwardReach`], summed over the blocks of
+    /// columns); otherwise [`Self::solve_in_place`], and `None`. Every wide solve
+    /// ([`Self::solve_in_place`] with 64 columns or more) comes here.
+    ///
+    /// Many right-hand sides are split into one block of columns per thread, each solved on
+    /// its own: the columns are independent. Sharing each supernode's kernels among the
+    /// threads instead (faer's parallel solve) gained nothing on two cores (the 1 386
+    /// constraint modes of the scikit-fem eye-bar: 5.4 s on one thread, 6.5 s on two).
     pub fn solve_sparse_rhs_in_place(&self, x: faer::MatMut<'_, f64>) -> Option<ForwardReach> {
         let Kind::Sparse { symbolic, values } = &self.kind else {
             self.solve_in_place(x);
@@ -348,33 +359,6 @@ fn sparse_rhs_columns(
     })
 }
 
-/// Solves $LL^Tx = b$ in place for the columns of `x`, split into `parts` blocks of columns
-/// solved side by side on the rayon pool (each block sequentially).
-fn solve_columns(
-    symbolic: &SymbolicCholesky<usize>,
-    values: &[f64],
-    x: faer::MatMut<'_, f64>,
-    parts: usize,
-) {
-    if parts <= 1 || x.ncols() < 2 {
-        let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(x.ncols(), Par::Seq));
-        LltRef::<'_, usize, f64>::new(symbolic, values).solve_in_place_with_conj(
-            Conj::No,
-            x,
-            Par::Seq,
-            MemStack::new(&mut mem),
-        );
-        return;
-    }
-    let left = parts / 2;
-    let mid = x.ncols() * left / parts;
-    let (a, b) = x.split_at_col_mut(mid);
-    rayon::join(
-        || solve_columns(symbolic, values, a, left),
-        || solve_columns(symbolic, values, b, parts - left),
-    );
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -407,7 +391,7 @@ mod tests {
             };
             let rhs = Mat::<f64>::from_fn(n, 70, |i, j| ((i * 7 + j * 13) % 11) as f64 - 5.0);
             let mut together = rhs.clone();
-            solve_columns(&symbolic.inner, values, together.as_mut(), 1);
+            sparse_rhs_columns(&symbolic.inner, values, together.as_mut(), 1);
             let residual = a.mul(together.as_ref()) - &rhs;
             let scale = rhs.norm_max();
             assert!(
@@ -417,7 +401,7 @@ mod tests {
             );
             for parts in 2..=5 {
                 let mut blocks = rhs.clone();
-                solve_columns(&symbolic.inner, values, blocks.as_mut(), parts);
+                sparse_rhs_columns(&symbolic.inner, values, blocks.as_mut(), parts);
                 let d = (&blocks - &together).norm_max();
                 assert!(
                     d <= 1e-13 * together.norm_max(),

@@ -303,9 +303,10 @@ impl<'a> InteriorProblem<'a> {
             }
         }
         let (f, _) = self.factor.as_ref().expect("factored above");
-        // K_ib R is nonzero only on the rows next to the boundary: the forward solve visits
-        // only the supernodes those rows reach (29 % of L for the eye-bar's 1 386-DOF ring).
-        f.solve_sparse_rhs_in_place(x.as_mut());
+        // K_ib R is nonzero only on the rows next to the boundary: a wide solve's forward half
+        // visits only the supernodes those rows reach (29 % of L for the eye-bar's 1 386-DOF
+        // ring).
+        f.solve_in_place(x.as_mut());
         Ok(x)
     }
 

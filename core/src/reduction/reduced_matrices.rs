@@ -63,8 +63,7 @@ impl ReducedMatrices {
         let boundary_block: Vec<Vec<f64>> = constraint
             .par_iter()
             .map(|&cq| {
-                let column = psi.col(cq).try_as_col_major().expect("Ψ is column-major");
-                let column = column.as_slice();
+                let column = psi.col(cq);
                 b.iter()
                     .map(|&bp| {
                         (col_ptr[bp]..col_ptr[bp + 1])
