@@ -28,7 +28,7 @@
 
 use faer::{Mat, MatRef};
 
-use super::COMPLETE_EIGEN_LIMIT;
+use super::{COMPLETE_EIGEN_LIMIT, ReleasableFactor};
 use crate::{
     Error, Result,
     error::{EigenAttempt, EigenRoute, LinalgError},
@@ -124,10 +124,18 @@ pub fn free_body_pairs(
         shift: sigma0,
         null_vectors: null_count,
     };
+    let shifted0 = || {
+        SymmetricFactor::sparse(
+            k.shifted(m, sigma0).as_faer(),
+            &symbolic,
+            "shifted stiffness K - σM",
+        )
+    };
+    let mut factor0 = ReleasableFactor::new(factor0, shifted0);
     match sturm_checked(
         k,
         m,
-        &factor0,
+        &mut factor0,
         sigma0,
         wanted,
         null_vectors.as_ref(),
@@ -140,6 +148,7 @@ pub fn free_body_pairs(
         }
         Err(e) => failed.push(attempt(route1, wanted, e)?),
     }
+    drop(factor0);
     // Route 2: a shift from the spectrum, a larger block, more restarts.
     if let Some(lowest) = null.lowest_elastic
         && -0.5 * lowest < sigma0
@@ -150,25 +159,25 @@ pub fn free_body_pairs(
             block: SPECTRUM_SHIFT_BLOCK,
             restarts: SPECTRUM_SHIFT_RESTARTS,
         };
-        let shifted = k.shifted(m, sigma1);
-        let result =
-            SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "K - σM").and_then(|factor1| {
-                sturm_checked(
-                    k,
-                    m,
-                    &factor1,
-                    sigma1,
-                    wanted,
-                    null_vectors.as_ref(),
-                    &PartialEigenParameters {
-                        block_size: SPECTRUM_SHIFT_BLOCK,
-                        max_restarts: SPECTRUM_SHIFT_RESTARTS,
-                        ..base.clone()
-                    },
-                    &symbolic,
-                    params,
-                )
-            });
+        let factor1 =
+            || SymmetricFactor::sparse(k.shifted(m, sigma1).as_faer(), &symbolic, "K - σM");
+        let result = factor1().and_then(|made| {
+            sturm_checked(
+                k,
+                m,
+                &mut ReleasableFactor::new(made, factor1),
+                sigma1,
+                wanted,
+                null_vectors.as_ref(),
+                &PartialEigenParameters {
+                    block_size: SPECTRUM_SHIFT_BLOCK,
+                    max_restarts: SPECTRUM_SHIFT_RESTARTS,
+                    ..base.clone()
+                },
+                &symbolic,
+                params,
+            )
+        });
         match result {
             Ok((eigen, _)) => {
                 return Ok(eigen);
@@ -238,12 +247,14 @@ fn attempt(route: EigenRoute, wanted: usize, e: Error) -> Result<EigenAttempt> {
 
 /// [`lowest_modes`] followed by the Sturm count; a count above the pairs found retries with
 /// that many more pairs (and two to spare), up to `params.sturm_retries` times. Returns the
-/// `wanted` pairs (their `sturm` set) and the statistics of the last solve.
+/// `wanted` pairs (their `sturm` set) and the statistics of the last solve. A large `factor`
+/// is released before each count's $LDL^T$ factorisation, so the two are never held at once,
+/// and made again only for a retry ([`ReleasableFactor`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn sturm_checked(
     k: &SparseSymmetric,
     m: &MassMatrix,
-    factor: &SymmetricFactor,
+    factor: &mut ReleasableFactor<'_>,
     sigma: f64,
     wanted: usize,
     null: MatRef<'_, f64>,
@@ -254,7 +265,8 @@ pub(crate) fn sturm_checked(
     let mut asked = wanted;
     let mut last: Option<SturmCount> = None;
     for _ in 0..=params.sturm_retries {
-        let (eigen, stats) = lowest_modes(k, m, factor, sigma, asked, Some(null), partial)?;
+        let (eigen, stats) = lowest_modes(k, m, factor.get()?, sigma, asked, Some(null), partial)?;
+        factor.release_if_large();
         let count = sturm_count(k, m, symbolic, &eigen.values, &stats.ritz_above)?;
         if count.missed() == 0 {
             let mut eigen = eigen.first(wanted);

@@ -28,6 +28,7 @@ mod moment_matching;
 mod nodal_fixed;
 mod partition;
 mod reduced_matrices;
+mod releasable_factor;
 mod restrained_ritz;
 mod rigid_interface;
 
@@ -76,5 +77,7 @@ pub use moment_matching::{Deflation, MomentMatching, MomentMatchingParameters, m
 pub use nodal_fixed::{NodalFixedAxes, TableConfiguration};
 pub use partition::Partition;
 pub use reduced_matrices::{CONSTRAINT_COUPLING_TOLERANCE, ReducedMatrices};
+pub use releasable_factor::RELEASED_FACTOR_BYTES;
+pub(crate) use releasable_factor::ReleasableFactor;
 pub use restrained_ritz::RestrainedRitzModel;
 pub use rigid_interface::{MASTER_DOF_NAMES, RigidInterface, tie_rigid_interfaces};
