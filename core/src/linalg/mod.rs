@@ -12,6 +12,7 @@ mod leaf_modes;
 mod lyapunov;
 mod mass_matrix;
 mod memory;
+mod multifrontal_inertia;
 mod multilevel_solve;
 mod multilevel_substructures;
 mod negative_shift;
@@ -50,6 +51,7 @@ pub use memory::{
     available_bytes, check_reduction_memory, estimated_reduction_bytes, peak_resident_bytes,
     reset_peak_resident, resident_bytes,
 };
+pub use multifrontal_inertia::{Inertia, TRUSTED_BACKWARD_ERROR, multifrontal_inertia};
 pub use multilevel_substructures::{AmlsParameters, MultilevelSubstructures};
 pub use negative_shift::negative_shift;
 pub use nested_dissection::nested_dissection;

@@ -10,8 +10,13 @@
 //! $\sigma'$ is placed in the gap above the highest accepted eigenvalue (half way to the next
 //! Ritz value, at most 1 % and at least $10^{-5}$ of the eigenvalue above it) so a pair whose
 //! value is known to its residual cannot straddle it.
+//!
+//! The count is made without storing the factor ([`super::multifrontal_inertia`]: a front
+//! at a time, as many values as a few of the largest fronts) when the elimination's growth
+//! keeps its estimated backward error within `STURM_BACKWARD_ERROR`; otherwise by the stored
+//! supernodal $LDL^T$ factor, whose backward error is measured by a solve.
 
-use super::{IndefiniteFactor, MassMatrix, SparseSymmetric, SymbolicFactor};
+use super::{IndefiniteFactor, MassMatrix, SparseSymmetric, SymbolicFactor, multifrontal_inertia};
 use crate::{Error, Result, error::LinalgError};
 
 /// Shifts tried before the check gives up (a zero pivot or an inaccurate factor moves
@@ -20,7 +25,7 @@ const SHIFT_TRIES: usize = 3;
 
 /// Largest backward error $\|b - A\hat x\| / \|\,|A||\hat x|\,\|$ of a solve with the
 /// $LDL^T$ factor whose inertia is counted ($10^6\varepsilon$).
-const STURM_BACKWARD_ERROR: f64 = 1e-10;
+const STURM_BACKWARD_ERROR: f64 = super::multifrontal_inertia::TRUSTED_BACKWARD_ERROR;
 
 /// The outcome of a Sturm sequence check.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,6 +72,19 @@ pub fn sturm_count(
         shift = top + offset;
         let found = accepted.len() + ritz_above.iter().filter(|&&r| r < shift).count();
         let shifted = k.shifted(m, shift);
+        // First without keeping the factor (multifrontal, fronts forgotten once eliminated);
+        // an elimination that grew past the bound is repeated with the stored factor, whose
+        // backward error is measured instead of estimated.
+        match multifrontal_inertia(&shifted, symbolic)? {
+            Some(inertia) if inertia.trusted() => {
+                return Ok(SturmCount {
+                    shift,
+                    below: inertia.negative,
+                    found,
+                });
+            }
+            _ => {}
+        }
         let attempt =
             IndefiniteFactor::factor(shifted, symbolic, "Sturm shift K - σ'M").and_then(|factor| {
                 // An unpivoted LDLᵀ that grew (a small pivot) may have the wrong inertia: its

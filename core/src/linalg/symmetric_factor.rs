@@ -46,9 +46,32 @@ impl SymbolicFactor {
         Self::analyse_ordered(a, None)
     }
 
+    /// [`Self::analyse`] made supernodal whatever the size (faer picks a simplicial factor
+    /// for small or very sparse matrices): for tests of the supernodal routes on small ones.
+    #[cfg(test)]
+    pub(crate) fn analyse_supernodal(a: &SparseColMat<usize, f64>) -> Result<Self> {
+        Self::analyse_with(
+            a,
+            None,
+            faer::sparse::linalg::cholesky::CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold:
+                    faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+    }
+
     /// Analyses the pattern of `a` with the elimination order `order` (new position → old
     /// index, e.g. from [`nested_dissection`](super::nested_dissection)), or AMD for `None`.
     pub fn analyse_ordered(a: &SparseColMat<usize, f64>, order: Option<&[usize]>) -> Result<Self> {
+        Self::analyse_with(a, order, Default::default())
+    }
+
+    fn analyse_with(
+        a: &SparseColMat<usize, f64>,
+        order: Option<&[usize]>,
+        params: faer::sparse::linalg::cholesky::CholeskySymbolicParams<'_>,
+    ) -> Result<Self> {
         let inverse: Option<Vec<usize>> = order.map(|fwd| {
             let mut inv = vec![0; fwd.len()];
             for (new, &old) in fwd.iter().enumerate() {
@@ -62,15 +85,14 @@ impl SymbolicFactor {
             }
             _ => SymmetricOrdering::Amd,
         };
-        let inner =
-            factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ordering, Default::default())
-                .map_err(|_| {
-                    Error::Linalg(LinalgError::OutOfMemory {
-                        what: "symbolic Cholesky analysis",
-                        matrix: None,
-                        entries: None,
-                    })
-                })?;
+        let inner = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ordering, params)
+            .map_err(|_| {
+                Error::Linalg(LinalgError::OutOfMemory {
+                    what: "symbolic Cholesky analysis",
+                    matrix: None,
+                    entries: None,
+                })
+            })?;
         let flops = factor_flops(&inner);
         Ok(Self {
             inner: Arc::new(inner),

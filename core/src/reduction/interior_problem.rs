@@ -20,7 +20,7 @@ use crate::{
     linalg::{
         AmlsEigenParameters, GeneralizedEigen, IndefiniteFactor, MassMatrix, PairSelection,
         PartialEigenParameters, SparseSymmetric, SymbolicFactor, SymmetricFactor,
-        generalized_eigen_selected, negative_shift, nested_dissection,
+        generalized_eigen_selected, multifrontal_inertia, negative_shift, nested_dissection,
     },
 };
 
@@ -396,11 +396,17 @@ impl<'a> InteriorProblem<'a> {
     }
 
     /// Eigenvalues of $(K_{ii}, M_{ii})$ below `hz`: the negative pivots of
-    /// $K_{ii} - (2\pi f)^2 M_{ii}$'s $LDL^T$ factor.
+    /// $K_{ii} - (2\pi f)^2 M_{ii}$'s $LDL^T$ elimination, without storing its factor where
+    /// the elimination stays stable ([`multifrontal_inertia`]), else by the stored factor.
     fn count_below(&self, hz: f64) -> Result<usize> {
         let omega2 = (2.0 * std::f64::consts::PI * hz).powi(2);
         let shifted = self.k_ii.shifted(&self.m_ii, omega2);
         let symbolic = SymbolicFactor::analyse(shifted.as_faer())?;
+        if let Some(inertia) = multifrontal_inertia(&shifted, &symbolic)?
+            && inertia.trusted()
+        {
+            return Ok(inertia.negative);
+        }
         Ok(
             IndefiniteFactor::factor(shifted, &symbolic, "interior K_ii - ω_c²M_ii")?
                 .negative_pivots(),

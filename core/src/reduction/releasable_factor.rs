@@ -45,6 +45,7 @@ impl<'a> ReleasableFactor<'a> {
 
     /// Releases factors of more than `bytes` instead of [`RELEASED_FACTOR_BYTES`] (0: every
     /// factor, as the tests of the release use).
+    #[cfg(test)]
     pub fn with_limit(mut self, bytes: usize) -> Self {
         self.limit = bytes;
         self
