@@ -679,6 +679,7 @@ fn import_report_and_export_a_body_file() {
         "reduced matrices",
         "write Ψ",
         "total",
+        "peak resident memory",
     ] {
         assert!(stderr.contains(phase), "{phase} missing from {stderr}");
     }

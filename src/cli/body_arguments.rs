@@ -201,7 +201,7 @@ pub struct ExportArgs {
     /// attached there); `assets/python/flexmodes_exudyn.py` loads it.
     #[arg(long)]
     pub(super) exudyn: bool,
-    /// Print the wall time of each phase on stderr.
+    /// Print the wall time of each phase on stderr, and the process's peak resident memory.
     #[arg(long)]
     pub(super) timings: bool,
     /// With a body file's `[preload]`: also write its geometric stiffness per unit rate²

@@ -356,6 +356,12 @@ fn export(args: ExportArgs) -> Result<()> {
             eprintln!("  {phase}: {s:.3} s ({:.0} %)", share(*s));
         }
         eprintln!("  total: {total:.3} s");
+        if let Some(peak) = crate::linalg::peak_resident_bytes() {
+            eprintln!(
+                "peak resident memory (the process's high-water mark, VmHWM): {:.2} GB",
+                peak as f64 / 1e9
+            );
+        }
     }
     for i in &parameters.rigid_interfaces {
         println!(
