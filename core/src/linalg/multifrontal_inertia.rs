@@ -123,7 +123,12 @@ pub fn multifrontal_inertia(
     let mut g = vec![0.0f64; n];
     let mut waiting: Vec<Vec<Update>> = (0..supernodes).map(|_| Vec::new()).collect();
     let mut local = vec![usize::MAX; n];
-    let (mut negative, mut held, mut peak) = (0usize, 0usize, 0usize);
+    // Entries of the updates waiting for their parents, and the most held at once with the
+    // reused buffers' capacities.
+    let (mut negative, mut waiting_entries, mut peak) = (0usize, 0usize, 0usize);
+    // The front and the two ns × np blocks, reused from one supernode to the next (a new
+    // allocation per front cost page faults and the kernel's zeroing on top of ours).
+    let (mut front, mut wt, mut lt) = (Vec::new(), Vec::new(), Vec::new());
     for &s in &order {
         let (b, e) = (begin[s], end[s]);
         let pattern = supernodal.supernode(s).pattern();
@@ -133,9 +138,8 @@ pub fn multifrontal_inertia(
         for (p, &r) in rows.iter().enumerate() {
             local[r] = p;
         }
-        let mut front = zeroed(nf * nf)?;
-        held += nf * nf;
-        peak = peak.max(held);
+        zero_to(&mut front, nf * nf)?;
+        peak = peak.max(waiting_entries + front.capacity() + wt.capacity() + lt.capacity());
         {
             let f = &mut front;
             // The entries of A in the supernode's columns, on and below the diagonal.
@@ -160,7 +164,7 @@ pub fn multifrontal_inertia(
                         f[column + local[ci]] += v;
                     }
                 }
-                held -= child.values.len();
+                waiting_entries -= child.values.len();
             }
         }
         for &r in &rows {
@@ -173,7 +177,7 @@ pub fn multifrontal_inertia(
             Par::Seq
         };
         let mut f = MatMut::from_column_major_slice_mut(&mut front, nf, nf);
-        let (mut f11, _, mut f21, mut f22) = f.rb_mut().split_at_mut(ns, ns);
+        let (mut f11, _, f21, mut f22) = f.rb_mut().split_at_mut(ns, ns);
         // F11 = L11 D1 L11ᵀ, unpivoted: D1 on the diagonal, L11 strictly below it.
         let mut mem = MemBuffer::try_new(cholesky_in_place_scratch::<f64>(
             ns,
@@ -205,33 +209,40 @@ pub fn multifrontal_inertia(
             }
         }
         if np > 0 {
-            // W = F21 L11⁻ᵀ (= L21 D1), then L21 = W D1⁻¹ and U = F22 − L21 Wᵀ.
-            solve_unit_lower_triangular_in_place(f11.rb(), f21.rb_mut().transpose_mut(), par);
-            let mut l21 = zeroed(np * ns)?;
-            held += np * ns;
-            peak = peak.max(held);
+            // Wᵀ = L11⁻¹ F21ᵀ (= D1 L21ᵀ), L21ᵀ = D1⁻¹ Wᵀ and U = F22 − L21 Wᵀ; Wᵀ is copied
+            // out column-major so the triangular solve runs on contiguous columns.
+            zero_to(&mut wt, ns * np)?;
+            zero_to(&mut lt, ns * np)?;
             {
-                let mut l21 = MatMut::from_column_major_slice_mut(&mut l21, np, ns);
-                for (k, &dk) in d.iter().enumerate() {
-                    for i in 0..np {
-                        let l = f21[(i, k)] / dk;
-                        l21[(i, k)] = l;
-                        g[pattern[i]] += l * l * dk.abs();
+                let mut wt = MatMut::from_column_major_slice_mut(&mut wt, ns, np);
+                for i in 0..np {
+                    for k in 0..ns {
+                        wt[(k, i)] = f21[(i, k)];
                     }
+                }
+                solve_unit_lower_triangular_in_place(f11.rb(), wt.rb_mut(), par);
+                let mut lt = MatMut::from_column_major_slice_mut(&mut lt, ns, np);
+                for i in 0..np {
+                    let mut gi = 0.0;
+                    for (k, &dk) in d.iter().enumerate() {
+                        let l = wt[(k, i)] / dk;
+                        lt[(k, i)] = l;
+                        gi += l * l * dk.abs();
+                    }
+                    g[pattern[i]] += gi;
                 }
                 matmul(
                     f22.rb_mut(),
                     BlockStructure::TriangularLower,
                     Accum::Add,
-                    l21.rb(),
+                    lt.rb().transpose(),
                     BlockStructure::Rectangular,
-                    f21.rb().transpose(),
+                    wt.rb(),
                     BlockStructure::Rectangular,
                     -1.0,
                     par,
                 );
             }
-            held -= np * ns;
             let mut update = zeroed(np * (np + 1) / 2)?;
             let mut at = 0;
             for j in 0..np {
@@ -240,15 +251,14 @@ pub fn multifrontal_inertia(
                     at += 1;
                 }
             }
-            held += update.len();
-            peak = peak.max(held);
+            waiting_entries += update.len();
+            peak = peak.max(waiting_entries + front.capacity() + wt.capacity() + lt.capacity());
             let parent = parent[s].expect("a supernode with a pattern has a parent");
             waiting[parent].push(Update {
                 rows: pattern.to_vec(),
                 values: update,
             });
         }
-        held -= nf * nf;
     }
     let top = g.iter().fold(0.0f64, |m, &x| m.max(x));
     Ok(Some(Inertia {
@@ -289,6 +299,16 @@ fn postorder(parent: &[Option<usize>]) -> Vec<usize> {
         }
     }
     order
+}
+
+/// `buffer` made `len` zeros, its storage kept, or [`LinalgError::OutOfMemory`].
+fn zero_to(buffer: &mut Vec<f64>, len: usize) -> Result<()> {
+    buffer.clear();
+    buffer
+        .try_reserve_exact(len)
+        .map_err(|_| out_of_memory(len))?;
+    buffer.resize(len, 0.0);
+    Ok(())
 }
 
 /// `len` zeros, or [`LinalgError::OutOfMemory`] where they cannot be had.
