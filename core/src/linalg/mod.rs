@@ -21,6 +21,7 @@ mod orthonormality;
 mod pair_residuals;
 mod partial_eigen;
 mod saddle_point;
+mod shifted_pencil;
 mod small_cholesky;
 mod sparse_rhs_solve;
 mod sparse_symmetric;

@@ -1,7 +1,6 @@
 //! A sparse symmetric matrix stored by columns with both triangles, built from a sparsity
 //! pattern first and values second.
 
-use super::MassMatrix;
 use faer::{
     Mat, MatRef, Par,
     sparse::{SparseColMat, SymbolicSparseColMat},
@@ -164,7 +163,7 @@ fn gather_interleaved<const W: usize>(
 /// `j` is also row `j`. Units are those of what it holds (N/m for a stiffness, kg for a mass).
 #[derive(Debug, Clone)]
 pub struct SparseSymmetric {
-    inner: SparseColMat<usize, f64>,
+    pub(super) inner: SparseColMat<usize, f64>,
 }
 
 impl SparseSymmetric {
@@ -380,53 +379,6 @@ impl SparseSymmetric {
         SparseColMat::new(symbolic, values)
     }
 
-    /// $A - \sigma M$ on the union of both patterns. (Taking $A$'s pattern alone dropped the
-    /// mass entries where an FE code's stiffness holds no entry, e.g. couplings that cancel
-    /// exactly on a structured mesh: the factor was then of another matrix, and every pair
-    /// computed with it missed its residual check by $|\sigma|$ times the dropped mass.)
-    pub fn shifted(&self, m: &MassMatrix, sigma: f64) -> SparseSymmetric {
-        let n = self.dim();
-        let a = &self.inner;
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        col_ptr.push(0);
-        let mut row_idx = Vec::with_capacity(a.compute_nnz() + n);
-        let mut values = Vec::with_capacity(a.compute_nnz() + n);
-        for j in 0..n {
-            let a_rows = a.symbolic().row_idx_of_col_raw(j);
-            let a_vals = a.val_of_col(j);
-            let (m_rows, m_vals): (&[usize], &[f64]) = match m {
-                MassMatrix::Lumped(d) => (std::slice::from_ref(&j), std::slice::from_ref(&d[j])),
-                MassMatrix::Consistent(mm) => (
-                    mm.inner.symbolic().row_idx_of_col_raw(j),
-                    mm.inner.val_of_col(j),
-                ),
-            };
-            let (mut p, mut q) = (0, 0);
-            while p < a_rows.len() || q < m_rows.len() {
-                let ra = a_rows.get(p).copied().unwrap_or(usize::MAX);
-                let rm = m_rows.get(q).copied().unwrap_or(usize::MAX);
-                let (row, value) = if ra < rm {
-                    p += 1;
-                    (ra, a_vals[p - 1])
-                } else if rm < ra {
-                    q += 1;
-                    (rm, -sigma * m_vals[q - 1])
-                } else {
-                    p += 1;
-                    q += 1;
-                    (ra, a_vals[p - 1] - sigma * m_vals[q - 1])
-                };
-                row_idx.push(row);
-                values.push(value);
-            }
-            col_ptr.push(row_idx.len());
-        }
-        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        SparseSymmetric {
-            inner: SparseColMat::new(symbolic, values),
-        }
-    }
-
     /// The symmetric block `A[set, set]`.
     pub fn principal_block(&self, set: &[usize]) -> SparseSymmetric {
         SparseSymmetric {
@@ -484,6 +436,7 @@ impl SparseAssembly {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::linalg::MassMatrix;
 
     #[test]
     fn subtracting_a_product_in_place_equals_the_blocked_product() {

@@ -226,8 +226,15 @@ impl<'a> InteriorProblem<'a> {
                 negative_shift(&self.k_ii, &self.m_ii)
             };
             // On the union of K_ii's and M_ii's patterns even for σ = 0, so the Sturm check's
-            // K_ii - σ'M_ii shares this analysis.
-            let a = &self.k_ii.shifted(&self.m_ii, sigma);
+            // K_ii - σ'M_ii shares this analysis. With σ = 0 on a pattern that already holds
+            // M_ii's, that is K_ii itself: no copy of it beside the factor being formed.
+            let shifted;
+            let a = if sigma == 0.0 && self.k_ii.pattern_covers(&self.m_ii) {
+                &self.k_ii
+            } else {
+                shifted = self.k_ii.shifted(&self.m_ii, sigma);
+                &shifted
+            };
             let f = if self.sparse {
                 // Geometric nested dissection on the interior DOF's node positions.
                 let coords: Vec<[f64; 3]> = self
