@@ -77,7 +77,9 @@ struct Update {
 
 /// The inertia of `a` by a multifrontal elimination over the supernodes of `symbolic` (the
 /// analysis of `a`'s pattern); `None` when the analysis is simplicial (a small or very sparse
-/// matrix, whose whole factor is cheap to hold: [`super::IndefiniteFactor`] counts it).
+/// matrix, whose whole factor is cheap to hold: [`super::IndefiniteFactor`] counts it) or its
+/// supernodes do not nest as an elimination tree's must (never seen; the stored factor then
+/// counts).
 pub fn multifrontal_inertia(
     a: &SparseSymmetric,
     symbolic: &SymbolicFactor,
@@ -140,6 +142,20 @@ pub fn multifrontal_inertia(
         }
         zero_to(&mut front, nf * nf)?;
         peak = peak.max(waiting_entries + front.capacity() + wt.capacity() + lt.capacity());
+        // Every row an entry of A or a child's update puts here must be a row of this front
+        // (the analysis' structure guarantees it); a structure that breaks it would index
+        // outside the front, so the stored factor counts instead.
+        let outside = (b..e).any(|c| {
+            let old = fwd[c];
+            row_idx[col_ptr[old]..col_ptr[old + 1]]
+                .iter()
+                .any(|&r| inv[r] >= c && local[inv[r]] == usize::MAX)
+        }) || waiting[s]
+            .iter()
+            .any(|child| child.rows.iter().any(|&r| local[r] == usize::MAX));
+        if outside {
+            return Ok(None);
+        }
         {
             let f = &mut front;
             // The entries of A in the supernode's columns, on and below the diagonal.
@@ -148,9 +164,7 @@ pub fn multifrontal_inertia(
                 for k in col_ptr[old]..col_ptr[old + 1] {
                     let i = inv[row_idx[k]];
                     if i >= c {
-                        let at = local[i];
-                        debug_assert!(at != usize::MAX, "row {i} outside supernode {s}'s front");
-                        f[(c - b) * nf + at] += values[k];
+                        f[(c - b) * nf + local[i]] += values[k];
                     }
                 }
             }
