@@ -3,7 +3,9 @@
 
 use flexmodes_core::{
     Progress,
-    dynamics::{AxisType, IntegrationScheme, IntegratorParameters, simulate},
+    dynamics::{
+        AxisType, DEFAULT_SPECTRAL_RADIUS, IntegrationScheme, IntegratorParameters, simulate,
+    },
     fem::{SlabParameters, slab},
     models::{Scenario, default_boundary, slab_body, slab_system},
     reduction::{Method, NodalFixedAxes},
@@ -34,7 +36,7 @@ fn main() -> flexmodes_core::Result<()> {
     match scheme {
         "gen-alpha" => {
             p.scheme = IntegrationScheme::GeneralizedAlpha {
-                spectral_radius: 0.8,
+                spectral_radius: DEFAULT_SPECTRAL_RADIUS,
             }
         }
         "loose" => {

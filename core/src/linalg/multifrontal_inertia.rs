@@ -107,10 +107,7 @@ pub fn multifrontal_inertia(
     let threads = super::threads();
     let supernodes = supernodal.n_supernodes();
     let (begin, end) = (supernodal.supernode_begin(), supernodal.supernode_end());
-    let mut supernode_of = vec![0usize; n];
-    for s in 0..supernodes {
-        supernode_of[begin[s]..end[s]].fill(s);
-    }
+    let supernode_of = super::sparse_rhs_solve::supernode_of_columns(supernodal);
     // The supernodal elimination tree (a supernode's parent holds its pattern's first row),
     // walked in postorder: the updates waiting at any time are those of one path's siblings,
     // as on a multifrontal solver's stack.
@@ -131,12 +128,14 @@ pub fn multifrontal_inertia(
     // The front and the two ns × np blocks, reused from one supernode to the next (a new
     // allocation per front cost page faults and the kernel's zeroing on top of ours).
     let (mut front, mut wt, mut lt) = (Vec::new(), Vec::new(), Vec::new());
+    let mut rows: Vec<usize> = Vec::new();
     for &s in &order {
         let (b, e) = (begin[s], end[s]);
         let pattern = supernodal.supernode(s).pattern();
         let (ns, np) = (e - b, pattern.len());
         let nf = ns + np;
-        let rows: Vec<usize> = (b..e).chain(pattern.iter().copied()).collect();
+        rows.clear();
+        rows.extend((b..e).chain(pattern.iter().copied()));
         for (p, &r) in rows.iter().enumerate() {
             local[r] = p;
         }
@@ -345,35 +344,9 @@ fn out_of_memory(entries: usize) -> Error {
 mod tests {
     use super::*;
     use crate::fem::{SlabParameters, slab};
-    use crate::linalg::{IndefiniteFactor, generalized_eigen};
+    use crate::linalg::{IndefiniteFactor, generalized_eigen, sparse_symmetric::grid_laplacian};
 
-    /// The 7-point Laplacian of a `side`³ grid plus `diagonal - 6` on the diagonal: its
-    /// eigenvalues are known in closed form.
-    fn grid(side: usize, diagonal: f64) -> SparseSymmetric {
-        let at = |i: usize, j: usize, k: usize| (i * side + j) * side + k;
-        let mut t = Vec::new();
-        for i in 0..side {
-            for j in 0..side {
-                for k in 0..side {
-                    let p = at(i, j, k);
-                    t.push((p, p, diagonal));
-                    for q in [
-                        (i + 1 < side).then(|| at(i + 1, j, k)),
-                        (j + 1 < side).then(|| at(i, j + 1, k)),
-                        (k + 1 < side).then(|| at(i, j, k + 1)),
-                    ]
-                    .into_iter()
-                    .flatten()
-                    {
-                        t.extend([(p, q, -1.0), (q, p, -1.0)]);
-                    }
-                }
-            }
-        }
-        SparseSymmetric::from_triplets(side * side * side, &t)
-    }
-
-    /// Every eigenvalue of [`grid`]: $d - 6 + \sum_{x} (2 - 2\cos(\pi i_x/(m+1)))$.
+    /// Every eigenvalue of [`grid_laplacian`]: $d - 6 + \sum_{x} (2 - 2\cos(\pi i_x/(m+1)))$.
     fn grid_eigenvalues(side: usize, diagonal: f64) -> Vec<f64> {
         let one =
             |i: usize| 2.0 - 2.0 * (std::f64::consts::PI * i as f64 / (side + 1) as f64).cos();
@@ -405,7 +378,7 @@ mod tests {
             for pick in [0usize, 1, 3, 10, 40, distinct.len() / 2, distinct.len() - 2] {
                 let sigma = 0.5 * (distinct[pick] + distinct[pick + 1]);
                 // The grid with diagonal 6 - σ: eigenvalues shifted by -σ.
-                let a = grid(side, 6.0 - sigma);
+                let a = grid_laplacian(side, 6.0 - sigma);
                 let symbolic = SymbolicFactor::analyse_supernodal(a.as_faer()).unwrap();
                 let expected = values.iter().filter(|&&l| l < sigma).count();
                 let inertia = multifrontal_inertia(&a, &symbolic)
@@ -419,7 +392,7 @@ mod tests {
             }
             assert_eq!(checked, 7);
             // Below the spectrum: definite, every g_i = a_ii, no growth.
-            let a = grid(side, 6.0);
+            let a = grid_laplacian(side, 6.0);
             let symbolic = SymbolicFactor::analyse_supernodal(a.as_faer()).unwrap();
             let inertia = multifrontal_inertia(&a, &symbolic).unwrap().unwrap();
             assert_eq!(inertia.negative, 0);

@@ -1,7 +1,7 @@
 //! The shifted pencil $K - \sigma M$ of a sparse stiffness and a mass, on the union of their
 //! patterns (every shift-invert factorisation and Sturm count factors one).
 
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use std::borrow::Cow;
 
 use super::{MassMatrix, SparseSymmetric};
 
@@ -63,9 +63,16 @@ impl SparseSymmetric {
             }
             col_ptr.push(row_idx.len());
         }
-        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        SparseSymmetric {
-            inner: SparseColMat::new(symbolic, values),
+        SparseSymmetric::from_columns(n, col_ptr, row_idx, values)
+    }
+
+    /// [`Self::shifted`], or this very matrix (borrowed, no copy) when $\sigma = 0$ and its
+    /// pattern already holds `m`'s: the same pattern and values the shift would give.
+    pub fn shifted_or_same(&self, m: &MassMatrix, sigma: f64) -> Cow<'_, SparseSymmetric> {
+        if sigma == 0.0 && self.pattern_covers(m) {
+            Cow::Borrowed(self)
+        } else {
+            Cow::Owned(self.shifted(m, sigma))
         }
     }
 }
@@ -107,5 +114,11 @@ mod tests {
             assert_eq!(zero.inner.val(), k.inner.val());
         }
         assert!(k.shifted(&wider, 0.0).inner.val().len() > k.inner.val().len());
+        assert!(matches!(
+            k.shifted_or_same(&diagonal, 0.0),
+            Cow::Borrowed(_)
+        ));
+        assert!(matches!(k.shifted_or_same(&wider, 0.0), Cow::Owned(_)));
+        assert!(matches!(k.shifted_or_same(&diagonal, 1.0), Cow::Owned(_)));
     }
 }

@@ -79,6 +79,16 @@ pub(crate) fn solve_sparse_rhs_in_place(
     Some(reach)
 }
 
+/// The supernode of each column (elimination order) of a supernodal analysis.
+pub(super) fn supernode_of_columns(symbolic: &SymbolicSupernodalCholesky<usize>) -> Vec<usize> {
+    let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
+    let mut out = vec![0usize; symbolic.nrows()];
+    for s in 0..symbolic.n_supernodes() {
+        out[begin[s]..end[s]].fill(s);
+    }
+    out
+}
+
 /// $y \leftarrow L^{-1}y$ over the supernodes the nonzero rows of `y` reach.
 fn forward_skipping(
     symbolic: &SymbolicSupernodalCholesky<usize>,
@@ -87,10 +97,9 @@ fn forward_skipping(
 ) -> ForwardReach {
     let supernodes = symbolic.n_supernodes();
     let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
-    let mut supernode_of = vec![0usize; y.nrows()];
+    let supernode_of = supernode_of_columns(symbolic);
     let mut reached = vec![false; supernodes];
     for s in 0..supernodes {
-        supernode_of[begin[s]..end[s]].fill(s);
         reached[s] = (0..y.ncols()).any(|j| (begin[s]..end[s]).any(|row| y[(row, j)] != 0.0));
     }
     let k = y.ncols();
@@ -147,7 +156,7 @@ mod tests {
         sparse::linalg::cholesky::{LltRef, SymbolicCholesky},
     };
 
-    use crate::linalg::{SparseSymmetric, SymbolicFactor, SymmetricFactor};
+    use crate::linalg::{SymbolicFactor, SymmetricFactor, sparse_symmetric::grid_laplacian};
 
     /// faer's own supernodal solve, every supernode visited: the reference.
     fn faer_solve(symbolic: &SymbolicCholesky<usize>, values: &[f64], rhs: &Mat<f64>) -> Mat<f64> {
@@ -162,32 +171,6 @@ mod tests {
         x
     }
 
-    /// The 7-point Laplacian (plus a diagonal shift) of a `side`³ grid.
-    fn grid(side: usize) -> SparseSymmetric {
-        let n = side * side * side;
-        let at = |i: usize, j: usize, k: usize| (i * side + j) * side + k;
-        let mut t = Vec::new();
-        for i in 0..side {
-            for j in 0..side {
-                for k in 0..side {
-                    let p = at(i, j, k);
-                    t.push((p, p, 6.5));
-                    for q in [
-                        (i + 1 < side).then(|| at(i + 1, j, k)),
-                        (j + 1 < side).then(|| at(i, j + 1, k)),
-                        (k + 1 < side).then(|| at(i, j, k + 1)),
-                    ]
-                    .into_iter()
-                    .flatten()
-                    {
-                        t.extend([(p, q, -1.0), (q, p, -1.0)]);
-                    }
-                }
-            }
-        }
-        SparseSymmetric::from_triplets(n, &t)
-    }
-
     /// Right-hand sides nonzero on one face of the grid (a boundary's couplings) give faer's
     /// own solve's result to the bit, visiting fewer of L's entries; dense ones visit all
     /// of it and give the same result too. Over grid sizes, with the columns in one block and
@@ -195,7 +178,7 @@ mod tests {
     #[test]
     fn sparse_right_hand_sides_give_the_plain_solve_and_skip_what_they_never_reach() {
         for side in [12usize, 18, 24] {
-            let a = grid(side);
+            let a = grid_laplacian(side, 6.5);
             let n = a.dim();
             let symbolic = SymbolicFactor::analyse(a.as_faer()).unwrap();
             let f = SymmetricFactor::sparse(a.as_faer(), &symbolic, "grid").unwrap();

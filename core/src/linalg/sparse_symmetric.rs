@@ -169,9 +169,18 @@ pub struct SparseSymmetric {
 impl SparseSymmetric {
     /// Values summed into a pattern by [`SparseAssembly`].
     fn from_parts(pattern: SparsityPattern, values: Vec<f64>) -> Self {
-        let n = pattern.dim();
-        let symbolic =
-            SymbolicSparseColMat::new_checked(n, n, pattern.col_ptr, None, pattern.row_idx);
+        Self::from_columns(pattern.dim(), pattern.col_ptr, pattern.row_idx, values)
+    }
+
+    /// The $n \times n$ matrix of compressed columns (rows ascending within each column, both
+    /// triangles stored).
+    pub(super) fn from_columns(
+        n: usize,
+        col_ptr: Vec<usize>,
+        row_idx: Vec<usize>,
+        values: Vec<f64>,
+    ) -> Self {
+        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         Self {
             inner: SparseColMat::new(symbolic, values),
         }
@@ -199,10 +208,7 @@ impl SparseSymmetric {
             }
             col_ptr.push(row_idx.len());
         }
-        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        Self {
-            inner: SparseColMat::new(symbolic, values),
-        }
+        Self::from_columns(n, col_ptr, row_idx, values)
     }
 
     /// A dense symmetric matrix (only its exact zeros are dropped).
@@ -431,6 +437,34 @@ impl SparseAssembly {
         }
         SparseSymmetric::from_parts(self.pattern, self.values)
     }
+}
+
+/// The 7-point Laplacian of a `side`³ grid with `diagonal` on the diagonal (6 makes it the
+/// plain Laplacian, whose eigenvalues are known in closed form): a test matrix of the sparse
+/// factorisations.
+#[cfg(test)]
+pub(crate) fn grid_laplacian(side: usize, diagonal: f64) -> SparseSymmetric {
+    let at = |i: usize, j: usize, k: usize| (i * side + j) * side + k;
+    let mut t = Vec::new();
+    for i in 0..side {
+        for j in 0..side {
+            for k in 0..side {
+                let p = at(i, j, k);
+                t.push((p, p, diagonal));
+                for q in [
+                    (i + 1 < side).then(|| at(i + 1, j, k)),
+                    (j + 1 < side).then(|| at(i, j + 1, k)),
+                    (k + 1 < side).then(|| at(i, j, k + 1)),
+                ]
+                .into_iter()
+                .flatten()
+                {
+                    t.extend([(p, q, -1.0), (q, p, -1.0)]);
+                }
+            }
+        }
+    }
+    SparseSymmetric::from_triplets(side * side * side, &t)
 }
 
 #[cfg(test)]

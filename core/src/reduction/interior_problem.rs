@@ -228,13 +228,7 @@ impl<'a> InteriorProblem<'a> {
             // On the union of K_ii's and M_ii's patterns even for σ = 0, so the Sturm check's
             // K_ii - σ'M_ii shares this analysis. With σ = 0 on a pattern that already holds
             // M_ii's, that is K_ii itself: no copy of it beside the factor being formed.
-            let shifted;
-            let a = if sigma == 0.0 && self.k_ii.pattern_covers(&self.m_ii) {
-                &self.k_ii
-            } else {
-                shifted = self.k_ii.shifted(&self.m_ii, sigma);
-                &shifted
-            };
+            let a = &*self.k_ii.shifted_or_same(&self.m_ii, sigma);
             let f = if self.sparse {
                 // Geometric nested dissection on the interior DOF's node positions.
                 let coords: Vec<[f64; 3]> = self
@@ -442,7 +436,7 @@ impl<'a> InteriorProblem<'a> {
         // needed (a retry here, or a later solve, by `factor`).
         let mut factor = ReleasableFactor::new(f, || {
             SymmetricFactor::sparse(
-                k_ii.shifted(m_ii, sigma).as_faer(),
+                k_ii.shifted_or_same(m_ii, sigma).as_faer(),
                 symbolic,
                 "interior stiffness K_ii",
             )
