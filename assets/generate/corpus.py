@@ -517,11 +517,40 @@ def block_geometry():
     return {"bore": ((15.0, 12.0), 5.0, 2)}
 
 
+def bell_crank_geometry():
+    """A steel bell crank in mm: a hub (radius 22, 20 thick) on a 10 mm pivot bore about z
+    through the origin, two arms 14 x 10 radial to it, one along +x to an eye at x = 130, one
+    along +y to an eye at y = 95 (radius 13, bore 6): parts whose arms stretch under their own
+    centrifugal load when the crank turns about its pivot."""
+    import gmsh
+    occ = gmsh.model.occ
+    hub = occ.addCylinder(0, 0, -10, 0, 0, 20, 22)
+    arm_a = occ.addBox(15, -7, -5, 105, 14, 10)
+    arm_b = occ.addBox(-7, 15, -5, 14, 72, 10)
+    eye_a = occ.addCylinder(130, 0, -6, 0, 0, 12, 13)
+    eye_b = occ.addCylinder(0, 95, -6, 0, 0, 12, 13)
+    body, _ = occ.fuse([(3, hub)], [(3, arm_a), (3, arm_b), (3, eye_a), (3, eye_b)])
+    tools = [(3, occ.addCylinder(0, 0, -11, 0, 0, 22, 10)),
+             (3, occ.addCylinder(130, 0, -7, 0, 0, 14, 6)),
+             (3, occ.addCylinder(0, 95, -7, 0, 0, 14, 6))]
+    occ.cut(body, tools)
+    occ.synchronize()
+    return {"pivot": ((0.0, 0.0), 10.0, 2), "eye_a": ((130.0, 0.0), 6.0, 2),
+            "eye_b": ((0.0, 95.0), 6.0, 2)}
+
+
+def ccx_number(v):
+    """A coordinate as CalculiX reads it: its fields hold 20 characters, so a longer repr
+    (-5.3884459162483544e-15) is written with 13 decimals of mantissa instead."""
+    text = repr(float(v))
+    return text if len(text) <= 20 else f"{float(v):.13e}"
+
+
 def calculix_deck(path, X, tets, material, step):
     with open(path, "w") as f:
         f.write("** written by flexmodes' assets/generate/corpus.py\n*NODE\n")
         for j, p in enumerate(X):
-            f.write(f"{j + 1},{float(p[0])!r},{float(p[1])!r},{float(p[2])!r}\n")
+            f.write(f"{j + 1}," + ",".join(ccx_number(p[a]) for a in range(3)) + "\n")
         f.write("*ELEMENT,TYPE=C3D10,ELSET=EALL\n")
         for e, nodes in enumerate(tets):
             f.write(f"{e + 1}," + ",".join(str(int(v) + 1) for v in nodes) + "\n")
@@ -735,6 +764,11 @@ BODIES = {
         o, "ccx_bracket_large", 5.0, MM, STEEL_MM,
         "steel angle bracket, gmsh C3D10, K and M written by CalculiX 2.20, mm-t-s, 30 k+ DOF"),
         "large"),
+    "ccx-bell-crank": (lambda o: calculix_spun_body(
+        o, "ccx_bell_crank", 4.0, 1000.0,
+        "steel bell crank, two arms radial to its pivot, gmsh C3D10, K, M and the stiffness "
+        "spun at 1000 rad/s about the pivot written by CalculiX 2.20, mm-t-s, 30 k+ DOF",
+        bell_crank_geometry, "pivot"), "part"),
 }
 
 
@@ -744,6 +778,8 @@ def main():
     ap.add_argument("--only", help="comma-separated body names")
     ap.add_argument("--small", action="store_true", help="only the small bodies")
     ap.add_argument("--huge", action="store_true", help="also the 150 k-DOF body")
+    ap.add_argument("--parts", action="store_true",
+                    help="also the spun real parts (ccx-bell-crank, ~8 min: CI leaves them out)")
     ap.add_argument("--list", action="store_true")
     args = ap.parse_args()
     if args.list:
@@ -755,6 +791,7 @@ def main():
         if only is not None and name not in only:
             continue
         if only is None and (size == "huge" and not args.huge
+                             or size == "part" and not args.parts
                              or size != "small" and args.small):
             continue
         folder = os.path.join(args.out, name)

@@ -26,14 +26,20 @@ pub(super) struct SpinningBodyArgs {
         allow_hyphen_values = true
     )]
     pub(super) axis: Vec<f64>,
-    /// A point of the spin axis, X,Y,Z in the body's length unit (default: the drive's
-    /// master; elsewhere the drive orbits the axis).
+    /// A point of the spin axis, X,Y,Z in the body's length unit (default: the axis the
+    /// body's [preload] was spun about when the drive's ring is coaxial with it, else the
+    /// drive's master; elsewhere the drive orbits the axis).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub(super) axis_point: Option<Vec<f64>>,
     /// Dynamic stiffening from the body's preloaded stiffness (`[preload]` in the body file):
     /// on (default) or off.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub(super) stiffening: OnOff,
+    /// Residual vectors of the frame's inertia loads in every reduced basis (the static
+    /// responses to its unit linear and angular accelerations and ω_iω_j, the body held at
+    /// its interfaces): on (default) or off.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub(super) residual_vectors: OnOff,
 }
 
 /// The arguments of `simulate`.
@@ -208,6 +214,11 @@ pub struct ExportArgs {
     /// projected on Ψ (`kg_r.mtx`, named in model.json): on (default) or off.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub(super) stiffening: OnOff,
+    /// Residual vectors of the frame's inertia loads appended to a fixed-interface basis
+    /// (GR, MT, CB, MC; named in model.json, carried by the Exudyn export): on (default) or
+    /// off.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub(super) residual_vectors: OnOff,
     /// The solver of the fixed-interface pairs (bodies whose interior exceeds 600 DOF) and of
     /// the free-free pairs BH, MM and BT start from: `lanczos` (default) or `amls`
     /// (multi-level substructuring, refined and Sturm-counted; docs/amls.md). model.json

@@ -1,6 +1,7 @@
 //! `flexmodes campbell`: a user's body spun about an axis through its driven interface, its
 //! lowest frequencies at each rate by the full body and each reduced model
-//! (models::body_campbell), with the stiffening of its preloaded stiffness or without.
+//! (models::body_campbell), with the stiffening of its preloaded stiffness or without; the
+//! full body only when `--method` names `nr`.
 
 use super::arguments::{CampbellArgs, OnOff, SpinningBodyArgs};
 use crate::{
@@ -21,6 +22,7 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
                 axis,
                 axis_point,
                 stiffening,
+                residual_vectors,
             },
         rates,
         count,
@@ -50,6 +52,8 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
         count,
         models,
         stiffening: stiffening == OnOff::On,
+        full: method.contains(&Method::NoReduction),
+        residual_vectors: residual_vectors == OnOff::On,
     };
     let handle = Progress::new();
     let bar = TerminalProgress::start(&handle, "campbell");
@@ -57,22 +61,43 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
     drop(bar);
     let label = |c: &crate::models::BodyCampbellCurve| match c.method {
         None => "NR".to_string(),
+        Some(m) if c.residual_vectors > 0 => {
+            format!(
+                "{} {} + {} RV",
+                m.id().to_uppercase(),
+                c.modes,
+                c.residual_vectors
+            )
+        }
         Some(m) => format!("{} {}", m.id().to_uppercase(), c.modes),
+    };
+    let stiffening_json = match (table.stiffened, &body.preload) {
+        (true, _) => "on",
+        (false, Some(_)) => "off",
+        (false, None) => "none",
     };
     if json {
         let curves: Vec<serde_json::Value> = table
             .curves
             .iter()
-            .map(|c| serde_json::json!({"model": label(c), "coordinates": c.coordinates, "hz": c.hz}))
+            .map(|c| {
+                serde_json::json!({
+                    "model": label(c),
+                    "coordinates": c.coordinates,
+                    "residual_vectors": c.residual_vectors,
+                    "route": c.route,
+                    "hz": c.hz,
+                    "mac": c.mac,
+                    "unstable": c.unstable,
+                    "unstable_from_rad_s": c.unstable_from(&table.rates),
+                })
+            })
             .collect();
         let value = serde_json::json!({
             "body": body.model.name,
             "rates_rad_s": table.rates,
-            "stiffening": match (table.stiffened, &body.preload) {
-                (true, _) => "on",
-                (false, Some(_)) => "off",
-                (false, None) => "none",
-            },
+            "stiffening": stiffening_json,
+            "axis_point": {"point": table.axis_point.0, "from": table.axis_point.1},
             "curves": curves,
         });
         println!("{value}");
@@ -80,28 +105,64 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
     }
     let mut header = vec!["rate, rad/s".to_string(), "model".into()];
     header.extend((1..=count).map(|k| format!("f{k}, Hz")));
+    header.push("least MAC".into());
     let header: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut out = Table::new(&header);
     for (r, rate) in table.rates.iter().enumerate() {
         for c in &table.curves {
             let mut row = vec![Cell::text(format!("{rate}")), Cell::text(label(c))];
-            row.extend(c.hz[r].iter().map(|&f| {
-                if f < 0.0 {
-                    Cell::number(f, format!("unstable ({:.4})", -f))
-                } else {
-                    Cell::number(f, crate::report::sig6(f))
-                }
-            }));
+            if c.unstable[r] > 0 && c.hz[r].iter().all(|f| f.is_nan()) {
+                row.extend((0..count).map(|k| {
+                    if k == 0 {
+                        Cell::text(format!(
+                            "unstable: {} negative eigenvalue(s)",
+                            c.unstable[r]
+                        ))
+                    } else {
+                        Cell::text(String::new())
+                    }
+                }));
+            } else {
+                row.extend(c.hz[r].iter().map(|&f| {
+                    if f < 0.0 {
+                        Cell::number(f, format!("unstable ({:.4})", -f))
+                    } else {
+                        Cell::number(f, crate::report::sig6(f))
+                    }
+                }));
+            }
+            let least = c.mac[r].iter().cloned().fold(f64::INFINITY, f64::min);
+            row.push(if least.is_finite() {
+                Cell::number(least, format!("{least:.3}"))
+            } else {
+                Cell::text("–".to_string())
+            });
             out.push(row);
         }
     }
+    let unstable: Vec<String> = table
+        .curves
+        .iter()
+        .filter_map(|c| {
+            c.unstable_from(&table.rates)
+                .map(|r| format!("{} unstable from Ω = {r} rad/s", label(c)))
+        })
+        .collect();
+    let routes: Vec<String> = table
+        .curves
+        .iter()
+        .map(|c| format!("{} {}", label(c), c.route))
+        .collect();
     println!(
-        "# campbell `{}`: spun about ({}) through `{}`, {}\n\n{}\nFrequencies in the turning \
-         frame, ring clamped, Coriolis coupling left out (as the FE codes' prestressed \
-         frequency steps leave it); `unstable`: the spin's softening passed the stiffness.",
+        "# campbell `{}`: spun about ({}) through {} ({}), {}\n\n{}\nFrequencies in the \
+         turning frame, ring clamped, Coriolis coupling left out (as the FE codes' prestressed \
+         frequency steps leave it). Each column follows one mode shape from rate to rate (MAC \
+         against the rate before; `least MAC` is the row's smallest); `unstable`: the spin's \
+         softening passed the stiffness. RV: inertia-load residual vectors. Solved: {}.{}",
         body.model.name,
         parameters.axis.map(|a| a.to_string()).join(", "),
-        parameters.drive,
+        table.axis_point.0.map(crate::report::sig6).join(", "),
+        table.axis_point.1,
         match (table.stiffened, &body.preload) {
             (true, Some(p)) => format!(
                 "dynamic stiffening on, from the body's [preload] spun at {} rad/s",
@@ -110,7 +171,13 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
             (false, Some(_)) => "dynamic stiffening OFF (--stiffening off)".into(),
             _ => "no dynamic stiffening: the body file gives no [preload]".into(),
         },
-        out.markdown()
+        out.markdown(),
+        routes.join("; "),
+        if unstable.is_empty() {
+            String::new()
+        } else {
+            format!("\n{}.", unstable.join("; "))
+        }
     );
     Ok(())
 }

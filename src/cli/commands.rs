@@ -323,6 +323,7 @@ fn export(args: ExportArgs) -> Result<()> {
         exudyn,
         timings,
         stiffening,
+        residual_vectors,
         eigensolver,
     } = args;
     let started = Instant::now();
@@ -338,6 +339,7 @@ fn export(args: ExportArgs) -> Result<()> {
         interface_modes,
         exudyn,
         without_stiffening: stiffening == super::arguments::OnOff::Off,
+        residual_vectors: residual_vectors == super::arguments::OnOff::On,
         eigensolver,
     };
     let summary = crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;

@@ -19,6 +19,7 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
                 axis,
                 axis_point,
                 stiffening,
+                residual_vectors,
             },
         boundary,
         output,
@@ -75,6 +76,7 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         explicit,
         axes,
         stiffening: stiffening == super::arguments::OnOff::On,
+        residual_vectors: residual_vectors == super::arguments::OnOff::On,
     };
     let full = method.contains(&crate::reduction::Method::NoReduction);
     let reduced: Vec<_> = method

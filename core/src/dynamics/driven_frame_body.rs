@@ -33,7 +33,8 @@ use crate::{
     error::LinalgError,
     fem::FeModel,
     linalg::{
-        GmresParameters, GmresStatistics, SparseSymmetric, SymbolicFactor, preconditioned_gmres,
+        GmresParameters, GmresStatistics, MassMatrix, SparseSymmetric, SymbolicFactor,
+        preconditioned_gmres,
     },
 };
 
@@ -317,6 +318,15 @@ impl DrivenFrameBody {
             }
         }
         a
+    }
+
+    /// The sparse pencil of the full body spun steadily at `rate` (rad/s), Coriolis left out:
+    /// $K + \Omega^2(H + K_{\sigma,1})$ and $M$ on its coordinates (`None` for a dense body).
+    pub fn spun_pencil(&self, rate: f64) -> Option<(SparseSymmetric, &MassMatrix)> {
+        match &self.operators {
+            Operators::Sparse(s) => Some((s.spun_stiffness(rate), &s.m_ff)),
+            Operators::Dense(_) => None,
+        }
     }
 
     /// Coordinates: free DOF or modal coordinates.

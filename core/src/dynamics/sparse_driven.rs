@@ -172,6 +172,65 @@ impl SparseDriven {
             .sqrt()
     }
 
+    /// $H = M E^2$ on the coordinates, sparse: $M_s \otimes \tilde e^2$ from the entries of
+    /// $M$ between the x directions of two nodes (the mass is $M_s \otimes I_3$, checked when
+    /// the body was made).
+    pub(super) fn h_matrix(&self) -> SparseSymmetric {
+        let e = self.axis;
+        let ee = e * e.transpose() - nalgebra::Matrix3::identity();
+        let n = self.coords.dofs();
+        let mut entries = Vec::new();
+        let mut add = |p: usize, q: usize, m: f64| {
+            for a in 0..3 {
+                for b in 0..3 {
+                    if ee[(a, b)] != 0.0 {
+                        entries.push((3 * p + a, 3 * q + b, m * ee[(a, b)]));
+                    }
+                }
+            }
+        };
+        match &self.m {
+            MassMatrix::Lumped(d) => (0..n / 3).for_each(|p| add(p, p, d[3 * p])),
+            MassMatrix::Consistent(m) => {
+                let a = m.as_faer();
+                for j in (0..a.ncols()).step_by(3) {
+                    let rows = a.symbolic().row_idx_of_col_raw(j);
+                    for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
+                        if i % 3 == 0 {
+                            add(i / 3, j / 3, v);
+                        }
+                    }
+                }
+            }
+        }
+        self.coords
+            .project(&SparseSymmetric::from_triplets(n, &entries))
+    }
+
+    /// $K + \Omega^2(H + K_{\sigma,1})$ on the coordinates: the stiffness of the body spun
+    /// steadily at `rate` (rad/s) in the turning frame.
+    pub(super) fn spun_stiffness(&self, rate: f64) -> SparseSymmetric {
+        let w2 = rate * rate;
+        let mut entries = Vec::new();
+        let mut take = |a: &SparseSymmetric, c: f64| {
+            let inner = a.as_faer();
+            for j in 0..inner.ncols() {
+                let rows = inner.symbolic().row_idx_of_col_raw(j);
+                for (&i, &v) in rows.iter().zip(inner.val_of_col(j)) {
+                    entries.push((i, j, c * v));
+                }
+            }
+        };
+        take(&self.k_ff, 1.0);
+        if w2 != 0.0 {
+            take(&self.h_matrix(), w2);
+            if let Some(kg) = &self.centrifugal {
+                take(kg, w2);
+            }
+        }
+        SparseSymmetric::from_triplets(self.k_ff.dim(), &entries)
+    }
+
     /// The factor of $c_m M + c_k K$, kept while the coefficients stay.
     pub(super) fn factor(&mut self, c_m: f64, c_k: f64) -> Result<&SymmetricFactor> {
         let same = self.factor.as_ref().is_some_and(|(c, _)| *c == (c_m, c_k));

@@ -136,7 +136,11 @@ pub enum DynamicsError {
         "the body's [preload] was written for another spin: {}",
         match (angle_rad, offset, held) {
             (Some(a), _, _) => format!("its axis is {a} rad from the spin axis", a = crate::report::readable(a, 3)),
-            (_, Some(d), _) => format!("its axis passes {d} from the frame's origin", d = crate::report::readable(d, 4)),
+            (_, Some(d), _) => format!(
+                "its axis passes {d} from the frame's origin (the --axis-point given, or the \
+                 drive's master): give a point of the preload's axis with --axis-point X,Y,Z",
+                d = crate::report::readable(d, 4)
+            ),
             (_, _, Some((h, r, both))) => format!(
                 "its static step held {h} DOF, the drive's ring clamps {r} ({both} of them in                  both): hold the drive's ring alone in CalculiX's *BOUNDARY"
             ),
@@ -147,6 +151,28 @@ pub enum DynamicsError {
         angle_rad: Option<f64>,
         offset: Option<f64>,
         held: Option<(usize, usize, usize)>,
+    },
+
+    /// The drive's ring is not coaxial with the axis the body's preloaded stiffness was spun
+    /// about (the deck's CENTRIF line): the centre of the circle fitted to the ring lies
+    /// `distance` from that axis (through `point`), beyond the ring's own geometric
+    /// tolerance (the body's length unit).
+    #[error(
+        "the drive `{drive}`'s ring is centred {distance} from the axis its [preload] was spun \
+         about (through {x}, {y}, {z}; the ring's own tolerance is {tolerance}): the frame \
+         would not turn about the preload's axis. Give the spin's axis point with \
+         --axis-point X,Y,Z, or turn the stiffening off (--stiffening off)",
+        distance = crate::report::readable(*distance, 4),
+        tolerance = crate::report::readable(*tolerance, 3),
+        x = crate::report::readable(point[0], 6),
+        y = crate::report::readable(point[1], 6),
+        z = crate::report::readable(point[2], 6)
+    )]
+    DriveOffPreloadAxis {
+        drive: String,
+        distance: f64,
+        tolerance: f64,
+        point: [f64; 3],
     },
 
     /// A geometric stiffness of a unit frame load (`case`: rate², angular acceleration,

@@ -163,6 +163,7 @@ fn kind_name(k: &ColumnKind) -> &'static str {
         ColumnKind::Loaded { .. } => "loaded",
         ColumnKind::Krylov { .. } => "krylov",
         ColumnKind::Balanced { .. } => "balanced",
+        ColumnKind::InertiaResidual { .. } => "inertia_residual",
         ColumnKind::RigidInterface { .. } => "rigid_interface",
         ColumnKind::CharacteristicConstraint { .. } => "characteristic_constraint",
     }

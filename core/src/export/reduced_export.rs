@@ -14,13 +14,14 @@ use crate::{
     analysis::{count_zero_energy_modes_by, zero_energy_below, zero_energy_threshold_hz},
     atomic_file::write_atomically,
     body_file::{ImportedBody, write_array, write_npy},
+    fem::InertiaLoads,
     linalg::generalized_eigen,
     models::{BodyInterfaces, BodyReducer},
     reduction::{
         AveragingInterface, Basis, CONSTRAINT_COUPLING_TOLERANCE, Eigensolver, InteriorProblem,
         MacNealRubinParameters, Method, ModeSelection, ReducedMatrices, ReductionParameters,
         RigidInterface, SolverPath, macneal_rubin, reduce, reduce_interface, reduce_interior,
-        tie_rigid_interfaces,
+        tie_rigid_interfaces, with_inertia_residual_vectors,
     },
 };
 
@@ -90,6 +91,9 @@ pub struct ExportParameters {
     pub exudyn: bool,
     /// Leave out the geometric stiffness of a body file's `[preload]` (written by default).
     pub without_stiffening: bool,
+    /// Append the residual vectors of the frame's inertia loads to a fixed-interface basis
+    /// (GR, MT, CB, MC: [`crate::reduction::with_inertia_residual_vectors`]).
+    pub residual_vectors: bool,
     /// The solver of the fixed-interface pairs on the sparse path and of the free-free pairs
     /// the load-built methods start from (`--eigensolver`; Lanczos by default).
     pub eigensolver: Eigensolver,
@@ -224,13 +228,24 @@ pub fn reduce_for_export(
             },
         )?),
         // Rigid interfaces tied in the boundary coordinates: six constraint modes per master.
-        _ => Some(reduce_interior(
-            method,
-            &mut InteriorProblem::new(model, boundary, SolverPath::Auto)?
+        _ => {
+            let mut problem = InteriorProblem::new(model, boundary, SolverPath::Auto)?
                 .with_eigensolver(parameters.eigensolver)
-                .with_rigid_interfaces(&parameters.rigid_interfaces)?,
-            ModeSelection::Count(modes),
-        )?),
+                .with_rigid_interfaces(&parameters.rigid_interfaces)?;
+            let basis = reduce_interior(method, &mut problem, ModeSelection::Count(modes))?;
+            let basis = match parameters.interface_modes {
+                Some(count) => reduce_interface(model, basis, count)?,
+                None => basis,
+            };
+            // Residual vectors need a boundary that holds the body (modal truncation may
+            // have none).
+            if parameters.residual_vectors && problem.check_restraint().is_ok() {
+                let loads = InertiaLoads::of(model);
+                Some(with_inertia_residual_vectors(&mut problem, basis, &loads)?.0)
+            } else {
+                Some(basis)
+            }
+        }
     };
     let basis = match basis {
         Some(b) => {
@@ -243,7 +258,13 @@ pub fn reduce_for_export(
             } else {
                 b
             };
+            let interior_built = !matches!(
+                method,
+                Method::MacNealRubin | Method::NoReduction | Method::Eitelberg
+            );
             Some(match parameters.interface_modes {
+                // Made with the basis above, before its residual vectors.
+                _ if interior_built => b,
                 Some(count) => reduce_interface(model, b, count)?,
                 None => b,
             })
@@ -266,6 +287,7 @@ pub fn reduce_for_export(
             };
             let full_s = started.elapsed().as_secs_f64();
             BodyReducer::new(model, interfaces, &full, full_s, Progress::default())?
+                .with_residual_vectors(parameters.residual_vectors)
                 .reduce(method, modes)?
                 .basis
         }

@@ -10,6 +10,7 @@ mod fe_model;
 mod frame3d;
 mod hex8;
 mod hex8_geometric;
+mod inertia_loads;
 mod l_bracket;
 mod mass_properties;
 mod node_index;
@@ -28,6 +29,7 @@ pub use hex8::{
     EDGES as HEX8_EDGES, LOCAL_NODES as HEX8_LOCAL_NODES, hex8_consistent_mass, hex8_stiffness,
 };
 pub use hex8_geometric::{GaussStresses, hex8_geometric_stiffness, hex8_stresses};
+pub use inertia_loads::{InertiaLoadCase, InertiaLoads, acceleration_field};
 pub use l_bracket::{LBracketParameters, l_bracket};
 pub use mass_properties::MassProperties;
 pub use node_index::NodeIndex;

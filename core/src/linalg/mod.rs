@@ -66,7 +66,7 @@ pub use saddle_point::{
 pub use small_cholesky::SmallCholesky;
 pub use sparse_rhs_solve::ForwardReach;
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
-pub use sturm_count::{SturmCount, sturm_count};
+pub use sturm_count::{SturmCount, inertia_at, sturm_count};
 pub use substructure_tree::{SubstructureNode, SubstructureTree};
 pub use symmetric_eigen::{
     SymmetricEigen, SymmetricEigenKernel, dense_eigen_tolerance, symmetric_eigen,

@@ -71,37 +71,7 @@ pub fn sturm_count(
     for _ in 0..SHIFT_TRIES {
         shift = top + offset;
         let found = accepted.len() + ritz_above.iter().filter(|&&r| r < shift).count();
-        let shifted = k.shifted(m, shift);
-        // First without keeping the factor (multifrontal, fronts forgotten once eliminated);
-        // an elimination that grew past the bound is repeated with the stored factor, whose
-        // backward error is measured instead of estimated.
-        match multifrontal_inertia(&shifted, symbolic)? {
-            Some(inertia) if inertia.trusted() => {
-                return Ok(SturmCount {
-                    shift,
-                    below: inertia.negative,
-                    found,
-                });
-            }
-            _ => {}
-        }
-        let attempt =
-            IndefiniteFactor::factor(shifted, symbolic, "Sturm shift K - σ'M").and_then(|factor| {
-                // An unpivoted LDLᵀ that grew (a small pivot) may have the wrong inertia: its
-                // backward error must stay near round-off.
-                let probe = faer::Mat::from_fn(k.dim(), 1, |i, _| 1.0 + (i % 7) as f64);
-                let backward = factor.backward_error(probe.as_ref());
-                if backward <= STURM_BACKWARD_ERROR {
-                    Ok(factor.negative_pivots())
-                } else {
-                    Err(Error::Linalg(LinalgError::SturmFactorInaccurate {
-                        shift,
-                        backward,
-                        bound: STURM_BACKWARD_ERROR,
-                    }))
-                }
-            });
-        match attempt {
+        match inertia_at(k, m, symbolic, shift) {
             Ok(below) => {
                 return Ok(SturmCount {
                     shift,
@@ -118,6 +88,40 @@ pub fn sturm_count(
         tries: SHIFT_TRIES,
         last: last_error.map(Box::new),
     }))
+}
+
+/// The number of eigenvalues of $K\varphi = \lambda M\varphi$ below `shift`: the negative
+/// pivots of an $LDL^T$ factor of $K - \sigma M$ (Sylvester's law of inertia), first without
+/// keeping the factor ([`multifrontal_inertia`]: fronts forgotten once eliminated), and, when
+/// that elimination grew past its bound, by the stored factor, whose backward error is
+/// measured instead of estimated ([`LinalgError::SturmFactorInaccurate`] when it is too
+/// large). `symbolic` analyses the pattern of $K - \sigma M$.
+pub fn inertia_at(
+    k: &SparseSymmetric,
+    m: &MassMatrix,
+    symbolic: &SymbolicFactor,
+    shift: f64,
+) -> Result<usize> {
+    let shifted = k.shifted(m, shift);
+    if let Some(inertia) = multifrontal_inertia(&shifted, symbolic)?
+        && inertia.trusted()
+    {
+        return Ok(inertia.negative);
+    }
+    let factor = IndefiniteFactor::factor(shifted, symbolic, "Sturm shift K - σ'M")?;
+    // An unpivoted LDLᵀ that grew (a small pivot) may have the wrong inertia: its backward
+    // error must stay near round-off.
+    let probe = faer::Mat::from_fn(k.dim(), 1, |i, _| 1.0 + (i % 7) as f64);
+    let backward = factor.backward_error(probe.as_ref());
+    if backward <= STURM_BACKWARD_ERROR {
+        Ok(factor.negative_pivots())
+    } else {
+        Err(Error::Linalg(LinalgError::SturmFactorInaccurate {
+            shift,
+            backward,
+            bound: STURM_BACKWARD_ERROR,
+        }))
+    }
 }
 
 #[cfg(test)]

@@ -1,8 +1,10 @@
 //! The Campbell table of a user's body spun about an axis through its driven interface: the
 //! lowest natural frequencies in the turning frame, $(K + \Omega^2(H + K_{\sigma,1}))\phi =
 //! \omega^2 M\phi$ on the DOF outside the clamped ring (Coriolis coupling left out, as the
-//! FE codes' prestressed frequency steps leave it), at each rate, for the full body and each
-//! reduced model, with the preloaded stiffness' stiffening (`[preload]`) or without it.
+//! FE codes' prestressed frequency steps leave it), at each rate, for the full body (sparse,
+//! whatever its size) and each reduced model, with the preloaded stiffness' stiffening
+//! (`[preload]`) or without it. Each curve follows one mode shape from rate to rate by MAC
+//! (modes cross and veer), and a rate past divergence says so.
 
 use faer::Mat;
 use nalgebra::{Unit, Vector3};
@@ -12,19 +14,15 @@ use crate::{
     analysis::count_zero_energy_modes,
     body_file::ImportedBody,
     dynamics::{Combination, DrivenFrameBody, DynamicsError},
-    linalg::{PairSelection, generalized_eigen_selected},
     progress::Progress,
     reduction::Method,
 };
 
 use super::{
     BodyInterfaces, BodyReducer,
-    driven_setup::{apply_preload, drive_interface, free_columns},
+    driven_setup::{apply_preload, drive_interface, free_columns, spin_axis_point},
+    spinning_pairs::{spinning_pairs, track_by_mac},
 };
-
-/// Coordinates above which the dense route refuses a model (its operators are formed
-/// column by column and solved densely).
-pub const CAMPBELL_DENSE_LIMIT: usize = 6000;
 
 /// A Campbell table's set-up.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,7 +31,8 @@ pub struct BodyCampbellParameters {
     pub drive: String,
     /// The spin axis (body axes).
     pub axis: [f64; 3],
-    /// A point of the axis (`None`: the drive's master).
+    /// A point of the axis (`None`: the preload's axis when the drive's ring is coaxial with
+    /// it, else the drive's master).
     pub axis_point: Option<[f64; 3]>,
     /// Rates, rad/s.
     pub rates: Vec<f64>,
@@ -43,6 +42,10 @@ pub struct BodyCampbellParameters {
     pub models: Vec<(Method, usize)>,
     /// With the preloaded stiffness' stiffening (when the body has one).
     pub stiffening: bool,
+    /// The full body's curves too (its sparse solve at every rate); reduced models need none.
+    pub full: bool,
+    /// Inertia-load residual vectors in the reduced bases.
+    pub residual_vectors: bool,
 }
 
 /// One model's frequencies at each rate.
@@ -54,9 +57,30 @@ pub struct BodyCampbellCurve {
     pub modes: usize,
     /// Coordinates.
     pub coordinates: usize,
-    /// Frequencies (Hz) at each rate, ascending; a negative value is an unstable pair
-    /// ($-\sqrt{-\omega^2}/2\pi$).
+    /// Inertia-load residual vectors in the basis.
+    pub residual_vectors: usize,
+    /// Frequencies (Hz) at each rate, curve by curve: the k-th value at every rate belongs
+    /// to one mode shape, carried from rate to rate by MAC (modes cross and veer), in the
+    /// ascending order of the first rate; a negative value is an unstable pair
+    /// ($-\sqrt{-\omega^2}/2\pi$); NaN where the pairs are unknown (an unstable full body).
     pub hz: Vec<Vec<f64>>,
+    /// The MAC with which each curve was carried to each rate (1 at the first).
+    pub mac: Vec<Vec<f64>>,
+    /// Negative eigenvalues of the spun stiffness at each rate (0: stable).
+    pub unstable: Vec<usize>,
+    /// How the pairs were solved (`dense`, `sparse Lanczos, Sturm-checked`).
+    pub route: &'static str,
+}
+
+impl BodyCampbellCurve {
+    /// The lowest rate (rad/s) of `rates` at which the model is unstable.
+    pub fn unstable_from(&self, rates: &[f64]) -> Option<f64> {
+        rates
+            .iter()
+            .zip(&self.unstable)
+            .find(|(_, u)| **u > 0)
+            .map(|(r, _)| *r)
+    }
 }
 
 /// The Campbell table of a body.
@@ -66,48 +90,92 @@ pub struct BodyCampbell {
     pub rates: Vec<f64>,
     /// Whether the stiffening of a preloaded stiffness was applied.
     pub stiffened: bool,
-    /// The full body first.
+    /// The point of the spin axis the frame turns about, and where it came from.
+    pub axis_point: ([f64; 3], &'static str),
+    /// The full body first (when asked for).
     pub curves: Vec<BodyCampbellCurve>,
 }
 
-/// The lowest `count` frequencies (Hz) of `body` spun at `rate` (rad/s), Coriolis left out:
-/// $(K + \Omega^2(H + K_{\sigma,1}))\phi = \omega^2 M\phi$, solved densely and checked pair by
-/// pair; a body above [`CAMPBELL_DENSE_LIMIT`] coordinates is refused.
+/// The lowest `count` frequencies (Hz) of `body` spun at `rate` (rad/s), Coriolis left out
+/// ([`spinning_pairs`]).
 pub fn spinning_frequencies(body: &DrivenFrameBody, rate: f64, count: usize) -> Result<Vec<f64>> {
-    let n = body.dim();
-    if n > CAMPBELL_DENSE_LIMIT {
-        return Err(DynamicsError::DenseRouteTooLarge {
-            what: "a Campbell table's dense route",
-            coordinates: n,
-            limit: CAMPBELL_DENSE_LIMIT,
+    Ok(spinning_pairs(body, rate, count)?.hz())
+}
+
+/// The curves of one model over `rates`, tracked by MAC.
+fn curve(
+    body: &DrivenFrameBody,
+    rates: &[f64],
+    count: usize,
+    progress: &Progress,
+    what: &str,
+) -> Result<(Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<usize>, &'static str)> {
+    let mut hz = Vec::new();
+    let mut macs = Vec::new();
+    let mut unstable = Vec::new();
+    let mut previous: Option<Mat<f64>> = None;
+    let mut route = "dense";
+    for &rate in rates {
+        progress.phase(&format!("{what} at {rate} rad/s"))?;
+        let pairs = spinning_pairs(body, rate, count)?;
+        route = pairs.route;
+        unstable.push(pairs.unstable);
+        let f = pairs.hz();
+        if f.is_empty() {
+            hz.push(vec![f64::NAN; count]);
+            macs.push(vec![f64::NAN; count]);
+            previous = None;
+            continue;
         }
-        .into());
+        let Some(prev) = previous.as_ref().filter(|p| p.ncols() == f.len()) else {
+            macs.push(vec![1.0; f.len()]);
+            hz.push(f);
+            previous = Some(pairs.vectors);
+            continue;
+        };
+        let m_current = mass_times(body, &pairs.vectors);
+        let order = track_by_mac(prev, &m_current);
+        let mut row = vec![f64::NAN; f.len()];
+        let mut mac_row = vec![0.0; f.len()];
+        let mut next = Mat::<f64>::zeros(pairs.vectors.nrows(), f.len());
+        for (c, o) in order.iter().enumerate() {
+            if let Some((j, v)) = o {
+                row[c] = f[*j];
+                mac_row[c] = *v;
+                // The sign that keeps the shape's orientation.
+                let dot: f64 = (0..next.nrows())
+                    .map(|i| prev[(i, c)] * m_current[(i, *j)])
+                    .sum();
+                let sign = if dot < 0.0 { -1.0 } else { 1.0 };
+                for i in 0..next.nrows() {
+                    next[(i, c)] = sign * pairs.vectors[(i, *j)];
+                }
+            }
+        }
+        hz.push(row);
+        macs.push(mac_row);
+        previous = Some(next);
     }
-    let mut stiffness = Combination {
-        k: 1.0,
-        h: rate * rate,
-        ..Default::default()
-    };
-    stiffness.sigma[0] = rate * rate;
+    Ok((hz, macs, unstable, route))
+}
+
+fn mass_times(body: &DrivenFrameBody, x: &Mat<f64>) -> Mat<f64> {
     let mass = Combination {
         m: 1.0,
         ..Default::default()
     };
-    let symmetric = |a: Mat<f64>| Mat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
-    let e = generalized_eigen_selected(
-        symmetric(body.dense_matrix(stiffness)).as_ref(),
-        symmetric(body.dense_matrix(mass)).as_ref(),
-        "body spinning on the driven frame",
-        PairSelection::Lowest(count),
-    )?;
-    Ok(e.values
-        .iter()
-        .map(|&l| l.signum() * l.abs().sqrt() / (2.0 * std::f64::consts::PI))
-        .collect())
+    let mut out = Mat::<f64>::zeros(x.nrows(), x.ncols());
+    for j in 0..x.ncols() {
+        let col: Vec<f64> = (0..x.nrows()).map(|i| x[(i, j)]).collect();
+        for (i, v) in body.mul(mass, &col).into_iter().enumerate() {
+            out[(i, j)] = v;
+        }
+    }
+    out
 }
 
-/// The Campbell table of `body` under `parameters`: the full body and each reduced model
-/// (its drive's columns removed, as the driven runs remove them).
+/// The Campbell table of `body` under `parameters`: the full body (when asked) and each
+/// reduced model (its drive's columns removed, as the driven runs remove them).
 pub fn body_campbell(
     body: &ImportedBody,
     parameters: &BodyCampbellParameters,
@@ -123,7 +191,14 @@ pub fn body_campbell(
             setting: "spin axis",
         },
     )?;
-    let origin = parameters.axis_point.unwrap_or(drive.master);
+    let axis_point = spin_axis_point(
+        body,
+        &drive,
+        axis,
+        parameters.axis_point,
+        parameters.stiffening,
+    )?;
+    let origin = axis_point.0;
     let ring = model.dofs_of_nodes(&drive.nodes)?;
     progress.phase("full body on the turning frame")?;
     let mut full = DrivenFrameBody::full(model, &ring, vec![], origin, axis)?;
@@ -138,19 +213,21 @@ pub fn body_campbell(
         .coordinates()
         .cloned()
         .expect("the full body has coordinates");
-    let table = |b: &DrivenFrameBody| -> Result<Vec<Vec<f64>>> {
-        parameters
-            .rates
-            .iter()
-            .map(|&r| spinning_frequencies(b, r, parameters.count))
-            .collect()
-    };
-    let mut curves = vec![BodyCampbellCurve {
-        method: None,
-        modes: 0,
-        coordinates: full.dim(),
-        hz: table(&full)?,
-    }];
+    let mut curves = Vec::new();
+    if parameters.full {
+        let (hz, mac, unstable, route) =
+            curve(&full, &parameters.rates, parameters.count, progress, "NR")?;
+        curves.push(BodyCampbellCurve {
+            method: None,
+            modes: 0,
+            coordinates: full.dim(),
+            residual_vectors: 0,
+            hz,
+            mac,
+            unstable,
+            route,
+        });
+    }
     if !parameters.models.is_empty() {
         progress.phase("the body's zero-energy modes (free-free eigen solve)")?;
         let started = std::time::Instant::now();
@@ -161,7 +238,8 @@ pub fn body_campbell(
             &zero,
             started.elapsed().as_secs_f64(),
             progress.clone(),
-        )?;
+        )?
+        .with_residual_vectors(parameters.residual_vectors);
         for &(method, kept) in &parameters.models {
             progress.phase(&format!("{} {kept}", method.name()))?;
             let reduced = reducer.reduce(method, kept)?;
@@ -170,17 +248,33 @@ pub fn body_campbell(
             let psi = Mat::from_fn(psi_all.nrows(), keep.len(), |i, j| psi_all[(i, keep[j])]);
             let psi_free = coords.coordinates_of(psi.as_ref())?;
             let reduced_body = DrivenFrameBody::reduced(&full, psi_free.as_ref())?;
+            let label = format!("{} {kept}", method.id().to_uppercase());
+            let (hz, mac, unstable, route) = curve(
+                &reduced_body,
+                &parameters.rates,
+                parameters.count,
+                progress,
+                &label,
+            )?;
             curves.push(BodyCampbellCurve {
                 method: Some(method),
                 modes: kept,
                 coordinates: reduced_body.dim(),
-                hz: table(&reduced_body)?,
+                residual_vectors: reduced
+                    .residual_vectors
+                    .as_ref()
+                    .map_or(0, |r| r.kept.len()),
+                hz,
+                mac,
+                unstable,
+                route,
             });
         }
     }
     Ok(BodyCampbell {
         rates: parameters.rates.clone(),
         stiffened,
+        axis_point,
         curves,
     })
 }

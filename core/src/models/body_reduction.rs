@@ -11,15 +11,16 @@ use crate::{
     Result,
     analysis::{ZeroEnergyCount, reduced_modes},
     body_file::{ImportedBody, InterfaceKind},
-    fem::FeModel,
+    fem::{FeModel, InertiaLoads},
     linalg::GeneralizedEigen,
     progress::Progress,
     reduction::{
         AveragingInterface, Basis, ColumnKind, InterfaceLoads, InteriorProblem,
         MacNealRubinParameters, Method, ModalBalancedParameters, ModalInfluence, ModalModel,
-        ModeSelection, MomentMatchingParameters, ReductionError, RigidInterface, SolverPath,
-        lowest_free_modes, macneal_rubin, modal_balanced_basis, modal_influence, moment_matching,
-        reduce_interface, reduce_interior,
+        ModeSelection, MomentMatchingParameters, ReductionError, ResidualVectorsAdded,
+        RigidInterface, SolverPath, lowest_free_modes, macneal_rubin, modal_balanced_basis,
+        modal_influence, moment_matching, reduce_interface, reduce_interior, static_share_outside,
+        with_inertia_residual_vectors,
     },
 };
 
@@ -147,6 +148,9 @@ pub struct ReducedBody {
     pub offline_s: f64,
     /// What the method took in place of what a single body lacks, said beside its numbers.
     pub note: Option<String>,
+    /// The inertia-load residual vectors appended to the basis (`None`: not asked for, or
+    /// not a fixed-interface method).
+    pub residual_vectors: Option<ResidualVectorsAdded>,
 }
 
 impl ReducedBody {
@@ -188,6 +192,8 @@ pub struct BodyReducer<'a> {
     free_modes: Option<GeneralizedEigen>,
     free_modes_s: f64,
     progress: Progress,
+    residual_vectors: bool,
+    inertia_loads: Option<InertiaLoads>,
 }
 
 impl<'a> BodyReducer<'a> {
@@ -220,7 +226,33 @@ impl<'a> BodyReducer<'a> {
             free_modes: None,
             free_modes_s: 0.0,
             progress,
+            residual_vectors: false,
+            inertia_loads: None,
         })
+    }
+
+    /// Appends the residual vectors of the frame's unit inertia loads to every
+    /// fixed-interface basis (GR, MT, CB, MC) when `on` (see
+    /// [`with_inertia_residual_vectors`]); off by default, as the thesis' models are.
+    pub fn with_residual_vectors(mut self, on: bool) -> Self {
+        self.residual_vectors = on;
+        self
+    }
+
+    /// Whether fixed-interface bases get residual vectors.
+    pub fn residual_vectors(&self) -> bool {
+        self.residual_vectors
+    }
+
+    /// The share of the static response to each of `loads` (vectors on the body's DOF) that
+    /// the interior columns of `basis` miss, in the energy norm of the body held at every
+    /// interface ([`static_share_outside`]): the a-priori estimate of a basis for them.
+    pub fn static_shares(&mut self, basis: &Basis, loads: &[Vec<f64>]) -> Result<Vec<f64>> {
+        let problem = self.problem()?;
+        loads
+            .iter()
+            .map(|f| static_share_outside(problem, basis, f))
+            .collect()
     }
 
     /// The interior problem (its split, constraint and fixed-interface modes, for views):
@@ -463,6 +495,27 @@ impl<'a> BodyReducer<'a> {
             Some(n) if constraint_columns > 0 => reduce_interface(model, basis, n)?,
             _ => basis,
         };
+        // Static responses need a boundary that holds the body; modal truncation can do
+        // without one, and then has none.
+        let holds = uses_interior && self.problem()?.check_restraint().is_ok();
+        if self.residual_vectors && uses_interior && !holds {
+            note = Some(
+                "no residual vectors: the boundary does not hold the body (K_ii is singular), \
+                 so its inertia loads have no static response"
+                    .to_string(),
+            );
+        }
+        let (basis, residual_vectors) = if self.residual_vectors && holds {
+            self.progress.phase("inertia-load residual vectors")?;
+            let loads = self
+                .inertia_loads
+                .get_or_insert_with(|| InertiaLoads::of(model))
+                .clone();
+            let (basis, added) = with_inertia_residual_vectors(self.problem()?, basis, &loads)?;
+            (basis, Some(added))
+        } else {
+            (basis, None)
+        };
         let modes = reduced_modes(model, &basis)?;
         let zero_modes = self.full.zero_energy_in(&modes);
         // The interior factor is shared: each model that uses it is charged with it once.
@@ -484,6 +537,7 @@ impl<'a> BodyReducer<'a> {
             zero_modes,
             offline_s,
             note,
+            residual_vectors,
         })
     }
 

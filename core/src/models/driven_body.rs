@@ -16,17 +16,18 @@ use crate::{
     analysis::count_zero_energy_modes,
     body_file::ImportedBody,
     dynamics::{
-        AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, FrameCoordinates, PinnedRing,
-        integrate_driven, positions,
+        AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, FrameCoordinates,
+        PinnedRing, integrate_driven, positions,
     },
     error::DynamicsError,
+    fem::{FeModel, acceleration_field},
     progress::Progress,
     reduction::{Method, ReductionError, RigidInterface},
 };
 
 use super::driven_setup::{
     apply_preload, drive_interface, driving_of, free_columns, mean_axes_of, output_names,
-    output_nodes, pinned_rings,
+    output_nodes, pinned_rings, spin_axis_point,
 };
 use super::{
     BodyInterfaces, BodyReducer,
@@ -83,6 +84,9 @@ pub struct DrivenBodyParameters {
     /// Dynamic stiffening from the body's preloaded stiffness (`[preload]`), when it has
     /// one: on by default.
     pub stiffening: bool,
+    /// The residual vectors of the frame's inertia loads in every reduced basis
+    /// ([`crate::reduction::with_inertia_residual_vectors`]): on by default for a user's body.
+    pub residual_vectors: bool,
 }
 
 impl Default for DrivenBodyParameters {
@@ -107,6 +111,7 @@ impl Default for DrivenBodyParameters {
             explicit: false,
             axes: AxisKind::NodalFixed,
             stiffening: true,
+            residual_vectors: true,
         }
     }
 }
@@ -144,6 +149,25 @@ pub struct DrivenRun {
     /// Against the full body: the largest reaction force difference over the largest
     /// elastic part of the full reaction force (its change from the rigid body's).
     pub reaction_error: Option<f64>,
+    /// Inertia-load residual vectors in the basis (0 for NR and without them).
+    pub residual_vectors: usize,
+    /// The a-priori estimate: per load the drive puts on the body (its name), the share of
+    /// its static response (the body held at its interfaces) that the basis misses in the
+    /// energy norm (empty for NR).
+    pub estimate: Vec<(String, f64)>,
+}
+
+impl DrivenRun {
+    /// The largest share of the drive's loads the basis misses (`None` for NR).
+    pub fn estimate_max(&self) -> Option<f64> {
+        self.estimate.iter().map(|(_, e)| *e).reduce(|a, b| {
+            if a.is_nan() || b.is_nan() {
+                f64::NAN
+            } else {
+                a.max(b)
+            }
+        })
+    }
 }
 
 impl DrivenRun {
@@ -290,7 +314,13 @@ pub fn driven_body_study(
     let drive = drive_interface(body, &parameters.drive, &interfaces)?;
     let driving = driving_of(body, parameters)?;
     // The frame turns about the axis point; the drive's ring is clamped in it wherever it is.
-    let origin = parameters.axis_point.unwrap_or(drive.master);
+    let (origin, _) = spin_axis_point(
+        body,
+        &drive,
+        driving.spin.axis,
+        parameters.axis_point,
+        parameters.stiffening,
+    )?;
     let pinned_names: Vec<&str> = pinned_items
         .iter()
         .map(|p| p.split_once(':').map_or(p.as_str(), |(_, n)| n))
@@ -369,12 +399,17 @@ pub fn driven_body_study(
             reaction: sampled.reaction,
             history_error: None,
             reaction_error: None,
+            residual_vectors: 0,
+            estimate: Vec::new(),
         });
     }
 
     if let Some((zero, zero_s)) = zero_energy {
-        let mut reducer = BodyReducer::new(model, interfaces, &zero, zero_s, progress.clone())?;
+        let mut reducer = BodyReducer::new(model, interfaces, &zero, zero_s, progress.clone())?
+            .with_residual_vectors(parameters.residual_vectors);
+        let drive_loads = drive_loads(model, origin, &measure.driving);
         let reduced = ReducedRuns {
+            drive_loads: &drive_loads,
             full_body: &full_body,
             coords: &coords,
             drive: &drive,
@@ -458,6 +493,7 @@ fn sample_run(
 
 /// What every reduced run of one study shares.
 struct ReducedRuns<'a> {
+    drive_loads: &'a [(String, Vec<f64>)],
     full_body: &'a DrivenFrameBody,
     coords: &'a FrameCoordinates,
     drive: &'a RigidInterface,
@@ -491,6 +527,17 @@ impl ReducedRuns<'_> {
         progress.phase(&format!("{} {kept}", method.name()))?;
         let started = Instant::now();
         let reduced = reducer.reduce(method, kept)?;
+        let loads: Vec<Vec<f64>> = self.drive_loads.iter().map(|(_, f)| f.clone()).collect();
+        let estimate: Vec<(String, f64)> = self
+            .drive_loads
+            .iter()
+            .map(|(name, _)| name.clone())
+            .zip(reducer.static_shares(&reduced.basis, &loads)?)
+            .collect();
+        let residual_vectors = reduced
+            .residual_vectors
+            .as_ref()
+            .map_or(0, |r| r.kept.len());
         let keep = free_columns(&reduced.basis, &self.drive.name, self.pins);
         if keep.is_empty() {
             return Err(ReductionError::MethodNeedsContext {
@@ -532,6 +579,8 @@ impl ReducedRuns<'_> {
             reaction: sampled.reaction,
             history_error: None,
             reaction_error: None,
+            residual_vectors,
+            estimate: estimate.clone(),
         };
         let label = run.label();
         runs.push(run);
@@ -565,6 +614,8 @@ impl ReducedRuns<'_> {
                 reaction: explicit.reaction,
                 history_error: None,
                 reaction_error: None,
+                residual_vectors,
+                estimate,
             });
         }
         Ok(())
@@ -587,4 +638,43 @@ fn compare_with_full(runs: &mut [DrivenRun], rigid_force: &[[f64; 3]]) {
             rigid_force,
         ));
     }
+}
+
+/// The loads the drive puts on the undeformed body, $M a(x)$ with $a$ per unit coefficient:
+/// the spin's centrifugal load about the axis through `origin` ("rate²") and its tangential
+/// load ("angular acceleration"), and, when gravity or shaking move the frame, a unit
+/// linear acceleration along each axis.
+fn drive_loads(model: &FeModel, origin: [f64; 3], driving: &Driving) -> Vec<(String, Vec<f64>)> {
+    let e = driving.spin.axis.into_inner();
+    let load = |field: &dyn Fn([f64; 3]) -> ([f64; 3], [f64; 3])| -> Vec<f64> {
+        let a = acceleration_field(model, origin, 1.0, field);
+        let y = model
+            .m
+            .mul(faer::MatRef::from_column_major_slice(&a, a.len(), 1));
+        (0..a.len()).map(|i| y[(i, 0)]).collect()
+    };
+    let centrifugal = |s: [f64; 3]| {
+        let r = Vector3::from(s);
+        let a = e * e.dot(&r) - r;
+        ([a.x, a.y, a.z], [0.0; 3])
+    };
+    let tangential = |s: [f64; 3]| {
+        let a = e.cross(&Vector3::from(s));
+        ([a.x, a.y, a.z], [e.x, e.y, e.z])
+    };
+    let mut loads = vec![
+        ("rate²".to_string(), load(&centrifugal)),
+        ("angular acceleration".to_string(), load(&tangential)),
+    ];
+    if driving.gravity != Vector3::zeros() || driving.shake.is_some() {
+        for (k, name) in ["x", "y", "z"].iter().enumerate() {
+            let linear = move |_: [f64; 3]| {
+                let mut t = [0.0; 3];
+                t[k] = 1.0;
+                (t, [0.0; 3])
+            };
+            loads.push((format!("linear acceleration {name}"), load(&linear)));
+        }
+    }
+    loads
 }

@@ -59,6 +59,110 @@ pub(super) fn apply_preload(
     }
 }
 
+/// Share of the fitted radius, beside three times the fit's RMS residual, by which a drive's
+/// ring centre may miss the preload's axis and still count as coaxial with it.
+pub const COAXIAL_RADIUS_SHARE: f64 = 0.02;
+
+/// The point of the spin axis the frame turns about, and where it came from: `asked` when
+/// given (`--axis-point`); else, when the body's preload (with `stiffening`) was spun about
+/// an axis parallel to `axis`, its axis, provided the drive's ring is coaxial with it (the
+/// centre of the circle fitted to the ring's nodes in the plane across the axis within
+/// [`COAXIAL_RADIUS_SHARE`] of its radius plus three RMS residuals of the fit; otherwise
+/// [`DynamicsError::DriveOffPreloadAxis`]): an uneven mesh's ring centroid is not its
+/// hole's centre. Without a preload, the drive's master.
+pub(super) fn spin_axis_point(
+    body: &ImportedBody,
+    drive: &RigidInterface,
+    axis: Unit<Vector3<f64>>,
+    asked: Option<[f64; 3]>,
+    stiffening: bool,
+) -> Result<([f64; 3], &'static str)> {
+    if let Some(p) = asked {
+        return Ok((p, "--axis-point"));
+    }
+    let Some(preload) = body.preload.as_ref().filter(|_| stiffening) else {
+        return Ok((drive.master, "the drive's master"));
+    };
+    let a = preload.load.axis.into_inner();
+    let e = axis.into_inner();
+    if a.cross(&e).norm() > 1e-6 {
+        // Another axis: check_preload names the angle.
+        return Ok((drive.master, "the drive's master"));
+    }
+    let points: Vec<Vector3<f64>> = drive
+        .nodes
+        .iter()
+        .map(|&n| Vector3::from(body.model.nodes[n - 1]))
+        .collect();
+    let p0 = Vector3::from(preload.load.point);
+    let (centre, radius, rms) = fitted_circle(&points, a);
+    let d = centre - p0;
+    let distance = (d - a * a.dot(&d)).norm();
+    let tolerance = COAXIAL_RADIUS_SHARE * radius + 3.0 * rms;
+    if distance <= tolerance {
+        // The preload's axis, at the ring's station along it.
+        let on_axis = p0 + a * a.dot(&d);
+        return Ok((
+            on_axis.into(),
+            "the [preload]'s axis (the drive's ring is coaxial)",
+        ));
+    }
+    Err(DynamicsError::DriveOffPreloadAxis {
+        drive: drive.name.clone(),
+        distance,
+        tolerance,
+        point: preload.load.point,
+    }
+    .into())
+}
+
+/// The circle fitted to `points` in the plane across `axis` (algebraic least squares,
+/// $x^2 + y^2 = 2ax + 2by + c$): its centre (at the points' mean station along the axis),
+/// radius and the RMS of the points' distances from it. Points on a line or fewer than
+/// three give their centroid, radius 0 and their RMS distance from it.
+fn fitted_circle(points: &[Vector3<f64>], axis: Vector3<f64>) -> (Vector3<f64>, f64, f64) {
+    let n = points.len().max(1) as f64;
+    let mean = points.iter().fold(Vector3::zeros(), |s, p| s + p) / n;
+    let helper = if axis.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let u = axis.cross(&helper).normalize();
+    let v = axis.cross(&u);
+    let xy: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| ((p - mean).dot(&u), (p - mean).dot(&v)))
+        .collect();
+    let mut ata = nalgebra::Matrix3::<f64>::zeros();
+    let mut atb = Vector3::<f64>::zeros();
+    for &(x, y) in &xy {
+        let row = Vector3::new(2.0 * x, 2.0 * y, 1.0);
+        ata += row * row.transpose();
+        atb += row * (x * x + y * y);
+    }
+    let spread = |c: Vector3<f64>, r: f64| {
+        (points
+            .iter()
+            .map(|p| {
+                let d = p - c;
+                let radial = (d - axis * axis.dot(&d)).norm();
+                (radial - r).powi(2)
+            })
+            .sum::<f64>()
+            / n)
+            .sqrt()
+    };
+    match (points.len() >= 3).then(|| ata.lu().solve(&atb)).flatten() {
+        Some(s) if s.iter().all(|x| x.is_finite()) && s.z + s.x * s.x + s.y * s.y > 0.0 => {
+            let centre = mean + u * s.x + v * s.y;
+            let radius = (s.z + s.x * s.x + s.y * s.y).sqrt();
+            (centre, radius, spread(centre, radius))
+        }
+        _ => (mean, 0.0, spread(mean, 0.0)),
+    }
+}
+
 /// A preloaded stiffness applies to a spin about its own axis with the drive's ring held as
 /// its static step held it: the axes parallel (1e-6 rad), the frame's origin on its axis
 /// (1e-6 of the body's size), its held DOF the ring's.

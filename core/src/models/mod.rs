@@ -21,14 +21,14 @@ mod plank_simulation;
 mod slab_simulation;
 mod spinning_beam_study;
 mod spinning_model_label;
+mod spinning_pairs;
 mod statically_determinate_support;
 mod substructuring_ladder;
 
 pub(crate) use body_advice::advise;
 pub use body_advice::{AdvisedModel, BodyAdvice};
 pub use body_campbell::{
-    BodyCampbell, BodyCampbellCurve, BodyCampbellParameters, CAMPBELL_DENSE_LIMIT, body_campbell,
-    spinning_frequencies,
+    BodyCampbell, BodyCampbellCurve, BodyCampbellParameters, body_campbell, spinning_frequencies,
 };
 pub use body_comparison::{
     BODY_COMPARED_MODES, BODY_MODE_SWEEP, BodyComparison, BodyComparisonParameters,
@@ -89,6 +89,7 @@ pub use spinning_beam_study::{
     campbell_study, published_flapwise, spin_up_reference, spin_up_study, spinning_beam_body,
 };
 pub use spinning_model_label::{model_label, model_name};
+pub use spinning_pairs::{CAMPBELL_DENSE_LIMIT, SpinningPairs, spinning_pairs, track_by_mac};
 pub use statically_determinate_support::three_two_one_support;
 pub use substructuring_ladder::{
     LadderPoint, RefinedComparison, SubstructuringParameters, SubstructuringStudy, TreePart,

@@ -56,6 +56,12 @@ pub enum ColumnKind {
         /// Its frequency in the Guyan-reduced boundary pencil, Hz.
         hz: f64,
     },
+    /// The static response to one of the frame's unit inertia loads with the boundary held,
+    /// made mass-orthogonal to the interior columns before it (a residual vector).
+    InertiaResidual {
+        /// The load.
+        load: crate::fem::InertiaLoadCase,
+    },
     /// A balanced-truncation vector with its (position) gramian value.
     Balanced {
         /// The eigenvalue of the gramian block the vector belongs to.

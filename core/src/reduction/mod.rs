@@ -15,6 +15,7 @@ mod free_body_solver;
 mod free_modes;
 mod full;
 mod guyan;
+mod inertia_residual_vectors;
 mod interface_loads;
 mod interior_problem;
 mod macneal_rubin;
@@ -51,6 +52,7 @@ pub use eitelberg::{
     EITELBERG_DOF_LIMIT, EitelbergParameters, EitelbergReduction, StateSpaceReduction, eitelberg,
     eitelberg_state_space,
 };
+pub(crate) use free_body_solver::sturm_checked;
 pub use free_body_solver::{FreeBodyParameters, free_body_pairs};
 pub use free_modes::{
     lowest_free_body_pairs, lowest_free_modes, mass_normalised_rigid_modes, restrained_modes,
@@ -58,9 +60,14 @@ pub use free_modes::{
 };
 pub use full::no_reduction;
 pub use guyan::{guyan, guyan_from, guyan_on};
+pub use inertia_residual_vectors::{
+    RESIDUAL_VECTOR_DEFLATION, ResidualVectorsAdded, static_share_outside,
+    with_inertia_residual_vectors,
+};
 pub use interface_loads::InterfaceLoads;
 pub use interior_problem::{
     COMPLETE_EIGEN_LIMIT, DENSE_INTERIOR_LIMIT, InteriorProblem, ReductionStatistics,
+    STATIC_RESPONSE_TOLERANCE,
 };
 pub use interior_problem::{constraint_modes, fixed_interface_modes};
 pub use macneal_rubin::{MacNealRubinParameters, macneal_rubin};
