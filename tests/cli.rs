@@ -686,8 +686,49 @@ fn import_report_and_export_a_body_file() {
     assert!(String::from_utf8_lossy(&out.stdout).contains("zero-energy mode(s)"));
     let model: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out_dir.join("model.json")).unwrap()).unwrap();
-    assert_eq!(model["size"], 18);
-    assert!((model["reduced_elastic_hz"][0].as_f64().unwrap() - cb).abs() <= 1e-8 * cb);
+    // On by default: the twelve inertia loads' residual vectors after CB's 18 columns, named.
+    assert_eq!(model["size"], 30);
+    let kinds: Vec<&str> = model["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        kinds.iter().filter(|k| **k == "inertia_residual").count(),
+        12
+    );
+    assert!(
+        kinds[18..].iter().all(|k| *k == "inertia_residual"),
+        "{kinds:?}"
+    );
+    // More columns, the same space and more: a lower (Rayleigh–Ritz) first frequency.
+    let first = model["reduced_elastic_hz"][0].as_f64().unwrap();
+    assert!(first <= cb * (1.0 + 1e-10), "{first} {cb}");
+    // Off: the thesis' CB, as the report computed it.
+    let plain_dir = dir.join("cb-plain");
+    let out = flexmodes(&[
+        "export",
+        "--body",
+        body,
+        "--method",
+        "cb",
+        "--modes",
+        "6",
+        "--residual-vectors",
+        "off",
+        "--out",
+        plain_dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let plain: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(plain_dir.join("model.json")).unwrap()).unwrap();
+    assert_eq!(plain["size"], 18);
+    assert!((plain["reduced_elastic_hz"][0].as_f64().unwrap() - cb).abs() <= 1e-8 * cb);
 
     // A broken body file: exit 1, the file and line on stderr, nothing written.
     std::fs::write(

@@ -89,6 +89,8 @@ fn spun_corpus_bodies_spin_at_calculix_frequencies() {
                 count: 6,
                 models: vec![(Method::CraigBampton, 20)],
                 stiffening: true,
+                full: true,
+                residual_vectors: true,
             },
             &Progress::new(),
         )
@@ -98,7 +100,8 @@ fn spun_corpus_bodies_spin_at_calculix_frequencies() {
         for (r, expected) in ccx.iter().enumerate() {
             for (m, &f) in expected.iter().take(6).enumerate() {
                 for (k, tol) in [(0, 2e-4), (1, 2e-3)] {
-                    let got = table.curves[k].hz[r][m];
+                    // CalculiX prints its frequencies ascending; the curves follow shapes.
+                    let got = checks::ascending(&table.curves[k].hz[r])[m];
                     let rel = (got - f).abs() / f;
                     worst[k] = worst[k].max(rel);
                     assert!(

@@ -225,6 +225,7 @@ class Body:
         interface_modes: Optional[int] = None,
         exudyn: bool = False,
         eigensolver: str = "lanczos",
+        residual_vectors: bool = True,
     ) -> "ReducedModel":
         """Reduces the body as ``flexmodes export`` does.
 
@@ -235,7 +236,10 @@ class Body:
         constraint modes to this many characteristic constraint modes. ``exudyn``: also
         build the Exudyn body (floating frame on the first rigid interface).
         ``eigensolver``: the fixed-interface (and free-free) pairs by ``"lanczos"`` or
-        ``"amls"``, as ``export --eigensolver``."""
+        ``"amls"``, as ``export --eigensolver``. ``residual_vectors``: append the static
+        responses to the frame's twelve unit inertia loads to a fixed-interface basis (GR,
+        MT, CB, MC), as ``export --residual-vectors on`` (their labels say
+        ``residual vector``)."""
         return ReducedModel(
             self._inner.reduce(
                 str(method),
@@ -244,6 +248,7 @@ class Body:
                 interface_modes,
                 bool(exudyn),
                 str(eigensolver),
+                bool(residual_vectors),
             )
         )
 
@@ -268,6 +273,7 @@ class Body:
         spectral_radius: float = 0.9,
         axes: str = "nodal_fixed",
         stiffening: bool = True,
+        residual_vectors: bool = True,
     ) -> dict:
         """The driven body of ``flexmodes simulate --body``: the interface ``drive``
         (``"rbe2:SET"`` or a declared rbe2 interface) spun up about ``axis`` to ``rate``
@@ -284,7 +290,9 @@ class Body:
         m/s² in ground axes; ``spectral_radius``: generalized-α's ρ∞; ``axes``:
         ``"nodal_fixed"`` (the drive's frame) or ``"mean"``; ``stiffening``: the dynamic
         stiffening of the body file's ``[preload]``, when it has one (``stiffened`` in the
-        result says whether the runs carried it)."""
+        result says whether the runs carried it); ``residual_vectors``: the static responses to
+        the frame's inertia loads in every reduced basis (each run's ``residual_vectors`` and
+        ``a_priori_estimate``, the share of the drive's static response the basis misses)."""
         if axes not in ("nodal_fixed", "mean"):
             raise InputError(f"axes {axes!r}: a driven body is seen from 'nodal_fixed' or 'mean' axes")
         ids = [str(m) for m in methods]
@@ -311,6 +319,7 @@ class Body:
             float(spectral_radius),
             axes == "mean",
             bool(stiffening),
+            bool(residual_vectors),
         )
 
     def campbell(
@@ -324,6 +333,7 @@ class Body:
         modes: Sequence[int] = (10,),
         stiffening: bool = True,
         progress: Progress = None,
+        residual_vectors: bool = True,
     ) -> dict:
         """The Campbell table of ``flexmodes campbell``: the body spun about ``axis``
         (through ``axis_point``, default the drive's master) with the interface ``drive``
@@ -332,8 +342,10 @@ class Body:
         reduction id at every count of ``modes``. ``stiffening``: the dynamic stiffening of
         the body file's ``[preload]`` (CalculiX's stiffness of the body spun), when it has
         one. Returns ``rates``, ``stiffened`` and ``curves``: per model its ``method``,
-        ``modes``, ``coordinates`` and ``hz`` (rates × count; a negative value is an unstable
-        pair)."""
+        ``modes``, ``coordinates``, ``residual_vectors``, ``hz`` (rates × count, each column
+        one mode shape carried from rate to rate by MAC; a negative value is an unstable
+        pair), ``mac`` and ``unstable`` (negative eigenvalues per rate). The full body is
+        solved only when ``methods`` names ``"nr"``."""
         ids = [str(m) for m in methods]
         return self._inner.campbell(
             str(drive),
@@ -346,6 +358,7 @@ class Body:
             "nr" in ids,
             bool(stiffening),
             progress,
+            bool(residual_vectors),
         )
 
     def __repr__(self) -> str:

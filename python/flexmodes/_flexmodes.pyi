@@ -56,6 +56,8 @@ class RustBody:
         modes: int,
         interface_modes: Optional[int],
         exudyn: bool,
+        eigensolver: str,
+        residual_vectors: bool = True,
     ) -> RustReducedModel: ...
     def compare(
         self,
@@ -89,6 +91,7 @@ class RustBody:
         spectral_radius: float,
         mean_axes: bool,
         stiffening: bool = True,
+        residual_vectors: bool = True,
     ) -> dict[str, Any]: ...
     def campbell(
         self,
@@ -102,6 +105,7 @@ class RustBody:
         full: bool,
         stiffening: bool,
         progress: Progress,
+        residual_vectors: bool = True,
     ) -> dict[str, Any]: ...
 
 class RustReducedModel:

@@ -187,7 +187,7 @@ impl RustBody {
     }
 
     /// Reduces the body as `flexmodes export` does.
-    #[pyo3(signature = (method, boundary, modes, interface_modes, exudyn, eigensolver))]
+    #[pyo3(signature = (method, boundary, modes, interface_modes, exudyn, eigensolver, residual_vectors=true))]
     #[allow(clippy::too_many_arguments)]
     fn reduce(
         &self,
@@ -198,6 +198,7 @@ impl RustBody {
         interface_modes: Option<usize>,
         exudyn: bool,
         eigensolver: &str,
+        residual_vectors: bool,
     ) -> PyResult<RustReducedModel> {
         let method = self::method(py, method)?;
         let eigensolver = bridge::eigensolver(py, eigensolver)?;
@@ -211,6 +212,7 @@ impl RustBody {
                 interface_modes,
                 exudyn,
                 eigensolver,
+                residual_vectors,
                 ..ExportParameters::default()
             };
             reduce_for_export(body, method, &interfaces.boundary, modes, &parameters)
@@ -285,7 +287,7 @@ impl RustBody {
 
     /// The Campbell table of `flexmodes campbell`: the lowest `count` frequencies (Hz) in
     /// the turning frame at each rate, the full body first, then each method at each count.
-    #[pyo3(signature = (drive, rates, axis, axis_point, count, methods, modes, full, stiffening, progress))]
+    #[pyo3(signature = (drive, rates, axis, axis_point, count, methods, modes, full, stiffening, progress, residual_vectors=true))]
     #[allow(clippy::too_many_arguments)]
     fn campbell<'py>(
         &self,
@@ -300,6 +302,7 @@ impl RustBody {
         full: bool,
         stiffening: bool,
         progress: Option<Py<PyAny>>,
+        residual_vectors: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let methods = methods
             .iter()
@@ -322,6 +325,8 @@ impl RustBody {
                 .flat_map(|&m| modes.iter().map(move |&k| (m, k)))
                 .collect(),
             stiffening,
+            full,
+            residual_vectors,
         };
         let body = &self.body;
         let table = computing(py, progress, |p| body_campbell(body, &parameters, p))?;
@@ -329,11 +334,18 @@ impl RustBody {
         d.set_item("rates", vector(py, &table.rates))?;
         d.set_item("stiffened", table.stiffened)?;
         let curves = PyList::empty(py);
-        for c in table.curves.iter().filter(|c| full || c.method.is_some()) {
+        d.set_item("axis_point", table.axis_point.0.to_vec())?;
+        for c in &table.curves {
             let r = PyDict::new(py);
             r.set_item("method", c.method.map(|m| m.id()).unwrap_or("nr"))?;
             r.set_item("modes", c.modes)?;
             r.set_item("coordinates", c.coordinates)?;
+            r.set_item("residual_vectors", c.residual_vectors)?;
+            r.set_item("unstable", c.unstable.clone())?;
+            r.set_item("route", c.route)?;
+            let n = c.mac.first().map_or(0, Vec::len);
+            let mac = Array2::from_shape_fn((c.mac.len(), n), |(i, j)| c.mac[i][j]);
+            r.set_item("mac", mac.into_pyarray(py))?;
             let n = c.hz.first().map_or(0, Vec::len);
             let hz = Array2::from_shape_fn((c.hz.len(), n), |(i, j)| c.hz[i][j]);
             r.set_item("hz", hz.into_pyarray(py))?;
@@ -344,7 +356,7 @@ impl RustBody {
     }
 
     /// The driven body of `flexmodes simulate --body`: histories as NumPy arrays.
-    #[pyo3(signature = (drive, methods, modes, full, boundary, outputs, rate, ramp, axis, end, step, output_every, progress, pinned, axis_point, shake, gravity, spectral_radius, mean_axes, stiffening=true))]
+    #[pyo3(signature = (drive, methods, modes, full, boundary, outputs, rate, ramp, axis, end, step, output_every, progress, pinned, axis_point, shake, gravity, spectral_radius, mean_axes, stiffening=true, residual_vectors=true))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -369,6 +381,7 @@ impl RustBody {
         spectral_radius: f64,
         mean_axes: bool,
         stiffening: bool,
+        residual_vectors: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let methods = methods
             .iter()
@@ -398,6 +411,7 @@ impl RustBody {
                 spectral_radius,
             },
             stiffening,
+            residual_vectors,
             ..defaults
         };
         let body = &self.body;
@@ -431,6 +445,8 @@ impl RustBody {
             r.set_item("reaction", reaction.into_pyarray(py))?;
             r.set_item("history_error", run.history_error)?;
             r.set_item("reaction_error", run.reaction_error)?;
+            r.set_item("residual_vectors", run.residual_vectors)?;
+            r.set_item("a_priori_estimate", run.estimate_max())?;
             runs.append(r)?;
         }
         d.set_item("runs", runs)?;

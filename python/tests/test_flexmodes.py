@@ -137,7 +137,11 @@ def test_rbe2_craig_bampton_against_scipy(bar):
     body = flexmodes.Body(K, M, nodes=nodes, node_sets=sets)
     model = body.reduce("cb", boundary="rbe2:end_a", modes=10)
     psi = model.psi
-    assert psi.shape == (K.shape[0], 16) and len(model.labels) == 16
+    # 6 rigid-interface columns, 10 modes and the twelve inertia loads' residual vectors.
+    assert sum(label.startswith("residual vector") for label in model.labels) == 12
+    assert psi.shape == (K.shape[0], 28) and len(model.labels) == 28
+    plain = body.reduce("cb", boundary="rbe2:end_a", modes=10, residual_vectors=False)
+    assert plain.psi.shape == (K.shape[0], 16)
     assert sum("rbe2" in label or "end_a" in label for label in model.labels) == 6
     scale = np.abs(model.k_r).max()
     np.testing.assert_allclose(model.k_r, psi.T @ (K @ psi), atol=1e-10 * scale)

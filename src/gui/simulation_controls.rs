@@ -45,6 +45,14 @@ pub struct SimulationControls {
     /// Dynamic stiffening from the body file's `[preload]` (bodies without one have none).
     #[serde(default = "stiffening_default")]
     pub stiffening: bool,
+    /// Inertia-load residual vectors in the reduced bases.
+    #[serde(default = "residual_vectors_default")]
+    pub residual_vectors: bool,
+}
+
+/// `simulate`'s default: residual vectors on.
+fn residual_vectors_default() -> bool {
+    DrivenBodyParameters::default().residual_vectors
 }
 
 /// `simulate`'s default: stiffened wherever the body file gives the preload.
@@ -79,6 +87,7 @@ impl SimulationControls {
             end: d.integration.end,
             full_body: true,
             stiffening: d.stiffening,
+            residual_vectors: d.residual_vectors,
         }
     }
 
@@ -95,6 +104,7 @@ impl SimulationControls {
             end: self.end,
             full_body: self.full_body,
             stiffening: self.stiffening,
+            residual_vectors: self.residual_vectors,
         })
     }
 }

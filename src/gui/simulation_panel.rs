@@ -110,6 +110,16 @@ impl Explorer {
                      [preload] gives at its rate, scaled with the rate²",
                 );
         }
+        ui.checkbox(
+            &mut changed.residual_vectors,
+            "residual vectors (inertia loads)",
+        )
+        .on_hover_text(
+            "adds to each reduced basis the static responses to the frame's own inertia \
+                 loads (its linear and angular accelerations and ω_iω_j), the body held at its \
+                 interfaces: what a spun part's arms do under their own centrifugal load, which \
+                 no low fixed-interface mode holds",
+        );
         if changed != s {
             out.push(Command::Set(Change::Simulation(Some(changed))));
         }

@@ -43,6 +43,8 @@ pub struct DriveRequest<'a> {
     pub full_body: bool,
     /// Dynamic stiffening from the body file's `[preload]`.
     pub stiffening: bool,
+    /// Inertia-load residual vectors in the reduced bases.
+    pub residual_vectors: bool,
 }
 
 /// Samples of the histories over a requested interval (as `simulate`'s default).
@@ -98,6 +100,7 @@ impl BodySimulation {
                     ..defaults.integration
                 },
                 stiffening: request.stiffening,
+                residual_vectors: request.residual_vectors,
                 ..defaults
             },
             full_body: request.full_body,

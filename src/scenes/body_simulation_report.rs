@@ -22,12 +22,20 @@ pub fn summary(
     let steps = study.runs.first().map_or(0, |r| r.cost.steps);
     let motion = motion_words(parameters, length);
     let mut text = format!(
-        "# simulate `{}` ({} DOF): `{drive}` ({ring} nodes, master at ({}) {length}) {}, \
-         generalized-α ρ∞ = {}, {steps} steps of {} s\n\n{table}\n",
+        "# simulate `{}` ({} DOF): `{drive}` ({ring} nodes, master at ({}) {length}) {}; the \
+         frame turns about ({}) {length}, {}; generalized-α ρ∞ = {}, {steps} steps of {} s\n\n\
+         {table}\n",
         body.model.name,
         study.dof,
         master.map(sig).map(|x| x.to_string()).join(", "),
         motion.join("; "),
+        study
+            .axis_point
+            .0
+            .map(sig)
+            .map(|x| x.to_string())
+            .join(", "),
+        study.axis_point.1,
         parameters.integration.spectral_radius,
         parameters.integration.step,
     );
@@ -36,7 +44,10 @@ pub fn summary(
          largest difference over the largest full-body value; reaction error = largest \
          reaction-force difference over the largest elastic part of the full body's. Lowest \
          and highest Hz: the reduced model on the frame at rest, ring clamped. Online: the \
-         integration alone (the outputs' reconstruction left out).\n",
+         integration alone (the outputs' reconstruction left out). A-priori estimate: the \
+         largest share, in the energy norm, of the static response to the drive's own \
+         inertia loads ({loads}) that the basis misses, the body held at its interfaces \
+         (known before integrating). Residual vectors: {rv}.\n",
         study.output_names.join(", "),
         match parameters.axes {
             crate::dynamics::AxisKind::Mean => {
@@ -44,7 +55,24 @@ pub fn summary(
                  part in the mass metric, §4.2 linearised)"
             }
             _ => "in the drive's turning frame",
-        }
+        },
+        loads = study
+            .runs
+            .iter()
+            .find(|r| !r.estimate.is_empty())
+            .map(|r| r
+                .estimate
+                .iter()
+                .map(|(n, _)| n.as_str())
+                .collect::<Vec<_>>()
+                .join(", "))
+            .unwrap_or_else(|| "none".into()),
+        rv = if study.residual_vectors {
+            "the static responses to the frame's unit inertia loads, added to each \
+             fixed-interface basis (--residual-vectors off leaves them out)"
+        } else {
+            "off (--residual-vectors off)"
+        },
     );
     text += &stiffening_words(body, parameters, study);
     for c in &study.stability {
@@ -83,7 +111,8 @@ pub fn summary(
         "units": {"length": length, "force": force},
         "drive": {"interface": drive, "master": master, "nodes": ring},
         "motion": {"axis": parameters.axis, "rate": parameters.rate, "ramp": parameters.ramp,
-                   "axis_point": parameters.axis_point,
+                   "axis_point": study.axis_point.0,
+                   "axis_point_from": study.axis_point.1,
                    "shake": parameters.shake.map(|(d, a, f)| json!({
                        "direction": d, "amplitude_m": a, "frequency_hz": f}))},
         "gravity": parameters.gravity,
@@ -169,21 +198,27 @@ pub fn runs_table(study: &DrivenStudy) -> Table {
     let mut table = Table::new(&[
         "model",
         "coordinates",
+        "residual vectors",
         "lowest Hz",
         "highest Hz",
         "offline s",
         "online s",
         "NR online / online",
         "Krylov iterations",
+        "a-priori estimate",
         "history error",
         "reaction error",
     ])
-    .rank_lower(&[5, 8, 9]);
+    .rank_lower(&[6, 10, 11]);
     for r in &study.runs {
         let online = r.cost.online_s;
         table.push(vec![
             Cell::text(r.label()),
             Cell::number(r.coordinates as f64, r.coordinates.to_string()),
+            match r.method {
+                None => none(),
+                Some(_) => Cell::number(r.residual_vectors as f64, r.residual_vectors.to_string()),
+            },
             hz(r.hz_range.map(|h| h.0)),
             hz(r.hz_range.map(|h| h.1)),
             Cell::number(r.offline_s, format!("{:.3}", r.offline_s)),
@@ -193,6 +228,7 @@ pub fn runs_table(study: &DrivenStudy) -> Table {
                 Cell::number(ratio, format!("{ratio:.0}"))
             }),
             Cell::text(r.cost.iterations.to_string()),
+            error(r.estimate_max()),
             error(r.history_error),
             error(r.reaction_error),
         ]);
@@ -281,6 +317,11 @@ fn run_json(r: &DrivenRun) -> serde_json::Value {
         "krylov_iterations": r.cost.iterations,
         "history_error": r.history_error,
         "reaction_error": r.reaction_error,
+        "residual_vectors": r.residual_vectors,
+        "a_priori_estimate": r.estimate_max(),
+        "a_priori_estimate_by_load": r.estimate.iter()
+            .map(|(name, e)| json!({"load": name, "share_outside": e}))
+            .collect::<Vec<_>>(),
         "outputs": r.outputs,
         "reaction": r.reaction,
     })

@@ -300,3 +300,11 @@ pub fn check_corpus_dir(dir: &Path) -> (f64, f64) {
     }
     (hz[0], seconds)
 }
+
+/// `v` in ascending order (a Campbell curve row follows mode shapes; FE codes print their
+/// frequencies sorted).
+pub fn ascending(v: &[f64]) -> Vec<f64> {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    v
+}

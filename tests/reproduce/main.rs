@@ -12,6 +12,7 @@ mod exudyn_export;
 mod failures;
 mod floating_frame;
 mod frame;
+mod inertia_loads;
 mod invariants;
 mod linalg;
 mod matrix_formats;

@@ -231,17 +231,24 @@ fn a_calculix_body_spins_at_calculix_frequencies() {
         count: 6,
         models: vec![(Method::CraigBampton, 12)],
         stiffening: true,
+        full: true,
+        residual_vectors: false,
     };
     let on = body_campbell(&body, &parameters, &Progress::new()).unwrap();
     assert!(on.stiffened);
     for (r, rate_hz) in ccx.iter().enumerate() {
         for (m, &expected) in rate_hz.iter().take(6).enumerate() {
-            let full = on.curves[0].hz[r][m];
+            let ascending = |v: &[f64]| {
+                let mut v = v.to_vec();
+                v.sort_by(f64::total_cmp);
+                v
+            };
+            let full = ascending(&on.curves[0].hz[r])[m];
             assert!(
                 (full - expected).abs() < 2e-4 * expected,
                 "NR rate {r} mode {m}: {full} {expected}"
             );
-            let cb = on.curves[1].hz[r][m];
+            let cb = ascending(&on.curves[1].hz[r])[m];
             assert!(
                 (cb - expected).abs() < 2e-3 * expected,
                 "CB rate {r} mode {m}: {cb} {expected}"

@@ -38,6 +38,25 @@ pub enum ReductionError {
         problem: super::ExportProblem,
     },
 
+    /// An interface built from node coordinates (rbe2, rbe3) on a body whose coordinates'
+    /// rigid motions are not K's null space though K is free (`defect`: max|KR| over
+    /// |K||R|; `nodes`: where |KR| is largest, 1-based): its rigid ring would carry energy in
+    /// rigid motion.
+    #[error(
+        "the interfaces {interfaces} are built from node coordinates that disagree with the \
+         stiffness: their rigid motions leave K R = {defect} of |K||R| (round-off leaves \
+         below 1e-9), largest at node(s) {nodes}; a ring tied to them would strain in rigid \
+         motion. Usually the FE code moved those nodes (CalculiX repositions mid-side nodes of \
+         distorted quadratic elements: write the coordinates of its .frd as the body's nodes)",
+        defect = crate::report::readable(*defect, 2),
+        nodes = nodes.iter().map(|n| n.to_string()).collect::<Vec<_>>().join(", ")
+    )]
+    GeometryDisagrees {
+        interfaces: String,
+        defect: f64,
+        nodes: Vec<usize>,
+    },
+
     /// A method asked of the generic [`reduce`](crate::reduction::reduce) entry point that
     /// needs more than a boundary set and a mode count.
     #[error("{method} needs {needs}")]

@@ -239,6 +239,35 @@ impl FeModel {
         max(&kr) / (self.k.max_abs() * max(&r)).max(f64::MIN_POSITIVE)
     }
 
+    /// The `count` nodes (1-based) where the coordinates' rigid motions are farthest from
+    /// K's null space, with their share of [`Self::rigid_motion_defect`]: per node, the
+    /// largest $|KR|$ on its DOF over $\max|K|\max|R|$, largest first. Where an FE code
+    /// moved nodes after writing the mesh (CalculiX repositions mid-side nodes of distorted
+    /// quadratic elements), these are the moved nodes and their neighbours.
+    pub fn rigid_motion_residual_nodes(&self, count: usize) -> Vec<(usize, f64)> {
+        let r = self.rigid_body_modes();
+        let kr = self.k.mul(r.as_ref());
+        let mut r_max = 0.0f64;
+        for j in 0..r.ncols() {
+            for i in 0..r.nrows() {
+                r_max = r_max.max(r[(i, j)].abs());
+            }
+        }
+        let scale = (self.k.max_abs() * r_max).max(f64::MIN_POSITIVE);
+        let per = self.dofs.per_node().max(1);
+        let mut nodes: Vec<(usize, f64)> = (0..self.node_count())
+            .map(|node| {
+                let worst = (node * per..(node + 1) * per)
+                    .flat_map(|i| (0..kr.ncols()).map(move |j| (i, j)))
+                    .fold(0.0f64, |m, (i, j)| m.max(kr[(i, j)].abs()));
+                (node + 1, worst / scale)
+            })
+            .collect();
+        nodes.sort_by(|a, b| b.1.total_cmp(&a.1));
+        nodes.truncate(count);
+        nodes
+    }
+
     /// Node positions displaced by a DOF vector `u` scaled by `scale`.
     pub fn displaced(&self, u: &[f64], scale: f64) -> Vec<[f64; 3]> {
         self.nodes

@@ -102,6 +102,9 @@ pub fn spinning_frequencies(body: &DrivenFrameBody, rate: f64, count: usize) -> 
     Ok(spinning_pairs(body, rate, count)?.hz())
 }
 
+/// One model's curves: frequencies and MACs per rate, unstable counts, the route.
+type Curve = (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<usize>, &'static str);
+
 /// The curves of one model over `rates`, tracked by MAC.
 fn curve(
     body: &DrivenFrameBody,
@@ -109,7 +112,7 @@ fn curve(
     count: usize,
     progress: &Progress,
     what: &str,
-) -> Result<(Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<usize>, &'static str)> {
+) -> Result<Curve> {
     let mut hz = Vec::new();
     let mut macs = Vec::new();
     let mut unstable = Vec::new();

@@ -71,6 +71,9 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
     // How far the coordinates' rigid motions are from K's null space (computed once).
     let defect = (model.rigid_motions == crate::fem::RigidMotions::FromGeometry)
         .then(|| model.rigid_motion_defect());
+    // A free body (its zero-energy count a free body's) whose coordinates' rigid motions are
+    // not its null space: the coordinates are not the ones its stiffness was made from.
+    let geometry = geometry_disagreement(body, full.zero_modes);
     let sets: Map<String, Value> = body
         .node_sets
         .iter()
@@ -93,6 +96,11 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
         "rigid_motions_from_coordinates":
             model.rigid_motions == crate::fem::RigidMotions::FromGeometry,
         "rigid_motion_defect": defect.map(sig),
+        "geometry_disagrees": geometry.as_ref().map(|(d, nodes)| json!({
+            "rigid_motion_defect": sig(*d),
+            "nodes": nodes.iter().map(|(n, share)| json!({"node": n, "share": sig(*share)}))
+                .collect::<Vec<_>>(),
+        })),
         "zero_energy_modes": full.zero_modes,
         "zero_energy_threshold_hz": sig(full.threshold_hz),
         "lowest_elastic_hz": sig_vec(&hz),
@@ -119,7 +127,7 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
          entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
          coordinates: {}\n- zero-energy modes: {} (below {} Hz; a free {} body has {}){}\n\
          - lowest elastic frequencies, Hz: {} ({})\n- eigensolver: {}\n- missed modes: {}\n- mass centre: {}; inertia about it: {}\n\
-         - node sets: {}\n- units: {}, {}, {}",
+         - node sets: {}\n- units: {}, {}, {}{}",
         model.name,
         body.location.display(),
         body.description,
@@ -199,8 +207,52 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
         body.units.length,
         body.units.mass,
         body.units.force,
+        geometry
+            .as_ref()
+            .map_or(String::new(), |(d, nodes)| geometry_words(*d, nodes)),
     );
     Ok((value, text))
+}
+
+/// Nodes named when the coordinates disagree with the stiffness.
+const GEOMETRY_NODES_NAMED: usize = 12;
+
+/// The rigid-motion defect and the nodes where it is largest, for a body with coordinates
+/// that K's free-free modes show to be free (`zero_modes` a free body's count) but whose
+/// coordinates' rigid motions are not K's null space (their defect above 1e-9).
+pub fn geometry_disagreement(
+    body: &ImportedBody,
+    zero_modes: usize,
+) -> Option<(f64, Vec<(usize, f64)>)> {
+    let model = &body.model;
+    let free = zero_modes == model.dofs.rigid_body_count();
+    if !(body.has_coordinates && free && model.rigid_motions == crate::fem::RigidMotions::Unknown) {
+        return None;
+    }
+    let defect = model.rigid_motion_defect();
+    Some((
+        defect,
+        model.rigid_motion_residual_nodes(GEOMETRY_NODES_NAMED),
+    ))
+}
+
+/// The import summary's warning of [`geometry_disagreement`].
+fn geometry_words(defect: f64, nodes: &[(usize, f64)]) -> String {
+    format!(
+        "\n- WARNING, geometry: the node coordinates' rigid motions are not K's null space \
+         (K R = {} of |K||R|, where the matrices' precision leaves below 1e-9), though K has \
+         a free body's zero-energy modes: the coordinates are not those K was made from. \
+         K R is largest at node(s) {}. Usually the FE code moved them: CalculiX repositions \
+         mid-side nodes of distorted quadratic elements, and its .frd holds the coordinates it \
+         used. Interfaces built from these coordinates (rbe2, rbe3, rigid rings) carry energy \
+         in rigid motion, and the reduced models' zero-energy modes are not rigid.",
+        crate::report::readable(defect, 2),
+        nodes
+            .iter()
+            .map(|(n, share)| format!("{n} ({})", crate::report::readable(*share, 2)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
 }
 
 /// An AMLS solve's counts as every JSON output gives them (`import`, the `amls` scene, the

@@ -207,6 +207,29 @@ impl<'a> BodyReducer<'a> {
         full_s: f64,
         progress: Progress,
     ) -> Result<Self> {
+        // Rings tied by node coordinates that are not the ones K was made from.
+        let tied = interfaces.rigid.iter().map(|i| i.name.clone());
+        let tied: Vec<String> = tied
+            .chain(interfaces.averaging.iter().map(|i| i.name.clone()))
+            .collect();
+        if !tied.is_empty()
+            && model.rigid_motions == crate::fem::RigidMotions::Unknown
+            && full.zero_modes == model.dofs.rigid_body_count()
+        {
+            let defect = model.rigid_motion_defect();
+            if defect > 1e-9 {
+                return Err(ReductionError::GeometryDisagrees {
+                    interfaces: tied.join(", "),
+                    defect,
+                    nodes: model
+                        .rigid_motion_residual_nodes(8)
+                        .into_iter()
+                        .map(|(n, _)| n)
+                        .collect(),
+                }
+                .into());
+            }
+        }
         // Split at once when there is a boundary, so a bad one is an error here.
         let problem = if interfaces.boundary.is_empty() {
             None

@@ -206,6 +206,11 @@ pub struct DrivenStudy {
     /// The reaction force a rigid body would need at each sample time: what the reaction
     /// errors leave out of the full body's reaction (its elastic part is their scale).
     pub rigid_force: Vec<[f64; 3]>,
+    /// The point of the spin axis the frame turned about, and where it came from
+    /// (`--axis-point`, the preload's axis, the drive's master).
+    pub axis_point: ([f64; 3], &'static str),
+    /// Whether the reduced bases carried inertia-load residual vectors.
+    pub residual_vectors: bool,
 }
 
 impl DrivenStudy {
@@ -265,6 +270,8 @@ impl DrivenStudy {
             dof: first.dof,
             rigid_force: first.rigid_force.clone(),
             stiffened: first.stiffened,
+            axis_point: first.axis_point,
+            residual_vectors: studies.iter().any(|s| s.residual_vectors),
         })
     }
 
@@ -314,13 +321,14 @@ pub fn driven_body_study(
     let drive = drive_interface(body, &parameters.drive, &interfaces)?;
     let driving = driving_of(body, parameters)?;
     // The frame turns about the axis point; the drive's ring is clamped in it wherever it is.
-    let (origin, _) = spin_axis_point(
+    let axis_point = spin_axis_point(
         body,
         &drive,
         driving.spin.axis,
         parameters.axis_point,
         parameters.stiffening,
     )?;
+    let origin = axis_point.0;
     let pinned_names: Vec<&str> = pinned_items
         .iter()
         .map(|p| p.split_once(':').map_or(p.as_str(), |(_, n)| n))
@@ -445,6 +453,8 @@ pub fn driven_body_study(
         stability,
         rigid_force,
         stiffened,
+        axis_point,
+        residual_vectors: parameters.residual_vectors,
     })
 }
 
@@ -641,9 +651,9 @@ fn compare_with_full(runs: &mut [DrivenRun], rigid_force: &[[f64; 3]]) {
 }
 
 /// The loads the drive puts on the undeformed body, $M a(x)$ with $a$ per unit coefficient:
-/// the spin's centrifugal load about the axis through `origin` ("rate²") and its tangential
-/// load ("angular acceleration"), and, when gravity or shaking move the frame, a unit
-/// linear acceleration along each axis.
+/// when it spins, the spin's centrifugal load about the axis through `origin` ("rate²") and
+/// its tangential load ("angular acceleration"); when gravity or shaking move the frame, a
+/// unit linear acceleration along each axis.
 fn drive_loads(model: &FeModel, origin: [f64; 3], driving: &Driving) -> Vec<(String, Vec<f64>)> {
     let e = driving.spin.axis.into_inner();
     let load = |field: &dyn Fn([f64; 3]) -> ([f64; 3], [f64; 3])| -> Vec<f64> {
@@ -662,10 +672,11 @@ fn drive_loads(model: &FeModel, origin: [f64; 3], driving: &Driving) -> Vec<(Str
         let a = e.cross(&Vector3::from(s));
         ([a.x, a.y, a.z], [e.x, e.y, e.z])
     };
-    let mut loads = vec![
-        ("rate²".to_string(), load(&centrifugal)),
-        ("angular acceleration".to_string(), load(&tangential)),
-    ];
+    let mut loads = Vec::new();
+    if driving.spin.rate != 0.0 {
+        loads.push(("rate²".to_string(), load(&centrifugal)));
+        loads.push(("angular acceleration".to_string(), load(&tangential)));
+    }
     if driving.gravity != Vector3::zeros() || driving.shake.is_some() {
         for (k, name) in ["x", "y", "z"].iter().enumerate() {
             let linear = move |_: [f64; 3]| {

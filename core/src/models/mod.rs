@@ -35,7 +35,8 @@ pub use body_comparison::{
     BodyComparisonPoint, ROUND_OFF_ERROR, compare_body_methods,
 };
 pub use body_import::{
-    FULL_MODES, amls_json, import_summary, import_summary_by, missed_note, refuse_mechanism,
+    FULL_MODES, amls_json, geometry_disagreement, import_summary, import_summary_by, missed_note,
+    refuse_mechanism,
 };
 pub use body_modes_study::{
     BODY_MODES_COMPARED, BodyModesParameters, BodyModesStudy, HeldModes, MethodMeasure,
