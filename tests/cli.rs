@@ -1249,7 +1249,7 @@ fn thread_counts_are_compared_and_reported() {
 fn a_spinning_part_from_the_command_line() {
     let body = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/tests/bodies/spun-lever/body.toml"
+        "/assets/bodies/spun-lever/body.toml"
     );
     let v = json(&[
         "campbell",

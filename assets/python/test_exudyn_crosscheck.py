@@ -189,12 +189,12 @@ def test_exudyn_matches_flexmodes(name, tmp_path):
 
 
 def test_exudyn_stiffens_as_flexmodes_does(tmp_path):
-    """The steel lever with CalculiX's preloaded stiffness (tests/bodies/spun-lever, mm-t-s)
+    """The steel lever with CalculiX's preloaded stiffness (assets/bodies/spun-lever, mm-t-s)
     spun up to 2 000 rad/s about its root: `export --exudyn` writes the modal geometric
     stiffness, the adapter's `add_stiffening` puts it into Exudyn as a user force, and the tip's
     history agrees with `flexmodes simulate` (stiffening on) to 1 % of its peak, while the
     stiffening itself moves it by several times that."""
-    body, drive, output, modes = "tests/bodies/spun-lever/body.toml", "root", "tip", 10
+    body, drive, output, modes = "assets/bodies/spun-lever/body.toml", "root", "tip", 10
     rate, ramp, end, step, rho = 2000.0, 0.01, 0.02, 1e-5, 0.9
     out = tmp_path / "export"
     run("export", "--body", body, "--method", "cb", "--boundary", f"rbe2:{drive}",

@@ -33,6 +33,14 @@ pub static FILES: &[(&str, &[u8])] = &[
     embed!("bodies/l-bracket/m.mtx.gz"),
     embed!("bodies/l-bracket/nodes.csv"),
     embed!("bodies/l-bracket/edges.csv"),
+    embed!("bodies/spun-lever/body.toml"),
+    embed!("bodies/spun-lever/job.sti.gz"),
+    embed!("bodies/spun-lever/job.mas.gz"),
+    embed!("bodies/spun-lever/job.dof.gz"),
+    embed!("bodies/spun-lever/spun.sti.gz"),
+    embed!("bodies/spun-lever/spun.dof.gz"),
+    embed!("bodies/spun-lever/spun.inp"),
+    embed!("bodies/spun-lever/nodes.csv"),
 ];
 
 /// The embedded file at `path` (relative to `assets/`).

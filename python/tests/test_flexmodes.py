@@ -265,7 +265,7 @@ def test_a_spinning_calculix_lever_at_calculix_frequencies():
     the turning frame at 1 000 and 2 000 rad/s, with the [preload]'s stiffening, equal
     CalculiX's prestressed ones to 2e-4; without it the first one falls below them; a driven
     run says it carried the stiffening."""
-    folder = ROOT / "tests" / "bodies" / "spun-lever"
+    folder = ROOT / "assets" / "bodies" / "spun-lever"
     body = flexmodes.Body.from_file(folder / "body.toml")
     reference = json.loads((folder / "reference.json").read_text())
     table = body.campbell("rbe2:root", [1000.0, 2000.0], count=6, methods=["nr", "cb"], modes=[12])

@@ -93,7 +93,7 @@ pub(super) enum Command {
     /// Check a body file and print what it holds (DOF, entries, mass, rigid-body modes, lowest
     /// frequencies, node sets).
     Import {
-        /// The body file (TOML), or `builtin:NAME` (app-b-slab, l-bracket).
+        /// The body file (TOML), or `builtin:NAME` (app-b-slab, l-bracket, spun-lever).
         body: String,
         /// Print the summary as JSON.
         #[arg(long)]

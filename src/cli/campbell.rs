@@ -124,7 +124,9 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
                 }));
             } else {
                 row.extend(c.hz[r].iter().map(|&f| {
-                    if f < 0.0 {
+                    if f.is_nan() {
+                        Cell::text("lost".to_string())
+                    } else if f < 0.0 {
                         Cell::number(f, format!("unstable ({:.4})", -f))
                     } else {
                         Cell::number(f, crate::report::sig6(f))
@@ -157,7 +159,8 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
         "# campbell `{}`: spun about ({}) through {} ({}), {}\n\n{}\nFrequencies in the \
          turning frame, ring clamped, Coriolis coupling left out (as the FE codes' prestressed \
          frequency steps leave it). Each column follows one mode shape from rate to rate (MAC \
-         against the rate before; `least MAC` is the row's smallest); `unstable`: the spin's \
+         against the rate before; `least MAC` is the row's smallest; `lost`: none of the pairs \
+         solved (four more than shown) has the shape, MAC below 0.5); `unstable`: the spin's \
          softening passed the stiffness. RV: inertia-load residual vectors. Solved: {}.{}",
         body.model.name,
         parameters.axis.map(|a| a.to_string()).join(", "),

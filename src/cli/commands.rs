@@ -395,6 +395,21 @@ fn export(args: ExportArgs) -> Result<()> {
             &summary.residuals[..summary.residuals.len().min(8)]
         ),
     );
+    // A free body's reduced model should keep its rigid motions (modal truncation alone
+    // moves its interface DOF without them).
+    let rigid = body.model.dofs.rigid_body_count();
+    if body.model.rigid_motions == crate::fem::RigidMotions::FromGeometry
+        && method != crate::reduction::Method::ModalTruncation
+        && summary.zero_energy < rigid
+    {
+        println!(
+            "WARNING: the reduced model has {} zero-energy mode(s) where the free body has {rigid} \
+             rigid motions: its basis does not hold them all, so a floating frame's rigid \
+             motion would strain it (check the interface: too few nodes, or coordinates that \
+             disagree with the stiffness, which `flexmodes import` names)",
+            summary.zero_energy
+        );
+    }
     if let Some(e) = &summary.exudyn {
         let hz = e.hz();
         println!(

@@ -21,7 +21,9 @@ pub use chart_text_check::{VIEW_PIXELS, chart_count, chart_text_clashes, chart_t
 pub use eye::{Bounds, Eye};
 pub use layout::Layout;
 pub use log_log_chart::{LogLogChart, LogLogSeries};
-pub use palette::{AMLS, PARETO, REFERENCE, REFERENCE_GHOST, level_color, method_color};
+pub use palette::{
+    AMLS, PARETO, REFERENCE, REFERENCE_GHOST, RESIDUAL_VECTORS, level_color, method_color,
+};
 pub use recorder::{Recorder, encode_messages};
 pub use recording_content::RecordingContent;
 pub use recording_digest::RecordingDigest;

@@ -33,6 +33,10 @@ pub const PARETO: Color = [110, 110, 110, 255];
 /// reduction: violet, apart from every method's colour.
 pub const AMLS: Color = [120, 60, 210, 255];
 
+/// Colour of a reduced model with inertia-load residual vectors beside the same model
+/// without them (drawn in its method's colour): burnt orange, relative luminance 0.2.
+pub const RESIDUAL_VECTORS: Color = [200, 90, 20, 255];
+
 /// Colour of the separators of a substructure tree's `level` (0: the root), cycling through
 /// six of the palette's colours; the leaves are drawn in [`REFERENCE`] grey.
 pub fn level_color(level: usize) -> Color {

@@ -9,11 +9,14 @@
 //! - An explicit step above the critical one diverges (§7.2's models, Dormand–Prince 5(4)).
 //! - Guyan (b)'s master choice breaks the beam's symmetry (§6.2.1).
 //! - Modal truncation cannot carry boundary motion into the body (§6.3, §7.1).
+//! - A spun arm's own inertia loads are missed by CB's fixed-interface modes alone; their
+//!   residual vectors carry them (CalculiX's lever).
 
 use super::failure_cases::{
     Failure, condensation_failure, eitelberg_failure, guyan_symmetry_failure,
     too_few_boundary_failure,
 };
+use super::failure_inertia_case::inertia_load_failure;
 use super::failure_motion_cases::{
     boundary_motion_failure, explicit_step_failure, guyan_mean_axes_failure, spin_up_failure,
 };
@@ -31,7 +34,8 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "where the methods fail, in one recording: CB with too few boundary DOF, \
               Eitelberg without feedback, mode condensation's n³ cost, mean axes with a \
               Guyan mass, an explicit step above critical, Guyan (b)'s symmetry, modal \
-              truncation and boundary motion",
+              truncation and boundary motion, a spun arm's inertia loads without residual \
+              vectors",
     sections: "§3.2, §4.2, §6.2–6.6, §7.1–7.2",
     controls: super::scene_info::SceneControls::methods_only(&[]),
 };
@@ -53,7 +57,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut visuals = Vec::new();
 
     type Study<'a> = Box<dyn Fn() -> Result<Failure> + 'a>;
-    let studies: [(&str, &str, Study); 8] = [
+    let studies: [(&str, &str, Study); 9] = [
         (
             "craig_bampton_too_few_boundary",
             "Craig–Bampton with too few boundary DOF",
@@ -94,6 +98,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             "spin-up without dynamic stiffening",
             Box::new(|| spin_up_failure(opts)),
         ),
+        (
+            "inertia_loads_without_residual_vectors",
+            "a spun arm's inertia loads",
+            Box::new(|| inertia_load_failure(&opts.progress)),
+        ),
     ];
     for (key, phase, study) in studies {
         opts.progress.phase(phase)?;
@@ -130,7 +139,9 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          at one common scale. *cost*: offline time of mode condensation's complete interior \
          eigenproblem against Craig–Bampton's partial one, by mesh size (log–log). *explicit \
          step*: node 8's |ζ| in slab-sim1 with Craig–Bampton and fixed Dormand–Prince steps \
-         below and above the critical one (log scale: the growth is a straight line).\n\n\
+         below and above the critical one (log scale: the growth is a straight line). \
+         *inertia loads*: the spun lever's tip history error against NR (lines) and the \
+         a-priori estimate (points) for CB k without and with residual vectors (log–log).\n\n\
          {sections}"
     );
     let layout = Layout::Horizontal(
@@ -141,19 +152,20 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                         Layout::view3d("guyan (b) symmetry", "/modes"),
                         Layout::view3d("boundary motion", "/static"),
                     ]),
-                    Layout::Horizontal(
-                        vec![
-                            Layout::Spatial2D {
-                                name: "cost: offline s against DOF (log–log)".into(),
-                                origin: "/charts/cost".into(),
-                            },
-                            Layout::Spatial2D {
-                                name: "explicit step: node 8 |ζ| against time (semi-log)".into(),
-                                origin: "/charts/explicit_step".into(),
-                            },
-                        ],
-                        vec![1.0, 1.0],
-                    ),
+                    Layout::Tabs(vec![
+                        Layout::Spatial2D {
+                            name: "cost: offline s against DOF (log–log)".into(),
+                            origin: "/charts/cost".into(),
+                        },
+                        Layout::Spatial2D {
+                            name: "explicit step: node 8 |ζ| against time (semi-log)".into(),
+                            origin: "/charts/explicit_step".into(),
+                        },
+                        Layout::Spatial2D {
+                            name: "inertia loads: error and estimate against k (log–log)".into(),
+                            origin: "/charts/inertia_loads".into(),
+                        },
+                    ]),
                 ],
                 vec![1.2, 1.0],
             ),

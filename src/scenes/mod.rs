@@ -17,6 +17,7 @@ mod cantilever_text;
 pub mod cantilever_variants;
 mod cantilever_views;
 mod failure_cases;
+mod failure_inertia_case;
 mod failure_motion_cases;
 mod failures;
 mod frequency_bars;

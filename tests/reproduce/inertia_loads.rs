@@ -1,7 +1,7 @@
 //! A body's own inertia loads: the residual vectors that carry them into every reduced basis,
 //! the a-priori estimate that predicts what a basis without them misses, and the geometry
 //! check that keeps rigid rings from being tied to coordinates K was not made from. On bodies
-//! CalculiX wrote (tests/bodies/spun-lever, tests/corpus/ccx-block).
+//! CalculiX wrote (assets/bodies/spun-lever, tests/corpus/ccx-block).
 
 use flexmodes::{
     Progress,
@@ -11,7 +11,7 @@ use flexmodes::{
     reduction::Method,
 };
 
-const LEVER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/bodies/spun-lever");
+const LEVER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bodies/spun-lever");
 
 fn lever() -> ImportedBody {
     ImportedBody::load(&format!("{LEVER}/body.toml")).unwrap()

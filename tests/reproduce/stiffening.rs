@@ -211,7 +211,7 @@ fn a_calculix_body_spins_at_calculix_frequencies() {
         models::{BodyCampbellParameters, body_campbell},
         reduction::Method,
     };
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/bodies/spun-lever");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bodies/spun-lever");
     let body = ImportedBody::load(&format!("{dir}/body.toml")).unwrap();
     let preload = body
         .preload
@@ -309,7 +309,7 @@ fn flexmodes_bricks_stiffen_as_calculix_does() {
         fem::{BrickElements, SlabParameters, slab},
         linalg::generalized_eigen,
     };
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/bodies/spun-lever");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bodies/spun-lever");
     let reference: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(format!("{dir}/reference.json")).unwrap())
             .unwrap();
@@ -359,7 +359,7 @@ fn flexmodes_bricks_stiffen_as_calculix_does() {
             .collect()
     };
     // At rest the two codes' bodies agree (CalculiX's own matrices give the same six to
-    // 6 digits, tests/bodies/spun-lever); what the spin adds, f² − f₀², is compared.
+    // 6 digits, assets/bodies/spun-lever); what the spin adds, f² − f₀², is compared.
     let rest = spinning(0.0, true);
     for (rate, expected) in rates.iter().zip(&ccx) {
         let hz = spinning(*rate, true);

@@ -62,7 +62,8 @@ pub struct BodyCampbellCurve {
     /// Frequencies (Hz) at each rate, curve by curve: the k-th value at every rate belongs
     /// to one mode shape, carried from rate to rate by MAC (modes cross and veer), in the
     /// ascending order of the first rate; a negative value is an unstable pair
-    /// ($-\sqrt{-\omega^2}/2\pi$); NaN where the pairs are unknown (an unstable full body).
+    /// ($-\sqrt{-\omega^2}/2\pi$); NaN where the pairs are unknown (an unstable full body)
+    /// or the curve's shape is lost (no candidate with a MAC of [`LOST_MAC`]).
     pub hz: Vec<Vec<f64>>,
     /// The MAC with which each curve was carried to each rate (1 at the first).
     pub mac: Vec<Vec<f64>>,
@@ -116,43 +117,49 @@ fn curve(
     let mut hz = Vec::new();
     let mut macs = Vec::new();
     let mut unstable = Vec::new();
+    // The shape each curve had when last found.
     let mut previous: Option<Mat<f64>> = None;
     let mut route = "dense";
+    // Candidates beyond the curves shown: a mode that climbs past a higher one stays found.
+    let wanted = (count + TRACKING_SPARE).min(body.dim());
     for &rate in rates {
         progress.phase(&format!("{what} at {rate} rad/s"))?;
-        let pairs = spinning_pairs(body, rate, count)?;
+        let pairs = spinning_pairs(body, rate, wanted)?;
         route = pairs.route;
         unstable.push(pairs.unstable);
         let f = pairs.hz();
+        let shown = count.min(f.len());
         if f.is_empty() {
             hz.push(vec![f64::NAN; count]);
             macs.push(vec![f64::NAN; count]);
-            previous = None;
             continue;
         }
-        let Some(prev) = previous.as_ref().filter(|p| p.ncols() == f.len()) else {
-            macs.push(vec![1.0; f.len()]);
-            hz.push(f);
-            previous = Some(pairs.vectors);
+        let Some(prev) = previous.as_ref().filter(|p| p.ncols() == shown) else {
+            macs.push(vec![1.0; shown]);
+            hz.push(f[..shown].to_vec());
+            previous = Some(pairs.vectors.subcols(0, shown).to_owned());
             continue;
         };
         let m_current = mass_times(body, &pairs.vectors);
         let order = track_by_mac(prev, &m_current);
-        let mut row = vec![f64::NAN; f.len()];
-        let mut mac_row = vec![0.0; f.len()];
-        let mut next = Mat::<f64>::zeros(pairs.vectors.nrows(), f.len());
+        let mut row = vec![f64::NAN; shown];
+        let mut mac_row = vec![0.0; shown];
+        let mut next = prev.clone();
         for (c, o) in order.iter().enumerate() {
-            if let Some((j, v)) = o {
-                row[c] = f[*j];
-                mac_row[c] = *v;
-                // The sign that keeps the shape's orientation.
-                let dot: f64 = (0..next.nrows())
-                    .map(|i| prev[(i, c)] * m_current[(i, *j)])
-                    .sum();
-                let sign = if dot < 0.0 { -1.0 } else { 1.0 };
-                for i in 0..next.nrows() {
-                    next[(i, c)] = sign * pairs.vectors[(i, *j)];
-                }
+            let Some((j, v)) = o else { continue };
+            mac_row[c] = *v;
+            if *v < LOST_MAC {
+                // No candidate has this curve's shape: not drawn at this rate.
+                continue;
+            }
+            row[c] = f[*j];
+            // The sign that keeps the shape's orientation.
+            let dot: f64 = (0..next.nrows())
+                .map(|i| prev[(i, c)] * m_current[(i, *j)])
+                .sum();
+            let sign = if dot < 0.0 { -1.0 } else { 1.0 };
+            for i in 0..next.nrows() {
+                next[(i, c)] = sign * pairs.vectors[(i, *j)];
             }
         }
         hz.push(row);
@@ -161,6 +168,12 @@ fn curve(
     }
     Ok((hz, macs, unstable, route))
 }
+
+/// Pairs solved beyond the curves shown, for tracking.
+const TRACKING_SPARE: usize = 4;
+
+/// A curve whose best MAC falls below this is lost at that rate (its value not given).
+pub const LOST_MAC: f64 = 0.5;
 
 fn mass_times(body: &DrivenFrameBody, x: &Mat<f64>) -> Mat<f64> {
     let mass = Combination {

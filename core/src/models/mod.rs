@@ -15,6 +15,7 @@ mod driven_setup;
 mod driven_stability;
 mod dual_spin_study;
 mod failure_studies;
+mod inertia_load_study;
 mod interface_reduction_sweep;
 mod interface_response;
 mod plank_simulation;
@@ -68,6 +69,9 @@ pub use failure_studies::{
     GuyanMeanAxes, KEPT_MODES, MOVED_NODE, SymmetryCase, TOO_FEW_BOUNDARIES, boundary_motion,
     condensation_cost, eitelberg_feedback, explicit_step, guyan_mean_axes, guyan_symmetry,
     mirror_defect, too_few_boundary,
+};
+pub use inertia_load_study::{
+    INERTIA_LOAD_BODY, INERTIA_LOAD_MODES, INERTIA_LOAD_RATE, InertiaLoadStudy, inertia_load_study,
 };
 pub use interface_reduction_sweep::{
     INTERFACE_MODE_SWEEP, InterfaceReductionPoint, interface_reduction_sweep,
