@@ -26,7 +26,7 @@
 pub use flexmodes_core::{
     Error, PhaseReading, Progress, ProgressReading, Result, analysis, assets, atomic_file,
     body_file, dynamics, error, export, fem, inline_markdown, linalg, markdown_tables, models,
-    reduction, report, work_pool,
+    reduction, report, report_diff, work_pool,
 };
 
 #[cfg(feature = "cli")]

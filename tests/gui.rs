@@ -605,13 +605,13 @@ fn switched_and_fresh(
 
 /// After a sequence of switches (methods unticked and ticked, modes changed, axes changed),
 /// the recording shown holds exactly the entities of a fresh recording of the final
-/// selection, with the same contents (the wall times of the text and of the speed–accuracy
-/// chart apart), and its layout is the fresh one's: a removed method leaves no entity, view
+/// selection, with the same contents (the wall times of the text, of the report and of the
+/// speed–accuracy chart apart), and its layout is the fresh one's: a removed method leaves no entity, view
 /// or tab behind, and integrations served from the cache equal integrations run anew.
 #[test]
 fn after_any_switches_the_recording_equals_a_fresh_one() {
     use flexmodes::{dynamics::AxisKind, gui::Change, reduction::Method};
-    let timed = ["/scene", "/metrics/speed_accuracy"];
+    let timed = ["/scene", "/report", "/metrics/speed_accuracy"];
     let cases: Vec<(Controls, Vec<Change>, Option<&str>)> = vec![
         (
             Controls::for_scene(SceneId::SlabSim1),

@@ -38,6 +38,7 @@ pub mod models;
 mod progress;
 pub mod reduction;
 pub mod report;
+pub mod report_diff;
 pub mod work_pool;
 
 pub use error::{Error, Result};

@@ -138,6 +138,11 @@ pub(super) enum Command {
     /// teacher commands (`show SCENE [--method …] [--modes N] …`, `list`, `quit`) from the
     /// terminal. Needs the `serve` feature.
     Serve(ServeArgs),
+    /// Compare two scene reports, or two folders of them, number by number: a report is
+    /// `report --json`'s object (`.json`) or the one a recording holds (`.rrd`). Prints every
+    /// number that moved beyond the relative tolerance, key by key, with the wall times left
+    /// out, and exits 1 when one did.
+    Diff(super::diff::DiffArgs),
     /// Print a scene's numeric results (a table, or JSON on stdout).
     Report {
         /// Scene id.

@@ -79,6 +79,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Bench(args) => super::bench::bench(args, &threads),
         Command::Simulate(arguments) => super::simulate::run(arguments),
         Command::Campbell(arguments) => super::campbell::run(arguments),
+        Command::Diff(arguments) => super::diff::run(arguments),
         Command::Serve(arguments) => super::serve::run(arguments),
         Command::Convert {
             body,

@@ -5,6 +5,7 @@ mod bench;
 mod body_arguments;
 mod campbell;
 mod commands;
+mod diff;
 mod serve;
 mod simulate;
 mod stderr;

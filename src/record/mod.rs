@@ -9,6 +9,7 @@ mod eye;
 mod layout;
 mod log_log_chart;
 mod palette;
+mod recorded_report;
 mod recorder;
 mod recording_content;
 mod recording_digest;
@@ -24,6 +25,7 @@ pub use log_log_chart::{LogLogChart, LogLogSeries};
 pub use palette::{
     AMLS, PARETO, REFERENCE, REFERENCE_GHOST, RESIDUAL_VECTORS, level_color, method_color,
 };
+pub use recorded_report::{REPORT_ENTITY, recorded_report};
 pub use recorder::{Recorder, encode_messages};
 pub use recording_content::RecordingContent;
 pub use recording_digest::RecordingDigest;

@@ -116,6 +116,13 @@ impl Recorder {
         }
         rec.log_static("scene", &rerun_sdk::TextDocument::from_markdown(markdown))
             .or_rerun()?;
+        // The scene's numbers as `report --json` prints them, for `flexmodes diff` and for a
+        // user inspecting a saved recording (no view shows it).
+        rec.log_static(
+            super::REPORT_ENTITY,
+            &rerun_sdk::TextDocument::new(out.report.to_json().to_string()),
+        )
+        .or_rerun()?;
         let up = if out.y_up {
             rerun_sdk::ViewCoordinates::RIGHT_HAND_Y_UP()
         } else {

@@ -8,7 +8,8 @@
 
 pub use re_sdk::{
     ApplicationId, AsComponents, RecordingStream, RecordingStreamBuilder, RecordingStreamError,
-    SerializationError, blueprint, external, log::TimeColumn,
+    SerializationError, blueprint, external,
+    log::{Chunk, TimeColumn},
 };
 pub use re_sdk_types::{
     archetypes::{

@@ -195,6 +195,10 @@ pub enum Error {
     #[error(transparent)]
     Reduction(#[from] super::ReductionError),
 
+    /// Errors of comparing reports (`flexmodes diff`).
+    #[error(transparent)]
+    ReportDiff(#[from] super::ReportDiffError),
+
     /// Errors of serving the classroom (`flexmodes serve`).
     #[error(transparent)]
     Serve(#[from] super::ServeError),
