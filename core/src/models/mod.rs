@@ -6,6 +6,7 @@ mod body_advice;
 mod body_campbell;
 mod body_comparison;
 mod body_import;
+mod body_interfaces;
 mod body_modes_study;
 mod body_reduction;
 mod cantilever_study;
@@ -13,6 +14,7 @@ mod driven_body;
 mod driven_measure;
 mod driven_setup;
 mod driven_stability;
+mod driven_study;
 mod dual_spin_study;
 mod failure_studies;
 mod inertia_load_study;
@@ -39,24 +41,23 @@ pub use body_import::{
     FULL_MODES, amls_json, geometry_disagreement, import_summary, import_summary_by, missed_note,
     refuse_mechanism,
 };
+pub use body_interfaces::BodyInterfaces;
 pub use body_modes_study::{
     BODY_MODES_COMPARED, BodyModesParameters, BodyModesStudy, HeldModes, MethodMeasure,
     body_modes_study,
 };
 pub use body_reduction::{
-    BALANCED_MODES_PER_VECTOR, BALANCED_ZETA, BODY_METHODS, BodyInterfaces, BodyReducer,
-    ReducedBody,
+    BALANCED_MODES_PER_VECTOR, BALANCED_ZETA, BODY_METHODS, BodyReducer, ReducedBody,
 };
 pub use cantilever_study::{
     BAND_HZ, BT_ALPHA, CANTILEVER_METHODS, CantileverIo, CantileverStudy,
     INTEREST_HZ as WITTEVEEN_INTEREST_HZ, POINT_MASS_T, PRINTED_HZ, Printed, StaticCase,
     VariantModes, bottom_line_error, cantilever_study, witteveen_bases,
 };
-pub use driven_body::{
-    DRIVEN_METHODS, DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study,
-};
+pub use driven_body::{DRIVEN_METHODS, DrivenBodyParameters, driven_body_study};
 pub use driven_measure::{FieldMap, history_error};
 pub use driven_stability::ExplicitCheck;
+pub use driven_study::{DrivenRun, DrivenStudy};
 pub use dual_spin_study::{
     ARTICULATION_DEG, AssembledSet, CbSets, DUAL_SPIN_METHODS, DualSpinSets, DualSpinStudy,
     INFLUENCE_FRACTION, INTEREST_HZ as SPANOS_INTEREST_HZ, RotorRanking, RotorSelection,
