@@ -339,7 +339,7 @@ fn export(args: ExportArgs) -> Result<()> {
         averaging_interfaces: interfaces.averaging,
         interface_modes,
         exudyn,
-        without_stiffening: stiffening == super::arguments::OnOff::Off,
+        stiffening: stiffening == super::arguments::OnOff::On,
         residual_vectors: residual_vectors == super::arguments::OnOff::On,
         eigensolver,
     };

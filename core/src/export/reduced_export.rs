@@ -75,7 +75,7 @@ impl PsiFormat {
 }
 
 /// Settings of [`export`].
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ExportParameters {
     /// The format of Ψ.
     pub psi_format: PsiFormat,
@@ -89,14 +89,32 @@ pub struct ExportParameters {
     /// Also write the body for Exudyn (`exudyn/`, see [`super::exudyn_body`]): the floating
     /// frame on the first rigid interface.
     pub exudyn: bool,
-    /// Leave out the geometric stiffness of a body file's `[preload]` (written by default).
-    pub without_stiffening: bool,
+    /// Write the geometric stiffness of a body file's `[preload]` (`--stiffening on`, the
+    /// default).
+    pub stiffening: bool,
     /// Append the residual vectors of the frame's inertia loads to a fixed-interface basis
     /// (GR, MT, CB, MC: [`crate::reduction::with_inertia_residual_vectors`]).
     pub residual_vectors: bool,
     /// The solver of the fixed-interface pairs on the sparse path and of the free-free pairs
     /// the load-built methods start from (`--eigensolver`; Lanczos by default).
     pub eigensolver: Eigensolver,
+}
+
+impl Default for ExportParameters {
+    /// Ψ as `.npy`, no rigid or averaging interface, every constraint mode, no Exudyn body,
+    /// the preload's stiffening written, no residual vectors, Lanczos.
+    fn default() -> Self {
+        Self {
+            psi_format: PsiFormat::default(),
+            rigid_interfaces: Vec::new(),
+            averaging_interfaces: Vec::new(),
+            interface_modes: None,
+            exudyn: false,
+            stiffening: true,
+            residual_vectors: false,
+            eigensolver: Eigensolver::default(),
+        }
+    }
 }
 
 /// What [`export`] wrote.
@@ -329,15 +347,15 @@ pub fn reduce_for_export(
             &basis,
             &parameters.rigid_interfaces,
             &parameters.averaging_interfaces,
-            !parameters.without_stiffening,
+            parameters.stiffening,
         )?;
         lap("Exudyn basis", &mut timings);
         Some(ex)
     } else {
         None
     };
-    let kg_r = match (&body.preload, parameters.without_stiffening) {
-        (Some(p), false) => Some(basis.project(&p.rate_squared)),
+    let kg_r = match (&body.preload, parameters.stiffening) {
+        (Some(p), true) => Some(basis.project(&p.rate_squared)),
         _ => None,
     };
     Ok(ReducedExport {
@@ -370,7 +388,7 @@ impl ReducedExport {
                 &self.basis,
                 &self.parameters.rigid_interfaces,
                 &self.parameters.averaging_interfaces,
-                !self.parameters.without_stiffening,
+                self.parameters.stiffening,
             )?);
             self.timings
                 .push(("Exudyn basis", started.elapsed().as_secs_f64()));
