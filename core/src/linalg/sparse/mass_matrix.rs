@@ -2,7 +2,7 @@
 
 use faer::{Mat, MatRef};
 
-use super::SparseSymmetric;
+use crate::linalg::SparseSymmetric;
 
 /// $M$ in kg (kg·m² on rotational DOF).
 #[derive(Debug, Clone)]

@@ -11,12 +11,13 @@
 //! block, whose span holds every Ritz residual (thick restart). Every returned pair is checked
 //! by its residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
 
-use super::LinalgError;
+use crate::linalg::LinalgError;
+use crate::linalg::sparse::pair_residuals;
 use faer::{Mat, MatRef};
 
-use super::{
+use crate::linalg::{
     GeneralizedEigen, MassMatrix, SparseSymmetric, SymmetricFactor, ZERO_ENERGY_RATIO,
-    eigenvalue_scale, fix_sign, generalized_eigen, pair_residuals::pair_residuals, symmetric_eigen,
+    eigenvalue_scale, fix_sign, generalized_eigen, symmetric_eigen,
 };
 use crate::{Error, Result};
 
@@ -73,7 +74,7 @@ pub struct PartialEigenStatistics {
     /// Largest residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ of the returned pairs.
     pub max_residual: f64,
     /// The Ritz values above the returned pairs, ascending, (rad/s)²: upper bounds of the next
-    /// eigenvalues (for the Sturm check, [`super::sturm_count`]).
+    /// eigenvalues (for the Sturm check, [`crate::linalg::sturm_count`]).
     pub ritz_above: Vec<f64>,
 }
 

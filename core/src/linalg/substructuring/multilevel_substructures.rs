@@ -30,7 +30,7 @@ use faer::{
     linalg::solvers::{Llt, Solve},
 };
 
-use super::{
+use crate::linalg::{
     GeneralizedEigen, LeafModesParameters, LinalgError, MassMatrix, PairSelection, SparseSymmetric,
     SubstructureTree, generalized_eigen_selected, leaf_modes, par_for_flops,
 };
@@ -42,7 +42,7 @@ pub struct AmlsParameters {
     /// Each node keeps its fixed-interface modes up to this frequency, Hz (infinite: all).
     pub cutoff_hz: f64,
     /// $\sigma$ of $K - \sigma M$, (rad/s)²: below the body's lowest eigenvalue (negative for a
-    /// free body, see [`super::negative_shift`]).
+    /// free body, see [`crate::linalg::negative_shift`]).
     pub shift: f64,
     /// How the leaves' modes are solved.
     pub leaves: LeafModesParameters,
@@ -239,7 +239,7 @@ impl MultilevelSubstructures {
                 None => {
                     let selection = if mu_cutoff.is_finite() {
                         PairSelection::UpToHz {
-                            hz: super::hz_from_eigenvalue(mu_cutoff),
+                            hz: crate::linalg::hz_from_eigenvalue(mu_cutoff),
                             always: 0,
                         }
                     } else {

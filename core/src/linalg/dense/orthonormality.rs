@@ -6,8 +6,8 @@ use faer::{
     linalg::matmul::triangular::{BlockStructure, matmul},
 };
 
-use super::{MassMatrix, par_for_flops, symmetric_eigen};
 use crate::Result;
+use crate::linalg::{MassMatrix, par_for_flops, symmetric_eigen};
 
 /// $\max_{i \ge j} |(A^TB)_{ij} - \delta_{ij}|$ for $A^TB$ symmetric in exact arithmetic
 /// ($U^TU$, or $\Psi^TM\Psi$ with `b` $= M\Psi$): half the flops of the whole product; the

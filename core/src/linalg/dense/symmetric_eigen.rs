@@ -13,7 +13,7 @@
 //! 4. falls back to nalgebra's implicit QL (`SymmetricEigen`) when the check fails,
 //! 5. and returns `LinalgError::EigenCheckFailed` with the worst residual when neither passes.
 
-use super::{LinalgError, orthonormality_defect};
+use crate::linalg::{LinalgError, orthonormality_defect};
 use faer::{Mat, MatRef, Side};
 
 use crate::{Error, Result, error::MatrixLabel};

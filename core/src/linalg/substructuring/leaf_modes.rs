@@ -9,13 +9,13 @@
 //! below $\omega_c$ is an error naming the leaf, never a silent truncation.
 //!
 //! A small leaf (or one whose modes below the cut-off are a large share of it) is solved dense;
-//! a large one by the partial solver ([`super::lowest_modes`]) for exactly the count the
+//! a large one by the partial solver ([`crate::linalg::lowest_modes`]) for exactly the count the
 //! inertia gives, on its own sparse Cholesky factor. Leaves are independent: they are solved
-//! on the threads ([`super::threads`]).
+//! on the threads ([`crate::linalg::threads`]).
 
 use faer::Mat;
 
-use super::{
+use crate::linalg::{
     GeneralizedEigen, IndefiniteFactor, LinalgError, MassMatrix, PairSelection,
     PartialEigenParameters, SparseSymmetric, SubstructureTree, SymbolicFactor, SymmetricFactor,
     generalized_eigen_selected, lowest_modes, threads,

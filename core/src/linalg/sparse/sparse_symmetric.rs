@@ -266,7 +266,7 @@ impl SparseSymmetric {
         // Row j of AX is column j of A (both triangles are stored, symmetric) against X: a
         // gather that reads A once per block of columns of X, and whose rows are independent.
         let flops = 2.0 * self.inner.compute_nnz() as f64 * x.ncols() as f64;
-        let parallel = super::par_for_flops(flops) != Par::Seq;
+        let parallel = crate::linalg::par_for_flops(flops) != Par::Seq;
         for c0 in (0..x.ncols()).step_by(GATHER_COLUMNS) {
             let width = GATHER_COLUMNS.min(x.ncols() - c0);
             gather_rows(

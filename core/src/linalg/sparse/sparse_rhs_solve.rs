@@ -156,7 +156,8 @@ mod tests {
         sparse::linalg::cholesky::{LltRef, SymbolicCholesky},
     };
 
-    use crate::linalg::{SymbolicFactor, SymmetricFactor, sparse_symmetric::grid_laplacian};
+    use crate::linalg::sparse::sparse_symmetric::grid_laplacian;
+    use crate::linalg::{SymbolicFactor, SymmetricFactor};
 
     /// faer's own supernodal solve, every supernode visited: the reference.
     fn faer_solve(symbolic: &SymbolicCholesky<usize>, values: &[f64], rhs: &Mat<f64>) -> Mat<f64> {

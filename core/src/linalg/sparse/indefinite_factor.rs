@@ -11,7 +11,7 @@ use faer::{
     sparse::linalg::cholesky::{LdltRef, SymbolicCholeskyRaw, supernodal::SupernodalLdltRef},
 };
 
-use super::{LinalgError, SparseSymmetric, SymbolicFactor};
+use crate::linalg::{LinalgError, SparseSymmetric, SymbolicFactor};
 use crate::{Error, Result, error::MatrixLabel};
 
 /// Relative residual $\|AX - B\|_F / \|B\|_F$ a solve must reach.
@@ -39,14 +39,14 @@ impl IndefiniteFactor {
         let what = what.into();
         symbolic.check_pattern(a.as_faer(), &what)?;
         let sym = symbolic.inner();
-        let par = super::par_for_factor(symbolic.flops());
+        let par = crate::linalg::par_for_factor(symbolic.flops());
         let scratch = sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default());
-        super::memory::check_factor_memory(
+        crate::linalg::memory::check_factor_memory(
             "LDL^T factor",
             &what,
             sym.len_val(),
             scratch.size_bytes(),
-            super::available_bytes(),
+            crate::linalg::available_bytes(),
         )?;
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {

@@ -1,6 +1,6 @@
 //! The shift that makes a free body's $K - \sigma M$ positive definite.
 
-use super::{MassMatrix, SparseSymmetric, eigenvalue_scale};
+use crate::linalg::{MassMatrix, SparseSymmetric, eigenvalue_scale};
 
 /// A shift $\sigma < 0$ for a singular (positive semi-definite) $K$:
 /// $\sigma = -10^{-10}\lambda_{max}$ (estimated by [`eigenvalue_scale`]), a hundred times the

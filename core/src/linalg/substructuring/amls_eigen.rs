@@ -14,13 +14,13 @@ use std::time::Instant;
 use faer::{Mat, MatRef};
 
 #[cfg(doc)]
-use super::PartialEigenParameters;
-use super::{
+use crate::linalg::PartialEigenParameters;
+use crate::linalg::{
     AmlsParameters, GeneralizedEigen, LinalgError, MassMatrix, MultilevelSubstructures,
     PairSelection, SparseSymmetric, SubstructureTree, SymbolicFactor, ZERO_ENERGY_RATIO,
     eigenvalue_scale, fix_sign, generalized_eigen_selected, hz_from_eigenvalue, m_orthonormal,
     m_orthonormal_basis,
-    pair_residuals::{PairResiduals, pair_residuals},
+    sparse::{PairResiduals, pair_residuals},
     sturm_count,
 };
 use crate::{Error, Result};
@@ -93,7 +93,7 @@ pub struct AmlsStatistics {
 /// `params.tolerance` and counted by the Sturm check (ascending, $M$-orthonormal).
 ///
 /// `null_space`, when given, spans known eigenvectors of eigenvalue 0 (a free body's rigid
-/// motions, as [`super::lowest_modes`] takes them): they are the first pairs, and the refinement
+/// motions, as [`crate::linalg::lowest_modes`] takes them): they are the first pairs, and the refinement
 /// keeps every other vector $M$-orthogonal to them (the shifted solve would amplify their
 /// round-off by $\lambda/|\sigma|$).
 ///

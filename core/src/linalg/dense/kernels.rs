@@ -1,6 +1,6 @@
 //! Small dense helpers: index selection, norms and comparisons.
 
-use super::LinalgError;
+use crate::linalg::LinalgError;
 use faer::{Mat, MatRef};
 
 /// The `n`×`n` identity.
