@@ -1,6 +1,6 @@
 //! Memory: what a sparse reduction will need, what the machine has, what the process used.
 
-use super::LinalgError;
+use crate::error::LinalgError;
 /// Bytes a sparse Craig–Bampton reduction of a trilinear-brick solid with `dofs` DOF needs,
 /// estimated before anything is allocated: $K$ and $K_{ii}$ (~81 entries per row, 16 bytes
 /// each), the Cholesky factor and the Lanczos basis (three n × 64 blocks).

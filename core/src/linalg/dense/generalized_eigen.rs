@@ -7,7 +7,7 @@
 //! $$\tilde K = DKD/s,\quad \tilde M = DMD = LL^T,\quad C = L^{-1}\tilde K L^{-T},\quad
 //! CU = U\Theta,\quad \Psi = DL^{-T}U,\quad \Lambda = s\,\Theta.$$
 //!
-//! $C$ goes through [`symmetric_eigen`](crate::linalg::symmetric_eigen()) (scaled again, checked, faer
+//! $C$ goes through [`symmetric_eigen`](super::symmetric_eigen()) (scaled again, checked, faer
 //! then nalgebra). Every pair of the original pencil is then checked by its normwise backward
 //! error
 //!
@@ -24,10 +24,10 @@
 //! change when a coordinate is scaled (a reduced model's mass-normalised modal coordinates
 //! beside its constraint modes).
 
-use crate::linalg::LinalgError;
+use crate::error::LinalgError;
 use faer::{Mat, MatRef, Side};
 
-use crate::linalg::{SymmetricEigenKernel, orthonormality_defect, symmetric_eigen_prefix};
+use super::{SymmetricEigenKernel, orthonormality_defect, symmetric_eigen_prefix};
 use crate::{
     Error, Result,
     error::{MatrixLabel, PencilPart},
@@ -67,7 +67,7 @@ pub struct GeneralizedEigen {
     /// The Sturm sequence check of a partial solve (none for a complete dense solve, which
     /// misses nothing by construction): how many eigenvalues lie below a shift just above the
     /// pairs found, and how many the solver found there.
-    pub sturm: Option<crate::linalg::SturmCount>,
+    pub sturm: Option<crate::linalg::eigen::SturmCount>,
 }
 
 impl GeneralizedEigen {

@@ -1,6 +1,6 @@
 //! Small dense helpers: index selection, norms and comparisons.
 
-use crate::linalg::LinalgError;
+use crate::error::LinalgError;
 use faer::{Mat, MatRef};
 
 /// The `n`×`n` identity.

@@ -1,6 +1,6 @@
 //! The continuous Lyapunov equation $AS + SA^T = -Q$.
 
-use crate::linalg::LinalgError;
+use crate::error::LinalgError;
 use faer::{Mat, MatRef, c64, linalg::solvers::DenseSolveCore};
 
 use crate::{Error, Result};

@@ -6,8 +6,10 @@ use faer::{
     linalg::matmul::triangular::{BlockStructure, matmul},
 };
 
+use super::symmetric_eigen;
 use crate::Result;
-use crate::linalg::{MassMatrix, par_for_flops, symmetric_eigen};
+use crate::linalg::sparse::MassMatrix;
+use crate::linalg::threads::par_for_flops;
 
 /// $\max_{i \ge j} |(A^TB)_{ij} - \delta_{ij}|$ for $A^TB$ symmetric in exact arithmetic
 /// ($U^TU$, or $\Psi^TM\Psi$ with `b` $= M\Psi$): half the flops of the whole product; the

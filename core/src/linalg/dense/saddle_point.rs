@@ -6,7 +6,7 @@
 
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
-use crate::linalg::{SmallCholesky, reshape, resize};
+use super::{SmallCholesky, reshape, resize};
 
 /// Eigenvalues [`pinv_solve`] drops for a positive semi-definite matrix ($CC^T$,
 /// $C\tilde M^{-1}C^T$), as a fraction of the largest.
@@ -23,7 +23,7 @@ pub fn pinv_solve(a: &DMatrix<f64>, b: &DVector<f64>, drop_below: f64) -> DVecto
         return DVector::zeros(0);
     }
     let a = faer::MatRef::from_column_major_slice(a.as_slice(), n, n);
-    let Ok(eig) = crate::linalg::symmetric_eigen(a, "pseudo-inverse") else {
+    let Ok(eig) = super::symmetric_eigen(a, "pseudo-inverse") else {
         return DVector::from_element(n, f64::NAN);
     };
     let (values, vectors) = (&eig.values, &eig.vectors);

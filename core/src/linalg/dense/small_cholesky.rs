@@ -116,7 +116,7 @@ mod tests {
     /// A seeded SPD matrix GGᵀ + shift·I and a right-hand side.
     fn system(n: usize, seed: u64, shift: f64) -> (DMatrix<f64>, DVector<f64>) {
         let mut state = seed;
-        let mut next = || crate::linalg::next_uniform(&mut state) - 0.5;
+        let mut next = || crate::linalg::eigen::next_uniform(&mut state) - 0.5;
         let g = DMatrix::from_fn(n, n, |_, _| next());
         let a = &g * g.transpose() + DMatrix::identity(n, n) * shift;
         let b = DVector::from_fn(n, |_, _| next());

@@ -13,7 +13,9 @@
 //! 4. falls back to nalgebra's implicit QL (`SymmetricEigen`) when the check fails,
 //! 5. and returns `LinalgError::EigenCheckFailed` with the worst residual when neither passes.
 
-use crate::linalg::{LinalgError, orthonormality_defect};
+use crate::error::LinalgError;
+
+use super::orthonormality_defect;
 use faer::{Mat, MatRef, Side};
 
 use crate::{Error, Result, error::MatrixLabel};

@@ -11,14 +11,16 @@
 //! block, whose span holds every Ritz residual (thick restart). Every returned pair is checked
 //! by its residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
 
-use crate::linalg::LinalgError;
+use crate::error::LinalgError;
 use crate::linalg::sparse::pair_residuals;
 use faer::{Mat, MatRef};
 
-use crate::linalg::{
-    GeneralizedEigen, MassMatrix, SparseSymmetric, SymmetricFactor, ZERO_ENERGY_RATIO,
-    eigenvalue_scale, fix_sign, generalized_eigen, symmetric_eigen,
+use crate::linalg::dense::{
+    GeneralizedEigen, ZERO_ENERGY_RATIO, eigenvalue_scale, fix_sign, generalized_eigen,
+    symmetric_eigen,
 };
+
+use crate::linalg::sparse::{MassMatrix, SparseSymmetric, SymmetricFactor};
 use crate::{Error, Result};
 
 /// Settings of [`lowest_modes`].
@@ -74,7 +76,7 @@ pub struct PartialEigenStatistics {
     /// Largest residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$ of the returned pairs.
     pub max_residual: f64,
     /// The Ritz values above the returned pairs, ascending, (rad/s)²: upper bounds of the next
-    /// eigenvalues (for the Sturm check, [`crate::linalg::sturm_count`]).
+    /// eigenvalues (for the Sturm check, [`super::sturm_count`]).
     pub ritz_above: Vec<f64>,
 }
 

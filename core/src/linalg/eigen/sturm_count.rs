@@ -11,12 +11,12 @@
 //! Ritz value, at most 1 % and at least $10^{-5}$ of the eigenvalue above it) so a pair whose
 //! value is known to its residual cannot straddle it.
 //!
-//! The count is made without storing the factor ([`crate::linalg::multifrontal_inertia`]: a front
+//! The count is made without storing the factor ([`crate::linalg::sparse::multifrontal_inertia`]: a front
 //! at a time, as many values as a few of the largest fronts) when the elimination's growth
 //! keeps its estimated backward error within `STURM_BACKWARD_ERROR`; otherwise by the stored
 //! supernodal $LDL^T$ factor, whose backward error is measured by a solve.
 
-use crate::linalg::{
+use crate::linalg::sparse::{
     IndefiniteFactor, MassMatrix, SparseSymmetric, SymbolicFactor, multifrontal_inertia,
 };
 use crate::{Error, Result, error::LinalgError};
@@ -27,7 +27,7 @@ const SHIFT_TRIES: usize = 3;
 
 /// Largest backward error $\|b - A\hat x\| / \|\,|A||\hat x|\,\|$ of a solve with the
 /// $LDL^T$ factor whose inertia is counted ($10^6\varepsilon$).
-const STURM_BACKWARD_ERROR: f64 = crate::linalg::TRUSTED_BACKWARD_ERROR;
+const STURM_BACKWARD_ERROR: f64 = crate::linalg::sparse::TRUSTED_BACKWARD_ERROR;
 
 /// The outcome of a Sturm sequence check.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -145,9 +145,12 @@ mod tests {
         }
         let k = SparseSymmetric::from_triplets(n, &k);
         let m = SparseSymmetric::from_triplets(n, &m);
-        let all =
-            crate::linalg::generalized_eigen(k.to_dense().as_ref(), m.to_dense().as_ref(), "chain")
-                .unwrap();
+        let all = crate::linalg::dense::generalized_eigen(
+            k.to_dense().as_ref(),
+            m.to_dense().as_ref(),
+            "chain",
+        )
+        .unwrap();
         (k, MassMatrix::Consistent(m), all.values)
     }
 

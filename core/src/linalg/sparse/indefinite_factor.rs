@@ -11,7 +11,9 @@ use faer::{
     sparse::linalg::cholesky::{LdltRef, SymbolicCholeskyRaw, supernodal::SupernodalLdltRef},
 };
 
-use crate::linalg::{LinalgError, SparseSymmetric, SymbolicFactor};
+use crate::error::LinalgError;
+
+use super::{SparseSymmetric, SymbolicFactor};
 use crate::{Error, Result, error::MatrixLabel};
 
 /// Relative residual $\|AX - B\|_F / \|B\|_F$ a solve must reach.
@@ -39,14 +41,14 @@ impl IndefiniteFactor {
         let what = what.into();
         symbolic.check_pattern(a.as_faer(), &what)?;
         let sym = symbolic.inner();
-        let par = crate::linalg::par_for_factor(symbolic.flops());
+        let par = crate::linalg::threads::par_for_factor(symbolic.flops());
         let scratch = sym.factorize_numeric_ldlt_scratch::<f64>(par, Default::default());
         crate::linalg::memory::check_factor_memory(
             "LDL^T factor",
             &what,
             sym.len_val(),
             scratch.size_bytes(),
-            crate::linalg::available_bytes(),
+            crate::linalg::memory::available_bytes(),
         )?;
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {

@@ -2,7 +2,7 @@
 
 use faer::{Mat, MatRef};
 
-use crate::linalg::SparseSymmetric;
+use super::SparseSymmetric;
 
 /// $M$ in kg (kg·m² on rotational DOF).
 #[derive(Debug, Clone)]

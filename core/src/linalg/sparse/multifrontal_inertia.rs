@@ -33,7 +33,7 @@ use faer::{
     sparse::linalg::cholesky::SymbolicCholeskyRaw,
 };
 
-use crate::linalg::{SparseSymmetric, SymbolicFactor};
+use super::{SparseSymmetric, SymbolicFactor};
 use crate::{Error, Result, error::LinalgError};
 
 /// Flops of a front's elimination above which its dense kernels run on the machine's threads.
@@ -77,7 +77,7 @@ struct Update {
 
 /// The inertia of `a` by a multifrontal elimination over the supernodes of `symbolic` (the
 /// analysis of `a`'s pattern); `None` when the analysis is simplicial (a small or very sparse
-/// matrix, whose whole factor is cheap to hold: [`crate::linalg::IndefiniteFactor`] counts it) or its
+/// matrix, whose whole factor is cheap to hold: [`super::IndefiniteFactor`] counts it) or its
 /// supernodes do not nest as an elimination tree's must (never seen; the stored factor then
 /// counts).
 pub fn multifrontal_inertia(
@@ -104,7 +104,7 @@ pub fn multifrontal_inertia(
         matrix.val(),
     );
     let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let threads = crate::linalg::threads();
+    let threads = crate::linalg::threads::threads();
     let supernodes = supernodal.n_supernodes();
     let (begin, end) = (supernodal.supernode_begin(), supernodal.supernode_end());
     let supernode_of = super::sparse_rhs_solve::supernode_of_columns(supernodal);
@@ -344,8 +344,9 @@ fn out_of_memory(entries: usize) -> Error {
 mod tests {
     use super::*;
     use crate::fem::{SlabParameters, slab};
+    use crate::linalg::dense::generalized_eigen;
+    use crate::linalg::sparse::IndefiniteFactor;
     use crate::linalg::sparse::sparse_symmetric::grid_laplacian;
-    use crate::linalg::{IndefiniteFactor, generalized_eigen};
 
     /// Every eigenvalue of [`grid_laplacian`]: $d - 6 + \sum_{x} (2 - 2\cos(\pi i_x/(m+1)))$.
     fn grid_eigenvalues(side: usize, diagonal: f64) -> Vec<f64> {

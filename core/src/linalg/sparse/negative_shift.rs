@@ -1,6 +1,8 @@
 //! The shift that makes a free body's $K - \sigma M$ positive definite.
 
-use crate::linalg::{MassMatrix, SparseSymmetric, eigenvalue_scale};
+use super::{MassMatrix, SparseSymmetric};
+
+use crate::linalg::dense::eigenvalue_scale;
 
 /// A shift $\sigma < 0$ for a singular (positive semi-definite) $K$:
 /// $\sigma = -10^{-10}\lambda_{max}$ (estimated by [`eigenvalue_scale`]), a hundred times the

@@ -7,7 +7,7 @@
 
 use faer::{Mat, MatRef};
 
-use crate::linalg::SparseSymmetric;
+use super::SparseSymmetric;
 
 /// Multiple of $\varepsilon\,\||K||\varphi|\| / \|K\varphi\|$ (the round-off of the residual
 /// itself) below which a pair passes whatever the tolerance.

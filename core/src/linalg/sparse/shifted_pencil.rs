@@ -3,7 +3,7 @@
 
 use std::borrow::Cow;
 
-use crate::linalg::{MassMatrix, SparseSymmetric};
+use super::{MassMatrix, SparseSymmetric};
 
 impl SparseSymmetric {
     /// Whether every entry of `m`'s pattern is in this matrix's, so that [`Self::shifted`]

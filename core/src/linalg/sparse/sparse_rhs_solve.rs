@@ -157,7 +157,7 @@ mod tests {
     };
 
     use crate::linalg::sparse::sparse_symmetric::grid_laplacian;
-    use crate::linalg::{SymbolicFactor, SymmetricFactor};
+    use crate::linalg::sparse::{SymbolicFactor, SymmetricFactor};
 
     /// faer's own supernodal solve, every supernode visited: the reference.
     fn faer_solve(symbolic: &SymbolicCholesky<usize>, values: &[f64], rhs: &Mat<f64>) -> Mat<f64> {

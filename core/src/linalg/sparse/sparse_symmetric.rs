@@ -266,7 +266,7 @@ impl SparseSymmetric {
         // Row j of AX is column j of A (both triangles are stored, symmetric) against X: a
         // gather that reads A once per block of columns of X, and whose rows are independent.
         let flops = 2.0 * self.inner.compute_nnz() as f64 * x.ncols() as f64;
-        let parallel = crate::linalg::par_for_flops(flops) != Par::Seq;
+        let parallel = crate::linalg::threads::par_for_flops(flops) != Par::Seq;
         for c0 in (0..x.ncols()).step_by(GATHER_COLUMNS) {
             let width = GATHER_COLUMNS.min(x.ncols() - c0);
             gather_rows(
@@ -470,7 +470,7 @@ pub(crate) fn grid_laplacian(side: usize, diagonal: f64) -> SparseSymmetric {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::linalg::MassMatrix;
+    use crate::linalg::sparse::MassMatrix;
 
     #[test]
     fn subtracting_a_product_in_place_equals_the_blocked_product() {
@@ -507,17 +507,19 @@ mod tests {
         for n in [5, 300, 9000] {
             let mut entries = Vec::new();
             for i in 0..n {
-                entries.push((i, i, 4.0 + crate::linalg::next_uniform(&mut seed)));
+                entries.push((i, i, 4.0 + crate::linalg::eigen::next_uniform(&mut seed)));
                 for off in [1, 7, 31] {
                     if i + off < n {
-                        let v = crate::linalg::next_uniform(&mut seed) - 0.5;
+                        let v = crate::linalg::eigen::next_uniform(&mut seed) - 0.5;
                         entries.extend([(i, i + off, v), (i + off, i, v)]);
                     }
                 }
             }
             let a = SparseSymmetric::from_triplets(n, &entries);
             for cols in [1, 2, 3, 4, 5, 6, 7, 8, 13] {
-                let x = Mat::from_fn(n, cols, |_, _| crate::linalg::next_uniform(&mut seed));
+                let x = Mat::from_fn(n, cols, |_, _| {
+                    crate::linalg::eigen::next_uniform(&mut seed)
+                });
                 // A block stored by rows is copied first.
                 let by_rows = x.transpose().to_owned();
                 let mut expected = Mat::<f64>::zeros(n, cols);
@@ -531,14 +533,14 @@ mod tests {
                     let mut y = Mat::<f64>::zeros(n, width);
                     let block = x.as_ref().subcols(0, width);
                     gather_rows(a.inner.as_ref(), block, y.as_mut(), 0, parallel);
-                    let gap = crate::linalg::max_abs_diff(
+                    let gap = crate::linalg::dense::max_abs_diff(
                         y.as_ref(),
                         expected.as_ref().subcols(0, width),
                     );
                     assert!(gap <= 1e-13 * n as f64, "n {n} cols {cols}: {gap:e}");
                 }
                 for y in [a.mul(x.as_ref()), a.mul(by_rows.transpose())] {
-                    let gap = crate::linalg::max_abs_diff(y.as_ref(), expected.as_ref());
+                    let gap = crate::linalg::dense::max_abs_diff(y.as_ref(), expected.as_ref());
                     assert!(gap <= 1e-13 * n as f64, "n {n} cols {cols}: {gap:e}");
                 }
             }

@@ -4,7 +4,7 @@
 //! symbolic analysis is kept apart from
 //! the numeric factorisation so a shifted matrix with the same pattern reuses it.
 
-use crate::linalg::LinalgError;
+use crate::error::LinalgError;
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -62,7 +62,7 @@ impl SymbolicFactor {
     }
 
     /// Analyses the pattern of `a` with the elimination order `order` (new position → old
-    /// index, e.g. from [`nested_dissection`](crate::linalg::nested_dissection)), or AMD for `None`.
+    /// index, e.g. from [`nested_dissection`](crate::linalg::substructuring::nested_dissection)), or AMD for `None`.
     pub fn analyse_ordered(a: &SparseColMat<usize, f64>, order: Option<&[usize]>) -> Result<Self> {
         Self::analyse_with(a, order, Default::default())
     }
@@ -223,14 +223,14 @@ impl SymmetricFactor {
         let what = what.into();
         symbolic.check_pattern(a, &what)?;
         let sym = &symbolic.inner;
-        let par = crate::linalg::par_for_factor(symbolic.flops);
+        let par = crate::linalg::threads::par_for_factor(symbolic.flops);
         let scratch = sym.factorize_numeric_llt_scratch::<f64>(par, Default::default());
         crate::linalg::memory::check_factor_memory(
             "Cholesky factor",
             &what,
             sym.len_val(),
             scratch.size_bytes(),
-            crate::linalg::available_bytes(),
+            crate::linalg::memory::available_bytes(),
         )?;
         let mut values = Vec::new();
         values.try_reserve_exact(sym.len_val()).map_err(|_| {
@@ -347,7 +347,7 @@ impl SymmetricFactor {
             self.solve_in_place(x);
             return None;
         };
-        let parts = match crate::linalg::par_for_flops(symbolic.solve_flops(x.ncols())) {
+        let parts = match crate::linalg::threads::par_for_flops(symbolic.solve_flops(x.ncols())) {
             Par::Rayon(n) if x.ncols() >= WIDE_SOLVE => n.get().min(x.ncols()),
             _ => 1,
         };
@@ -384,7 +384,7 @@ fn sparse_rhs_columns(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::linalg::{MassMatrix, SparseSymmetric};
+    use crate::linalg::sparse::{MassMatrix, SparseSymmetric};
 
     /// Columns solved in blocks side by side equal the columns solved together, for grids of
     /// several sizes and splits into 2 to 5 blocks; and they solve the system.

@@ -13,15 +13,17 @@ use std::time::Instant;
 
 use faer::{Mat, MatRef};
 
+use super::{AmlsParameters, MultilevelSubstructures, SubstructureTree};
+use crate::error::LinalgError;
+use crate::linalg::dense::{
+    GeneralizedEigen, PairSelection, ZERO_ENERGY_RATIO, eigenvalue_scale, fix_sign,
+    generalized_eigen_selected, hz_from_eigenvalue, m_orthonormal, m_orthonormal_basis,
+};
 #[cfg(doc)]
-use crate::linalg::PartialEigenParameters;
-use crate::linalg::{
-    AmlsParameters, GeneralizedEigen, LinalgError, MassMatrix, MultilevelSubstructures,
-    PairSelection, SparseSymmetric, SubstructureTree, SymbolicFactor, ZERO_ENERGY_RATIO,
-    eigenvalue_scale, fix_sign, generalized_eigen_selected, hz_from_eigenvalue, m_orthonormal,
-    m_orthonormal_basis,
-    sparse::{PairResiduals, pair_residuals},
-    sturm_count,
+use crate::linalg::eigen::PartialEigenParameters;
+use crate::linalg::eigen::sturm_count;
+use crate::linalg::sparse::{
+    MassMatrix, PairResiduals, SparseSymmetric, SymbolicFactor, pair_residuals,
 };
 use crate::{Error, Result};
 
@@ -93,7 +95,7 @@ pub struct AmlsStatistics {
 /// `params.tolerance` and counted by the Sturm check (ascending, $M$-orthonormal).
 ///
 /// `null_space`, when given, spans known eigenvectors of eigenvalue 0 (a free body's rigid
-/// motions, as [`crate::linalg::lowest_modes`] takes them): they are the first pairs, and the refinement
+/// motions, as [`crate::linalg::eigen::lowest_modes`] takes them): they are the first pairs, and the refinement
 /// keeps every other vector $M$-orthogonal to them (the shifted solve would amplify their
 /// round-off by $\lambda/|\sigma|$).
 ///
@@ -349,7 +351,8 @@ fn rayleigh_ritz(
 mod tests {
     use super::*;
     use crate::fem::{SlabParameters, slab};
-    use crate::linalg::{generalized_eigen, negative_shift};
+    use crate::linalg::dense::generalized_eigen;
+    use crate::linalg::sparse::negative_shift;
 
     #[test]
     fn refined_pairs_equal_the_dense_pencils_and_none_is_missed() {

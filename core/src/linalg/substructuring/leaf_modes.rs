@@ -9,17 +9,25 @@
 //! below $\omega_c$ is an error naming the leaf, never a silent truncation.
 //!
 //! A small leaf (or one whose modes below the cut-off are a large share of it) is solved dense;
-//! a large one by the partial solver ([`crate::linalg::lowest_modes`]) for exactly the count the
+//! a large one by the partial solver ([`crate::linalg::eigen::lowest_modes`]) for exactly the count the
 //! inertia gives, on its own sparse Cholesky factor. Leaves are independent: they are solved
-//! on the threads ([`crate::linalg::threads`]).
+//! on the threads ([`crate::linalg::threads::threads`]).
 
 use faer::Mat;
 
-use crate::linalg::{
-    GeneralizedEigen, IndefiniteFactor, LinalgError, MassMatrix, PairSelection,
-    PartialEigenParameters, SparseSymmetric, SubstructureTree, SymbolicFactor, SymmetricFactor,
-    generalized_eigen_selected, lowest_modes, threads,
+use crate::linalg::dense::{GeneralizedEigen, PairSelection, generalized_eigen_selected};
+
+use crate::linalg::sparse::{
+    IndefiniteFactor, MassMatrix, SparseSymmetric, SymbolicFactor, SymmetricFactor,
 };
+
+use crate::error::LinalgError;
+
+use crate::linalg::eigen::{PartialEigenParameters, lowest_modes};
+
+use super::SubstructureTree;
+
+use crate::linalg::threads::threads;
 use crate::{Error, Result, work_pool::run_in_order};
 
 /// How [`leaf_modes`] solves a leaf.
@@ -152,7 +160,7 @@ fn leaf(
 mod tests {
     use super::*;
     use crate::fem::{SlabParameters, slab};
-    use crate::linalg::{generalized_eigen, hz_from_eigenvalue};
+    use crate::linalg::dense::{generalized_eigen, hz_from_eigenvalue};
 
     #[test]
     fn each_leaf_keeps_every_mode_below_the_cut_off_and_none_above() {

@@ -3,8 +3,9 @@
 
 use faer::{Mat, MatMut, MatRef, linalg::solvers::Solve};
 
+use super::MultilevelSubstructures;
 use super::multilevel_substructures::{Front, product};
-use crate::linalg::{MultilevelSubstructures, par_for_flops};
+use crate::linalg::threads::par_for_flops;
 
 impl MultilevelSubstructures {
     /// $x = T y$: the body's vectors of projected coordinates `y` (`modes()` rows), each

@@ -30,10 +30,15 @@ use faer::{
     linalg::solvers::{Llt, Solve},
 };
 
-use crate::linalg::{
-    GeneralizedEigen, LeafModesParameters, LinalgError, MassMatrix, PairSelection, SparseSymmetric,
-    SubstructureTree, generalized_eigen_selected, leaf_modes, par_for_flops,
-};
+use crate::linalg::dense::{GeneralizedEigen, PairSelection, generalized_eigen_selected};
+
+use super::{LeafModesParameters, SubstructureTree, leaf_modes};
+
+use crate::error::LinalgError;
+
+use crate::linalg::sparse::{MassMatrix, SparseSymmetric};
+
+use crate::linalg::threads::par_for_flops;
 use crate::{Error, Result};
 
 /// How [`MultilevelSubstructures::new`] reduces a body.
@@ -42,7 +47,7 @@ pub struct AmlsParameters {
     /// Each node keeps its fixed-interface modes up to this frequency, Hz (infinite: all).
     pub cutoff_hz: f64,
     /// $\sigma$ of $K - \sigma M$, (rad/s)²: below the body's lowest eigenvalue (negative for a
-    /// free body, see [`crate::linalg::negative_shift`]).
+    /// free body, see [`crate::linalg::sparse::negative_shift`]).
     pub shift: f64,
     /// How the leaves' modes are solved.
     pub leaves: LeafModesParameters,
@@ -239,7 +244,7 @@ impl MultilevelSubstructures {
                 None => {
                     let selection = if mu_cutoff.is_finite() {
                         PairSelection::UpToHz {
-                            hz: crate::linalg::hz_from_eigenvalue(mu_cutoff),
+                            hz: crate::linalg::dense::hz_from_eigenvalue(mu_cutoff),
                             always: 0,
                         }
                     } else {
@@ -447,7 +452,8 @@ fn mirror_lower(mut a: MatMut<'_, f64>) {
 mod tests {
     use super::*;
     use crate::fem::{FeModel, SlabParameters, slab};
-    use crate::linalg::{generalized_eigen, negative_shift};
+    use crate::linalg::dense::generalized_eigen;
+    use crate::linalg::sparse::negative_shift;
 
     fn slab_and_tree(bricks: [usize; 3], leaf: usize) -> (FeModel, SubstructureTree) {
         let model = slab(&SlabParameters::refined(bricks).unwrap());

@@ -1,12 +1,12 @@
 //! A geometric nested-dissection ordering for sparse matrices of meshes whose unknowns have
 //! coordinates: split by a plane across the longest extent, number both halves first
-//! (recursively) and the separator last ([`crate::linalg::SubstructureTree`]'s postorder). For 3-D
+//! (recursively) and the separator last ([`super::SubstructureTree`]'s postorder). For 3-D
 //! meshes the Cholesky factor then grows as about $n^{4/3}$ against AMD's $n^{3/2}$ measured
 //! on the refined slab.
 
 use faer::sparse::SparseColMat;
 
-use crate::linalg::SubstructureTree;
+use super::SubstructureTree;
 
 /// Sub-problems of at most this many unknowns are numbered as they come.
 const LEAF: usize = 64;

@@ -2,7 +2,7 @@
 //! by a plane across its longest extent into two halves and the separator that couples them
 //! (the unknowns of one half joined to the other); each half is cut again until it is small.
 //! Numbered halves first (recursively) and separator last, the tree is the elimination order
-//! of [`crate::linalg::nested_dissection`]; kept whole, it is the structure multi-level substructuring
+//! of [`super::nested_dissection`]; kept whole, it is the structure multi-level substructuring
 //! (AMLS, Bennighof and Lehoucq 2004) reduces level by level: each leaf a substructure with
 //! its separators fixed, each separator the interface of the two subtrees under it.
 //!
