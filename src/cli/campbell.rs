@@ -7,7 +7,7 @@ use super::arguments::{CampbellArgs, OnOff, SpinningBodyArgs};
 use crate::{
     Error, Progress, Result, TerminalProgress,
     body_file::ImportedBody,
-    models::{BodyCampbellParameters, body_campbell},
+    models::{BodyCampbell, BodyCampbellCurve, BodyCampbellParameters, body_campbell},
     reduction::Method,
     report::{Cell, Table},
 };
@@ -59,50 +59,63 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
     let bar = TerminalProgress::start(&handle, "campbell");
     let table = body_campbell(&body, &parameters, &handle)?;
     drop(bar);
-    let label = |c: &crate::models::BodyCampbellCurve| match c.method {
+    if json {
+        println!("{}", campbell_json(&body, &table));
+    } else {
+        println!("{}", campbell_text(&body, &parameters, &table, count));
+    }
+    Ok(())
+}
+
+/// `NR`, `CB 20`, or `CB 20 + 12 RV`.
+fn label(c: &BodyCampbellCurve) -> String {
+    match c.method {
         None => "NR".to_string(),
-        Some(m) if c.residual_vectors > 0 => {
-            format!(
-                "{} {} + {} RV",
-                m.id().to_uppercase(),
-                c.modes,
-                c.residual_vectors
-            )
-        }
+        Some(m) if c.residual_vectors > 0 => format!(
+            "{} {} + {} RV",
+            m.id().to_uppercase(),
+            c.modes,
+            c.residual_vectors
+        ),
         Some(m) => format!("{} {}", m.id().to_uppercase(), c.modes),
-    };
-    let stiffening_json = match (table.stiffened, &body.preload) {
+    }
+}
+
+/// `--json`'s object: the body, rates, stiffening, axis point and every curve.
+fn campbell_json(body: &ImportedBody, table: &BodyCampbell) -> serde_json::Value {
+    let stiffening = match (table.stiffened, &body.preload) {
         (true, _) => "on",
         (false, Some(_)) => "off",
         (false, None) => "none",
     };
-    if json {
-        let curves: Vec<serde_json::Value> = table
-            .curves
-            .iter()
-            .map(|c| {
-                serde_json::json!({
-                    "model": label(c),
-                    "coordinates": c.coordinates,
-                    "residual_vectors": c.residual_vectors,
-                    "route": c.route,
-                    "hz": c.hz,
-                    "mac": c.mac,
-                    "unstable": c.unstable,
-                    "unstable_from_rad_s": c.unstable_from(&table.rates),
-                })
+    let curves: Vec<serde_json::Value> = table
+        .curves
+        .iter()
+        .map(|c| {
+            serde_json::json!({
+                "model": label(c),
+                "coordinates": c.coordinates,
+                "residual_vectors": c.residual_vectors,
+                "route": c.route,
+                "hz": c.hz,
+                "mac": c.mac,
+                "unstable": c.unstable,
+                "unstable_from_rad_s": c.unstable_from(&table.rates),
             })
-            .collect();
-        let value = serde_json::json!({
-            "body": body.model.name,
-            "rates_rad_s": table.rates,
-            "stiffening": stiffening_json,
-            "axis_point": {"point": table.axis_point.0, "from": table.axis_point.1},
-            "curves": curves,
-        });
-        println!("{value}");
-        return Ok(());
-    }
+        })
+        .collect();
+    serde_json::json!({
+        "body": body.model.name,
+        "rates_rad_s": table.rates,
+        "stiffening": stiffening,
+        "axis_point": {"point": table.axis_point.0, "from": table.axis_point.1},
+        "curves": curves,
+    })
+}
+
+/// One row per rate and model: the `count` frequencies, "lost" or "unstable" where they are
+/// not known, and the row's least MAC.
+fn campbell_table(table: &BodyCampbell, count: usize) -> Table {
     let mut header = vec!["rate, rad/s".to_string(), "model".into()];
     header.extend((1..=count).map(|k| format!("f{k}, Hz")));
     header.push("least MAC".into());
@@ -142,6 +155,16 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
             out.push(row);
         }
     }
+    out
+}
+
+/// The printed result: what was spun and how, the table, the routes and the unstable rates.
+fn campbell_text(
+    body: &ImportedBody,
+    parameters: &BodyCampbellParameters,
+    table: &BodyCampbell,
+    count: usize,
+) -> String {
     let unstable: Vec<String> = table
         .curves
         .iter()
@@ -155,7 +178,7 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
         .iter()
         .map(|c| format!("{} {}", label(c), c.route))
         .collect();
-    println!(
+    format!(
         "# campbell `{}`: spun about ({}) through {} ({}), {}\n\n{}\nFrequencies in the \
          turning frame, ring clamped, Coriolis coupling left out (as the FE codes' prestressed \
          frequency steps leave it). Each column follows one mode shape from rate to rate (MAC \
@@ -174,13 +197,12 @@ pub(super) fn run(arguments: CampbellArgs) -> Result<()> {
             (false, Some(_)) => "dynamic stiffening OFF (--stiffening off)".into(),
             _ => "no dynamic stiffening: the body file gives no [preload]".into(),
         },
-        out.markdown(),
+        campbell_table(table, count).markdown(),
         routes.join("; "),
         if unstable.is_empty() {
             String::new()
         } else {
             format!("\n{}.", unstable.join("; "))
         }
-    );
-    Ok(())
+    )
 }
