@@ -13,7 +13,7 @@ use nalgebra::Vector3;
 
 use crate::{
     Result,
-    analysis::count_zero_energy_modes,
+    analysis::{ZeroEnergyCount, count_zero_energy_modes},
     body_file::ImportedBody,
     dynamics::{
         AxisKind, DrivenCost, DrivenFrameBody, DrivenIntegration, Driving, FrameCoordinates,
@@ -128,20 +128,7 @@ pub fn driven_body_study(
 ) -> Result<DrivenStudy> {
     body.require_coordinates()?;
     let model = &body.model;
-    let pinned_items: Vec<String> = parameters
-        .pinned
-        .iter()
-        .map(|p| {
-            if p.contains(':') {
-                p.clone()
-            } else {
-                format!("rbe2:{p}")
-            }
-        })
-        .collect();
-    let mut items = vec![parameters.drive.clone()];
-    items.extend(parameters.boundary.iter().cloned());
-    items.extend(pinned_items.iter().cloned());
+    let (items, pinned_items) = interface_items(parameters);
     let interfaces = BodyInterfaces::of(body, &items, None)?;
     let drive = drive_interface(body, &parameters.drive, &interfaces)?;
     let driving = driving_of(body, parameters)?;
@@ -154,38 +141,16 @@ pub fn driven_body_study(
         parameters.stiffening,
     )?;
     let origin = axis_point.0;
-    let pinned_names: Vec<&str> = pinned_items
-        .iter()
-        .map(|p| p.split_once(':').map_or(p.as_str(), |(_, n)| n))
-        .collect();
-    let output_names = output_names(body, parameters, &drive, &pinned_names);
-    let mut outputs = Vec::new();
-    for name in &output_names {
-        outputs.push(model.dofs_of_nodes(&output_nodes(body, name)?)?);
-    }
-    let measure = Measure {
-        mean_axes: mean_axes_of(model, parameters.axes, &outputs)?,
-        model,
-        s: positions(model, origin),
-        arm: Vector3::from(drive.master) - Vector3::from(origin),
-        axis: driving.spin.axis.into_inner(),
-        outputs,
-        driving,
-    };
+    let (output_names, measure) =
+        measure_of(body, parameters, &drive, &pinned_items, driving, origin)?;
     let ring = model.dofs_of_nodes(&drive.nodes)?;
     let pins = pinned_rings(model, &interfaces, &pinned_items)?;
 
     progress.phase("full body on the driven frame")?;
     let started = Instant::now();
-    let mut full_body =
-        DrivenFrameBody::full(model, &ring, pins.clone(), origin, driving.spin.axis)?;
-    let stiffened = apply_preload(
-        body,
-        &mut full_body,
-        parameters.stiffening,
-        (driving.spin.axis, origin),
-        &ring,
-    )?;
+    let axis = (driving.spin.axis, origin);
+    let mut full_body = DrivenFrameBody::full(model, &ring, pins.clone(), origin, axis.0)?;
+    let stiffened = apply_preload(body, &mut full_body, parameters.stiffening, axis, &ring)?;
     let full_offline = started.elapsed().as_secs_f64();
     let coords = full_body
         .coordinates()
@@ -195,46 +160,23 @@ pub fn driven_body_study(
 
     // The eigen solve the reduced models need comes first: a body whose free-free modes
     // cannot be found fails here, not after minutes of integrating the full body.
-    let needs_reducer = !methods.is_empty() && !modes.is_empty();
-    let zero_energy = if needs_reducer {
-        progress.phase("the body's zero-energy modes (free-free eigen solve)")?;
-        let started = Instant::now();
-        let zero = count_zero_energy_modes(model, 1)?;
-        Some((zero, started.elapsed().as_secs_f64()))
-    } else {
-        None
-    };
+    let reduces = !methods.is_empty() && !modes.is_empty();
+    let zero_energy = reduces
+        .then(|| zero_energy_modes(model, progress))
+        .transpose()?;
 
-    let mut times = Vec::new();
-    let mut runs = Vec::new();
-    let mut stability = Vec::new();
+    let (mut times, mut runs, mut stability) = (Vec::new(), Vec::new(), Vec::new());
     if full {
         progress.phase("NR: the full body, sparse")?;
-        let sampled = sample_run(
+        let (sampled_times, run) = full_run(
             &mut full_body,
             &full_map,
             &measure,
-            &parameters.integration,
+            (&parameters.integration, full_offline),
             progress,
         )?;
-        times = sampled.times;
-        runs.push(DrivenRun {
-            method: None,
-            modes: 0,
-            coordinates: full_body.dim(),
-            hz_range: None,
-            offline_s: full_offline,
-            cost: sampled.cost,
-            explicit_step: None,
-            states: sampled.states,
-            field_map: full_map.clone(),
-            outputs: transpose(sampled.outputs, measure.outputs.len()),
-            reaction: sampled.reaction,
-            history_error: None,
-            reaction_error: None,
-            residual_vectors: 0,
-            estimate: Vec::new(),
-        });
+        times = sampled_times;
+        runs.push(run);
     }
 
     if let Some((zero, zero_s)) = zero_energy {
@@ -254,14 +196,8 @@ pub fn driven_body_study(
         for &method in methods {
             let counts: &[usize] = if method == Method::Guyan { &[0] } else { modes };
             for &kept in counts {
-                reduced.run(
-                    &mut reducer,
-                    method,
-                    kept,
-                    &mut times,
-                    &mut runs,
-                    &mut stability,
-                )?;
+                let into = (&mut times, &mut runs, &mut stability);
+                reduced.run(&mut reducer, method, kept, into)?;
             }
         }
     }
@@ -281,6 +217,96 @@ pub fn driven_body_study(
         axis_point,
         residual_vectors: parameters.residual_vectors,
     })
+}
+
+/// The body's zero-energy modes (a free-free eigen solve) and the seconds they took.
+fn zero_energy_modes(model: &FeModel, progress: &Progress) -> Result<(ZeroEnergyCount, f64)> {
+    progress.phase("the body's zero-energy modes (free-free eigen solve)")?;
+    let started = Instant::now();
+    let zero = count_zero_energy_modes(model, 1)?;
+    Ok((zero, started.elapsed().as_secs_f64()))
+}
+
+/// The histories' output sets (named, and as DOF) and how they are measured: in the frame
+/// turning about `origin`, moments about the drive's master, from mean axes where asked.
+fn measure_of<'a>(
+    body: &'a ImportedBody,
+    parameters: &DrivenBodyParameters,
+    drive: &RigidInterface,
+    pinned_items: &[String],
+    driving: Driving,
+    origin: [f64; 3],
+) -> Result<(Vec<String>, Measure<'a>)> {
+    let model = &body.model;
+    let pinned_names: Vec<&str> = pinned_items
+        .iter()
+        .map(|p| p.split_once(':').map_or(p.as_str(), |(_, n)| n))
+        .collect();
+    let names = output_names(body, parameters, drive, &pinned_names);
+    let mut outputs = Vec::new();
+    for name in &names {
+        outputs.push(model.dofs_of_nodes(&output_nodes(body, name)?)?);
+    }
+    let measure = Measure {
+        mean_axes: mean_axes_of(model, parameters.axes, &outputs)?,
+        model,
+        s: positions(model, origin),
+        arm: Vector3::from(drive.master) - Vector3::from(origin),
+        axis: driving.spin.axis.into_inner(),
+        outputs,
+        driving,
+    };
+    Ok((names, measure))
+}
+
+/// The interfaces the study names, the drive first, then the other boundaries and the pinned
+/// sets (`rbe2:` where no kind is given); and the pinned ones alone.
+fn interface_items(parameters: &DrivenBodyParameters) -> (Vec<String>, Vec<String>) {
+    let pinned: Vec<String> = parameters
+        .pinned
+        .iter()
+        .map(|p| {
+            if p.contains(':') {
+                p.clone()
+            } else {
+                format!("rbe2:{p}")
+            }
+        })
+        .collect();
+    let mut items = vec![parameters.drive.clone()];
+    items.extend(parameters.boundary.iter().cloned());
+    items.extend(pinned.iter().cloned());
+    (items, pinned)
+}
+
+/// The full body (NR) integrated and sampled: the sample times and its run, built in
+/// `offline_s` seconds.
+fn full_run(
+    full_body: &mut DrivenFrameBody,
+    map: &FieldMap,
+    measure: &Measure,
+    (integration, offline_s): (&DrivenIntegration, f64),
+    progress: &Progress,
+) -> Result<(Vec<f64>, DrivenRun)> {
+    let sampled = sample_run(full_body, map, measure, integration, progress)?;
+    let run = DrivenRun {
+        method: None,
+        modes: 0,
+        coordinates: full_body.dim(),
+        hz_range: None,
+        offline_s,
+        cost: sampled.cost,
+        explicit_step: None,
+        states: sampled.states,
+        field_map: map.clone(),
+        outputs: transpose(sampled.outputs, measure.outputs.len()),
+        reaction: sampled.reaction,
+        history_error: None,
+        reaction_error: None,
+        residual_vectors: 0,
+        estimate: Vec::new(),
+    };
+    Ok((sampled.times, run))
 }
 
 /// One integration's samples: times (s), states, output histories and reactions.
@@ -346,9 +372,7 @@ impl ReducedRuns<'_> {
         reducer: &mut BodyReducer,
         method: Method,
         kept: usize,
-        times: &mut Vec<f64>,
-        runs: &mut Vec<DrivenRun>,
-        stability: &mut Vec<ExplicitCheck>,
+        (times, runs, stability): (&mut Vec<f64>, &mut Vec<DrivenRun>, &mut Vec<ExplicitCheck>),
     ) -> Result<()> {
         if !DRIVEN_METHODS.contains(&method) {
             return Err(ReductionError::MethodNeedsContext {
