@@ -5,6 +5,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
+use super::recording_digest::ENTITY_PATH;
 use super::rerun_sdk::Chunk;
 use super::rerun_sdk::external::{re_log_encoding::DecoderApp, re_log_types::LogMsg};
 use crate::{Error, Result, error::ReportDiffError};
@@ -36,7 +37,10 @@ pub fn recorded_report(path: &Path) -> Result<Value> {
         let LogMsg::ArrowMsg(store, arrow) = &message else {
             continue;
         };
-        if store.is_blueprint() {
+        // Only the report's chunks are decoded: the entity path is in the batch's metadata.
+        let schema = arrow.batch.schema();
+        let path = schema.metadata().get(ENTITY_PATH).map(String::as_str);
+        if store.is_blueprint() || path != Some(entity.as_str()) {
             continue;
         }
         let chunk = Chunk::from_arrow_msg(arrow)

@@ -8,7 +8,7 @@ use super::rerun_sdk::external::re_log_types::LogMsg;
 
 /// Arrow metadata: a column's or a chunk's entity path, and a column's kind (`control`
 /// for the row ids).
-const ENTITY_PATH: &str = "rerun:entity_path";
+pub(super) const ENTITY_PATH: &str = "rerun:entity_path";
 const KIND: &str = "rerun:kind";
 
 /// A recording's content, entity by entity: for each entity the text of each chunk's data

@@ -1,19 +1,24 @@
 //! `diff`: two reports (JSON or recordings) compared number by number, wall times left out.
 
 use crate::common::{flexmodes, temp_dir};
+use flexmodes::report_diff::TIMING_KEYS;
 use serde_json::Value;
 
-/// The first number under `results` (depth first) multiplied by `factor`, and its key.
+/// The first number under `results` (depth first, wall times apart) multiplied by `factor`,
+/// and its key.
 fn nudge(v: &mut Value, factor: f64, key: &str) -> Option<String> {
     match v {
-        Value::Object(m) => m.iter_mut().find_map(|(k, x)| {
-            let at = if key.is_empty() {
-                k.clone()
-            } else {
-                format!("{key}.{k}")
-            };
-            nudge(x, factor, &at)
-        }),
+        Value::Object(m) => m
+            .iter_mut()
+            .filter(|(k, _)| !TIMING_KEYS.contains(&k.as_str()))
+            .find_map(|(k, x)| {
+                let at = if key.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{key}.{k}")
+                };
+                nudge(x, factor, &at)
+            }),
         Value::Array(a) => a
             .iter_mut()
             .enumerate()

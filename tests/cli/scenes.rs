@@ -188,6 +188,26 @@ fn record_writes_every_scene_and_failures_write_nothing() {
             "result table of {id} printed"
         );
     }
+    // Every recording's report against the committed baseline (tests/data/reports): a wall
+    // time missing from report_diff::TIMING_KEYS differs from the baseline's run to run and
+    // is caught here. At 1e-6 above 1e-8, not CI's 1e-12: another CPU's vector kernels round
+    // residuals and defects differently, and this is the README's test command.
+    let baseline = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/reports");
+    let diff = flexmodes(&[
+        "diff",
+        baseline,
+        dir.to_str().unwrap(),
+        "--rtol",
+        "1e-6",
+        "--floor",
+        "1e-8",
+    ]);
+    assert!(
+        diff.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&diff.stdout),
+        String::from_utf8_lossy(&diff.stderr)
+    );
     // A failing run leaves an existing file untouched and no temporary file behind.
     let target = dir.join("keep.rrd");
     std::fs::write(&target, b"previous").unwrap();

@@ -164,19 +164,20 @@ pub fn driven_body_study(
     let zero_energy = reduces
         .then(|| zero_energy_modes(model, progress))
         .transpose()?;
-
-    let (mut times, mut runs, mut stability) = (Vec::new(), Vec::new(), Vec::new());
+    let mut collected = Collected::default();
     if full {
         progress.phase("NR: the full body, sparse")?;
-        let (sampled_times, run) = full_run(
+        let integration = &parameters.integration;
+        let (times, run) = full_run(
             &mut full_body,
             &full_map,
             &measure,
-            (&parameters.integration, full_offline),
+            integration,
+            full_offline,
             progress,
         )?;
-        times = sampled_times;
-        runs.push(run);
+        collected.times = times;
+        collected.runs.push(run);
     }
 
     if let Some((zero, zero_s)) = zero_energy {
@@ -196,22 +197,21 @@ pub fn driven_body_study(
         for &method in methods {
             let counts: &[usize] = if method == Method::Guyan { &[0] } else { modes };
             for &kept in counts {
-                let into = (&mut times, &mut runs, &mut stability);
-                reduced.run(&mut reducer, method, kept, into)?;
+                reduced.run(&mut reducer, method, kept, &mut collected)?;
             }
         }
     }
-    let rigid_force = rigid_reaction(&measure, &times);
+    let rigid_force = rigid_reaction(&measure, &collected.times);
     if full {
-        compare_with_full(&mut runs, &rigid_force);
+        compare_with_full(&mut collected.runs, &rigid_force);
     }
     Ok(DrivenStudy {
-        times,
+        times: collected.times,
         output_names,
         drive: (drive.name.clone(), drive.master, drive.nodes.len()),
         dof: model.dof_count(),
-        runs,
-        stability,
+        runs: collected.runs,
+        stability: collected.stability,
         rigid_force,
         stiffened,
         axis_point,
@@ -285,7 +285,8 @@ fn full_run(
     full_body: &mut DrivenFrameBody,
     map: &FieldMap,
     measure: &Measure,
-    (integration, offline_s): (&DrivenIntegration, f64),
+    integration: &DrivenIntegration,
+    offline_s: f64,
     progress: &Progress,
 ) -> Result<(Vec<f64>, DrivenRun)> {
     let sampled = sample_run(full_body, map, measure, integration, progress)?;
@@ -307,6 +308,15 @@ fn full_run(
         estimate: Vec::new(),
     };
     Ok((sampled.times, run))
+}
+
+/// What the runs gather as they go: the sample times (of the first run), every run, and the
+/// explicit scheme's checks.
+#[derive(Default)]
+struct Collected {
+    times: Vec<f64>,
+    runs: Vec<DrivenRun>,
+    stability: Vec<ExplicitCheck>,
 }
 
 /// One integration's samples: times (s), states, output histories and reactions.
@@ -366,14 +376,19 @@ struct ReducedRuns<'a> {
 
 impl ReducedRuns<'_> {
     /// `method` with `kept` modes: reduced, its drive's and pins' held columns removed,
-    /// integrated (and, when asked, integrated explicitly beside), appended to `runs`.
+    /// integrated (and, when asked, integrated explicitly beside), appended to `collected`.
     fn run(
         &self,
         reducer: &mut BodyReducer,
         method: Method,
         kept: usize,
-        (times, runs, stability): (&mut Vec<f64>, &mut Vec<DrivenRun>, &mut Vec<ExplicitCheck>),
+        collected: &mut Collected,
     ) -> Result<()> {
+        let Collected {
+            times,
+            runs,
+            stability,
+        } = collected;
         if !DRIVEN_METHODS.contains(&method) {
             return Err(ReductionError::MethodNeedsContext {
                 method: method.name(),

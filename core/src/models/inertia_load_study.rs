@@ -10,8 +10,8 @@
 //! $K_{ii}^{-1} f_i$ that lies outside the basis, in the energy norm.
 
 use crate::{
-    Result, body_file::ImportedBody, dynamics::DrivenIntegration, progress::Progress,
-    reduction::Method,
+    Result, body_file::ImportedBody, dynamics::DrivenIntegration, error::DynamicsError,
+    progress::Progress, reduction::Method,
 };
 
 use super::{DrivenBodyParameters, DrivenRun, DrivenStudy, driven_body_study};
@@ -21,9 +21,6 @@ pub const INERTIA_LOAD_BODY: &str = "builtin:spun-lever";
 
 /// Fixed-interface modes kept, with and without the residual vectors.
 pub const INERTIA_LOAD_MODES: [usize; 5] = [1, 2, 4, 8, 16];
-
-/// The steady rate, rad/s (the rate CalculiX's preload was written for).
-pub const INERTIA_LOAD_RATE: f64 = 1000.0;
 
 /// The lever's runs: the full body (NR), and CB with each of [`INERTIA_LOAD_MODES`] fixed
 /// interface modes, without and with the inertia-load residual vectors.
@@ -53,15 +50,22 @@ impl InertiaLoadStudy {
     }
 }
 
-/// Spins the lever up to [`INERTIA_LOAD_RATE`] in 0.1 s, held for 0.1 s more (generalized-α,
+/// Spins the lever up to the rate CalculiX spun its `[preload]` at (1 000 rad/s) in 0.1 s, held for 0.1 s more (generalized-α,
 /// 0.2 ms steps), with the preload's dynamic stiffening, NR and CB k with and without the
 /// residual vectors.
 pub fn inertia_load_study(progress: &Progress) -> Result<InertiaLoadStudy> {
     let body = ImportedBody::load(INERTIA_LOAD_BODY)?;
+    let rate = body
+        .preload
+        .as_ref()
+        .map(|p| p.load.rate)
+        .ok_or(DynamicsError::Misuse {
+            what: "the inertia-load study's body has no [preload] to take its rate from",
+        })?;
     let base = DrivenBodyParameters {
         drive: "rbe2:root".into(),
         outputs: vec!["tip".into()],
-        rate: INERTIA_LOAD_RATE,
+        rate,
         ramp: 0.1,
         integration: DrivenIntegration {
             step: 2e-4,

@@ -72,7 +72,7 @@ pub use failure_studies::{
     mirror_defect, too_few_boundary,
 };
 pub use inertia_load_study::{
-    INERTIA_LOAD_BODY, INERTIA_LOAD_MODES, INERTIA_LOAD_RATE, InertiaLoadStudy, inertia_load_study,
+    INERTIA_LOAD_BODY, INERTIA_LOAD_MODES, InertiaLoadStudy, inertia_load_study,
 };
 pub use interface_reduction_sweep::{
     INTERFACE_MODE_SWEEP, InterfaceReductionPoint, interface_reduction_sweep,
