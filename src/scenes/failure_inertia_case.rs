@@ -66,7 +66,7 @@ pub(super) fn inertia_load_failure(progress: &Progress) -> Result<Failure> {
     let (r1, q1, _) = point(&with, last);
     let what = format!(
         "CalculiX's lever ({dof} DOF, root clamped) spun up to {rate} rad/s in {ramp} s: the \
-         tip's history error against NR is {} with CB {first} and still {} with CB {last} \
+         tip's history error against NR is {} with CB {first} and {} with CB {last} \
          (a-priori estimate {} and {}); with the {rv} residual vectors of the frame's unit \
          inertia loads it is {} with CB {first} and {} with CB {last} (estimate {} and {})",
         readable(e0, 2),
