@@ -5,7 +5,8 @@
 //!
 //! Data flows one way, layer by layer (see `ARCHITECTURE.md`):
 //!
-//! - [`error`]: one error enum per layer, wrapped by [`Error`];
+//! - [`error`]: one error enum per layer, wrapped by core's, wrapped by the application's
+//!   [`Error`];
 //! - [`linalg`]: checked dense kernels, sparse Cholesky, the partial eigensolver, saddle-point
 //!   solvers;
 //! - [`fem`] and [`body_file`]: the thesis' bodies and bodies from other FE codes;
@@ -24,10 +25,14 @@
 //! compiler keeps the numerics from importing a scene or the recorder.
 
 pub use flexmodes_core::{
-    Error, PhaseReading, Progress, ProgressReading, Result, analysis, assets, atomic_file,
-    body_file, dynamics, error, export, fem, inline_markdown, linalg, markdown_tables, models,
-    reduction, report, report_diff, work_pool,
+    PhaseReading, Progress, ProgressReading, analysis, assets, atomic_file, body_file, dynamics,
+    export, fem, inline_markdown, linalg, markdown_tables, models, reduction, report, report_diff,
+    work_pool,
 };
+
+pub mod error;
+
+pub use error::{Error, Result};
 
 #[cfg(feature = "cli")]
 pub mod bench;

@@ -66,12 +66,12 @@ pub fn run_concurrently<T: Copy + Sync, R: Send>(
 /// on the calling thread **in the order of the items** as soon as it and those before it are
 /// finished. The first error stops new items from starting; it is returned once the running
 /// ones have finished (the error of the earliest item when several fail).
-pub fn run_in_order<T: Sync, R: Send>(
+pub fn run_in_order<T: Sync, R: Send, E: Send>(
     items: &[T],
     threads: usize,
-    run: impl Fn(usize, &T) -> Result<R> + Sync,
+    run: impl Fn(usize, &T) -> Result<R, E> + Sync,
     done: impl FnMut(usize, R),
-) -> Result<()> {
+) -> Result<(), E> {
     let order: Vec<usize> = (0..items.len()).collect();
     run_in_order_by(items, &order, threads, run, done)
 }
@@ -80,13 +80,13 @@ pub fn run_in_order<T: Sync, R: Send>(
 /// longest first, say, so that no thread is left with a long item at the end while the others
 /// idle); results are still handed to `done` in the order of the items. After an error, items
 /// not yet started stay so, and results are handed on up to the first item without one.
-pub fn run_in_order_by<T: Sync, R: Send>(
+pub fn run_in_order_by<T: Sync, R: Send, E: Send>(
     items: &[T],
     order: &[usize],
     threads: usize,
-    run: impl Fn(usize, &T) -> Result<R> + Sync,
+    run: impl Fn(usize, &T) -> Result<R, E> + Sync,
     mut done: impl FnMut(usize, R),
-) -> Result<()> {
+) -> Result<(), E> {
     let count = items.len();
     let mut sorted = order.to_vec();
     sorted.sort_unstable();
@@ -97,7 +97,7 @@ pub fn run_in_order_by<T: Sync, R: Send>(
     let threads = threads.clamp(1, count.max(1));
     let next = AtomicUsize::new(0);
     let failed = AtomicBool::new(false);
-    let (sender, receiver) = mpsc::channel::<(usize, Result<R>)>();
+    let (sender, receiver) = mpsc::channel::<(usize, Result<R, E>)>();
     std::thread::scope(|scope| {
         for _ in 0..threads {
             let sender = sender.clone();
@@ -123,7 +123,7 @@ pub fn run_in_order_by<T: Sync, R: Send>(
         // Hold what finishes early until those before it are handed on.
         let mut pending: Vec<Option<R>> = (0..count).map(|_| None).collect();
         let mut handed = 0;
-        let mut first_error: Option<(usize, crate::Error)> = None;
+        let mut first_error: Option<(usize, E)> = None;
         for (k, result) in receiver {
             match result {
                 Ok(r) => pending[k] = Some(r),
@@ -161,7 +161,7 @@ mod tests {
             run_in_order(
                 &input,
                 threads,
-                |_, &i| Ok(i * 10),
+                |_, &i| Ok::<_, Error>(i * 10),
                 |k, r| seen.push((k, r)),
             )
             .unwrap();
@@ -193,7 +193,7 @@ mod tests {
                 threads,
                 |k, &i| {
                     started.lock().unwrap().push(k);
-                    Ok(i + 100)
+                    Ok::<_, Error>(i + 100)
                 },
                 |k, r| seen.push((k, r)),
             )
@@ -215,7 +215,13 @@ mod tests {
     #[test]
     #[should_panic(expected = "not a permutation")]
     fn an_order_that_is_not_a_permutation_is_refused() {
-        let _ = run_in_order_by(&[1, 2, 3], &[0, 0, 2], 2, |_, &i| Ok(i), |_, _| {});
+        let _ = run_in_order_by(
+            &[1, 2, 3],
+            &[0, 0, 2],
+            2,
+            |_, &i| Ok::<_, Error>(i),
+            |_, _| {},
+        );
     }
 
     #[test]

@@ -32,7 +32,6 @@ pub(crate) fn raise(py: Python<'_>, err: Error) -> PyErr {
         Error::Mechanism { .. } => "MechanismError",
         Error::Cancelled => "Cancelled",
         Error::Io { .. } => "FileError",
-        Error::InvalidOption { .. } => "InputError",
         _ => "FlexmodesError",
     };
     let message = err.cause_chain();

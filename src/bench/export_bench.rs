@@ -114,10 +114,8 @@ fn run_timed(mut command: Command, repeats: usize, what: &'static str) -> Result
     for _ in 0..repeats {
         let started = Instant::now();
         // A program that cannot be started is named by its path (`what` names the run).
-        let (out, peak) = run_measured(&mut command).map_err(|source| Error::Io {
-            path: command.get_program().into(),
-            source,
-        })?;
+        let (out, peak) = run_measured(&mut command)
+            .map_err(|source| Error::io(command.get_program(), source))?;
         seconds.push(started.elapsed().as_secs_f64());
         peak_mb = match (peak_mb, peak) {
             (Some(a), Some(b)) => Some(a.max(b)),
@@ -165,10 +163,8 @@ fn median(sorted: &[f64]) -> f64 {
 pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
     let out_dir =
         std::env::temp_dir().join(format!("flexmodes-bench-export-{}", std::process::id()));
-    let exe = std::env::current_exe().map_err(|source| Error::Io {
-        path: "the flexmodes executable".into(),
-        source,
-    })?;
+    let exe =
+        std::env::current_exe().map_err(|source| Error::io("the flexmodes executable", source))?;
     let threads = crate::linalg::threads();
     let mut own = Command::new(&exe);
     own.args(["export", "--timings", "--threads"])
@@ -182,12 +178,10 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
         .arg("--out")
         .arg(&out_dir);
     let ours = run_timed(own, p.repeats, "flexmodes export")?;
-    let model: Value = serde_json::from_slice(&std::fs::read(out_dir.join("model.json")).map_err(
-        |source| Error::Io {
-            path: out_dir.join("model.json"),
-            source,
-        },
-    )?)
+    let model: Value = serde_json::from_slice(
+        &std::fs::read(out_dir.join("model.json"))
+            .map_err(|source| Error::io(out_dir.join("model.json"), source))?,
+    )
     .map_err(|source| Error::PeerOutput {
         peer: "flexmodes export",
         file: "model.json",

@@ -12,7 +12,7 @@ use std::time::Instant;
 use serde_json::{Value, json};
 
 use crate::{
-    Error, Progress, Result,
+    Progress, Result,
     analysis::{
         StaticLoadCase, elastic_hz, full_static_response, lowest_free_free_modes, reduced_hz,
         relative_error, ritz_static_response,
@@ -75,10 +75,11 @@ pub fn bench_modes(
     let full_hz = elastic_hz(&lowest_free_free_modes(&model, COMPARED_MODES)?);
     let reference_eigen_s = start.elapsed().as_secs_f64();
     if full_hz.len() < COMPARED_MODES {
-        return Err(Error::Reduction(ReductionError::TooManyModes {
+        return Err(ReductionError::TooManyModes {
             requested: COMPARED_MODES,
             available: full_hz.len(),
-        }));
+        }
+        .into());
     }
     let case = StaticLoadCase::weight(&model, &held_at_six(&model)?, 2, -STANDARD_GRAVITY);
     let start = Instant::now();

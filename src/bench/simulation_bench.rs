@@ -15,13 +15,14 @@ use super::bench_point::{
 use super::mark_pareto;
 use super::simulation_bench_text::{bench_json, bench_text, point_rows};
 use crate::{
-    Error, Progress, Result,
+    Progress, Result,
     analysis::reduced_modes,
     analysis::relative_rms,
     dynamics::{
         AxisType, DEFAULT_SPECTRAL_RADIUS, IntegrationScheme, IntegratorParameters,
         imaginary_stability_limit, simulate,
     },
+    error::CoreError,
     fem::{SlabParameters, slab},
     models::{
         PROBE_NODE, Scenario, default_boundary, probe_history, slab_body, slab_node, slab_system,
@@ -49,7 +50,7 @@ pub(crate) fn bench_scenario(scene: &'static str) -> Result<Scenario> {
     match scene {
         "slab-sim1" => Ok(Scenario::HeldAtSix),
         "slab-sim2" => Ok(Scenario::Orbit),
-        other => Err(Error::NotBenchable { scene: other }),
+        other => Err(crate::Error::NotBenchable { scene: other }),
     }
 }
 
@@ -300,16 +301,19 @@ impl StabilityChecks {
             };
             progress.phase(&format!("point {point} of {count}: fixed steps"))?;
             let below = fixed(BELOW_CRITICAL, t_end.min(STABILITY_RUN_S));
-            if let Err(Error::Cancelled) = below {
-                return Err(Error::Cancelled);
+            if let Err(CoreError::Cancelled) = below {
+                return Err(CoreError::Cancelled.into());
             }
             let above = fixed(ABOVE_CRITICAL, t_end);
-            if let Err(Error::Cancelled) = above {
-                return Err(Error::Cancelled);
+            if let Err(CoreError::Cancelled) = above {
+                return Err(CoreError::Cancelled.into());
             }
             (
                 below.is_ok(),
-                matches!(above, Err(Error::Dynamics(DynamicsError::Diverged { .. }))),
+                matches!(
+                    above,
+                    Err(CoreError::Dynamics(DynamicsError::Diverged { .. }))
+                ),
             )
         } else {
             (true, false)
@@ -334,8 +338,8 @@ impl StabilityChecks {
                     },
                     progress,
                 );
-                if let Err(Error::Cancelled) = run {
-                    return Err(Error::Cancelled);
+                if let Err(CoreError::Cancelled) = run {
+                    return Err(CoreError::Cancelled.into());
                 }
                 Some(run.is_ok())
             }

@@ -221,7 +221,7 @@ fn record_scenes(
                 writing_s: writing.elapsed().as_secs_f64(),
                 ..timing
             };
-            Ok((path, output.report.table, timing))
+            Ok::<_, crate::Error>((path, output.report.table, timing))
         },
         |k, (path, table, timing): (PathBuf, String, SceneTiming)| {
             println!("# {} -> {}\n\n{}", scenes[k].info.id, path.display(), table);

@@ -182,17 +182,12 @@ fn kind(path: &Path) -> &'static str {
 
 /// The reports of a folder by scene: `SCENE.json` or `SCENE.rrd`, the JSON first.
 fn reports_in(folder: &Path) -> Result<BTreeMap<String, PathBuf>> {
-    let entries = std::fs::read_dir(folder).map_err(|source| Error::Io {
-        path: folder.to_path_buf(),
-        source,
-    })?;
+    let entries =
+        std::fs::read_dir(folder).map_err(|source| Error::io(folder.to_path_buf(), source))?;
     let mut found: BTreeMap<String, PathBuf> = BTreeMap::new();
     for entry in entries {
         let path = entry
-            .map_err(|source| Error::Io {
-                path: folder.to_path_buf(),
-                source,
-            })?
+            .map_err(|source| Error::io(folder.to_path_buf(), source))?
             .path();
         let (Some(stem), Some(ext)) = (
             path.file_stem().and_then(|s| s.to_str()),
@@ -218,10 +213,8 @@ fn report(path: &Path) -> Result<Value> {
     if path.extension().and_then(|s| s.to_str()) == Some("rrd") {
         return recorded_report(path);
     }
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text =
+        std::fs::read_to_string(path).map_err(|source| Error::io(path.to_path_buf(), source))?;
     let value: Value = serde_json::from_str(&text).map_err(|e| ReportDiffError::NotJson {
         path: path.display().to_string(),
         line: e.line(),

@@ -184,10 +184,7 @@ pub fn run_with_body(
     opts: ViewerOptions,
 ) -> Result<()> {
     let file_bytes = match file {
-        Some(p) => Some(std::fs::read(p).map_err(|source| Error::Io {
-            path: p.to_path_buf(),
-            source,
-        })?),
+        Some(p) => Some(std::fs::read(p).map_err(|source| Error::io(p, source))?),
         None => None,
     };
     let explicit_scene = scene.is_some() || body.is_some();

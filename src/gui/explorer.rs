@@ -246,10 +246,9 @@ impl Explorer {
                     self.request();
                 }
                 Command::Save(path) => match &self.current {
-                    Some(c) => match c
-                        .rrd()
-                        .and_then(|bytes| crate::atomic_file::write_bytes_atomically(&path, &bytes))
-                    {
+                    Some(c) => match c.rrd().and_then(|bytes| {
+                        Ok(crate::atomic_file::write_bytes_atomically(&path, &bytes)?)
+                    }) {
                         Ok(()) => self.status = format!("saved {}", path.display()),
                         Err(e) => self.error = Some(e.to_string()),
                     },

@@ -25,10 +25,7 @@ pub fn recorded_report(path: &Path) -> Result<Value> {
         }
         .into()
     };
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = std::fs::read(path).map_err(|source| Error::io(path.to_path_buf(), source))?;
     let mut text = None;
     let entity = format!("/{REPORT_ENTITY}");
     for (index, message) in DecoderApp::decode_lazy(bytes.as_slice()).enumerate() {

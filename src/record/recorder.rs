@@ -74,7 +74,7 @@ impl Recorder {
     /// Encodes and writes to `path` atomically (temporary file, then rename).
     pub fn save(&self, out: &RecordingContent, path: &Path) -> Result<()> {
         let bytes = self.encode(out)?;
-        crate::atomic_file::write_bytes_atomically(path, &bytes)
+        Ok(crate::atomic_file::write_bytes_atomically(path, &bytes)?)
     }
 
     /// The viewer's area for views, points.

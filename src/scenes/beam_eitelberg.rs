@@ -45,10 +45,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let m_g = g.reduced_mass(&model);
     let guyan_minv_k = m_g
         .llt(faer::Side::Lower)
-        .map_err(|_| {
-            crate::Error::Linalg(LinalgError::NotPositiveDefinite {
-                matrix: "Guyan mass".into(),
-            })
+        .map_err(|_| LinalgError::NotPositiveDefinite {
+            matrix: "Guyan mass".into(),
         })?
         .solve(&k_g);
     use faer::prelude::Solve;
@@ -189,11 +187,12 @@ fn tidy(v: f64, scale: f64) -> String {
 /// Elastic modes of the restored $\underline M^{-1}\underline K$ (real parts of its
 /// eigenvectors; its eigenvalues are real), expanded to the full DOF by the implied basis.
 fn eitelberg_modes(eit: &EitelbergReduction) -> Result<Vec<(Vec<f64>, String)>> {
-    let evd = eit.minv_k.eigen().map_err(|_| {
-        crate::Error::Linalg(LinalgError::DecompositionFailed {
+    let evd = eit
+        .minv_k
+        .eigen()
+        .map_err(|_| LinalgError::DecompositionFailed {
             what: "restored M^-1 K eigen".into(),
-        })
-    })?;
+        })?;
     let nb = eit.minv_k.nrows();
     // Zero energy against the restored matrix' own scale, as for the symmetric solves.
     let scale = (0..nb).fold(0.0f64, |a, j| a.max(evd.S()[j].re.abs()));

@@ -168,7 +168,7 @@ pub fn simulated_study(
                 }
             })
             .into_iter()
-            .collect::<Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
         DrivenStudy::joined(&parts.iter().map(|p| p.as_ref()).collect::<Vec<_>>())?
     })
 }

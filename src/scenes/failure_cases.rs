@@ -4,7 +4,8 @@
 use crate::record::{REFERENCE, method_color};
 use crate::reduction::ReductionError;
 use crate::{
-    Error, Result,
+    Result,
+    error::CoreError,
     fem::FeModel,
     models::{condensation_cost, eitelberg_feedback, guyan_symmetry, too_few_boundary},
     record::{Geometry, LogLogChart, LogLogSeries, Visual},
@@ -28,7 +29,7 @@ pub(super) fn too_few_boundary_failure(model: &FeModel) -> Failure {
         let nodes = case.nodes;
         match case.outcome {
             Err(
-                e @ Error::Reduction(ReductionError::SingularInterior {
+                e @ CoreError::Reduction(ReductionError::SingularInterior {
                     rank_deficiency, ..
                 }),
             ) => {
@@ -74,7 +75,7 @@ pub(super) fn eitelberg_failure(model: &FeModel) -> Result<Failure> {
     let study = eitelberg_feedback(model)?;
     let with = &study.with_hz;
     let (json, what) = match study.without {
-        Err(e @ Error::Reduction(ReductionError::UnstableSystem { max_real_part })) => (
+        Err(e @ CoreError::Reduction(ReductionError::UnstableSystem { max_real_part })) => (
             json!({
                 "error": "UnstableSystem",
                 "max_real_part": max_real_part,

@@ -6,7 +6,8 @@ use super::failure_cases::Failure;
 use crate::dynamics::DynamicsError;
 use crate::record::{REFERENCE, method_color};
 use crate::{
-    Error, Result,
+    Result,
+    error::CoreError,
     fem::FeModel,
     models::{
         ABOVE_CRITICAL, BELOW_CRITICAL, BELOW_RUN_S, KEPT_MODES, MOVED_NODE, SpinUpModels,
@@ -59,7 +60,7 @@ pub(super) fn explicit_step_failure(model: &FeModel, opts: &SceneOptions) -> Res
     let critical = study.critical;
     let below_ok = study.below.is_ok();
     let (above_diverged, above_text) = match &study.above {
-        Some(e @ Error::Dynamics(DynamicsError::Diverged { .. })) => (true, e.to_string()),
+        Some(e @ CoreError::Dynamics(DynamicsError::Diverged { .. })) => (true, e.to_string()),
         Some(e) => (false, e.to_string()),
         None => (false, "no divergence".into()),
     };

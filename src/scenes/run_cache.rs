@@ -77,11 +77,11 @@ impl RunCache {
 
     /// The value stored under `key`, or `run()`'s, stored when it succeeds and fits the
     /// budget by itself. The lock is not held while `run` works.
-    pub fn get_or_run<T: Any + Send + Sync + CacheWeight>(
+    pub fn get_or_run<T: Any + Send + Sync + CacheWeight, E>(
         &self,
         key: String,
-        run: impl FnOnce() -> Result<T>,
-    ) -> Result<Arc<T>> {
+        run: impl FnOnce() -> Result<T, E>,
+    ) -> Result<Arc<T>, E> {
         let Some(entries) = &self.0 else {
             return run().map(Arc::new);
         };
@@ -207,7 +207,7 @@ mod tests {
         let v = cache
             .get_or_run(key.into(), || {
                 ran.set(true);
-                Ok(Blob(bytes))
+                Ok::<_, crate::Error>(Blob(bytes))
             })
             .unwrap();
         assert_eq!(v.0, bytes, "{key}");
@@ -250,7 +250,7 @@ mod tests {
     #[test]
     fn failures_are_not_kept_and_a_detached_cache_keeps_nothing() {
         let cache = RunCache::new();
-        let failed = cache.get_or_run::<Blob>("x".into(), || {
+        let failed = cache.get_or_run::<Blob, _>("x".into(), || {
             Err(crate::Error::InvalidOption {
                 option: "--method",
                 scene: None,

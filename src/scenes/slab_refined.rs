@@ -209,14 +209,18 @@ fn refined_basis(
 ) -> Result<Basis> {
     match m {
         Method::CraigBampton => Ok(cb.clone()),
-        Method::ModalTruncation => modal_truncation_from(problem, ModeSelection::Count(kept)),
+        Method::ModalTruncation => Ok(modal_truncation_from(problem, ModeSelection::Count(kept))?),
         Method::ModeCondensation => {
             let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
-            mode_condensation_from(problem, ModeSelection::Count(kept), route)
+            Ok(mode_condensation_from(
+                problem,
+                ModeSelection::Count(kept),
+                route,
+            )?)
         }
         _ => {
             opts.progress.phase("Guyan reduction")?;
-            guyan_on(model, gr_masters, SolverPath::Auto)
+            Ok(guyan_on(model, gr_masters, SolverPath::Auto)?)
         }
     }
 }

@@ -287,7 +287,7 @@ pub fn run_sim3(opts: &SceneOptions) -> Result<SceneOutput> {
     let end = opts.end_time_or_default(&INFO_3)?;
     let tables = opts.cache.get_or_run(
         format!("{}/tables/{axes:?}/{:x}", INFO_3.id, end.to_bits()),
-        || record_driving_tables(axes, end, &opts.progress),
+        || record_driving_tables(axes, end, &opts.progress).map_err(crate::Error::from),
     )?;
     run_scenario(&INFO_3, Scenario::Driven((*tables).clone()), opts)
 }

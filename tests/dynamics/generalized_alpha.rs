@@ -3,12 +3,13 @@
 
 use flexmodes::dynamics::DynamicsError;
 use flexmodes::{
-    Error, Progress,
+    Progress,
     analysis::relative_rms,
     dynamics::{
         Body, GeneralizedAlphaCoefficients, IntegrationScheme, IntegratorParameters, Simulation,
         State, System, simulate,
     },
+    error::CoreError as Error,
     fem::{SlabParameters, slab},
     models::{
         PROBE_NODE, SLAB_BOUNDARY as BOUNDARY, Scenario, fixed, probe_history, slab_body,

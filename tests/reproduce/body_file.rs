@@ -8,13 +8,13 @@ use std::path::{Path, PathBuf};
 
 use faer::Mat;
 use flexmodes::{
-    Error,
     analysis::{count_zero_energy_modes, free_free_modes, reduced_modes},
     assets,
     body_file::{
         BodyFileParameters, BodyHandle, ImportedBody, example_bodies, parse_matrix_market,
         read_matrix_market, write_body, write_files,
     },
+    error::CoreError as Error,
     fem::{RigidMotions, SlabParameters, slab},
     linalg::{MassMatrix, generalized_eigen},
     reduction::{Method, ModeSelection, ReductionParameters, reduce},
@@ -51,7 +51,10 @@ fn bar(
     body: &str,
     k: &str,
     m: &str,
-) -> (crate::scratch::Scratch, flexmodes::Result<ImportedBody>) {
+) -> (
+    crate::scratch::Scratch,
+    flexmodes::error::CoreResult<ImportedBody>,
+) {
     let dir = scratch(dir_tag);
     write(&dir, "body.toml", body);
     write(&dir, "k.mtx", k);

@@ -218,7 +218,7 @@ fn an_averaging_interface_reads_the_weighted_rigid_fit_of_its_ring() {
 /// method on an averaging interface is refused by name.
 #[test]
 fn an_averaging_interface_adds_no_stiffness() {
-    use flexmodes::{Error, reduction::AveragingInterface};
+    use flexmodes::{error::CoreError as Error, reduction::AveragingInterface};
     let (body, reference) = body("steel-link");
     let model = &body.model;
     let scipy = checks::floats(&reference["free_free_hz"]);

@@ -9,8 +9,8 @@ use faer::{
 };
 use flexmodes::reduction::ReductionError;
 use flexmodes::{
-    Error,
     analysis::{StaticLoadCase, full_static_response, modes_in_band, pair_modes},
+    error::CoreError as Error,
     fem::{
         BeamParameters, Direction, DualSpinParameters, FeModel, FrameSection, NodeDof,
         OverhangFrameParameters, beam, dual_spin, frame, overhang_frame,

@@ -142,10 +142,10 @@ fn symmetric_eigen_falls_back_when_faer_fails() {
     assert!(
         matches!(
             err,
-            flexmodes::Error::Linalg(LinalgError::NotFinite { row: 3, col: 5, .. })
+            flexmodes::error::CoreError::Linalg(LinalgError::NotFinite { row: 3, col: 5, .. })
         ) || matches!(
             err,
-            flexmodes::Error::Linalg(LinalgError::NotFinite { row: 5, col: 3, .. })
+            flexmodes::error::CoreError::Linalg(LinalgError::NotFinite { row: 5, col: 3, .. })
         ),
         "{err}"
     );

@@ -2,7 +2,7 @@
 
 use flexmodes::reduction::ReductionError;
 use flexmodes::{
-    Error,
+    error::CoreError as Error,
     fem::{BeamParameters, SlabParameters, beam, slab},
     reduction::{
         EitelbergParameters, Method, ModeSelection, NodalFixedAxes, ReductionParameters,
@@ -14,7 +14,7 @@ use flexmodes::{
 #[test]
 fn unknown_scene() {
     let e = scenes::find("beam-mode").err().unwrap();
-    assert!(matches!(e, Error::UnknownScene { ref id, .. } if id == "beam-mode"));
+    assert!(matches!(e, flexmodes::Error::UnknownScene { ref id, .. } if id == "beam-mode"));
     assert!(
         e.to_string().contains("beam-modes"),
         "lists the known scenes: {e}"
@@ -173,20 +173,23 @@ fn scene_options_are_checked() {
         ..Default::default()
     };
     let e = (scenes::find("beam-modes").unwrap().run)(&bad_axes).unwrap_err();
-    assert!(matches!(e, Error::UnknownAxes { .. }), "{e}");
+    assert!(matches!(e, flexmodes::Error::UnknownAxes { .. }), "{e}");
     let bad_method = SceneOptions {
         methods: Some(vec![Method::Eitelberg]),
         ..Default::default()
     };
     let e = (scenes::find("beam-profiles").unwrap().run)(&bad_method).unwrap_err();
-    assert!(matches!(e, Error::UnknownMethod { .. }), "{e}");
+    assert!(matches!(e, flexmodes::Error::UnknownMethod { .. }), "{e}");
     let singular = SceneOptions {
         boundary: Some(vec![16]),
         ..Default::default()
     };
     let e = (scenes::find("slab-modes").unwrap().run)(&singular).unwrap_err();
     assert!(
-        matches!(e, Error::Reduction(ReductionError::SingularInterior { .. })),
+        matches!(
+            e,
+            flexmodes::Error::Core(Error::Reduction(ReductionError::SingularInterior { .. }))
+        ),
         "{e}"
     );
 }

@@ -66,7 +66,7 @@ fn npy_files_read_back_exactly() {
 #[test]
 fn a_rigid_interface_needs_boundary_columns() {
     use flexmodes::{
-        Error,
+        error::CoreError as Error,
         error::ReductionError,
         reduction::{RigidInterface, tie_rigid_interfaces},
     };
@@ -128,7 +128,7 @@ fn a_rigid_interface_needs_boundary_columns() {
 #[test]
 fn interfaces_declared_in_the_body_file() {
     use flexmodes::{
-        Error,
+        error::CoreError as Error,
         error::{BodyFileError, BodySpecProblem},
         models::BodyInterfaces,
     };

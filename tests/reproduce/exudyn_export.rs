@@ -181,10 +181,12 @@ fn exudyn_export_refuses_by_name_and_writes_nothing() {
         let error = export(&body, method, &end_a.nodes, modes, &dir, &parameters).unwrap_err();
         let text = error.to_string();
         match &error {
-            flexmodes::Error::Reduction(flexmodes::reduction::ReductionError::NotExportable {
-                to: "Exudyn",
-                problem: found,
-            }) => assert_eq!(found, &problem, "{text}"),
+            flexmodes::error::CoreError::Reduction(
+                flexmodes::reduction::ReductionError::NotExportable {
+                    to: "Exudyn",
+                    problem: found,
+                },
+            ) => assert_eq!(found, &problem, "{text}"),
             other => panic!("not a refused export: {other}"),
         }
         assert!(

@@ -6,8 +6,8 @@ use flexmodes::error::FreeMotion;
 use flexmodes::linalg::LinalgError;
 use flexmodes::reduction::ReductionError;
 use flexmodes::{
-    Error,
     analysis::{elastic_hz, free_free_modes, lowest_free_free_modes},
+    error::CoreError as Error,
     fem::{HEX8_LOCAL_NODES, SlabParameters, Triplets, hex8_stiffness, slab},
     linalg::{
         MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor, SymmetricFactor,

@@ -8,14 +8,3 @@ pub(super) fn as_text<S: serde::Serializer, E: std::fmt::Display + ?Sized>(
 ) -> std::result::Result<S::Ok, S::Error> {
     s.collect_str(e)
 }
-
-/// [`as_text`] of the error, when there is one (`null` otherwise).
-pub(super) fn as_optional_text<S: serde::Serializer>(
-    e: &Option<Box<dyn std::error::Error + Send + Sync>>,
-    s: S,
-) -> std::result::Result<S::Ok, S::Error> {
-    match e {
-        Some(e) => as_text(e, s),
-        None => s.serialize_none(),
-    }
-}

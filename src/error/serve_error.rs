@@ -4,10 +4,8 @@ use std::{net::IpAddr, path::PathBuf};
 
 use thiserror::Error;
 
-use super::as_text::{as_optional_text, as_text};
-
 /// Errors of `flexmodes serve`: which address, port, file or asset.
-#[derive(Debug, Error, serde::Serialize)]
+#[derive(Debug, Error)]
 pub enum ServeError {
     /// The binary was built without the `serve` feature.
     #[error(
@@ -32,7 +30,6 @@ pub enum ServeError {
         address: IpAddr,
         port: Option<u16>,
         #[source]
-        #[serde(serialize_with = "as_text")]
         source: Box<dyn std::error::Error + Send + Sync>,
     },
 
@@ -55,7 +52,6 @@ pub enum ServeError {
     #[error("the classroom server cannot start: no random control token from the operating system")]
     NoRandomToken {
         #[source]
-        #[serde(serialize_with = "as_text")]
         source: std::io::Error,
     },
 
@@ -63,7 +59,6 @@ pub enum ServeError {
     #[error("the classroom server cannot start: it cannot catch Ctrl-C")]
     NoInterruptHandler {
         #[source]
-        #[serde(serialize_with = "as_text")]
         source: Box<dyn std::error::Error + Send + Sync>,
     },
 
@@ -73,22 +68,20 @@ pub enum ServeError {
     Viewer {
         what: &'static str,
         #[source]
-        #[serde(serialize_with = "as_optional_text")]
         source: Option<Box<dyn std::error::Error + Send + Sync>>,
     },
 }
 
 /// What is wrong with a recording file `flexmodes serve` was given.
-#[derive(Debug, Error, serde::Serialize)]
+#[derive(Debug, Error)]
 pub enum RecordingProblem {
     /// The file cannot be read.
     #[error("{0}")]
-    Unreadable(#[serde(serialize_with = "as_text")] std::io::Error),
+    Unreadable(std::io::Error),
     /// Message `message` (0-based) does not decode.
     #[error("message {message}: {source}")]
     Damaged {
         message: usize,
-        #[serde(serialize_with = "as_text")]
         source: Box<dyn std::error::Error + Send + Sync>,
     },
     /// No message starts a recording.
