@@ -39,7 +39,11 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub(super) enum Command {
     /// List the scenes, one line each.
-    List,
+    List {
+        /// Instead of the summaries, the options each scene takes, with its defaults.
+        #[arg(long)]
+        options: bool,
+    },
     /// Record scenes to Rerun `.rrd` files.
     Record {
         /// Scene ids (see `flexmodes list`).

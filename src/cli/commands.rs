@@ -48,7 +48,7 @@ fn run(cli: Cli) -> Result<()> {
         });
     }
     match cli.command {
-        Command::List => {
+        Command::List { options } => {
             let all = scenes::all();
             let width = all
                 .iter()
@@ -56,7 +56,12 @@ fn run(cli: Cli) -> Result<()> {
                 .max()
                 .unwrap_or(0);
             for s in all {
-                println!("{:<width$}  {}", s.info.id.as_str(), s.info.summary);
+                let said = if options {
+                    s.info.controls.described()
+                } else {
+                    s.info.summary.to_string()
+                };
+                println!("{:<width$}  {said}", s.info.id.as_str());
             }
             Ok(())
         }

@@ -167,7 +167,11 @@ impl Controls {
                 .then_some(self.deformation_scale),
             refine,
             integrator: c.end_time.and(self.integrator),
-            stiffening: self.scene.takes_stiffening().then_some(self.stiffening),
+            stiffening: scenes::get(self.scene)
+                .info
+                .controls
+                .stiffening
+                .then_some(self.stiffening),
             ..Default::default()
         })
     }

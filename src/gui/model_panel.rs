@@ -68,7 +68,7 @@ impl Explorer {
                 }
             });
         }
-        if info.id.takes_stiffening() {
+        if info.controls.stiffening {
             let mut on = self.controls.stiffening;
             ui.checkbox(&mut on, "dynamic stiffening").on_hover_text(
                 "the geometric stiffness of the frame's loads (spin, gravity, the frame's \

@@ -33,11 +33,11 @@ pub const INFO: SceneInfo = SceneInfo {
         axes: &[],
         end_time: None,
         refine: None,
+        ..super::scene_info::SceneControls::NONE
     },
 };
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.check_axes(INFO.id, &[])?;
     let params = SubstructuringParameters::default();
     opts.progress.phase("substructure ladder")?;
     let study = substructuring_study(&params)?;

@@ -30,11 +30,11 @@ pub const INFO: SceneInfo = SceneInfo {
         axes: &[],
         end_time: None,
         refine: None,
+        ..super::scene_info::SceneControls::NONE
     },
 };
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.check_axes(INFO.id, &[])?;
     opts.methods_or(INFO.id, &[Method::Eitelberg, Method::Guyan], &[])?;
     let masters = opts.boundary_or_default(&INFO);
     let model = beam(&BeamParameters::default());

@@ -38,6 +38,7 @@ pub const INFO: SceneInfo = SceneInfo {
         axes: &[AxisKind::Mean],
         end_time: None,
         refine: None,
+        ..super::scene_info::SceneControls::NONE
     },
 };
 
@@ -49,7 +50,6 @@ const AVAILABLE: [Method; 4] = [
 ];
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.check_axes(INFO.id, &[AxisKind::Mean])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &[Method::ModeCondensation])?;
     let boundary = opts.boundary_or_default(&INFO);
     let kept = opts.modes_or_default(&INFO);

@@ -37,6 +37,7 @@ pub const INFO: SceneInfo = SceneInfo {
         axes: &[],
         end_time: None,
         refine: None,
+        ..super::scene_info::SceneControls::NONE
     },
 };
 
@@ -72,7 +73,6 @@ fn labelled_columns(basis: &Basis) -> Vec<(Vec<f64>, String)> {
 }
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.check_axes(INFO.id, &[])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
     let boundary = opts.boundary_or_default(&INFO);
     let kept = opts.modes_or_default(&INFO);

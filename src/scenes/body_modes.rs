@@ -41,6 +41,8 @@ pub const INFO: SceneInfo = SceneInfo {
         axes: &[],
         end_time: None,
         refine: None,
+        body: true,
+        ..super::scene_info::SceneControls::NONE
     },
 };
 
@@ -85,7 +87,6 @@ fn run_driven(
 }
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.check_axes(INFO.id, &[])?;
     let body = body_of(opts)?;
     if let Some(simulation) = &opts.simulation {
         return run_driven(&body, simulation, opts);

@@ -22,21 +22,14 @@ pub const INFO: SceneInfo = SceneInfo {
               built once on a clamped beam structure, then with A clamped (variant 2) and A \
               sliding with 250 kg (variant 3): static deflections, frequency errors and MAC",
     sections: "Witteveen 2012 §4",
-    controls: super::scene_info::SceneControls::methods_only(&AVAILABLE),
+    controls: super::scene_info::SceneControls::methods_only(
+        &AVAILABLE,
+        "the bases are Witteveen's: the seven I/O DOF, 7 constraint + 7 fixed-interface \
+         modes, 2 Krylov blocks, 14 balanced vectors",
+    ),
 };
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.check_axes(INFO.id, &[])?;
-    if opts.boundary.is_some() || opts.modes.is_some() {
-        return Err(crate::Error::InvalidOption {
-            option: "--boundary, --modes",
-            scene: Some(INFO.id.as_str()),
-            reason: "--boundary and --modes do not apply: the bases are Witteveen's (the seven \
-                     I/O DOF, 7 constraint + 7 fixed-interface modes, 2 Krylov blocks, 14 \
-                     balanced vectors)"
-                .into(),
-        });
-    }
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
     let study = cantilever_study(&methods)?;
     let (params, frame) = (&study.params, &study.frame);

@@ -22,7 +22,7 @@ use super::failure_motion_cases::{
 };
 use super::{SceneInfo, SceneOptions, SceneOutput};
 use crate::{
-    Error, Result,
+    Result,
     fem::{BeamParameters, SlabParameters, beam, slab},
     models::MOVED_NODE,
     record::Layout,
@@ -37,19 +37,13 @@ pub const INFO: SceneInfo = SceneInfo {
               truncation and boundary motion, a spun arm's inertia loads without residual \
               vectors",
     sections: "§3.2, §4.2, §6.2–6.6, §7.1–7.2",
-    controls: super::scene_info::SceneControls::methods_only(&[]),
+    controls: super::scene_info::SceneControls::methods_only(
+        &[],
+        "the failures scene has fixed settings: each failure states its own",
+    ),
 };
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.check_axes(INFO.id, &[])?;
-    opts.methods_or(INFO.id, &[], &[])?;
-    if opts.modes.is_some() || opts.boundary.is_some() || opts.end_time.is_some() {
-        return Err(Error::InvalidOption {
-            option: "--modes, --boundary, --end-time",
-            scene: Some(INFO.id.as_str()),
-            reason: "the failures scene has fixed settings (each failure states its own)".into(),
-        });
-    }
     let beam_model = beam(&BeamParameters::default());
     let slab_model = slab(&SlabParameters::default());
     let mut report = Report::new(INFO.id.as_str());

@@ -192,26 +192,6 @@ impl SceneOptions {
         })
     }
 
-    /// Rejects `--integrator` and `--dt` for scenes without a simulation.
-    pub fn check_integrator(&self, info: &SceneInfo) -> Result<()> {
-        if info.controls.end_time.is_none() && (self.integrator.is_some() || self.dt.is_some()) {
-            return Err(Error::InvalidOption {
-                option: "--integrator",
-                scene: Some(info.id.as_str()),
-                reason: format!(
-                    "--integrator, --dt and --rho-inf apply to the simulations only ({})",
-                    super::all()
-                        .iter()
-                        .filter(|s| s.info.controls.end_time.is_some())
-                        .map(|s| s.info.id.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            });
-        }
-        Ok(())
-    }
-
     /// `--deformation-scale` checked (a finite factor ≥ 0; 0 draws no deflection), or `auto`.
     pub fn deformation_scale_or(&self, scene: SceneId, auto: impl FnOnce() -> f64) -> Result<f64> {
         match self.deformation_scale {
@@ -222,18 +202,6 @@ impl SceneOptions {
                 scene: Some(scene.as_str()),
                 reason: format!("deformation scale {f} must be a finite number ≥ 0"),
             }),
-        }
-    }
-
-    /// Rejects `--axes` for scenes that have no axis choice (beyond `allowed`).
-    pub fn check_axes(&self, scene: SceneId, allowed: &[AxisKind]) -> Result<()> {
-        match self.axes {
-            Some(a) if !allowed.contains(&a) => Err(Error::UnknownAxes {
-                id: a.id(),
-                scene: scene.as_str(),
-                available: allowed.iter().map(|a| a.id()).collect(),
-            }),
-            _ => Ok(()),
         }
     }
 }

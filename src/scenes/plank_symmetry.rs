@@ -37,6 +37,7 @@ pub const INFO: SceneInfo = SceneInfo {
         axes: &[AxisKind::NodalFixed, AxisKind::Mean],
         end_time: Some(END_TIME),
         refine: None,
+        ..super::scene_info::SceneControls::NONE
     },
 };
 

@@ -1,6 +1,6 @@
 //! The list of scenes.
 
-use super::{SceneId, scene_info::SceneInfo};
+use super::{SceneId, SceneOption, scene_info::SceneInfo};
 use super::{
     SceneOptions, SceneOutput, amls, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
     body_modes, cantilever_variants, failures, plank_symmetry, slab_mode_sets, slab_modes,
@@ -17,33 +17,51 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Runs the scene after checking the options it does not offer.
+    /// Runs the scene after refusing what it does not offer ([`Self::check`]).
     pub fn execute(&self, opts: &SceneOptions) -> Result<SceneOutput> {
-        if opts.refine.is_some() && self.info.controls.refine.is_none() {
-            return Err(Error::InvalidOption {
-                option: "--refine",
-                scene: Some(self.info.id.as_str()),
-                reason: "--refine applies to slab-modes only".into(),
+        self.check(opts)?;
+        (self.run)(opts)
+    }
+
+    /// Refuses every option the scene's table ([`SceneControls`](super::SceneControls)) does
+    /// not offer, naming the scenes that do, and an axis type it does not offer; values a
+    /// scene's own run checks (a method, a node, an interval) are checked there.
+    pub fn check(&self, opts: &SceneOptions) -> Result<()> {
+        let controls = &self.info.controls;
+        let scene = self.info.id.as_str();
+        if let Some(a) = opts.axes
+            && !controls.axes.contains(&a)
+        {
+            return Err(Error::UnknownAxes {
+                id: a.id(),
+                scene,
+                available: controls.axes.iter().map(|a| a.id()).collect(),
             });
         }
-        opts.check_integrator(&self.info)?;
-        if opts.stiffening.is_some() && !self.info.id.takes_stiffening() {
+        let refused = SceneOption::ALL
+            .into_iter()
+            .find(|&o| o != SceneOption::Axes && o.given(opts) && !o.offered_by(controls));
+        if let Some(option) = refused {
+            let takers: Vec<&str> = all()
+                .iter()
+                .filter(|s| option.offered_by(&s.info.controls))
+                .map(|s| s.info.id.as_str())
+                .collect();
+            let mut reason = format!(
+                "{option} does not apply to `{scene}`; it applies to {}",
+                if takers.is_empty() {
+                    "no scene".to_string()
+                } else {
+                    takers.join(", ")
+                }
+            );
+            if let Some(because) = controls.fixed_because {
+                reason.push_str(&format!(" ({because})"));
+            }
             return Err(Error::InvalidOption {
-                option: "--stiffening",
-                scene: Some(self.info.id.as_str()),
-                reason: "--stiffening applies to slab-sim1, slab-sim2 and slab-sim3 (spin-up \
-                         shows the models with and without it; simulate --body takes its own)"
-                    .into(),
-            });
-        }
-        if opts.band_hz.is_some() && self.info.id != super::body_modes::INFO.id {
-            return Err(Error::InvalidOption {
-                option: "--band",
-                scene: Some(self.info.id.as_str()),
-                reason: format!(
-                    "--band compares interface responses in the `{}` scene only",
-                    super::body_modes::INFO.id
-                ),
+                option: option.flag(),
+                scene: Some(scene),
+                reason,
             });
         }
         if let Some(b) = opts.band_hz
@@ -51,29 +69,11 @@ impl Scene {
         {
             return Err(Error::InvalidOption {
                 option: "--band",
-                scene: Some(self.info.id.as_str()),
+                scene: Some(scene),
                 reason: format!("--band must be a positive frequency in Hz, not {b}"),
             });
         }
-        if opts.simulation.is_some() && self.info.id != SceneId::Modes {
-            return Err(Error::InvalidOption {
-                option: "simulate",
-                scene: Some(self.info.id.as_str()),
-                reason: "a body is driven in the `modes` scene only".into(),
-            });
-        }
-        if opts.body.is_some() && self.info.id != super::body_modes::INFO.id {
-            return Err(Error::InvalidOption {
-                option: "--body",
-                scene: Some(self.info.id.as_str()),
-                reason: format!(
-                    "--body applies to the `{}` scene only (the other scenes are the thesis' \
-                     bodies)",
-                    super::body_modes::INFO.id
-                ),
-            });
-        }
-        (self.run)(opts)
+        Ok(())
     }
 }
 
@@ -123,6 +123,71 @@ mod tests {
         for id in SceneId::ALL {
             assert_eq!(get(id).info.id, id);
             assert_eq!(find(id.as_str()).unwrap().info.id, id);
+        }
+    }
+
+    #[test]
+    fn every_option_is_taken_by_some_scene_and_refused_by_the_others_by_name() {
+        let given = |option: SceneOption| {
+            let mut o = SceneOptions::default();
+            match option {
+                SceneOption::Method => o.methods = Some(vec![]),
+                SceneOption::Modes => o.modes = Some(3),
+                SceneOption::Boundary => o.boundary = Some(vec![1]),
+                SceneOption::Axes => o.axes = Some(crate::dynamics::AxisKind::Mean),
+                SceneOption::EndTime => o.end_time = Some(1.0),
+                SceneOption::Integrator => o.dt = Some(1e-3),
+                SceneOption::DeformationScale => o.deformation_scale = Some(1.0),
+                SceneOption::Refine => o.refine = Some([4, 2, 1]),
+                SceneOption::Stiffening => o.stiffening = Some(true),
+                SceneOption::Body => {
+                    o.body = Some(crate::body_file::BodyHandle(std::sync::Arc::new(
+                        crate::body_file::ImportedBody::load("builtin:l-bracket").unwrap(),
+                    )))
+                }
+                SceneOption::Band => o.band_hz = Some(100.0),
+                SceneOption::InterfaceModes => o.interface_modes = Some(2),
+                SceneOption::Simulate => {
+                    o.simulation = Some(crate::scenes::body_simulation::BodySimulation {
+                        parameters: Default::default(),
+                        full_body: false,
+                    })
+                }
+            }
+            assert!(option.given(&o), "{option}");
+            o
+        };
+        for option in SceneOption::ALL {
+            let options = given(option);
+            let takers: Vec<Scene> = all()
+                .into_iter()
+                .filter(|s| option.offered_by(&s.info.controls))
+                .collect();
+            assert!(!takers.is_empty(), "no scene takes {option}");
+            for scene in all() {
+                let checked = scene.check(&options);
+                let offered = option.offered_by(&scene.info.controls);
+                match (option, checked) {
+                    (_, Ok(())) => assert!(offered, "{} took {option}", scene.info.id),
+                    (SceneOption::Axes, Err(Error::UnknownAxes { .. })) => {}
+                    (
+                        _,
+                        Err(Error::InvalidOption {
+                            option: flag,
+                            reason,
+                            ..
+                        }),
+                    ) => {
+                        assert!(!offered, "{} refused {option}: {reason}", scene.info.id);
+                        assert_eq!(flag, option.flag());
+                        assert!(
+                            reason.contains(takers[0].info.id.as_str()),
+                            "the refusal names the takers: {reason}"
+                        );
+                    }
+                    (_, Err(e)) => panic!("{}, {option}: {e}", scene.info.id),
+                }
+            }
         }
     }
 }

@@ -62,15 +62,6 @@ impl SceneId {
         SceneId::Amls,
     ];
 
-    /// Whether the scene takes `--stiffening on|off` (the slab simulations: their floating
-    /// frame's dynamic stiffening).
-    pub const fn takes_stiffening(self) -> bool {
-        matches!(
-            self,
-            SceneId::SlabSim1 | SceneId::SlabSim2 | SceneId::SlabSim3
-        )
-    }
-
     /// What recording the scene costs, in tenths of a second of one core (release build,
     /// `record --all --timings` on the 2-core reference machine, docs/benchmarks.md): `record`
     /// starts the costliest first, so that no core is left with a long scene at the end

@@ -38,6 +38,7 @@ pub const INFO: SceneInfo = SceneInfo {
         axes: &[AxisKind::NodalFixed],
         end_time: None,
         refine: Some(APP_B_BRICKS),
+        ..super::scene_info::SceneControls::NONE
     },
 };
 
@@ -60,7 +61,6 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     {
         return super::slab_refined::run(opts, &INFO, bricks);
     }
-    opts.check_axes(INFO.id, &[AxisKind::NodalFixed])?;
     let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
     let boundary = opts.boundary_or_default(&INFO);
     let kept = opts.modes_or_default(&INFO);

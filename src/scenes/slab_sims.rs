@@ -33,6 +33,8 @@ const fn sim_controls(end: f64) -> super::scene_info::SceneControls {
         axes: &AxisKind::ALL,
         end_time: Some(end),
         refine: Some(super::slab_modes::APP_B_BRICKS),
+        stiffening: true,
+        ..super::scene_info::SceneControls::NONE
     }
 }
 

@@ -31,6 +31,7 @@ pub const INFO: SceneInfo = SceneInfo {
         axes: &[],
         end_time: None,
         refine: None,
+        ..super::scene_info::SceneControls::NONE
     },
 };
 
@@ -38,7 +39,6 @@ pub const INFO: SceneInfo = SceneInfo {
 const COMPARED_UP_TO: f64 = 10.0;
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.check_axes(INFO.id, &[])?;
     let modes = opts.modes_or_default(&INFO).max(1);
     let campbell = campbell_study(&CampbellParameters {
         reduced_modes: modes,

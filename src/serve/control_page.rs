@@ -6,18 +6,26 @@
 
 use std::fmt::Write as _;
 
+use crate::scenes::{self, SceneOption};
+
 /// The form's fields beside the scene, each passed on as the command-line option of the same
-/// name, with the hint the form shows.
-pub const CONTROL_FIELDS: [(&str, &str); 8] = [
-    ("method", "nr,gr,mt,cb,mc,eit (comma separated)"),
-    ("modes", "kept normal modes"),
-    ("boundary", "nodes or node sets, comma separated"),
-    ("axes", "nodal_fixed, mean or principal"),
-    ("integrator", "dp5 or gen-alpha"),
-    ("refine", "NX,NY,NZ (slab-modes)"),
-    ("end-time", "simulated seconds"),
-    ("body", "a body file or builtin:NAME (modes)"),
+/// name; the form shows each option's hint and the scenes that take it, from the scenes'
+/// table.
+pub const CONTROL_FIELDS: [SceneOption; 8] = [
+    SceneOption::Method,
+    SceneOption::Modes,
+    SceneOption::Boundary,
+    SceneOption::Axes,
+    SceneOption::Integrator,
+    SceneOption::Refine,
+    SceneOption::EndTime,
+    SceneOption::Body,
 ];
+
+/// A field's name in the form: its option without the dashes (`end-time`).
+fn field_name(option: SceneOption) -> &'static str {
+    option.flag().trim_start_matches("--")
+}
 
 /// Largest form body read, bytes.
 pub const MAX_CONTROL_BODY: usize = 16 * 1024;
@@ -153,14 +161,14 @@ impl ControlPage {
             match k.as_str() {
                 "token" => {}
                 "scene" => scene = Some(v.to_string()),
-                field if CONTROL_FIELDS.iter().any(|(f, _)| *f == field) => {
+                field if CONTROL_FIELDS.iter().any(|&o| field_name(o) == field) => {
                     if !v.is_empty() {
                         words.push(format!("--{field}"));
                         words.push(v.to_string());
                     }
                 }
                 other => {
-                    let known: Vec<&str> = CONTROL_FIELDS.iter().map(|(f, _)| *f).collect();
+                    let known: Vec<&str> = CONTROL_FIELDS.map(field_name).to_vec();
                     return Err(format!(
                         "unknown field `{other}` (the form has scene, {})",
                         known.join(", ")
@@ -209,11 +217,19 @@ impl ControlPage {
             );
         }
         html.push_str("</select></label>");
-        for (field, hint) in CONTROL_FIELDS {
+        for option in CONTROL_FIELDS {
+            let field = field_name(option);
+            let takers: Vec<&str> = scenes::all()
+                .iter()
+                .filter(|s| option.offered_by(&s.info.controls))
+                .map(|s| s.info.id.as_str())
+                .collect();
             let _ = write!(
                 html,
-                "<label>{field} <input name=\"{field}\" placeholder=\"{}\" value=\"{}\"></label>",
-                html_escape(hint),
+                "<label title=\"taken by {}\">{field} <input name=\"{field}\" placeholder=\"{}\" \
+                 value=\"{}\"></label>",
+                html_escape(&takers.join(", ")),
+                html_escape(option.hint()),
                 html_escape(value(field))
             );
         }

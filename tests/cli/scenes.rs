@@ -348,7 +348,7 @@ fn the_integrator_is_chosen_per_run() {
         (
             vec!["report", "slab-modes", "--integrator", "gen-alpha"],
             1,
-            "apply to the simulations only",
+            "it applies to slab-sim1, slab-sim2, slab-sim3, plank-symmetry",
         ),
     ] {
         let out = flexmodes(&args);

@@ -172,7 +172,10 @@ fn scene_options_are_checked() {
         axes: Some(flexmodes::dynamics::AxisKind::Mean),
         ..Default::default()
     };
-    let e = (scenes::find("beam-modes").unwrap().run)(&bad_axes).unwrap_err();
+    let e = scenes::find("beam-modes")
+        .unwrap()
+        .execute(&bad_axes)
+        .unwrap_err();
     assert!(matches!(e, flexmodes::Error::UnknownAxes { .. }), "{e}");
     let bad_method = SceneOptions {
         methods: Some(vec![Method::Eitelberg]),
