@@ -26,15 +26,7 @@ pub const INFO: SceneInfo = SceneInfo {
               slab: the nested-dissection tree level by level, Guyan and Craig-Bampton on its \
               root separator against AMLS over every level, and AMLS refined against Lanczos",
     sections: "§6.3–6.4; Bennighof & Lehoucq 2004",
-    controls: super::scene_info::SceneControls {
-        methods: &[],
-        boundary: &[],
-        modes: None,
-        axes: &[],
-        end_time: None,
-        refine: None,
-        ..super::scene_info::SceneControls::NONE
-    },
+    controls: super::scene_info::SceneControls::NONE,
 };
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {

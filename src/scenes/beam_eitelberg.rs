@@ -26,10 +26,6 @@ pub const INFO: SceneInfo = SceneInfo {
     controls: super::scene_info::SceneControls {
         methods: &[Method::Eitelberg, Method::Guyan],
         boundary: &[1, 3, 5],
-        modes: None,
-        axes: &[],
-        end_time: None,
-        refine: None,
         ..super::scene_info::SceneControls::NONE
     },
 };

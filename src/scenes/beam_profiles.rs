@@ -26,9 +26,6 @@ pub const INFO: SceneInfo = SceneInfo {
         ],
         boundary: &[1, 5],
         modes: Some(2),
-        axes: &[],
-        end_time: None,
-        refine: None,
         ..super::scene_info::SceneControls::NONE
     },
 };

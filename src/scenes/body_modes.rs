@@ -36,11 +36,7 @@ pub const INFO: SceneInfo = SceneInfo {
     sections: "§6.2–6.5 on a body of your own",
     controls: super::scene_info::SceneControls {
         methods: &AVAILABLE,
-        boundary: &[],
         modes: Some(10),
-        axes: &[],
-        end_time: None,
-        refine: None,
         body: true,
         ..super::scene_info::SceneControls::NONE
     },

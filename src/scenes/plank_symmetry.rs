@@ -32,11 +32,9 @@ pub const INFO: SceneInfo = SceneInfo {
     sections: "§5.3.3, ch. 8",
     controls: super::scene_info::SceneControls {
         methods: &[Method::NoReduction, Method::CraigBampton],
-        boundary: &[],
         modes: Some(6),
         axes: &[AxisKind::NodalFixed, AxisKind::Mean],
         end_time: Some(END_TIME),
-        refine: None,
         ..super::scene_info::SceneControls::NONE
     },
 };

@@ -36,7 +36,6 @@ pub const INFO: SceneInfo = SceneInfo {
         boundary: &[16, 18, 28, 30],
         modes: Some(6),
         axes: &[AxisKind::NodalFixed],
-        end_time: None,
         refine: Some(APP_B_BRICKS),
         ..super::scene_info::SceneControls::NONE
     },

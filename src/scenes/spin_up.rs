@@ -25,12 +25,7 @@ pub const INFO: SceneInfo = SceneInfo {
               co-rotational reference, NR and CB with and without stiffening",
     sections: "§1; Kane, Ryan & Banerjee 1987",
     controls: super::scene_info::SceneControls {
-        methods: &[],
-        boundary: &[],
         modes: Some(6),
-        axes: &[],
-        end_time: None,
-        refine: None,
         ..super::scene_info::SceneControls::NONE
     },
 };
