@@ -11,6 +11,7 @@
 //! FLEXMODES_HUGE_BODY=target/huge/link-500k cargo test --release --test huge_body -- --ignored
 //! ```
 
+use flexmodes::reduction::ReductionRequest;
 use std::path::PathBuf;
 
 #[path = "external/checks.rs"]
@@ -55,9 +56,8 @@ fn half_a_million_dof_part_reduces_with_a_rigid_interface_like_cholmod_and_arpac
         .with_rigid_interfaces(&interfaces)
         .unwrap();
     let basis = reduce_interior(
-        Method::CraigBampton,
         &mut problem,
-        ModeSelection::Count(modes),
+        &ReductionRequest::of(Method::CraigBampton).modes(ModeSelection::Count(modes)),
     )
     .unwrap();
     assert_eq!(basis.size(), 6 + modes);

@@ -22,7 +22,7 @@ use crate::{
     fem::{SlabParameters, slab},
     models::{default_boundary, held_at_six, reduction_nodes},
     record::{Layout, LogLogChart, LogLogSeries, RecordingContent, method_color},
-    reduction::{Method, ModeSelection, ReductionParameters, reduce},
+    reduction::{Method, ModeSelection, ReductionRequest, reduce},
     report::{markdown_table, sig},
 };
 
@@ -102,7 +102,7 @@ pub fn bench_modes(
     let mut points = Vec::new();
     for (i, (method, k)) in cases.into_iter().enumerate() {
         progress.phase(&format!("point {} of {count}: {} {k}", i + 1, method.id()))?;
-        let params = ReductionParameters {
+        let params = ReductionRequest {
             boundary_nodes: reduction_nodes(&model, method, &boundary),
             modes: ModeSelection::Count(k),
             ..Default::default()
@@ -111,7 +111,7 @@ pub fn bench_modes(
         let mut basis = None;
         for _ in 0..repeats {
             let start = Instant::now();
-            basis = Some(reduce(&model, method, &params)?);
+            basis = Some(reduce(&model, &params.with_method(method))?);
             times.push(start.elapsed().as_secs_f64());
         }
         let basis = basis.expect("at least one repeat");

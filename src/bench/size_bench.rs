@@ -4,6 +4,7 @@
 //! Timings are wall-clock seconds measured in one run on this machine; they are reported,
 //! never asserted.
 
+use crate::reduction::{ReductionRequest, reduce, reduce_interior};
 use std::time::Instant;
 
 use serde_json::{Map, Value, json};
@@ -16,8 +17,6 @@ use crate::{
     reduction::Method,
     reduction::{
         COMPLETE_EIGEN_LIMIT, InteriorProblem, ModeCondensationRoute, ModeSelection, SolverPath,
-        craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
-        mode_condensation_route,
     },
     report::{Report, markdown_table, sig, sig_vec},
 };
@@ -139,19 +138,26 @@ fn measure(model: &FeModel, corners: &[usize], progress: &dyn Fn(&str)) -> Resul
     progress(&format!("{dofs} DOF: Craig-Bampton"));
     let started = Instant::now();
     let mut problem = InteriorProblem::new(model, corners, SolverPath::Auto)?;
-    let cb = craig_bampton_from(&mut problem, ModeSelection::Count(BENCH_MODES))?;
+    let cb = reduce_interior(
+        &mut problem,
+        &ReductionRequest::of(Method::CraigBampton).modes(ModeSelection::Count(BENCH_MODES)),
+    )?;
     let cb_s = started.elapsed().as_secs_f64();
     let phases = cb.statistics;
     let hz = cb.normal_hz();
     let started = Instant::now();
-    modal_truncation_from(&mut problem, ModeSelection::Count(BENCH_MODES))?;
+    reduce_interior(
+        &mut problem,
+        &ReductionRequest::of(Method::ModalTruncation).modes(ModeSelection::Count(BENCH_MODES)),
+    )?;
     // MT reuses CB's factor and modes: its own cost is the basis assembly on top.
     let mt_s = phases.factorization_s + phases.eigen_s + started.elapsed().as_secs_f64();
     let started = Instant::now();
-    mode_condensation_from(
+    reduce_interior(
         &mut problem,
-        ModeSelection::Count(BENCH_MODES),
-        ModeCondensationRoute::KeptModes,
+        &ReductionRequest::of(Method::ModeCondensation)
+            .modes(ModeSelection::Count(BENCH_MODES))
+            .route(ModeCondensationRoute::KeptModes),
     )?;
     let mc_kept_s = cb_s + started.elapsed().as_secs_f64();
     let interior = problem.interior_dofs();
@@ -159,12 +165,13 @@ fn measure(model: &FeModel, corners: &[usize], progress: &dyn Fn(&str)) -> Resul
     let mc_complete_s = if interior <= COMPLETE_EIGEN_LIMIT {
         progress(&format!("{dofs} DOF: mode condensation, complete route"));
         let started = Instant::now();
-        mode_condensation_route(
+        reduce(
             model,
-            corners,
-            ModeSelection::Count(BENCH_MODES),
-            SolverPath::Auto,
-            ModeCondensationRoute::Complete,
+            &ReductionRequest::of(Method::ModeCondensation)
+                .boundary(corners)
+                .modes(ModeSelection::Count(BENCH_MODES))
+                .solver(SolverPath::Auto)
+                .route(ModeCondensationRoute::Complete),
         )?;
         Some(started.elapsed().as_secs_f64())
     } else {
@@ -172,7 +179,12 @@ fn measure(model: &FeModel, corners: &[usize], progress: &dyn Fn(&str)) -> Resul
     };
     progress(&format!("{dofs} DOF: Guyan"));
     let started = Instant::now();
-    guyan_on(model, corners, SolverPath::Auto)?;
+    reduce(
+        model,
+        &ReductionRequest::of(Method::Guyan)
+            .boundary(corners)
+            .solver(SolverPath::Auto),
+    )?;
     let gr_s = started.elapsed().as_secs_f64();
     Ok(Measured {
         phases,

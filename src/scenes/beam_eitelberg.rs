@@ -2,6 +2,7 @@
 
 use crate::linalg::LinalgError;
 use crate::record::method_color;
+use crate::reduction::{ReductionRequest, reduce};
 use serde_json::json;
 
 use super::{
@@ -14,7 +15,7 @@ use crate::{
     fem::{BeamParameters, beam},
     linalg::principal_angles,
     record::Layout,
-    reduction::{EitelbergParameters, EitelbergReduction, Method, eitelberg, guyan},
+    reduction::{EitelbergParameters, EitelbergReduction, Method, eitelberg},
     report::{Report, Table, fmt_hz, sig, sig_vec},
 };
 
@@ -35,7 +36,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let masters = opts.boundary_or_default(&INFO);
     let model = beam(&BeamParameters::default());
     let eit = eitelberg(&model, &masters, &EitelbergParameters::default())?;
-    let g = guyan(&model, &masters)?;
+    let g = reduce(
+        &model,
+        &ReductionRequest::of(Method::Guyan).boundary(&masters),
+    )?;
     let guyan_hz = reduced_hz(&model, &g)?;
     let k_g = g.reduced_stiffness(&model);
     let m_g = g.reduced_mass(&model);

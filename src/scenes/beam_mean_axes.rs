@@ -15,7 +15,7 @@ use crate::{
     linalg::{identity, max_abs_diff, principal_angles},
     record::{Layout, Visual},
     reduction::{
-        Method, ModeSelection, Partition, ReductionParameters, constraint_modes,
+        Method, ModeSelection, Partition, ReductionRequest, constraint_modes,
         fixed_interface_modes, reduce,
     },
     report::{Cell, Report, Table, sig, sig_vec},
@@ -80,8 +80,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     for (i, &m) in methods.iter().enumerate() {
         let basis = reduce(
             &model,
-            m,
-            &ReductionParameters {
+            &ReductionRequest {
+                method: m,
                 boundary_nodes: boundary.clone(),
                 modes: ModeSelection::Count(kept),
                 ..Default::default()

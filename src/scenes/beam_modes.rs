@@ -1,6 +1,7 @@
 //! `beam-modes`: the App. A beam's mode sets of chapter 6 (Figs. 6-1 to 6-9).
 
 use crate::record::{REFERENCE, method_color};
+use crate::reduction::{ReductionRequest, reduce};
 use serde_json::json;
 
 use super::{
@@ -13,10 +14,7 @@ use crate::{
     fem::{BeamParameters, FeModel, beam},
     linalg::principal_angles,
     record::{Layout, Visual},
-    reduction::{
-        Basis, Method, ModeSelection, Partition, craig_bampton, fixed_interface_modes, guyan,
-        modal_truncation, mode_condensation,
-    },
+    reduction::{Basis, Method, ModeSelection, Partition, fixed_interface_modes},
     report::{Report, Table, fmt_hz, sig, sig_vec},
 };
 
@@ -79,15 +77,25 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
 
     let ff = free_free_modes(&model)?;
     let free_free_hz = elastic_hz(&ff);
-    let g_a = guyan(&model, &MASTERS_A)?;
-    let g_b = guyan(&model, &MASTERS_B)?;
-    let g_c = guyan(&model, &boundary)?;
+    let guyan = |masters: &[usize]| {
+        reduce(
+            &model,
+            &ReductionRequest::of(Method::Guyan).boundary(masters),
+        )
+    };
+    let (g_a, g_b, g_c) = (guyan(&MASTERS_A)?, guyan(&MASTERS_B)?, guyan(&boundary)?);
     let fi = fixed_interface_modes(&model, &part)?;
     let fixed_interface_hz = fi.hz();
-    let sel = ModeSelection::Count(kept);
-    let mt = modal_truncation(&model, &boundary, sel)?;
-    let cb = craig_bampton(&model, &boundary, sel)?;
-    let mc = mode_condensation(&model, &boundary, sel)?;
+    let request = ReductionRequest::default()
+        .boundary(&boundary)
+        .modes(ModeSelection::Count(kept));
+    let [mt, cb, mc] = [
+        Method::ModalTruncation,
+        Method::CraigBampton,
+        Method::ModeCondensation,
+    ]
+    .map(|m| reduce(&model, &request.with_method(m)));
+    let (mt, cb, mc) = (mt?, cb?, mc?);
     let angles = principal_angles(cb.psi.as_ref(), mc.psi.as_ref())?;
     let max_angle = angles.iter().copied().fold(0.0f64, f64::max);
 

@@ -9,7 +9,7 @@ use crate::{
     analysis::{PROFILE_DELTA, fit_given_modal_coordinates, fit_least_squares},
     fem::{BeamParameters, beam},
     record::{Geometry, Layout, Visual},
-    reduction::{Method, ModeSelection, Partition, ReductionParameters, reduce},
+    reduction::{Method, ModeSelection, Partition, ReductionRequest, reduce},
     report::{Cell, Report, Table, sig, sig_vec},
 };
 
@@ -42,7 +42,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let kept = opts.modes_or_default(&INFO);
     let model = beam(&BeamParameters::default());
     let part = Partition::new(&model, &boundary)?;
-    let params = ReductionParameters {
+    let params = ReductionRequest {
         boundary_nodes: boundary.clone(),
         modes: ModeSelection::Count(kept),
         ..Default::default()
@@ -71,7 +71,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         });
     }
     for &m in &methods {
-        let basis = reduce(&model, m, &params)?;
+        let basis = reduce(&model, &params.with_method(m))?;
         let p1 = fit_given_modal_coordinates(&model, &basis, &part, &delta)?;
         let p2 = fit_least_squares(&basis, &delta)?;
         e1.insert(m.id().into(), json!(sig(p1.error)));

@@ -15,7 +15,7 @@ use crate::{
     analysis::{elastic_hz, free_free_modes, reduced_hz, reduced_modes},
     fem::{SlabParameters, slab},
     reduction::{
-        Method, ModeSelection, NodalFixedAxes, Partition, ReductionParameters, constraint_modes,
+        Method, ModeSelection, NodalFixedAxes, Partition, ReductionRequest, constraint_modes,
         fixed_interface_modes, reduce,
     },
     report::{Report, Table, fmt_hz, sig_vec},
@@ -87,7 +87,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut bars = FrequencyBars::new(SHOWN_MODES);
     bars.push(Method::NoReduction, &free_free_hz);
     for &m in &methods {
-        let params = ReductionParameters {
+        let params = ReductionRequest {
             boundary_nodes: if m == Method::Guyan {
                 gr_masters.clone()
             } else {
@@ -96,7 +96,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             modes: ModeSelection::Count(kept),
             ..Default::default()
         };
-        let basis = reduce(&model, m, &params)?;
+        let basis = reduce(&model, &params.with_method(m))?;
         let eig = reduced_modes(&model, &basis)?;
         rigid_counts.insert(m.id().into(), json!(eig.zero_energy));
         let hz = eig.elastic_hz();

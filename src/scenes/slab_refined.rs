@@ -1,6 +1,7 @@
 //! `slab-modes --refine NX,NY,NZ`: the App. B slab (same 4 × 2 × 1 m body, material and mass)
 //! meshed with NX × NY × NZ bricks, reduced on the sparse path, with the cost of each phase.
 
+use crate::reduction::{ReductionRequest, reduce, reduce_interior};
 use std::time::Instant;
 
 use serde_json::{Map, Value, json};
@@ -17,7 +18,7 @@ use crate::{
     linalg::{check_reduction_memory, peak_resident_bytes},
     reduction::{
         Basis, InteriorProblem, Method, ModeCondensationRoute, ModeSelection, ReductionStatistics,
-        SolverPath, craig_bampton_from, guyan_on, modal_truncation_from, mode_condensation_from,
+        SolverPath,
     },
     report::{Report, Table, fmt_hz, sig, sig_vec},
 };
@@ -70,7 +71,10 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     let mut problem = InteriorProblem::new(&model, &boundary, SolverPath::Auto)?
         .with_progress(opts.progress.clone());
     let fi = problem.kept_modes(ModeSelection::Count(kept.max(REPORTED_FIXED_INTERFACE)))?;
-    let cb = craig_bampton_from(&mut problem, ModeSelection::Count(kept))?;
+    let cb = reduce_interior(
+        &mut problem,
+        &ReductionRequest::of(Method::CraigBampton).modes(ModeSelection::Count(kept)),
+    )?;
     let reduction_s = started.elapsed().as_secs_f64();
     let phases = problem.statistics;
     let fixed_interface_hz = fi.hz();
@@ -209,18 +213,27 @@ fn refined_basis(
 ) -> Result<Basis> {
     match m {
         Method::CraigBampton => Ok(cb.clone()),
-        Method::ModalTruncation => Ok(modal_truncation_from(problem, ModeSelection::Count(kept))?),
+        Method::ModalTruncation => Ok(reduce_interior(
+            problem,
+            &ReductionRequest::of(Method::ModalTruncation).modes(ModeSelection::Count(kept)),
+        )?),
         Method::ModeCondensation => {
             let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
-            Ok(mode_condensation_from(
+            Ok(reduce_interior(
                 problem,
-                ModeSelection::Count(kept),
-                route,
+                &ReductionRequest::of(Method::ModeCondensation)
+                    .modes(ModeSelection::Count(kept))
+                    .route(route),
             )?)
         }
         _ => {
             opts.progress.phase("Guyan reduction")?;
-            Ok(guyan_on(model, gr_masters, SolverPath::Auto)?)
+            Ok(reduce(
+                model,
+                &ReductionRequest::of(Method::Guyan)
+                    .boundary(gr_masters)
+                    .solver(SolverPath::Auto),
+            )?)
         }
     }
 }

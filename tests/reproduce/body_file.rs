@@ -17,7 +17,7 @@ use flexmodes::{
     error::CoreError as Error,
     fem::{RigidMotions, SlabParameters, slab},
     linalg::{MassMatrix, generalized_eigen},
-    reduction::{Method, ModeSelection, ReductionParameters, reduce},
+    reduction::{Method, ModeSelection, ReductionRequest, reduce},
     scenes::{self, SceneOptions},
 };
 
@@ -139,7 +139,7 @@ fn the_imported_app_b_slab_is_the_built_in_one() {
         assert!((x - y).abs() <= 1e-12 * x, "mode {k}: {x} vs {y}");
     }
     // And the reductions agree to the last digits too.
-    let p = ReductionParameters {
+    let p = ReductionRequest {
         boundary_nodes: vec![16, 18, 28, 30],
         modes: ModeSelection::Count(6),
         ..Default::default()
@@ -149,10 +149,10 @@ fn the_imported_app_b_slab_is_the_built_in_one() {
         Method::CraigBampton,
         Method::ModeCondensation,
     ] {
-        let fa = reduced_modes(&built, &reduce(&built, m, &p).unwrap())
+        let fa = reduced_modes(&built, &reduce(&built, &p.with_method(m)).unwrap())
             .unwrap()
             .hz();
-        let fb = reduced_modes(model, &reduce(model, m, &p).unwrap())
+        let fb = reduced_modes(model, &reduce(model, &p.with_method(m)).unwrap())
             .unwrap()
             .hz();
         assert_eq!(fa.len(), fb.len());
@@ -766,7 +766,7 @@ fn example_bodies_reduce_with_every_method_and_ritz_bounds_hold() {
         let boundary = body.default_interface_nodes().unwrap().to_vec();
         let full = count_zero_energy_modes(model, 10).unwrap();
         assert_eq!(full.zero_modes, 6, "{name}");
-        let p = ReductionParameters {
+        let p = ReductionRequest {
             boundary_nodes: boundary.clone(),
             modes: ModeSelection::Count(6),
             ..Default::default()
@@ -777,7 +777,7 @@ fn example_bodies_reduce_with_every_method_and_ritz_bounds_hold() {
             Method::CraigBampton,
             Method::ModeCondensation,
         ] {
-            let basis = reduce(model, m, &p).unwrap();
+            let basis = reduce(model, &p.with_method(m)).unwrap();
             let red = reduced_modes(model, &basis).unwrap();
             // Rayleigh–Ritz: the k-th reduced eigenvalue bounds the k-th full one from above.
             let count = full.modes.values.len().min(red.values.len());
@@ -830,8 +830,8 @@ fn export_round_trip_gives_the_same_frequencies() {
     // In memory, independently of the files.
     let basis = reduce(
         &body.model,
-        Method::CraigBampton,
-        &ReductionParameters {
+        &ReductionRequest {
+            method: Method::CraigBampton,
             boundary_nodes: boundary,
             modes: ModeSelection::Count(8),
             ..Default::default()

@@ -8,6 +8,7 @@ use faer::{
     linalg::solvers::{DenseSolveCore, Solve},
 };
 use flexmodes::reduction::ReductionError;
+use flexmodes::reduction::{Method, ReductionRequest, reduce};
 use flexmodes::{
     analysis::{StaticLoadCase, full_static_response, modes_in_band, pair_modes},
     error::CoreError as Error,
@@ -23,8 +24,8 @@ use flexmodes::{
     reduction::{
         BalancedBasisParameters, InterfaceLoading, IoMap, LoadedInterface, MacNealRubinParameters,
         ModalModel, ModeSelection, MomentMatchingParameters, Partition, RestrainedRitzModel,
-        balanced_basis, balanced_truncation, benfield_hruda, craig_bampton, fixed_interface_modes,
-        macneal_rubin, modal_gramians, modal_influence, moment_matching,
+        balanced_basis, balanced_truncation, benfield_hruda, fixed_interface_modes, macneal_rubin,
+        modal_gramians, modal_influence, moment_matching,
     },
 };
 
@@ -431,7 +432,13 @@ fn clamped_modal(zeta: f64, io: &IoMap, modes: usize) -> ModalModel {
     let section = FrameSection::rectangle(0.03, 0.01, 210e9, 80e9, 7800.0);
     let model = frame("clamped", nodes, &elements, &section).unwrap();
     let part = Partition::new(&model, &[1]).unwrap();
-    let cb = craig_bampton(&model, &[1], ModeSelection::Count(modes)).unwrap();
+    let cb = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[1])
+            .modes(ModeSelection::Count(modes)),
+    )
+    .unwrap();
     // Clamp node 1: keep only the fixed-interface columns (zero on the clamp).
     let keep: Vec<usize> = (part.b.len()..cb.size()).collect();
     let phi = Mat::from_fn(model.dof_count(), keep.len(), |r, c| cb.psi[(r, keep[c])]);

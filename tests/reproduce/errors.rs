@@ -5,8 +5,8 @@ use flexmodes::{
     error::CoreError as Error,
     fem::{BeamParameters, SlabParameters, beam, slab},
     reduction::{
-        EitelbergParameters, Method, ModeSelection, NodalFixedAxes, ReductionParameters,
-        craig_bampton, eitelberg, guyan, mode_condensation, reduce,
+        EitelbergParameters, Method, ModeSelection, NodalFixedAxes, ReductionRequest, eitelberg,
+        reduce,
     },
     scenes::{self, SceneOptions},
 };
@@ -24,7 +24,11 @@ fn unknown_scene() {
 #[test]
 fn node_out_of_range_and_duplicates() {
     let model = beam(&BeamParameters::default());
-    let e = guyan(&model, &[1, 6]).unwrap_err();
+    let e = reduce(
+        &model,
+        &ReductionRequest::of(Method::Guyan).boundary(&[1, 6]),
+    )
+    .unwrap_err();
     assert!(
         matches!(
             e,
@@ -36,17 +40,21 @@ fn node_out_of_range_and_duplicates() {
         ),
         "{e}"
     );
-    let e = guyan(&model, &[0]).unwrap_err();
+    let e = reduce(&model, &ReductionRequest::of(Method::Guyan).boundary(&[0])).unwrap_err();
     assert!(matches!(e, Error::NodeOutOfRange { node: 0, .. }), "{e}");
-    let e = guyan(&model, &[1, 1]).unwrap_err();
+    let e = reduce(
+        &model,
+        &ReductionRequest::of(Method::Guyan).boundary(&[1, 1]),
+    )
+    .unwrap_err();
     assert!(matches!(e, Error::DuplicateNode { node: 1 }), "{e}");
     let all: Vec<usize> = (1..=5).collect();
     assert!(matches!(
-        guyan(&model, &all).unwrap_err(),
+        reduce(&model, &ReductionRequest::of(Method::Guyan).boundary(&all)).unwrap_err(),
         Error::Reduction(ReductionError::NoInterior { .. })
     ));
     assert!(matches!(
-        guyan(&model, &[]).unwrap_err(),
+        reduce(&model, &ReductionRequest::of(Method::Guyan).boundary(&[])).unwrap_err(),
         Error::Reduction(ReductionError::NoBoundary)
     ));
 }
@@ -59,12 +67,12 @@ fn singular_interior_for_too_few_boundary_dofs() {
         Method::CraigBampton,
         Method::ModeCondensation,
     ] {
-        let p = ReductionParameters {
+        let p = ReductionRequest {
             boundary_nodes: vec![16],
             modes: ModeSelection::Count(4),
             ..Default::default()
         };
-        match reduce(&model, method, &p).unwrap_err() {
+        match reduce(&model, &p.with_method(method)).unwrap_err() {
             Error::Reduction(ReductionError::SingularInterior {
                 boundary_nodes,
                 rank_deficiency,
@@ -80,7 +88,13 @@ fn singular_interior_for_too_few_boundary_dofs() {
         }
     }
     // Two nodes leave the rotation about the line through them free.
-    let e = craig_bampton(&model, &[16, 30], ModeSelection::Count(2)).unwrap_err();
+    let e = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[16, 30])
+            .modes(ModeSelection::Count(2)),
+    )
+    .unwrap_err();
     assert!(
         matches!(
             e,
@@ -95,8 +109,8 @@ fn singular_interior_for_too_few_boundary_dofs() {
     assert!(
         reduce(
             &model,
-            Method::ModalTruncation,
-            &ReductionParameters {
+            &ReductionRequest {
+                method: Method::ModalTruncation,
                 boundary_nodes: vec![16],
                 modes: ModeSelection::Count(4),
                 ..Default::default()
@@ -109,7 +123,13 @@ fn singular_interior_for_too_few_boundary_dofs() {
 #[test]
 fn too_many_modes() {
     let model = beam(&BeamParameters::default());
-    let e = mode_condensation(&model, &[1, 5], ModeSelection::Count(7)).unwrap_err();
+    let e = reduce(
+        &model,
+        &ReductionRequest::of(Method::ModeCondensation)
+            .boundary(&[1, 5])
+            .modes(ModeSelection::Count(7)),
+    )
+    .unwrap_err();
     assert!(
         matches!(
             e,
@@ -120,7 +140,13 @@ fn too_many_modes() {
         ),
         "{e}"
     );
-    let e = craig_bampton(&model, &[1, 5], ModeSelection::UpToHz(f64::NAN)).unwrap_err();
+    let e = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[1, 5])
+            .modes(ModeSelection::UpToHz(f64::NAN)),
+    )
+    .unwrap_err();
     assert!(
         matches!(
             e,
@@ -153,7 +179,13 @@ fn eitelberg_refuses_an_unstable_a() {
 fn nodal_fixed_anchor_must_be_a_boundary_column() {
     let model = slab(&SlabParameters::default());
     // Node 28 anchors the ξ axis but is not a boundary node here.
-    let cb = craig_bampton(&model, &[16, 18, 30], ModeSelection::Count(2)).unwrap();
+    let cb = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[16, 18, 30])
+            .modes(ModeSelection::Count(2)),
+    )
+    .unwrap();
     let e = NodalFixedAxes::slab_default()
         .apply(&model, &cb)
         .unwrap_err();

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 use flexmodes::{
     body_file::ImportedBody,
-    reduction::{Method, ModeSelection, ReductionParameters, SolverPath, reduce},
+    reduction::{Method, ModeSelection, ReductionRequest, SolverPath, reduce},
 };
 
 #[path = "../external/checks.rs"]
@@ -77,11 +77,12 @@ fn a_rigid_interface_needs_boundary_columns() {
     // The bore is not in the boundary of this basis (bore_b is).
     let basis = reduce(
         model,
-        Method::CraigBampton,
-        &ReductionParameters {
+        &ReductionRequest {
+            method: Method::CraigBampton,
             boundary_nodes: body.node_sets["bore_b"].clone(),
             modes: ModeSelection::Count(4),
             solver: SolverPath::Auto,
+            ..Default::default()
         },
     )
     .unwrap();
@@ -159,12 +160,13 @@ fn interfaces_declared_in_the_body_file() {
         "a different master point"
     );
     let model = &body.model;
-    let parameters = ReductionParameters {
+    let parameters = ReductionRequest {
         boundary_nodes: nodes,
         modes: ModeSelection::Count(8),
         solver: SolverPath::Auto,
+        ..Default::default()
     };
-    let cb = reduce(model, Method::CraigBampton, &parameters).unwrap();
+    let cb = reduce(model, &parameters.with_method(Method::CraigBampton)).unwrap();
     let hz = |i: &[flexmodes::reduction::RigidInterface]| {
         let basis = flexmodes::reduction::tie_rigid_interfaces(model, cb.clone(), i).unwrap();
         flexmodes::analysis::reduced_modes(model, &basis)

@@ -5,7 +5,7 @@
 use flexmodes::{
     dynamics::{AxisType, Body, FlexibleBody, InertiaInvariants, System, skew},
     fem::{SlabParameters, slab},
-    reduction::{Method, ModeSelection, NodalFixedAxes, ReductionParameters, reduce},
+    reduction::{Method, ModeSelection, NodalFixedAxes, ReductionRequest, reduce},
 };
 use nalgebra::{DVector, Matrix3, Matrix3xX, Vector3};
 
@@ -89,8 +89,8 @@ fn slab_body(axes: AxisType) -> FlexibleBody {
     let model = slab(&SlabParameters::default());
     let basis = reduce(
         &model,
-        Method::CraigBampton,
-        &ReductionParameters {
+        &ReductionRequest {
+            method: Method::CraigBampton,
             boundary_nodes: vec![16, 18, 28, 30],
             modes: ModeSelection::Count(6),
             ..Default::default()

@@ -2,10 +2,11 @@
 //! beam theory, their rigid motions, and Craig–Bampton on a single clamped node.
 
 use faer::{Mat, Side, linalg::solvers::Solve};
+use flexmodes::reduction::{Method, ReductionRequest, reduce};
 use flexmodes::{
     fem::{DofMap, FeModel, FrameSection, NodeDof, frame},
     linalg::max_abs,
-    reduction::{ModeSelection, Partition, craig_bampton, fixed_interface_modes},
+    reduction::{ModeSelection, Partition, fixed_interface_modes},
 };
 
 const E: f64 = 210e9;
@@ -146,7 +147,13 @@ fn one_clamped_six_dof_node_restrains_the_frame_and_craig_bampton_runs_on_it() {
         (closest - stiff).abs() < 5e-3 * stiff,
         "{closest} vs {stiff}"
     );
-    let cb = craig_bampton(&model, &[1], ModeSelection::Count(4)).unwrap();
+    let cb = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[1])
+            .modes(ModeSelection::Count(4)),
+    )
+    .unwrap();
     assert_eq!(cb.size(), 6 + 4);
     // The constraint modes of a single clamped node are the six rigid motions.
     let r = model.rigid_body_modes();

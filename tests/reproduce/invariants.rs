@@ -7,8 +7,7 @@ use flexmodes::{
     linalg::{MassMatrix, SparseSymmetric, max_abs, principal_angles, symmetry_defect},
     reduction::{
         Basis, EitelbergParameters, Method, ModeSelection, NodalFixedAxes, Partition,
-        ReductionParameters, TableConfiguration, craig_bampton, eitelberg, fixed_interface_modes,
-        guyan, mode_condensation, reduce,
+        ReductionRequest, TableConfiguration, eitelberg, fixed_interface_modes, reduce,
     },
 };
 
@@ -114,7 +113,7 @@ fn distorted_brick_keeps_rigid_modes_and_scales_with_size() {
 }
 
 fn all_bases(model: &FeModel, boundary: &[usize], modes: usize) -> Vec<Basis> {
-    let p = ReductionParameters {
+    let p = ReductionRequest {
         boundary_nodes: boundary.to_vec(),
         modes: ModeSelection::Count(modes),
         ..Default::default()
@@ -127,7 +126,7 @@ fn all_bases(model: &FeModel, boundary: &[usize], modes: usize) -> Vec<Basis> {
         Method::ModeCondensation,
     ]
     .iter()
-    .map(|&m| reduce(model, m, &p).unwrap())
+    .map(|&m| reduce(model, &p.with_method(m)).unwrap())
     .collect()
 }
 
@@ -222,8 +221,20 @@ fn craig_bampton_and_mode_condensation_span_one_space() {
         let part = Partition::new(model, &boundary).unwrap();
         for modes in [0, 1, 2, 4, part.i.len()] {
             let sel = ModeSelection::Count(modes);
-            let cb = craig_bampton(model, &boundary, sel).unwrap();
-            let mc = mode_condensation(model, &boundary, sel).unwrap();
+            let cb = reduce(
+                model,
+                &ReductionRequest::of(Method::CraigBampton)
+                    .boundary(&boundary)
+                    .modes(sel),
+            )
+            .unwrap();
+            let mc = reduce(
+                model,
+                &ReductionRequest::of(Method::ModeCondensation)
+                    .boundary(&boundary)
+                    .modes(sel),
+            )
+            .unwrap();
             let angles = principal_angles(cb.psi.as_ref(), mc.psi.as_ref()).unwrap();
             assert_eq!(angles.len(), cb.size());
             let largest = angles.iter().copied().fold(0.0, f64::max);
@@ -261,19 +272,37 @@ fn craig_bampton_and_mode_condensation_span_one_space() {
 fn limits_of_craig_bampton_and_mode_condensation() {
     let model = slab(&SlabParameters::default());
     let b = [16, 18, 28, 30];
-    let g = guyan(&model, &b).unwrap();
+    let g = reduce(&model, &ReductionRequest::of(Method::Guyan).boundary(&b)).unwrap();
     // No kept mode: CB is Guyan, and MC's Ψ_m turns into Ψ_s (footnote to §6.5.4).
-    let cb0 = craig_bampton(&model, &b, ModeSelection::Count(0)).unwrap();
-    let mc0 = mode_condensation(&model, &b, ModeSelection::Count(0)).unwrap();
+    let cb0 = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&b)
+            .modes(ModeSelection::Count(0)),
+    )
+    .unwrap();
+    let mc0 = reduce(
+        &model,
+        &ReductionRequest::of(Method::ModeCondensation)
+            .boundary(&b)
+            .modes(ModeSelection::Count(0)),
+    )
+    .unwrap();
     assert!(max_abs((&cb0.psi - &g.psi).as_ref()) < 1e-12);
     assert!(max_abs((&mc0.psi - &g.psi).as_ref()) < 1e-9);
     // Every mode kept: Ψ_m = 0 (nothing deleted), the basis is square and exact.
     let all = Partition::new(&model, &b).unwrap().i.len();
-    let mc = mode_condensation(&model, &b, ModeSelection::Count(all)).unwrap();
+    let mc = reduce(
+        &model,
+        &ReductionRequest::of(Method::ModeCondensation)
+            .boundary(&b)
+            .modes(ModeSelection::Count(all)),
+    )
+    .unwrap();
     let mt = reduce(
         &model,
-        Method::ModalTruncation,
-        &ReductionParameters {
+        &ReductionRequest {
+            method: Method::ModalTruncation,
             boundary_nodes: b.to_vec(),
             modes: ModeSelection::Count(all),
             ..Default::default()
@@ -295,7 +324,7 @@ fn guyan_constraint_modes_are_static_and_cb_stiffness_is_block_diagonal() {
     let model = slab(&SlabParameters::default());
     let b = [16, 18, 28, 30];
     let part = Partition::new(&model, &b).unwrap();
-    let g = guyan(&model, &b).unwrap();
+    let g = reduce(&model, &ReductionRequest::of(Method::Guyan).boundary(&b)).unwrap();
     // K Ψ_G: no interior force (Eq. 6.2, second row).
     let f = model.k.mul(g.psi.as_ref());
     let scale = max_abs(f.as_ref());
@@ -305,7 +334,13 @@ fn guyan_constraint_modes_are_static_and_cb_stiffness_is_block_diagonal() {
         }
     }
     // Eq. (6.20): Ψ_CB^T K Ψ_CB = diag(K_G, K̄_n^k) with K̄_n^k = Λ_n^k.
-    let cb = craig_bampton(&model, &b, ModeSelection::Count(6)).unwrap();
+    let cb = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&b)
+            .modes(ModeSelection::Count(6)),
+    )
+    .unwrap();
     let k = cb.reduced_stiffness(&model);
     let nb = part.b.len();
     let lam = fixed_interface_modes(&model, &part).unwrap().values;
@@ -336,10 +371,22 @@ fn guyan_constraint_modes_are_static_and_cb_stiffness_is_block_diagonal() {
 #[test]
 fn mode_selection_by_frequency_cut_off() {
     let model = beam(&BeamParameters::default());
-    let cb = craig_bampton(&model, &[1, 5], ModeSelection::UpToHz(13.0)).unwrap();
+    let cb = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[1, 5])
+            .modes(ModeSelection::UpToHz(13.0)),
+    )
+    .unwrap();
     // 3.10366 and 12.3283 Hz are below 13 Hz, 26.18 Hz is not.
     assert_eq!(cb.size(), 4 + 2);
-    let none = craig_bampton(&model, &[1, 5], ModeSelection::UpToHz(1.0)).unwrap();
+    let none = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[1, 5])
+            .modes(ModeSelection::UpToHz(1.0)),
+    )
+    .unwrap();
     assert_eq!(none.size(), 4);
 }
 
@@ -348,7 +395,15 @@ fn eitelberg_is_guyan_for_structures() {
     let model = beam(&BeamParameters::default());
     for masters in [vec![1, 3, 5], vec![1, 2, 5], vec![1, 5]] {
         let eit = eitelberg(&model, &masters, &EitelbergParameters::default()).unwrap();
-        let g = reduced_hz(&model, &guyan(&model, &masters).unwrap()).unwrap();
+        let g = reduced_hz(
+            &model,
+            &reduce(
+                &model,
+                &ReductionRequest::of(Method::Guyan).boundary(&masters),
+            )
+            .unwrap(),
+        )
+        .unwrap();
         assert_eq!(eit.hz.len(), g.len(), "{masters:?}");
         // R S R^T has a condition number near 1e11 (reported by the reduction), so the
         // restored matrix, and with it the frequencies, carry ~1e-5 relative round-off
@@ -374,15 +429,19 @@ fn nodal_fixed_column_removal_for_every_table_4_1_configuration() {
     };
     let nr = reduce(
         &model,
-        Method::NoReduction,
-        &ReductionParameters {
+        &ReductionRequest {
+            method: Method::NoReduction,
             boundary_nodes: vec![16],
             modes: ModeSelection::Count(0),
             ..Default::default()
         },
     )
     .unwrap();
-    let gr = guyan(&model, &[16, 18, 28, 1]).unwrap();
+    let gr = reduce(
+        &model,
+        &ReductionRequest::of(Method::Guyan).boundary(&[16, 18, 28, 1]),
+    )
+    .unwrap();
     for cfg in TableConfiguration::ALL {
         let axes = NodalFixedAxes {
             origin: 16,
@@ -402,7 +461,13 @@ fn nodal_fixed_column_removal_for_every_table_4_1_configuration() {
         }
     }
     // §7.2: 90 × 84 for NR, 90 × 12 for CB with boundary 16, 18, 28, 30.
-    let cb = craig_bampton(&model, &[16, 18, 28, 30], ModeSelection::Count(6)).unwrap();
+    let cb = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[16, 18, 28, 30])
+            .modes(ModeSelection::Count(6)),
+    )
+    .unwrap();
     assert_eq!(
         NodalFixedAxes::slab_default()
             .apply(&model, &cb)

@@ -8,8 +8,8 @@ use flexmodes::{
     },
     fem::{BeamParameters, SlabParameters, beam, slab},
     reduction::{
-        EitelbergParameters, Method, ModeSelection, Partition, ReductionParameters, eitelberg,
-        fixed_interface_modes, guyan, reduce,
+        EitelbergParameters, Method, ModeSelection, Partition, ReductionRequest, eitelberg,
+        fixed_interface_modes, reduce,
     },
 };
 
@@ -51,9 +51,25 @@ fn beam_free_free_frequencies() {
 #[test]
 fn guyan_a_and_b_frequencies() {
     let model = beam(&BeamParameters::default());
-    let a = reduced_hz(&model, &guyan(&model, &[1, 3, 5]).unwrap()).unwrap();
+    let a = reduced_hz(
+        &model,
+        &reduce(
+            &model,
+            &ReductionRequest::of(Method::Guyan).boundary(&[1, 3, 5]),
+        )
+        .unwrap(),
+    )
+    .unwrap();
     assert_printed("Guyan (a)", &a, &published("guyan_a_hz"));
-    let b = reduced_hz(&model, &guyan(&model, &[1, 2, 5]).unwrap()).unwrap();
+    let b = reduced_hz(
+        &model,
+        &reduce(
+            &model,
+            &ReductionRequest::of(Method::Guyan).boundary(&[1, 2, 5]),
+        )
+        .unwrap(),
+    )
+    .unwrap();
     assert_eq!(b.len(), 3);
     assert_printed("Guyan (b)", &b[..2], &published("guyan_b_hz_first_two"));
 }
@@ -78,7 +94,7 @@ fn profile_bases() -> (
 ) {
     let model = beam(&BeamParameters::default());
     let part = Partition::new(&model, &[1, 5]).unwrap();
-    let params = ReductionParameters {
+    let params = ReductionRequest {
         boundary_nodes: vec![1, 5],
         modes: ModeSelection::Count(2),
         ..Default::default()
@@ -88,7 +104,7 @@ fn profile_bases() -> (
         Method::CraigBampton,
         Method::ModeCondensation,
     ]
-    .map(|m| reduce(&model, m, &params).unwrap())
+    .map(|m| reduce(&model, &params.with_method(m)).unwrap())
     .to_vec();
     (model, part, bases)
 }
@@ -201,8 +217,8 @@ fn mode_condensation_with_mean_axes_matches_section_8_5() {
     let part = Partition::new(&model, &[1, 5]).unwrap();
     let mc = reduce(
         &model,
-        Method::ModeCondensation,
-        &ReductionParameters {
+        &ReductionRequest {
+            method: Method::ModeCondensation,
             boundary_nodes: vec![1, 5],
             modes: ModeSelection::Count(2),
             ..Default::default()

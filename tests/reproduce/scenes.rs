@@ -1,10 +1,11 @@
 //! Scenes: stable report keys, entity paths, options honoured.
 
+use flexmodes::reduction::{Method, ReductionRequest, reduce};
 use flexmodes::{
     analysis::reduced_hz,
     fem::{BeamParameters, beam},
     record::Recorder,
-    reduction::{Partition, fixed_interface_modes, guyan},
+    reduction::{Partition, fixed_interface_modes},
     scenes::{self, SceneOptions},
 };
 
@@ -136,7 +137,15 @@ fn beam_modes_honours_boundary() {
         },
     );
     let model = beam(&BeamParameters::default());
-    let g = reduced_hz(&model, &guyan(&model, &[1, 4, 5]).unwrap()).unwrap();
+    let g = reduced_hz(
+        &model,
+        &reduce(
+            &model,
+            &ReductionRequest::of(Method::Guyan).boundary(&[1, 4, 5]),
+        )
+        .unwrap(),
+    )
+    .unwrap();
     let fi = fixed_interface_modes(&model, &Partition::new(&model, &[1, 4, 5]).unwrap())
         .unwrap()
         .hz();

@@ -14,8 +14,8 @@ use flexmodes::{
         generalized_eigen, lowest_modes, principal_angles,
     },
     reduction::{
-        InteriorProblem, Method, ModeCondensationRoute, ModeSelection, ReductionParameters,
-        SolverPath, craig_bampton_on, mode_condensation_route, reduce,
+        InteriorProblem, Method, ModeCondensationRoute, ModeSelection, ReductionRequest,
+        SolverPath, reduce,
     },
 };
 
@@ -34,11 +34,12 @@ fn sparse_and_dense_paths_agree_on_the_app_b_slab() {
             let run = |solver| {
                 reduce(
                     &model,
-                    method,
-                    &ReductionParameters {
+                    &ReductionRequest {
+                        method,
                         boundary_nodes: APP_B_CORNERS.to_vec(),
                         modes: ModeSelection::Count(modes),
                         solver,
+                        ..Default::default()
                     },
                 )
                 .unwrap()
@@ -186,8 +187,15 @@ fn mode_condensation_routes_span_one_space() {
         let model = slab(&SlabParameters::refined(bricks).unwrap());
         for modes in [0, 3, 8] {
             let run = |route, path| {
-                mode_condensation_route(&model, &boundary, ModeSelection::Count(modes), path, route)
-                    .unwrap()
+                reduce(
+                    &model,
+                    &ReductionRequest::of(Method::ModeCondensation)
+                        .boundary(&boundary)
+                        .modes(ModeSelection::Count(modes))
+                        .solver(path)
+                        .route(route),
+                )
+                .unwrap()
             };
             let complete = run(ModeCondensationRoute::Complete, SolverPath::Dense);
             for path in [SolverPath::Dense, SolverPath::Sparse] {
@@ -315,11 +323,12 @@ fn factor_fill_grows_sub_quadratically() {
     for bricks in [[4, 2, 1], [8, 4, 2], [16, 8, 4]] {
         let p = SlabParameters::refined(bricks).unwrap();
         let model = slab(&p);
-        let basis = craig_bampton_on(
+        let basis = reduce(
             &model,
-            &p.bottom_corners(),
-            ModeSelection::Count(4),
-            SolverPath::Sparse,
+            &ReductionRequest::of(Method::CraigBampton)
+                .boundary(&p.bottom_corners())
+                .modes(ModeSelection::Count(4))
+                .solver(SolverPath::Sparse),
         )
         .unwrap();
         assert!(basis.statistics.factor_nnz > 0);
@@ -341,8 +350,14 @@ fn factor_fill_grows_sub_quadratically() {
 #[test]
 fn singular_interior_names_the_free_motions_without_an_eigenproblem() {
     let model = slab(&SlabParameters::default());
-    let e =
-        craig_bampton_on(&model, &[16], ModeSelection::Count(2), SolverPath::Sparse).unwrap_err();
+    let e = reduce(
+        &model,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[16])
+            .modes(ModeSelection::Count(2))
+            .solver(SolverPath::Sparse),
+    )
+    .unwrap_err();
     match e {
         Error::Reduction(ReductionError::SingularInterior {
             rank_deficiency,
@@ -384,11 +399,12 @@ fn singular_interior_names_the_free_motions_without_an_eigenproblem() {
         e => panic!("{e}"),
     }
     // Nodes 16 and 30 leave the rotation about the diagonal through them.
-    let e = craig_bampton_on(
+    let e = reduce(
         &model,
-        &[16, 30],
-        ModeSelection::Count(2),
-        SolverPath::Sparse,
+        &ReductionRequest::of(Method::CraigBampton)
+            .boundary(&[16, 30])
+            .modes(ModeSelection::Count(2))
+            .solver(SolverPath::Sparse),
     )
     .unwrap_err();
     assert!(
@@ -415,8 +431,8 @@ fn eitelberg_refuses_large_bodies_by_name() {
     let model = slab(&SlabParameters::refined([16, 8, 4]).unwrap());
     let e = reduce(
         &model,
-        Method::Eitelberg,
-        &ReductionParameters {
+        &ReductionRequest {
+            method: Method::Eitelberg,
             boundary_nodes: SlabParameters::refined([16, 8, 4])
                 .unwrap()
                 .bottom_corners()
@@ -445,11 +461,12 @@ fn a_sparse_reductions_phases_add_up_to_at_most_its_time() {
         let started = std::time::Instant::now();
         let basis = reduce(
             &model,
-            Method::CraigBampton,
-            &ReductionParameters {
+            &ReductionRequest {
+                method: Method::CraigBampton,
                 boundary_nodes: p.bottom_corners().to_vec(),
                 modes: ModeSelection::Count(6),
                 solver: SolverPath::Sparse,
+                ..Default::default()
             },
         )
         .unwrap();

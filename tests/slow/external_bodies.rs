@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use flexmodes::{
     linalg::max_abs,
     reduction::{
-        CONSTRAINT_COUPLING_TOLERANCE, Method, ModeSelection, ReducedMatrices, ReductionParameters,
+        CONSTRAINT_COUPLING_TOLERANCE, Method, ModeSelection, ReducedMatrices, ReductionRequest,
         SolverPath, reduce,
     },
 };
@@ -32,17 +32,18 @@ fn craig_bampton_reduced_matrices_from_their_pieces_equal_the_full_products() {
     let (body, _) = body("steel-link");
     let model = &body.model;
     for set in ["bore_a", "bore_b"] {
-        let parameters = ReductionParameters {
+        let parameters = ReductionRequest {
             boundary_nodes: body.node_sets[set].clone(),
             modes: ModeSelection::Count(10),
             solver: SolverPath::Auto,
+            ..Default::default()
         };
         for method in [
             Method::CraigBampton,
             Method::Guyan,
             Method::ModeCondensation,
         ] {
-            let basis = reduce(model, method, &parameters).unwrap();
+            let basis = reduce(model, &parameters.with_method(method)).unwrap();
             let pieces = ReducedMatrices::of(model, &basis);
             // MC's boundary columns are not static constraint modes: the general products.
             assert_eq!(pieces.structured, method != Method::ModeCondensation);
@@ -117,16 +118,20 @@ fn rigid_interfaces_match_scipys_transformed_body() {
                     .unwrap()
                     .with_rigid_interfaces(&interfaces)
                     .unwrap();
-                let direct =
-                    reduce_interior(method, &mut problem, ModeSelection::Count(modes)).unwrap();
-                let parameters = ReductionParameters {
+                let direct = reduce_interior(
+                    &mut problem,
+                    &ReductionRequest::of(method).modes(ModeSelection::Count(modes)),
+                )
+                .unwrap();
+                let parameters = ReductionRequest {
                     boundary_nodes: boundary.clone(),
                     modes: ModeSelection::Count(modes),
                     solver: SolverPath::Auto,
+                    ..Default::default()
                 };
                 let tied = tie_rigid_interfaces(
                     model,
-                    reduce(model, method, &parameters).unwrap(),
+                    reduce(model, &parameters.with_method(method)).unwrap(),
                     &interfaces,
                 )
                 .unwrap();
@@ -236,12 +241,13 @@ fn characteristic_constraint_modes_match_scipy() {
     let bore = body.node_sets[set].clone();
     let cases = reference["cases"].as_array().unwrap();
     let modes = cases[0]["modes"].as_u64().unwrap() as usize;
-    let parameters = ReductionParameters {
+    let parameters = ReductionRequest {
         boundary_nodes: bore.clone(),
         modes: ModeSelection::Count(modes),
         solver: SolverPath::Auto,
+        ..Default::default()
     };
-    let cb = reduce(model, Method::CraigBampton, &parameters).unwrap();
+    let cb = reduce(model, &parameters.with_method(Method::CraigBampton)).unwrap();
     assert_eq!(
         3 * bore.len(),
         reference["boundary_dofs"].as_u64().unwrap() as usize
@@ -282,7 +288,7 @@ fn characteristic_constraint_modes_match_scipy() {
         }
     }
     // A basis without constraint modes, and more shapes than boundary DOF, are named errors.
-    let mt = reduce(model, Method::ModalTruncation, &parameters).unwrap();
+    let mt = reduce(model, &parameters.with_method(Method::ModalTruncation)).unwrap();
     assert!(reduce_interface(model, mt, 6).is_err());
     assert!(reduce_interface(model, cb, 3 * bore.len() + 1).is_err());
 }

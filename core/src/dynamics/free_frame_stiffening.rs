@@ -421,7 +421,7 @@ mod tests {
         },
         fem::{Direction, SlabParameters, plank, slab},
         reduction::{
-            Method, ModeSelection, NodalFixedAxes, ReductionParameters, TableConfiguration, reduce,
+            Method, ModeSelection, NodalFixedAxes, ReductionRequest, TableConfiguration, reduce,
         },
     };
 
@@ -522,8 +522,8 @@ mod tests {
             let model = plank(&SlabParameters::default());
             let basis = reduce(
                 &model,
-                method,
-                &ReductionParameters {
+                &ReductionRequest {
+                    method,
                     boundary_nodes: vec![8, 14, 23, 15],
                     modes: ModeSelection::Count(6),
                     ..Default::default()

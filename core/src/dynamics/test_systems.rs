@@ -3,7 +3,7 @@
 use super::{AxisType, FlexibleBody, State, System};
 use crate::{
     fem::{FeModel, SlabParameters, plank},
-    reduction::{Method, ModeSelection, ReductionParameters, reduce},
+    reduction::{Method, ModeSelection, ReductionRequest, reduce},
 };
 
 /// The §5.3.3 plank reduced by `method` (6 modes on the boundary nodes 3, 15 and 22) on
@@ -12,8 +12,8 @@ pub(super) fn reduced_plank(method: Method, axes: AxisType) -> (FeModel, Flexibl
     let model = plank(&SlabParameters::default());
     let basis = reduce(
         &model,
-        method,
-        &ReductionParameters {
+        &ReductionRequest {
+            method,
             boundary_nodes: vec![3, 15, 22],
             modes: ModeSelection::Count(6),
             ..Default::default()

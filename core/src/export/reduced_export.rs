@@ -19,7 +19,7 @@ use crate::{
     models::{BodyInterfaces, BodyReducer},
     reduction::{
         AveragingInterface, Basis, CONSTRAINT_COUPLING_TOLERANCE, Eigensolver, InteriorProblem,
-        MacNealRubinParameters, Method, ModeSelection, ReducedMatrices, ReductionParameters,
+        MacNealRubinParameters, Method, ModeSelection, ReducedMatrices, ReductionRequest,
         RigidInterface, SolverPath, macneal_rubin, reduce, reduce_interface, reduce_interior,
         tie_rigid_interfaces, with_inertia_residual_vectors,
     },
@@ -238,11 +238,12 @@ pub fn reduce_for_export(
         _ if !parameters.averaging_interfaces.is_empty() => None,
         Method::NoReduction | Method::Eitelberg => Some(reduce(
             model,
-            method,
-            &ReductionParameters {
+            &ReductionRequest {
+                method,
                 boundary_nodes: boundary.to_vec(),
                 modes: ModeSelection::Count(modes),
                 solver: SolverPath::Auto,
+                ..Default::default()
             },
         )?),
         // Rigid interfaces tied in the boundary coordinates: six constraint modes per master.
@@ -250,7 +251,10 @@ pub fn reduce_for_export(
             let mut problem = InteriorProblem::new(model, boundary, SolverPath::Auto)?
                 .with_eigensolver(parameters.eigensolver)
                 .with_rigid_interfaces(&parameters.rigid_interfaces)?;
-            let basis = reduce_interior(method, &mut problem, ModeSelection::Count(modes))?;
+            let basis = reduce_interior(
+                &mut problem,
+                &ReductionRequest::of(method).modes(ModeSelection::Count(modes)),
+            )?;
             let basis = match parameters.interface_modes {
                 Some(count) => reduce_interface(model, basis, count)?,
                 None => basis,

@@ -3,6 +3,7 @@
 //! body's free-free modes) computed once, each model's reduced modes checked by their
 //! residuals and its zero-energy modes told apart by the body's own scale.
 
+use crate::reduction::ReductionRequest;
 use std::time::Instant;
 
 use faer::Mat;
@@ -368,9 +369,10 @@ impl<'a> BodyReducer<'a> {
             Method::Guyan
             | Method::ModalTruncation
             | Method::CraigBampton
-            | Method::ModeCondensation => {
-                reduce_interior(method, self.problem()?, ModeSelection::Count(kept))?
-            }
+            | Method::ModeCondensation => reduce_interior(
+                self.problem()?,
+                &ReductionRequest::of(method).modes(ModeSelection::Count(kept)),
+            )?,
             Method::MacNealRubin => {
                 if !self.interfaces.rigid.is_empty() {
                     return Err(ReductionError::MethodNeedsContext {

@@ -4,6 +4,7 @@
 //! with 250 kg: variant 3). The study computes the full and reduced modes of each variant,
 //! paired by MAC, the static load cases and the values Witteveen printed next to ours.
 
+use crate::reduction::{ReductionRequest, reduce_interior};
 use faer::Mat;
 
 use crate::{
@@ -14,7 +15,7 @@ use crate::{
     reduction::{
         BalancedBasisParameters, Basis, InteriorProblem, Method, ModeSelection,
         MomentMatchingParameters, Partition, RestrainedRitzModel, SolverPath, balanced_basis,
-        craig_bampton_from, moment_matching,
+        moment_matching,
     },
 };
 
@@ -408,7 +409,10 @@ pub fn witteveen_bases(
             Method::CraigBampton => {
                 let partition = Partition::from_dofs(model, &io.io(), &io.clamp)?;
                 let mut problem = InteriorProblem::on(model, partition, SolverPath::Auto)?;
-                craig_bampton_from(&mut problem, ModeSelection::Count(7))?
+                reduce_interior(
+                    &mut problem,
+                    &ReductionRequest::of(Method::CraigBampton).modes(ModeSelection::Count(7)),
+                )?
             }
             Method::MomentMatching => {
                 let mm = moment_matching(

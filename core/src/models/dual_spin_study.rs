@@ -4,6 +4,7 @@
 //! the full model's motor-to-platform response; then the rotor's CB modes ranked by
 //! Gregory's influence coefficients against as many lowest-frequency modes.
 
+use crate::reduction::{ReductionRequest, reduce, reduce_interior};
 use faer::Mat;
 
 use crate::{
@@ -14,8 +15,7 @@ use crate::{
     reduction::{
         Basis, Component, InterfaceLoading, InteriorProblem, IoMap, LoadedInterface,
         MacNealRubinParameters, Method, ModalModel, ModeSelection, Partition, SolverPath,
-        Synthesis, benfield_hruda, craig_bampton, craig_bampton_from, macneal_rubin,
-        modal_influence,
+        Synthesis, benfield_hruda, macneal_rubin, modal_influence,
     },
 };
 
@@ -288,11 +288,20 @@ impl CbSets {
     /// Solves both components' CB sets of `ds`.
     pub fn of(ds: &DualSpin, sets: &DualSpinSets) -> Result<Self> {
         let cut = ModeSelection::UpToHz(TRUNCATION_HZ);
-        let rotor = craig_bampton(&ds.rotor, &[1], cut)?;
+        let rotor = reduce(
+            &ds.rotor,
+            &ReductionRequest::of(Method::CraigBampton)
+                .boundary(&[1])
+                .modes(cut),
+        )?;
         let partition =
             Partition::from_dofs(&ds.stator, &sets.stator_interface(), &sets.stator_base)?;
         let mut problem = InteriorProblem::on(&ds.stator, partition, SolverPath::Auto)?;
-        let stator = craig_bampton_from(&mut problem, cut)?.psi;
+        let stator = reduce_interior(
+            &mut problem,
+            &ReductionRequest::of(Method::CraigBampton).modes(cut),
+        )?
+        .psi;
         Ok(Self { rotor, stator })
     }
 }

@@ -6,6 +6,7 @@
 
 use crate::dynamics::DynamicsError;
 use crate::reduction::ReductionError;
+use crate::reduction::{ReductionRequest, reduce};
 use std::time::Instant;
 
 use faer::Mat;
@@ -21,8 +22,7 @@ use crate::{
     linalg::principal_angles,
     reduction::{
         Basis, EitelbergParameters, Method, ModeCondensationRoute, ModeSelection, NodalFixedAxes,
-        SolverPath, craig_bampton, craig_bampton_on, eitelberg, guyan, modal_truncation,
-        mode_condensation_route, no_reduction,
+        SolverPath, eitelberg, no_reduction,
     },
 };
 
@@ -64,7 +64,12 @@ pub fn too_few_boundary(model: &FeModel) -> Vec<BoundaryCase> {
         .iter()
         .map(|&nodes| BoundaryCase {
             nodes,
-            outcome: craig_bampton(model, nodes, ModeSelection::Count(KEPT_MODES)),
+            outcome: reduce(
+                model,
+                &ReductionRequest::of(Method::CraigBampton)
+                    .boundary(nodes)
+                    .modes(ModeSelection::Count(KEPT_MODES)),
+            ),
         })
         .collect()
 }
@@ -133,15 +138,22 @@ pub fn condensation_cost() -> Result<CondensationCost> {
         let boundary = default_boundary(&model);
         let modes = ModeSelection::Count(KEPT_MODES);
         let start = Instant::now();
-        let cb = craig_bampton_on(&model, &boundary, modes, SolverPath::Sparse)?;
+        let cb = reduce(
+            &model,
+            &ReductionRequest::of(Method::CraigBampton)
+                .boundary(&boundary)
+                .modes(modes)
+                .solver(SolverPath::Sparse),
+        )?;
         cost.cb_s.push(start.elapsed().as_secs_f64());
         let start = Instant::now();
-        let mc = mode_condensation_route(
+        let mc = reduce(
             &model,
-            &boundary,
-            modes,
-            SolverPath::Sparse,
-            ModeCondensationRoute::Complete,
+            &ReductionRequest::of(Method::ModeCondensation)
+                .boundary(&boundary)
+                .modes(modes)
+                .solver(SolverPath::Sparse)
+                .route(ModeCondensationRoute::Complete),
         )?;
         cost.mc_s.push(start.elapsed().as_secs_f64());
         let angles = principal_angles(mc.psi.as_ref(), cb.psi.as_ref())?;
@@ -173,7 +185,10 @@ pub struct GuyanMeanAxes {
 /// See [`GuyanMeanAxes`].
 pub fn guyan_mean_axes(model: &FeModel) -> Result<GuyanMeanAxes> {
     let masters = reduction_nodes(model, Method::Guyan, &default_boundary(model));
-    let g = guyan(model, &masters)?;
+    let g = reduce(
+        model,
+        &ReductionRequest::of(Method::Guyan).boundary(&masters),
+    )?;
     // Columns node by node, x y z: the condensed model's nodes are the masters.
     for (c, col) in g.columns.iter().enumerate() {
         let expected = model.dofs_of_nodes(&[masters[c / 3]])?[c % 3];
@@ -418,8 +433,20 @@ pub struct SymmetryCase {
 pub fn guyan_symmetry(model: &FeModel) -> Result<Vec<SymmetryCase>> {
     [
         ("full", no_reduction(model)),
-        ("guyan_a", guyan(model, &GUYAN_A)?),
-        ("guyan_b", guyan(model, &GUYAN_B)?),
+        (
+            "guyan_a",
+            reduce(
+                model,
+                &ReductionRequest::of(Method::Guyan).boundary(&GUYAN_A),
+            )?,
+        ),
+        (
+            "guyan_b",
+            reduce(
+                model,
+                &ReductionRequest::of(Method::Guyan).boundary(&GUYAN_B),
+            )?,
+        ),
     ]
     .into_iter()
     .map(|(id, basis)| {
@@ -506,8 +533,26 @@ pub fn boundary_motion(model: &FeModel) -> Result<BoundaryMotion> {
         load: vec![0.0; model.dof_count()],
     };
     let exact = full_static_response(model, &case)?;
-    let mt = ritz_static_response(model, &modal_truncation(model, &boundary, modes)?, &case)?;
-    let cb = ritz_static_response(model, &craig_bampton(model, &boundary, modes)?, &case)?;
+    let mt = ritz_static_response(
+        model,
+        &reduce(
+            model,
+            &ReductionRequest::of(Method::ModalTruncation)
+                .boundary(&boundary)
+                .modes(modes),
+        )?,
+        &case,
+    )?;
+    let cb = ritz_static_response(
+        model,
+        &reduce(
+            model,
+            &ReductionRequest::of(Method::CraigBampton)
+                .boundary(&boundary)
+                .modes(modes),
+        )?,
+        &case,
+    )?;
     let k = model.k_dense();
     let energy = |u: &[f64]| -> f64 {
         (0..u.len())

@@ -11,7 +11,7 @@ use crate::{
     },
     fem::{Direction, FeModel, NodeIndex},
     reduction::{
-        Method, ModeSelection, NodalFixedAxes, ReductionParameters, TableConfiguration, reduce,
+        Method, ModeSelection, NodalFixedAxes, ReductionRequest, TableConfiguration, reduce,
     },
 };
 
@@ -69,8 +69,8 @@ pub const PLANK_BOUNDARY: [usize; 3] = [3, 15, 22];
 pub fn plank_body(model: &FeModel, v: Variant, modes: usize) -> Result<FlexibleBody> {
     let basis = reduce(
         model,
-        v.method,
-        &ReductionParameters {
+        &ReductionRequest {
+            method: v.method,
             boundary_nodes: PLANK_BOUNDARY.to_vec(),
             modes: ModeSelection::Count(modes),
             ..Default::default()

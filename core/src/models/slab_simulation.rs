@@ -13,7 +13,7 @@ use crate::{
         simulate,
     },
     fem::{FeModel, NodeIndex, SlabParameters, slab},
-    reduction::{Method, ModeSelection, NodalFixedAxes, ReductionParameters, reduce},
+    reduction::{Method, ModeSelection, NodalFixedAxes, ReductionRequest, reduce},
 };
 
 /// Simulated interval of Simulations 1 and 2 unless asked otherwise, s.
@@ -208,8 +208,8 @@ pub fn slab_body(
     };
     let basis = reduce(
         model,
-        method,
-        &ReductionParameters {
+        &ReductionRequest {
+            method,
             boundary_nodes: nodes,
             modes: ModeSelection::Count(modes),
             ..Default::default()

@@ -6,6 +6,7 @@
 //! compared with the body's lowest elastic free-free frequencies; AMLS is then refined to the
 //! residual every solver's pairs pass and timed against flexmodes' Lanczos on the same body.
 
+use crate::reduction::{Method, ReductionRequest, reduce_interior};
 use std::time::Instant;
 
 use crate::{
@@ -19,8 +20,7 @@ use crate::{
         hz_from_eigenvalue, negative_shift,
     },
     reduction::{
-        FreeBodyParameters, InteriorProblem, ModeSelection, Partition, SolverPath,
-        craig_bampton_from, free_body_pairs, guyan_from,
+        FreeBodyParameters, InteriorProblem, ModeSelection, Partition, SolverPath, free_body_pairs,
     },
 };
 
@@ -146,7 +146,7 @@ pub fn substructuring_study(params: &SubstructuringParameters) -> Result<Substru
         Partition::from_dofs(&model, &root.unknowns, &[])?,
         SolverPath::Auto,
     )?;
-    let guyan_basis = guyan_from(&mut problem)?;
+    let guyan_basis = reduce_interior(&mut problem, &ReductionRequest::of(Method::Guyan))?;
     let guyan = ladder_point(
         f64::INFINITY,
         guyan_basis.size(),
@@ -157,7 +157,10 @@ pub fn substructuring_study(params: &SubstructuringParameters) -> Result<Substru
     // The highest cut-off first: the lower ones' modes are its first ones (kept by the
     // interior problem), not solved again.
     for &hz in cutoffs.iter().rev() {
-        let basis = craig_bampton_from(&mut problem, ModeSelection::UpToHz(hz))?;
+        let basis = reduce_interior(
+            &mut problem,
+            &ReductionRequest::of(Method::CraigBampton).modes(ModeSelection::UpToHz(hz)),
+        )?;
         craig_bampton.push(ladder_point(
             hz,
             basis.size(),

@@ -3,10 +3,10 @@
 use faer::Mat;
 
 use super::{
-    Basis, ColumnKind, Method, ModeSelection, SolverPath, interior_problem::InteriorProblem,
+    Basis, ColumnKind, Method, ModeSelection, interior_problem::InteriorProblem,
     partition::normal_columns,
 };
-use crate::{Result, fem::FeModel};
+use crate::Result;
 
 /// $\Psi_{CB} = [I\ 0;\ \Psi_s\ \Psi_n^k]$ (Eq. 6.19): every constraint mode plus the kept
 /// fixed-interface normal modes. Needs $K_{ii}$ invertible (at least six properly chosen
@@ -15,23 +15,7 @@ use crate::{Result, fem::FeModel};
 /// On the sparse path nothing is dense in n: one sparse factorisation of $K_{ii}$ gives the
 /// constraint modes (the boundary DOF as right-hand sides) and, through shift-invert Lanczos,
 /// only the kept fixed-interface modes.
-pub fn craig_bampton(model: &FeModel, boundary: &[usize], modes: ModeSelection) -> Result<Basis> {
-    craig_bampton_on(model, boundary, modes, SolverPath::Auto)
-}
-
-/// [`craig_bampton`] on a chosen linear-algebra path.
-pub fn craig_bampton_on(
-    model: &FeModel,
-    boundary: &[usize],
-    modes: ModeSelection,
-    path: SolverPath,
-) -> Result<Basis> {
-    craig_bampton_from(&mut InteriorProblem::new(model, boundary, path)?, modes)
-}
-
-/// [`craig_bampton`] on an interior problem whose factor and modes may be shared with other
-/// methods of the same boundary set.
-pub fn craig_bampton_from(
+pub(super) fn craig_bampton_basis(
     problem: &mut InteriorProblem<'_>,
     modes: ModeSelection,
 ) -> Result<Basis> {

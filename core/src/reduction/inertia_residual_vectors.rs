@@ -227,8 +227,12 @@ mod tests {
             let model = slab(&parameters);
             let corners = parameters.bottom_corners();
             let mut problem = InteriorProblem::new(&model, &corners, SolverPath::Auto).unwrap();
-            let cb = reduce_interior(Method::CraigBampton, &mut problem, ModeSelection::Count(2))
-                .unwrap();
+            let cb = reduce_interior(
+                &mut problem,
+                &crate::reduction::ReductionRequest::of(Method::CraigBampton)
+                    .modes(ModeSelection::Count(2)),
+            )
+            .unwrap();
             let loads = InertiaLoads::of(&model);
             let before: Vec<f64> = (0..loads.count())
                 .map(|k| {

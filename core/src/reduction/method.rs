@@ -1,11 +1,8 @@
-//! Method ids, reduction parameters and the one entry point [`reduce`].
+//! Method ids, which modes to keep and which linear algebra; the request and its entry point
+//! are [`ReductionRequest`](super::ReductionRequest) and [`reduce`](super::reduce).
 
 use super::ReductionError;
-use super::{
-    Basis, InteriorProblem, ModeCondensationRoute, craig_bampton, eitelberg::eitelberg, guyan,
-    modal_truncation, mode_condensation, no_reduction,
-};
-use crate::{Error, Result, fem::FeModel, linalg::PairSelection};
+use crate::{Error, Result, linalg::PairSelection};
 
 /// The reduction methods and their stable ids (how they are written in files and settings).
 #[derive(
@@ -156,85 +153,6 @@ pub enum SolverPath {
     Dense,
     /// Sparse Cholesky and the partial eigensolver.
     Sparse,
-}
-
-/// Settings shared by the reduction methods.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ReductionParameters {
-    /// Boundary (master, interface) nodes, 1-based as in the thesis.
-    pub boundary_nodes: Vec<usize>,
-    /// Kept fixed-interface normal modes (MT, CB, MC).
-    pub modes: ModeSelection,
-    /// Dense or sparse linear algebra.
-    pub solver: SolverPath,
-}
-
-impl Default for ReductionParameters {
-    fn default() -> Self {
-        Self {
-            boundary_nodes: Vec::new(),
-            modes: ModeSelection::Count(6),
-            solver: SolverPath::Auto,
-        }
-    }
-}
-
-/// Builds the basis of a fixed-interface method (Guyan, modal truncation, Craig–Bampton, mode
-/// condensation) on an interior problem already split, its boundary perhaps tied to rigid
-/// interfaces' masters ([`InteriorProblem::with_rigid_interfaces`]); another method is
-/// [`ReductionError::MethodNeedsContext`].
-pub fn reduce_interior(
-    method: Method,
-    problem: &mut InteriorProblem<'_>,
-    modes: ModeSelection,
-) -> Result<Basis> {
-    match method {
-        Method::Guyan => guyan::guyan_from(problem),
-        Method::ModalTruncation => modal_truncation::modal_truncation_from(problem, modes),
-        Method::CraigBampton => craig_bampton::craig_bampton_from(problem, modes),
-        Method::ModeCondensation => {
-            let route = ModeCondensationRoute::for_interior(problem.interior_dofs());
-            mode_condensation::mode_condensation_from(problem, modes, route)
-        }
-        other => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: other.name(),
-            needs: "a fixed-interface basis is built by gr, mt, cb or mc",
-        })),
-    }
-}
-
-/// Builds the basis of `method` for `model`.
-pub fn reduce(model: &FeModel, method: Method, p: &ReductionParameters) -> Result<Basis> {
-    match method {
-        Method::NoReduction => Ok(no_reduction(model)),
-        Method::Guyan => guyan::guyan_on(model, &p.boundary_nodes, p.solver),
-        Method::ModalTruncation => {
-            modal_truncation::modal_truncation_on(model, &p.boundary_nodes, p.modes, p.solver)
-        }
-        Method::CraigBampton => {
-            craig_bampton::craig_bampton_on(model, &p.boundary_nodes, p.modes, p.solver)
-        }
-        Method::ModeCondensation => {
-            mode_condensation::mode_condensation_on(model, &p.boundary_nodes, p.modes, p.solver)
-        }
-        Method::Eitelberg => Ok(eitelberg(model, &p.boundary_nodes, &Default::default())?.basis),
-        Method::MacNealRubin => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: method.name(),
-            needs: "an r-set besides the interface (use `macneal_rubin`)",
-        })),
-        Method::BenfieldHruda => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: method.name(),
-            needs: "the interface loading of the adjacent components (use `benfield_hruda`)",
-        })),
-        Method::MomentMatching => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: method.name(),
-            needs: "input DOF and a block count (use `moment_matching`)",
-        })),
-        Method::BalancedTruncation => Err(Error::Reduction(ReductionError::MethodNeedsContext {
-            method: method.name(),
-            needs: "inputs, outputs and damping (use `balanced_truncation_basis`)",
-        })),
-    }
 }
 
 impl std::fmt::Display for Method {

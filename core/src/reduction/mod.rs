@@ -29,6 +29,7 @@ mod moment_matching;
 mod nodal_fixed;
 mod partition;
 mod reduced_matrices;
+mod reduction_request;
 mod releasable_factor;
 mod restrained_ritz;
 mod rigid_interface;
@@ -47,7 +48,6 @@ pub use benfield_hruda::{InterfaceLoading, LoadedInterface, benfield_hruda};
 pub use boundary_coordinates::BoundaryCoordinates;
 pub use characteristic_constraint_modes::{CharacteristicConstraintModes, reduce_interface};
 pub use component_synthesis::{Component, Synthesis};
-pub use craig_bampton::{craig_bampton, craig_bampton_from, craig_bampton_on};
 pub use eitelberg::{
     EITELBERG_DOF_LIMIT, EitelbergParameters, EitelbergReduction, StateSpaceReduction, eitelberg,
     eitelberg_state_space,
@@ -59,7 +59,6 @@ pub use free_modes::{
     selected_free_modes,
 };
 pub use full::no_reduction;
-pub use guyan::{guyan, guyan_from, guyan_on};
 pub use inertia_residual_vectors::{
     RESIDUAL_VECTOR_DEFLATION, ResidualVectorsAdded, static_share_outside,
     with_inertia_residual_vectors,
@@ -71,19 +70,16 @@ pub use interior_problem::{
 };
 pub use interior_problem::{constraint_modes, fixed_interface_modes};
 pub use macneal_rubin::{MacNealRubinParameters, macneal_rubin};
-pub use method::{Method, ModeSelection, ReductionParameters, SolverPath, reduce, reduce_interior};
+pub use method::{Method, ModeSelection, SolverPath};
 pub use modal_balanced_basis::{ModalBalancedParameters, modal_balanced_basis};
 pub use modal_influence::{ModalInfluence, modal_influence};
 pub use modal_model::{IoMap, ModalModel, StateSpace};
-pub use modal_truncation::{modal_truncation, modal_truncation_from, modal_truncation_on};
-pub use mode_condensation::{
-    MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute, mode_condensation, mode_condensation_from,
-    mode_condensation_on, mode_condensation_route,
-};
+pub use mode_condensation::{MC_COMPLETE_ROUTE_LIMIT, ModeCondensationRoute};
 pub use moment_matching::{Deflation, MomentMatching, MomentMatchingParameters, moment_matching};
 pub use nodal_fixed::{NodalFixedAxes, TableConfiguration};
 pub use partition::Partition;
 pub use reduced_matrices::{CONSTRAINT_COUPLING_TOLERANCE, ReducedMatrices};
+pub use reduction_request::{ReductionRequest, reduce, reduce_interior};
 pub use releasable_factor::RELEASED_FACTOR_BYTES;
 pub(crate) use releasable_factor::ReleasableFactor;
 pub use restrained_ritz::RestrainedRitzModel;

@@ -3,34 +3,15 @@
 use faer::Mat;
 
 use super::{
-    Basis, ColumnKind, Method, ModeSelection, SolverPath, interior_problem::InteriorProblem,
+    Basis, ColumnKind, Method, ModeSelection, interior_problem::InteriorProblem,
     partition::normal_columns,
 };
-use crate::{Result, fem::FeModel};
+use crate::Result;
 
 /// $\Psi_{MT} = [I\ 0;\ 0\ \Psi_n^k]$ (Eq. 6.17): boundary DOF kept as they are, interior in
 /// kept fixed-interface modes. The boundary columns move no interior node, which is why the
 /// method cannot carry boundary motion into the body (§7.1).
-pub fn modal_truncation(
-    model: &FeModel,
-    boundary: &[usize],
-    modes: ModeSelection,
-) -> Result<Basis> {
-    modal_truncation_on(model, boundary, modes, SolverPath::Auto)
-}
-
-/// [`modal_truncation`] on a chosen linear-algebra path.
-pub fn modal_truncation_on(
-    model: &FeModel,
-    boundary: &[usize],
-    modes: ModeSelection,
-    path: SolverPath,
-) -> Result<Basis> {
-    modal_truncation_from(&mut InteriorProblem::new(model, boundary, path)?, modes)
-}
-
-/// [`modal_truncation`] on an interior problem shared with other methods.
-pub fn modal_truncation_from(
+pub(super) fn modal_truncation_basis(
     problem: &mut InteriorProblem<'_>,
     modes: ModeSelection,
 ) -> Result<Basis> {

@@ -3,11 +3,11 @@
 use faer::Mat;
 
 use super::{
-    Basis, ColumnKind, Method, ModeSelection, SolverPath,
+    Basis, ColumnKind, Method, ModeSelection,
     interior_problem::{DENSE_INTERIOR_LIMIT, InteriorProblem},
     partition::normal_columns,
 };
-use crate::{Result, fem::FeModel};
+use crate::Result;
 
 /// Interior DOF up to which mode condensation takes the thesis' route through the complete
 /// interior eigenproblem by default: where that costs milliseconds. Above, the kept-mode
@@ -43,48 +43,7 @@ impl ModeCondensationRoute {
 /// $\Psi_m = -\Psi_n^d \bar K_n^{d\,-1} \Psi_n^{dT} K_{ib}$ (Eq. 6.29): the deleted modes are
 /// condensed onto the boundary. Every deleted mode must be elastic ($\bar K_n^d$ invertible,
 /// i.e. $K_{ii}$ invertible).
-pub fn mode_condensation(
-    model: &FeModel,
-    boundary: &[usize],
-    modes: ModeSelection,
-) -> Result<Basis> {
-    mode_condensation_on(model, boundary, modes, SolverPath::Auto)
-}
-
-/// [`mode_condensation`] on a chosen linear-algebra path, the route chosen by size.
-pub fn mode_condensation_on(
-    model: &FeModel,
-    boundary: &[usize],
-    modes: ModeSelection,
-    path: SolverPath,
-) -> Result<Basis> {
-    let interior = model.dof_count() - model.dofs_of_nodes(boundary)?.len();
-    mode_condensation_route(
-        model,
-        boundary,
-        modes,
-        path,
-        ModeCondensationRoute::for_interior(interior),
-    )
-}
-
-/// [`mode_condensation`] by a chosen route.
-pub fn mode_condensation_route(
-    model: &FeModel,
-    boundary: &[usize],
-    modes: ModeSelection,
-    path: SolverPath,
-    route: ModeCondensationRoute,
-) -> Result<Basis> {
-    mode_condensation_from(
-        &mut InteriorProblem::new(model, boundary, path)?,
-        modes,
-        route,
-    )
-}
-
-/// [`mode_condensation`] on an interior problem shared with other methods.
-pub fn mode_condensation_from(
+pub(super) fn mode_condensation_basis(
     problem: &mut InteriorProblem<'_>,
     modes: ModeSelection,
     route: ModeCondensationRoute,
