@@ -10,7 +10,7 @@ use crate::{
 /// What a scene produces is what the recorder logs: numbers, text panel, visuals, layout.
 pub use crate::record::RecordingContent as SceneOutput;
 
-use super::{RunCache, SceneId, SceneInfo};
+use crate::scenes::{RunCache, SceneId, SceneInfo};
 
 /// Scene options from the command line (or the GUI). `None` means the scene's default.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -56,7 +56,7 @@ pub struct SceneOptions {
     pub body: Option<crate::body_file::BodyHandle>,
     /// The body driven through one of its interfaces instead of its modes compared (the
     /// `modes` scene; the explorer's `simulate`).
-    pub simulation: Option<super::body_simulation::BodySimulation>,
+    pub simulation: Option<crate::scenes::body::body_simulation::BodySimulation>,
     /// Where the time integrations report how far they got; cancelling it stops the scene.
     pub progress: Progress,
     /// Time integrations kept from earlier requests (the desktop explorer's).

@@ -1,10 +1,11 @@
 //! The list of scenes.
 
-use super::{SceneId, SceneOption, scene_info::SceneInfo};
-use super::{
-    SceneOptions, SceneOutput, amls, beam_eitelberg, beam_mean_axes, beam_modes, beam_profiles,
-    body_modes, cantilever_variants, failures, plank_symmetry, slab_mode_sets, slab_modes,
-    slab_sims, spin_up,
+use crate::scenes::{SceneId, SceneOption, scene_info::SceneInfo};
+use crate::scenes::{
+    SceneOptions, SceneOutput, beam::beam_eitelberg, beam::beam_mean_axes, beam::beam_modes,
+    beam::beam_profiles, body::body_modes, companion::cantilever_variants,
+    companion::slab_mode_sets, failures::failure_catalogue, slab::plank_symmetry, slab::slab_modes,
+    slab::slab_sims, spinning::spin_up, substructuring::amls,
 };
 use crate::{Error, Result};
 
@@ -23,7 +24,7 @@ impl Scene {
         (self.run)(opts)
     }
 
-    /// Refuses every option the scene's table ([`SceneControls`](super::SceneControls)) does
+    /// Refuses every option the scene's table ([`SceneControls`](crate::scenes::SceneControls)) does
     /// not offer, naming the scenes that do, and an axis type it does not offer; values a
     /// scene's own run checks (a method, a node, an interval) are checked there.
     pub fn check(&self, opts: &SceneOptions) -> Result<()> {
@@ -106,7 +107,7 @@ pub fn get(id: SceneId) -> Scene {
         SceneId::BeamMeanAxes => (beam_mean_axes::INFO, beam_mean_axes::run),
         SceneId::SlabModeSets => (slab_mode_sets::INFO, slab_mode_sets::run),
         SceneId::CantileverVariants => (cantilever_variants::INFO, cantilever_variants::run),
-        SceneId::Failures => (failures::INFO, failures::run),
+        SceneId::Failures => (failure_catalogue::INFO, failure_catalogue::run),
         SceneId::Modes => (body_modes::INFO, body_modes::run),
         SceneId::SpinUp => (spin_up::INFO, spin_up::run),
         SceneId::Amls => (amls::INFO, amls::run),

@@ -1,7 +1,7 @@
 //! What a scene is and which options it offers, as `flexmodes list` and the explorer's panel
 //! show them.
 
-use super::{SceneId, SceneOption};
+use crate::scenes::{SceneId, SceneOption};
 use crate::{dynamics::AxisKind, reduction::Method};
 
 /// Static description of a scene.
@@ -18,7 +18,7 @@ pub struct SceneInfo {
 }
 
 /// The options a scene offers and their defaults: the table
-/// [`SceneOption::offered_by`](super::SceneOption::offered_by) reads, and the registry refuses
+/// [`SceneOption::offered_by`](crate::scenes::SceneOption::offered_by) reads, and the registry refuses
 /// every option a scene does not offer before it runs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneControls {

@@ -3,7 +3,7 @@
 //! registry refuses what a scene does not offer before it runs; the command line, the
 //! explorer's panel, the classroom's control page and `flexmodes list` read the same table.
 
-use super::{SceneControls, SceneOptions};
+use crate::scenes::{SceneControls, SceneOptions};
 
 /// An option a scene may be run with, as the command line names it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -1,0 +1,264 @@
+//! `modes`: any body from a body file (`--body FILE` or `builtin:NAME`; the L-bracket by
+//! default) reduced on its interfaces by the methods of `models::BodyReducer` (Guyan, modal
+//! truncation, Craig–Bampton and mode condensation by default; MacNeal–Rubin, Benfield–Hruda,
+//! moment matching and balanced truncation on request), each model's frequencies and MAC
+//! against the full body's, and the principal angles between the bases and its lowest modes.
+//! Asked for a simulation (the explorer's `simulate`), the body driven through an interface
+//! instead, as `flexmodes simulate` drives it.
+
+use crate::models::{
+    BALANCED_ZETA, BODY_METHODS, BODY_MODES_COMPARED, BodyInterfaces, BodyModesParameters,
+    BodyModesStudy, DRIVEN_METHODS, body_modes_study,
+};
+use crate::scenes::body::body_influence::influence_count;
+use crate::scenes::body::body_modes_report::{method_rows, run_parameters, sweep_section};
+use crate::scenes::body::body_modes_text::{BodyTables, body_text, scene_text};
+use crate::scenes::{
+    SceneInfo, SceneOptions, SceneOutput, body::body_simulation::simulated,
+    frequency_bars::FrequencyBars, mode_visuals::undeformed,
+};
+use crate::{
+    Result,
+    body_file::{BodyHandle, ImportedBody},
+    models::FULL_MODES,
+    record::Layout,
+    reduction::Method,
+    report::{Report, residual_note},
+};
+
+/// The body shown when no `--body` is given.
+pub const DEFAULT_BODY: &str = "builtin:l-bracket";
+
+pub const INFO: SceneInfo = SceneInfo {
+    id: crate::scenes::SceneId::Modes,
+    summary: "any body from a body file (--body FILE; the L-bracket by default): every method \
+              on its interfaces (node sets, rbe2:, rbe3:) against the full body's frequencies",
+    sections: "§6.2–6.5 on a body of your own",
+    controls: crate::scenes::scene_info::SceneControls {
+        methods: &AVAILABLE,
+        modes: Some(10),
+        body: true,
+        ..crate::scenes::scene_info::SceneControls::NONE
+    },
+};
+
+const AVAILABLE: [Method; 8] = BODY_METHODS;
+/// Driven unless `--method` says otherwise (with the full body, `simulate`'s default).
+const DRIVEN_DEFAULT: [Method; 2] = [Method::CraigBampton, Method::ModeCondensation];
+/// Computed unless `--method` says otherwise.
+const DEFAULT_METHODS: [Method; 4] = [
+    Method::Guyan,
+    Method::ModalTruncation,
+    Method::CraigBampton,
+    Method::ModeCondensation,
+];
+
+/// The body of a run: `--body`, or [`DEFAULT_BODY`].
+pub fn body_of(opts: &SceneOptions) -> Result<BodyHandle> {
+    match &opts.body {
+        Some(b) => Ok(b.clone()),
+        None => Ok(BodyHandle(std::sync::Arc::new(ImportedBody::load(
+            DEFAULT_BODY,
+        )?))),
+    }
+}
+
+/// The body driven through one interface (the explorer's `simulate`): the methods whose
+/// boundary columns hold the driven ring still.
+fn run_driven(
+    body: &crate::body_file::ImportedBody,
+    simulation: &crate::scenes::body::body_simulation::BodySimulation,
+    opts: &SceneOptions,
+) -> Result<SceneOutput> {
+    let methods = opts.methods_or(INFO.id, &DRIVEN_METHODS, &DRIVEN_DEFAULT)?;
+    let modes = opts.modes_or_default(&INFO);
+    simulated(
+        body,
+        simulation,
+        (&methods, modes),
+        &opts.progress,
+        &opts.cache,
+        opts.concurrent_integrations,
+    )
+}
+
+pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
+    let body = body_of(opts)?;
+    if let Some(simulation) = &opts.simulation {
+        return run_driven(&body, simulation, opts);
+    }
+    let model = &body.model;
+    let methods = opts.methods_or(INFO.id, &AVAILABLE, &DEFAULT_METHODS)?;
+    let boundary = match &opts.boundary {
+        Some(b) => b.clone(),
+        None => body.default_interface_nodes()?.to_vec(),
+    };
+    let kept = opts.modes_or_default(&INFO);
+    let dofs = model.dof_count();
+
+    let study = body_modes_study(
+        model,
+        &BodyModesParameters {
+            interfaces: BodyInterfaces {
+                boundary: boundary.clone(),
+                rigid: opts.rigid_interfaces.clone(),
+                averaging: opts.averaging_interfaces.clone(),
+                interface_modes: opts.interface_modes,
+            },
+            methods: methods.clone(),
+            kept,
+            band_hz: opts.band_hz,
+            full_modes: FULL_MODES,
+            drawn_constraint_modes:
+                crate::scenes::slab::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES,
+        },
+        (influence_count(kept), BALANCED_ZETA),
+        &opts.progress,
+    )?;
+    let BodyModesStudy {
+        full,
+        full_s,
+        elastic,
+        held,
+        methods: study_methods,
+        notes: study_notes,
+        sweep,
+        response,
+        influence,
+        influence_count: ranked,
+    } = study;
+    let full_hz = full.elastic_hz();
+    let fi_hz = held.as_ref().map_or(Vec::new(), |h| h.fixed_interface.hz());
+    let fi_residuals = held
+        .as_ref()
+        .map_or(Vec::new(), |h| h.fixed_interface.residuals.clone());
+
+    let mut residual_lines = vec![
+        format!(
+            "full body: {}; missed modes: {}",
+            residual_note(&full_hz, &full.elastic_residuals()),
+            crate::models::missed_note(&full.modes)
+        ),
+        format!("fixed-interface: {}", residual_note(&fi_hz, &fi_residuals)),
+    ];
+    let mut visuals = Vec::new();
+    if body.has_coordinates {
+        visuals.push(undeformed(model));
+    }
+    let mut bars = Vec::new();
+    let mut freq_bars = FrequencyBars::new(BODY_MODES_COMPARED);
+    freq_bars.push(Method::NoReduction, &full_hz);
+    let mut rows = method_rows(&study_methods, &study_notes, dofs, &mut freq_bars);
+    residual_lines.append(&mut rows.residual_lines);
+
+    visuals.extend(freq_bars.visuals());
+    bars.insert(0, freq_bars.layout());
+
+    let mut report = Report::new(INFO.id.as_str());
+    report
+        .parameters
+        .extend(run_parameters(&body, &boundary, opts, kept, &methods));
+    let r = &mut report.results;
+    rows.insert_frequencies(r, &full, (&full_hz, &fi_hz), &fi_residuals, model);
+    // How many characteristic constraint modes the interface needs (Castanier–Tan–Pierre).
+    let mut sweep_md = String::new();
+    let mut sweep_table = None;
+    if let Some(points) = &sweep {
+        let section = sweep_section(points, opts.interface_modes);
+        r.insert("interface_reduction".into(), section.json);
+        visuals.extend(section.visuals);
+        bars.push(section.view);
+        sweep_md = section.markdown;
+        sweep_table = Some(section.table);
+    }
+    rows.insert_measures(r, full_s);
+    let (influence, influence_json, influence_text) =
+        crate::scenes::body::body_influence::influence_table(&influence, ranked, kept);
+    r.insert("interface_influence".into(), influence_json);
+    let summary = rows.table.markdown();
+    report.add_table(rows.table);
+    if let Some(sweep) = sweep_table {
+        report.add_table(sweep);
+    }
+    let influence_md = format!("\n\n{influence_text}\n\n{}", influence.markdown());
+    report.add_table(influence);
+    let response_md = match &response {
+        Some(r) => {
+            let (table, json, chart, view, text) =
+                crate::scenes::body::body_response::response_table(r, &rows.responses)?;
+            report.results.insert("interface_response".into(), json);
+            visuals.extend(chart);
+            bars.push(view);
+            let md = format!("\n\n{text}\n\n{}", table.markdown());
+            report.add_table(table);
+            md
+        }
+        None => String::new(),
+    };
+    let tables = BodyTables {
+        summary: &summary,
+        sweep: &sweep_md,
+        influence: &influence_md,
+        response: &response_md,
+    };
+    report.table = body_text(
+        &body,
+        &boundary,
+        opts,
+        kept,
+        &full,
+        (&full_hz, &fi_hz),
+        &residual_lines,
+        &rows.notes,
+        &tables,
+    );
+    let markdown = scene_text(&body, kept, &freq_bars.caption(), &report.table);
+    let (mode_visuals, layout) = views(&body, held.as_ref(), &elastic, kept, bars);
+    visuals.extend(mode_visuals);
+    Ok(SceneOutput {
+        report,
+        markdown,
+        visuals,
+        layout,
+        timeline: Some("phase".into()),
+        y_up: false,
+    })
+}
+
+/// The body's mode shapes drawn beside the charts when it has coordinates and a boundary
+/// holds it; otherwise the charts (the frequencies, and the interface sweep and response where
+/// asked for) at full width beside the text.
+fn views(
+    body: &ImportedBody,
+    held: Option<&crate::models::HeldModes>,
+    elastic: &crate::linalg::GeneralizedEigen,
+    kept: usize,
+    bars: Vec<Layout>,
+) -> (Vec<crate::record::Visual>, Layout) {
+    let model = &body.model;
+    if let (true, Some(h)) = (body.has_coordinates, held) {
+        let (mode_visuals, l) = crate::scenes::slab::slab_mode_views::slab_mode_views(
+            model,
+            &h.partition,
+            &h.constraint_shapes.0,
+            &h.constraint_shapes.1,
+            &h.fixed_interface,
+            elastic,
+            FULL_MODES,
+            kept,
+            "free_free",
+            bars,
+        );
+        (mode_visuals, l)
+    } else {
+        // No geometry to draw: the charts (the frequencies, and the interface sweep and
+        // response where asked for) stacked at full width beside the text.
+        (
+            Vec::new(),
+            Layout::Horizontal(
+                vec![Layout::Vertical(bars, vec![]), Layout::scene_text()],
+                vec![3.0, 2.0],
+            ),
+        )
+    }
+}

@@ -1,0 +1,4 @@
+//! Substructuring: multi-level substructuring (AMLS), the last rung of the component-mode
+//! ladder.
+
+pub(super) mod amls;
