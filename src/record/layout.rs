@@ -69,6 +69,12 @@ impl Layout {
         }
     }
 
+    /// `views` to the left of the `scene` text panel, three parts to its two: the layout most
+    /// scenes share.
+    pub fn beside_text(views: Layout) -> Self {
+        Layout::Horizontal(vec![views, Layout::scene_text()], vec![3.0, 2.0])
+    }
+
     /// The benches' sheet: a large chart on the left (`main`: name and origin), a second
     /// chart above the `scene` text as a table on the right; `left` is the left column's
     /// share of the width against the right's 1.

@@ -22,3 +22,41 @@ pub struct RecordingContent {
     /// solids declare z up.
     pub y_up: bool,
 }
+
+impl RecordingContent {
+    /// A recording of `report`, its text panel `markdown` and `visuals` in `layout`: static
+    /// (no timeline) and z up, until [`Self::on_timeline`] and [`Self::y_up`] say otherwise.
+    pub fn new(report: Report, markdown: String, visuals: Vec<Visual>, layout: Layout) -> Self {
+        Self {
+            report,
+            markdown,
+            visuals,
+            layout,
+            timeline: None,
+            y_up: false,
+        }
+    }
+
+    /// [`Self::new`] with `views` to the left of the text panel, three parts to its two: the
+    /// layout most scenes share.
+    pub fn beside_text(
+        report: Report,
+        markdown: String,
+        visuals: Vec<Visual>,
+        views: Layout,
+    ) -> Self {
+        Self::new(report, markdown, visuals, Layout::beside_text(views))
+    }
+
+    /// The time panel starts on `timeline` (`phase`, `sim_time`).
+    pub fn on_timeline(mut self, timeline: &str) -> Self {
+        self.timeline = Some(timeline.into());
+        self
+    }
+
+    /// A planar body in the x-y plane: the 3D views face it.
+    pub fn y_up(mut self) -> Self {
+        self.y_up = true;
+        self
+    }
+}

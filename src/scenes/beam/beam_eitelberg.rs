@@ -151,27 +151,16 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         &guyan_modes,
         method_color(Method::Guyan),
     ));
-    let layout = Layout::Horizontal(
+    let views = Layout::Vertical(
         vec![
-            Layout::Vertical(
-                vec![
-                    Layout::view3d("eitelberg", "/modes/eitelberg"),
-                    Layout::view3d("guyan_a", "/modes/guyan_a"),
-                ],
-                vec![1.0, 1.0],
-            ),
-            Layout::scene_text(),
+            Layout::view3d("eitelberg", "/modes/eitelberg"),
+            Layout::view3d("guyan_a", "/modes/guyan_a"),
         ],
-        vec![3.0, 2.0],
+        vec![1.0, 1.0],
     );
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("phase".into()),
-        y_up: true,
-    })
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
+        .on_timeline("phase")
+        .y_up())
 }
 
 /// A matrix entry as the thesis prints it (5 significant digits), with round-off below

@@ -169,24 +169,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          the full model's) and normal modes (bottom tabs), on the mean axes.\n\n{}",
         report.table
     );
-    let layout = Layout::Horizontal(
-        vec![
-            Layout::Vertical(
-                vec![Layout::Tabs(tabs), Layout::Tabs(normal_tabs)],
-                vec![1.0, 1.0],
-            ),
-            Layout::scene_text(),
-        ],
-        vec![3.0, 2.0],
+    let views = Layout::Vertical(
+        vec![Layout::Tabs(tabs), Layout::Tabs(normal_tabs)],
+        vec![1.0, 1.0],
     );
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("phase".into()),
-        y_up: true,
-    })
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
+        .on_timeline("phase")
+        .y_up())
 }
 
 /// One method's constraint modes and normal modes on the mean axes, drawn in its colour, and

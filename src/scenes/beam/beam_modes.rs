@@ -205,24 +205,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     // Two rows of tabs: the free-free and Guyan sets above, the rest below (eight tabs in one
     // row do not fit a 1280 × 800 window).
     let below = tabs.split_off(tabs.len().min(4));
-    let layout = Layout::Horizontal(
-        vec![
-            Layout::Vertical(
-                vec![Layout::Tabs(tabs), Layout::Tabs(below)],
-                vec![1.0, 1.0],
-            ),
-            Layout::scene_text(),
-        ],
-        vec![3.0, 2.0],
+    let views = Layout::Vertical(
+        vec![Layout::Tabs(tabs), Layout::Tabs(below)],
+        vec![1.0, 1.0],
     );
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("phase".into()),
-        y_up: true,
-    })
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
+        .on_timeline("phase")
+        .y_up())
 }
 
 /// A mode set's tab title, short enough for four tabs in a row of a 1280 × 800 window (the

@@ -119,19 +119,6 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          condensation coincide (one column space).\n\n{}",
         report.table
     );
-    let layout = Layout::Horizontal(
-        vec![
-            Layout::view3d("profiles", "/profiles"),
-            Layout::scene_text(),
-        ],
-        vec![3.0, 2.0],
-    );
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: None,
-        y_up: true,
-    })
+    let views = Layout::view3d("profiles", "/profiles");
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views).y_up())
 }

@@ -215,14 +215,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let markdown = scene_text(&body, kept, &freq_bars.caption(), &report.table);
     let (mode_visuals, layout) = views(&body, held.as_ref(), &elastic, kept, bars);
     visuals.extend(mode_visuals);
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("phase".into()),
-        y_up: false,
-    })
+    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
 }
 
 /// The body's mode shapes drawn beside the charts when it has coordinates and a boundary
@@ -255,10 +248,7 @@ fn views(
         // response where asked for) stacked at full width beside the text.
         (
             Vec::new(),
-            Layout::Horizontal(
-                vec![Layout::Vertical(bars, vec![]), Layout::scene_text()],
-                vec![3.0, 2.0],
-            ),
+            Layout::beside_text(Layout::Vertical(bars, vec![])),
         )
     }
 }

@@ -126,14 +126,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          {subspace_md}\n## Claims\n\n{claims}"
     );
     let markdown = scene_text(&study, &report.table);
-    Ok(SceneOutput {
+    Ok(SceneOutput::new(
         report,
         markdown,
         visuals,
-        layout: layout(&study.statics),
-        timeline: None,
-        y_up: false,
-    })
+        layout(&study.statics),
+    ))
 }
 
 /// The statics: each load case's peak and each model's error against the full model (its

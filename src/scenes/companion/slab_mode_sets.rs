@@ -173,14 +173,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          ## Other articulation angles (FRF error 0–10 Hz)\n\n{art_md}\n## Claims\n\n{claims}"
     );
     let markdown = scene_text(&study, &report.table);
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout: layout(),
-        timeline: None,
-        y_up: false,
-    })
+    Ok(SceneOutput::new(report, markdown, visuals, layout()))
 }
 
 /// The scene's text above its tables.

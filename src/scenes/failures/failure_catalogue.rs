@@ -138,41 +138,28 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          a-priori estimate (points) for CB k without and with residual vectors (log–log).\n\n\
          {sections}"
     );
-    let layout = Layout::Horizontal(
+    let views = Layout::Vertical(
         vec![
-            Layout::Vertical(
-                vec![
-                    Layout::Tabs(vec![
-                        Layout::view3d("guyan (b) symmetry", "/modes"),
-                        Layout::view3d("boundary motion", "/static"),
-                    ]),
-                    Layout::Tabs(vec![
-                        Layout::Spatial2D {
-                            name: "cost: offline s against DOF (log–log)".into(),
-                            origin: "/charts/cost".into(),
-                        },
-                        Layout::Spatial2D {
-                            name: "explicit step: node 8 |ζ| against time (semi-log)".into(),
-                            origin: "/charts/explicit_step".into(),
-                        },
-                        Layout::Spatial2D {
-                            name: "inertia loads: error and estimate against k (log–log)".into(),
-                            origin: "/charts/inertia_loads".into(),
-                        },
-                    ]),
-                ],
-                vec![1.2, 1.0],
-            ),
-            Layout::scene_text(),
+            Layout::Tabs(vec![
+                Layout::view3d("guyan (b) symmetry", "/modes"),
+                Layout::view3d("boundary motion", "/static"),
+            ]),
+            Layout::Tabs(vec![
+                Layout::Spatial2D {
+                    name: "cost: offline s against DOF (log–log)".into(),
+                    origin: "/charts/cost".into(),
+                },
+                Layout::Spatial2D {
+                    name: "explicit step: node 8 |ζ| against time (semi-log)".into(),
+                    origin: "/charts/explicit_step".into(),
+                },
+                Layout::Spatial2D {
+                    name: "inertia loads: error and estimate against k (log–log)".into(),
+                    origin: "/charts/inertia_loads".into(),
+                },
+            ]),
         ],
-        vec![3.0, 2.0],
+        vec![1.2, 1.0],
     );
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("phase".into()),
-        y_up: false,
-    })
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views).on_timeline("phase"))
 }

@@ -177,14 +177,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }];
     top.extend(health);
     let layout = simulation_layout(Layout::Tabs(top), plots);
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("sim_time".into()),
-        y_up: false,
-    })
+    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("sim_time"))
 }
 
 /// The study's variants (NR on nodal-fixed and mean axes, CB on mean axes) that `--method`

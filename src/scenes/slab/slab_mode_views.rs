@@ -105,15 +105,9 @@ pub fn slab_mode_views(
     // response where asked for) in one row under the modes, four ninths of the height: the
     // frequency chart's legend of nine models (NR and eight methods) needs ~230 pixels, and
     // at a third of 800 its last two entries were cut.
-    let layout = Layout::Horizontal(
-        vec![
-            Layout::Vertical(
-                vec![Layout::Tabs(tabs), Layout::Horizontal(charts, vec![])],
-                vec![5.0, 4.0],
-            ),
-            Layout::scene_text(),
-        ],
-        vec![3.0, 2.0],
-    );
+    let layout = Layout::beside_text(Layout::Vertical(
+        vec![Layout::Tabs(tabs), Layout::Horizontal(charts, vec![])],
+        vec![5.0, 4.0],
+    ));
     (visuals, layout)
 }

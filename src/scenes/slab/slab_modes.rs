@@ -184,12 +184,5 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         vec![bars.layout()],
     );
     visuals.extend(mode_visuals);
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("phase".into()),
-        y_up: false,
-    })
+    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
 }

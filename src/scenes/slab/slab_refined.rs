@@ -178,14 +178,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         vec![bars.layout()],
     );
     visuals.extend(mode_visuals);
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("phase".into()),
-        y_up: false,
-    })
+    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
 }
 
 /// The Guyan masters: the boundary and the nodes nearest App. B's extra masters.

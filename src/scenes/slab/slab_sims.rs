@@ -270,14 +270,7 @@ pub fn run_scenario(
     top.extend(health);
     let top = Layout::Tabs(top);
     let layout = simulation_layout(top, plot_views);
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("sim_time".into()),
-        y_up: false,
-    })
+    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("sim_time"))
 }
 
 pub fn run_sim1(opts: &SceneOptions) -> Result<SceneOutput> {

@@ -125,18 +125,10 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             origin: "/campbell/flapwise".into(),
         },
     );
-    let layout = Layout::Horizontal(
-        vec![Layout::Tabs(plots), Layout::scene_text()],
-        vec![3.0, 2.0],
-    );
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: Some("sim_time".into()),
-        y_up: true,
-    })
+    let views = Layout::Tabs(plots);
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
+        .on_timeline("sim_time")
+        .y_up())
 }
 
 fn rate_key(rate: f64) -> String {

@@ -68,40 +68,27 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut visuals = tree_visuals(&study);
     visuals.extend(ladder_chart(&study).visuals());
     visuals.push(level_bars(&study));
-    let layout = Layout::Horizontal(
+    let views = Layout::Vertical(
         vec![
-            Layout::Vertical(
+            Layout::view3d("tree", "/world/tree"),
+            Layout::Horizontal(
                 vec![
-                    Layout::view3d("tree", "/world/tree"),
-                    Layout::Horizontal(
-                        vec![
-                            Layout::Spatial2D {
-                                name: "error against coordinates".into(),
-                                origin: "/ladder".into(),
-                            },
-                            Layout::BarChart {
-                                name: "modes per level".into(),
-                                origin: "/levels".into(),
-                                legend: false,
-                            },
-                        ],
-                        vec![3.0, 2.0],
-                    ),
+                    Layout::Spatial2D {
+                        name: "error against coordinates".into(),
+                        origin: "/ladder".into(),
+                    },
+                    Layout::BarChart {
+                        name: "modes per level".into(),
+                        origin: "/levels".into(),
+                        legend: false,
+                    },
                 ],
-                vec![1.0, 1.0],
+                vec![3.0, 2.0],
             ),
-            Layout::scene_text(),
         ],
-        vec![3.0, 2.0],
+        vec![1.0, 1.0],
     );
-    Ok(SceneOutput {
-        report,
-        markdown,
-        visuals,
-        layout,
-        timeline: None,
-        y_up: false,
-    })
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views))
 }
 
 /// Per level of the tree: parts, leaves among them, unknowns and modes kept.
