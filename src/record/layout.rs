@@ -75,6 +75,13 @@ impl Layout {
         Layout::Horizontal(vec![views, Layout::scene_text()], vec![3.0, 2.0])
     }
 
+    /// Rows of tabs, one above the other, each as high: for more tabs than one row of a
+    /// 1280 × 800 window holds.
+    pub fn tab_rows(rows: Vec<Vec<Layout>>) -> Self {
+        let shares = vec![1.0; rows.len()];
+        Layout::Vertical(rows.into_iter().map(Layout::Tabs).collect(), shares)
+    }
+
     /// The benches' sheet: a large chart on the left (`main`: name and origin), a second
     /// chart above the `scene` text as a table on the right; `left` is the left column's
     /// share of the width against the right's 1.

@@ -3,6 +3,7 @@
 use crate::record::{REFERENCE, method_color};
 use serde_json::json;
 
+use super::beam_run::BeamRun;
 use crate::dynamics::AxisKind;
 use crate::scenes::{
     SceneInfo, SceneOptions, SceneOutput,
@@ -11,14 +12,14 @@ use crate::scenes::{
 use crate::{
     Result,
     analysis::{MeanAxesEvaluation, evaluate_with_mean_axes},
-    fem::{BeamParameters, FeModel, beam},
+    fem::FeModel,
     linalg::{identity, max_abs_diff, principal_angles},
     record::{Layout, Visual},
     reduction::{
         Method, ModeSelection, Partition, ReductionRequest, constraint_modes,
         fixed_interface_modes, reduce,
     },
-    report::{Cell, Report, Table, sig, sig_vec},
+    report::{Cell, Table, sig, sig_vec},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -26,17 +27,14 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "§8.4-8.5 mode condensation with mean axes: constraint and normal modes of the \
               reduced beam against the full model",
     sections: "§8.4, §8.5",
-    controls: crate::scenes::scene_info::SceneControls {
-        methods: &[
+    controls: crate::scenes::SceneControls {
+        axes: &[AxisKind::Mean],
+        ..super::beam_run::beam_controls(&[
             Method::ModeCondensation,
             Method::CraigBampton,
             Method::ModalTruncation,
             Method::Guyan,
-        ],
-        boundary: &[1, 5],
-        modes: Some(2),
-        axes: &[AxisKind::Mean],
-        ..crate::scenes::scene_info::SceneControls::NONE
+        ])
     },
 };
 
@@ -48,11 +46,15 @@ const AVAILABLE: [Method; 4] = [
 ];
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    let methods = opts.methods_or(INFO.id, &AVAILABLE, &[Method::ModeCondensation])?;
-    let boundary = opts.boundary_or_default(&INFO);
-    let kept = opts.modes_or_default(&INFO);
-    let model = beam(&BeamParameters::default());
-    let part = Partition::new(&model, &boundary)?;
+    let run = BeamRun::new(opts, &INFO, (&AVAILABLE, &[Method::ModeCondensation]))?;
+    let mut report = run.report(&INFO);
+    let BeamRun {
+        methods,
+        boundary,
+        kept,
+        model,
+        part,
+    } = run;
     // The full model's constraint modes (Eq. 8.37) and fixed-interface modes (Eq. 8.38).
     let full_c = part.assemble(
         identity(part.b.len()).as_ref(),
@@ -60,13 +62,6 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     );
     let fi = fixed_interface_modes(&model, &part)?;
     let full_hz = fi.hz();
-    let mut report = Report::new(INFO.id.as_str());
-    report.parameters.insert("boundary".into(), json!(boundary));
-    report.parameters.insert("modes".into(), json!(kept));
-    report.parameters.insert(
-        "methods".into(),
-        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
-    );
     let mut table = Table::new(&[
         "method",
         "constraint modes: max diff to full",
@@ -169,10 +164,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          the full model's) and normal modes (bottom tabs), on the mean axes.\n\n{}",
         report.table
     );
-    let views = Layout::Vertical(
-        vec![Layout::Tabs(tabs), Layout::Tabs(normal_tabs)],
-        vec![1.0, 1.0],
-    );
+    let views = Layout::tab_rows(vec![tabs, normal_tabs]);
     Ok(SceneOutput::beside_text(report, markdown, visuals, views)
         .on_timeline("phase")
         .y_up())

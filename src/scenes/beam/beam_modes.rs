@@ -4,6 +4,7 @@ use crate::record::{REFERENCE, method_color};
 use crate::reduction::{ReductionRequest, reduce};
 use serde_json::json;
 
+use super::beam_run::BeamRun;
 use crate::scenes::{
     SceneInfo, SceneOptions, SceneOutput,
     mode_visuals::{columns, mode_set, undeformed},
@@ -11,11 +12,11 @@ use crate::scenes::{
 use crate::{
     Result,
     analysis::{elastic_hz, free_free_modes, reduced_hz, reduced_modes},
-    fem::{BeamParameters, FeModel, beam},
+    fem::FeModel,
     linalg::principal_angles,
     record::{Layout, Visual},
-    reduction::{Basis, Method, ModeSelection, Partition, fixed_interface_modes},
-    report::{Report, Table, fmt_hz, sig, sig_vec},
+    reduction::{Basis, Method, ModeSelection, fixed_interface_modes},
+    report::{Table, fmt_hz, sig, sig_vec},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -23,17 +24,12 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "App. A beam: free-free, Guyan (a)(b)(c), boundary, fixed-interface, Craig-Bampton \
               and mode-condensation mode shapes (Figs. 6-1 to 6-9)",
     sections: "§6.2-6.5, App. A",
-    controls: crate::scenes::scene_info::SceneControls {
-        methods: &[
-            Method::Guyan,
-            Method::ModalTruncation,
-            Method::CraigBampton,
-            Method::ModeCondensation,
-        ],
-        boundary: &[1, 5],
-        modes: Some(2),
-        ..crate::scenes::scene_info::SceneControls::NONE
-    },
+    controls: super::beam_run::beam_controls(&[
+        Method::Guyan,
+        Method::ModalTruncation,
+        Method::CraigBampton,
+        Method::ModeCondensation,
+    ]),
 };
 
 const MASTERS_A: [usize; 3] = [1, 3, 5];
@@ -68,12 +64,15 @@ fn labelled_columns(basis: &Basis) -> Vec<(Vec<f64>, String)> {
 }
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
-    let boundary = opts.boundary_or_default(&INFO);
-    let kept = opts.modes_or_default(&INFO);
-    let model = beam(&BeamParameters::default());
-    // Validate the user's set before anything else, so its error names the cause.
-    let part = Partition::new(&model, &boundary)?;
+    let run = BeamRun::new(opts, &INFO, (&AVAILABLE, &AVAILABLE))?;
+    let mut report = run.report(&INFO);
+    let BeamRun {
+        methods,
+        boundary,
+        kept,
+        model,
+        part,
+    } = run;
 
     let ff = free_free_modes(&model)?;
     let free_free_hz = elastic_hz(&ff);
@@ -105,13 +104,6 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let cb_hz = reduced_hz(&model, &cb)?;
     let mc_hz = reduced_hz(&model, &mc)?;
 
-    let mut report = Report::new(INFO.id.as_str());
-    report.parameters.insert("boundary".into(), json!(boundary));
-    report.parameters.insert("modes".into(), json!(kept));
-    report.parameters.insert(
-        "methods".into(),
-        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
-    );
     let r = &mut report.results;
     for (key, hz) in [
         ("free_free_hz", &free_free_hz),
@@ -205,10 +197,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     // Two rows of tabs: the free-free and Guyan sets above, the rest below (eight tabs in one
     // row do not fit a 1280 × 800 window).
     let below = tabs.split_off(tabs.len().min(4));
-    let views = Layout::Vertical(
-        vec![Layout::Tabs(tabs), Layout::Tabs(below)],
-        vec![1.0, 1.0],
-    );
+    let views = Layout::tab_rows(vec![tabs, below]);
     Ok(SceneOutput::beside_text(report, markdown, visuals, views)
         .on_timeline("phase")
         .y_up())

@@ -3,13 +3,13 @@
 use crate::record::{REFERENCE, method_color};
 use serde_json::{Map, Value, json};
 
+use super::beam_run::BeamRun;
 use crate::scenes::{SceneInfo, SceneOptions, SceneOutput, mode_visuals::undeformed};
 use crate::{
     Result,
     analysis::{PROFILE_DELTA, fit_given_modal_coordinates, fit_least_squares},
-    fem::{BeamParameters, beam},
     record::{Geometry, Layout, Visual},
-    reduction::{Method, ModeSelection, Partition, ReductionRequest, reduce},
+    reduction::{Method, ModeSelection, ReductionRequest, reduce},
     report::{Cell, Report, Table, sig, sig_vec},
 };
 
@@ -18,16 +18,11 @@ pub const INFO: SceneInfo = SceneInfo {
     summary: "§7.1 deformed profiles of the beam: the same z* (profile 1) and a least-squares \
               fit (profile 2) by MT, CB and MC against the reference deflection",
     sections: "§7.1",
-    controls: crate::scenes::scene_info::SceneControls {
-        methods: &[
-            Method::ModalTruncation,
-            Method::CraigBampton,
-            Method::ModeCondensation,
-        ],
-        boundary: &[1, 5],
-        modes: Some(2),
-        ..crate::scenes::scene_info::SceneControls::NONE
-    },
+    controls: super::beam_run::beam_controls(&[
+        Method::ModalTruncation,
+        Method::CraigBampton,
+        Method::ModeCondensation,
+    ]),
 };
 
 const AVAILABLE: [Method; 3] = [
@@ -37,11 +32,13 @@ const AVAILABLE: [Method; 3] = [
 ];
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
-    let boundary = opts.boundary_or_default(&INFO);
-    let kept = opts.modes_or_default(&INFO);
-    let model = beam(&BeamParameters::default());
-    let part = Partition::new(&model, &boundary)?;
+    let BeamRun {
+        methods,
+        boundary,
+        kept,
+        model,
+        part,
+    } = BeamRun::new(opts, &INFO, (&AVAILABLE, &AVAILABLE))?;
     let params = ReductionRequest {
         boundary_nodes: boundary.clone(),
         modes: ModeSelection::Count(kept),

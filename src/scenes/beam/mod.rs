@@ -5,3 +5,4 @@ pub(super) mod beam_eitelberg;
 pub(super) mod beam_mean_axes;
 pub(super) mod beam_modes;
 pub(super) mod beam_profiles;
+mod beam_run;

@@ -122,13 +122,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
     );
     let r = &mut report.results;
-    r.insert("free_free_hz".into(), json!(sig_vec(&free_free_hz)));
-    r.insert(
-        "fixed_interface_hz".into(),
-        json!(sig_vec(&fixed_interface_hz)),
-    );
-    r.insert("reduced_hz".into(), Value::Object(reduced));
-    r.insert("basis_size".into(), Value::Object(sizes));
+    super::slab_modes::insert_mode_results(r, (&free_free_hz, &fixed_interface_hz), reduced, sizes);
     r.insert("total_mass_kg".into(), json!(sig(model.total_mass())));
     r.insert("dofs".into(), json!(dofs));
     r.insert("nnz".into(), json!(model.stiffness_nnz()));
