@@ -3,6 +3,7 @@
 
 pub mod plank_symmetry;
 pub(super) mod sim_visuals;
+pub(super) mod slab_mode_results;
 pub(super) mod slab_mode_views;
 pub(super) mod slab_modes;
 pub(super) mod slab_refined;

@@ -136,7 +136,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         );
     }
     let r = &mut report.results;
-    insert_mode_results(r, (&free_free_hz, &fixed_interface_hz), reduced, sizes);
+    super::slab_mode_results::insert_mode_results(
+        r,
+        (&free_free_hz, &fixed_interface_hz),
+        reduced,
+        sizes,
+    );
     r.insert("rigid_body_modes".into(), Value::Object(rigid_counts));
     r.insert("total_mass_kg".into(), json!(model.total_mass()));
     if nodal_fixed {
@@ -179,21 +184,4 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     );
     visuals.extend(mode_visuals);
     Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
-}
-
-/// The slab's mode results shared by the App. B mesh and a refined one: the free-free and
-/// fixed-interface frequencies (Hz), and each method's reduced frequencies and basis size.
-pub(super) fn insert_mode_results(
-    r: &mut Map<String, Value>,
-    (free_free_hz, fixed_interface_hz): (&[f64], &[f64]),
-    reduced: Map<String, Value>,
-    sizes: Map<String, Value>,
-) {
-    r.insert("free_free_hz".into(), json!(sig_vec(free_free_hz)));
-    r.insert(
-        "fixed_interface_hz".into(),
-        json!(sig_vec(fixed_interface_hz)),
-    );
-    r.insert("reduced_hz".into(), Value::Object(reduced));
-    r.insert("basis_size".into(), Value::Object(sizes));
 }

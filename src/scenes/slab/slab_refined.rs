@@ -122,7 +122,12 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
         json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
     );
     let r = &mut report.results;
-    super::slab_modes::insert_mode_results(r, (&free_free_hz, &fixed_interface_hz), reduced, sizes);
+    super::slab_mode_results::insert_mode_results(
+        r,
+        (&free_free_hz, &fixed_interface_hz),
+        reduced,
+        sizes,
+    );
     r.insert("total_mass_kg".into(), json!(sig(model.total_mass())));
     r.insert("dofs".into(), json!(dofs));
     r.insert("nnz".into(), json!(model.stiffness_nnz()));
