@@ -141,21 +141,10 @@ impl Error {
         matches!(self, Error::Core(flexmodes_core::Error::Cancelled))
     }
 
-    /// The message and its causes on one line, `cause: cause: …`, as the command line and the
-    /// explorer show it; a cause the message already quotes (an I/O error behind its path) is
-    /// not repeated.
+    /// The message and its causes on one line, as the command line and the explorer show it
+    /// (core's [`cause_chain`](flexmodes_core::error::cause_chain)).
     pub fn cause_chain(&self) -> String {
-        let mut message = self.to_string();
-        let mut source = std::error::Error::source(self);
-        while let Some(s) = source {
-            let text = s.to_string();
-            if !message.contains(&text) {
-                message.push_str(": ");
-                message.push_str(&text);
-            }
-            source = s.source();
-        }
-        message
+        flexmodes_core::error::cause_chain(self)
     }
 }
 

@@ -9,7 +9,7 @@ use crate::{
     body_file::BodyHandle,
     dynamics::IntegrationScheme,
     reduction::Method,
-    scenes::{self, SceneId, SceneOptions},
+    scenes::{self, SceneId, SceneOption, SceneOptions},
 };
 
 /// What the user chose; persisted between sessions.
@@ -157,21 +157,20 @@ impl Controls {
         let methods = self.methods.clone();
         // A scene without method choices (the failures scene) runs with its own settings.
         SceneOptions::require_a_method(&info, &methods)?;
+        // Only what the scene's table offers is set (the registry refuses the rest).
+        let offers = |option: SceneOption| option.offered_by(&c);
         Ok(SceneOptions {
-            methods: (!c.methods.is_empty()).then_some(methods),
-            modes: c.modes.map(|_| self.modes),
+            methods: offers(SceneOption::Method).then_some(methods),
+            modes: offers(SceneOption::Modes).then_some(self.modes),
             boundary,
             axes: self.axes,
-            end_time: c.end_time.map(|_| self.end_time),
-            deformation_scale: (c.end_time.is_some() && self.deformation_scale > 0.0)
+            end_time: offers(SceneOption::EndTime).then_some(self.end_time),
+            deformation_scale: (offers(SceneOption::DeformationScale)
+                && self.deformation_scale > 0.0)
                 .then_some(self.deformation_scale),
             refine,
-            integrator: c.end_time.and(self.integrator),
-            stiffening: scenes::get(self.scene)
-                .info
-                .controls
-                .stiffening
-                .then_some(self.stiffening),
+            integrator: self.integrator.filter(|_| offers(SceneOption::Integrator)),
+            stiffening: offers(SceneOption::Stiffening).then_some(self.stiffening),
             ..Default::default()
         })
     }

@@ -4,6 +4,7 @@
 //! explorer's panel, the classroom's control page and `flexmodes list` read the same table.
 
 use crate::scenes::{SceneControls, SceneOptions};
+use crate::{dynamics::AxisKind, reduction::Method as ReductionMethod};
 
 /// An option a scene may be run with, as the command line names it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -73,13 +74,29 @@ impl SceneOption {
         }
     }
 
-    /// What the option's value looks like, as a form shows it beside the field.
-    pub const fn hint(self) -> &'static str {
+    /// What the option's value looks like, as a form shows it beside the field (the method
+    /// and axis ids from their own lists).
+    pub fn hint(self) -> String {
+        let ids = |ids: Vec<&str>| ids.join(",");
         match self {
-            SceneOption::Method => "nr,gr,mt,cb,mc,eit (comma separated)",
+            SceneOption::Method => format!(
+                "{} (comma separated)",
+                ids(ReductionMethod::ALL.iter().map(|m| m.id()).collect())
+            ),
+            SceneOption::Axes => format!(
+                "one of {}",
+                ids(AxisKind::ALL.iter().map(|a| a.id()).collect())
+            ),
+            other => other.fixed_hint().into(),
+        }
+    }
+
+    /// The hint of an option whose values are not a list of ids.
+    const fn fixed_hint(self) -> &'static str {
+        match self {
+            SceneOption::Method | SceneOption::Axes => "",
             SceneOption::Modes => "kept normal modes",
             SceneOption::Boundary => "nodes or node sets, comma separated",
-            SceneOption::Axes => "nodal_fixed, mean or principal",
             SceneOption::EndTime => "simulated seconds",
             SceneOption::Integrator => "dp5 or gen-alpha",
             SceneOption::DeformationScale => "factor on drawn deflections (0: none)",

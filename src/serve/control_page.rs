@@ -229,7 +229,7 @@ impl ControlPage {
                 "<label title=\"taken by {}\">{field} <input name=\"{field}\" placeholder=\"{}\" \
                  value=\"{}\"></label>",
                 html_escape(&takers.join(", ")),
-                html_escape(option.hint()),
+                html_escape(&option.hint()),
                 html_escape(value(field))
             );
         }

@@ -2,8 +2,9 @@
 //! bodies with checked modes, and the static compliance across an interface.
 
 use flexmodes::{
-    Error, Progress,
+    Progress,
     analysis::count_zero_energy_modes,
+    error::CoreError as Error,
     models::{BODY_METHODS, BodyInterfaces, BodyReducer},
     reduction::{Method, ReductionError},
 };

@@ -350,7 +350,7 @@ fn studies_of_one_drive_join_into_the_study_of_all_their_runs() {
     every_step.integration.output_every = 1;
     let other = study(&every_step, &methods[..1], false);
     let refused = |studies: &[&DrivenStudy], expected: &str| match DrivenStudy::joined(studies) {
-        Err(flexmodes::Error::Dynamics(DynamicsError::StudiesDiffer { what })) => {
+        Err(flexmodes::error::CoreError::Dynamics(DynamicsError::StudiesDiffer { what })) => {
             assert_eq!(what, expected)
         }
         other => panic!("{expected}: {:?}", other.map(|s| s.runs.len())),

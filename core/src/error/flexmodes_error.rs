@@ -107,22 +107,28 @@ pub enum Error {
 }
 
 impl Error {
-    /// The message and its causes on one line, `cause: cause: …`, as the command line, the
-    /// explorer and Python show it; a cause the message already quotes (an I/O error behind
-    /// its path) is not repeated.
+    /// The message and its causes on one line, as the command line, the explorer and Python
+    /// show it ([`cause_chain`]).
     pub fn cause_chain(&self) -> String {
-        let mut message = self.to_string();
-        let mut source = std::error::Error::source(self);
-        while let Some(s) = source {
-            let text = s.to_string();
-            if !message.contains(&text) {
-                message.push_str(": ");
-                message.push_str(&text);
-            }
-            source = s.source();
-        }
-        message
+        cause_chain(self)
     }
+}
+
+/// `error`'s message and its causes on one line, `cause: cause: …`; a cause the message
+/// already quotes (an I/O error behind its path) is not repeated. Core's errors and the
+/// application's show their chains by this one function.
+pub fn cause_chain(error: &dyn std::error::Error) -> String {
+    let mut message = error.to_string();
+    let mut source = error.source();
+    while let Some(s) = source {
+        let text = s.to_string();
+        if !message.contains(&text) {
+            message.push_str(": ");
+            message.push_str(&text);
+        }
+        source = s.source();
+    }
+    message
 }
 
 /// Result alias used across the crate.

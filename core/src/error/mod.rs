@@ -41,7 +41,7 @@ pub use dynamics_error::DynamicsError;
 pub use eigen_attempt::{EigenAttempt, EigenRoute};
 pub use excerpt::Excerpt;
 pub use export_problem::ExportProblem;
-pub use flexmodes_error::{Error, Result};
+pub use flexmodes_error::{Error, Result, cause_chain};
 pub use free_motion::FreeMotion;
 pub use linalg_error::LinalgError;
 pub use mass_defect::MassDefect;
