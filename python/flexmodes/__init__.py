@@ -154,20 +154,16 @@ class Body:
         length, mass, force = tuple(units) if units is not None else ("m", "kg", "N")
         self._inner = RustBody.from_entries(
             name,
-            k_shape,
-            k_rows,
-            k_cols,
-            k_values,
-            m_shape,
-            m_rows,
-            m_cols,
-            m_values,
-            [str(d) for d in dofs],
-            xyz,
-            sets,
-            given,
-            default_interface,
-            (str(length), str(mass), str(force)),
+            (k_shape, k_rows, k_cols, k_values),
+            (m_shape, m_rows, m_cols, m_values),
+            dict(
+                dofs=[str(d) for d in dofs],
+                nodes=xyz,
+                node_sets=sets,
+                interfaces=given,
+                default_interface=default_interface,
+                units=(str(length), str(mass), str(force)),
+            ),
         )
 
     @classmethod
@@ -242,13 +238,15 @@ class Body:
         ``residual vector``)."""
         return ReducedModel(
             self._inner.reduce(
-                str(method),
-                _items(boundary),
-                int(modes),
-                interface_modes,
-                bool(exudyn),
-                str(eigensolver),
-                bool(residual_vectors),
+                dict(
+                    method=str(method),
+                    boundary=_items(boundary),
+                    modes=int(modes),
+                    interface_modes=interface_modes,
+                    exudyn=bool(exudyn),
+                    eigensolver=str(eigensolver),
+                    residual_vectors=bool(residual_vectors),
+                )
             )
         )
 
@@ -297,29 +295,31 @@ class Body:
             raise InputError(f"axes {axes!r}: a driven body is seen from 'nodal_fixed' or 'mean' axes")
         ids = [str(m) for m in methods]
         return self._inner.simulate(
-            str(drive),
-            [m for m in ids if m != "nr"],
-            [int(k) for k in modes],
-            "nr" in ids,
-            [str(b) for b in boundary],
-            [str(o) for o in outputs],
-            float(rate),
-            float(ramp),
-            tuple(float(a) for a in axis),
-            float(end),
-            float(step),
-            int(output_every),
+            dict(
+                drive=str(drive),
+                methods=[m for m in ids if m != "nr"],
+                modes=[int(k) for k in modes],
+                full="nr" in ids,
+                boundary=[str(b) for b in boundary],
+                outputs=[str(o) for o in outputs],
+                rate=float(rate),
+                ramp=float(ramp),
+                axis=tuple(float(a) for a in axis),
+                end=float(end),
+                step=float(step),
+                output_every=int(output_every),
+                pinned=[str(p) for p in pinned],
+                axis_point=None if axis_point is None else tuple(float(x) for x in axis_point),
+                shake=None
+                if shake is None
+                else (tuple(float(x) for x in shake[0]), float(shake[1]), float(shake[2])),
+                gravity=None if gravity is None else tuple(float(g) for g in gravity),
+                spectral_radius=float(spectral_radius),
+                mean_axes=axes == "mean",
+                stiffening=bool(stiffening),
+                residual_vectors=bool(residual_vectors),
+            ),
             progress,
-            [str(p) for p in pinned],
-            None if axis_point is None else tuple(float(x) for x in axis_point),
-            None
-            if shake is None
-            else (tuple(float(x) for x in shake[0]), float(shake[1]), float(shake[2])),
-            None if gravity is None else tuple(float(g) for g in gravity),
-            float(spectral_radius),
-            axes == "mean",
-            bool(stiffening),
-            bool(residual_vectors),
         )
 
     def campbell(
@@ -348,17 +348,19 @@ class Body:
         solved only when ``methods`` names ``"nr"``."""
         ids = [str(m) for m in methods]
         return self._inner.campbell(
-            str(drive),
-            [float(r) for r in rates],
-            tuple(float(a) for a in axis),
-            None if axis_point is None else tuple(float(x) for x in axis_point),
-            int(count),
-            [m for m in ids if m != "nr"],
-            [int(k) for k in modes],
-            "nr" in ids,
-            bool(stiffening),
+            dict(
+                drive=str(drive),
+                rates=[float(r) for r in rates],
+                axis=tuple(float(a) for a in axis),
+                axis_point=None if axis_point is None else tuple(float(x) for x in axis_point),
+                count=int(count),
+                methods=[m for m in ids if m != "nr"],
+                modes=[int(k) for k in modes],
+                full="nr" in ids,
+                stiffening=bool(stiffening),
+                residual_vectors=bool(residual_vectors),
+            ),
             progress,
-            bool(residual_vectors),
         )
 
     def __repr__(self) -> str:
@@ -456,12 +458,14 @@ def compare(
     flag), ``not_applicable`` and ``advice``. ``progress(phase, fraction)`` is called about
     every 0.2 s; if it raises, the work stops and its exception is re-raised."""
     return body._inner.compare(
-        None if methods is None else [str(m) for m in methods],
-        None if modes is None else [int(k) for k in modes],
-        _items(boundary),
-        interface_modes,
-        band_hz,
-        float(tolerance),
+        dict(
+            methods=None if methods is None else [str(m) for m in methods],
+            modes=None if modes is None else [int(k) for k in modes],
+            boundary=_items(boundary),
+            interface_modes=interface_modes,
+            band_hz=band_hz,
+            tolerance=float(tolerance),
+        ),
         progress,
     )
 

@@ -1,6 +1,6 @@
 """Type stubs of the Rust extension (flexmodes' own wrappers in __init__.py are typed inline)."""
 
-from typing import Any, Callable, Optional
+from typing import Any, Callable, Optional, TypedDict
 
 import numpy as np
 import numpy.typing as npt
@@ -14,27 +14,72 @@ Progress = Optional[Callable[[Optional[str], Optional[float]], Any]]
 FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.int64]
 
+Triplets = tuple[tuple[int, int], IndexArray, IndexArray, FloatArray]
+
+class BodyLayout(TypedDict):
+    dofs: list[str]
+    nodes: Optional[list[tuple[float, float, float]]]
+    node_sets: dict[str, list[int]]
+    interfaces: dict[
+        str, tuple[str, str, Optional[tuple[float, float, float]], Optional[list[float]]]
+    ]
+    default_interface: Optional[str]
+    units: tuple[str, str, str]
+
+class ReduceRequest(TypedDict):
+    method: str
+    boundary: Optional[list[str]]
+    modes: int
+    interface_modes: Optional[int]
+    exudyn: bool
+    eigensolver: str
+    residual_vectors: bool
+
+class CompareRequest(TypedDict):
+    methods: Optional[list[str]]
+    modes: Optional[list[int]]
+    boundary: Optional[list[str]]
+    interface_modes: Optional[int]
+    band_hz: Optional[float]
+    tolerance: float
+
+class SimulateRequest(TypedDict):
+    drive: str
+    methods: list[str]
+    modes: list[int]
+    full: bool
+    boundary: list[str]
+    outputs: list[str]
+    rate: float
+    ramp: float
+    axis: tuple[float, float, float]
+    end: float
+    step: float
+    output_every: int
+    pinned: list[str]
+    axis_point: Optional[tuple[float, float, float]]
+    shake: Optional[tuple[tuple[float, float, float], float, float]]
+    gravity: Optional[tuple[float, float, float]]
+    spectral_radius: float
+    mean_axes: bool
+    stiffening: bool
+    residual_vectors: bool
+
+class CampbellRequest(TypedDict):
+    drive: str
+    rates: list[float]
+    axis: tuple[float, float, float]
+    axis_point: Optional[tuple[float, float, float]]
+    count: int
+    methods: list[str]
+    modes: list[int]
+    full: bool
+    stiffening: bool
+    residual_vectors: bool
+
 class RustBody:
     @staticmethod
-    def from_entries(
-        name: str,
-        k_shape: tuple[int, int],
-        k_rows: IndexArray,
-        k_cols: IndexArray,
-        k_values: FloatArray,
-        m_shape: tuple[int, int],
-        m_rows: IndexArray,
-        m_cols: IndexArray,
-        m_values: FloatArray,
-        dofs: list[str],
-        nodes: Optional[list[tuple[float, float, float]]],
-        node_sets: dict[str, list[int]],
-        interfaces: dict[
-            str, tuple[str, str, Optional[tuple[float, float, float]], Optional[list[float]]]
-        ],
-        default_interface: Optional[str],
-        units: tuple[str, str, str],
-    ) -> RustBody: ...
+    def from_entries(name: str, k: Triplets, m: Triplets, layout: BodyLayout) -> RustBody: ...
     @staticmethod
     def from_file(path: str) -> RustBody: ...
     @property
@@ -47,66 +92,12 @@ class RustBody:
     def node_sets(self) -> dict[str, list[int]]: ...
     @property
     def units(self) -> tuple[str, str, str]: ...
-    def summary(self) -> dict[str, Any]: ...
+    def summary(self, eigensolver: str) -> dict[str, Any]: ...
     def free_modes(self, n: int) -> dict[str, Any]: ...
-    def reduce(
-        self,
-        method: str,
-        boundary: Optional[list[str]],
-        modes: int,
-        interface_modes: Optional[int],
-        exudyn: bool,
-        eigensolver: str,
-        residual_vectors: bool = True,
-    ) -> RustReducedModel: ...
-    def compare(
-        self,
-        methods: Optional[list[str]],
-        modes: Optional[list[int]],
-        boundary: Optional[list[str]],
-        interface_modes: Optional[int],
-        band_hz: Optional[float],
-        tolerance: float,
-        progress: Progress,
-    ) -> dict[str, Any]: ...
-    def simulate(
-        self,
-        drive: str,
-        methods: list[str],
-        modes: list[int],
-        full: bool,
-        boundary: list[str],
-        outputs: list[str],
-        rate: float,
-        ramp: float,
-        axis: tuple[float, float, float],
-        end: float,
-        step: float,
-        output_every: int,
-        progress: Progress,
-        pinned: list[str],
-        axis_point: Optional[tuple[float, float, float]],
-        shake: Optional[tuple[tuple[float, float, float], float, float]],
-        gravity: Optional[tuple[float, float, float]],
-        spectral_radius: float,
-        mean_axes: bool,
-        stiffening: bool = True,
-        residual_vectors: bool = True,
-    ) -> dict[str, Any]: ...
-    def campbell(
-        self,
-        drive: str,
-        rates: list[float],
-        axis: tuple[float, float, float],
-        axis_point: Optional[tuple[float, float, float]],
-        count: int,
-        methods: list[str],
-        modes: list[int],
-        full: bool,
-        stiffening: bool,
-        progress: Progress,
-        residual_vectors: bool = True,
-    ) -> dict[str, Any]: ...
+    def reduce(self, request: ReduceRequest) -> RustReducedModel: ...
+    def compare(self, request: CompareRequest, progress: Progress) -> dict[str, Any]: ...
+    def simulate(self, request: SimulateRequest, progress: Progress) -> dict[str, Any]: ...
+    def campbell(self, request: CampbellRequest, progress: Progress) -> dict[str, Any]: ...
 
 class RustReducedModel:
     @property

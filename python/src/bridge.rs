@@ -17,7 +17,7 @@ use flexmodes::{
     body_file::MatrixEntries,
     reduction::{Eigensolver, Method},
 };
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, ndarray::Array2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, ndarray::Array2};
 use pyo3::prelude::*;
 
 /// Raises `err` as the `flexmodes.errors` class of its layer, with `kind` (the variant's path,
@@ -172,10 +172,7 @@ pub(crate) fn method(py: Python<'_>, id: &str) -> PyResult<Method> {
 pub(crate) fn entries(
     py: Python<'_>,
     what: &str,
-    shape: (usize, usize),
-    rows: PyReadonlyArray1<'_, i64>,
-    cols: PyReadonlyArray1<'_, i64>,
-    values: PyReadonlyArray1<'_, f64>,
+    (shape, rows, cols, values): crate::requests::Triplets<'_>,
 ) -> PyResult<MatrixEntries> {
     let (r, c, v) = (rows.as_slice()?, cols.as_slice()?, values.as_slice()?);
     if r.len() != v.len() || c.len() != v.len() {

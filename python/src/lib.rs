@@ -19,19 +19,19 @@ use flexmodes::{
         refuse_mechanism,
     },
 };
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, ndarray::Array2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, ndarray::Array2};
 use pyo3::{
     prelude::*,
     types::{PyDict, PyList},
 };
 
 mod bridge;
+mod requests;
 
 use bridge::{computing, entries, input_error, json_to_py, matrix, method, vector};
-
-/// An interface as Python hands it over: kind (`rbe2`, `rbe3`), node set, master point
-/// (None: the set's centroid), RBE3 weights.
-type GivenInterface = (String, String, Option<[f64; 3]>, Option<Vec<f64>>);
+use requests::{
+    BodyLayout, CampbellRequest, CompareRequest, ReduceRequest, SimulateRequest, Triplets,
+};
 
 /// A checked body (`flexmodes.Body` wraps it).
 #[pyclass(module = "flexmodes._flexmodes", name = "RustBody", frozen)]
@@ -43,28 +43,24 @@ struct RustBody {
 impl RustBody {
     /// A body from stiffness and mass entries (0-based, node-major), checked as a body file.
     #[staticmethod]
-    #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (name, k_shape, k_rows, k_cols, k_values, m_shape, m_rows, m_cols, m_values, dofs, nodes, node_sets, interfaces, default_interface, units))]
+    #[pyo3(signature = (name, k, m, layout))]
     fn from_entries(
         py: Python<'_>,
         name: String,
-        k_shape: (usize, usize),
-        k_rows: PyReadonlyArray1<'_, i64>,
-        k_cols: PyReadonlyArray1<'_, i64>,
-        k_values: PyReadonlyArray1<'_, f64>,
-        m_shape: (usize, usize),
-        m_rows: PyReadonlyArray1<'_, i64>,
-        m_cols: PyReadonlyArray1<'_, i64>,
-        m_values: PyReadonlyArray1<'_, f64>,
-        dofs: Vec<String>,
-        nodes: Option<Vec<[f64; 3]>>,
-        node_sets: BTreeMap<String, Vec<usize>>,
-        interfaces: BTreeMap<String, GivenInterface>,
-        default_interface: Option<String>,
-        units: (String, String, String),
+        k: Triplets<'_>,
+        m: Triplets<'_>,
+        layout: BodyLayout,
     ) -> PyResult<Self> {
-        let stiffness = entries(py, "K", k_shape, k_rows, k_cols, k_values)?;
-        let mass = entries(py, "M", m_shape, m_rows, m_cols, m_values)?;
+        let stiffness = entries(py, "K", k)?;
+        let mass = entries(py, "M", m)?;
+        let BodyLayout {
+            dofs,
+            nodes,
+            node_sets,
+            interfaces,
+            default_interface,
+            units,
+        } = layout;
         let mut specs = BTreeMap::new();
         for (iname, (kind, node_set, master, weights)) in interfaces {
             let kind = match kind.as_str() {
@@ -187,21 +183,19 @@ impl RustBody {
     }
 
     /// Reduces the body as `flexmodes export` does.
-    #[pyo3(signature = (method, boundary, modes, interface_modes, exudyn, eigensolver, residual_vectors=true))]
-    #[allow(clippy::too_many_arguments)]
-    fn reduce(
-        &self,
-        py: Python<'_>,
-        method: &str,
-        boundary: Option<Vec<String>>,
-        modes: usize,
-        interface_modes: Option<usize>,
-        exudyn: bool,
-        eigensolver: &str,
-        residual_vectors: bool,
-    ) -> PyResult<RustReducedModel> {
-        let method = self::method(py, method)?;
-        let eigensolver = bridge::eigensolver(py, eigensolver)?;
+    #[pyo3(signature = (request))]
+    fn reduce(&self, py: Python<'_>, request: ReduceRequest) -> PyResult<RustReducedModel> {
+        let ReduceRequest {
+            method,
+            boundary,
+            modes,
+            interface_modes,
+            exudyn,
+            eigensolver,
+            residual_vectors,
+        } = request;
+        let method = self::method(py, &method)?;
+        let eigensolver = bridge::eigensolver(py, &eigensolver)?;
         let body = &self.body;
         let reduced = computing(py, None, |_| {
             let interfaces =
@@ -224,19 +218,21 @@ impl RustBody {
     }
 
     /// What `bench modes --body` measures, as a dict.
-    #[pyo3(signature = (methods, modes, boundary, interface_modes, band_hz, tolerance, progress))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (request, progress))]
     fn compare<'py>(
         &self,
         py: Python<'py>,
-        methods: Option<Vec<String>>,
-        modes: Option<Vec<usize>>,
-        boundary: Option<Vec<String>>,
-        interface_modes: Option<usize>,
-        band_hz: Option<f64>,
-        tolerance: f64,
+        request: CompareRequest,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let CompareRequest {
+            methods,
+            modes,
+            boundary,
+            interface_modes,
+            band_hz,
+            tolerance,
+        } = request;
         let defaults = BodyComparisonParameters::default();
         let parameters = BodyComparisonParameters {
             boundary,
@@ -287,23 +283,25 @@ impl RustBody {
 
     /// The Campbell table of `flexmodes campbell`: the lowest `count` frequencies (Hz) in
     /// the turning frame at each rate, the full body first, then each method at each count.
-    #[pyo3(signature = (drive, rates, axis, axis_point, count, methods, modes, full, stiffening, progress, residual_vectors=true))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (request, progress))]
     fn campbell<'py>(
         &self,
         py: Python<'py>,
-        drive: String,
-        rates: Vec<f64>,
-        axis: [f64; 3],
-        axis_point: Option<[f64; 3]>,
-        count: usize,
-        methods: Vec<String>,
-        modes: Vec<usize>,
-        full: bool,
-        stiffening: bool,
+        request: CampbellRequest,
         progress: Option<Py<PyAny>>,
-        residual_vectors: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let CampbellRequest {
+            drive,
+            rates,
+            axis,
+            axis_point,
+            count,
+            methods,
+            modes,
+            full,
+            stiffening,
+            residual_vectors,
+        } = request;
         let methods = methods
             .iter()
             .map(|m| method(py, m))
@@ -356,33 +354,35 @@ impl RustBody {
     }
 
     /// The driven body of `flexmodes simulate --body`: histories as NumPy arrays.
-    #[pyo3(signature = (drive, methods, modes, full, boundary, outputs, rate, ramp, axis, end, step, output_every, progress, pinned, axis_point, shake, gravity, spectral_radius, mean_axes, stiffening=true, residual_vectors=true))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (request, progress))]
     fn simulate<'py>(
         &self,
         py: Python<'py>,
-        drive: String,
-        methods: Vec<String>,
-        modes: Vec<usize>,
-        full: bool,
-        boundary: Vec<String>,
-        outputs: Vec<String>,
-        rate: f64,
-        ramp: f64,
-        axis: [f64; 3],
-        end: f64,
-        step: f64,
-        output_every: usize,
+        request: SimulateRequest,
         progress: Option<Py<PyAny>>,
-        pinned: Vec<String>,
-        axis_point: Option<[f64; 3]>,
-        shake: Option<([f64; 3], f64, f64)>,
-        gravity: Option<[f64; 3]>,
-        spectral_radius: f64,
-        mean_axes: bool,
-        stiffening: bool,
-        residual_vectors: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let SimulateRequest {
+            drive,
+            methods,
+            modes,
+            full,
+            boundary,
+            outputs,
+            rate,
+            ramp,
+            axis,
+            end,
+            step,
+            output_every,
+            pinned,
+            axis_point,
+            shake,
+            gravity,
+            spectral_radius,
+            mean_axes,
+            stiffening,
+            residual_vectors,
+        } = request;
         let methods = methods
             .iter()
             .map(|m| method(py, m))

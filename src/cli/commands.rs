@@ -50,18 +50,14 @@ fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::List { options } => {
             let all = scenes::all();
-            let width = all
-                .iter()
-                .map(|s| s.info.id.as_str().len())
-                .max()
-                .unwrap_or(0);
+            let width = all.iter().map(|s| s.id.as_str().len()).max().unwrap_or(0);
             for s in all {
                 let said = if options {
                     s.info.controls.described()
                 } else {
                     s.info.summary.to_string()
                 };
-                println!("{:<width$}  {said}", s.info.id.as_str());
+                println!("{:<width$}  {said}", s.id.as_str());
             }
             Ok(())
         }
@@ -128,7 +124,7 @@ fn run(cli: Cli) -> Result<()> {
             let s = scenes::get(scene);
             let mut opts = options.into_scene_options()?;
             opts.progress = Progress::new();
-            let bar = TerminalProgress::start(&opts.progress, s.info.id.as_str());
+            let bar = TerminalProgress::start(&opts.progress, s.id.as_str());
             let out = s.execute(&opts)?;
             drop(bar);
             if json {
@@ -196,7 +192,7 @@ fn record_scenes(
     // The costliest scenes first (a stable sort: ties in the catalogue's order); the tables
     // are still printed in the catalogue's order.
     let mut order: Vec<usize> = (0..count).collect();
-    order.sort_by_key(|&k| std::cmp::Reverse(scenes[k].info.id.recording_cost()));
+    order.sort_by_key(|&k| std::cmp::Reverse(scenes[k].id.recording_cost()));
     crate::work_pool::run_in_order_by(
         &scenes,
         &order,
@@ -208,7 +204,7 @@ fn record_scenes(
             let _bar = TerminalProgress::start_in(
                 Some(&group),
                 &opts.progress,
-                &format!("recording {} ({} of {count})", s.info.id, k + 1),
+                &format!("recording {} ({} of {count})", s.id, k + 1),
             );
             let computing = Instant::now();
             let output = s.execute(&opts)?;
@@ -219,7 +215,7 @@ fn record_scenes(
             };
             let path = save
                 .map(std::path::Path::to_path_buf)
-                .unwrap_or_else(|| out.join(format!("{}.rrd", s.info.id)));
+                .unwrap_or_else(|| out.join(format!("{}.rrd", s.id)));
             let writing = Instant::now();
             recorder.save(&output, &path)?;
             let timing = SceneTiming {
@@ -229,8 +225,8 @@ fn record_scenes(
             Ok::<_, crate::Error>((path, output.report.table, timing))
         },
         |k, (path, table, timing): (PathBuf, String, SceneTiming)| {
-            println!("# {} -> {}\n\n{}", scenes[k].info.id, path.display(), table);
-            rows.push((scenes[k].info.id, timing));
+            println!("# {} -> {}\n\n{}", scenes[k].id, path.display(), table);
+            rows.push((scenes[k].id, timing));
         },
     )?;
     if timings {

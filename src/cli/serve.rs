@@ -90,7 +90,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
             token.clone(),
             scenes::all()
                 .iter()
-                .map(|s| (s.info.id.to_string(), s.info.summary.to_string()))
+                .map(|s| (s.id.to_string(), s.info.summary.to_string()))
                 .collect(),
             Box::new(move |words| show_request(&apply_to, &shown, words)),
             Box::new(move || status_text(&status_of)),
@@ -105,7 +105,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         classroom.publish(scene_messages(scene, &opts, None)?);
         eprintln!(
             "{}: published ({:.1} s)",
-            scene.info.id,
+            scene.id,
             t.elapsed().as_secs_f64()
         );
     }
@@ -202,7 +202,7 @@ fn read_commands(
             Some("quit" | "exit") => break,
             Some("list") => {
                 for s in scenes::all() {
-                    println!("{:<18} {}", s.info.id, s.info.summary);
+                    println!("{:<18} {}", s.id, s.info.summary);
                 }
             }
             Some("show") => {

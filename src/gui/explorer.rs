@@ -271,7 +271,7 @@ impl Explorer {
             .selected_text(scene.as_str())
             .show_ui(ui, |ui| {
                 for s in &all {
-                    ui.selectable_value(&mut scene, s.info.id, s.info.id.as_str())
+                    ui.selectable_value(&mut scene, s.id, s.id.as_str())
                         .on_hover_text(s.info.summary);
                 }
             });
@@ -281,7 +281,7 @@ impl Explorer {
         }
         let Some(info) = all
             .iter()
-            .find(|s| s.info.id == self.controls.scene)
+            .find(|s| s.id == self.controls.scene)
             .map(|s| s.info)
         else {
             return out;

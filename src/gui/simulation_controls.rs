@@ -95,16 +95,20 @@ impl SimulationControls {
     /// `simulate`'s default step, a hundred samples of the histories; values that do not
     /// hold are named.
     pub fn simulation(&self) -> Result<BodySimulation> {
-        BodySimulation::of_request(&DriveRequest {
-            drive: &self.drive,
-            kept: &self.kept,
-            rate: self.rate,
-            ramp: self.ramp,
-            shake: (self.motion == DriveMotion::Shake).then_some((self.amplitude, self.frequency)),
-            end: self.end,
-            full_body: self.full_body,
-            stiffening: self.stiffening,
-            residual_vectors: self.residual_vectors,
-        })
+        BodySimulation::of_request(
+            &DriveRequest {
+                drive: &self.drive,
+                kept: &self.kept,
+                rate: self.rate,
+                ramp: self.ramp,
+                shake: (self.motion == DriveMotion::Shake)
+                    .then_some((self.amplitude, self.frequency)),
+                end: self.end,
+                full_body: self.full_body,
+                stiffening: self.stiffening,
+                residual_vectors: self.residual_vectors,
+            },
+            crate::scenes::SceneId::Modes.as_str(),
+        )
     }
 }

@@ -10,7 +10,7 @@ use crate::{
 /// What a scene produces is what the recorder logs: numbers, text panel, visuals, layout.
 pub use crate::record::RecordingContent as SceneOutput;
 
-use crate::scenes::{RunCache, SceneId, SceneInfo};
+use crate::scenes::{RunCache, SceneInfo};
 
 /// Scene options from the command line (or the GUI). `None` means the scene's default.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -73,7 +73,7 @@ impl SceneOptions {
     /// of `available`; or `default`.
     pub fn methods_or(
         &self,
-        scene: SceneId,
+        scene: &'static str,
         available: &[Method],
         default: &[Method],
     ) -> Result<Vec<Method>> {
@@ -84,7 +84,7 @@ impl SceneOptions {
                     if !available.contains(m) {
                         return Err(Error::UnknownMethod {
                             id: m.id(),
-                            scene: scene.as_str(),
+                            scene,
                             available: available.iter().map(|m| m.id()).collect(),
                         });
                     }
@@ -107,13 +107,13 @@ impl SceneOptions {
 
     /// Boundary nodes (1-based) typed as text, separated by commas or spaces (the explorer's
     /// boundary field); a token that is not a node number is named.
-    pub fn boundary_from_text(scene: SceneId, text: &str) -> Result<Vec<usize>> {
+    pub fn boundary_from_text(scene: &'static str, text: &str) -> Result<Vec<usize>> {
         text.split([',', ' '])
             .filter(|t| !t.trim().is_empty())
             .map(|t| {
                 t.trim().parse::<usize>().map_err(|_| Error::InvalidOption {
                     option: "--boundary",
-                    scene: Some(scene.as_str()),
+                    scene: Some(scene),
                     reason: format!("boundary `{text}`: `{t}` is not a node number"),
                 })
             })
@@ -126,7 +126,7 @@ impl SceneOptions {
         if methods.is_empty() && !info.controls.methods.is_empty() {
             return Err(Error::InvalidOption {
                 option: "--method",
-                scene: Some(info.id.as_str()),
+                scene: Some(info.name),
                 reason: "select at least one method".into(),
             });
         }
@@ -142,20 +142,20 @@ impl SceneOptions {
     pub fn end_time_or_default(&self, info: &SceneInfo) -> Result<f64> {
         let default = info.controls.end_time.ok_or_else(|| Error::InvalidOption {
             option: "--end-time",
-            scene: Some(info.id.as_str()),
+            scene: Some(info.name),
             reason: "--end-time applies to simulations only".into(),
         })?;
-        self.end_time_or(info.id, default)
+        self.end_time_or(info.name, default)
     }
 
     /// The simulated interval: `--end-time` checked (0 < t ≤ 60 s), or `default`.
-    pub fn end_time_or(&self, scene: SceneId, default: f64) -> Result<f64> {
+    pub fn end_time_or(&self, scene: &'static str, default: f64) -> Result<f64> {
         match self.end_time {
             None => Ok(default),
             Some(t) if t > 0.0 && t <= 60.0 => Ok(t),
             Some(t) => Err(Error::InvalidOption {
                 option: "--end-time",
-                scene: Some(scene.as_str()),
+                scene: Some(scene),
                 reason: format!("end time {t} s must lie in (0, 60] s"),
             }),
         }
@@ -171,7 +171,7 @@ impl SceneOptions {
         {
             return Err(Error::InvalidOption {
                 option: "--dt",
-                scene: Some(info.id.as_str()),
+                scene: Some(info.name),
                 reason: format!("step {dt} s must lie in (0, 0.01] s"),
             });
         }
@@ -180,7 +180,7 @@ impl SceneOptions {
         {
             return Err(Error::InvalidOption {
                 option: "--rho-inf",
-                scene: Some(info.id.as_str()),
+                scene: Some(info.name),
                 reason: format!("spectral radius ρ∞ = {spectral_radius} must lie in [0, 1]"),
             });
         }
@@ -193,13 +193,17 @@ impl SceneOptions {
     }
 
     /// `--deformation-scale` checked (a finite factor ≥ 0; 0 draws no deflection), or `auto`.
-    pub fn deformation_scale_or(&self, scene: SceneId, auto: impl FnOnce() -> f64) -> Result<f64> {
+    pub fn deformation_scale_or(
+        &self,
+        scene: &'static str,
+        auto: impl FnOnce() -> f64,
+    ) -> Result<f64> {
         match self.deformation_scale {
             None => Ok(auto()),
             Some(f) if f.is_finite() && f >= 0.0 => Ok(f),
             Some(f) => Err(Error::InvalidOption {
                 option: "--deformation-scale",
-                scene: Some(scene.as_str()),
+                scene: Some(scene),
                 reason: format!("deformation scale {f} must be a finite number ≥ 0"),
             }),
         }

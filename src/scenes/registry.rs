@@ -1,16 +1,36 @@
-//! The list of scenes.
+//! The list of scenes: one line per scene names its id and the module that declares it.
+//! Adding a scene is its own file (its `INFO` and `run`), its folder's `mod` line, and one line
+//! here.
 
-use crate::scenes::{SceneId, SceneOption, scene_info::SceneInfo};
+use crate::scenes::scene_id::declare_scenes;
 use crate::scenes::{
-    SceneOptions, SceneOutput, beam::beam_eitelberg, beam::beam_mean_axes, beam::beam_modes,
-    beam::beam_profiles, body::body_modes, companion::cantilever_variants,
-    companion::slab_mode_sets, failures::failure_catalogue, slab::plank_symmetry, slab::slab_modes,
-    slab::slab_sims, spinning::spin_up, substructuring::amls,
+    SceneInfo, SceneOption, SceneOptions, SceneOutput, beam, body, companion, failures, slab,
+    spinning, substructuring,
 };
 use crate::{Error, Result};
 
+declare_scenes! {
+    BeamModes => beam::beam_modes { INFO, run },
+    SlabModes => slab::slab_modes { INFO, run },
+    BeamProfiles => beam::beam_profiles { INFO, run },
+    BeamEitelberg => beam::beam_eitelberg { INFO, run },
+    SlabSim1 => slab::slab_sims { INFO_1, run_sim1 },
+    SlabSim2 => slab::slab_sims { INFO_2, run_sim2 },
+    SlabSim3 => slab::slab_sims { INFO_3, run_sim3 },
+    PlankSymmetry => slab::plank_symmetry { INFO, run },
+    BeamMeanAxes => beam::beam_mean_axes { INFO, run },
+    SlabModeSets => companion::slab_mode_sets { INFO, run },
+    CantileverVariants => companion::cantilever_variants { INFO, run },
+    Failures => failures::failure_catalogue { INFO, run },
+    Modes => body::body_modes { INFO, run },
+    SpinUp => spinning::spin_up { INFO, run },
+    Amls => substructuring::amls { INFO, run },
+}
+
 /// A scene: computes its results and visuals for given options.
 pub struct Scene {
+    /// Which scene.
+    pub id: SceneId,
     /// Description.
     pub info: SceneInfo,
     /// Runs the scene.
@@ -29,7 +49,7 @@ impl Scene {
     /// scene's own run checks (a method, a node, an interval) are checked there.
     pub fn check(&self, opts: &SceneOptions) -> Result<()> {
         let controls = &self.info.controls;
-        let scene = self.info.id.as_str();
+        let scene = self.id.as_str();
         if let Some(a) = opts.axes
             && !controls.axes.contains(&a)
         {
@@ -46,7 +66,7 @@ impl Scene {
             let takers: Vec<&str> = all()
                 .iter()
                 .filter(|s| option.offered_by(&s.info.controls))
-                .map(|s| s.info.id.as_str())
+                .map(|s| s.id.as_str())
                 .collect();
             let mut reason = format!(
                 "{option} does not apply to `{scene}`; it applies to {}",
@@ -93,28 +113,6 @@ pub fn find(id: &str) -> Result<Scene> {
     Ok(get(id.parse()?))
 }
 
-/// The scene `id` (every id has one: the match is exhaustive).
-pub fn get(id: SceneId) -> Scene {
-    let (info, run): (SceneInfo, fn(&SceneOptions) -> Result<SceneOutput>) = match id {
-        SceneId::BeamModes => (beam_modes::INFO, beam_modes::run),
-        SceneId::SlabModes => (slab_modes::INFO, slab_modes::run),
-        SceneId::BeamProfiles => (beam_profiles::INFO, beam_profiles::run),
-        SceneId::BeamEitelberg => (beam_eitelberg::INFO, beam_eitelberg::run),
-        SceneId::SlabSim1 => (slab_sims::INFO_1, slab_sims::run_sim1),
-        SceneId::SlabSim2 => (slab_sims::INFO_2, slab_sims::run_sim2),
-        SceneId::SlabSim3 => (slab_sims::INFO_3, slab_sims::run_sim3),
-        SceneId::PlankSymmetry => (plank_symmetry::INFO, plank_symmetry::run),
-        SceneId::BeamMeanAxes => (beam_mean_axes::INFO, beam_mean_axes::run),
-        SceneId::SlabModeSets => (slab_mode_sets::INFO, slab_mode_sets::run),
-        SceneId::CantileverVariants => (cantilever_variants::INFO, cantilever_variants::run),
-        SceneId::Failures => (failure_catalogue::INFO, failure_catalogue::run),
-        SceneId::Modes => (body_modes::INFO, body_modes::run),
-        SceneId::SpinUp => (spin_up::INFO, spin_up::run),
-        SceneId::Amls => (amls::INFO, amls::run),
-    };
-    Scene { info, run }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -122,8 +120,32 @@ mod tests {
     #[test]
     fn every_scene_id_leads_to_the_scene_that_says_it_is_that_one() {
         for id in SceneId::ALL {
-            assert_eq!(get(id).info.id, id);
-            assert_eq!(find(id.as_str()).unwrap().info.id, id);
+            assert_eq!(get(id).id, id);
+            assert_eq!(get(id).info.name, id.as_str());
+            assert_eq!(find(id.as_str()).unwrap().id, id);
+        }
+    }
+
+    #[test]
+    fn every_id_reads_back_and_unknown_ones_name_the_known() {
+        for id in SceneId::ALL {
+            assert_eq!(id.as_str().parse::<SceneId>().unwrap(), id);
+            assert_eq!(String::from(id).parse::<SceneId>().unwrap(), id);
+        }
+        let mut texts: Vec<_> = SceneId::ALL.map(SceneId::as_str).to_vec();
+        texts.sort_unstable();
+        texts.dedup();
+        assert_eq!(
+            texts.len(),
+            SceneId::ALL.len(),
+            "two scenes share a text form"
+        );
+        match "slab-sim4".parse::<SceneId>() {
+            Err(Error::UnknownScene { id, known }) => {
+                assert_eq!(id, "slab-sim4");
+                assert_eq!(known, SceneId::ALL.map(SceneId::as_str));
+            }
+            other => panic!("expected UnknownScene, got {other:?}"),
         }
     }
 
@@ -169,7 +191,7 @@ mod tests {
                 let checked = scene.check(&options);
                 let offered = option.offered_by(&scene.info.controls);
                 match (option, checked) {
-                    (_, Ok(())) => assert!(offered, "{} took {option}", scene.info.id),
+                    (_, Ok(())) => assert!(offered, "{} took {option}", scene.id),
                     (SceneOption::Axes, Err(Error::UnknownAxes { .. })) => {}
                     (
                         _,
@@ -179,14 +201,14 @@ mod tests {
                             ..
                         }),
                     ) => {
-                        assert!(!offered, "{} refused {option}: {reason}", scene.info.id);
+                        assert!(!offered, "{} refused {option}: {reason}", scene.id);
                         assert_eq!(flag, option.flag());
                         assert!(
-                            reason.contains(takers[0].info.id.as_str()),
+                            reason.contains(takers[0].id.as_str()),
                             "the refusal names the takers: {reason}"
                         );
                     }
-                    (_, Err(e)) => panic!("{}, {option}: {e}", scene.info.id),
+                    (_, Err(e)) => panic!("{}, {option}: {e}", scene.id),
                 }
             }
         }

@@ -1,14 +1,20 @@
 //! What a scene is and which options it offers, as `flexmodes list` and the explorer's panel
 //! show them.
 
-use crate::scenes::{SceneId, SceneOption};
+use crate::scenes::SceneOption;
 use crate::{dynamics::AxisKind, reduction::Method};
 
 /// Static description of a scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneInfo {
-    /// Which scene (its text form names recordings and tables).
-    pub id: SceneId,
+    /// The scene's name (`beam-modes`): it names recordings and tables, and the command line
+    /// and the registry's [`SceneId`](crate::scenes::SceneId) read it.
+    pub name: &'static str,
+    /// What recording the scene costs, in tenths of a second of one core (release build,
+    /// `record --all --timings` on the 2-core reference machine, docs/benchmarks.md): `record`
+    /// starts the costliest first, so that no core is left with a long scene at the end while
+    /// the other idles. Only the order matters.
+    pub recording_cost: u8,
     /// One line for `flexmodes list`.
     pub summary: &'static str,
     /// Thesis sections it reproduces.

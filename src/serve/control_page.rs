@@ -222,7 +222,7 @@ impl ControlPage {
             let takers: Vec<&str> = scenes::all()
                 .iter()
                 .filter(|s| option.offered_by(&s.info.controls))
-                .map(|s| s.info.id.as_str())
+                .map(|s| s.id.as_str())
                 .collect();
             let _ = write!(
                 html,

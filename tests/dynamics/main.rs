@@ -3,4 +3,6 @@
 //! integration, the symmetry study, fixed-step stability and errors.
 
 mod generalized_alpha;
+mod integration_limits;
 mod integrations;
+mod simulation_runs;

@@ -75,8 +75,14 @@ fn inertia_invariants_equal_node_by_node_sums() {
         close((&inv.p_sum - &p_sum).amax(), "p_sum");
         close((inv.modal_outer(&zd, &zd) - uu).amax(), "modal outer");
         let mut gz = DVector::from_element(az.len(), f64::NAN);
-        let (gr, gw) =
-            inv.velocity_forces(&w, &z, &zd, &h, &inv.inertia(&z), &mut gz, &mut Vec::new());
+        let (gr, gw) = inv.velocity_forces(
+            &w,
+            (&z, &zd),
+            &h,
+            &inv.inertia(&z),
+            &mut gz,
+            &mut Vec::new(),
+        );
         close((gr - ar).amax(), "translational velocity forces");
         close((gw - aw).amax(), "rotational velocity forces");
         close((gz - &az).amax(), "modal velocity forces");

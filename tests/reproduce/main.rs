@@ -2,9 +2,12 @@
 //! the physical and algebraic invariants of the bodies and reduction methods.
 
 mod body_file;
+mod body_file_errors;
+mod body_file_export;
 mod body_methods;
 mod common;
 mod companion;
+mod companion_witteveen;
 mod dense_eigen;
 mod errors;
 mod external_bodies;

@@ -117,7 +117,7 @@ fn every_scene_reports_its_stable_keys_and_logs_its_views() {
         }
         assert!(out.markdown.contains(&out.report.table));
         // The explorer's viewer beside its panel at 1 280 × 800 (gui::VIEWER_AREA): the new
-        // scene's titles fit as written (the explorer shortens others: tests/gui.rs).
+        // scene's titles fit as written (the explorer shortens others: tests/gui/).
         if *id == "spin-up" || *id == "amls" {
             let cut = out.layout.cut_titles((950.0, 730.0));
             assert!(cut.is_empty(), "{id}: tab titles cut: {cut:?}");

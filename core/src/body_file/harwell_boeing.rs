@@ -54,20 +54,32 @@ fn is_number(text: &str, real: bool) -> bool {
     }
 }
 
-/// The fields of `count` values laid out by `format` over the lines from `start`. A line
-/// whose blank-separated tokens are all numbers is read by them (SciPy's `hb_write` declares
-/// `E25.16` and writes 24 characters); otherwise by the format's widths (values that touch).
-#[allow(clippy::too_many_arguments)]
-fn fields<'a>(
-    lines: &[&'a str],
+/// One block of a Harwell–Boeing file's data: `count` values laid out by `format` over the
+/// `cards` lines from `start` (0-based).
+#[derive(Debug, Clone, Copy)]
+struct FieldBlock {
+    /// What the values are (`pointers`, `indices`, `values`), for errors.
+    what: &'static str,
     start: usize,
     cards: usize,
     count: usize,
     format: FieldFormat,
+    /// Real values (`D` exponents allowed) rather than integers.
     real: bool,
-    path: &str,
-    what: &'static str,
-) -> Result<Vec<(usize, &'a str)>> {
+}
+
+/// The fields of `block` in the `lines` of `path`, each with its 1-based line. A line whose
+/// blank-separated tokens are all numbers is read by them (SciPy's `hb_write` declares `E25.16`
+/// and writes 24 characters); otherwise by the format's widths (values that touch).
+fn fields<'a>(lines: &[&'a str], path: &str, block: FieldBlock) -> Result<Vec<(usize, &'a str)>> {
+    let FieldBlock {
+        what,
+        start,
+        cards,
+        count,
+        format,
+        real,
+    } = block;
     let mut out = Vec::with_capacity(super::matrix_bytes::capacity_hint(count));
     for card in 0..cards {
         let index = start + card;
@@ -237,36 +249,42 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
     };
     let pointers = fields(
         &lines,
-        start,
-        ptr_cards,
-        cols + 1,
-        ptr_format,
-        false,
         path,
-        "pointers",
+        FieldBlock {
+            what: "pointers",
+            start,
+            cards: ptr_cards,
+            count: cols + 1,
+            format: ptr_format,
+            real: false,
+        },
     )?
     .into_iter()
     .map(|f| integer(f, "pointer"))
     .collect::<Result<Vec<usize>>>()?;
     let indices = fields(
         &lines,
-        start + ptr_cards,
-        ind_cards,
-        nnz,
-        ind_format,
-        false,
         path,
-        "indices",
+        FieldBlock {
+            what: "indices",
+            start: start + ptr_cards,
+            cards: ind_cards,
+            count: nnz,
+            format: ind_format,
+            real: false,
+        },
     )?;
     let values = fields(
         &lines,
-        start + ptr_cards + ind_cards,
-        val_cards,
-        nnz,
-        val_format,
-        true,
         path,
-        "values",
+        FieldBlock {
+            what: "values",
+            start: start + ptr_cards + ind_cards,
+            cards: val_cards,
+            count: nnz,
+            format: val_format,
+            real: true,
+        },
     )?;
     if pointers.first() != Some(&1) || pointers.last() != Some(&(nnz + 1)) {
         return Err(error(

@@ -18,6 +18,8 @@ mod matrix_checks;
 mod matrix_market;
 mod nastran_dmig;
 mod nastran_op4;
+mod nastran_op4_ascii;
+mod nastran_op4_matrix;
 mod node_dof_placement;
 mod npy;
 mod preload;

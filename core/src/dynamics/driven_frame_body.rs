@@ -61,6 +61,28 @@ pub struct DrivenFrameBody {
     unit_gravity: [Vec<f64>; 3],
 }
 
+/// A driven body's dense operators in its own coordinates ([`DrivenFrameBody::dense`]), each
+/// $n \times n$ or of length $n$.
+#[derive(Debug, Clone)]
+pub struct DenseDrivenOperators {
+    /// Mass $M$.
+    pub m: DMatrix<f64>,
+    /// Stiffness $K$.
+    pub k: DMatrix<f64>,
+    /// The gyroscopic coupling $G$ (skew).
+    pub g: DMatrix<f64>,
+    /// The centrifugal softening $H$ (symmetric).
+    pub h: DMatrix<f64>,
+    /// The load $Gs$ of the body's own positions $s$.
+    pub g_s: Vec<f64>,
+    /// The load $Hs$.
+    pub h_s: Vec<f64>,
+    /// $M(1\otimes e_a)$: the loads of a unit acceleration of the frame along each axis.
+    pub unit_gravity: [Vec<f64>; 3],
+    /// The geometric stiffnesses of the unit frame loads, if the body has them.
+    pub stiffening: Option<FrameStiffening>,
+}
+
 impl DrivenFrameBody {
     /// The full body of `model` with the DOF of `ring` (0-based DOF indices) clamped and the
     /// `pins` pinned, on a frame with its origin at `origin` (model coordinates) turning about
@@ -107,20 +129,18 @@ impl DrivenFrameBody {
     }
 
     /// A body given by its dense operators in its own coordinates (a small full body such
-    /// as a beam, or a reduced one): $M$, $K$, $G$ (skew), $H$ (symmetric), the loads $Gs$,
-    /// $Hs$ and $M(1\otimes e_a)$, and the geometric stiffnesses of the unit frame loads if
-    /// the body has them.
-    #[allow(clippy::too_many_arguments)]
-    pub fn dense(
-        m: DMatrix<f64>,
-        k: DMatrix<f64>,
-        g: DMatrix<f64>,
-        h: DMatrix<f64>,
-        g_s: Vec<f64>,
-        h_s: Vec<f64>,
-        unit_gravity: [Vec<f64>; 3],
-        stiffening: Option<FrameStiffening>,
-    ) -> Result<Self> {
+    /// as a beam, or a reduced one); refused unless they share one size.
+    pub fn dense(operators: DenseDrivenOperators) -> Result<Self> {
+        let DenseDrivenOperators {
+            m,
+            k,
+            g,
+            h,
+            g_s,
+            h_s,
+            unit_gravity,
+            stiffening,
+        } = operators;
         let n = m.nrows();
         let square = [&m, &k, &g, &h].iter().all(|a| a.shape() == (n, n));
         let loads = [
@@ -286,16 +306,16 @@ impl DrivenFrameBody {
                 .as_slice()
                 .to_vec()
         };
-        Self::dense(
-            symmetric(project(&d.m)),
-            symmetric(project(&d.k)),
-            (&g - g.transpose()) * 0.5,
-            symmetric(project(&d.h)),
-            vector(&full.g_s),
-            vector(&full.h_s),
-            std::array::from_fn(|a| vector(&full.unit_gravity[a])),
-            d.stiffening.as_ref().map(|s| s.projected(&p)),
-        )
+        Self::dense(DenseDrivenOperators {
+            m: symmetric(project(&d.m)),
+            k: symmetric(project(&d.k)),
+            g: (&g - g.transpose()) * 0.5,
+            h: symmetric(project(&d.h)),
+            g_s: vector(&full.g_s),
+            h_s: vector(&full.h_s),
+            unit_gravity: std::array::from_fn(|a| vector(&full.unit_gravity[a])),
+            stiffening: d.stiffening.as_ref().map(|s| s.projected(&p)),
+        })
     }
 
     /// The combination $c_m M + c_k K + c_g G + c_h H + \sum c_{\sigma,i}K_{\sigma,i}$ as a

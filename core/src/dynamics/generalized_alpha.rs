@@ -265,9 +265,11 @@ pub(crate) fn integrate(
                 s: &s,
                 vdot: &vdot,
                 a: &a,
+                h,
+                t1,
             };
             let inverse = matrix.for_step(h, &c);
-            match start.solve(sys, t1, h, &c, inverse, &mut newton, &mut ws, &mut buffers) {
+            match start.solve(sys, &c, inverse, &mut newton, &mut ws, &mut buffers) {
                 Ok(()) => break,
                 Err(_) if !fresh => {
                     // Rebuild the iteration matrix at the start of the step and try again.
@@ -324,6 +326,9 @@ struct StepStart<'a> {
     s: &'a State,
     vdot: &'a DVector<f64>,
     a: &'a DVector<f64>,
+    /// The step's size and its end time, s.
+    h: f64,
+    t1: f64,
 }
 
 /// The buffers of a step's Newton iterations, reused from step to step: an iteration
@@ -359,13 +364,8 @@ impl NewtonBuffers {
 impl StepStart<'_> {
     /// $a_{n+1}$, $q_{n+1}$ and $v_{n+1}$ for the accelerations `b.x` $= \dot v_{n+1}$, into
     /// `b.a1` and `b.s1`.
-    fn advance(
-        &self,
-        sys: &System,
-        h: f64,
-        c: &GeneralizedAlphaCoefficients,
-        b: &mut NewtonBuffers,
-    ) {
+    fn advance(&self, sys: &System, c: &GeneralizedAlphaCoefficients, b: &mut NewtonBuffers) {
+        let h = self.h;
         let (hb, hh, hg) = (h * h * c.beta, h * h * (0.5 - c.beta), h * (1.0 - c.gamma));
         for i in 0..b.x.len() {
             let a1 = (b.x[i] * (1.0 - c.alpha_f) + self.vdot[i] * c.alpha_f
@@ -382,12 +382,9 @@ impl StepStart<'_> {
     /// Newton's iterations from the guess $\dot v_{n+1} = \dot v_n$, in `b` (`b.x`, and the
     /// end state in `b.s1`, `b.a1`), or the last correction's size when they do not converge
     /// in [`MAX_NEWTON_ITERATIONS`].
-    #[allow(clippy::too_many_arguments)]
     fn solve(
         &self,
         sys: &System,
-        t1: f64,
-        h: f64,
         c: &GeneralizedAlphaCoefficients,
         inverse: &IterationInverse,
         count: &mut usize,
@@ -399,8 +396,8 @@ impl StepStart<'_> {
         for iteration in 0..MAX_NEWTON_ITERATIONS {
             let previous = correction;
             *count += 1;
-            self.advance(sys, h, c, b);
-            if sys.accelerations_in(t1, &b.s1, ws).is_err() {
+            self.advance(sys, c, b);
+            if sys.accelerations_in(self.t1, &b.s1, ws).is_err() {
                 return Err(f64::INFINITY);
             }
             let f = ws.solution();
@@ -415,7 +412,7 @@ impl StepStart<'_> {
             }
             b.x -= &b.correction;
             if newton_converged(iteration, correction, previous) {
-                self.advance(sys, h, c, b);
+                self.advance(sys, c, b);
                 return Ok(());
             }
         }

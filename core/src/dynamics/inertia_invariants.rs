@@ -298,12 +298,10 @@ impl InertiaInvariants {
     /// same `z` ([`Self::h`], [`Self::inertia_from`]), which the mass matrix needs too. The
     /// modal forces are written into `modal` (k entries); the other two are returned.
     /// `coriolis` is scratch ($\sum_d \dot z_d Q_{cd}$ per mode), reused.
-    #[allow(clippy::too_many_arguments)]
     pub fn velocity_forces<S: Storage<f64, Dyn>, T: Storage<f64, Dyn>>(
         &self,
         w: &Vector3<f64>,
-        z: &Modal<S>,
-        zd: &Modal<T>,
+        (z, zd): (&Modal<S>, &Modal<T>),
         h: &[Matrix3<f64>],
         inertia: &Matrix3<f64>,
         modal: &mut DVector<f64>,

@@ -42,7 +42,9 @@ pub use combination::Combination;
 pub use constraint::{Attachment, Constraint};
 pub use dormand_prince::{critical_step, imaginary_stability_limit, stability_polynomial};
 pub use driven_explicit::{DrivenExplicit, integrate_driven_explicit};
-pub use driven_frame_body::{DRIVEN_SOLVE_TOLERANCE, DrivenFrameBody, positions};
+pub use driven_frame_body::{
+    DRIVEN_SOLVE_TOLERANCE, DenseDrivenOperators, DrivenFrameBody, positions,
+};
 pub use driven_integration::{DrivenCost, DrivenIntegration, Driving, integrate_driven};
 pub use frame_coordinates::{FrameCoordinates, PinnedRing};
 pub use frame_stiffening::{

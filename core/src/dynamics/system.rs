@@ -268,7 +268,7 @@ impl System {
                     }
                     let a_z = &mut out.a_z;
                     let (ar, aw) =
-                        inv.velocity_forces(&f.w, &f.z, &f.zd, h, &j_bar, a_z, &mut out.coriolis);
+                        inv.velocity_forces(&f.w, (&f.z, &f.zd), h, &j_bar, a_z, &mut out.coriolis);
                     q_w -= aw;
                     *q_z -= &*a_z;
                     fb.subtract_elastic_force(&f.z, q_z);

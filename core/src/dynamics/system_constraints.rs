@@ -66,8 +66,8 @@ impl System {
                 Constraint::Spherical(a, b) => {
                     let (pa, pb) = (self.point_kinematics(a, s), self.point_kinematics(b, s));
                     let added = &mut out.written.added;
-                    self.add_point_rows(a, &pa, 1.0, &mut out.c, r, None, added);
-                    self.add_point_rows(b, &pb, -1.0, &mut out.c, r, None, added);
+                    self.add_point_rows(a, &pa, 1.0, &mut out.c, (r, None), added);
+                    self.add_point_rows(b, &pb, -1.0, &mut out.c, (r, None), added);
                     out.gamma.rows_mut(r, 3).copy_from(&(pb.aq - pa.aq));
                     out.phi.rows_mut(r, 3).copy_from(&(pa.d - pb.d));
                 }
@@ -94,7 +94,7 @@ impl System {
                         }
                     };
                     let added = &mut out.written.added;
-                    self.add_point_rows(&at, kin, 1.0, &mut out.c, r, Some(*axis), added);
+                    self.add_point_rows(&at, kin, 1.0, &mut out.c, (r, Some(*axis)), added);
                     let (x, v, acc) = motion.at(t, *x0, *v0);
                     out.gamma[r] = acc - kin.aq[*axis];
                     out.target[r] = v;

@@ -63,7 +63,7 @@ impl System {
         let mut l = DMatrix::zeros(3, self.nv());
         let at = Attachment::Node { body: b, node };
         let p = self.point_kinematics(&at, s);
-        self.add_point_rows(&at, &p, 1.0, &mut l, 0, None, &mut Vec::new());
+        self.add_point_rows(&at, &p, 1.0, &mut l, (0, None), &mut Vec::new());
         l * vdot + p.aq
     }
 
@@ -169,19 +169,17 @@ impl System {
     }
 
     /// Adds `sign` times the point's partial velocities $L$ (Eq. 3.17) to `c`: all three
-    /// rows from row `r` on, or only the row of `axis` at row `r`; `kin` is the point's
+    /// rows from row `r` on, or only the row of `axis` at row `r` (`(r, axis)`); `kin` is the point's
     /// [`Self::point_kinematics`] at the state. Only the point's own body's columns are
     /// touched; each row's are appended to `written` as (row, columns), so that the next
     /// evaluation clears those alone.
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn add_point_rows(
         &self,
         att: &Attachment,
         kin: &PointKin,
         sign: f64,
         c: &mut DMatrix<f64>,
-        r: usize,
-        axis: Option<usize>,
+        (r, axis): (usize, Option<usize>),
         written: &mut Vec<(usize, Range<usize>)>,
     ) {
         let axes = axis.map_or(0..3, |a| a..a + 1);

@@ -464,13 +464,11 @@ impl ReducedRuns<'_> {
                 &mut reduced_body,
                 &map,
                 self.measure,
-                &self.measure.driving,
                 (label, highest),
                 (
                     integration.step * integration.output_every.max(1) as f64,
                     integration.end,
                 ),
-                self.measure.model.size(),
                 progress,
             )?;
             stability.push(check);

@@ -7,7 +7,7 @@
 use crate::{
     Error, Result,
     dynamics::{
-        Combination, DrivenExplicit, DrivenFrameBody, Driving, DynamicsError, critical_step,
+        Combination, DrivenExplicit, DrivenFrameBody, DynamicsError, critical_step,
         integrate_driven_explicit,
     },
     linalg::{GeneralizedEigen, generalized_eigen},
@@ -47,18 +47,18 @@ pub(super) struct ExplicitRun {
 }
 
 /// Runs `body` (with `map` to its field) explicitly below and above its critical step; the
-/// run below outputs every `sample_s` seconds up to `end`, like the implicit runs.
-#[allow(clippy::too_many_arguments)]
+/// run below outputs every `sample_s` seconds up to `end`, like the implicit runs. Both are
+/// driven as `measure` drives the full body, and stop as diverged where the state exceeds the
+/// full body's size.
 pub(super) fn explicit_runs(
     body: &mut DrivenFrameBody,
     map: &FieldMap,
     measure: &Measure<'_>,
-    driving: &Driving,
     (label, highest_hz): (String, f64),
     (sample_s, end): (f64, f64),
-    bound: f64,
     progress: &Progress,
 ) -> Result<(ExplicitRun, ExplicitCheck)> {
+    let (driving, bound) = (&measure.driving, measure.model.size());
     let critical = critical_step(2.0 * std::f64::consts::PI * highest_hz);
     // Below: a step that divides the sampling interval, at most BELOW_CRITICAL of critical.
     let per_sample = (sample_s / (BELOW_CRITICAL * critical)).ceil().max(1.0);

@@ -19,8 +19,8 @@ use nalgebra::{DMatrix, Vector3};
 use crate::{
     Error, Result,
     dynamics::{
-        DivergenceCause, DrivenFrameBody, DrivenIntegration, Driving, DynamicsError,
-        FrameStiffening, SpinUp, integrate_driven,
+        DenseDrivenOperators, DivergenceCause, DrivenFrameBody, DrivenIntegration, Driving,
+        DynamicsError, FrameStiffening, SpinUp, integrate_driven,
     },
     fem::{BendingPlane, SpinningBeam, SpinningBeamParameters},
     linalg::{PairSelection, generalized_eigen, generalized_eigen_selected},
@@ -420,16 +420,16 @@ pub fn spinning_beam_body(p: &SpinningBeamParameters) -> Result<(SpinningBeam, D
     let stiffening = Some(FrameStiffening::new(cases)?);
     let v = |x: &nalgebra::DVector<f64>| x.as_slice().to_vec();
     let zero = vec![0.0; beam.dim()];
-    let body = DrivenFrameBody::dense(
-        beam.m.clone(),
-        beam.k.clone(),
-        beam.g.clone(),
-        beam.h.clone(),
-        v(&beam.g_s),
-        v(&beam.h_s),
-        [v(&beam.unit_gravity[0]), v(&beam.unit_gravity[1]), zero],
+    let body = DrivenFrameBody::dense(DenseDrivenOperators {
+        m: beam.m.clone(),
+        k: beam.k.clone(),
+        g: beam.g.clone(),
+        h: beam.h.clone(),
+        g_s: v(&beam.g_s),
+        h_s: v(&beam.h_s),
+        unit_gravity: [v(&beam.unit_gravity[0]), v(&beam.unit_gravity[1]), zero],
         stiffening,
-    )?;
+    })?;
     Ok((beam, body))
 }
 

@@ -18,7 +18,7 @@ use crate::{
         GeneralizedEigen, MassMatrix, PairSelection, PartialEigenParameters, SparseSymmetric,
         SymbolicFactor, SymmetricFactor, generalized_eigen_selected, inertia_at,
     },
-    reduction::{FreeBodyParameters, ReleasableFactor, sturm_checked},
+    reduction::{FreeBodyParameters, ReleasableFactor, SturmPencil, sturm_checked},
 };
 
 /// Coordinates up to which a spun body is solved densely (its operators formed column by
@@ -113,15 +113,17 @@ fn sparse_pairs(k: &SparseSymmetric, m: &MassMatrix, count: usize) -> Result<Spi
     });
     let null = Mat::<f64>::zeros(n, 0);
     let (eigen, _): (GeneralizedEigen, _) = sturm_checked(
-        k,
-        m,
+        SturmPencil {
+            k,
+            m,
+            symbolic: &symbolic,
+        },
         &mut releasable,
         0.0,
         count,
         null.as_ref(),
         &PartialEigenParameters::default(),
-        &symbolic,
-        &FreeBodyParameters::default(),
+        FreeBodyParameters::default().sturm_retries,
     )?;
     if eigen.values.len() < count {
         return Err(Error::Linalg(LinalgError::TooManyPairs {

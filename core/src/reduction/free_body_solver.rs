@@ -132,16 +132,19 @@ pub fn free_body_pairs(
         )
     };
     let mut factor0 = ReleasableFactor::new(factor0, shifted0);
-    match sturm_checked(
+    let pencil = SturmPencil {
         k,
         m,
+        symbolic: &symbolic,
+    };
+    match sturm_checked(
+        pencil,
         &mut factor0,
         sigma0,
         wanted,
         null_vectors.as_ref(),
         &base,
-        &symbolic,
-        params,
+        params.sturm_retries,
     ) {
         Ok((eigen, _)) => {
             return Ok(eigen);
@@ -163,8 +166,7 @@ pub fn free_body_pairs(
             || SymmetricFactor::sparse(k.shifted(m, sigma1).as_faer(), &symbolic, "K - σM");
         let result = factor1().and_then(|made| {
             sturm_checked(
-                k,
-                m,
+                pencil,
                 &mut ReleasableFactor::new(made, factor1),
                 sigma1,
                 wanted,
@@ -174,8 +176,7 @@ pub fn free_body_pairs(
                     max_restarts: SPECTRUM_SHIFT_RESTARTS,
                     ..base.clone()
                 },
-                &symbolic,
-                params,
+                params.sturm_retries,
             )
         });
         match result {
@@ -245,26 +246,32 @@ fn attempt(route: EigenRoute, wanted: usize, e: Error) -> Result<EigenAttempt> {
     }
 }
 
+/// A pencil $(K, M)$ and the symbolic factorisation of $K - \sigma M$ its Sturm counts use.
+#[derive(Clone, Copy)]
+pub(crate) struct SturmPencil<'a> {
+    pub k: &'a SparseSymmetric,
+    pub m: &'a MassMatrix,
+    pub symbolic: &'a SymbolicFactor,
+}
+
 /// [`lowest_modes`] followed by the Sturm count; a count above the pairs found retries with
 /// that many more pairs (and two to spare), up to `params.sturm_retries` times. Returns the
 /// `wanted` pairs (their `sturm` set) and the statistics of the last solve. A large `factor`
 /// is released before each count's $LDL^T$ factorisation, so the two are never held at once,
 /// and made again only for a retry ([`ReleasableFactor`]).
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn sturm_checked(
-    k: &SparseSymmetric,
-    m: &MassMatrix,
+    pencil: SturmPencil<'_>,
     factor: &mut ReleasableFactor<'_>,
     sigma: f64,
     wanted: usize,
     null: MatRef<'_, f64>,
     partial: &PartialEigenParameters,
-    symbolic: &SymbolicFactor,
-    params: &FreeBodyParameters,
+    retries: usize,
 ) -> Result<(GeneralizedEigen, PartialEigenStatistics)> {
+    let SturmPencil { k, m, symbolic } = pencil;
     let mut asked = wanted;
     let mut last: Option<SturmCount> = None;
-    for _ in 0..=params.sturm_retries {
+    for _ in 0..=retries {
         let (eigen, stats) = lowest_modes(k, m, factor.get()?, sigma, asked, Some(null), partial)?;
         factor.release_if_large();
         let count = sturm_count(k, m, symbolic, &eigen.values, &stats.ritz_above)?;

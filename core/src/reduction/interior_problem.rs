@@ -10,7 +10,7 @@ use super::{
     BoundaryCoordinates, Column, ColumnKind, Eigensolver, ModeSelection, ReductionError,
     ReleasableFactor, RigidInterface, SolverPath,
     amls_free_modes::{AmlsProblem, amls_pairs, first_cutoff_hz},
-    free_body_solver::{FreeBodyParameters, sturm_checked},
+    free_body_solver::{FreeBodyParameters, SturmPencil, sturm_checked},
     partition::{Partition, free_rigid_motions},
 };
 use crate::{
@@ -491,15 +491,17 @@ impl<'a> InteriorProblem<'a> {
         // Every partial solve is Sturm-checked; a count above the pairs found retries with
         // more pairs, then fails naming the modes missed.
         let checked = sturm_checked(
-            k_ii,
-            m_ii,
+            SturmPencil {
+                k: k_ii,
+                m: m_ii,
+                symbolic,
+            },
             &mut factor,
             sigma,
             wanted,
             Mat::<f64>::zeros(self.k_ii.dim(), 0).as_ref(),
             &PartialEigenParameters::default(),
-            symbolic,
-            &FreeBodyParameters::default(),
+            FreeBodyParameters::default().sturm_retries,
         );
         let remake_s = factor.remake_s;
         self.factor = factor.into_held().map(|f| (f, sigma));

@@ -52,8 +52,8 @@ pub use eitelberg::{
     EITELBERG_DOF_LIMIT, EitelbergParameters, EitelbergReduction, StateSpaceReduction, eitelberg,
     eitelberg_state_space,
 };
-pub(crate) use free_body_solver::sturm_checked;
 pub use free_body_solver::{FreeBodyParameters, free_body_pairs};
+pub(crate) use free_body_solver::{SturmPencil, sturm_checked};
 pub use free_modes::{
     lowest_free_body_pairs, lowest_free_modes, mass_normalised_rigid_modes, restrained_modes,
     selected_free_modes,

@@ -86,7 +86,7 @@ mod tests {
     use crate::linalg::{
         MassMatrix, PartialEigenParameters, SparseSymmetric, SymbolicFactor, generalized_eigen,
     };
-    use crate::reduction::free_body_solver::{FreeBodyParameters, sturm_checked};
+    use crate::reduction::free_body_solver::{FreeBodyParameters, SturmPencil, sturm_checked};
 
     /// A fixed-free chain of springs and masses with a consistent-like tridiagonal mass.
     fn chain(n: usize) -> (SparseSymmetric, MassMatrix) {
@@ -120,15 +120,17 @@ mod tests {
             for limit in [usize::MAX, 0] {
                 let mut factor = ReleasableFactor::new(make().unwrap(), make).with_limit(limit);
                 let (eigen, _) = sturm_checked(
-                    &k,
-                    &m,
+                    SturmPencil {
+                        k: &k,
+                        m: &m,
+                        symbolic: &symbolic,
+                    },
                     &mut factor,
                     0.0,
                     8,
                     null.as_ref(),
                     &PartialEigenParameters::default(),
-                    &symbolic,
-                    &FreeBodyParameters::default(),
+                    FreeBodyParameters::default().sturm_retries,
                 )
                 .unwrap();
                 assert_eq!(eigen.sturm.map(|c| c.missed()), Some(0));

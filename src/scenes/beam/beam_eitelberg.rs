@@ -20,7 +20,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::BeamEitelberg,
+    name: "beam-eitelberg",
+    recording_cost: 0,
     summary: "§6.6 Eitelberg's method on the beam (masters 1, 3, 5) with the L = [I I] \
               output-feedback trick; the restored M^-1 K equals Guyan's",
     sections: "§6.6, App. C",
@@ -32,7 +33,7 @@ pub const INFO: SceneInfo = SceneInfo {
 };
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    opts.methods_or(INFO.id, &[Method::Eitelberg, Method::Guyan], &[])?;
+    opts.methods_or(INFO.name, &[Method::Eitelberg, Method::Guyan], &[])?;
     let masters = opts.boundary_or_default(&INFO);
     let model = beam(&BeamParameters::default());
     let eit = eitelberg(&model, &masters, &EitelbergParameters::default())?;
@@ -62,7 +63,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
                 .collect()
         })
         .collect();
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     report.parameters.insert("boundary".into(), json!(masters));
     report
         .parameters

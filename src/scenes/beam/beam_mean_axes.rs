@@ -23,7 +23,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::BeamMeanAxes,
+    name: "beam-mean-axes",
+    recording_cost: 0,
     summary: "§8.4-8.5 mode condensation with mean axes: constraint and normal modes of the \
               reduced beam against the full model",
     sections: "§8.4, §8.5",
@@ -48,13 +49,7 @@ const AVAILABLE: [Method; 4] = [
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let run = BeamRun::new(opts, &INFO, (&AVAILABLE, &[Method::ModeCondensation]))?;
     let mut report = run.report(&INFO);
-    let BeamRun {
-        methods,
-        boundary,
-        kept,
-        model,
-        part,
-    } = run;
+    let (methods, boundary, kept, model, part) = run.into_parts();
     // The full model's constraint modes (Eq. 8.37) and fixed-interface modes (Eq. 8.38).
     let full_c = part.assemble(
         identity(part.b.len()).as_ref(),

@@ -20,7 +20,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::BeamModes,
+    name: "beam-modes",
+    recording_cost: 0,
     summary: "App. A beam: free-free, Guyan (a)(b)(c), boundary, fixed-interface, Craig-Bampton \
               and mode-condensation mode shapes (Figs. 6-1 to 6-9)",
     sections: "§6.2-6.5, App. A",
@@ -66,13 +67,7 @@ fn labelled_columns(basis: &Basis) -> Vec<(Vec<f64>, String)> {
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let run = BeamRun::new(opts, &INFO, (&AVAILABLE, &AVAILABLE))?;
     let mut report = run.report(&INFO);
-    let BeamRun {
-        methods,
-        boundary,
-        kept,
-        model,
-        part,
-    } = run;
+    let (methods, boundary, kept, model, part) = run.into_parts();
 
     let ff = free_free_modes(&model)?;
     let free_free_hz = elastic_hz(&ff);

@@ -14,7 +14,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::BeamProfiles,
+    name: "beam-profiles",
+    recording_cost: 0,
     summary: "§7.1 deformed profiles of the beam: the same z* (profile 1) and a least-squares \
               fit (profile 2) by MT, CB and MC against the reference deflection",
     sections: "§7.1",
@@ -32,13 +33,8 @@ const AVAILABLE: [Method; 3] = [
 ];
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    let BeamRun {
-        methods,
-        boundary,
-        kept,
-        model,
-        part,
-    } = BeamRun::new(opts, &INFO, (&AVAILABLE, &AVAILABLE))?;
+    let (methods, boundary, kept, model, part) =
+        BeamRun::new(opts, &INFO, (&AVAILABLE, &AVAILABLE))?.into_parts();
     let params = ReductionRequest {
         boundary_nodes: boundary.clone(),
         modes: ModeSelection::Count(kept),
@@ -46,7 +42,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     };
     let delta = PROFILE_DELTA;
 
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     report.parameters.insert("boundary".into(), json!(boundary));
     report.parameters.insert("modes".into(), json!(kept));
     report.parameters.insert("delta".into(), json!(delta));

@@ -45,7 +45,7 @@ impl BeamRun {
         info: &SceneInfo,
         (available, default): (&[Method], &[Method]),
     ) -> Result<Self> {
-        let methods = opts.methods_or(info.id, available, default)?;
+        let methods = opts.methods_or(info.name, available, default)?;
         let boundary = opts.boundary_or_default(info);
         let kept = opts.modes_or_default(info);
         let model = beam(&BeamParameters::default());
@@ -59,9 +59,20 @@ impl BeamRun {
         })
     }
 
+    /// The methods, boundary, kept modes, beam and partition, in that order.
+    pub fn into_parts(self) -> (Vec<Method>, Vec<usize>, usize, FeModel, Partition) {
+        (
+            self.methods,
+            self.boundary,
+            self.kept,
+            self.model,
+            self.part,
+        )
+    }
+
     /// The scene's report with the run's boundary, kept modes and methods as parameters.
     pub fn report(&self, info: &SceneInfo) -> Report {
-        let mut report = Report::new(info.id.as_str());
+        let mut report = Report::new(info.name);
         let p = &mut report.parameters;
         p.insert("boundary".into(), json!(self.boundary));
         p.insert("modes".into(), json!(self.kept));

@@ -30,7 +30,8 @@ use crate::{
 pub const DEFAULT_BODY: &str = "builtin:l-bracket";
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::Modes,
+    name: "modes",
+    recording_cost: 5,
     summary: "any body from a body file (--body FILE; the L-bracket by default): every method \
               on its interfaces (node sets, rbe2:, rbe3:) against the full body's frequencies",
     sections: "§6.2–6.5 on a body of your own",
@@ -70,7 +71,7 @@ fn run_driven(
     simulation: &crate::scenes::body::body_simulation::BodySimulation,
     opts: &SceneOptions,
 ) -> Result<SceneOutput> {
-    let methods = opts.methods_or(INFO.id, &DRIVEN_METHODS, &DRIVEN_DEFAULT)?;
+    let methods = opts.methods_or(INFO.name, &DRIVEN_METHODS, &DRIVEN_DEFAULT)?;
     let modes = opts.modes_or_default(&INFO);
     simulated(
         body,
@@ -88,7 +89,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         return run_driven(&body, simulation, opts);
     }
     let model = &body.model;
-    let methods = opts.methods_or(INFO.id, &AVAILABLE, &DEFAULT_METHODS)?;
+    let methods = opts.methods_or(INFO.name, &AVAILABLE, &DEFAULT_METHODS)?;
     let boundary = match &opts.boundary {
         Some(b) => b.clone(),
         None => body.default_interface_nodes()?.to_vec(),
@@ -154,7 +155,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     visuals.extend(freq_bars.visuals());
     bars.insert(0, freq_bars.layout());
 
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     report
         .parameters
         .extend(run_parameters(&body, &boundary, opts, kept, &methods));
@@ -197,6 +198,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     };
     let tables = BodyTables {
         summary: &summary,
+        residuals: &residual_lines,
+        notes: &rows.notes,
         sweep: &sweep_md,
         influence: &influence_md,
         response: &response_md,
@@ -208,8 +211,6 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         kept,
         &full,
         (&full_hz, &fi_hz),
-        &residual_lines,
-        &rows.notes,
         &tables,
     );
     let markdown = scene_text(&body, kept, &freq_bars.caption(), &report.table);
@@ -231,16 +232,18 @@ fn views(
     let model = &body.model;
     if let (true, Some(h)) = (body.has_coordinates, held) {
         let (mode_visuals, l) = crate::scenes::slab::slab_mode_views::slab_mode_views(
-            model,
-            &h.partition,
-            &h.constraint_shapes.0,
-            &h.constraint_shapes.1,
-            &h.fixed_interface,
-            elastic,
-            FULL_MODES,
-            kept,
-            "free_free",
-            bars,
+            crate::scenes::slab::slab_mode_views::ModeViews {
+                model,
+                part: &h.partition,
+                constraint: &h.constraint_shapes.0,
+                constraint_labels: &h.constraint_shapes.1,
+                fixed_interface: &h.fixed_interface,
+                free_free: elastic,
+                shown_free_free: FULL_MODES,
+                kept,
+                first_tab: "free_free",
+                charts: bars,
+            },
         );
         (mode_visuals, l)
     } else {

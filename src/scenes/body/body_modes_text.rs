@@ -3,9 +3,13 @@
 use crate::scenes::SceneOptions;
 use crate::{body_file::ImportedBody, report::fmt_hz};
 
-/// The tables and sections of the body modes scene's text, already written.
+/// The tables, lines and sections of the body modes scene's text, already written.
 pub(super) struct BodyTables<'a> {
     pub(super) summary: &'a str,
+    /// One line per residual check.
+    pub(super) residuals: &'a [String],
+    /// The methods' notes, one bullet each.
+    pub(super) notes: &'a [String],
     pub(super) sweep: &'a str,
     pub(super) influence: &'a str,
     pub(super) response: &'a str,
@@ -13,7 +17,6 @@ pub(super) struct BodyTables<'a> {
 
 /// The scene's report text: the body and its interface, the methods' table, the full body's
 /// and the fixed interface's frequencies, every residual, the notes and the sections.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn body_text(
     body: &ImportedBody,
     boundary: &[usize],
@@ -21,8 +24,6 @@ pub(super) fn body_text(
     kept: usize,
     full: &crate::analysis::ZeroEnergyCount,
     (full_hz, fi_hz): (&[f64], &[f64]),
-    residual_lines: &[String],
-    notes: &[String],
     tables: &BodyTables,
 ) -> String {
     let model = &body.model;
@@ -68,8 +69,12 @@ pub(super) fn body_text(
         tables.summary,
         fmt_hz(full_hz),
         fmt_hz(&fi_hz[..fi_hz.len().min(8)]),
-        residual_lines.join("; "),
-        notes.iter().map(|n| format!("\n- {n}")).collect::<String>(),
+        tables.residuals.join("; "),
+        tables
+            .notes
+            .iter()
+            .map(|n| format!("\n- {n}"))
+            .collect::<String>(),
         tables.sweep,
         tables.influence,
         tables.response,

@@ -2,9 +2,9 @@
 //! (models::driven_body_study), cached apart and joined; their table and JSON are in
 //! `body_simulation_report`, their recording in `body_simulation_visuals`.
 
+use crate::scenes::RunCache;
 pub use crate::scenes::body::body_simulation_report::{runs_table, summary};
 pub use crate::scenes::body::body_simulation_visuals::recording;
-use crate::scenes::{RunCache, SceneId};
 use crate::{
     Error, Progress, Result,
     body_file::ImportedBody,
@@ -54,11 +54,11 @@ impl BodySimulation {
     /// The simulation `request` states: generalized-α at `simulate`'s default step,
     /// a hundred samples of the histories. No drive, or a rate, ramp, amplitude,
     /// frequency or interval that is not a positive number, is refused by name.
-    pub fn of_request(request: &DriveRequest<'_>) -> Result<Self> {
+    pub fn of_request(request: &DriveRequest<'_>, scene: &'static str) -> Result<Self> {
         let defaults = DrivenBodyParameters::default();
         let invalid = |reason: String| Error::InvalidOption {
             option: "simulate",
-            scene: Some(SceneId::Modes.as_str()),
+            scene: Some(scene),
             reason,
         };
         let drive = request.drive.trim();

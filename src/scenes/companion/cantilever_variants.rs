@@ -19,7 +19,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::CantileverVariants,
+    name: "cantilever-variants",
+    recording_cost: 2,
     summary: "Witteveen §4: CB (7+7), Krylov moment matching (2×7) and balanced truncation (14) \
               built once on a clamped beam structure, then with A clamped (variant 2) and A \
               sliding with 250 kg (variant 3): static deflections, frequency errors and MAC",
@@ -32,12 +33,12 @@ pub const INFO: SceneInfo = SceneInfo {
 };
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
+    let methods = opts.methods_or(INFO.name, &AVAILABLE, &AVAILABLE)?;
     let study = cantilever_study(&methods)?;
     let (params, frame) = (&study.params, &study.frame);
     let model = &frame.model;
 
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     for (key, value) in [
         ("bottom_length_mm", params.bottom_length),
         ("overhang_length_mm", params.overhang_length),

@@ -20,7 +20,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::SlabModeSets,
+    name: "slab-mode-sets",
+    recording_cost: 8,
     summary: "Spanos–Tsuha §4 on a dual-spin assembly (boom rotor, grounded stator column, rigid \
               platform): CB, MR and BH mode sets truncated at 20 Hz, joined by component mode \
               synthesis, motor-to-platform FRF against the full model over 0–10 Hz; influence \
@@ -34,9 +35,9 @@ pub const INFO: SceneInfo = SceneInfo {
 };
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
-    let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
+    let methods = opts.methods_or(INFO.name, &AVAILABLE, &AVAILABLE)?;
     let study = dual_spin_study(&methods, opts.concurrent_integrations)?;
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     report.parameters.insert("zeta".into(), json!(ZETA));
     report
         .parameters

@@ -30,7 +30,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::Failures,
+    name: "failures",
+    recording_cost: 2,
     summary: "where the methods fail, in one recording: CB with too few boundary DOF, \
               Eitelberg without feedback, mode condensation's n³ cost, mean axes with a \
               Guyan mass, an explicit step above critical, Guyan (b)'s symmetry, modal \
@@ -46,7 +47,7 @@ pub const INFO: SceneInfo = SceneInfo {
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let beam_model = beam(&BeamParameters::default());
     let slab_model = slab(&SlabParameters::default());
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     let mut lines: Vec<[String; 3]> = Vec::new();
     let mut visuals = Vec::new();
 

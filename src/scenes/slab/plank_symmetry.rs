@@ -12,7 +12,9 @@ use crate::models::{
 };
 use crate::scenes::{
     SceneInfo, SceneOptions, SceneOutput,
-    slab::sim_visuals::{body_trajectory, frame_axes, health_series, simulation_layout, times},
+    slab::sim_visuals::{
+        SimulatedBody, body_trajectory, frame_axes, health_series, simulation_layout, times,
+    },
     slab::slab_sims::run_key,
 };
 use crate::{
@@ -26,7 +28,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::PlankSymmetry,
+    name: "plank-symmetry",
+    recording_cost: 9,
     summary: "§5.3.3 plank hung under four rigid links: nodal-fixed axes lose the mirror \
               symmetry after the chains snap taut, mean axes keep it",
     sections: "§5.3.3, ch. 8",
@@ -48,7 +51,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let modes = opts.modes_or_default(&INFO);
     let model = plank(&SlabParameters::default());
     let params = opts.integrator_parameters(&INFO)?;
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     report
         .parameters
         .insert("end_time_s".into(), json!(params.end_time));
@@ -75,7 +78,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     .rank_lower(&[2, 3]);
     let geometry = Geometry::of(&model);
     // The plank swings metres; its deflections are drawn true to scale unless asked otherwise.
-    let deflection = opts.deformation_scale_or(INFO.id, || 1.0)?;
+    let deflection = opts.deformation_scale_or(INFO.name, || 1.0)?;
     let mut visuals = Vec::new();
     let mut plots = Vec::new();
     // The variants' integrations are independent: as many at once as the options allow.
@@ -84,7 +87,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         opts.concurrent_integrations,
         &opts.progress,
         |v, progress| {
-            let key = run_key(INFO.id, v.method, v.axes, &PLANK_BOUNDARY, modes, &params);
+            let key = run_key(INFO.name, v.method, v.axes, &PLANK_BOUNDARY, modes, &params);
             opts.cache.get_or_run(key, || {
                 progress.phase(&format!("{} with {} axes", v.method.name(), v.axes.id()))?;
                 let body = plank_body(&model, v, modes)?;
@@ -207,7 +210,7 @@ fn study_variants(opts: &SceneOptions) -> Result<Vec<Variant>> {
     if variants.is_empty() {
         return Err(crate::Error::InvalidOption {
             option: "--method, --axes",
-            scene: Some(INFO.id.as_str()),
+            scene: Some(INFO.name),
             reason: "the study runs nr with nodal_fixed and mean axes and cb with mean axes; \
                      the --method/--axes filter left none"
                 .into(),
@@ -248,9 +251,11 @@ fn variant_visuals(
     }
     visuals.extend(health_series(sim, &suffix, color));
     visuals.push(body_trajectory(
-        system,
-        sim,
-        0,
+        SimulatedBody {
+            system,
+            sim,
+            body: 0,
+        },
         format!("world/plank/{suffix}"),
         geometry,
         color,
@@ -283,9 +288,11 @@ fn variant_visuals(
         color: [200, 200, 200, 255],
     });
     visuals.push(frame_axes(
-        system,
-        sim,
-        0,
+        SimulatedBody {
+            system,
+            sim,
+            body: 0,
+        },
         format!("world/plank/frame/{suffix}"),
         0.8,
     ));

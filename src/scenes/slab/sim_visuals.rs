@@ -49,12 +49,18 @@ pub fn display_scale(largest: f64, size: f64) -> f64 {
         .unwrap_or(decade)
 }
 
+/// One body of a simulated system: the system, its simulation and the body's index.
+#[derive(Clone, Copy)]
+pub struct SimulatedBody<'a> {
+    pub system: &'a System,
+    pub sim: &'a Simulation,
+    pub body: usize,
+}
+
 /// The deformable body `body` (its nodes drawn with `geometry`) over `sim_time`, its elastic
 /// deflection drawn `scale` times (0: the undeformed ghost moving with the frame).
 pub fn body_trajectory(
-    system: &System,
-    sim: &Simulation,
-    body: usize,
+    SimulatedBody { system, sim, body }: SimulatedBody<'_>,
     path: String,
     geometry: &Geometry,
     color: Color,
@@ -104,9 +110,7 @@ fn placements(
 /// beside its deflected drawing): its outline once in body coordinates, the frame's
 /// placement per time.
 pub fn ghost_trajectory(
-    system: &System,
-    sim: &Simulation,
-    body: usize,
+    SimulatedBody { system, sim, body }: SimulatedBody<'_>,
     path: String,
     geometry: &Geometry,
     color: Color,
@@ -131,9 +135,7 @@ pub fn ghost_trajectory(
 
 /// The floating frame of `body` over `sim_time` as three arrows of `length` m.
 pub fn frame_axes(
-    system: &System,
-    sim: &Simulation,
-    body: usize,
+    SimulatedBody { system, sim, body }: SimulatedBody<'_>,
     path: String,
     length: f64,
 ) -> Visual {

@@ -15,23 +15,42 @@ use crate::{
 /// Constraint modes drawn at most (callers solve for these alone).
 pub const MAX_DRAWN_CONSTRAINT_MODES: usize = 24;
 
+/// What [`slab_mode_views`] draws: the body and its partition, its constraint modes
+/// $[I; \Psi_s]$ of the boundary DOF with their labels, its fixed-interface and free-free
+/// modes, and how many of each are shown.
+pub struct ModeViews<'a> {
+    pub model: &'a FeModel,
+    pub part: &'a Partition,
+    pub constraint: &'a Mat<f64>,
+    pub constraint_labels: &'a [String],
+    pub fixed_interface: &'a GeneralizedEigen,
+    pub free_free: &'a GeneralizedEigen,
+    /// Elastic free-free modes shown at most.
+    pub shown_free_free: usize,
+    /// Fixed-interface modes shown (the kept ones).
+    pub kept: usize,
+    /// The tab in front (`free_free`, `fixed_interface`).
+    pub first_tab: &'a str,
+    /// The charts below the tabs (the reduced-frequency chart first).
+    pub charts: Vec<Layout>,
+}
+
 /// The slab's mode views: free-free elastic modes (at most `shown_free_free`), the constraint
-/// modes $[I; \Psi_s]$ of the boundary DOF and the first `kept` fixed-interface modes, each
-/// set under `modes/<set>/<k>`, and the layout with those tabs (`first_tab` in front) above the
-/// `charts` (the reduced-frequency chart first), beside the scene text.
-#[allow(clippy::too_many_arguments)]
-pub fn slab_mode_views(
-    model: &FeModel,
-    part: &Partition,
-    constraint: &Mat<f64>,
-    constraint_labels: &[String],
-    fixed_interface: &GeneralizedEigen,
-    free_free: &GeneralizedEigen,
-    shown_free_free: usize,
-    kept: usize,
-    first_tab: &str,
-    charts: Vec<Layout>,
-) -> (Vec<Visual>, Layout) {
+/// modes and the first `kept` fixed-interface modes, each set under `modes/<set>/<k>`, and the
+/// layout with those tabs (`first_tab` in front) above the `charts`, beside the scene text.
+pub fn slab_mode_views(views: ModeViews<'_>) -> (Vec<Visual>, Layout) {
+    let ModeViews {
+        model,
+        part,
+        constraint,
+        constraint_labels,
+        fixed_interface,
+        free_free,
+        shown_free_free,
+        kept,
+        first_tab,
+        charts,
+    } = views;
     let mut visuals = Vec::new();
     let ff_modes: Vec<(Vec<f64>, String)> = columns(&free_free.vectors)
         .into_iter()

@@ -8,7 +8,7 @@ use crate::scenes::{
     SceneInfo, SceneOptions, SceneOutput,
     frequency_bars::{FrequencyBars, SHOWN_MODES},
     mode_visuals::undeformed,
-    slab::slab_mode_views::slab_mode_views,
+    slab::slab_mode_views::{ModeViews, slab_mode_views},
 };
 use crate::{
     Result,
@@ -22,7 +22,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::SlabModes,
+    name: "slab-modes",
+    recording_cost: 0,
     summary: "App. B slab: free-free, constraint and fixed-interface modes for boundary nodes \
               16, 18, 28, 30, and the frequencies of the MT, CB, MC and GR models",
     sections: "§7.2.1, App. B",
@@ -60,7 +61,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     {
         return crate::scenes::slab::slab_refined::run(opts, &INFO, bricks);
     }
-    let methods = opts.methods_or(INFO.id, &AVAILABLE, &AVAILABLE)?;
+    let methods = opts.methods_or(INFO.name, &AVAILABLE, &AVAILABLE)?;
     let boundary = opts.boundary_or_default(&INFO);
     let kept = opts.modes_or_default(&INFO);
     let model = slab(&SlabParameters::default());
@@ -119,7 +120,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         bars.push(m, &hz);
     }
 
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     report.parameters.insert("boundary".into(), json!(boundary));
     report
         .parameters
@@ -170,18 +171,18 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
 
     let shapes = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
     let labels: Vec<String> = part.b.iter().map(|&d| model.dof_label(d)).collect();
-    let (mode_visuals, layout) = slab_mode_views(
-        &model,
-        &part,
-        &shapes,
-        &labels,
-        &fi,
-        &ff,
-        SHOWN_FREE_FREE,
+    let (mode_visuals, layout) = slab_mode_views(ModeViews {
+        model: &model,
+        part: &part,
+        constraint: &shapes,
+        constraint_labels: &labels,
+        fixed_interface: &fi,
+        free_free: &ff,
+        shown_free_free: SHOWN_FREE_FREE,
         kept,
-        "free_free",
-        vec![bars.layout()],
-    );
+        first_tab: "free_free",
+        charts: vec![bars.layout()],
+    });
     visuals.extend(mode_visuals);
     Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
 }

@@ -42,7 +42,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     if opts.axes.is_some() {
         return Err(Error::InvalidOption {
             option: "--axes",
-            scene: Some(info.id.as_str()),
+            scene: Some(info.name),
             reason: "--axes is offered on the App. B slab only (its nodal-fixed nodes 16, 28, \
                      18 are not defined on a refined mesh)"
                 .into(),
@@ -52,7 +52,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     let dofs = params.dof_count();
     // Refuse before allocating anything a mesh the machine cannot hold.
     let needed = check_reduction_memory(dofs)?;
-    let methods = opts.methods_or(info.id, &AVAILABLE, &AVAILABLE)?;
+    let methods = opts.methods_or(info.name, &AVAILABLE, &AVAILABLE)?;
     let boundary = opts
         .boundary
         .clone()
@@ -111,7 +111,7 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     visuals.extend(bars.visuals());
     let peak = peak_resident_bytes();
 
-    let mut report = Report::new(info.id.as_str());
+    let mut report = Report::new(info.name);
     let p = &mut report.parameters;
     p.insert("refine".into(), json!(bricks));
     p.insert("boundary".into(), json!(boundary));
@@ -165,16 +165,18 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     let (shapes, labels) = problem
         .constraint_shapes(crate::scenes::slab::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES)?;
     let (mode_visuals, layout) = crate::scenes::slab::slab_mode_views::slab_mode_views(
-        &model,
-        &problem.partition,
-        &shapes,
-        &labels,
-        &fi,
-        &ff,
-        FREE_FREE,
-        kept,
-        "fixed_interface",
-        vec![bars.layout()],
+        crate::scenes::slab::slab_mode_views::ModeViews {
+            model: &model,
+            part: &problem.partition,
+            constraint: &shapes,
+            constraint_labels: &labels,
+            fixed_interface: &fi,
+            free_free: &ff,
+            shown_free_free: FREE_FREE,
+            kept,
+            first_tab: "fixed_interface",
+            charts: vec![bars.layout()],
+        },
     );
     visuals.extend(mode_visuals);
     Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))

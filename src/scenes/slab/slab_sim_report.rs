@@ -114,7 +114,7 @@ pub(super) fn scenario_text(
          simulation 1 (tested). Coordinates are the six of the frame plus the modal ones. \
          Errors are \
          the relative RMS of node 8's local deflection against NR over the interval.{}{}\n\n{}",
-        info.id,
+        info.name,
         info.summary,
         bricks.map(|b| b.to_string()).join(" × "),
         model.dof_count(),
@@ -154,18 +154,32 @@ pub(super) fn scenario_text(
     )
 }
 
+/// What a slab scenario runs with: its methods, the floating frame's axes, the kept modes,
+/// the mesh (bricks along x, y, z), the boundary nodes (1-based) and the integrator.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ScenarioSettings<'a> {
+    pub(super) methods: &'a [Method],
+    pub(super) axes: AxisType,
+    pub(super) modes: usize,
+    pub(super) bricks: [usize; 3],
+    pub(super) boundary: &'a [usize],
+    pub(super) params: &'a IntegratorParameters,
+}
+
 /// What the scenario ran with, into `report`'s parameters.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn scenario_parameters(
     report: &mut Report,
-    boundary: &[usize],
-    modes: usize,
-    axes: AxisType,
-    params: &IntegratorParameters,
-    bricks: [usize; 3],
+    settings: &ScenarioSettings<'_>,
     model: &FeModel,
-    methods: &[Method],
 ) {
+    let ScenarioSettings {
+        methods,
+        axes,
+        modes,
+        bricks,
+        boundary,
+        params,
+    } = *settings;
     report.parameters.insert("boundary".into(), json!(boundary));
     report.parameters.insert("modes".into(), json!(modes));
     report.parameters.insert("axes".into(), json!(axes.id()));

@@ -6,7 +6,7 @@ use crate::record::{REFERENCE_GHOST, method_color};
 use crate::fem::NodeIndex;
 use crate::models::slab_node;
 use crate::scenes::slab::sim_visuals::{
-    body_trajectory, frame_axes, ghost_trajectory, health_series, times,
+    SimulatedBody, body_trajectory, frame_axes, ghost_trajectory, health_series, times,
 };
 use crate::{
     Result,
@@ -51,7 +51,6 @@ pub(super) fn speed_accuracy(runs: &[Run], reference: Option<&[Vec<f64>; 3]>) ->
 }
 
 /// One lane per method, then each method's body, histories and health series.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn lanes(
     visuals: &mut Vec<Visual>,
     runs: &[Run],
@@ -76,9 +75,11 @@ pub(super) fn lanes(
             translation: [0.0, -1.5 * width * k as f64, 0.0],
         });
         visuals.push(ghost_trajectory(
-            system,
-            sim,
-            0,
+            SimulatedBody {
+                system,
+                sim,
+                body: 0,
+            },
             format!("{lane}/undeformed_ghost"),
             geometry,
             REFERENCE_GHOST,
@@ -101,9 +102,11 @@ pub(super) fn lanes(
         let times = times(sim);
         visuals.extend(health_series(sim, m.id(), method_color(*m)));
         visuals.push(body_trajectory(
-            system,
-            sim,
-            0,
+            SimulatedBody {
+                system,
+                sim,
+                body: 0,
+            },
             format!("world/slab/{}/{}", m.id(), axes.id()),
             geometry,
             method_color(*m),
@@ -120,9 +123,11 @@ pub(super) fn lanes(
         }
         if *m == methods[0] {
             visuals.push(frame_axes(
-                system,
-                sim,
-                0,
+                SimulatedBody {
+                    system,
+                    sim,
+                    body: 0,
+                },
                 format!("world/slab/frame/{}", axes.id()),
                 1.0,
             ));

@@ -23,7 +23,7 @@ use crate::{
 /// The options of the three slab simulations; `end` is the default interval, s.
 pub use crate::scenes::slab::slab_sim_report::insert_integrator;
 use crate::scenes::slab::slab_sim_report::{
-    DIRECTIONS, errors_table, scenario_parameters, scenario_text,
+    DIRECTIONS, ScenarioSettings, errors_table, scenario_parameters, scenario_text,
 };
 use crate::scenes::slab::slab_sim_views::{lanes, speed_accuracy};
 
@@ -41,7 +41,8 @@ const fn sim_controls(end: f64) -> crate::scenes::scene_info::SceneControls {
 }
 
 pub const INFO_1: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::SlabSim1,
+    name: "slab-sim1",
+    recording_cost: 5,
     summary: "§7.2.2 slab held at six coordinates under gravity: node 8's deflections by NR, \
               MT, CB, MC and GR over time",
     sections: "§7.2.2",
@@ -49,7 +50,8 @@ pub const INFO_1: SceneInfo = SceneInfo {
 };
 
 pub const INFO_2: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::SlabSim2,
+    name: "slab-sim2",
+    recording_cost: 8,
     summary: "§7.2.3 slab pinned at nodes 16, 18 with node 30 driven on the orbit of Eq. 7.10: \
               node 8's deflections by every method",
     sections: "§7.2.3",
@@ -67,7 +69,8 @@ impl crate::scenes::run_cache::CacheWeight for DrivenTables {
 }
 
 pub const INFO_3: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::SlabSim3,
+    name: "slab-sim3",
+    recording_cost: 6,
     summary: "§7.2.4 slab driven at nodes 16, 18, 28, 30 by accelerations recorded from the \
               two-link simulation of Fig. 7-12(b)",
     sections: "§7.2.4",
@@ -94,7 +97,7 @@ pub fn axis_type(kind: Option<AxisKind>) -> AxisType {
 /// What determines one method's time integration in a scene (the [`RunCache`](crate::scenes::RunCache) key): boundary
 /// nodes matter to every method but NR, kept modes to MT, CB and MC only.
 pub fn run_key(
-    scene: crate::scenes::SceneId,
+    scene: &'static str,
     method: Method,
     axes: AxisType,
     boundary: &[usize],
@@ -125,7 +128,7 @@ pub fn run_scenario(
     scenario: Scenario,
     opts: &SceneOptions,
 ) -> Result<SceneOutput> {
-    let methods = opts.methods_or(info.id, &METHODS, &METHODS)?;
+    let methods = opts.methods_or(info.name, &METHODS, &METHODS)?;
     let axes = axis_type(opts.axes);
     let modes = opts.modes_or_default(info);
     let bricks = opts
@@ -145,7 +148,7 @@ pub fn run_scenario(
     let integrate = |m: Method, progress: &Progress| {
         let key = format!(
             "{}/{bricks:?}/{}",
-            run_key(info.id, m, axes, &boundary, modes, &params),
+            run_key(info.name, m, axes, &boundary, modes, &params),
             if stiffened { "stiffened" } else { "linear" }
         );
         opts.cache.get_or_run(key, || {
@@ -172,17 +175,16 @@ pub fn run_scenario(
         .zip(&integrated)
         .map(|(&m, run)| (m, &run.0, &run.1, probe_history(&run.0, &run.1, probe)))
         .collect();
-    let mut report = Report::new(info.id.as_str());
-    scenario_parameters(
-        &mut report,
-        &boundary,
-        modes,
+    let mut report = Report::new(info.name);
+    let settings = ScenarioSettings {
+        methods: &methods,
         axes,
-        &params,
+        modes,
         bricks,
-        &model,
-        &methods,
-    );
+        boundary: &boundary,
+        params: &params,
+    };
+    scenario_parameters(&mut report, &settings, &model);
     report
         .parameters
         .insert("stiffening".into(), json!(stiffened));
@@ -235,7 +237,7 @@ pub fn run_scenario(
         },
     ];
     // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method.
-    let scale = opts.deformation_scale_or(info.id, || {
+    let scale = opts.deformation_scale_or(info.name, || {
         deformation_scale(
             runs.iter().map(|(_, system, sim, _)| (*system, *sim)),
             0,
@@ -285,7 +287,7 @@ pub fn run_sim3(opts: &SceneOptions) -> Result<SceneOutput> {
     let axes = axis_type(opts.axes);
     let end = opts.end_time_or_default(&INFO_3)?;
     let tables = opts.cache.get_or_run(
-        format!("{}/tables/{axes:?}/{:x}", INFO_3.id, end.to_bits()),
+        format!("{}/tables/{axes:?}/{:x}", INFO_3.name, end.to_bits()),
         || record_driving_tables(axes, end, &opts.progress).map_err(crate::Error::from),
     )?;
     run_scenario(&INFO_3, Scenario::Driven((*tables).clone()), opts)

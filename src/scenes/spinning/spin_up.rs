@@ -19,7 +19,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::SpinUp,
+    name: "spin-up",
+    recording_cost: 2,
     summary: "dynamic stiffening (§1, refs. [16], [18]): the rotating cantilever's Campbell \
               diagram against Wright et al. (1982), and Kane et al.'s (1987) spin-up against a \
               co-rotational reference, NR and CB with and without stiffening",
@@ -46,7 +47,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         },
         &opts.progress,
     )?;
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     let beam = &spin.parameters.beam;
     report.parameters.insert(
         "beam".into(),

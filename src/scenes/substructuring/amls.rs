@@ -21,7 +21,8 @@ use crate::{
 };
 
 pub const INFO: SceneInfo = SceneInfo {
-    id: crate::scenes::SceneId::Amls,
+    name: "amls",
+    recording_cost: 4,
     summary: "multi-level substructuring (AMLS, Bennighof & Lehoucq 2004) on a refined App. B \
               slab: the nested-dissection tree level by level, Guyan and Craig-Bampton on its \
               root separator against AMLS over every level, and AMLS refined against Lanczos",
@@ -116,7 +117,7 @@ fn point_json(p: &LadderPoint) -> Value {
 
 fn report(study: &SubstructuringStudy) -> Report {
     let params = &study.parameters;
-    let mut report = Report::new(INFO.id.as_str());
+    let mut report = Report::new(INFO.name);
     report
         .parameters
         .insert("bricks".into(), json!(params.bricks));

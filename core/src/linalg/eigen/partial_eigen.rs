@@ -12,7 +12,7 @@
 //! by its residual $\|K\varphi - \lambda M\varphi\| / \|K\varphi\|$.
 
 use crate::error::LinalgError;
-use crate::linalg::sparse::pair_residuals;
+use crate::linalg::sparse::{ResidualCheck, pair_residuals};
 use faer::{Mat, MatRef};
 
 use crate::linalg::dense::{
@@ -152,6 +152,12 @@ pub fn lowest_modes(
     let start = Mat::from_fn(n, b, |_, _| next_uniform(&mut rng));
     basis.append(start, m, &mut rng);
     let known = basis.known;
+    let pencil = ShiftedPencil {
+        k,
+        m,
+        sigma,
+        params,
+    };
     let mut ritz_tolerance = params.ritz_tolerance;
     let mut ritz_history: Vec<f64> = Vec::new();
     let result;
@@ -159,6 +165,12 @@ pub fn lowest_modes(
         stats.block_solves += basis.expand(b, max_basis, &solve, m, &mut rng);
         let step = basis.rayleigh_ritz(sigma)?;
         let (theta, ritz) = (&step.theta, &step.ritz);
+        let step_pairs = RitzPairs {
+            theta,
+            ritz,
+            wanted,
+            known,
+        };
         let relative = step.relative_residuals(m, wanted);
         let converged = relative
             .iter()
@@ -176,7 +188,7 @@ pub fn lowest_modes(
                 .all(|&previous| worst_ritz > 0.5 * previous);
         ritz_history.push(worst_ritz);
         if stalled && converged < wanted {
-            let checked = refined_pairs(k, m, factor, sigma, wanted, known, theta, ritz, params)?;
+            let checked = refined_pairs(&pencil, factor, &step_pairs)?;
             if checked.converged == wanted {
                 stats.max_residual = checked.max_residual;
                 stats.block_solves += 1;
@@ -186,7 +198,7 @@ pub fn lowest_modes(
             }
         }
         if converged == wanted {
-            let checked = refined_pairs(k, m, factor, sigma, wanted, known, theta, ritz, params)?;
+            let checked = refined_pairs(&pencil, factor, &step_pairs)?;
             stats.block_solves += 1;
             if checked.converged == wanted {
                 stats.max_residual = checked.max_residual;
@@ -206,7 +218,7 @@ pub fn lowest_modes(
         if stats.restarts == params.max_restarts {
             // The error names the residual users know, ‖Kφ − λMφ‖/‖Kφ‖ of the pairs as they
             // stand, and how many of them meet the tolerance.
-            let checked = refined_pairs(k, m, factor, sigma, wanted, known, theta, ritz, params)?;
+            let checked = refined_pairs(&pencil, factor, &step_pairs)?;
             return Err(Error::Linalg(LinalgError::EigenNotConverged {
                 converged: checked.converged,
                 wanted,
@@ -481,19 +493,19 @@ fn ritz_values_above(sigma: f64, theta: &[f64], wanted: usize) -> Vec<f64> {
 /// application of $A$ damps the part along an eigenvector of eigenvalue $\mu$ by
 /// $(\lambda - \sigma)/(\mu - \sigma)$ (Ericsson and Ruhe's purification). The better of
 /// the two sets (the one with more converged pairs, then the smaller worst residual) is kept.
-#[allow(clippy::too_many_arguments)]
 fn refined_pairs(
-    k: &SparseSymmetric,
-    m: &MassMatrix,
+    pencil: &ShiftedPencil<'_>,
     factor: &SymmetricFactor,
-    sigma: f64,
-    wanted: usize,
-    known: usize,
-    theta: &[f64],
-    ritz: &Mat<f64>,
-    params: &PartialEigenParameters,
+    pairs: &RitzPairs<'_>,
 ) -> Result<CheckedPairs> {
-    let plain = checked_pairs(k, m, sigma, wanted, known, theta, ritz, params)?;
+    let ShiftedPencil { k, m, sigma, .. } = *pencil;
+    let RitzPairs {
+        theta,
+        ritz,
+        wanted,
+        known,
+    } = *pairs;
+    let plain = checked_pairs(pencil, pairs)?;
     let free = wanted - known;
     if free == 0 || plain.converged == wanted && plain.max_residual <= REFINEMENT_NOT_NEEDED {
         return Ok(plain);
@@ -523,10 +535,37 @@ fn refined_pairs(
     for (c, &l) in small.values.iter().enumerate() {
         refined_theta[known + c] = 1.0 / (l - sigma);
     }
-    let refined = checked_pairs(k, m, sigma, wanted, known, &refined_theta, &vectors, params)?;
+    let refined = checked_pairs(
+        pencil,
+        &RitzPairs {
+            theta: &refined_theta,
+            ritz: &vectors,
+            ..*pairs
+        },
+    )?;
     let better = refined.converged > plain.converged
         || refined.converged == plain.converged && refined.max_residual < plain.max_residual;
     Ok(if better { refined } else { plain })
+}
+
+/// The pencil $(K, M)$, the shift σ of its Lanczos iteration and the tolerances its pairs
+/// are checked to.
+#[derive(Clone, Copy)]
+struct ShiftedPencil<'a> {
+    k: &'a SparseSymmetric,
+    m: &'a MassMatrix,
+    sigma: f64,
+    params: &'a PartialEigenParameters,
+}
+
+/// One Rayleigh–Ritz step's pairs of the shifted operator: $\theta = 1/(\lambda - \sigma)$
+/// and the Ritz vectors, the first `known` of them known null vectors, `wanted` asked for.
+#[derive(Clone, Copy)]
+struct RitzPairs<'a> {
+    theta: &'a [f64],
+    ritz: &'a Mat<f64>,
+    wanted: usize,
+    known: usize,
 }
 
 struct CheckedPairs {
@@ -536,17 +575,19 @@ struct CheckedPairs {
 }
 
 /// λ = σ + 1/θ, ascending, with the residual check on the original pencil.
-#[allow(clippy::too_many_arguments)]
-fn checked_pairs(
-    k: &SparseSymmetric,
-    m: &MassMatrix,
-    sigma: f64,
-    wanted: usize,
-    known: usize,
-    theta: &[f64],
-    ritz: &Mat<f64>,
-    params: &PartialEigenParameters,
-) -> Result<CheckedPairs> {
+fn checked_pairs(pencil: &ShiftedPencil<'_>, pairs: &RitzPairs<'_>) -> Result<CheckedPairs> {
+    let ShiftedPencil {
+        k,
+        m,
+        sigma,
+        params,
+    } = *pencil;
+    let RitzPairs {
+        theta,
+        ritz,
+        wanted,
+        known,
+    } = *pairs;
     let n = k.dim();
     let mut values = Vec::with_capacity(wanted);
     let mut vectors = Mat::<f64>::zeros(n, wanted);
@@ -569,11 +610,12 @@ fn checked_pairs(
         k,
         &values,
         vectors.as_ref(),
-        kv.as_ref(),
-        mvv.as_ref(),
+        (kv.as_ref(), mvv.as_ref()),
         zero_energy,
-        params.residual_tolerance,
-        params.data_precision,
+        ResidualCheck {
+            tolerance: params.residual_tolerance,
+            data_precision: params.data_precision,
+        },
     );
     let (converged, max_residual, residuals) =
         (checked.converged(), checked.max, checked.residuals);

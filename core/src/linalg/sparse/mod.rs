@@ -16,7 +16,7 @@ pub use indefinite_factor::{INDEFINITE_SOLVE_TOLERANCE, IndefiniteFactor};
 pub use mass_matrix::MassMatrix;
 pub use multifrontal_inertia::{Inertia, TRUSTED_BACKWARD_ERROR, multifrontal_inertia};
 pub use negative_shift::negative_shift;
-pub(in crate::linalg) use pair_residuals::{PairResiduals, pair_residuals};
+pub(in crate::linalg) use pair_residuals::{PairResiduals, ResidualCheck, pair_residuals};
 pub use sparse_rhs_solve::ForwardReach;
 pub use sparse_symmetric::{SparseAssembly, SparseSymmetric, SparsityPattern};
 pub use symmetric_factor::{SymbolicFactor, SymmetricFactor};

@@ -31,20 +31,30 @@ impl PairResiduals {
     }
 }
 
+/// What a pair's residual is checked to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ResidualCheck {
+    /// The largest residual that passes (above the round-off floor).
+    pub tolerance: f64,
+    /// The relative precision $K$ and $M$ are known to (the digits they were written with).
+    pub data_precision: f64,
+}
+
 /// The residuals of the pairs (`values`, the columns of `vectors`) of $(K, M)$ from their
 /// images `kv` $= KV$ and `mv` $= MV$; the first `zero_energy` pairs are measured against
-/// $\max|K|\,\|\varphi\|$. `data_precision` is the relative precision $K$ and $M$ are known to.
-#[allow(clippy::too_many_arguments)]
+/// $\max|K|\,\|\varphi\|$.
 pub(crate) fn pair_residuals(
     k: &SparseSymmetric,
     values: &[f64],
     vectors: MatRef<'_, f64>,
-    kv: MatRef<'_, f64>,
-    mv: MatRef<'_, f64>,
+    (kv, mv): (MatRef<'_, f64>, MatRef<'_, f64>),
     zero_energy: usize,
-    tolerance: f64,
-    data_precision: f64,
+    check: ResidualCheck,
 ) -> PairResiduals {
+    let ResidualCheck {
+        tolerance,
+        data_precision,
+    } = check;
     let n = vectors.nrows();
     let count = values.len();
     assert_eq!(

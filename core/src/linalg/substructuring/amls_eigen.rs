@@ -23,7 +23,7 @@ use crate::linalg::dense::{
 use crate::linalg::eigen::PartialEigenParameters;
 use crate::linalg::eigen::sturm_count;
 use crate::linalg::sparse::{
-    MassMatrix, PairResiduals, SparseSymmetric, SymbolicFactor, pair_residuals,
+    MassMatrix, PairResiduals, ResidualCheck, SparseSymmetric, SymbolicFactor, pair_residuals,
 };
 use crate::{Error, Result};
 
@@ -63,6 +63,16 @@ impl Default for AmlsEigenParameters {
             tolerance: 1e-8,
             data_precision: f64::EPSILON,
             max_iterations: 60,
+        }
+    }
+}
+
+impl AmlsEigenParameters {
+    /// What the pairs' residuals are checked to.
+    fn residual_check(&self) -> ResidualCheck {
+        ResidualCheck {
+            tolerance: self.tolerance,
+            data_precision: self.data_precision,
         }
     }
 }
@@ -248,11 +258,9 @@ pub fn amls_lowest_modes(
         k,
         &null_values,
         null.as_ref(),
-        k_null.as_ref(),
-        m_null.as_ref(),
+        (k_null.as_ref(), m_null.as_ref()),
         z,
-        params.tolerance,
-        params.data_precision,
+        params.residual_check(),
     )
     .residuals;
     let mut all_values = null_values;
@@ -335,11 +343,9 @@ fn rayleigh_ritz(
         k,
         &small.values,
         vectors.as_ref(),
-        kv.as_ref(),
-        mv.as_ref(),
+        (kv.as_ref(), mv.as_ref()),
         zero_energy,
-        params.tolerance,
-        params.data_precision,
+        params.residual_check(),
     );
     for j in 0..vectors.ncols() {
         fix_sign(vectors.as_mut().col_mut(j));
