@@ -151,7 +151,7 @@ impl Controls {
         let boundary = if c.boundary.is_empty() || (refined && self.boundary == join(c.boundary)) {
             None
         } else {
-            let nodes = SceneOptions::boundary_from_text(self.scene, &self.boundary)?;
+            let nodes = SceneOptions::boundary_from_text(self.scene.as_str(), &self.boundary)?;
             Some(nodes)
         };
         let methods = self.methods.clone();

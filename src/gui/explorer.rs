@@ -1,13 +1,16 @@
 //! The explorer's state and side panel, without the viewer (so tests can drive it).
 
-use std::time::{Duration, Instant};
+use std::{
+    sync::Arc,
+    time::{Duration, Instant},
+};
 
 use rerun::external::egui;
 
 use crate::scenes::{self, SceneInfo};
 
 use super::{
-    Change, Command, Computed, Controls, Worker, report_view::table_ui,
+    Change, Command, Computed, Controls, ExplorerError, Worker, report_view::table_ui,
     viewer_handoff::HandoffState,
 };
 use crate::body_file::{BodyHandle, ImportedBody};
@@ -22,8 +25,8 @@ pub struct Explorer {
     pub computing_since: Option<Instant>,
     /// The last good result, kept on screen when a later request fails.
     pub current: Option<Computed>,
-    /// The cause of the last failure, if the last request failed.
-    pub error: Option<String>,
+    /// The last failure, if the last request or command failed.
+    pub error: Option<ExplorerError>,
     /// From request to result on the UI thread, per finished request (switch latency), newest
     /// last.
     pub latencies: Vec<Duration>,
@@ -102,7 +105,7 @@ impl Explorer {
                     .submit(self.generation, self.controls.scene, options);
                 self.computing_since = Some(Instant::now());
             }
-            Err(e) => self.error = Some(e.to_string()),
+            Err(e) => self.error = Some(ExplorerError::Settings(Arc::new(e))),
         }
     }
 
@@ -250,7 +253,12 @@ impl Explorer {
                         Ok(crate::atomic_file::write_bytes_atomically(&path, &bytes)?)
                     }) {
                         Ok(()) => self.status = format!("saved {}", path.display()),
-                        Err(e) => self.error = Some(e.to_string()),
+                        Err(e) => {
+                            self.error = Some(ExplorerError::Save {
+                                path,
+                                error: Arc::new(e),
+                            })
+                        }
                     },
                     None => self.status = "nothing to save yet".into(),
                 },

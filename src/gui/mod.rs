@@ -9,6 +9,7 @@ mod app;
 mod capture;
 mod controls;
 mod explorer;
+mod explorer_error;
 mod model_panel;
 mod report_view;
 mod simulation_controls;
@@ -21,6 +22,7 @@ pub use app::{FEWER_MODES, MORE_MODES, VIEWER_AREA, ViewerOptions, run, run_with
 pub use capture::FrameSeries;
 pub use controls::{Change, Command, Controls, MESH_PRESETS};
 pub use explorer::Explorer;
+pub use explorer_error::ExplorerError;
 pub use simulation_controls::{DriveMotion, SimulationControls};
 pub use viewer_handoff::{HandoffState, Offer, ViewerHandoff};
 pub use worker::{Computed, Finished, Worker};

@@ -14,6 +14,7 @@ use std::{
 
 use rerun::external::{egui, re_log_types::LogMsg};
 
+use super::ExplorerError;
 use crate::{
     Progress, ProgressReading,
     record::Recorder,
@@ -52,8 +53,8 @@ impl Computed {
 pub struct Finished {
     /// The request's generation.
     pub generation: u64,
-    /// The result, or the error's cause chain.
-    pub result: Result<Computed, String>,
+    /// The result, or what failed.
+    pub result: Result<Computed, ExplorerError>,
     /// How long the computation took.
     pub elapsed: Duration,
 }
@@ -309,12 +310,14 @@ fn lower_priority() {
     }
 }
 
-fn compute(job: &Job) -> Result<Computed, String> {
+fn compute(job: &Job) -> Result<Computed, ExplorerError> {
     let (scene, options, generation) = (job.scene, &job.options, job.generation);
-    let chain = |e: crate::Error| e.cause_chain();
     let s = scenes::get(scene);
     let start = Instant::now();
-    let out = s.execute(options).map_err(chain)?;
+    let out = s.execute(options).map_err(|e| ExplorerError::Scene {
+        scene,
+        error: Arc::new(e),
+    })?;
     let compute_s = start.elapsed().as_secs_f64();
     // The window makes the layout active once the whole recording is in the viewer.
     let recorder = Recorder {
@@ -323,7 +326,12 @@ fn compute(job: &Job) -> Result<Computed, String> {
         viewer_area: Some(super::VIEWER_AREA),
     };
     let start = Instant::now();
-    let messages = recorder.messages(&out).map_err(chain)?;
+    let messages = recorder
+        .messages(&out)
+        .map_err(|e| ExplorerError::Recording {
+            scene,
+            error: Arc::new(e),
+        })?;
     let messages_s = start.elapsed().as_secs_f64();
     Ok(Computed {
         scene,

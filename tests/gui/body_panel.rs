@@ -1,20 +1,17 @@
 //! A user's body in the panel, every scene's default controls, and the requests the explorer
 //! anticipates.
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
-use egui_kittest::{Harness, kittest::Queryable};
+use egui_kittest::kittest::Queryable;
 use flexmodes::{
     gui::{Controls, Explorer},
-    record::RecordingDigest,
     reduction::Method,
     scenes::SceneId,
 };
-use rerun::external::egui::{self, accesskit::Role};
+use rerun::external::egui::accesskit::Role;
 
-use super::{
-    body_harness, full_model_sim1, harness, harness_with, next_result, paths, settle, wait_for,
-};
+use super::{body_harness, full_model_sim1, harness, next_result, paths, settle, wait_for};
 
 #[test]
 fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
@@ -33,7 +30,23 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
     settle(&mut h);
     assert_eq!(h.state().controls.boundary, "guyan_extra");
     let error = h.state().error.clone().expect("a singular interface");
-    assert!(error.contains("K_ii is singular"), "{error}");
+    assert!(error.to_string().contains("K_ii is singular"), "{error}");
+    // Typed: the scene's error, and under it the reduction's with its data.
+    match &error {
+        flexmodes::gui::ExplorerError::Scene { scene, error } => {
+            assert_eq!(*scene, SceneId::Modes);
+            assert!(
+                matches!(
+                    **error,
+                    flexmodes::Error::Core(flexmodes::error::CoreError::Reduction(
+                        flexmodes::reduction::ReductionError::SingularInterior { .. }
+                    ))
+                ),
+                "{error:?}"
+            );
+        }
+        other => panic!("not the scene's error: {other:?}"),
+    }
     h.get_by_label("top_centre").click();
     settle(&mut h);
     assert!(h.state().error.is_some(), "one node restrains nothing");
@@ -112,7 +125,14 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
     h.state_mut().request();
     h.step();
     let error = h.state().error.clone().unwrap();
-    assert!(error.contains("/nonexistent/body.toml"), "{error}");
+    assert!(
+        error.to_string().contains("/nonexistent/body.toml"),
+        "{error}"
+    );
+    assert!(
+        matches!(error, flexmodes::gui::ExplorerError::Settings(_)),
+        "a body that does not load is the panel's settings: {error:?}"
+    );
     assert!(h.state().current.is_some());
 }
 

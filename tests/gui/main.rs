@@ -4,14 +4,9 @@
 
 use std::time::{Duration, Instant};
 
-use egui_kittest::{Harness, kittest::Queryable};
-use flexmodes::{
-    gui::{Controls, Explorer},
-    record::RecordingDigest,
-    reduction::Method,
-    scenes::SceneId,
-};
-use rerun::external::egui::{self, accesskit::Role};
+use egui_kittest::Harness;
+use flexmodes::gui::{Controls, Explorer};
+use rerun::external::egui::{self};
 
 mod body_panel;
 mod scene_controls;

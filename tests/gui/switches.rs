@@ -1,20 +1,11 @@
 //! Switches as a user makes them: the recording after any switches equals a fresh one, the
 //! persisted controls, a user's body simulated, the layout kept where the views are the same.
 
-use std::time::{Duration, Instant};
-
-use egui_kittest::{Harness, kittest::Queryable};
-use flexmodes::{
-    gui::{Controls, Explorer},
-    record::RecordingDigest,
-    reduction::Method,
-    scenes::SceneId,
-};
+use egui_kittest::kittest::Queryable;
+use flexmodes::{gui::Controls, record::RecordingDigest, reduction::Method, scenes::SceneId};
 use rerun::external::egui::{self, accesskit::Role};
 
-use super::{
-    body_harness, full_model_sim1, harness, harness_with, next_result, paths, settle, wait_for,
-};
+use super::{harness_with, paths, settle};
 
 /// The recording shown after `switches` applied one after the other (each waited for), and
 /// the digest of a fresh explorer's recording of the final controls.

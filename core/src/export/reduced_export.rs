@@ -14,14 +14,14 @@ use crate::{
     analysis::{count_zero_energy_modes_by, zero_energy_below, zero_energy_threshold_hz},
     atomic_file::write_atomically,
     body_file::{ImportedBody, write_array, write_npy},
-    fem::InertiaLoads,
-    linalg::generalized_eigen,
-    models::{BodyInterfaces, BodyReducer},
+    fem::{FeModel, InertiaLoads},
+    linalg::{SturmCount, generalized_eigen},
+    models::{BodyInterfaces, BodyReducer, macneal_rubin_on_body},
     reduction::{
         AveragingInterface, Basis, CONSTRAINT_COUPLING_TOLERANCE, Eigensolver, InteriorProblem,
-        MacNealRubinParameters, Method, ModeSelection, ReducedMatrices, ReductionRequest,
-        RigidInterface, SolverPath, macneal_rubin, reduce, reduce_interface, reduce_interior,
-        tie_rigid_interfaces, with_inertia_residual_vectors,
+        Method, ModeSelection, ReducedMatrices, ReductionRequest, RigidInterface, SolverPath,
+        reduce, reduce_interface, reduce_interior, tie_rigid_interfaces,
+        with_inertia_residual_vectors,
     },
 };
 
@@ -221,99 +221,8 @@ pub fn reduce_for_export(
     let model = &body.model;
     let mut timings: Vec<(&'static str, f64)> = Vec::new();
     let started = Instant::now();
-    let basis = match method {
-        // Free-interface modes and residual flexibility; the r-set a 3-2-1 support of
-        // interior nodes.
-        Method::MacNealRubin => Some(macneal_rubin(
-            model,
-            &MacNealRubinParameters {
-                interface: model.dofs_of_nodes(boundary)?,
-                r_set: crate::models::three_two_one_support(model, boundary)?,
-                modes: ModeSelection::Count(modes),
-                held: Vec::new(),
-            },
-        )?),
-        Method::BenfieldHruda | Method::MomentMatching | Method::BalancedTruncation => None,
-        // An averaging interface: BodyReducer says which methods it takes.
-        _ if !parameters.averaging_interfaces.is_empty() => None,
-        Method::NoReduction | Method::Eitelberg => Some(reduce(
-            model,
-            &ReductionRequest {
-                method,
-                boundary_nodes: boundary.to_vec(),
-                modes: ModeSelection::Count(modes),
-                solver: SolverPath::Auto,
-                ..Default::default()
-            },
-        )?),
-        // Rigid interfaces tied in the boundary coordinates: six constraint modes per master.
-        _ => {
-            let mut problem = InteriorProblem::new(model, boundary, SolverPath::Auto)?
-                .with_eigensolver(parameters.eigensolver)
-                .with_rigid_interfaces(&parameters.rigid_interfaces)?;
-            let basis = reduce_interior(
-                &mut problem,
-                &ReductionRequest::of(method).modes(ModeSelection::Count(modes)),
-            )?;
-            let basis = match parameters.interface_modes {
-                Some(count) => reduce_interface(model, basis, count)?,
-                None => basis,
-            };
-            // Residual vectors need a boundary that holds the body (modal truncation may
-            // have none).
-            if parameters.residual_vectors && problem.check_restraint().is_ok() {
-                let loads = InertiaLoads::of(model);
-                Some(with_inertia_residual_vectors(&mut problem, basis, &loads)?.0)
-            } else {
-                Some(basis)
-            }
-        }
-    };
-    let basis = match basis {
-        Some(b) => {
-            // The others have no unit boundary columns: tying them names the DOF.
-            let b = if matches!(
-                method,
-                Method::MacNealRubin | Method::NoReduction | Method::Eitelberg
-            ) {
-                tie_rigid_interfaces(model, b, &parameters.rigid_interfaces)?
-            } else {
-                b
-            };
-            let interior_built = !matches!(
-                method,
-                Method::MacNealRubin | Method::NoReduction | Method::Eitelberg
-            );
-            Some(match parameters.interface_modes {
-                // Made with the basis above, before its residual vectors.
-                _ if interior_built => b,
-                Some(count) => reduce_interface(model, b, count)?,
-                None => b,
-            })
-        }
-        None => None,
-    };
-    let mut free_free_sturm = None;
-    let basis = match basis {
-        Some(b) => b,
-        None => {
-            // Built from the interface loads and the body's free-free modes (models'
-            // BodyReducer): rigid interfaces give their masters' six loads, nothing to tie.
-            let full = count_zero_energy_modes_by(model, 10, parameters.eigensolver)?.0;
-            free_free_sturm = Some(full.modes.sturm);
-            let interfaces = BodyInterfaces {
-                boundary: boundary.to_vec(),
-                rigid: parameters.rigid_interfaces.clone(),
-                averaging: parameters.averaging_interfaces.clone(),
-                interface_modes: parameters.interface_modes,
-            };
-            let full_s = started.elapsed().as_secs_f64();
-            BodyReducer::new(model, interfaces, &full, full_s, Progress::default())?
-                .with_residual_vectors(parameters.residual_vectors)
-                .reduce(method, modes)?
-                .basis
-        }
-    };
+    let (basis, free_free_sturm) =
+        export_basis(model, (method, boundary, modes), parameters, started)?;
     let total = started.elapsed().as_secs_f64();
     let s = &basis.statistics;
     timings.push(("factorisation", s.factorization_s));
@@ -379,6 +288,101 @@ pub fn reduce_for_export(
         exudyn,
         timings,
     })
+}
+
+/// The basis of `method` on `boundary` with `modes` kept modes as [`export`] builds it, and the
+/// body's free-free Sturm check when the method needed the free-free modes. `started` is when
+/// the export began (a body reducer's shared work counts from it).
+fn export_basis(
+    model: &FeModel,
+    (method, boundary, modes): (Method, &[usize], usize),
+    parameters: &ExportParameters,
+    started: Instant,
+) -> Result<(Basis, Option<Option<SturmCount>>)> {
+    // These have no unit boundary columns: rigid interfaces are tied after them, naming the
+    // DOF, and their interface shapes reduced after that.
+    let tied_after = matches!(
+        method,
+        Method::MacNealRubin | Method::NoReduction | Method::Eitelberg
+    );
+    let built = match method {
+        Method::MacNealRubin => Some(macneal_rubin_on_body(model, boundary, modes)?),
+        Method::BenfieldHruda | Method::MomentMatching | Method::BalancedTruncation => None,
+        // An averaging interface: BodyReducer says which methods it takes.
+        _ if !parameters.averaging_interfaces.is_empty() => None,
+        Method::NoReduction | Method::Eitelberg => Some(reduce(
+            model,
+            &ReductionRequest {
+                method,
+                boundary_nodes: boundary.to_vec(),
+                modes: ModeSelection::Count(modes),
+                solver: SolverPath::Auto,
+                ..Default::default()
+            },
+        )?),
+        _ => Some(interior_basis(
+            model,
+            (method, boundary, modes),
+            parameters,
+        )?),
+    };
+    match built {
+        Some(b) if tied_after => {
+            let b = tie_rigid_interfaces(model, b, &parameters.rigid_interfaces)?;
+            let b = match parameters.interface_modes {
+                Some(count) => reduce_interface(model, b, count)?,
+                None => b,
+            };
+            Ok((b, None))
+        }
+        Some(b) => Ok((b, None)),
+        None => {
+            // Built from the interface loads and the body's free-free modes (models'
+            // BodyReducer): rigid interfaces give their masters' six loads, nothing to tie.
+            let full = count_zero_energy_modes_by(model, 10, parameters.eigensolver)?.0;
+            let sturm = full.modes.sturm;
+            let interfaces = BodyInterfaces {
+                boundary: boundary.to_vec(),
+                rigid: parameters.rigid_interfaces.clone(),
+                averaging: parameters.averaging_interfaces.clone(),
+                interface_modes: parameters.interface_modes,
+            };
+            let full_s = started.elapsed().as_secs_f64();
+            let basis = BodyReducer::new(model, interfaces, &full, full_s, Progress::default())?
+                .with_residual_vectors(parameters.residual_vectors)
+                .reduce(method, modes)?
+                .basis;
+            Ok((basis, Some(sturm)))
+        }
+    }
+}
+
+/// A fixed-interface method's basis (GR, MT, CB, MC) from the interior problem, rigid
+/// interfaces tied in its boundary coordinates (six constraint modes per master), interface
+/// shapes reduced where asked, then the inertia-load residual vectors where asked and the
+/// boundary holds the body (modal truncation may have none).
+fn interior_basis(
+    model: &FeModel,
+    (method, boundary, modes): (Method, &[usize], usize),
+    parameters: &ExportParameters,
+) -> Result<Basis> {
+    let mut problem = InteriorProblem::new(model, boundary, SolverPath::Auto)?
+        .with_eigensolver(parameters.eigensolver)
+        .with_rigid_interfaces(&parameters.rigid_interfaces)?;
+    let basis = reduce_interior(
+        &mut problem,
+        &ReductionRequest::of(method).modes(ModeSelection::Count(modes)),
+    )?;
+    let basis = match parameters.interface_modes {
+        Some(count) => reduce_interface(model, basis, count)?,
+        None => basis,
+    };
+    if parameters.residual_vectors && problem.check_restraint().is_ok() {
+        let loads = InertiaLoads::of(model);
+        Ok(with_inertia_residual_vectors(&mut problem, basis, &loads)?.0)
+    } else {
+        Ok(basis)
+    }
 }
 
 impl ReducedExport {

@@ -15,15 +15,15 @@ use crate::{
     linalg::GeneralizedEigen,
     progress::Progress,
     reduction::{
-        Basis, ColumnKind, InterfaceLoads, InteriorProblem, MacNealRubinParameters, Method,
-        ModalBalancedParameters, ModalInfluence, ModalModel, ModeSelection,
-        MomentMatchingParameters, ReductionError, ResidualVectorsAdded, SolverPath,
-        lowest_free_modes, macneal_rubin, modal_balanced_basis, modal_influence, moment_matching,
-        reduce_interface, reduce_interior, static_share_outside, with_inertia_residual_vectors,
+        Basis, ColumnKind, InterfaceLoads, InteriorProblem, Method, ModalBalancedParameters,
+        ModalInfluence, ModalModel, ModeSelection, MomentMatchingParameters, ReductionError,
+        ResidualVectorsAdded, SolverPath, lowest_free_modes, modal_balanced_basis, modal_influence,
+        moment_matching, reduce_interface, reduce_interior, static_share_outside,
+        with_inertia_residual_vectors,
     },
 };
 
-use super::{BodyInterfaces, three_two_one_support};
+use super::{BodyInterfaces, macneal_rubin_on_body};
 
 /// Every method a body can be reduced by, in the order tables list them.
 pub const BODY_METHODS: [Method; 8] = [
@@ -383,18 +383,8 @@ impl<'a> BodyReducer<'a> {
                     }
                     .into());
                 }
-                // Free-interface modes and residual flexibility, the rigid motions held for
-                // the flexibility by a 3-2-1 support of interior nodes (Spanos–Tsuha Eq. 11).
                 self.progress.phase("MacNeal-Rubin reduction")?;
-                macneal_rubin(
-                    model,
-                    &MacNealRubinParameters {
-                        interface: model.dofs_of_nodes(&self.interfaces.boundary)?,
-                        r_set: three_two_one_support(model, &self.interfaces.boundary)?,
-                        modes: ModeSelection::Count(kept),
-                        held: Vec::new(),
-                    },
-                )?
+                macneal_rubin_on_body(model, &self.interfaces.boundary, kept)?
             }
             Method::BenfieldHruda => {
                 // Spanos–Tsuha Eq. (18) with the neighbours' loading (Eqs. 19–20): a body

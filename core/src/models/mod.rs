@@ -96,7 +96,7 @@ pub use spinning_beam_study::{
 };
 pub use spinning_model_label::{model_label, model_name};
 pub use spinning_pairs::{CAMPBELL_DENSE_LIMIT, SpinningPairs, spinning_pairs, track_by_mac};
-pub use statically_determinate_support::three_two_one_support;
+pub use statically_determinate_support::{macneal_rubin_on_body, three_two_one_support};
 pub use substructuring_ladder::{
     LadderPoint, RefinedComparison, SubstructuringParameters, SubstructuringStudy, TreePart,
     substructuring_study,

@@ -6,7 +6,23 @@ use crate::{
     Result,
     error::ReductionError,
     fem::{Direction, FeModel, NodeDof, NodeIndex},
+    reduction::{Basis, MacNealRubinParameters, ModeSelection, macneal_rubin},
 };
+
+/// MacNeal–Rubin's basis of a free body with the interface `boundary` (1-based nodes): `kept`
+/// free-interface modes and the residual flexibility, the rigid motions held for the
+/// flexibility by the [`three_two_one_support`] of the interior nodes (Spanos–Tsuha Eq. 11).
+pub fn macneal_rubin_on_body(model: &FeModel, boundary: &[usize], kept: usize) -> Result<Basis> {
+    macneal_rubin(
+        model,
+        &MacNealRubinParameters {
+            interface: model.dofs_of_nodes(boundary)?,
+            r_set: three_two_one_support(model, boundary)?,
+            modes: ModeSelection::Count(kept),
+            held: Vec::new(),
+        },
+    )
+}
 
 /// Six translational DOF of three nodes outside `excluded` (1-based) that hold every rigid
 /// motion of the body and no more: all three of the node A farthest from the mass centre, the

@@ -44,8 +44,58 @@ pub fn recording(
     text: &str,
     length_unit: &str,
 ) -> RecordingContent {
+    let (mut visuals, scale) = lanes(model, study);
+    let plots = output_plots(study, length_unit, &mut visuals);
+    visuals.extend(chart(study));
+    // The table's title line is a heading in a terminal, a paragraph in the panel.
+    let text = text.strip_prefix("# ").unwrap_or(text);
+    let mut report = Report::new("simulate");
+    // The runs' table registered, so the explorer draws it as a grid with its ranks.
+    report.add_table(crate::scenes::body::body_simulation::runs_table(study));
+    report.table = text.to_string();
+    let view = if scale != 1.0 {
+        format!("turning frame, one lane per model (deflection ×{scale}; grey: undeformed)")
+    } else {
+        "turning frame, one lane per model (grey: undeformed)".to_string()
+    };
+    let right = Layout::Vertical(
+        vec![
+            Layout::Spatial2D {
+                name: "history error against online s (log–log)".into(),
+                origin: "/bench/error_vs_online".into(),
+            },
+            Layout::scene_text(),
+        ],
+        vec![1.0, 1.0],
+    );
+    let left = Layout::Vertical(
+        vec![
+            Layout::view3d(&view, "/world/body"),
+            Layout::Horizontal(plots, vec![]),
+        ],
+        vec![1.5, 1.0],
+    );
+    RecordingContent {
+        report,
+        markdown: format!(
+            "# simulate\n\nLeft: the body in the frame that turns with the drive, one lane per \
+             model (the full body and each method's largest model), its deflection magnified; \
+             below, each output's largest component over time per model. Right: each reduced \
+             model's history error against its online time (log–log), one line per method \
+             through its mode counts, the Pareto front in dark grey.\n\n{text}"
+        ),
+        visuals,
+        layout: Layout::Horizontal(vec![left, right], vec![2.0, 1.0]),
+        timeline: Some("sim_time".into()),
+        y_up: false,
+    }
+}
+
+/// One lane per drawn model (its undeformed ghost, label and deforming body), and the
+/// deflection's display scale.
+fn lanes(model: &FeModel, study: &DrivenStudy) -> (Vec<Visual>, f64) {
     let geometry = Geometry::of(model);
-    let lanes = drawn(study);
+    let drawn_runs = drawn(study);
     let largest = study
         .runs
         .iter()
@@ -66,7 +116,7 @@ pub fn recording(
     let top = geometry.nodes.iter().map(|p| p[2]).fold(f64::MIN, f64::max);
     let every = study.times.len().div_ceil(DRAWN_SAMPLES).max(1);
     let mut visuals = Vec::new();
-    for (k, run) in lanes.iter().enumerate() {
+    for (k, run) in drawn_runs.iter().enumerate() {
         let lane = format!(
             "world/body/{}",
             run.label().to_lowercase().replace(' ', "_")
@@ -111,7 +161,12 @@ pub fn recording(
             color: color(run),
         });
     }
-    // Each output's largest component (by the first run) over time, per model.
+    (visuals, scale)
+}
+
+/// Each output's largest component (by the first run) over time, one series per model into
+/// `visuals`, and their time-series views.
+fn output_plots(study: &DrivenStudy, length_unit: &str, visuals: &mut Vec<Visual>) -> Vec<Layout> {
     let mut plots = Vec::new();
     for (o, name) in study.output_names.iter().enumerate() {
         let Some(first) = study.runs.first() else {
@@ -150,49 +205,7 @@ pub fn recording(
             origin: format!("/plots/{name}_{axis_name}"),
         });
     }
-    visuals.extend(chart(study));
-    // The table's title line is a heading in a terminal, a paragraph in the panel.
-    let text = text.strip_prefix("# ").unwrap_or(text);
-    let mut report = Report::new("simulate");
-    // The runs' table registered, so the explorer draws it as a grid with its ranks.
-    report.add_table(crate::scenes::body::body_simulation::runs_table(study));
-    report.table = text.to_string();
-    let view = if scale != 1.0 {
-        format!("turning frame, one lane per model (deflection ×{scale}; grey: undeformed)")
-    } else {
-        "turning frame, one lane per model (grey: undeformed)".to_string()
-    };
-    let right = Layout::Vertical(
-        vec![
-            Layout::Spatial2D {
-                name: "history error against online s (log–log)".into(),
-                origin: "/bench/error_vs_online".into(),
-            },
-            Layout::scene_text(),
-        ],
-        vec![1.0, 1.0],
-    );
-    let left = Layout::Vertical(
-        vec![
-            Layout::view3d(&view, "/world/body"),
-            Layout::Horizontal(plots, vec![]),
-        ],
-        vec![1.5, 1.0],
-    );
-    RecordingContent {
-        report,
-        markdown: format!(
-            "# simulate\n\nLeft: the body in the frame that turns with the drive, one lane per \
-             model (the full body and each method's largest model), its deflection magnified; \
-             below, each output's largest component over time per model. Right: each reduced \
-             model's history error against its online time (log–log), one line per method \
-             through its mode counts, the Pareto front in dark grey.\n\n{text}"
-        ),
-        visuals,
-        layout: Layout::Horizontal(vec![left, right], vec![2.0, 1.0]),
-        timeline: Some("sim_time".into()),
-        y_up: false,
-    }
+    plots
 }
 
 /// History error against online time per method, and the Pareto front.

@@ -116,8 +116,18 @@ fn point_json(p: &LadderPoint) -> Value {
 }
 
 fn report(study: &SubstructuringStudy) -> Report {
-    let params = &study.parameters;
     let mut report = Report::new(INFO.name);
+    insert_parameters(&mut report, study);
+    insert_results(&mut report, study);
+    let ladder_md = report.add_table(ladder_table(study));
+    let tree_md = report.add_table(tree_table(study));
+    report.table = scene_text(study, &ladder_md, &tree_md);
+    report
+}
+
+/// The study's parameters: mesh, DOF, compared modes, leaf size and cut-off ratios.
+fn insert_parameters(report: &mut Report, study: &SubstructuringStudy) {
+    let params = &study.parameters;
     report
         .parameters
         .insert("bricks".into(), json!(params.bricks));
@@ -136,6 +146,11 @@ fn report(study: &SubstructuringStudy) -> Report {
     report
         .parameters
         .insert("shown_ratio".into(), json!(params.shown_ratio));
+}
+
+/// The ladder's points, the tree's levels and the refined pairs' statistics.
+fn insert_results(report: &mut Report, study: &SubstructuringStudy) {
+    let params = &study.parameters;
     report
         .results
         .insert("reference_hz".into(), json!(sig_vec(&study.reference_hz)));
@@ -182,7 +197,11 @@ fn report(study: &SubstructuringStudy) -> Report {
         refined[key] = value;
     }
     report.results.insert("refined".into(), refined);
+}
 
+/// One row per model of the ladder: the body itself, Guyan, Craig–Bampton and AMLS at each
+/// cut-off.
+fn ladder_table(study: &SubstructuringStudy) -> Table {
     let mut ladder = Table::new(&[
         "model",
         "cut-off Hz",
@@ -236,8 +255,12 @@ fn report(study: &SubstructuringStudy) -> Report {
     for p in &study.amls {
         ladder.push(row("AMLS", p));
     }
-    let ladder_md = report.add_table(ladder);
+    ladder
+}
 
+/// One row per level of the tree.
+fn tree_table(study: &SubstructuringStudy) -> Table {
+    let by_level = levels(study);
     let mut tree = Table::new(&["level", "parts", "leaves", "unknowns", "modes kept"]);
     for (l, r) in by_level.iter().enumerate() {
         tree.push(
@@ -247,9 +270,16 @@ fn report(study: &SubstructuringStudy) -> Report {
                 .collect(),
         );
     }
-    let tree_md = report.add_table(tree);
+    tree
+}
+
+/// The scene's text around its two tables.
+fn scene_text(study: &SubstructuringStudy, ladder_md: &str, tree_md: &str) -> String {
+    let params = &study.parameters;
+    let (r, s) = (&study.refined, &study.refined.statistics);
+    let rigid = study.model.dofs.rigid_body_count();
     let shown_hz = params.shown_ratio * study.reference_hz.last().copied().unwrap_or(0.0);
-    report.table = format!(
+    format!(
         "## The ladder\n\nThe largest relative error over the lowest {wanted} elastic \
          frequencies, paired by order. Guyan keeps the root separator's {root} DOF; \
          Craig–Bampton adds the halves' fixed-interface modes below the cut-off; AMLS keeps \
@@ -284,8 +314,7 @@ fn report(study: &SubstructuringStudy) -> Report {
         amls_s = sig3(r.amls_s),
         lanczos_s = sig3(r.lanczos_s),
         threads = crate::linalg::threads(),
-    );
-    report
+    )
 }
 
 /// Each part of the tree drawn by the mesh edges inside it: leaves grey, each level's
