@@ -210,6 +210,33 @@ pub fn run_scenario(
         label: None,
     }];
     visuals.extend(speed_accuracy(&runs, reference.as_ref()));
+    // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method.
+    let scale = opts.deformation_scale_or(info.name, || {
+        deformation_scale(
+            runs.iter().map(|(_, system, sim, _)| (*system, *sim)),
+            0,
+            model.size(),
+        )
+    })?;
+    lanes(
+        &mut visuals,
+        &runs,
+        &model,
+        &geometry,
+        &methods,
+        axes,
+        scale,
+    )?;
+    report
+        .results
+        .insert("deformation_scale".into(), json!(scale));
+    let layout = scenario_layout(&visuals, scale);
+    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("sim_time"))
+}
+
+/// The scenario's views: the slab lanes (drawn `scale` times) with the speed–accuracy chart
+/// and the health plots as tabs, above the three deflections of node 8.
+fn scenario_layout(visuals: &[Visual], scale: f64) -> Layout {
     // The three deflections side by side under the lanes; the health plots are tabs of the
     // large top view, where their titles fit a 1280 × 800 window.
     let plot_views: Vec<Layout> = DIRECTIONS
@@ -236,31 +263,11 @@ pub fn run_scenario(
             origin: "/plots/energy".into(),
         },
     ];
-    // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method.
-    let scale = opts.deformation_scale_or(info.name, || {
-        deformation_scale(
-            runs.iter().map(|(_, system, sim, _)| (*system, *sim)),
-            0,
-            model.size(),
-        )
-    })?;
-    lanes(
-        &mut visuals,
-        &runs,
-        &model,
-        &geometry,
-        &methods,
-        axes,
-        scale,
-    )?;
     let view = if scale != 1.0 {
         format!("slab lanes (×{scale}; grey: undeformed)")
     } else {
         "slab lanes (grey: undeformed)".to_string()
     };
-    report
-        .results
-        .insert("deformation_scale".into(), json!(scale));
     // The speed–accuracy chart as a tab of the large top view, where its labels fit.
     let mut top = vec![Layout::view3d(&view, "/world/slab")];
     if visuals.iter().any(|v| v.path() == "metrics/speed_accuracy") {
@@ -271,8 +278,7 @@ pub fn run_scenario(
     }
     top.extend(health);
     let top = Layout::Tabs(top);
-    let layout = simulation_layout(top, plot_views);
-    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("sim_time"))
+    simulation_layout(top, plot_views)
 }
 
 pub fn run_sim1(opts: &SceneOptions) -> Result<SceneOutput> {
