@@ -140,13 +140,8 @@ fn symmetric_eigen_falls_back_when_faer_fails() {
     bad[(5, 3)] = f64::NAN;
     let err = symmetric_eigen(bad.as_ref(), "poisoned").unwrap_err();
     assert!(
-        matches!(
-            err,
-            flexmodes::error::CoreError::Linalg(LinalgError::NotFinite { row: 3, col: 5, .. })
-        ) || matches!(
-            err,
-            flexmodes::error::CoreError::Linalg(LinalgError::NotFinite { row: 5, col: 3, .. })
-        ),
+        matches!(err, LinalgError::NotFinite { row: 3, col: 5, .. })
+            || matches!(err, LinalgError::NotFinite { row: 5, col: 3, .. }),
         "{err}"
     );
 }

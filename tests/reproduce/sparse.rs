@@ -132,11 +132,11 @@ fn partial_eigensolver_reports_how_far_it_got() {
         ..Default::default()
     };
     match lowest_modes(&k_ii, &m_ii, &factor, 0.0, 10, None, &params).unwrap_err() {
-        Error::Linalg(LinalgError::EigenNotConverged {
+        LinalgError::EigenNotConverged {
             converged,
             wanted,
             residual,
-        }) => {
+        } => {
             assert_eq!(wanted, 10);
             assert!(converged < 10);
             assert!(residual > 0.0 && residual.is_finite());

@@ -24,11 +24,11 @@ pub fn free_free_modes(model: &FeModel) -> Result<GeneralizedEigen> {
             limit: COMPLETE_EIGEN_LIMIT,
         });
     }
-    generalized_eigen(
+    Ok(generalized_eigen(
         model.k_dense().as_ref(),
         model.m_dense().as_ref(),
         "free-free",
-    )
+    )?)
 }
 
 /// The rigid-body modes and the `elastic` lowest elastic free-free modes: the complete dense
@@ -47,11 +47,11 @@ pub fn elastic_hz(e: &GeneralizedEigen) -> Vec<f64> {
 pub fn reduced_modes(model: &FeModel, basis: &Basis) -> Result<GeneralizedEigen> {
     let k = basis.reduced_stiffness(model);
     let m = basis.reduced_mass(model);
-    generalized_eigen(
+    Ok(generalized_eigen(
         k.as_ref(),
         m.as_ref(),
         MatrixLabel::of_method("reduced", basis.method.id()),
-    )
+    )?)
 }
 
 /// Elastic free-free frequencies of a reduced model, Hz, ascending.

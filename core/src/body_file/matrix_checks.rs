@@ -158,7 +158,7 @@ pub(super) fn check_mass(model: &FeModel, name: &str) -> Result<()> {
                 return Err(fail(dof, MassDefect::Diagonal { value: v }));
             }
             let symbolic = SymbolicFactor::analyse(m.as_faer())?;
-            if let Err(Error::Linalg(LinalgError::NonPositivePivot { index, .. })) =
+            if let Err(LinalgError::NonPositivePivot { index, .. }) =
                 SymmetricFactor::sparse(m.as_faer(), &symbolic, "mass")
             {
                 // A consistent mass integrated with too few points is singular but positive

@@ -96,7 +96,7 @@ pub enum LinalgError {
         shift: f64,
         tries: usize,
         #[source]
-        last: Option<Box<super::Error>>,
+        last: Option<Box<LinalgError>>,
     },
 
     /// An unpivoted $LDL^T$ factor of $K - \sigma' M$ that grew: its solves' backward error

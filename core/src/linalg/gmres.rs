@@ -10,10 +10,8 @@
 //! estimate alone (an ill-conditioned $A$ cannot give a smaller residual relative to $\|b\|$
 //! alone than its round-off $\varepsilon\||A||x|\|$).
 
-use crate::{
-    Result,
-    error::{LinalgError, MatrixLabel},
-};
+use crate::error::{LinalgError, MatrixLabel};
+use crate::linalg::Result;
 
 /// What a solve took.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -96,7 +94,7 @@ pub fn preconditioned_gmres(
         let beta = norm(&r);
         stats.residual = beta / b_norm;
         if !stats.residual.is_finite() {
-            return Err(inaccurate(f64::INFINITY).into());
+            return Err(inaccurate(f64::INFINITY));
         }
         if stats.residual > tolerance {
             stats.residual = beta / (b_norm + abs_norm(&x));
@@ -105,7 +103,7 @@ pub fn preconditioned_gmres(
             return Ok((x, stats));
         }
         if stats.iterations >= max_iterations {
-            return Err(inaccurate(stats.residual).into());
+            return Err(inaccurate(stats.residual));
         }
         // Arnoldi on A P⁻¹ with Givens rotations of the Hessenberg matrix.
         let m = RESTART.min(max_iterations - stats.iterations);
@@ -138,7 +136,7 @@ pub fn preconditioned_gmres(
             }
             let d = h[k][k].hypot(h[k + 1][k]);
             if d == 0.0 || !d.is_finite() {
-                return Err(inaccurate(stats.residual).into());
+                return Err(inaccurate(stats.residual));
             }
             cs[k] = h[k][k] / d;
             sn[k] = h[k + 1][k] / d;

@@ -21,16 +21,16 @@ pub fn estimated_reduction_bytes(dofs: usize) -> u64 {
 /// Refuses, before anything is allocated, a `dofs`-DOF sparse reduction whose
 /// [estimate](estimated_reduction_bytes) exceeds the memory the machine has free
 /// (`LinalgError::MeshTooLarge`); returns the estimate otherwise.
-pub fn check_reduction_memory(dofs: usize) -> crate::Result<u64> {
+pub fn check_reduction_memory(dofs: usize) -> crate::linalg::Result<u64> {
     let needed = estimated_reduction_bytes(dofs);
     if let Some(available) = available_bytes()
         && needed > available
     {
-        return Err(crate::Error::Linalg(LinalgError::MeshTooLarge {
+        return Err(LinalgError::MeshTooLarge {
             dofs,
             estimated_gb: needed as f64 / 1e9,
             available_gb: available as f64 / 1e9,
-        }));
+        });
     }
     Ok(needed)
 }
@@ -44,18 +44,16 @@ pub(crate) fn check_factor_memory(
     entries: usize,
     workspace: usize,
     available: Option<u64>,
-) -> crate::Result<()> {
+) -> crate::linalg::Result<()> {
     let needed = 8.0 * entries as f64 + workspace as f64;
     match available {
-        Some(free) if needed > free as f64 => {
-            Err(crate::Error::Linalg(LinalgError::FactorTooLarge {
-                what,
-                matrix: matrix.clone(),
-                entries,
-                needed_gb: needed / 1e9,
-                available_gb: free as f64 / 1e9,
-            }))
-        }
+        Some(free) if needed > free as f64 => Err(LinalgError::FactorTooLarge {
+            what,
+            matrix: matrix.clone(),
+            entries,
+            needed_gb: needed / 1e9,
+            available_gb: free as f64 / 1e9,
+        }),
         _ => Ok(()),
     }
 }

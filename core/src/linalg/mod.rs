@@ -12,6 +12,11 @@ mod sparse;
 mod substructuring;
 
 pub use crate::error::LinalgError;
+
+/// What a fallible linear-algebra function returns: its value, or the [`LinalgError`] that
+/// names the matrix and the check it failed.
+pub type Result<T> = std::result::Result<T, LinalgError>;
+
 pub use dense::SmallCholesky;
 pub use dense::{
     BlockSaddlePointWorkspace, REDUNDANT_PSD, REDUNDANT_SADDLE, block_saddle_point_solve,

@@ -98,7 +98,7 @@ fn sparse_pairs(k: &SparseSymmetric, m: &MassMatrix, count: usize) -> Result<Spi
             // Not positive definite: how many eigenvalues lie below zero.
             let below = inertia_at(k, m, &symbolic, 0.0)?;
             if below == 0 {
-                return Err(e);
+                return Err(e.into());
             }
             return Ok(SpinningPairs {
                 values: Vec::new(),

@@ -176,7 +176,14 @@ pub(super) fn amls_pairs(
         max_reductions: 4,
         ..defaults
     };
-    amls_lowest_modes(k, m, &tree, problem.wanted, problem.null, &params)
+    Ok(amls_lowest_modes(
+        k,
+        m,
+        &tree,
+        problem.wanted,
+        problem.null,
+        &params,
+    )?)
 }
 
 /// A guess of the `count`-th eigenfrequency (Hz) from the body alone, the smaller of two

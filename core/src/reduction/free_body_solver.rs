@@ -164,7 +164,7 @@ pub fn free_body_pairs(
         };
         let factor1 =
             || SymmetricFactor::sparse(k.shifted(m, sigma1).as_faer(), &symbolic, "K - σM");
-        let result = factor1().and_then(|made| {
+        let result = factor1().map_err(Error::from).and_then(|made| {
             sturm_checked(
                 pencil,
                 &mut ReleasableFactor::new(made, factor1),
@@ -197,7 +197,7 @@ pub fn free_body_pairs(
             Ok(all) => {
                 return Ok(all.first(wanted));
             }
-            Err(e) => failed.push(attempt(route3, wanted, e)?),
+            Err(e) => failed.push(attempt(route3, wanted, e.into())?),
         }
     }
     Err(Error::Linalg(LinalgError::EigenRoutesFailed {

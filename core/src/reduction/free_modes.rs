@@ -31,12 +31,12 @@ pub fn lowest_free_modes(model: &FeModel, elastic: usize) -> Result<GeneralizedE
 /// The pairs `selection` keeps of a small body's complete dense problem (only those
 /// transformed back and checked).
 fn dense_free_modes(model: &FeModel, selection: PairSelection) -> Result<GeneralizedEigen> {
-    generalized_eigen_selected(
+    Ok(generalized_eigen_selected(
         model.k_dense().as_ref(),
         model.m_dense().as_ref(),
         "free-free",
         selection,
-    )
+    )?)
 }
 
 /// The `wanted` lowest pairs of an unrestrained (or possibly restrained) body by shift-invert

@@ -391,7 +391,7 @@ impl<'a> InteriorProblem<'a> {
             selection,
         );
         self.statistics.eigen_s += started.elapsed().as_secs_f64();
-        eig
+        Ok(eig?)
     }
 
     /// The kept fixed-interface modes (Eq. 6.11), ascending and mass-normalised: the complete

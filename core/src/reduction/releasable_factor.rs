@@ -9,7 +9,7 @@
 
 use std::time::Instant;
 
-use crate::{Result, linalg::SymmetricFactor};
+use crate::linalg::{Result, SymmetricFactor};
 
 /// Bytes of factor values above which [`ReleasableFactor`] releases its factor before a Sturm
 /// count (256 MiB, 32 M entries: a body of roughly 60–100 k DOF). A smaller factor is kept: it

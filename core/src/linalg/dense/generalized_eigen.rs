@@ -28,10 +28,8 @@ use crate::error::LinalgError;
 use faer::{Mat, MatRef, Side};
 
 use super::{SymmetricEigenKernel, orthonormality_defect, symmetric_eigen_prefix};
-use crate::{
-    Error, Result,
-    error::{MatrixLabel, PencilPart},
-};
+use crate::error::{MatrixLabel, PencilPart};
+use crate::linalg::Result;
 
 /// Largest accepted normwise backward error $\eta_j$ of a dense generalised eigenpair.
 pub const PENCIL_BACKWARD_ERROR: f64 = 1e-10;
@@ -204,11 +202,11 @@ pub fn generalized_eigen_selected(
         for j in 0..n {
             for i in 0..n {
                 if !a[(i, j)].is_finite() {
-                    return Err(Error::Linalg(LinalgError::NotFinite {
+                    return Err(LinalgError::NotFinite {
                         what: what.part(part),
                         row: i,
                         col: j,
-                    }));
+                    });
                 }
             }
         }
@@ -218,10 +216,10 @@ pub fn generalized_eigen_selected(
     for (i, di) in d.iter_mut().enumerate() {
         let mii = m[(i, i)];
         if mii <= 0.0 {
-            return Err(Error::Linalg(LinalgError::NonPositivePivot {
+            return Err(LinalgError::NonPositivePivot {
                 matrix: what.part(PencilPart::Mass),
                 index: i,
-            }));
+            });
         }
         *di = 1.0 / mii.sqrt();
     }
@@ -232,11 +230,11 @@ pub fn generalized_eigen_selected(
     let s = if s > 0.0 { s } else { 1.0 };
     let k_tilde = Mat::from_fn(n, n, |i, j| kb[(i, j)] / s);
     let m_tilde = Mat::from_fn(n, n, |i, j| 0.5 * (m[(i, j)] + m[(j, i)]) * d[i] * d[j]);
-    let llt = m_tilde.llt(Side::Lower).map_err(|_| {
-        Error::Linalg(LinalgError::NotPositiveDefinite {
+    let llt = m_tilde
+        .llt(Side::Lower)
+        .map_err(|_| LinalgError::NotPositiveDefinite {
             matrix: what.part(PencilPart::Mass),
-        })
-    })?;
+        })?;
     let l = llt.L();
     // C = L^{-1} K̃ L^{-T}: two triangular solves.
     let mut x = k_tilde;
@@ -253,7 +251,7 @@ pub fn generalized_eigen_selected(
             |theta: &[f64]| selection.count(&theta.iter().map(|t| t * s).collect::<Vec<_>>());
         let standard = match symmetric_eigen_prefix(c.as_ref(), what.clone(), &[kernel], &keep) {
             Ok(e) => e,
-            Err(Error::Linalg(LinalgError::EigenCheckFailed { residual, .. })) => {
+            Err(LinalgError::EigenCheckFailed { residual, .. }) => {
                 worst = worst.min(residual);
                 continue;
             }
@@ -289,11 +287,11 @@ pub fn generalized_eigen_selected(
                 * PENCIL_BACKWARD_ERROR,
         );
     }
-    Err(Error::Linalg(LinalgError::EigenCheckFailed {
+    Err(LinalgError::EigenCheckFailed {
         what,
         residual: worst,
         tolerance: PENCIL_BACKWARD_ERROR,
-    }))
+    })
 }
 
 /// $\|A\|_1$, the largest absolute column sum.

@@ -64,7 +64,7 @@ pub fn symmetry_defect(a: MatRef<'_, f64>) -> f64 {
 ///
 /// Both bases are orthonormalised by a thin SVD (rank-revealing, so dependent columns are
 /// dropped); the cosines are the singular values of $Q_a^T Q_b$.
-pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> crate::Result<Vec<f64>> {
+pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> crate::linalg::Result<Vec<f64>> {
     let qa = orthonormal_basis(a)?;
     let qb = orthonormal_basis(b)?;
     let (qa, qb) = if qa.ncols() >= qb.ncols() {
@@ -73,10 +73,8 @@ pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> crate::Result
         (qb, qa)
     };
     let c = qa.transpose() * &qb;
-    let svd_err = |_| {
-        crate::Error::Linalg(LinalgError::DecompositionFailed {
-            what: "principal-angle SVD".into(),
-        })
+    let svd_err = |_| LinalgError::DecompositionFailed {
+        what: "principal-angle SVD".into(),
     };
     let cosines = c.singular_values().map_err(svd_err)?;
     let mut from_cos: Vec<f64> = cosines.iter().map(|&c| c.clamp(-1.0, 1.0).acos()).collect();
@@ -104,11 +102,9 @@ pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> crate::Result
         .collect())
 }
 
-fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::Result<Mat<f64>> {
-    let svd = a.thin_svd().map_err(|_| {
-        crate::Error::Linalg(LinalgError::DecompositionFailed {
-            what: "orthonormalisation SVD".into(),
-        })
+fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::linalg::Result<Mat<f64>> {
+    let svd = a.thin_svd().map_err(|_| LinalgError::DecompositionFailed {
+        what: "orthonormalisation SVD".into(),
     })?;
     let s = svd.S().column_vector();
     let smax = if s.nrows() > 0 { s[0] } else { 0.0 };
@@ -119,12 +115,12 @@ fn orthonormal_basis(a: MatRef<'_, f64>) -> crate::Result<Mat<f64>> {
 
 /// The numerical rank of `a`: its singular values above `relative` times the largest (0 for
 /// an empty or zero matrix).
-pub fn numerical_rank(a: MatRef<'_, f64>, relative: f64) -> crate::Result<usize> {
-    let s = a.singular_values().map_err(|_| {
-        crate::Error::Linalg(LinalgError::DecompositionFailed {
+pub fn numerical_rank(a: MatRef<'_, f64>, relative: f64) -> crate::linalg::Result<usize> {
+    let s = a
+        .singular_values()
+        .map_err(|_| LinalgError::DecompositionFailed {
             what: "rank singular values".into(),
-        })
-    })?;
+        })?;
     let largest = s.first().copied().unwrap_or(0.0);
     Ok(s.iter()
         .filter(|&&v| largest > 0.0 && v > relative * largest)
@@ -133,15 +129,13 @@ pub fn numerical_rank(a: MatRef<'_, f64>, relative: f64) -> crate::Result<usize>
 
 /// An orthonormal basis of $\{z : Az = 0\}$: the right singular vectors of A beyond its
 /// numerical rank (singular values above `tolerance`); the identity for a matrix without rows.
-pub fn null_space(a: MatRef<'_, f64>, tolerance: f64) -> crate::Result<Mat<f64>> {
+pub fn null_space(a: MatRef<'_, f64>, tolerance: f64) -> crate::linalg::Result<Mat<f64>> {
     let r = a.ncols();
     if a.nrows() == 0 {
         return Ok(identity(r));
     }
-    let svd = a.svd().map_err(|_| {
-        crate::Error::Linalg(LinalgError::DecompositionFailed {
-            what: "null-space SVD".into(),
-        })
+    let svd = a.svd().map_err(|_| LinalgError::DecompositionFailed {
+        what: "null-space SVD".into(),
     })?;
     let s = svd.S().column_vector();
     let rank = (0..s.nrows()).filter(|&i| s[i] > tolerance).count();

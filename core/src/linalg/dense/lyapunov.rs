@@ -3,7 +3,7 @@
 use crate::error::LinalgError;
 use faer::{Mat, MatRef, c64, linalg::solvers::DenseSolveCore};
 
-use crate::{Error, Result};
+use crate::linalg::Result;
 
 /// Relative residual above which the solve is reported as inaccurate.
 const RESIDUAL_TOLERANCE: f64 = 1e-8;
@@ -16,10 +16,8 @@ const RESIDUAL_TOLERANCE: f64 = 1e-8;
 /// `LinalgError::LyapunovInaccurate` instead of a wrong answer.
 pub fn solve_lyapunov(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>> {
     let n = a.nrows();
-    let evd = a.eigen().map_err(|_| {
-        Error::Linalg(LinalgError::DecompositionFailed {
-            what: "Lyapunov eigen".into(),
-        })
+    let evd = a.eigen().map_err(|_| LinalgError::DecompositionFailed {
+        what: "Lyapunov eigen".into(),
     })?;
     let v = evd.U().to_owned();
     let lambda: Vec<c64> = (0..n).map(|i| evd.S()[i]).collect();
@@ -49,9 +47,7 @@ pub fn solve_lyapunov(a: MatRef<'_, f64>, q: MatRef<'_, f64>) -> Result<Mat<f64>
     let scale = q.norm_l2().max(f64::MIN_POSITIVE);
     let rel = residual.norm_l2() / scale;
     if !rel.is_finite() || rel > RESIDUAL_TOLERANCE {
-        return Err(Error::Linalg(LinalgError::LyapunovInaccurate {
-            residual: rel,
-        }));
+        return Err(LinalgError::LyapunovInaccurate { residual: rel });
     }
     Ok(s)
 }
@@ -91,12 +87,12 @@ pub fn solve_block_diagonal_lyapunov(
                 }
             }
             let rhs = nalgebra::Vector4::from_fn(|row, _| -q[(2 * i + row % 2, 2 * j + row / 2)]);
-            let sol =
-                lhs.lu()
-                    .solve(&rhs)
-                    .ok_or(Error::Linalg(LinalgError::LyapunovInaccurate {
-                        residual: f64::INFINITY,
-                    }))?;
+            let sol = lhs
+                .lu()
+                .solve(&rhs)
+                .ok_or(LinalgError::LyapunovInaccurate {
+                    residual: f64::INFINITY,
+                })?;
             for row in 0..4 {
                 let (r, c) = (row % 2, row / 2);
                 x[(2 * i + r, 2 * j + c)] = sol[row];
@@ -115,9 +111,7 @@ pub fn solve_block_diagonal_lyapunov(
     let scale = q.norm_l2().max(f64::MIN_POSITIVE);
     let rel = residual.norm_l2() / scale;
     if !rel.is_finite() || rel > RESIDUAL_TOLERANCE {
-        return Err(Error::Linalg(LinalgError::LyapunovInaccurate {
-            residual: rel,
-        }));
+        return Err(LinalgError::LyapunovInaccurate { residual: rel });
     }
     Ok(x)
 }

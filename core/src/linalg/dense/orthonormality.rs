@@ -7,7 +7,7 @@ use faer::{
 };
 
 use super::symmetric_eigen;
-use crate::Result;
+use crate::linalg::Result;
 use crate::linalg::sparse::MassMatrix;
 use crate::linalg::threads::par_for_flops;
 

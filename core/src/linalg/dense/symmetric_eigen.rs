@@ -18,7 +18,8 @@ use crate::error::LinalgError;
 use super::orthonormality_defect;
 use faer::{Mat, MatRef, Side};
 
-use crate::{Error, Result, error::MatrixLabel};
+use crate::error::MatrixLabel;
+use crate::linalg::Result;
 
 /// Which dense kernel produced an accepted eigen-decomposition.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -100,11 +101,11 @@ pub fn symmetric_eigen_prefix(
         for i in 0..n {
             let v = c[(i, j)];
             if !v.is_finite() {
-                return Err(Error::Linalg(LinalgError::NotFinite {
+                return Err(LinalgError::NotFinite {
                     what,
                     row: i,
                     col: j,
-                }));
+                });
             }
             scale = scale.max(v.abs());
         }
@@ -143,11 +144,11 @@ pub fn symmetric_eigen_prefix(
         }
         worst = worst.min(residual.max(orthonormality));
     }
-    Err(Error::Linalg(LinalgError::EigenCheckFailed {
+    Err(LinalgError::EigenCheckFailed {
         what,
         residual: worst,
         tolerance,
-    }))
+    })
 }
 
 /// $\tfrac12(C + C^T)/s$: the matrix every kernel solves.

@@ -20,8 +20,8 @@ use crate::linalg::dense::{
     symmetric_eigen,
 };
 
+use crate::linalg::Result;
 use crate::linalg::sparse::{MassMatrix, SparseSymmetric, SymmetricFactor};
-use crate::{Error, Result};
 
 /// Settings of [`lowest_modes`].
 #[derive(Debug, Clone, PartialEq)]
@@ -127,7 +127,7 @@ pub fn lowest_modes(
         ));
     }
     if max_basis + b > n {
-        return Err(Error::Linalg(LinalgError::TooManyPairs { wanted, dof: n }));
+        return Err(LinalgError::TooManyPairs { wanted, dof: n });
     }
     let mut stats = PartialEigenStatistics {
         basis_size: max_basis,
@@ -207,11 +207,11 @@ pub fn lowest_modes(
                 break;
             }
             if ritz_tolerance <= 1e-14 || stats.restarts == params.max_restarts {
-                return Err(Error::Linalg(LinalgError::EigenNotConverged {
+                return Err(LinalgError::EigenNotConverged {
                     converged: checked.converged,
                     wanted,
                     residual: checked.max_residual,
-                }));
+                });
             }
             ritz_tolerance *= 0.1;
         }
@@ -219,11 +219,11 @@ pub fn lowest_modes(
             // The error names the residual users know, ‖Kφ − λMφ‖/‖Kφ‖ of the pairs as they
             // stand, and how many of them meet the tolerance.
             let checked = refined_pairs(&pencil, factor, &step_pairs)?;
-            return Err(Error::Linalg(LinalgError::EigenNotConverged {
+            return Err(LinalgError::EigenNotConverged {
                 converged: checked.converged,
                 wanted,
                 residual: checked.max_residual,
-            }));
+            });
         }
         stats.restarts += 1;
         // Thick restart: keep the best Ritz vectors and their images, then the pending block.
@@ -620,11 +620,11 @@ fn checked_pairs(pencil: &ShiftedPencil<'_>, pairs: &RitzPairs<'_>) -> Result<Ch
     let (converged, max_residual, residuals) =
         (checked.converged(), checked.max, checked.residuals);
     if max_residual.is_nan() {
-        return Err(Error::Linalg(LinalgError::EigenNotConverged {
+        return Err(LinalgError::EigenNotConverged {
             converged,
             wanted,
             residual: max_residual,
-        }));
+        });
     }
     Ok(CheckedPairs {
         eigen: GeneralizedEigen {

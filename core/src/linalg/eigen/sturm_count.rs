@@ -16,10 +16,11 @@
 //! keeps its estimated backward error within `STURM_BACKWARD_ERROR`; otherwise by the stored
 //! supernodal $LDL^T$ factor, whose backward error is measured by a solve.
 
+use crate::error::LinalgError;
+use crate::linalg::Result;
 use crate::linalg::sparse::{
     IndefiniteFactor, MassMatrix, SparseSymmetric, SymbolicFactor, multifrontal_inertia,
 };
-use crate::{Error, Result, error::LinalgError};
 
 /// Shifts tried before the check gives up (a zero pivot or an inaccurate factor moves
 /// $\sigma'$ further into the gap).
@@ -85,11 +86,11 @@ pub fn sturm_count(
         }
         offset *= 3.0;
     }
-    Err(Error::Linalg(LinalgError::SturmCheckFailed {
+    Err(LinalgError::SturmCheckFailed {
         shift,
         tries: SHIFT_TRIES,
         last: last_error.map(Box::new),
-    }))
+    })
 }
 
 /// The number of eigenvalues of $K\varphi = \lambda M\varphi$ below `shift`: the negative
@@ -118,11 +119,11 @@ pub fn inertia_at(
     if backward <= STURM_BACKWARD_ERROR {
         Ok(factor.negative_pivots())
     } else {
-        Err(Error::Linalg(LinalgError::SturmFactorInaccurate {
+        Err(LinalgError::SturmFactorInaccurate {
             shift,
             backward,
             bound: STURM_BACKWARD_ERROR,
-        }))
+        })
     }
 }
 

@@ -14,7 +14,8 @@ use faer::{
 use crate::error::LinalgError;
 
 use super::{SparseSymmetric, SymbolicFactor};
-use crate::{Error, Result, error::MatrixLabel};
+use crate::error::MatrixLabel;
+use crate::linalg::Result;
 
 /// Relative residual $\|AX - B\|_F / \|B\|_F$ a solve must reach.
 pub const INDEFINITE_SOLVE_TOLERANCE: f64 = 1e-9;
@@ -51,20 +52,18 @@ impl IndefiniteFactor {
             crate::linalg::memory::available_bytes(),
         )?;
         let mut values = Vec::new();
-        values.try_reserve_exact(sym.len_val()).map_err(|_| {
-            Error::Linalg(LinalgError::OutOfMemory {
+        values
+            .try_reserve_exact(sym.len_val())
+            .map_err(|_| LinalgError::OutOfMemory {
                 what: "LDL^T factor",
                 matrix: Some(what.clone()),
                 entries: Some(sym.len_val()),
-            })
-        })?;
+            })?;
         values.resize(sym.len_val(), 0.0);
-        let mut mem = MemBuffer::try_new(scratch).map_err(|_| {
-            Error::Linalg(LinalgError::OutOfMemory {
-                what: "LDL^T workspace",
-                matrix: Some(what.clone()),
-                entries: None,
-            })
+        let mut mem = MemBuffer::try_new(scratch).map_err(|_| LinalgError::OutOfMemory {
+            what: "LDL^T workspace",
+            matrix: Some(what.clone()),
+            entries: None,
         })?;
         let result = sym.factorize_numeric_ldlt(
             &mut values,
@@ -76,10 +75,10 @@ impl IndefiniteFactor {
             Default::default(),
         );
         if let Err(LdltError::ZeroPivot { .. }) = result {
-            return Err(Error::Linalg(LinalgError::SingularMatrix {
+            return Err(LinalgError::SingularMatrix {
                 matrix: what,
                 rcond: None,
-            }));
+            });
         }
         Ok(Self {
             a,
@@ -163,10 +162,10 @@ impl IndefiniteFactor {
             }
             x += self.solve_once(r.as_ref());
         }
-        Err(Error::Linalg(LinalgError::SolveInaccurate {
+        Err(LinalgError::SolveInaccurate {
             matrix: self.what.clone(),
             residual,
             tolerance: INDEFINITE_SOLVE_TOLERANCE,
-        }))
+        })
     }
 }

@@ -34,7 +34,8 @@ use faer::{
 };
 
 use super::{SparseSymmetric, SymbolicFactor};
-use crate::{Error, Result, error::LinalgError};
+use crate::error::LinalgError;
+use crate::linalg::Result;
 
 /// Flops of a front's elimination above which its dense kernels run on the machine's threads.
 const PARALLEL_FRONT_FLOPS: f64 = 2e7;
@@ -332,12 +333,12 @@ fn zeroed(len: usize) -> Result<Vec<f64>> {
     Ok(v)
 }
 
-fn out_of_memory(entries: usize) -> Error {
-    Error::Linalg(LinalgError::OutOfMemory {
+fn out_of_memory(entries: usize) -> LinalgError {
+    LinalgError::OutOfMemory {
         what: "Sturm count front",
         matrix: None,
         entries: Some(entries),
-    })
+    }
 }
 
 #[cfg(test)]

@@ -22,7 +22,8 @@ use faer::{
 };
 
 use super::sparse_rhs_solve::{ForwardReach, solve_sparse_rhs_in_place};
-use crate::{Error, Result, error::MatrixLabel};
+use crate::error::MatrixLabel;
+use crate::linalg::Result;
 
 /// Right-hand sides from which a sparse solve runs on every core.
 const WIDE_SOLVE: usize = 64;
@@ -86,12 +87,10 @@ impl SymbolicFactor {
             _ => SymmetricOrdering::Amd,
         };
         let inner = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ordering, params)
-            .map_err(|_| {
-                Error::Linalg(LinalgError::OutOfMemory {
-                    what: "symbolic Cholesky analysis",
-                    matrix: None,
-                    entries: None,
-                })
+            .map_err(|_| LinalgError::OutOfMemory {
+                what: "symbolic Cholesky analysis",
+                matrix: None,
+                entries: None,
             })?;
         let flops = factor_flops(&inner);
         Ok(Self {
@@ -122,11 +121,11 @@ impl SymbolicFactor {
         if a.symbolic().col_ptr() == self.col_ptr.as_slice() {
             return Ok(());
         }
-        Err(Error::Linalg(LinalgError::PatternMismatch {
+        Err(LinalgError::PatternMismatch {
             matrix: what.clone(),
             analysed: *self.col_ptr.last().unwrap_or(&0),
             given: a.compute_nnz(),
-        }))
+        })
     }
 
     /// faer's analysis, for the other factorisations of the same pattern.
@@ -201,10 +200,10 @@ impl SymmetricFactor {
     pub fn dense(a: MatRef<'_, f64>, what: impl Into<MatrixLabel>) -> Result<Self> {
         let llt = a.llt(Side::Lower).map_err(|e| {
             let LltError::NonPositivePivot { index } = e;
-            Error::Linalg(LinalgError::NonPositivePivot {
+            LinalgError::NonPositivePivot {
                 matrix: what.into(),
                 index,
-            })
+            }
         })?;
         Ok(Self {
             kind: Kind::Dense(llt),
@@ -233,20 +232,18 @@ impl SymmetricFactor {
             crate::linalg::memory::available_bytes(),
         )?;
         let mut values = Vec::new();
-        values.try_reserve_exact(sym.len_val()).map_err(|_| {
-            Error::Linalg(LinalgError::OutOfMemory {
+        values
+            .try_reserve_exact(sym.len_val())
+            .map_err(|_| LinalgError::OutOfMemory {
                 what: "Cholesky factor",
                 matrix: Some(what.clone()),
                 entries: Some(sym.len_val()),
-            })
-        })?;
+            })?;
         values.resize(sym.len_val(), 0.0);
-        let mut mem = MemBuffer::try_new(scratch).map_err(|_| {
-            Error::Linalg(LinalgError::OutOfMemory {
-                what: "Cholesky workspace",
-                matrix: Some(what.clone()),
-                entries: None,
-            })
+        let mut mem = MemBuffer::try_new(scratch).map_err(|_| LinalgError::OutOfMemory {
+            what: "Cholesky workspace",
+            matrix: Some(what.clone()),
+            entries: None,
         })?;
         let result = sym.factorize_numeric_llt(
             &mut values,
@@ -268,10 +265,10 @@ impl SymmetricFactor {
                 Some(p) => p.arrays().0[index],
                 None => index,
             };
-            return Err(Error::Linalg(LinalgError::NonPositivePivot {
+            return Err(LinalgError::NonPositivePivot {
                 matrix: what,
                 index: original,
-            }));
+            });
         }
         Ok(Self {
             kind: Kind::Sparse {
@@ -450,10 +447,7 @@ mod tests {
             let symbolic = SymbolicFactor::analyse(k.as_faer()).unwrap();
             let shifted = k.shifted(&m, -1.0);
             let e = SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "K - σM").unwrap_err();
-            assert!(
-                matches!(e, Error::Linalg(LinalgError::PatternMismatch { .. })),
-                "{e}"
-            );
+            assert!(matches!(e, LinalgError::PatternMismatch { .. }), "{e}");
             // Analysed on the union, the same matrix factors.
             let symbolic = SymbolicFactor::analyse(shifted.as_faer()).unwrap();
             assert!(SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "K - σM").is_ok());

@@ -15,6 +15,7 @@ use faer::{Mat, MatRef};
 
 use super::{AmlsParameters, MultilevelSubstructures, SubstructureTree};
 use crate::error::LinalgError;
+use crate::linalg::Result;
 use crate::linalg::dense::{
     GeneralizedEigen, PairSelection, ZERO_ENERGY_RATIO, eigenvalue_scale, fix_sign,
     generalized_eigen_selected, hz_from_eigenvalue, m_orthonormal, m_orthonormal_basis,
@@ -25,7 +26,6 @@ use crate::linalg::eigen::sturm_count;
 use crate::linalg::sparse::{
     MassMatrix, PairResiduals, ResidualCheck, SparseSymmetric, SymbolicFactor, pair_residuals,
 };
-use crate::{Error, Result};
 
 /// A column of the refinement's search space whose $M$-norm falls below this share of its
 /// norm when the columns before it are projected out adds nothing but round-off.
@@ -151,11 +151,11 @@ pub fn amls_lowest_modes(
             continue;
         }
         if r < wanted {
-            return Err(Error::Linalg(LinalgError::CutoffTooLow {
+            return Err(LinalgError::CutoffTooLow {
                 kept: r,
                 wanted,
                 hz: reduction.cutoff_hz,
-            }));
+            });
         }
         let s = (elastic + params.guard).min(r - z);
         let clock = Instant::now();
@@ -197,11 +197,11 @@ pub fn amls_lowest_modes(
         let basis = m_orthonormal_basis(space.as_ref(), m, BASIS_DROP)?;
         drop(space);
         if basis.ncols() < s {
-            return Err(Error::Linalg(LinalgError::EigenNotConverged {
+            return Err(LinalgError::EigenNotConverged {
                 converged: 0,
                 wanted: elastic,
                 residual: f64::INFINITY,
-            }));
+            });
         }
         let (values, vectors, checked) = rayleigh_ritz(k, m, basis.as_ref(), s, scale, params)?;
         let residuals = checked.residuals;
@@ -216,11 +216,11 @@ pub fn amls_lowest_modes(
             break (values, vectors, residuals);
         }
         if iteration == params.max_iterations {
-            return Err(Error::Linalg(LinalgError::EigenNotConverged {
+            return Err(LinalgError::EigenNotConverged {
                 converged: checked.passed[..elastic].iter().filter(|&&p| p).count(),
                 wanted: elastic,
                 residual: worst,
-            }));
+            });
         }
         iteration += 1;
         // Soft locking: the image and the step only of the pairs still short of the
@@ -270,12 +270,12 @@ pub fn amls_lowest_modes(
     let sturm = sturm_count(k, m, &symbolic, &all_values, &values[elastic..])?;
     stats.seconds[3] = clock.elapsed().as_secs_f64();
     if sturm.missed() > 0 {
-        return Err(Error::Linalg(LinalgError::MissedModes {
+        return Err(LinalgError::MissedModes {
             missed: sturm.missed(),
             below: sturm.below,
             found: sturm.found,
             hz: hz_from_eigenvalue(sturm.shift),
-        }));
+        });
     }
     let zero_energy = all_values
         .iter()

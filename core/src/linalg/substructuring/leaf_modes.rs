@@ -27,8 +27,9 @@ use crate::linalg::eigen::{PartialEigenParameters, lowest_modes};
 
 use super::SubstructureTree;
 
+use crate::linalg::Result;
 use crate::linalg::threads::threads;
-use crate::{Error, Result, work_pool::run_in_order};
+use crate::work_pool::run_in_order;
 
 /// How [`leaf_modes`] solves a leaf.
 #[derive(Debug, Clone, PartialEq)]
@@ -142,12 +143,12 @@ fn leaf(
     };
     let kept = modes.values.iter().filter(|&&v| v <= omega2).count();
     if sturm_below != kept || kept != modes.values.len() {
-        return Err(Error::Linalg(LinalgError::MissedModes {
+        return Err(LinalgError::MissedModes {
             missed: sturm_below.saturating_sub(kept),
             below: sturm_below,
             found: kept,
             hz: cutoff_hz,
-        }));
+        });
     }
     Ok(LeafModes {
         node,

@@ -38,8 +38,8 @@ use crate::error::LinalgError;
 
 use crate::linalg::sparse::{MassMatrix, SparseSymmetric};
 
+use crate::linalg::Result;
 use crate::linalg::threads::par_for_flops;
-use crate::{Error, Result};
 
 /// How [`MultilevelSubstructures::new`] reduces a body.
 #[derive(Debug, Clone, PartialEq)]
@@ -200,11 +200,11 @@ impl MultilevelSubstructures {
             let k_pp = kf.submatrix(0, 0, p, p).to_owned();
             let factor = k_pp.llt(Side::Lower).map_err(|e| {
                 let faer::linalg::solvers::LltError::NonPositivePivot { index } = e;
-                Error::Linalg(LinalgError::NonPositivePivot {
+                LinalgError::NonPositivePivot {
                     matrix: "substructure K - σM (the shift is not below the lowest eigenvalue)"
                         .into(),
                     index: unknowns[index.min(p.saturating_sub(1))],
-                })
+                }
             })?;
             let mut phi = kf.submatrix(0, p, p, q).to_owned();
             factor.solve_in_place(phi.as_mut());
