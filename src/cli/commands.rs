@@ -4,7 +4,7 @@ use std::{path::PathBuf, process::ExitCode, time::Instant};
 
 use clap::Parser;
 
-use super::arguments::{Cli, Command, ExportArgs};
+use super::arguments::{Cli, Command, ExportArgs, OptionArgs};
 use crate::{
     Error, Progress, Result, TerminalProgress,
     body_file::ImportedBody,
@@ -48,19 +48,7 @@ fn run(cli: Cli) -> Result<()> {
         });
     }
     match cli.command {
-        Command::List { options } => {
-            let all = scenes::all();
-            let width = all.iter().map(|s| s.id.as_str().len()).max().unwrap_or(0);
-            for s in all {
-                let said = if options {
-                    s.info.controls.described()
-                } else {
-                    s.info.summary.to_string()
-                };
-                println!("{:<width$}  {said}", s.id.as_str());
-            }
-            Ok(())
-        }
+        Command::List { options } => list(options),
         #[cfg(feature = "gui")]
         Command::Gui {
             scene,
@@ -87,20 +75,7 @@ fn run(cli: Cli) -> Result<()> {
             out,
             compress,
             format,
-        } => {
-            let loaded = ImportedBody::load(&body)?;
-            let files = crate::body_file::write_imported_body(&loaded, compress, format)?;
-            crate::body_file::write_files(&out, &files)?;
-            // What was read, as the written body reads back.
-            let written = ImportedBody::load(&out.join("body.toml").display().to_string())?;
-            let (_, text) = crate::models::import_summary(&written)?;
-            println!(
-                "wrote {} ({})\n\n{text}",
-                out.display(),
-                files.keys().cloned().collect::<Vec<_>>().join(", ")
-            );
-            Ok(())
-        }
+        } => convert(&body, &out, compress, format),
         Command::Import {
             body,
             json,
@@ -120,20 +95,7 @@ fn run(cli: Cli) -> Result<()> {
             scene,
             json,
             options,
-        } => {
-            let s = scenes::get(scene);
-            let mut opts = options.into_scene_options()?;
-            opts.progress = Progress::new();
-            let bar = TerminalProgress::start(&opts.progress, s.id.as_str());
-            let out = s.execute(&opts)?;
-            drop(bar);
-            if json {
-                println!("{}", out.report.to_json());
-            } else {
-                println!("# {}\n\n{}", out.report.scene, out.report.table);
-            }
-            Ok(())
-        }
+        } => report(scene, json, options),
         Command::Record {
             scenes: ids,
             all,
@@ -141,29 +103,7 @@ fn run(cli: Cli) -> Result<()> {
             save,
             timings,
             options,
-        } => {
-            let ids: Vec<SceneId> = if all { scenes::all_ids() } else { ids };
-            if ids.is_empty() {
-                return Err(Error::InvalidOption {
-                    option: "SCENES",
-                    scene: None,
-                    reason: "name at least one scene or pass --all".into(),
-                });
-            }
-            if save.is_some() && ids.len() != 1 {
-                return Err(Error::InvalidOption {
-                    option: "--save",
-                    scene: None,
-                    reason: "--save takes exactly one scene; use --out DIR for several".into(),
-                });
-            }
-            let found = ids.into_iter().map(scenes::get).collect();
-            let opts = options.into_scene_options()?;
-            if let Some(body) = &opts.body {
-                body.require_coordinates()?;
-            }
-            record_scenes(found, &opts, &out, save.as_deref(), timings)
-        }
+        } => record(ids, all, (&out, save.as_deref()), timings, options),
     }
 }
 
@@ -346,26 +286,7 @@ fn export(args: ExportArgs) -> Result<()> {
     };
     let summary = crate::export::export(&body, method, &boundary, modes, &out, &parameters)?;
     if timings {
-        let total = started.elapsed().as_secs_f64();
-        eprintln!(
-            "wall time by phase, {} thread(s) (--threads):",
-            crate::linalg::threads()
-        );
-        let share = |s: f64| 100.0 * s / total.max(f64::MIN_POSITIVE);
-        eprintln!(
-            "  read the body: {loaded_s:.3} s ({:.0} %)",
-            share(loaded_s)
-        );
-        for (phase, s) in &summary.timings {
-            eprintln!("  {phase}: {s:.3} s ({:.0} %)", share(*s));
-        }
-        eprintln!("  total: {total:.3} s");
-        if let Some(peak) = crate::linalg::peak_resident_bytes() {
-            eprintln!(
-                "peak resident memory (the process's high-water mark, VmHWM): {:.2} GB",
-                peak as f64 / 1e9
-            );
-        }
+        print_timings(started.elapsed().as_secs_f64(), loaded_s, &summary.timings);
     }
     for i in &parameters.rigid_interfaces {
         println!(
@@ -428,4 +349,112 @@ fn export(args: ExportArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// `flexmodes list`: each scene with its summary, or with the options it takes and their
+/// defaults (`--options`).
+fn list(options: bool) -> Result<()> {
+    let all = scenes::all();
+    let width = all.iter().map(|s| s.id.as_str().len()).max().unwrap_or(0);
+    for s in all {
+        let said = if options {
+            s.info.controls.described()
+        } else {
+            s.info.summary.to_string()
+        };
+        println!("{:<width$}  {said}", s.id.as_str());
+    }
+    Ok(())
+}
+
+/// `flexmodes convert`: the body written in `format`, then read back and summarised.
+fn convert(
+    body: &str,
+    out: &std::path::Path,
+    compress: bool,
+    format: crate::body_file::MatrixFormat,
+) -> Result<()> {
+    let loaded = ImportedBody::load(body)?;
+    let files = crate::body_file::write_imported_body(&loaded, compress, format)?;
+    crate::body_file::write_files(out, &files)?;
+    // What was read, as the written body reads back.
+    let written = ImportedBody::load(&out.join("body.toml").display().to_string())?;
+    let (_, text) = crate::models::import_summary(&written)?;
+    println!(
+        "wrote {} ({})\n\n{text}",
+        out.display(),
+        files.keys().cloned().collect::<Vec<_>>().join(", ")
+    );
+    Ok(())
+}
+
+/// `flexmodes report`: one scene's table, or its report as JSON.
+fn report(scene: SceneId, json: bool, options: OptionArgs) -> Result<()> {
+    let s = scenes::get(scene);
+    let mut opts = options.into_scene_options()?;
+    opts.progress = Progress::new();
+    let bar = TerminalProgress::start(&opts.progress, s.id.as_str());
+    let out = s.execute(&opts)?;
+    drop(bar);
+    if json {
+        println!("{}", out.report.to_json());
+    } else {
+        println!("# {}\n\n{}", out.report.scene, out.report.table);
+    }
+    Ok(())
+}
+
+/// `flexmodes record`: the scenes named (or all), each to `save` or `out/<id>.rrd`.
+fn record(
+    ids: Vec<SceneId>,
+    all: bool,
+    (out, save): (&std::path::Path, Option<&std::path::Path>),
+    timings: bool,
+    options: OptionArgs,
+) -> Result<()> {
+    let ids: Vec<SceneId> = if all { scenes::all_ids() } else { ids };
+    if ids.is_empty() {
+        return Err(Error::InvalidOption {
+            option: "SCENES",
+            scene: None,
+            reason: "name at least one scene or pass --all".into(),
+        });
+    }
+    if save.is_some() && ids.len() != 1 {
+        return Err(Error::InvalidOption {
+            option: "--save",
+            scene: None,
+            reason: "--save takes exactly one scene; use --out DIR for several".into(),
+        });
+    }
+    let found = ids.into_iter().map(scenes::get).collect();
+    let opts = options.into_scene_options()?;
+    if let Some(body) = &opts.body {
+        body.require_coordinates()?;
+    }
+    record_scenes(found, &opts, out, save, timings)
+}
+
+/// An export's wall time by phase (of `total` s, reading the body `loaded_s` of them) and the
+/// process's peak memory, on standard error.
+fn print_timings(total: f64, loaded_s: f64, timings: &[(&'static str, f64)]) {
+    eprintln!(
+        "wall time by phase, {} thread(s) (--threads):",
+        crate::linalg::threads()
+    );
+    let share = |s: f64| 100.0 * s / total.max(f64::MIN_POSITIVE);
+    eprintln!(
+        "  read the body: {loaded_s:.3} s ({:.0} %)",
+        share(loaded_s)
+    );
+    for (phase, s) in timings {
+        eprintln!("  {phase}: {s:.3} s ({:.0} %)", share(*s));
+    }
+    eprintln!("  total: {total:.3} s");
+    if let Some(peak) = crate::linalg::peak_resident_bytes() {
+        eprintln!(
+            "peak resident memory (the process's high-water mark, VmHWM): {:.2} GB",
+            peak as f64 / 1e9
+        );
+    }
 }

@@ -56,20 +56,7 @@ pub(super) fn run(arguments: DiffArgs) -> Result<()> {
         keep_timings,
         update,
     } = arguments;
-    if !(rtol.is_finite() && rtol >= 0.0) {
-        return Err(Error::InvalidOption {
-            option: "--rtol",
-            scene: None,
-            reason: format!("a relative tolerance is finite and not negative, not {rtol}"),
-        });
-    }
-    if !(floor.is_finite() && floor >= 0.0) {
-        return Err(Error::InvalidOption {
-            option: "--floor",
-            scene: None,
-            reason: format!("a floor is finite and not negative, not {floor}"),
-        });
-    }
+    check_tolerances(rtol, floor)?;
     let mut parameters = DiffParameters {
         rtol,
         floor,
@@ -79,46 +66,7 @@ pub(super) fn run(arguments: DiffArgs) -> Result<()> {
         parameters.ignore.clear();
     }
     parameters.ignore.extend(ignore);
-    let pairs: Vec<(String, Option<Value>, Option<Value>)> = match (old.is_dir(), new.is_dir()) {
-        (true, true) => {
-            let (a, b) = (reports_in(&old)?, reports_in(&new)?);
-            if !update && !a.keys().any(|k| b.contains_key(k)) {
-                return Err(ReportDiffError::NothingInCommon {
-                    old: old.display().to_string(),
-                    new: new.display().to_string(),
-                }
-                .into());
-            }
-            let mut names: Vec<&String> = a.keys().chain(b.keys()).collect();
-            names.sort();
-            names.dedup();
-            let mut pairs = Vec::new();
-            for name in names {
-                let load =
-                    |m: &BTreeMap<String, PathBuf>| m.get(name).map(|p| report(p)).transpose();
-                pairs.push((name.clone(), load(&a)?, load(&b)?));
-            }
-            pairs
-        }
-        (false, false) => vec![(
-            new.display().to_string(),
-            Some(report(&old)?),
-            Some(report(&new)?),
-        )],
-        _ => {
-            return Err(Error::InvalidOption {
-                option: "OLD NEW",
-                scene: None,
-                reason: format!(
-                    "compare two files or two folders: {} is a {} and {} a {}",
-                    old.display(),
-                    kind(&old),
-                    new.display(),
-                    kind(&new)
-                ),
-            });
-        }
-    };
+    let pairs = report_pairs(&old, &new, update)?;
     let (mut changes, mut compared, mut reports) = (0, 0, 0);
     for (name, a, b) in &pairs {
         match (a, b) {
@@ -169,6 +117,74 @@ pub(super) fn run(arguments: DiffArgs) -> Result<()> {
     }
     Ok(())
 }
+
+/// `--rtol` and `--floor`, each finite and not negative.
+fn check_tolerances(rtol: f64, floor: f64) -> Result<()> {
+    if !(rtol.is_finite() && rtol >= 0.0) {
+        return Err(Error::InvalidOption {
+            option: "--rtol",
+            scene: None,
+            reason: format!("a relative tolerance is finite and not negative, not {rtol}"),
+        });
+    }
+    if !(floor.is_finite() && floor >= 0.0) {
+        return Err(Error::InvalidOption {
+            option: "--floor",
+            scene: None,
+            reason: format!("a floor is finite and not negative, not {floor}"),
+        });
+    }
+    Ok(())
+}
+
+/// The reports to compare, by name: of two folders every report either holds (a side `None`
+/// where one lacks it; none in common is an error unless the baseline is being updated), or
+/// two files.
+fn report_pairs(old: &Path, new: &Path, update: bool) -> Result<Vec<ReportPair>> {
+    Ok(match (old.is_dir(), new.is_dir()) {
+        (true, true) => {
+            let (a, b) = (reports_in(old)?, reports_in(new)?);
+            if !update && !a.keys().any(|k| b.contains_key(k)) {
+                return Err(ReportDiffError::NothingInCommon {
+                    old: old.display().to_string(),
+                    new: new.display().to_string(),
+                }
+                .into());
+            }
+            let mut names: Vec<&String> = a.keys().chain(b.keys()).collect();
+            names.sort();
+            names.dedup();
+            let mut pairs = Vec::new();
+            for name in names {
+                let load =
+                    |m: &BTreeMap<String, PathBuf>| m.get(name).map(|p| report(p)).transpose();
+                pairs.push((name.clone(), load(&a)?, load(&b)?));
+            }
+            pairs
+        }
+        (false, false) => vec![(
+            new.display().to_string(),
+            Some(report(old)?),
+            Some(report(new)?),
+        )],
+        _ => {
+            return Err(Error::InvalidOption {
+                option: "OLD NEW",
+                scene: None,
+                reason: format!(
+                    "compare two files or two folders: {} is a {} and {} a {}",
+                    old.display(),
+                    kind(old),
+                    new.display(),
+                    kind(new)
+                ),
+            });
+        }
+    })
+}
+
+/// A report's name and its old and new JSON, each `None` where that side lacks it.
+type ReportPair = (String, Option<Value>, Option<Value>);
 
 fn kind(path: &Path) -> &'static str {
     if path.is_dir() {
@@ -233,11 +249,7 @@ fn report(path: &Path) -> Result<Value> {
 
 /// NEW's reports written over OLD, pretty-printed and without the keys left out: one file, or `SCENE.json` per scene in
 /// OLD's folder (a scene only OLD has is left as it is).
-fn write_baseline(
-    old: &Path,
-    pairs: &[(String, Option<Value>, Option<Value>)],
-    parameters: &DiffParameters,
-) -> Result<()> {
+fn write_baseline(old: &Path, pairs: &[ReportPair], parameters: &DiffParameters) -> Result<()> {
     let pretty = |v: &Value| {
         let mut text =
             serde_json::to_string_pretty(&without_ignored(v, parameters)).unwrap_or_default();

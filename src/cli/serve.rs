@@ -21,8 +21,8 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         error::ServeError,
         scenes,
         serve::{
-            Classroom, ControlPage, PublishStatus, Publisher, ViewerFiles, WebServer, check_port,
-            data_url, file_messages, new_control_token, origin, page_url, scene_messages,
+            Classroom, ControlPage, PublishStatus, Publisher, WebServer, check_port, file_messages,
+            new_control_token, origin, scene_messages,
         },
     };
 
@@ -55,15 +55,7 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
     check_port(bind, grpc_port, "data server", "grpc-port")?;
     check_port(bind, port, "web page", "port")?;
 
-    let started = Instant::now();
-    let viewer = Arc::new(ViewerFiles::load()?);
-    let (plain, gzipped) = viewer.sizes();
-    eprintln!(
-        "web viewer: {:.1} MB, {:.1} MB gzipped ({:.1} s)",
-        plain as f64 / 1e6,
-        gzipped as f64 / 1e6,
-        started.elapsed().as_secs_f64()
-    );
+    let viewer = load_viewer()?;
     let shared = shared_address(bind);
     let mut origins = vec![origin(shared, port), origin(bind, port)];
     if bind.is_unspecified() {
@@ -109,6 +101,42 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
             t.elapsed().as_secs_f64()
         );
     }
+    print_addresses(bind, shared, (port, grpc_port), theme, &token);
+
+    read_commands(&publisher, &shown)?;
+    web.stop();
+    drop(control);
+    drop(publisher);
+    drop(classroom);
+    eprintln!("stopped");
+    Ok(())
+}
+
+/// The web viewer's files, their sizes said.
+#[cfg(feature = "serve")]
+fn load_viewer() -> Result<std::sync::Arc<crate::serve::ViewerFiles>> {
+    let started = std::time::Instant::now();
+    let viewer = std::sync::Arc::new(crate::serve::ViewerFiles::load()?);
+    let (plain, gzipped) = viewer.sizes();
+    eprintln!(
+        "web viewer: {:.1} MB, {:.1} MB gzipped ({:.1} s)",
+        plain as f64 / 1e6,
+        gzipped as f64 / 1e6,
+        started.elapsed().as_secs_f64()
+    );
+    Ok(viewer)
+}
+
+/// Where students open the page (its data on `grpc_port`) and where the teacher steers.
+#[cfg(feature = "serve")]
+fn print_addresses(
+    bind: std::net::IpAddr,
+    shared: std::net::IpAddr,
+    (port, grpc_port): (u16, u16),
+    theme: Option<super::arguments::Theme>,
+    token: &str,
+) {
+    use crate::serve::{data_url, origin, page_url};
     let data = data_url(shared, grpc_port);
     println!(
         "open in a browser: {}",
@@ -123,14 +151,6 @@ pub(super) fn run(arguments: ServeArgs) -> Result<()> {
         origin(shared, port)
     );
     println!("commands: show SCENE [--method cb,mc] [--modes N] …, list, quit (or Ctrl-C)");
-
-    read_commands(&publisher, &shown)?;
-    web.stop();
-    drop(control);
-    drop(publisher);
-    drop(classroom);
-    eprintln!("stopped");
-    Ok(())
 }
 
 /// A teacher's command: `show SCENE [options]`.

@@ -130,16 +130,7 @@ pub(super) fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Res
             geometry,
             color: c,
             label,
-        } => {
-            let lines = Lines {
-                strips: strips(geometry, &geometry.nodes),
-                color: color(*c),
-                radius: radius(geometry),
-                label: label.clone(),
-            };
-            rec.log_static(path.as_str(), lines.archetype(planar).as_ref())
-                .or_rerun()?;
-        }
+        } => log_wireframe(rec, path, geometry, (*c, label), planar)?,
         Visual::Mode {
             path,
             geometry,
@@ -179,26 +170,7 @@ pub(super) fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Res
             values,
             name,
             color: c,
-        } => {
-            rec.log_static(
-                path.as_str(),
-                &rerun_sdk::SeriesLines::new()
-                    .with_colors([color(*c)])
-                    .with_names([name.clone()]),
-            )
-            .or_rerun()?;
-            rec.send_columns(
-                path.as_str(),
-                [rerun_sdk::TimeColumn::new_duration_secs(
-                    "sim_time",
-                    times.iter().copied(),
-                )],
-                rerun_sdk::Scalars::new(values.iter().copied())
-                    .columns_of_unit_batches()
-                    .or_rerun()?,
-            )
-            .or_rerun()?;
-        }
+        } => log_series(rec, path, times, values, (name, *c))?,
         Visual::FrameAxes {
             path,
             times,
@@ -211,16 +183,7 @@ pub(super) fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Res
             position,
             text,
             color: c,
-        } => {
-            rec.log_static(
-                path.as_str(),
-                &rerun_sdk::Points3D::new([position.map(|x| x as f32)])
-                    .with_labels([text.clone()])
-                    .with_colors([color(*c)])
-                    .with_radii([rerun_sdk::Radius::new_ui_points(4.0)]),
-            )
-            .or_rerun()?;
-        }
+        } => log_label(rec, path, position, text, *c)?,
         Visual::Scatter {
             path,
             points,
@@ -249,34 +212,14 @@ pub(super) fn log_visual(rec: &RecordingStream, v: &Visual, planar: bool) -> Res
             color: c,
             label,
             radius,
-        } => {
-            let mut strips = rerun_sdk::LineStrips2D::new([points
-                .iter()
-                .map(|p| [p[0] as f32, p[1] as f32])
-                .collect::<Vec<_>>()])
-            .with_colors([color(*c)])
-            .with_radii([rerun_sdk::Radius::new_ui_points(*radius)]);
-            if let Some(l) = label {
-                strips = strips.with_labels([l.clone()]);
-            }
-            rec.log_static(path.as_str(), &strips).or_rerun()?;
-        }
+        } => log_polyline(rec, path, points, (*c, label, *radius))?,
         Visual::SeriesBars {
             path,
             abscissa,
             values,
             width,
             color: c,
-        } => {
-            rec.log_static(
-                path.as_str(),
-                &rerun_sdk::BarChart::new(values.clone())
-                    .with_abscissa(abscissa.clone())
-                    .with_widths([*width as f32])
-                    .with_color(color(*c)),
-            )
-            .or_rerun()?;
-        }
+        } => log_bars(rec, path, abscissa, values, (*width, *c))?,
     }
     Ok(())
 }
@@ -517,4 +460,110 @@ fn labelled_points(
         .with_labels(labels.to_vec())
         .with_colors(colors.iter().map(|c| color(*c)))
         .with_radii([rerun_sdk::Radius::new_ui_points(radius)])
+}
+
+/// A time series over `sim_time`: its style once, its values as columns.
+fn log_series(
+    rec: &RecordingStream,
+    path: &str,
+    times: &[f64],
+    values: &[f64],
+    (name, c): (&str, Color),
+) -> Result<()> {
+    rec.log_static(
+        path,
+        &rerun_sdk::SeriesLines::new()
+            .with_colors([color(c)])
+            .with_names([name.to_string()]),
+    )
+    .or_rerun()?;
+    rec.send_columns(
+        path,
+        [rerun_sdk::TimeColumn::new_duration_secs(
+            "sim_time",
+            times.iter().copied(),
+        )],
+        rerun_sdk::Scalars::new(values.iter().copied())
+            .columns_of_unit_batches()
+            .or_rerun()?,
+    )
+    .or_rerun()?;
+    Ok(())
+}
+
+/// A 2-D line strip of `radius` UI points, labelled when `label` is set.
+fn log_polyline(
+    rec: &RecordingStream,
+    path: &str,
+    points: &[[f64; 2]],
+    (c, label, radius): (Color, &Option<String>, f32),
+) -> Result<()> {
+    let mut strips = rerun_sdk::LineStrips2D::new([points
+        .iter()
+        .map(|p| [p[0] as f32, p[1] as f32])
+        .collect::<Vec<_>>()])
+    .with_colors([color(c)])
+    .with_radii([rerun_sdk::Radius::new_ui_points(radius)]);
+    if let Some(l) = label {
+        strips = strips.with_labels([l.clone()]);
+    }
+    rec.log_static(path, &strips).or_rerun()?;
+    Ok(())
+}
+
+/// Bars at `abscissa`, `width` wide.
+fn log_bars(
+    rec: &RecordingStream,
+    path: &str,
+    abscissa: &[f64],
+    values: &[f64],
+    (width, c): (f64, Color),
+) -> Result<()> {
+    rec.log_static(
+        path,
+        &rerun_sdk::BarChart::new(values.to_vec())
+            .with_abscissa(abscissa.to_vec())
+            .with_widths([width as f32])
+            .with_color(color(c)),
+    )
+    .or_rerun()?;
+    Ok(())
+}
+
+/// A body's outline, once.
+fn log_wireframe(
+    rec: &RecordingStream,
+    path: &str,
+    geometry: &Geometry,
+    (c, label): (Color, &Option<String>),
+    planar: bool,
+) -> Result<()> {
+    let lines = Lines {
+        strips: strips(geometry, &geometry.nodes),
+        color: color(c),
+        radius: radius(geometry),
+        label: label.clone(),
+    };
+    rec.log_static(path, lines.archetype(planar).as_ref())
+        .or_rerun()?;
+    Ok(())
+}
+
+/// A labelled point in 3-D, once.
+fn log_label(
+    rec: &RecordingStream,
+    path: &str,
+    position: &[f64; 3],
+    text: &str,
+    c: Color,
+) -> Result<()> {
+    rec.log_static(
+        path,
+        &rerun_sdk::Points3D::new([position.map(|x| x as f32)])
+            .with_labels([text.to_string()])
+            .with_colors([color(c)])
+            .with_radii([rerun_sdk::Radius::new_ui_points(4.0)]),
+    )
+    .or_rerun()?;
+    Ok(())
 }

@@ -12,10 +12,10 @@ use crate::scenes::{
 use crate::{
     Result,
     analysis::{reduced_hz, reduced_modes},
-    fem::{BeamParameters, beam},
+    fem::{BeamParameters, FeModel, beam},
     linalg::principal_angles,
-    record::Layout,
-    reduction::{EitelbergParameters, EitelbergReduction, Method, eitelberg},
+    record::{Layout, Visual},
+    reduction::{Basis, EitelbergParameters, EitelbergReduction, Method, eitelberg},
     report::{Report, Table, fmt_hz, sig, sig_vec},
 };
 
@@ -82,17 +82,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         "zero_singular_values".into(),
         json!({"a": eit.zero_singular_values.0, "a_r_restored": eit.zero_singular_values.1}),
     );
-    let mut matrix = String::from("```\n");
-    for row in &rows {
-        matrix.push_str(
-            &row.iter()
-                .map(|&v| format!("{:>12}", tidy(v, scale)))
-                .collect::<Vec<_>>()
-                .join(" "),
-        );
-        matrix.push('\n');
-    }
-    matrix.push_str("```\n");
+    let matrix = matrix_text(&rows, scale);
     let hz_table = report.add_table(Table::from_text(
         &["", "Hz"],
         &[
@@ -117,7 +107,32 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         eit.zero_singular_values.0,
         eit.zero_singular_values.1,
     );
-    let markdown = format!(
+    let markdown = scene_text(&masters, &report.table);
+    let (visuals, views) = mode_views(&model, &eit, &g)?;
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
+        .on_timeline("phase")
+        .y_up())
+}
+
+/// The restored $M^{-1}K$ as a fixed-width block, round-off below 1e-9 of `scale` shown as 0.
+fn matrix_text(rows: &[Vec<f64>], scale: f64) -> String {
+    let mut matrix = String::from("```\n");
+    for row in rows {
+        matrix.push_str(
+            &row.iter()
+                .map(|&v| format!("{:>12}", tidy(v, scale)))
+                .collect::<Vec<_>>()
+                .join(" "),
+        );
+        matrix.push('\n');
+    }
+    matrix.push_str("```\n");
+    matrix
+}
+
+/// The scene's text above its `table`.
+fn scene_text(masters: &[usize], table: &str) -> String {
+    format!(
         "# beam-eitelberg\n\nEitelberg's reduction (App. C) of the beam in state-space form \
          x = [δ; δ̇], keeping δ_b and δ̇_b of nodes {masters:?}. The undamped A is singular and \
          not asymptotically stable, so A − B L C with L = [I I] (unit springs and dampers at \
@@ -125,10 +140,18 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          its frequencies equal Guyan reduction's: for structures Eitelberg's method *is* Guyan \
          reduction (§6.6.4). The views animate the reduced model's modes expanded by the implied \
          basis S R^T(R S R^T)⁻¹ beside Guyan (a)'s.\n\n{}",
-        report.table
-    );
+        table
+    )
+}
+
+/// The reduced model's modes expanded by Eitelberg's implied basis, beside Guyan (a)'s.
+fn mode_views(
+    model: &FeModel,
+    eit: &EitelbergReduction,
+    g: &Basis,
+) -> Result<(Vec<Visual>, Layout)> {
     let guyan_modes = {
-        let e = reduced_modes(&model, &g)?;
+        let e = reduced_modes(model, g)?;
         let full = &g.psi * &e.vectors;
         columns(&full)
             .into_iter()
@@ -138,16 +161,16 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             .map(|(k, (u, f))| (u, format!("Guyan {}: {f:.6} Hz", k + 1)))
             .collect::<Vec<_>>()
     };
-    let eit_modes = eitelberg_modes(&eit)?;
-    let mut visuals = vec![undeformed(&model)];
+    let eit_modes = eitelberg_modes(eit)?;
+    let mut visuals = vec![undeformed(model)];
     visuals.extend(mode_set(
-        &model,
+        model,
         "eitelberg",
         &eit_modes,
         method_color(Method::Eitelberg),
     ));
     visuals.extend(mode_set(
-        &model,
+        model,
         "guyan_a",
         &guyan_modes,
         method_color(Method::Guyan),
@@ -159,9 +182,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         ],
         vec![1.0, 1.0],
     );
-    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
-        .on_timeline("phase")
-        .y_up())
+    Ok((visuals, views))
 }
 
 /// A matrix entry as the thesis prints it (5 significant digits), with round-off below

@@ -19,7 +19,7 @@ use crate::{
         Method, ModeSelection, Partition, ReductionRequest, constraint_modes,
         fixed_interface_modes, reduce,
     },
-    report::{Cell, Table, sig, sig_vec},
+    report::{Cell, Report, Table, sig, sig_vec},
 };
 
 pub const INFO: SceneInfo = SceneInfo {
@@ -91,41 +91,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         } else {
             0.0
         };
-        let cm: Vec<Vec<f64>> = (0..ev.constraint_modes.nrows())
-            .map(|r| {
-                (0..ev.constraint_modes.ncols())
-                    .map(|c| sig(ev.constraint_modes[(r, c)]))
-                    .collect()
-            })
-            .collect();
-        // The first method gives the stable keys; every method is reported under its id.
-        if i == 0 {
-            report.results.insert("constraint_modes".into(), json!(cm));
-            report
-                .results
-                .insert("normal_hz".into(), json!(sig_vec(&ev.normal_hz)));
-        }
-        report.results.insert(
-            m.id().into(),
-            json!({
-                "constraint_modes": cm,
-                "normal_hz": sig_vec(&ev.normal_hz),
-                "static_max_diff_vs_full": static_diff,
-                "normal_modes_max_angle_vs_full_rad": angle,
-            }),
-        );
-        table.push(vec![
-            Cell::text(m.id().to_uppercase()),
-            Cell::number(
-                static_diff,
-                flexmodes_core::report::readable(static_diff, 2).to_string(),
-            ),
-            Cell::text(crate::report::fmt_hz(&ev.normal_hz)),
-            Cell::number(
-                angle,
-                flexmodes_core::report::readable(angle, 2).to_string(),
-            ),
-        ]);
+        insert_method(&mut report, &mut table, (i, m), &ev, (static_diff, angle));
         let (sets, [constraint_tab, normal_tab]) = method_views(&model, &part, m, &ev);
         visuals.extend(sets);
         tabs.push(constraint_tab);
@@ -147,7 +113,62 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         report.add_table(table),
         crate::report::fmt_hz(&full_hz[..full_hz.len().min(4)]),
     );
-    let markdown = format!(
+    let markdown = scene_text(&boundary, kept, &report.table);
+    let views = Layout::tab_rows(vec![tabs, normal_tabs]);
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
+        .on_timeline("phase")
+        .y_up())
+}
+
+/// One method's constraint modes, normal frequencies and their differences to the full model
+/// into the report (the first method's also under the stable keys) and its table row.
+fn insert_method(
+    report: &mut Report,
+    table: &mut Table,
+    (i, m): (usize, Method),
+    ev: &MeanAxesEvaluation,
+    (static_diff, angle): (f64, f64),
+) {
+    let cm: Vec<Vec<f64>> = (0..ev.constraint_modes.nrows())
+        .map(|r| {
+            (0..ev.constraint_modes.ncols())
+                .map(|c| sig(ev.constraint_modes[(r, c)]))
+                .collect()
+        })
+        .collect();
+    // The first method gives the stable keys; every method is reported under its id.
+    if i == 0 {
+        report.results.insert("constraint_modes".into(), json!(cm));
+        report
+            .results
+            .insert("normal_hz".into(), json!(sig_vec(&ev.normal_hz)));
+    }
+    report.results.insert(
+        m.id().into(),
+        json!({
+            "constraint_modes": cm,
+            "normal_hz": sig_vec(&ev.normal_hz),
+            "static_max_diff_vs_full": static_diff,
+            "normal_modes_max_angle_vs_full_rad": angle,
+        }),
+    );
+    table.push(vec![
+        Cell::text(m.id().to_uppercase()),
+        Cell::number(
+            static_diff,
+            flexmodes_core::report::readable(static_diff, 2).to_string(),
+        ),
+        Cell::text(crate::report::fmt_hz(&ev.normal_hz)),
+        Cell::number(
+            angle,
+            flexmodes_core::report::readable(angle, 2).to_string(),
+        ),
+    ]);
+}
+
+/// The scene's text above its `table`.
+fn scene_text(boundary: &[usize], kept: usize, table: &str) -> String {
+    format!(
         "# beam-mean-axes\n\n§8.4-8.5: the App. A beam reduced with boundary nodes {boundary:?} \
          and {kept} kept modes, its frame on the mean axes (origin at the mass centre). The \
          transformation matrix is built the conventional (nodal-fixed) way; the mean-axis \
@@ -157,12 +178,8 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          exactly and its two lowest fixed-interface frequencies: mode shapes prepared for \
          nodal-fixed axes work with mean axes. Views: each method's constraint modes (top tabs, with \
          the full model's) and normal modes (bottom tabs), on the mean axes.\n\n{}",
-        report.table
-    );
-    let views = Layout::tab_rows(vec![tabs, normal_tabs]);
-    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
-        .on_timeline("phase")
-        .y_up())
+        table
+    )
 }
 
 /// One method's constraint modes and normal modes on the mean axes, drawn in its colour, and

@@ -13,9 +13,9 @@ use crate::{
     Result,
     analysis::{elastic_hz, free_free_modes, reduced_hz, reduced_modes},
     fem::FeModel,
-    linalg::principal_angles,
+    linalg::{GeneralizedEigen, principal_angles},
     record::{Layout, Visual},
-    reduction::{Basis, Method, ModeSelection, fixed_interface_modes},
+    reduction::{Basis, Method, ModeSelection, Partition, fixed_interface_modes},
     report::{Table, fmt_hz, sig, sig_vec},
 };
 
@@ -139,10 +139,51 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
 
     let markdown = scene_text(&b, kept, &report.table);
 
-    let mut visuals = vec![undeformed(&model)];
+    let sets = BeamModeSets {
+        ff: &ff,
+        guyan: [&g_a, &g_b, &g_c],
+        mt: &mt,
+        fi: &fi,
+        cb: &cb,
+        mc: &mc,
+    };
+    let (visuals, views) = mode_set_views(&model, &part, &methods, &sets)?;
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
+        .on_timeline("phase")
+        .y_up())
+}
+
+/// The beam's mode sets as the scene draws them: the free-free modes, Guyan's three bases
+/// (masters A, B and the boundary), the modal truncation basis with the fixed-interface modes,
+/// and the Craig–Bampton and mode-condensation bases.
+struct BeamModeSets<'a> {
+    ff: &'a GeneralizedEigen,
+    guyan: [&'a Basis; 3],
+    mt: &'a Basis,
+    fi: &'a GeneralizedEigen,
+    cb: &'a Basis,
+    mc: &'a Basis,
+}
+
+/// Each mode set of the `methods` drawn under `modes/<set>`, one tab each in two rows.
+fn mode_set_views(
+    model: &FeModel,
+    part: &Partition,
+    methods: &[Method],
+    sets: &BeamModeSets<'_>,
+) -> Result<(Vec<Visual>, Layout)> {
+    let BeamModeSets {
+        ff,
+        guyan: [g_a, g_b, g_c],
+        mt,
+        fi,
+        cb,
+        mc,
+    } = *sets;
+    let mut visuals = vec![undeformed(model)];
     let mut tabs = Vec::new();
     let mut add = |set: &str, modes: Vec<(Vec<f64>, String)>, color, visuals: &mut Vec<Visual>| {
-        visuals.extend(mode_set(&model, set, &modes, color));
+        visuals.extend(mode_set(model, set, &modes, color));
         tabs.push(Layout::view3d(tab_title(set), &format!("/modes/{set}")));
     };
     let ff_modes: Vec<(Vec<f64>, String)> = columns(&ff.vectors)
@@ -155,17 +196,14 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     add("free_free", ff_modes, REFERENCE, &mut visuals);
     if methods.contains(&Method::Guyan) {
         let c = method_color(Method::Guyan);
-        for (set, basis, name) in [
-            ("guyan_a", &g_a, "Guyan (a)"),
-            ("guyan_b", &g_b, "Guyan (b)"),
-        ] {
-            add(set, expanded_modes(&model, basis, name)?, c, &mut visuals);
+        for (set, basis, name) in [("guyan_a", g_a, "Guyan (a)"), ("guyan_b", g_b, "Guyan (b)")] {
+            add(set, expanded_modes(model, basis, name)?, c, &mut visuals);
         }
-        add("guyan_c", labelled_columns(&g_c), c, &mut visuals);
+        add("guyan_c", labelled_columns(g_c), c, &mut visuals);
     }
     if methods.contains(&Method::ModalTruncation) {
         let c = method_color(Method::ModalTruncation);
-        let bcols: Vec<_> = labelled_columns(&mt)
+        let bcols: Vec<_> = labelled_columns(mt)
             .into_iter()
             .take(part.b.len())
             .collect();
@@ -175,15 +213,15 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             fi.vectors.as_ref(),
         ))
         .into_iter()
-        .zip(&fixed_interface_hz)
+        .zip(fi.hz())
         .enumerate()
         .map(|(k, (u, f))| (u, format!("fixed-interface {}: {f:.6} Hz", k + 1)))
         .collect();
         add("fixed_interface", fi_modes, c, &mut visuals);
     }
     for (m, set, basis) in [
-        (Method::CraigBampton, "craig_bampton", &cb),
-        (Method::ModeCondensation, "mode_condensation", &mc),
+        (Method::CraigBampton, "craig_bampton", cb),
+        (Method::ModeCondensation, "mode_condensation", mc),
     ] {
         if methods.contains(&m) {
             add(set, labelled_columns(basis), method_color(m), &mut visuals);
@@ -192,10 +230,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     // Two rows of tabs: the free-free and Guyan sets above, the rest below (eight tabs in one
     // row do not fit a 1280 × 800 window).
     let below = tabs.split_off(tabs.len().min(4));
-    let views = Layout::tab_rows(vec![tabs, below]);
-    Ok(SceneOutput::beside_text(report, markdown, visuals, views)
-        .on_timeline("phase")
-        .y_up())
+    Ok((visuals, Layout::tab_rows(vec![tabs, below])))
 }
 
 /// A mode set's tab title, short enough for four tabs in a row of a 1280 × 800 window (the

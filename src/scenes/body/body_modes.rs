@@ -8,7 +8,7 @@
 
 use crate::models::{
     BALANCED_ZETA, BODY_METHODS, BODY_MODES_COMPARED, BodyInterfaces, BodyModesParameters,
-    BodyModesStudy, DRIVEN_METHODS, body_modes_study,
+    BodyModesStudy, DRIVEN_METHODS, InterfaceResponse, body_modes_study,
 };
 use crate::scenes::body::body_influence::influence_count;
 use crate::scenes::body::body_modes_report::{method_rows, run_parameters, sweep_section};
@@ -20,8 +20,9 @@ use crate::scenes::{
 use crate::{
     Result,
     body_file::{BodyHandle, ImportedBody},
+    fem::FeModel,
     models::FULL_MODES,
-    record::Layout,
+    record::{Layout, Visual},
     reduction::Method,
     report::{Report, residual_note},
 };
@@ -85,9 +86,14 @@ fn run_driven(
 
 pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let body = body_of(opts)?;
-    if let Some(simulation) = &opts.simulation {
-        return run_driven(&body, simulation, opts);
+    match &opts.simulation {
+        Some(simulation) => run_driven(&body, simulation, opts),
+        None => run_modes(&body, opts),
     }
+}
+
+/// The body's modes under every method asked for, on its interface.
+fn run_modes(body: &BodyHandle, opts: &SceneOptions) -> Result<SceneOutput> {
     let model = &body.model;
     let methods = opts.methods_or(INFO.name, &AVAILABLE, &DEFAULT_METHODS)?;
     let boundary = match &opts.boundary {
@@ -97,59 +103,30 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let kept = opts.modes_or_default(&INFO);
     let dofs = model.dof_count();
 
-    let study = body_modes_study(
-        model,
-        &BodyModesParameters {
-            interfaces: BodyInterfaces {
-                boundary: boundary.clone(),
-                rigid: opts.rigid_interfaces.clone(),
-                averaging: opts.averaging_interfaces.clone(),
-                interface_modes: opts.interface_modes,
-            },
-            methods: methods.clone(),
-            kept,
-            band_hz: opts.band_hz,
-            full_modes: FULL_MODES,
-            drawn_constraint_modes:
-                crate::scenes::slab::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES,
-        },
-        (influence_count(kept), BALANCED_ZETA),
-        &opts.progress,
-    )?;
-    let BodyModesStudy {
-        full,
-        full_s,
-        elastic,
-        held,
-        methods: study_methods,
-        notes: study_notes,
-        sweep,
-        response,
-        influence,
-        influence_count: ranked,
-    } = study;
-    let full_hz = full.elastic_hz();
-    let fi_hz = held.as_ref().map_or(Vec::new(), |h| h.fixed_interface.hz());
-    let fi_residuals = held
+    let study = study_of(model, opts, (&boundary, &methods), kept)?;
+    let full_hz = study.full.elastic_hz();
+    let fi_hz = study
+        .held
+        .as_ref()
+        .map_or(Vec::new(), |h| h.fixed_interface.hz());
+    let fi_residuals = study
+        .held
         .as_ref()
         .map_or(Vec::new(), |h| h.fixed_interface.residuals.clone());
 
     let mut residual_lines = vec![
-        format!(
-            "full body: {}; missed modes: {}",
-            residual_note(&full_hz, &full.elastic_residuals()),
-            crate::models::missed_note(&full.modes)
-        ),
+        full_residual_line(&study.full),
         format!("fixed-interface: {}", residual_note(&fi_hz, &fi_residuals)),
     ];
-    let mut visuals = Vec::new();
-    if body.has_coordinates {
-        visuals.push(undeformed(model));
-    }
+    let mut visuals: Vec<Visual> = body
+        .has_coordinates
+        .then(|| undeformed(model))
+        .into_iter()
+        .collect();
     let mut bars = Vec::new();
     let mut freq_bars = FrequencyBars::new(BODY_MODES_COMPARED);
     freq_bars.push(Method::NoReduction, &full_hz);
-    let mut rows = method_rows(&study_methods, &study_notes, dofs, &mut freq_bars);
+    let mut rows = method_rows(&study.methods, &study.notes, dofs, &mut freq_bars);
     residual_lines.append(&mut rows.residual_lines);
 
     visuals.extend(freq_bars.visuals());
@@ -158,13 +135,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let mut report = Report::new(INFO.name);
     report
         .parameters
-        .extend(run_parameters(&body, &boundary, opts, kept, &methods));
+        .extend(run_parameters(body, &boundary, opts, kept, &methods));
     let r = &mut report.results;
-    rows.insert_frequencies(r, &full, (&full_hz, &fi_hz), &fi_residuals, model);
+    rows.insert_frequencies(r, &study.full, (&full_hz, &fi_hz), &fi_residuals, model);
     // How many characteristic constraint modes the interface needs (Castanier–Tan–Pierre).
     let mut sweep_md = String::new();
     let mut sweep_table = None;
-    if let Some(points) = &sweep {
+    if let Some(points) = &study.sweep {
         let section = sweep_section(points, opts.interface_modes);
         r.insert("interface_reduction".into(), section.json);
         visuals.extend(section.visuals);
@@ -172,9 +149,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         sweep_md = section.markdown;
         sweep_table = Some(section.table);
     }
-    rows.insert_measures(r, full_s);
+    rows.insert_measures(r, study.full_s);
     let (influence, influence_json, influence_text) =
-        crate::scenes::body::body_influence::influence_table(&influence, ranked, kept);
+        crate::scenes::body::body_influence::influence_table(
+            &study.influence,
+            study.influence_count,
+            kept,
+        );
     r.insert("interface_influence".into(), influence_json);
     let summary = rows.table.markdown();
     report.add_table(rows.table);
@@ -183,19 +164,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }
     let influence_md = format!("\n\n{influence_text}\n\n{}", influence.markdown());
     report.add_table(influence);
-    let response_md = match &response {
-        Some(r) => {
-            let (table, json, chart, view, text) =
-                crate::scenes::body::body_response::response_table(r, &rows.responses)?;
-            report.results.insert("interface_response".into(), json);
-            visuals.extend(chart);
-            bars.push(view);
-            let md = format!("\n\n{text}\n\n{}", table.markdown());
-            report.add_table(table);
-            md
-        }
-        None => String::new(),
-    };
+    let response_md = response_section(
+        &mut report,
+        study.response.as_ref(),
+        &rows.responses,
+        (&mut visuals, &mut bars),
+    )?;
     let tables = BodyTables {
         summary: &summary,
         residuals: &residual_lines,
@@ -205,18 +179,79 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         response: &response_md,
     };
     report.table = body_text(
-        &body,
+        body,
         &boundary,
         opts,
         kept,
-        &full,
+        &study.full,
         (&full_hz, &fi_hz),
         &tables,
     );
-    let markdown = scene_text(&body, kept, &freq_bars.caption(), &report.table);
-    let (mode_visuals, layout) = views(&body, held.as_ref(), &elastic, kept, bars);
+    let markdown = scene_text(body, kept, &freq_bars.caption(), &report.table);
+    let (mode_visuals, layout) = views(body, study.held.as_ref(), &study.elastic, kept, bars);
     visuals.extend(mode_visuals);
     Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
+}
+
+/// The full body's residuals and the modes its Sturm count says were missed.
+fn full_residual_line(full: &crate::analysis::ZeroEnergyCount) -> String {
+    format!(
+        "full body: {}; missed modes: {}",
+        residual_note(&full.elastic_hz(), &full.elastic_residuals()),
+        crate::models::missed_note(&full.modes)
+    )
+}
+
+/// The body's modes under every method of `methods` on the interface `boundary`, `kept`
+/// modes each, with the sweep, influence and response the options ask for.
+fn study_of(
+    model: &FeModel,
+    opts: &SceneOptions,
+    (boundary, methods): (&[usize], &[Method]),
+    kept: usize,
+) -> Result<BodyModesStudy> {
+    Ok(body_modes_study(
+        model,
+        &BodyModesParameters {
+            interfaces: BodyInterfaces {
+                boundary: boundary.to_vec(),
+                rigid: opts.rigid_interfaces.clone(),
+                averaging: opts.averaging_interfaces.clone(),
+                interface_modes: opts.interface_modes,
+            },
+            methods: methods.to_vec(),
+            kept,
+            band_hz: opts.band_hz,
+            full_modes: FULL_MODES,
+            drawn_constraint_modes:
+                crate::scenes::slab::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES,
+        },
+        (influence_count(kept), BALANCED_ZETA),
+        &opts.progress,
+    )?)
+}
+
+/// The interface response's table and text (into `report`), its chart and view, when the
+/// options asked for one; empty text otherwise.
+fn response_section(
+    report: &mut Report,
+    response: Option<&InterfaceResponse>,
+    responses: &[(Method, crate::analysis::FrequencyResponse)],
+    (visuals, bars): (&mut Vec<Visual>, &mut Vec<Layout>),
+) -> Result<String> {
+    Ok(match response {
+        Some(r) => {
+            let (table, json, chart, view, text) =
+                crate::scenes::body::body_response::response_table(r, responses)?;
+            report.results.insert("interface_response".into(), json);
+            visuals.extend(chart);
+            bars.push(view);
+            let md = format!("\n\n{text}\n\n{}", table.markdown());
+            report.add_table(table);
+            md
+        }
+        None => String::new(),
+    })
 }
 
 /// The body's mode shapes drawn beside the charts when it has coordinates and a boundary

@@ -15,6 +15,19 @@ pub fn summary(
     parameters: &DrivenBodyParameters,
     study: &DrivenStudy,
 ) -> (serde_json::Value, String) {
+    (
+        summary_json(body, parameters, study),
+        summary_text(body, parameters, study),
+    )
+}
+
+/// The study as `flexmodes simulate` prints it: the drive and the motion, the runs' table,
+/// what the columns mean, the stiffening, the explicit scheme's checks and the final values.
+fn summary_text(
+    body: &ImportedBody,
+    parameters: &DrivenBodyParameters,
+    study: &DrivenStudy,
+) -> String {
     let length = &body.units.length;
     let force = &body.units.force;
     let table = runs_table(study).markdown();
@@ -75,6 +88,23 @@ pub fn summary(
         },
     );
     text += &stiffening_words(body, parameters, study);
+    text += &stability_words(study);
+    if !parameters.boundary.is_empty() && study.runs.iter().any(|r| r.method.is_some()) {
+        text += &format!(
+            "\nThe reduced models keep {} as interfaces (an rbe2 set as a rigid ring) while the full \
+             body leaves them free: part of their history error is that ring's stiffening, \
+             not the reduction.\n",
+            parameters.boundary.join(", ")
+        );
+    }
+    text += &final_values(study, force);
+    text
+}
+
+/// The explicit scheme's check on each model: its critical step, and whether the run above it
+/// diverged as predicted.
+fn stability_words(study: &DrivenStudy) -> String {
+    let mut text = String::new();
     for c in &study.stability {
         text += &format!(
             "\nExplicit Dormand–Prince on {}: highest frequency {:.6} Hz, critical step \
@@ -95,17 +125,19 @@ pub fn summary(
             }
         );
     }
-    if !parameters.boundary.is_empty() && study.runs.iter().any(|r| r.method.is_some()) {
-        text += &format!(
-            "\nThe reduced models keep {} as interfaces (an rbe2 set as a rigid ring) while the full \
-             body leaves them free: part of their history error is that ring's stiffening, \
-             not the reduction.\n",
-            parameters.boundary.join(", ")
-        );
-    }
-    text += &final_values(study, force);
+    text
+}
+
+/// The study as `flexmodes simulate --json` writes it.
+fn summary_json(
+    body: &ImportedBody,
+    parameters: &DrivenBodyParameters,
+    study: &DrivenStudy,
+) -> serde_json::Value {
+    let (length, force) = (&body.units.length, &body.units.force);
+    let (drive, master, ring) = &study.drive;
     let runs: Vec<serde_json::Value> = study.runs.iter().map(run_json).collect();
-    let value = json!({
+    json!({
         "body": body.model.name,
         "dof": study.dof,
         "units": {"length": length, "force": force},
@@ -135,8 +167,7 @@ pub fn summary(
         })).collect::<Vec<_>>(),
         "times": study.times,
         "runs": runs,
-    });
-    (value, text)
+    })
 }
 
 /// Whether the runs carried dynamic stiffening, and what leaving it out means at this rate.

@@ -62,9 +62,20 @@ pub(super) fn scene_text(study: &CantileverStudy, tables: &str) -> String {
 
 /// The paper's conclusions, each checked on our numbers.
 pub(super) fn claims_text(study: &CantileverStudy) -> String {
-    let pairs: Vec<&Vec<(Method, Vec<ModePair>)>> =
-        study.variants.iter().map(|v| &v.pairs).collect();
-    let full_hz: Vec<&Vec<f64>> = study.variants.iter().map(|v| &v.band_hz).collect();
+    let mut out = statics_claims(study);
+    out.push_str(&modal_claims(study));
+    out
+}
+
+fn verdict(ok: bool) -> &'static str {
+    if ok { "**holds**" } else { "**does not hold**" }
+}
+
+/// The variants' mode pairs, per method.
+type VariantPairs<'a> = Vec<&'a Vec<(Method, Vec<ModePair>)>>;
+
+/// Statics: CB and MM exact, BT not.
+fn statics_claims(study: &CantileverStudy) -> String {
     let mut out = String::new();
     let static_of = |case: &str, m: Method| {
         study
@@ -73,8 +84,6 @@ pub(super) fn claims_text(study: &CantileverStudy) -> String {
             .find(|c| c.id == case)
             .and_then(|c| c.error(m))
     };
-    let verdict = |ok: bool| if ok { "**holds**" } else { "**does not hold**" };
-    // Statics: CB and MM exact, BT not.
     for (case, text) in [
         ("lc1", "LC 1: CB and MM accurate, BT not"),
         ("lc2", "LC 2: CB and MM exact, BT highly inaccurate"),
@@ -97,30 +106,46 @@ pub(super) fn claims_text(study: &CantileverStudy) -> String {
             ));
         }
     }
-    let worst_below = |v: usize, m: Method| -> Option<(usize, f64)> {
-        let (_, p) = pairs.get(v)?.iter().find(|(mm, _)| *mm == m)?;
-        p.iter()
-            .enumerate()
-            .filter(|(_, q)| q.full_hz <= INTEREST_HZ)
-            .map(|(k, q)| (k + 1, q.frequency_error.abs()))
-            .fold(None, |b: Option<(usize, f64)>, x| match b {
-                Some(y) if y.1 >= x.1 => Some(y),
-                _ => Some(x),
-            })
-    };
-    let missed = |v: usize, m: Method| -> Vec<String> {
-        pairs
-            .get(v)
-            .and_then(|ms| ms.iter().find(|(mm, _)| *mm == m))
-            .map(|(_, p)| {
-                p.iter()
-                    .enumerate()
-                    .filter(|(_, q)| q.mac < MAC_ACCURATE)
-                    .map(|(k, q)| format!("{} ({:.1} Hz, MAC {:.2})", k + 1, q.full_hz, q.mac))
-                    .collect()
-            })
-            .unwrap_or_default()
-    };
+    out
+}
+
+/// The worst frequency error below the band of interest of method `m` on variant `v`, and
+/// its mode (1-based).
+fn worst_below(pairs: &VariantPairs<'_>, v: usize, m: Method) -> Option<(usize, f64)> {
+    let (_, p) = pairs.get(v)?.iter().find(|(mm, _)| *mm == m)?;
+    p.iter()
+        .enumerate()
+        .filter(|(_, q)| q.full_hz <= INTEREST_HZ)
+        .map(|(k, q)| (k + 1, q.frequency_error.abs()))
+        .fold(None, |b: Option<(usize, f64)>, x| match b {
+            Some(y) if y.1 >= x.1 => Some(y),
+            _ => Some(x),
+        })
+}
+
+/// The modes of variant `v` that method `m` does not reproduce (MAC below accurate).
+fn missed(pairs: &VariantPairs<'_>, v: usize, m: Method) -> Vec<String> {
+    pairs
+        .get(v)
+        .and_then(|ms| ms.iter().find(|(mm, _)| *mm == m))
+        .map(|(_, p)| {
+            p.iter()
+                .enumerate()
+                .filter(|(_, q)| q.mac < MAC_ACCURATE)
+                .map(|(k, q)| format!("{} ({:.1} Hz, MAC {:.2})", k + 1, q.full_hz, q.mac))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The modal claims: each variant's worst errors and missed modes, and the paper's named
+/// verdicts.
+fn modal_claims(study: &CantileverStudy) -> String {
+    let pairs: VariantPairs<'_> = study.variants.iter().map(|v| &v.pairs).collect();
+    let full_hz: Vec<&Vec<f64>> = study.variants.iter().map(|v| &v.band_hz).collect();
+    let worst_below = |v: usize, m: Method| worst_below(&pairs, v, m);
+    let missed = |v: usize, m: Method| missed(&pairs, v, m);
+    let mut out = String::new();
     for v in 0..pairs.len() {
         let name = v + 1;
         let mut parts = Vec::new();

@@ -66,38 +66,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         });
     }
 
-    // ---- Dynamics: the full model and each reduced one under each variant.
-    let (mut hz_all, mut freq_all, mut mac_all) = (Map::new(), Map::new(), Map::new());
-    let mut dynamics_text = String::new();
-    for variant in &study.variants {
-        let key = format!("v{}", variant.variant);
-        hz_all.insert(key.clone(), json!(sig_vec(&variant.band_hz)));
-        let (mut freq, mut macs) = (Map::new(), Map::new());
-        for (m, pairs) in &variant.pairs {
-            let errors: Vec<f64> = pairs.iter().map(|p| p.frequency_error).collect();
-            freq.insert(m.id().into(), json!(sig_vec(&errors)));
-            let mac: Vec<f64> = pairs.iter().map(|p| p.mac).collect();
-            macs.insert(m.id().into(), json!(sig_vec(&mac)));
-        }
-        freq_all.insert(key.clone(), Value::Object(freq));
-        mac_all.insert(key, Value::Object(macs));
-        visuals.extend(variant_visuals(&study, variant));
-        dynamics_text.push_str(&format!(
-            "\n### Variant {}: {}\n\n{}",
-            variant.variant,
-            match variant.variant {
-                1 => "clamped at the origin only (the bases' own model)",
-                2 => "A clamped as well",
-                _ => "A sliding in x only, with 250 kg on it",
-            },
-            report.add_table(variant_table(variant))
-        ));
-    }
-    report.results.insert("hz".into(), Value::Object(hz_all));
-    report
-        .results
-        .insert("freq_rel_error".into(), Value::Object(freq_all));
-    report.results.insert("mac".into(), Value::Object(mac_all));
+    let dynamics_text = dynamics_section(&study, &mut report, &mut visuals);
 
     let static_md = statics_section(&study, &mut report, &mut visuals);
     let cal_md = calibration_section(&study, &mut report);
@@ -133,6 +102,48 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         visuals,
         layout(&study.statics),
     ))
+}
+
+/// The dynamics: the full model and each reduced one under each variant (their frequency
+/// errors and MACs into the results, their visuals, and one table per variant, returned as
+/// markdown).
+fn dynamics_section(
+    study: &CantileverStudy,
+    report: &mut Report,
+    visuals: &mut Vec<Visual>,
+) -> String {
+    let (mut hz_all, mut freq_all, mut mac_all) = (Map::new(), Map::new(), Map::new());
+    let mut dynamics_text = String::new();
+    for variant in &study.variants {
+        let key = format!("v{}", variant.variant);
+        hz_all.insert(key.clone(), json!(sig_vec(&variant.band_hz)));
+        let (mut freq, mut macs) = (Map::new(), Map::new());
+        for (m, pairs) in &variant.pairs {
+            let errors: Vec<f64> = pairs.iter().map(|p| p.frequency_error).collect();
+            freq.insert(m.id().into(), json!(sig_vec(&errors)));
+            let mac: Vec<f64> = pairs.iter().map(|p| p.mac).collect();
+            macs.insert(m.id().into(), json!(sig_vec(&mac)));
+        }
+        freq_all.insert(key.clone(), Value::Object(freq));
+        mac_all.insert(key, Value::Object(macs));
+        visuals.extend(variant_visuals(study, variant));
+        dynamics_text.push_str(&format!(
+            "\n### Variant {}: {}\n\n{}",
+            variant.variant,
+            match variant.variant {
+                1 => "clamped at the origin only (the bases' own model)",
+                2 => "A clamped as well",
+                _ => "A sliding in x only, with 250 kg on it",
+            },
+            report.add_table(variant_table(variant))
+        ));
+    }
+    report.results.insert("hz".into(), Value::Object(hz_all));
+    report
+        .results
+        .insert("freq_rel_error".into(), Value::Object(freq_all));
+    report.results.insert("mac".into(), Value::Object(mac_all));
+    dynamics_text
 }
 
 /// The statics: each load case's peak and each model's error against the full model (its

@@ -52,6 +52,24 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         .results
         .insert("hz".into(), json!(sig_vec(&study.full_hz[..study.in_band])));
 
+    let sets_md = mode_sets_section(&mut report, &study);
+
+    let sel_md = selection_section(&mut report, &study);
+
+    let art_md = articulation_section(&mut report, &study, &methods);
+
+    let visuals = visuals(&study);
+    let claims = claims_text(&study);
+    report.table = format!(
+        "## Mode sets\n\n{sets_md}\n## Influence against frequency\n\n{sel_md}\n\
+         ## Other articulation angles (FRF error 0–10 Hz)\n\n{art_md}\n## Claims\n\n{claims}"
+    );
+    let markdown = scene_text(&study, &report.table);
+    Ok(SceneOutput::new(report, markdown, visuals, layout()))
+}
+
+/// The mode sets, assembled: their coordinates and FRF errors (table and results).
+fn mode_sets_section(report: &mut Report, study: &DualSpinStudy) -> String {
     // Mode sets, assembled.
     let (mut errors, mut counts) = (Map::new(), Map::new());
     let mut table = Table::new(&[
@@ -89,8 +107,11 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report
         .results
         .insert("coordinates".into(), Value::Object(counts));
-    let sets_md = report.add_table(table);
+    report.add_table(table)
+}
 
+/// The rotor's CB modes chosen by influence against the lowest ones (table and results).
+fn selection_section(report: &mut Report, study: &DualSpinStudy) -> String {
     // Second stage: the rotor's CB modes by influence against the lowest ones.
     let ranking = &study.ranking;
     let rigid = ranking.modes.rigid;
@@ -129,8 +150,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report
         .results
         .insert("influence_modes".into(), json!(kept_numbers));
-    let sel_md = report.add_table(sel_table);
+    report.add_table(sel_table)
+}
 
+/// The FRF errors at other articulation angles, per method and selection (table and
+/// results).
+fn articulation_section(report: &mut Report, study: &DualSpinStudy, methods: &[Method]) -> String {
     // Other frozen configurations: the rotor turned about the hinge (Spanos–Tsuha repeat the
     // experiment at other articulation angles, which they do not give).
     let mut header = vec!["rotor angle".to_string()];
@@ -165,16 +190,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     report
         .results
         .insert("articulation".into(), Value::Object(articulation));
-    let art_md = report.add_table(art_table);
-
-    let visuals = visuals(&study);
-    let claims = claims_text(&study);
-    report.table = format!(
-        "## Mode sets\n\n{sets_md}\n## Influence against frequency\n\n{sel_md}\n\
-         ## Other articulation angles (FRF error 0–10 Hz)\n\n{art_md}\n## Claims\n\n{claims}"
-    );
-    let markdown = scene_text(&study, &report.table);
-    Ok(SceneOutput::new(report, markdown, visuals, layout()))
+    report.add_table(art_table)
 }
 
 /// The scene's text above its tables.

@@ -111,7 +111,14 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         &["failure", "what happened (measured)", "why"],
         &lines.iter().map(|l| l.to_vec()).collect::<Vec<_>>(),
     ));
-    // The panel is narrow: one section per failure instead of the three-column table.
+    let markdown = scene_text(&lines);
+    let views = failure_views();
+    Ok(SceneOutput::beside_text(report, markdown, visuals, views).on_timeline("phase"))
+}
+
+/// The scene's text: what each view shows, then one section per failure (the panel is narrow
+/// for the three-column table).
+fn scene_text(lines: &[[String; 3]]) -> String {
     let sections: String = lines
         .iter()
         .enumerate()
@@ -122,7 +129,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             )
         })
         .collect();
-    let markdown = format!(
+    format!(
         "# failures\n\nEvery failure of the classical methods in one recording. Each is a \
          named error the program returns (and survives) or an effect measured here; the \
          report keys are under `results.<failure>` (`flexmodes report failures --json`).\n\n\
@@ -138,8 +145,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          *inertia loads*: the spun lever's tip history error against NR (lines) and the \
          a-priori estimate (points) for CB k without and with residual vectors (log–log).\n\n\
          {sections}"
-    );
-    let views = Layout::Vertical(
+    )
+}
+
+/// The two 3-D views above the three charts, each set as tabs.
+fn failure_views() -> Layout {
+    Layout::Vertical(
         vec![
             Layout::Tabs(vec![
                 Layout::view3d("guyan (b) symmetry", "/modes"),
@@ -161,6 +172,5 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             ]),
         ],
         vec![1.2, 1.0],
-    );
-    Ok(SceneOutput::beside_text(report, markdown, visuals, views).on_timeline("phase"))
+    )
 }

@@ -52,17 +52,7 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     let model = plank(&SlabParameters::default());
     let params = opts.integrator_parameters(&INFO)?;
     let mut report = Report::new(INFO.name);
-    report
-        .parameters
-        .insert("end_time_s".into(), json!(params.end_time));
-    crate::scenes::slab::slab_sims::insert_integrator(&mut report, &params);
-    report
-        .parameters
-        .insert("drop_m".into(), json!(plank_setup().drop));
-    report
-        .parameters
-        .insert("cb_boundary".into(), json!(PLANK_BOUNDARY));
-    report.parameters.insert("modes".into(), json!(modes));
+    insert_parameters(&mut report, &params, modes);
     let mut defects = Map::new();
     let mut defects_before = Map::new();
     let mut walls = Map::new();
@@ -80,7 +70,6 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     // The plank swings metres; its deflections are drawn true to scale unless asked otherwise.
     let deflection = opts.deformation_scale_or(INFO.name, || 1.0)?;
     let mut visuals = Vec::new();
-    let mut plots = Vec::new();
     // The variants' integrations are independent: as many at once as the options allow.
     let runs = crate::work_pool::run_concurrently(
         &variants,
@@ -104,19 +93,12 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         let max_defect = max_until(sim, &hist[2], f64::INFINITY);
         // Before the chains snap taut (free fall lasts about 0.49 s).
         let before = max_until(sim, &hist[2], SNAP_TIME);
-        defects_before.insert(
-            if v.method == Method::NoReduction {
-                v.axes.id().to_string()
-            } else {
-                format!("{}_{}", v.method.id(), v.axes.id())
-            },
-            json!(before),
-        );
         let key = if v.method == Method::NoReduction {
             v.axes.id().to_string()
         } else {
             format!("{}_{}", v.method.id(), v.axes.id())
         };
+        defects_before.insert(key.clone(), json!(before));
         defects.insert(key.clone(), json!(max_defect));
         walls.insert(key.clone(), json!(sig(sim.wall_time_s)));
         let drift = max_energy_drift(sim);
@@ -143,6 +125,43 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             v, system, sim, &hist, &geometry, deflection,
         ));
     }
+    report.results.insert(
+        "max_symmetry_defect_m".into(),
+        serde_json::Value::Object(defects),
+    );
+    report.results.insert(
+        "symmetry_defect_before_snap_m".into(),
+        serde_json::Value::Object(defects_before),
+    );
+    report
+        .results
+        .insert("wall_time_s".into(), serde_json::Value::Object(walls));
+    report.table = report.add_table(table);
+    let markdown = plank_text(&params, &report.table);
+    let layout = plank_layout();
+    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("sim_time"))
+}
+
+/// What the study ran with: its interval and integrator, the plank's drop, CB's boundary and
+/// kept modes.
+fn insert_parameters(report: &mut Report, params: &IntegratorParameters, modes: usize) {
+    report
+        .parameters
+        .insert("end_time_s".into(), json!(params.end_time));
+    crate::scenes::slab::slab_sims::insert_integrator(report, params);
+    report
+        .parameters
+        .insert("drop_m".into(), json!(plank_setup().drop));
+    report
+        .parameters
+        .insert("cb_boundary".into(), json!(PLANK_BOUNDARY));
+    report.parameters.insert("modes".into(), json!(modes));
+}
+
+/// The plank in 3-D with the health plots as tabs (where their titles fit), above the
+/// histories of nodes 3 and 15 and the symmetry defect.
+fn plank_layout() -> Layout {
+    let mut plots = Vec::new();
     for name in ["x_node3", "x_node15", "symmetry_defect"] {
         plots.push(Layout::TimeSeries {
             name: name.into(),
@@ -160,27 +179,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
             origin: "/plots/constraint_violation".into(),
         },
     ];
-    report.results.insert(
-        "max_symmetry_defect_m".into(),
-        serde_json::Value::Object(defects),
-    );
-    report.results.insert(
-        "symmetry_defect_before_snap_m".into(),
-        serde_json::Value::Object(defects_before),
-    );
-    report
-        .results
-        .insert("wall_time_s".into(), serde_json::Value::Object(walls));
-    report.table = report.add_table(table);
-    let markdown = plank_text(&params, &report.table);
     let mut top = vec![Layout::Spatial3D {
         name: "plank".into(),
         origin: "/world".into(),
         contents: vec!["$origin/**".into()],
     }];
     top.extend(health);
-    let layout = simulation_layout(Layout::Tabs(top), plots);
-    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("sim_time"))
+    simulation_layout(Layout::Tabs(top), plots)
 }
 
 /// The study's variants (NR on nodal-fixed and mean axes, CB on mean axes) that `--method`

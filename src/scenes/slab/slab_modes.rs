@@ -1,6 +1,7 @@
 //! `slab-modes`: the App. B slab's free-free, constraint and fixed-interface modes and the
 //! frequencies of each reduced model (§7.2.1).
 
+use faer::Mat;
 use serde_json::{Map, Value, json};
 
 use crate::dynamics::AxisKind;
@@ -13,7 +14,9 @@ use crate::scenes::{
 use crate::{
     Result,
     analysis::{elastic_hz, free_free_modes, reduced_hz, reduced_modes},
-    fem::{SlabParameters, slab},
+    fem::{FeModel, SlabParameters, slab},
+    linalg::GeneralizedEigen,
+    record::{Layout, Visual},
     reduction::{
         Method, ModeSelection, NodalFixedAxes, Partition, ReductionRequest, constraint_modes,
         fixed_interface_modes, reduce,
@@ -121,21 +124,13 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
     }
 
     let mut report = Report::new(INFO.name);
-    report.parameters.insert("boundary".into(), json!(boundary));
-    report
-        .parameters
-        .insert("guyan_masters".into(), json!(gr_masters));
-    report.parameters.insert("modes".into(), json!(kept));
-    report.parameters.insert(
-        "methods".into(),
-        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
+    insert_parameters(
+        &mut report,
+        (&boundary, &gr_masters),
+        kept,
+        &methods,
+        nodal_fixed.then_some(&axes),
     );
-    if nodal_fixed {
-        report.parameters.insert(
-            "axes".into(),
-            json!({"type": "nodal_fixed", "origin": axes.origin, "axis_node": axes.axis_node, "plane_node": axes.plane_node}),
-        );
-    }
     let r = &mut report.results;
     super::slab_mode_results::insert_mode_results(
         r,
@@ -154,7 +149,17 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
         report.add_table(Table::from_text(&["model", "Hz"], &rows)),
         fmt_hz(&fixed_interface_hz[..fixed_interface_hz.len().min(8)]),
     );
-    let markdown = format!(
+    let markdown = scene_text(&boundary, kept, &bars.caption(), &report.table);
+    visuals.extend(bars.visuals());
+
+    let (mode_visuals, layout) = mode_views(&model, &part, &psi_s, (&fi, &ff), kept, bars.layout());
+    visuals.extend(mode_visuals);
+    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
+}
+
+/// The scene's text: the slab, its views and the frequency chart's `caption`, above `table`.
+fn scene_text(boundary: &[usize], kept: usize, caption: &str, table: &str) -> String {
+    format!(
         "# slab-modes\n\nThe App. B slab (4 × 2 × 1 m, 8 trilinear bricks, 30 nodes, E = 0.2e6 Pa, \
          ν = 0.33, 62.4 kg lumped as Table B-1). Views: free-free elastic modes, the constraint \
          modes of boundary nodes {boundary:?} (unit boundary displacements, interior static), \
@@ -164,25 +169,58 @@ pub fn run(opts: &SceneOptions) -> Result<SceneOutput> {
          boundary columns move the boundary nodes alone, so it has no rigid-body mode and its \
          lowest frequencies are spoiled rigid-body motions, the failure §7.1 shows on the beam. \
          {}\n\n{}",
-        bars.caption(),
-        report.table
-    );
-    visuals.extend(bars.visuals());
+        caption, table
+    )
+}
 
+/// The run's boundary and Guyan masters, kept modes, methods and nodal-fixed axes (when
+/// asked for) into `report`.
+fn insert_parameters(
+    report: &mut Report,
+    (boundary, gr_masters): (&[usize], &[usize]),
+    kept: usize,
+    methods: &[Method],
+    nodal_fixed: Option<&NodalFixedAxes>,
+) {
+    report.parameters.insert("boundary".into(), json!(boundary));
+    report
+        .parameters
+        .insert("guyan_masters".into(), json!(gr_masters));
+    report.parameters.insert("modes".into(), json!(kept));
+    report.parameters.insert(
+        "methods".into(),
+        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
+    );
+    if let Some(axes) = nodal_fixed {
+        report.parameters.insert(
+            "axes".into(),
+            json!({"type": "nodal_fixed", "origin": axes.origin, "axis_node": axes.axis_node, "plane_node": axes.plane_node}),
+        );
+    }
+}
+
+/// The slab's free-free, constraint ($\Psi_s$) and fixed-interface modes in tabs above the
+/// frequency `chart`.
+fn mode_views(
+    model: &FeModel,
+    part: &Partition,
+    psi_s: &Mat<f64>,
+    (fi, ff): (&GeneralizedEigen, &GeneralizedEigen),
+    kept: usize,
+    chart: Layout,
+) -> (Vec<Visual>, Layout) {
     let shapes = part.assemble(part.unit_top(0).as_ref(), psi_s.as_ref());
     let labels: Vec<String> = part.b.iter().map(|&d| model.dof_label(d)).collect();
-    let (mode_visuals, layout) = slab_mode_views(ModeViews {
-        model: &model,
-        part: &part,
+    slab_mode_views(ModeViews {
+        model,
+        part,
         constraint: &shapes,
         constraint_labels: &labels,
-        fixed_interface: &fi,
-        free_free: &ff,
+        fixed_interface: fi,
+        free_free: ff,
         shown_free_free: SHOWN_FREE_FREE,
         kept,
         first_tab: "free_free",
-        charts: vec![bars.layout()],
-    });
-    visuals.extend(mode_visuals);
-    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
+        charts: vec![chart],
+    })
 }

@@ -15,7 +15,8 @@ use crate::{
     Error, Result,
     analysis::{elastic_hz, lowest_free_free_modes, reduced_modes},
     fem::{FeModel, SlabParameters, slab},
-    linalg::{check_reduction_memory, peak_resident_bytes},
+    linalg::{GeneralizedEigen, check_reduction_memory, peak_resident_bytes},
+    record::{Layout, Visual},
     reduction::{
         Basis, InteriorProblem, Method, ModeCondensationRoute, ModeSelection, ReductionStatistics,
         SolverPath,
@@ -39,15 +40,7 @@ const EXTRA_GUYAN_MASTER_POSITIONS: [[f64; 3]; 2] = [[1.0, 1.0, 1.0], [3.0, 1.0,
 
 /// Runs `slab-modes` (described by `info`) on a mesh of `bricks`.
 pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<SceneOutput> {
-    if opts.axes.is_some() {
-        return Err(Error::InvalidOption {
-            option: "--axes",
-            scene: Some(info.name),
-            reason: "--axes is offered on the App. B slab only (its nodal-fixed nodes 16, 28, \
-                     18 are not defined on a refined mesh)"
-                .into(),
-        });
-    }
+    refuse_axes(opts, info)?;
     let params = SlabParameters::refined(bricks)?;
     let dofs = params.dof_count();
     // Refuse before allocating anything a mesh the machine cannot hold.
@@ -64,7 +57,6 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     let started = Instant::now();
     let model = slab(&params);
     let assembly_s = started.elapsed().as_secs_f64();
-
     // The Craig-Bampton work of the benchmark: one factorisation of K_ii, the constraint modes
     // and the lowest fixed-interface modes; MT and MC reuse both.
     let started = Instant::now();
@@ -78,49 +70,29 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     let reduction_s = started.elapsed().as_secs_f64();
     let phases = problem.statistics;
     let fixed_interface_hz = fi.hz();
-
-    let mut reduced = Map::new();
-    let mut sizes = Map::new();
-    let mut method_s = Map::new();
-    let mut rows = Vec::new();
     let mut visuals = vec![undeformed(&model)];
     let mut bars = FrequencyBars::new(SHOWN_MODES);
-    for &m in &methods {
-        let started = Instant::now();
-        let basis = refined_basis(m, &model, &mut problem, &cb, kept, &gr_masters, opts)?;
-        let elapsed = if m == Method::CraigBampton {
-            reduction_s
-        } else {
-            started.elapsed().as_secs_f64()
-        };
-        method_s.insert(m.id().into(), json!(sig(elapsed)));
-        let hz = elastic_hz(&reduced_modes(&model, &basis)?);
-        reduced.insert(m.id().into(), json!(sig_vec(&hz)));
-        sizes.insert(m.id().into(), json!([basis.psi.nrows(), basis.psi.ncols()]));
-        rows.push(vec![
-            format!("{} ({dofs} × {})", m.id().to_uppercase(), basis.size()),
-            fmt_hz(&hz[..hz.len().min(6)]),
-            format!("{elapsed:.3}"),
-        ]);
-        bars.push(m, &hz);
-    }
+    let run = RefinedRun {
+        model: &model,
+        kept,
+        gr_masters: &gr_masters,
+        cb: &cb,
+        reduction_s,
+    };
+    let MethodResults {
+        reduced,
+        sizes,
+        method_s,
+        rows,
+    } = reduce_methods(&run, &methods, &mut problem, &mut bars, opts)?;
     opts.progress.phase("free-free modes")?;
     let ff = lowest_free_free_modes(&model, FREE_FREE)?;
     let free_free_hz = elastic_hz(&ff);
     bars.push_first(Method::NoReduction, &free_free_hz);
     visuals.extend(bars.visuals());
     let peak = peak_resident_bytes();
-
     let mut report = Report::new(info.name);
-    let p = &mut report.parameters;
-    p.insert("refine".into(), json!(bricks));
-    p.insert("boundary".into(), json!(boundary));
-    p.insert("guyan_masters".into(), json!(gr_masters));
-    p.insert("modes".into(), json!(kept));
-    p.insert(
-        "methods".into(),
-        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
-    );
+    insert_parameters(&mut report, bricks, &boundary, &run, &methods);
     let r = &mut report.results;
     super::slab_mode_results::insert_mode_results(
         r,
@@ -162,24 +134,128 @@ pub fn run(opts: &SceneOptions, info: &SceneInfo, bricks: [usize; 3]) -> Result<
     );
     let markdown = scene_text(bricks, &bars.caption(), &report.table);
 
+    let (mode_visuals, layout) = mode_views(&model, &mut problem, (&fi, &ff), kept, bars.layout())?;
+    visuals.extend(mode_visuals);
+    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
+}
+
+/// What every method of a refined run shares: the slab, the kept modes, Guyan's masters, and
+/// Craig–Bampton's basis with the time it took.
+struct RefinedRun<'a> {
+    model: &'a FeModel,
+    kept: usize,
+    gr_masters: &'a [usize],
+    cb: &'a Basis,
+    reduction_s: f64,
+}
+
+/// Each method's reduced frequencies, basis size and time (by method id), and its table row.
+struct MethodResults {
+    reduced: Map<String, Value>,
+    sizes: Map<String, Value>,
+    method_s: Map<String, Value>,
+    rows: Vec<Vec<String>>,
+}
+
+/// The run's mesh, boundary, Guyan masters, kept modes and methods into `report`.
+fn insert_parameters(
+    report: &mut Report,
+    bricks: [usize; 3],
+    boundary: &[usize],
+    run: &RefinedRun<'_>,
+    methods: &[Method],
+) {
+    let p = &mut report.parameters;
+    p.insert("refine".into(), json!(bricks));
+    p.insert("boundary".into(), json!(boundary));
+    p.insert("guyan_masters".into(), json!(run.gr_masters));
+    p.insert("modes".into(), json!(run.kept));
+    p.insert(
+        "methods".into(),
+        json!(methods.iter().map(|m| m.id()).collect::<Vec<_>>()),
+    );
+}
+
+/// Reduces the slab by every method of `methods` (their frequencies into `bars`).
+fn reduce_methods(
+    run: &RefinedRun<'_>,
+    methods: &[Method],
+    problem: &mut InteriorProblem,
+    bars: &mut FrequencyBars,
+    opts: &SceneOptions,
+) -> Result<MethodResults> {
+    let dofs = run.model.dof_count();
+    let mut reduced = Map::new();
+    let mut sizes = Map::new();
+    let mut method_s = Map::new();
+    let mut rows = Vec::new();
+    for &m in methods {
+        let started = Instant::now();
+        let basis = refined_basis(m, run, problem, opts)?;
+        let elapsed = if m == Method::CraigBampton {
+            run.reduction_s
+        } else {
+            started.elapsed().as_secs_f64()
+        };
+        method_s.insert(m.id().into(), json!(sig(elapsed)));
+        let hz = elastic_hz(&reduced_modes(run.model, &basis)?);
+        reduced.insert(m.id().into(), json!(sig_vec(&hz)));
+        sizes.insert(m.id().into(), json!([basis.psi.nrows(), basis.psi.ncols()]));
+        rows.push(vec![
+            format!("{} ({dofs} × {})", m.id().to_uppercase(), basis.size()),
+            fmt_hz(&hz[..hz.len().min(6)]),
+            format!("{elapsed:.3}"),
+        ]);
+        bars.push(m, &hz);
+    }
+    Ok(MethodResults {
+        reduced,
+        sizes,
+        method_s,
+        rows,
+    })
+}
+
+/// The mode views of the refined slab: its free-free (`ff`), constraint and fixed-interface
+/// (`fi`) modes in tabs above the frequency `chart`.
+fn mode_views(
+    model: &FeModel,
+    problem: &mut InteriorProblem,
+    (fi, ff): (&GeneralizedEigen, &GeneralizedEigen),
+    kept: usize,
+    chart: Layout,
+) -> Result<(Vec<Visual>, Layout)> {
     let (shapes, labels) = problem
         .constraint_shapes(crate::scenes::slab::slab_mode_views::MAX_DRAWN_CONSTRAINT_MODES)?;
     let (mode_visuals, layout) = crate::scenes::slab::slab_mode_views::slab_mode_views(
         crate::scenes::slab::slab_mode_views::ModeViews {
-            model: &model,
+            model,
             part: &problem.partition,
             constraint: &shapes,
             constraint_labels: &labels,
-            fixed_interface: &fi,
-            free_free: &ff,
+            fixed_interface: fi,
+            free_free: ff,
             shown_free_free: FREE_FREE,
             kept,
             first_tab: "fixed_interface",
-            charts: vec![bars.layout()],
+            charts: vec![chart],
         },
     );
-    visuals.extend(mode_visuals);
-    Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("phase"))
+    Ok((mode_visuals, layout))
+}
+
+/// `--axes` is the App. B slab's alone.
+fn refuse_axes(opts: &SceneOptions, info: &SceneInfo) -> Result<()> {
+    if opts.axes.is_some() {
+        return Err(Error::InvalidOption {
+            option: "--axes",
+            scene: Some(info.name),
+            reason: "--axes is offered on the App. B slab only (its nodal-fixed nodes 16, 28, \
+                     18 are not defined on a refined mesh)"
+                .into(),
+        });
+    }
+    Ok(())
 }
 
 /// The Guyan masters: the boundary and the nodes nearest App. B's extra masters.
@@ -198,13 +274,17 @@ fn guyan_masters(params: &SlabParameters, boundary: &[usize]) -> Vec<usize> {
 /// interior problem, Guyan on its masters.
 fn refined_basis(
     m: Method,
-    model: &FeModel,
+    run: &RefinedRun<'_>,
     problem: &mut InteriorProblem,
-    cb: &Basis,
-    kept: usize,
-    gr_masters: &[usize],
     opts: &SceneOptions,
 ) -> Result<Basis> {
+    let RefinedRun {
+        model,
+        kept,
+        gr_masters,
+        cb,
+        ..
+    } = *run;
     match m {
         Method::CraigBampton => Ok(cb.clone()),
         Method::ModalTruncation => Ok(reduce_interior(

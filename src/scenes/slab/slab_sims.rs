@@ -14,7 +14,7 @@ use crate::scenes::{
 use crate::{
     Progress, Result,
     dynamics::{AxisType, IntegratorParameters, Simulation, System, simulate},
-    fem::{BrickElements, SlabParameters, slab},
+    fem::{BrickElements, FeModel, SlabParameters, slab},
     record::{Geometry, Layout, Visual},
     reduction::{Method, NodalFixedAxes},
     report::Report,
@@ -23,7 +23,7 @@ use crate::{
 /// The options of the three slab simulations; `end` is the default interval, s.
 pub use crate::scenes::slab::slab_sim_report::insert_integrator;
 use crate::scenes::slab::slab_sim_report::{
-    DIRECTIONS, ScenarioSettings, errors_table, scenario_parameters, scenario_text,
+    DIRECTIONS, Run, ScenarioSettings, errors_table, scenario_parameters, scenario_text,
 };
 use crate::scenes::slab::slab_sim_views::{lanes, speed_accuracy};
 
@@ -202,14 +202,6 @@ pub fn run_scenario(
         methods.len(),
         &report.table,
     );
-    let geometry = Geometry::of(&model);
-    let mut visuals = vec![Visual::Wireframe {
-        path: "world/slab/undeformed".into(),
-        geometry: geometry.clone(),
-        color: [150, 150, 150, 90],
-        label: None,
-    }];
-    visuals.extend(speed_accuracy(&runs, reference.as_ref()));
     // Deflections of a few cm on a 4 m slab: drawn magnified, one factor for every method.
     let scale = opts.deformation_scale_or(info.name, || {
         deformation_scale(
@@ -218,20 +210,33 @@ pub fn run_scenario(
             model.size(),
         )
     })?;
-    lanes(
-        &mut visuals,
-        &runs,
-        &model,
-        &geometry,
-        &methods,
-        axes,
-        scale,
-    )?;
+    let visuals = scenario_visuals(&runs, reference.as_ref(), &model, (&methods, axes), scale)?;
     report
         .results
         .insert("deformation_scale".into(), json!(scale));
     let layout = scenario_layout(&visuals, scale);
     Ok(SceneOutput::new(report, markdown, visuals, layout).on_timeline("sim_time"))
+}
+
+/// The undeformed slab, the speed–accuracy chart against the full model's `reference`
+/// history, and one lane per method seen from `axes`, drawn `scale` times.
+fn scenario_visuals(
+    runs: &[Run],
+    reference: Option<&[Vec<f64>; 3]>,
+    model: &FeModel,
+    (methods, axes): (&[Method], AxisType),
+    scale: f64,
+) -> Result<Vec<Visual>> {
+    let geometry = Geometry::of(model);
+    let mut visuals = vec![Visual::Wireframe {
+        path: "world/slab/undeformed".into(),
+        geometry: geometry.clone(),
+        color: [150, 150, 150, 90],
+        label: None,
+    }];
+    visuals.extend(speed_accuracy(runs, reference));
+    lanes(&mut visuals, runs, model, &geometry, methods, axes, scale)?;
+    Ok(visuals)
 }
 
 /// The scenario's views: the slab lanes (drawn `scale` times) with the speed–accuracy chart
