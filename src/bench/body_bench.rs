@@ -89,45 +89,8 @@ fn table_text(
     advice: &BodyAdvice,
     frf_note: Option<&str>,
 ) -> String {
-    let rows: Vec<Vec<String>> = points
-        .iter()
-        .map(|q| {
-            vec![
-                q.method.id().into(),
-                q.modes.to_string(),
-                q.coordinates.to_string(),
-                format!("{:.3}", q.offline_s),
-                q.peak_mb.map_or("–".into(), |m| format!("{m:.0}")),
-                if q.freq_rel_error.is_finite() {
-                    crate::report::sig3(q.freq_rel_error)
-                } else {
-                    "too few modes".into()
-                },
-                format!("{:.4}", q.min_mac),
-                crate::report::sig3(q.static_error),
-                q.frf_error.map_or("–".into(), crate::report::sig3),
-                if q.pareto { "★" } else { "" }.to_string(),
-            ]
-        })
-        .collect();
-    let advice_rows: Vec<Vec<String>> = advice
-        .smallest
-        .iter()
-        .map(|(m, s)| match s {
-            Some((k, c, e)) => vec![
-                m.id().into(),
-                k.to_string(),
-                c.to_string(),
-                crate::report::sig3(*e),
-            ],
-            None => vec![
-                m.id().into(),
-                "none measured".into(),
-                "–".into(),
-                "–".into(),
-            ],
-        })
-        .collect();
+    let rows = point_rows(points);
+    let advice_rows = advice_rows(advice);
     let refused_text: String = refused
         .iter()
         .map(|(m, why)| format!("\n- {} not computed: {why}", m.id().to_uppercase()))
@@ -190,6 +153,53 @@ fn table_text(
             &advice_rows,
         ),
     )
+}
+
+/// One table row per measured model.
+fn point_rows(points: &[BodyComparisonPoint]) -> Vec<Vec<String>> {
+    points
+        .iter()
+        .map(|q| {
+            vec![
+                q.method.id().into(),
+                q.modes.to_string(),
+                q.coordinates.to_string(),
+                format!("{:.3}", q.offline_s),
+                q.peak_mb.map_or("–".into(), |m| format!("{m:.0}")),
+                if q.freq_rel_error.is_finite() {
+                    crate::report::sig3(q.freq_rel_error)
+                } else {
+                    "too few modes".into()
+                },
+                format!("{:.4}", q.min_mac),
+                crate::report::sig3(q.static_error),
+                q.frf_error.map_or("–".into(), crate::report::sig3),
+                if q.pareto { "★" } else { "" }.to_string(),
+            ]
+        })
+        .collect()
+}
+
+/// One row per method: its smallest measured model that meets the advice's tolerance.
+fn advice_rows(advice: &BodyAdvice) -> Vec<Vec<String>> {
+    advice
+        .smallest
+        .iter()
+        .map(|(m, s)| match s {
+            Some((k, c, e)) => vec![
+                m.id().into(),
+                k.to_string(),
+                c.to_string(),
+                crate::report::sig3(*e),
+            ],
+            None => vec![
+                m.id().into(),
+                "none measured".into(),
+                "–".into(),
+                "–".into(),
+            ],
+        })
+        .collect()
 }
 
 /// Frequency error against offline cost (log–log) per method with the Pareto front, and

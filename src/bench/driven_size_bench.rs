@@ -101,25 +101,7 @@ pub fn bench_driven_sizes(
             .map(|p| (p.dof as f64, p.factor_nnz as f64))
             .collect::<Vec<_>>(),
     );
-    let rows: Vec<Vec<String>> = points
-        .iter()
-        .map(|p| {
-            vec![
-                p.file.clone(),
-                p.dof.to_string(),
-                p.factor_nnz.to_string(),
-                format!("{}", flexmodes_core::report::readable(p.nr_step_s, 3)),
-                format!("{:.2}", p.iterations_per_step),
-                p.cb.map_or("–".into(), |c| {
-                    flexmodes_core::report::readable(c.0, 3).to_string()
-                }),
-                p.cb.map_or("–".into(), |c| format!("{:.0}", p.nr_step_s / c.0)),
-                p.cb.map_or("–".into(), |c| {
-                    flexmodes_core::report::readable(c.1, 3).to_string()
-                }),
-            ]
-        })
-        .collect();
+    let rows = point_rows(&points);
     let exponent = |e: Option<f64>| e.map_or("–".to_string(), |e| format!("{e:.2}"));
     let text = format!(
         "{}\nGrowth with DOF (least squares on log–log): NR time per step n^{}, factor entries \
@@ -162,4 +144,27 @@ pub fn bench_driven_sizes(
         "factor_nnz_exponent": fill_exponent,
     });
     Ok((value, text))
+}
+
+/// One table row per body.
+fn point_rows(points: &[DrivenSizePoint]) -> Vec<Vec<String>> {
+    points
+        .iter()
+        .map(|p| {
+            vec![
+                p.file.clone(),
+                p.dof.to_string(),
+                p.factor_nnz.to_string(),
+                format!("{}", flexmodes_core::report::readable(p.nr_step_s, 3)),
+                format!("{:.2}", p.iterations_per_step),
+                p.cb.map_or("–".into(), |c| {
+                    flexmodes_core::report::readable(c.0, 3).to_string()
+                }),
+                p.cb.map_or("–".into(), |c| format!("{:.0}", p.nr_step_s / c.0)),
+                p.cb.map_or("–".into(), |c| {
+                    flexmodes_core::report::readable(c.1, 3).to_string()
+                }),
+            ]
+        })
+        .collect()
 }

@@ -166,28 +166,7 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
     let exe =
         std::env::current_exe().map_err(|source| Error::io("the flexmodes executable", source))?;
     let threads = crate::linalg::threads();
-    let mut own = Command::new(&exe);
-    own.args(["export", "--timings", "--threads"])
-        .arg(threads.to_string())
-        .args(["--method", "cb", "--body"])
-        .arg(&p.body)
-        .arg("--boundary")
-        .arg(p.boundary.join(","))
-        .arg("--modes")
-        .arg(p.modes.to_string())
-        .arg("--out")
-        .arg(&out_dir);
-    let ours = run_timed(own, p.repeats, "flexmodes export")?;
-    let model: Value = serde_json::from_slice(
-        &std::fs::read(out_dir.join("model.json"))
-            .map_err(|source| Error::io(out_dir.join("model.json"), source))?,
-    )
-    .map_err(|source| Error::PeerOutput {
-        peer: "flexmodes export",
-        file: "model.json",
-        source,
-    })?;
-    let _ = std::fs::remove_dir_all(&out_dir);
+    let (ours, model) = our_export(p, &exe, &out_dir, threads)?;
     let our_hz: Vec<f64> = model["reduced_elastic_hz"]
         .as_array()
         .map(|a| a.iter().filter_map(Value::as_f64).collect())
@@ -224,44 +203,12 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
         fmt_peak(ours.peak_mb)
     );
     match peer {
-        Ok((runs, peer_json)) => {
-            let peer_s = median(&runs.seconds);
-            // The peer prints every eigenvalue of its reduced model; its rigid ones first.
-            let peer_hz: Vec<f64> = peer_json["cb_hz"]
-                .as_array()
-                .map(|a| a.iter().filter_map(Value::as_f64).collect())
-                .unwrap_or_default();
-            let threshold = model["zero_energy_threshold_hz"].as_f64().unwrap_or(0.0);
-            let rigid = crate::analysis::zero_energy_below(&peer_hz, threshold);
-            let compared = our_hz
-                .len()
-                .min(peer_hz.len().saturating_sub(rigid))
-                .min(10);
-            let agreement = (0..compared)
-                .map(|j| (our_hz[j] - peer_hz[rigid + j]).abs() / peer_hz[rigid + j])
-                .fold(0.0f64, f64::max);
-            let cb_s = peer_json["cb_seconds"].as_f64().unwrap_or(f64::NAN);
-            value["peer"] = json!("scipy-cholmod");
-            value["peer_s"] = json!(runs.seconds.iter().map(|&s| sig(s)).collect::<Vec<_>>());
-            value["peer_median_s"] = json!(sig(peer_s));
-            value["peer_cb_only_s"] = json!(sig(cb_s));
-            value["peer_peak_mb"] = json!(runs.peak_mb.map(sig));
-            value["ratio_to_peer_process"] = json!(sig(ours_s / peer_s));
-            value["ratio_to_peer_cb_only"] = json!(sig(ours_s / cb_s));
-            value["max_rel_hz_difference"] = json!(sig(agreement));
-            text.push_str(&format!(
-                "| SciPy + CHOLMOD (peers_body_cb.py --cholmod) | {peer_s:.2} | {} | {} |\n\n\
-                 flexmodes / SciPy: {:.2}× of its whole process, {:.2}× of its CB alone \
-                 ({cb_s:.2} s; the process also reads the body, imports SciPy and solves the \
-                 free-free problem). The {compared} lowest elastic frequencies agree to \
-                 {agreement}. Peak MB: the largest resident set of any run of the process.\n",
-                fmt_runs(&runs.seconds),
-                fmt_peak(runs.peak_mb),
-                ours_s / peer_s,
-                ours_s / cb_s,
-                agreement = flexmodes_core::report::readable(agreement, 2),
-            ));
-        }
+        Ok(peer) => add_peer(
+            (&mut value, &mut text),
+            peer,
+            (&our_hz, ours_s),
+            model["zero_energy_threshold_hz"].as_f64().unwrap_or(0.0),
+        ),
         Err(reason) => {
             value["peer"] = Value::Null;
             value["peer_skipped"] = json!(reason);
@@ -278,6 +225,83 @@ pub fn bench_export(p: &ExportBenchParameters) -> Result<(Value, String)> {
             .join(", ")
     ));
     Ok((value, text))
+}
+
+/// `flexmodes export` of the bench's body, timed over its repeats, and the model it wrote.
+fn our_export(
+    p: &ExportBenchParameters,
+    exe: &std::path::Path,
+    out_dir: &std::path::Path,
+    threads: usize,
+) -> Result<(Runs, Value)> {
+    let mut own = Command::new(exe);
+    own.args(["export", "--timings", "--threads"])
+        .arg(threads.to_string())
+        .args(["--method", "cb", "--body"])
+        .arg(&p.body)
+        .arg("--boundary")
+        .arg(p.boundary.join(","))
+        .arg("--modes")
+        .arg(p.modes.to_string())
+        .arg("--out")
+        .arg(out_dir);
+    let ours = run_timed(own, p.repeats, "flexmodes export")?;
+    let model: Value = serde_json::from_slice(
+        &std::fs::read(out_dir.join("model.json"))
+            .map_err(|source| Error::io(out_dir.join("model.json"), source))?,
+    )
+    .map_err(|source| Error::PeerOutput {
+        peer: "flexmodes export",
+        file: "model.json",
+        source,
+    })?;
+    let _ = std::fs::remove_dir_all(out_dir);
+    Ok((ours, model))
+}
+
+/// The SciPy peer's runs beside ours: its times and memory, the ratios, and how far the
+/// lowest elastic frequencies agree (the peer's rigid ones, below `threshold` Hz, left out).
+fn add_peer(
+    (value, text): (&mut Value, &mut String),
+    (runs, peer_json): (Runs, Value),
+    (our_hz, ours_s): (&[f64], f64),
+    threshold: f64,
+) {
+    let peer_s = median(&runs.seconds);
+    // The peer prints every eigenvalue of its reduced model; its rigid ones first.
+    let peer_hz: Vec<f64> = peer_json["cb_hz"]
+        .as_array()
+        .map(|a| a.iter().filter_map(Value::as_f64).collect())
+        .unwrap_or_default();
+    let rigid = crate::analysis::zero_energy_below(&peer_hz, threshold);
+    let compared = our_hz
+        .len()
+        .min(peer_hz.len().saturating_sub(rigid))
+        .min(10);
+    let agreement = (0..compared)
+        .map(|j| (our_hz[j] - peer_hz[rigid + j]).abs() / peer_hz[rigid + j])
+        .fold(0.0f64, f64::max);
+    let cb_s = peer_json["cb_seconds"].as_f64().unwrap_or(f64::NAN);
+    value["peer"] = json!("scipy-cholmod");
+    value["peer_s"] = json!(runs.seconds.iter().map(|&s| sig(s)).collect::<Vec<_>>());
+    value["peer_median_s"] = json!(sig(peer_s));
+    value["peer_cb_only_s"] = json!(sig(cb_s));
+    value["peer_peak_mb"] = json!(runs.peak_mb.map(sig));
+    value["ratio_to_peer_process"] = json!(sig(ours_s / peer_s));
+    value["ratio_to_peer_cb_only"] = json!(sig(ours_s / cb_s));
+    value["max_rel_hz_difference"] = json!(sig(agreement));
+    text.push_str(&format!(
+        "| SciPy + CHOLMOD (peers_body_cb.py --cholmod) | {peer_s:.2} | {} | {} |\n\n\
+         flexmodes / SciPy: {:.2}× of its whole process, {:.2}× of its CB alone \
+         ({cb_s:.2} s; the process also reads the body, imports SciPy and solves the \
+         free-free problem). The {compared} lowest elastic frequencies agree to \
+         {agreement}. Peak MB: the largest resident set of any run of the process.\n",
+        fmt_runs(&runs.seconds),
+        fmt_peak(runs.peak_mb),
+        ours_s / peer_s,
+        ours_s / cb_s,
+        agreement = flexmodes_core::report::readable(agreement, 2),
+    ));
 }
 
 fn fmt_peak(mb: Option<f64>) -> String {

@@ -207,6 +207,37 @@ pub fn bench_modes(
     Ok((json, table, recording))
 }
 
+/// Frequency error (bright) and static error (pale) against kept modes, per method that
+/// keeps normal modes.
+fn convergence_series(points: &[ModeBenchPoint], methods: &[Method]) -> Vec<LogLogSeries> {
+    let of = |m: Method| points.iter().filter(move |p| p.method == m);
+    methods
+        .iter()
+        .filter(|m| m.keeps_normal_modes())
+        .flat_map(|&m| {
+            let c = method_color(m);
+            [
+                LogLogSeries {
+                    id: format!("{}_freq", m.id()),
+                    label: format!("{} freq.", m.id().to_uppercase()),
+                    color: c,
+                    points: of(m).map(|p| (p.modes as f64, p.freq_rel_error)).collect(),
+                    line: true,
+                },
+                LogLogSeries {
+                    id: format!("{}_static", m.id()),
+                    label: format!("{} static", m.id().to_uppercase()),
+                    color: [c[0] / 2 + 60, c[1] / 2 + 60, c[2] / 2 + 60, 255],
+                    points: of(m)
+                        .map(|p| (p.modes as f64, p.static_rel_error))
+                        .collect(),
+                    line: true,
+                },
+            ]
+        })
+        .collect()
+}
+
 /// Error against offline cost (log–log) per method through its kept-mode counts with the
 /// Pareto front, and frequency and static error against kept modes.
 fn charts(points: &[ModeBenchPoint], table: &str) -> RecordingContent {
@@ -240,31 +271,7 @@ fn charts(points: &[ModeBenchPoint], table: &str) -> RecordingContent {
         points: front,
         line: true,
     });
-    let convergence: Vec<LogLogSeries> = methods
-        .iter()
-        .filter(|m| m.keeps_normal_modes())
-        .flat_map(|&m| {
-            let c = method_color(m);
-            [
-                LogLogSeries {
-                    id: format!("{}_freq", m.id()),
-                    label: format!("{} freq.", m.id().to_uppercase()),
-                    color: c,
-                    points: of(m).map(|p| (p.modes as f64, p.freq_rel_error)).collect(),
-                    line: true,
-                },
-                LogLogSeries {
-                    id: format!("{}_static", m.id()),
-                    label: format!("{} static", m.id().to_uppercase()),
-                    color: [c[0] / 2 + 60, c[1] / 2 + 60, c[2] / 2 + 60, 255],
-                    points: of(m)
-                        .map(|p| (p.modes as f64, p.static_rel_error))
-                        .collect(),
-                    line: true,
-                },
-            ]
-        })
-        .collect();
+    let convergence = convergence_series(points, &methods);
     let mut visuals = LogLogChart {
         path: "bench/error_vs_offline".into(),
         x_unit: "offline time, s".into(),

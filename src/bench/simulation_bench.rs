@@ -358,6 +358,61 @@ impl StabilityChecks {
 /// against kept modes per method (explicit scheme); the table beside them. The reference
 /// (error 0) has no place on a log axis and is left out of the charts.
 fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> RecordingContent {
+    let by_method = by_method(points);
+    let cost_series = cost_series(points, &by_method);
+    let mode_series = mode_series(&by_method);
+    let mut visuals = LogLogChart {
+        path: "bench/error_vs_cost".into(),
+        x_unit: "online s per simulated s".into(),
+        y_unit: "node 8 rel. RMS error".into(),
+        series: cost_series,
+        x_linear: false,
+    }
+    .visuals();
+    visuals.extend(
+        LogLogChart {
+            path: "bench/error_vs_modes".into(),
+            x_unit: "kept modes".into(),
+            y_unit: "node 8 rel. RMS error".into(),
+            series: mode_series,
+            x_linear: false,
+        }
+        .visuals(),
+    );
+    let mut report = crate::report::Report::new(&format!("bench-{scene}"));
+    report.table = table.to_string();
+    RecordingContent {
+        report,
+        markdown: format!(
+            "# bench {scene}\n\nLeft: node 8's relative RMS error against the online cost \
+             (wall seconds per simulated second), log–log; one line per method and \
+             integrator through 2, 4, 6, 12 kept modes (gen-alpha in the paler shade, \
+             Dormand–Prince at rtol {LOOSE_RTOL} in the darker one), the \
+             Pareto front in dark grey. Right: error against kept modes (Dormand–Prince).\n\n\
+             {table}",
+            LOOSE_RTOL = flexmodes_core::report::readable(LOOSE_RTOL, 1)
+        ),
+        visuals,
+        layout: Layout::bench_charts(
+            (
+                "error against online cost (log–log)",
+                "/bench/error_vs_cost",
+            ),
+            (
+                "error against kept modes 2–12 (log–log)",
+                "/bench/error_vs_modes",
+            ),
+            1.5,
+        ),
+        timeline: None,
+        y_up: false,
+    }
+}
+
+/// The bench's points grouped by method and integrator, in their order.
+type ByMethod<'a> = Vec<((Method, String), Vec<&'a BenchPoint>)>;
+
+fn by_method(points: &[BenchPoint]) -> ByMethod<'_> {
     let mut by_method: Vec<((Method, String), Vec<&BenchPoint>)> = Vec::new();
     for p in points {
         let key = (p.method, p.integrator_label());
@@ -366,6 +421,13 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
             None => by_method.push((key, vec![p])),
         }
     }
+    by_method
+}
+
+/// Error against online cost: one line per method and integrator (the scenes' dp5 in the
+/// method's colour, gen-alpha paler, loose dp5 darker), one label per method, and the Pareto
+/// front.
+fn cost_series(points: &[BenchPoint], by_method: &ByMethod<'_>) -> Vec<LogLogSeries> {
     // The scenes' dp5 in the method's colour, gen-alpha paler, loose dp5 darker.
     let shade = |c: crate::record::Color, integrator: &str| match integrator {
         "dp5" => c,
@@ -423,7 +485,12 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
         points: front,
         line: true,
     });
-    let mode_series: Vec<LogLogSeries> = by_method
+    cost_series
+}
+
+/// Error against kept modes, per method (Dormand–Prince).
+fn mode_series(by_method: &ByMethod<'_>) -> Vec<LogLogSeries> {
+    by_method
         .iter()
         .filter(|((m, integrator), _)| m.keeps_normal_modes() && *integrator == "dp5")
         .map(|((m, _), pts)| LogLogSeries {
@@ -436,53 +503,7 @@ fn speed_accuracy_charts(scene: &str, points: &[BenchPoint], table: &str) -> Rec
                 .collect(),
             line: true,
         })
-        .collect();
-    let mut visuals = LogLogChart {
-        path: "bench/error_vs_cost".into(),
-        x_unit: "online s per simulated s".into(),
-        y_unit: "node 8 rel. RMS error".into(),
-        series: cost_series,
-        x_linear: false,
-    }
-    .visuals();
-    visuals.extend(
-        LogLogChart {
-            path: "bench/error_vs_modes".into(),
-            x_unit: "kept modes".into(),
-            y_unit: "node 8 rel. RMS error".into(),
-            series: mode_series,
-            x_linear: false,
-        }
-        .visuals(),
-    );
-    let mut report = crate::report::Report::new(&format!("bench-{scene}"));
-    report.table = table.to_string();
-    RecordingContent {
-        report,
-        markdown: format!(
-            "# bench {scene}\n\nLeft: node 8's relative RMS error against the online cost \
-             (wall seconds per simulated second), log–log; one line per method and \
-             integrator through 2, 4, 6, 12 kept modes (gen-alpha in the paler shade, \
-             Dormand–Prince at rtol {LOOSE_RTOL} in the darker one), the \
-             Pareto front in dark grey. Right: error against kept modes (Dormand–Prince).\n\n\
-             {table}",
-            LOOSE_RTOL = flexmodes_core::report::readable(LOOSE_RTOL, 1)
-        ),
-        visuals,
-        layout: Layout::bench_charts(
-            (
-                "error against online cost (log–log)",
-                "/bench/error_vs_cost",
-            ),
-            (
-                "error against kept modes 2–12 (log–log)",
-                "/bench/error_vs_modes",
-            ),
-            1.5,
-        ),
-        timeline: None,
-        y_up: false,
-    }
+        .collect()
 }
 
 #[cfg(test)]

@@ -98,12 +98,27 @@ pub(super) fn run(arguments: SimulateArgs) -> Result<()> {
         &scenes::RunCache::default(),
         1,
     )?;
-    let parameters = simulation.parameters;
     drop(bar);
-    let (value, text) = scenes::body_simulation::summary(&body, &parameters, &study);
-    if let Some(path) = &save {
+    print_study(
+        &body,
+        &simulation.parameters,
+        &study,
+        (save.as_deref(), json),
+    )
+}
+
+/// The study's table (or JSON with `json`) on standard output, and its recording written to
+/// `save` when asked.
+fn print_study(
+    body: &ImportedBody,
+    parameters: &crate::models::DrivenBodyParameters,
+    study: &crate::models::DrivenStudy,
+    (save, json): (Option<&std::path::Path>, bool),
+) -> Result<()> {
+    let (value, text) = scenes::body_simulation::summary(body, parameters, study);
+    if let Some(path) = save {
         let content =
-            scenes::body_simulation::recording(&body.model, &study, &text, &body.units.length);
+            scenes::body_simulation::recording(&body.model, study, &text, &body.units.length);
         Recorder::default().save(&content, path)?;
         progress(&format!("wrote {}", path.display()));
     }

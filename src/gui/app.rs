@@ -188,35 +188,8 @@ pub fn run_with_body(
         None => None,
     };
     let explicit_scene = scene.is_some() || body.is_some();
-    let initial = match (&file_bytes, scene, body) {
-        (Some(_), _, _) => None,
-        (None, _, Some(b)) => {
-            let loaded = crate::body_file::ImportedBody::load(b)?;
-            let mut controls = Controls::for_body(b)?;
-            if let Some(s) = &simulate {
-                // The drive and its motion checked before a window opens.
-                s.simulation()?;
-                loaded.boundary(std::slice::from_ref(&s.drive))?;
-            }
-            controls.change(super::Change::Simulation(simulate));
-            Some(controls)
-        }
-        (None, s, None) => Some(Controls::for_scene(s.unwrap_or(SceneId::BeamModes))),
-    };
-    let toggles = if opts.toggle.is_some() {
-        opts.repeat.max(1)
-    } else {
-        0
-    };
-    let capture = opts.screenshot.clone().map(|path| {
-        Capture::new(
-            path,
-            opts.toggle.clone(),
-            toggles,
-            opts.pause,
-            opts.frames.clone(),
-        )
-    });
+    let initial = initial_controls(file_bytes.is_some(), scene, body, simulate)?;
+    let capture = capture_of(&opts);
     let atomic = opts.atomic;
     let light_theme = opts.light_theme;
     let runtime =
@@ -285,4 +258,48 @@ pub fn run_with_body(
     .map_err(|e| Error::rerun("desktop app", e))?;
     drop(runtime);
     Ok(())
+}
+
+/// The controls the window opens with: none for a recording file, the body's for `body`
+/// (loaded, and the drive and motion of `simulate` checked, before a window opens), else the
+/// scene's.
+fn initial_controls(
+    file: bool,
+    scene: Option<SceneId>,
+    body: Option<&str>,
+    simulate: Option<SimulationControls>,
+) -> Result<Option<Controls>> {
+    Ok(match (file, scene, body) {
+        (true, _, _) => None,
+        (false, _, Some(b)) => {
+            let loaded = crate::body_file::ImportedBody::load(b)?;
+            let mut controls = Controls::for_body(b)?;
+            if let Some(s) = &simulate {
+                // The drive and its motion checked before a window opens.
+                s.simulation()?;
+                loaded.boundary(std::slice::from_ref(&s.drive))?;
+            }
+            controls.change(super::Change::Simulation(simulate));
+            Some(controls)
+        }
+        (false, s, None) => Some(Controls::for_scene(s.unwrap_or(SceneId::BeamModes))),
+    })
+}
+
+/// The screenshot capture `opts` asks for, with its toggles.
+fn capture_of(opts: &ViewerOptions) -> Option<Capture> {
+    let toggles = if opts.toggle.is_some() {
+        opts.repeat.max(1)
+    } else {
+        0
+    };
+    opts.screenshot.clone().map(|path| {
+        Capture::new(
+            path,
+            opts.toggle.clone(),
+            toggles,
+            opts.pause,
+            opts.frames.clone(),
+        )
+    })
 }

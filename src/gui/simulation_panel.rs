@@ -39,59 +39,8 @@ impl Explorer {
             return;
         };
         let mut changed = s.clone();
-        ui.horizontal_wrapped(|ui| {
-            ui.label("drive:");
-            for (name, count) in &sets {
-                ui.selectable_value(&mut changed.drive, name.clone(), format!("rbe2:{name}"))
-                    .on_hover_text(format!("{count} nodes tied to one 6-DOF master, driven"));
-            }
-        });
-        ui.horizontal_wrapped(|ui| {
-            ui.label("also kept:");
-            for (name, count) in sets.iter().filter(|(name, _)| *name != changed.drive) {
-                let mut on = changed.kept.contains(name);
-                if ui
-                    .checkbox(&mut on, format!("rbe2:{name}"))
-                    .on_hover_text(format!(
-                        "{count} nodes tied to a master the reduced models keep as an \
-                         interface (free in the simulation; Guyan needs one)"
-                    ))
-                    .changed()
-                {
-                    changed.kept.retain(|k| k != name);
-                    if on {
-                        changed.kept.push(name.clone());
-                    }
-                }
-            }
-        });
-        ui.horizontal(|ui| {
-            ui.label("motion:");
-            ui.selectable_value(&mut changed.motion, DriveMotion::SpinUp, "spin up")
-                .on_hover_text("about the body's z axis through the drive's master");
-            ui.selectable_value(&mut changed.motion, DriveMotion::Shake, "shake")
-                .on_hover_text("along the ground's x axis, not turning");
-        });
-        match changed.motion {
-            DriveMotion::SpinUp => {
-                choices(ui, "rate:", &RATES, &mut changed.rate, |p| {
-                    format!("{p} rad/s")
-                });
-                choices(ui, "ramp:", &RAMPS, &mut changed.ramp, |p| {
-                    format!("{p} s ramp")
-                });
-            }
-            DriveMotion::Shake => {
-                choices(
-                    ui,
-                    "frequency:",
-                    &FREQUENCIES,
-                    &mut changed.frequency,
-                    |p| format!("{p} Hz"),
-                );
-                ui.label(format!("amplitude: {} m", changed.amplitude));
-            }
-        }
+        interface_ui(ui, &sets, &mut changed);
+        motion_ui(ui, &mut changed);
         choices(ui, "interval:", &ENDS, &mut changed.end, |p| {
             format!("{:.0} ms", p * 1e3)
         });
@@ -122,6 +71,67 @@ impl Explorer {
         );
         if changed != s {
             out.push(Command::Set(Change::Simulation(Some(changed))));
+        }
+    }
+}
+
+/// The drive's node set and the sets the reduced models also keep as interfaces.
+fn interface_ui(ui: &mut egui::Ui, sets: &[(String, usize)], changed: &mut SimulationControls) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label("drive:");
+        for (name, count) in sets {
+            ui.selectable_value(&mut changed.drive, name.clone(), format!("rbe2:{name}"))
+                .on_hover_text(format!("{count} nodes tied to one 6-DOF master, driven"));
+        }
+    });
+    ui.horizontal_wrapped(|ui| {
+        ui.label("also kept:");
+        for (name, count) in sets.iter().filter(|(name, _)| *name != changed.drive) {
+            let mut on = changed.kept.contains(name);
+            if ui
+                .checkbox(&mut on, format!("rbe2:{name}"))
+                .on_hover_text(format!(
+                    "{count} nodes tied to a master the reduced models keep as an \
+                     interface (free in the simulation; Guyan needs one)"
+                ))
+                .changed()
+            {
+                changed.kept.retain(|k| k != name);
+                if on {
+                    changed.kept.push(name.clone());
+                }
+            }
+        }
+    });
+}
+
+/// Spin up (rate and ramp) or shake (frequency), as presets.
+fn motion_ui(ui: &mut egui::Ui, changed: &mut SimulationControls) {
+    ui.horizontal(|ui| {
+        ui.label("motion:");
+        ui.selectable_value(&mut changed.motion, DriveMotion::SpinUp, "spin up")
+            .on_hover_text("about the body's z axis through the drive's master");
+        ui.selectable_value(&mut changed.motion, DriveMotion::Shake, "shake")
+            .on_hover_text("along the ground's x axis, not turning");
+    });
+    match changed.motion {
+        DriveMotion::SpinUp => {
+            choices(ui, "rate:", &RATES, &mut changed.rate, |p| {
+                format!("{p} rad/s")
+            });
+            choices(ui, "ramp:", &RAMPS, &mut changed.ramp, |p| {
+                format!("{p} s ramp")
+            });
+        }
+        DriveMotion::Shake => {
+            choices(
+                ui,
+                "frequency:",
+                &FREQUENCIES,
+                &mut changed.frequency,
+                |p| format!("{p} Hz"),
+            );
+            ui.label(format!("amplitude: {} m", changed.amplitude));
         }
     }
 }

@@ -21,7 +21,7 @@
 
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{
-    Accum, MatMut, Par,
+    Accum, MatMut, MatRef, Par,
     dyn_stack::{MemBuffer, MemStack},
     linalg::{
         cholesky::ldlt::factor::{
@@ -91,34 +91,20 @@ pub fn multifrontal_inertia(
         return Ok(None);
     };
     let n = a.dim();
-    let (fwd, inv): (Vec<usize>, Vec<usize>) = match sym.perm() {
-        Some(perm) => {
-            let (f, i) = perm.arrays();
-            (f.to_vec(), i.to_vec())
-        }
-        None => ((0..n).collect(), (0..n).collect()),
-    };
+    let (fwd, inv) = permutation(sym, n);
     let matrix = a.as_faer();
-    let (col_ptr, row_idx, values) = (
-        matrix.symbolic().col_ptr(),
-        matrix.symbolic().row_idx(),
-        matrix.val(),
-    );
-    let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let columns = PermutedColumns {
+        col_ptr: matrix.symbolic().col_ptr(),
+        row_idx: matrix.symbolic().row_idx(),
+        values: matrix.val(),
+        fwd: &fwd,
+        inv: &inv,
+    };
+    let scale = columns.values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let threads = crate::linalg::threads::threads();
     let supernodes = supernodal.n_supernodes();
     let (begin, end) = (supernodal.supernode_begin(), supernodal.supernode_end());
-    let supernode_of = super::sparse_rhs_solve::supernode_of_columns(supernodal);
-    // The supernodal elimination tree (a supernode's parent holds its pattern's first row),
-    // walked in postorder: the updates waiting at any time are those of one path's siblings,
-    // as on a multifrontal solver's stack.
-    let parent: Vec<Option<usize>> = (0..supernodes)
-        .map(|s| {
-            let pattern = supernodal.supernode(s).pattern();
-            pattern.iter().copied().min().map(|r| supernode_of[r])
-        })
-        .collect();
-    let order = postorder(&parent);
+    let (parent, order) = supernodal_tree(supernodal);
     // g_i of the module documentation, row by row (elimination order).
     let mut g = vec![0.0f64; n];
     let mut waiting: Vec<Vec<Update>> = (0..supernodes).map(|_| Vec::new()).collect();
@@ -145,126 +131,39 @@ pub fn multifrontal_inertia(
         // Every row an entry of A or a child's update puts here must be a row of this front
         // (the analysis' structure guarantees it); a structure that breaks it would index
         // outside the front, so the stored factor counts instead.
-        let outside = (b..e).any(|c| {
-            let old = fwd[c];
-            row_idx[col_ptr[old]..col_ptr[old + 1]]
-                .iter()
-                .any(|&r| inv[r] >= c && local[inv[r]] == usize::MAX)
-        }) || waiting[s]
-            .iter()
-            .any(|child| child.rows.iter().any(|&r| local[r] == usize::MAX));
-        if outside {
+        if !assemble_front(
+            &columns,
+            (b, e, nf),
+            &local,
+            &mut waiting[s],
+            (&mut front, &mut waiting_entries),
+        ) {
             return Ok(None);
-        }
-        {
-            let f = &mut front;
-            // The entries of A in the supernode's columns, on and below the diagonal.
-            for c in b..e {
-                let old = fwd[c];
-                for k in col_ptr[old]..col_ptr[old + 1] {
-                    let i = inv[row_idx[k]];
-                    if i >= c {
-                        f[(c - b) * nf + local[i]] += values[k];
-                    }
-                }
-            }
-            // The children's updates (their rows are rows of this front; both in ascending
-            // order, so a lower-triangle entry stays in the lower triangle).
-            for child in waiting[s].drain(..) {
-                let mut packed = child.values.iter();
-                for (jj, &cj) in child.rows.iter().enumerate() {
-                    let column = local[cj] * nf;
-                    for (&ci, &v) in child.rows[jj..].iter().zip(packed.by_ref()) {
-                        f[column + local[ci]] += v;
-                    }
-                }
-                waiting_entries -= child.values.len();
-            }
         }
         for &r in &rows {
             local[r] = usize::MAX;
         }
-        let flops = (ns as f64).powi(3) / 3.0 + (ns * ns * np) as f64 + (ns * np * np) as f64;
-        let par = if threads > 1 && flops > PARALLEL_FRONT_FLOPS {
-            Par::rayon(threads)
-        } else {
-            Par::Seq
-        };
+        let par = front_par(ns, np, threads);
         let mut f = MatMut::from_column_major_slice_mut(&mut front, nf, nf);
         let (mut f11, _, f21, mut f22) = f.rb_mut().split_at_mut(ns, ns);
         // F11 = L11 D1 L11ᵀ, unpivoted: D1 on the diagonal, L11 strictly below it.
-        let mut mem = MemBuffer::try_new(cholesky_in_place_scratch::<f64>(
-            ns,
-            par,
-            Default::default(),
-        ))
-        .map_err(|_| out_of_memory(ns * ns))?;
-        if cholesky_in_place(
-            f11.rb_mut(),
-            LdltRegularization::default(),
-            par,
-            MemStack::new(&mut mem),
-            Default::default(),
-        )
-        .is_err()
-        {
+        let Some(d) = factor_pivots(f11.rb_mut(), par, &mut g[b..e])? else {
             return Ok(Some(Inertia {
                 negative,
                 growth: f64::INFINITY,
                 peak_entries: peak,
             }));
-        }
-        let d: Vec<f64> = (0..ns).map(|k| f11[(k, k)]).collect();
+        };
         negative += d.iter().filter(|&&x| x < 0.0).count();
-        for (k, &dk) in d.iter().enumerate() {
-            g[b + k] += dk.abs();
-            for i in k + 1..ns {
-                g[b + i] += f11[(i, k)].powi(2) * dk.abs();
-            }
-        }
         if np > 0 {
-            // Wᵀ = L11⁻¹ F21ᵀ (= D1 L21ᵀ), L21ᵀ = D1⁻¹ Wᵀ and U = F22 − L21 Wᵀ; Wᵀ is copied
-            // out column-major so the triangular solve runs on contiguous columns.
-            zero_to(&mut wt, ns * np)?;
-            zero_to(&mut lt, ns * np)?;
-            {
-                let mut wt = MatMut::from_column_major_slice_mut(&mut wt, ns, np);
-                for i in 0..np {
-                    for k in 0..ns {
-                        wt[(k, i)] = f21[(i, k)];
-                    }
-                }
-                solve_unit_lower_triangular_in_place(f11.rb(), wt.rb_mut(), par);
-                let mut lt = MatMut::from_column_major_slice_mut(&mut lt, ns, np);
-                for i in 0..np {
-                    let mut gi = 0.0;
-                    for (k, &dk) in d.iter().enumerate() {
-                        let l = wt[(k, i)] / dk;
-                        lt[(k, i)] = l;
-                        gi += l * l * dk.abs();
-                    }
-                    g[pattern[i]] += gi;
-                }
-                matmul(
-                    f22.rb_mut(),
-                    BlockStructure::TriangularLower,
-                    Accum::Add,
-                    lt.rb().transpose(),
-                    BlockStructure::Rectangular,
-                    wt.rb(),
-                    BlockStructure::Rectangular,
-                    -1.0,
-                    par,
-                );
-            }
-            let mut update = zeroed(np * (np + 1) / 2)?;
-            let mut at = 0;
-            for j in 0..np {
-                for i in j..np {
-                    update[at] = f22[(i, j)];
-                    at += 1;
-                }
-            }
+            schur_complement(
+                (f11.rb(), f21.rb(), f22.rb_mut()),
+                &d,
+                (pattern, &mut g),
+                (&mut wt, &mut lt),
+                par,
+            )?;
+            let update = packed_lower(f22.rb())?;
             waiting_entries += update.len();
             peak = peak.max(waiting_entries + front.capacity() + wt.capacity() + lt.capacity());
             let parent = parent[s].expect("a supernode with a pattern has a parent");
@@ -274,16 +173,222 @@ pub fn multifrontal_inertia(
             });
         }
     }
-    let top = g.iter().fold(0.0f64, |m, &x| m.max(x));
     Ok(Some(Inertia {
         negative,
-        growth: if scale > 0.0 {
-            top / scale
-        } else {
-            f64::INFINITY
-        },
+        growth: growth(&g, scale),
         peak_entries: peak,
     }))
+}
+
+/// The supernodal elimination tree (a supernode's parent holds its pattern's first row) and
+/// its postorder: walked in it, the updates waiting at any time are those of one path's
+/// siblings, as on a multifrontal solver's stack.
+fn supernodal_tree(
+    supernodal: &faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky<usize>,
+) -> (Vec<Option<usize>>, Vec<usize>) {
+    let supernodes = supernodal.n_supernodes();
+    let supernode_of = super::sparse_rhs_solve::supernode_of_columns(supernodal);
+    let parent: Vec<Option<usize>> = (0..supernodes)
+        .map(|s| {
+            let pattern = supernodal.supernode(s).pattern();
+            pattern.iter().copied().min().map(|r| supernode_of[r])
+        })
+        .collect();
+    let order = postorder(&parent);
+    (parent, order)
+}
+
+/// $F_{11} = L_{11}D_1L_{11}^T$ in place, unpivoted ($D_1$ on the diagonal, $L_{11}$ strictly
+/// below it), and the supernode's rows' $g_i$ grown by it; its pivots $D_1$, or `None` when a
+/// pivot is zero.
+fn factor_pivots(mut f11: MatMut<'_, f64>, par: Par, g: &mut [f64]) -> Result<Option<Vec<f64>>> {
+    let ns = f11.nrows();
+    let mut mem = MemBuffer::try_new(cholesky_in_place_scratch::<f64>(
+        ns,
+        par,
+        Default::default(),
+    ))
+    .map_err(|_| out_of_memory(ns * ns))?;
+    if cholesky_in_place(
+        f11.rb_mut(),
+        LdltRegularization::default(),
+        par,
+        MemStack::new(&mut mem),
+        Default::default(),
+    )
+    .is_err()
+    {
+        return Ok(None);
+    }
+    let d: Vec<f64> = (0..ns).map(|k| f11[(k, k)]).collect();
+    for (k, &dk) in d.iter().enumerate() {
+        g[k] += dk.abs();
+        for i in k + 1..ns {
+            g[i] += f11[(i, k)].powi(2) * dk.abs();
+        }
+    }
+    Ok(Some(d))
+}
+
+/// The growth $\rho = \max_i g_i / \max|a_{ij}|$ of the elimination (infinite for a zero
+/// matrix).
+fn growth(g: &[f64], scale: f64) -> f64 {
+    let top = g.iter().fold(0.0f64, |m, &x| m.max(x));
+    if scale > 0.0 {
+        top / scale
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The analysis' fill-reducing ordering both ways (elimination order → original index, and
+/// back); the identity without one.
+fn permutation(
+    sym: &faer::sparse::linalg::cholesky::SymbolicCholesky<usize>,
+    n: usize,
+) -> (Vec<usize>, Vec<usize>) {
+    match sym.perm() {
+        Some(perm) => {
+            let (f, i) = perm.arrays();
+            (f.to_vec(), i.to_vec())
+        }
+        None => ((0..n).collect(), (0..n).collect()),
+    }
+}
+
+/// The threads a front of `ns` eliminated and `np` updated rows is factored on: all of them
+/// above [`PARALLEL_FRONT_FLOPS`].
+fn front_par(ns: usize, np: usize, threads: usize) -> Par {
+    let flops = (ns as f64).powi(3) / 3.0 + (ns * ns * np) as f64 + (ns * np * np) as f64;
+    if threads > 1 && flops > PARALLEL_FRONT_FLOPS {
+        Par::rayon(threads)
+    } else {
+        Par::Seq
+    }
+}
+
+/// $A$'s columns in the elimination order: its CSC arrays and the permutation both ways.
+struct PermutedColumns<'a> {
+    col_ptr: &'a [usize],
+    row_idx: &'a [usize],
+    values: &'a [f64],
+    /// Elimination order → original index, and back.
+    fwd: &'a [usize],
+    inv: &'a [usize],
+}
+
+/// Adds to `front` (`nf` × `nf`, column-major, lower triangle) the entries of $A$ in the
+/// supernode's columns `b..e` on and below the diagonal, then the `children`'s updates (taken,
+/// their entries leaving `waiting_entries`); `local` maps a row to its place in the front.
+/// `false`, with nothing added, when an entry falls outside the front's rows.
+fn assemble_front(
+    a: &PermutedColumns<'_>,
+    (b, e, nf): (usize, usize, usize),
+    local: &[usize],
+    children: &mut Vec<Update>,
+    (front, waiting_entries): (&mut [f64], &mut usize),
+) -> bool {
+    let PermutedColumns {
+        col_ptr,
+        row_idx,
+        values,
+        fwd,
+        inv,
+    } = *a;
+    let outside = (b..e).any(|c| {
+        let old = fwd[c];
+        row_idx[col_ptr[old]..col_ptr[old + 1]]
+            .iter()
+            .any(|&r| inv[r] >= c && local[inv[r]] == usize::MAX)
+    }) || children
+        .iter()
+        .any(|child| child.rows.iter().any(|&r| local[r] == usize::MAX));
+    if outside {
+        return false;
+    }
+    // The entries of A in the supernode's columns, on and below the diagonal.
+    for c in b..e {
+        let old = fwd[c];
+        for k in col_ptr[old]..col_ptr[old + 1] {
+            let i = inv[row_idx[k]];
+            if i >= c {
+                front[(c - b) * nf + local[i]] += values[k];
+            }
+        }
+    }
+    // The children's updates (their rows are rows of this front; both in ascending order, so
+    // a lower-triangle entry stays in the lower triangle).
+    for child in children.drain(..) {
+        let mut packed = child.values.iter();
+        for (jj, &cj) in child.rows.iter().enumerate() {
+            let column = local[cj] * nf;
+            for (&ci, &v) in child.rows[jj..].iter().zip(packed.by_ref()) {
+                front[column + local[ci]] += v;
+            }
+        }
+        *waiting_entries -= child.values.len();
+    }
+    true
+}
+
+/// The update of a front factored as $F_{11} = L_{11}D_1L_{11}^T$ (`d` its $D_1$):
+/// $W^T = L_{11}^{-1}F_{21}^T$ (= $D_1L_{21}^T$), $L_{21}^T = D_1^{-1}W^T$ and
+/// $U = F_{22} - L_{21}W^T$ into `f22`, each pattern row's $g_i$ (`g`, at `pattern`) grown by
+/// its row of $L_{21}$. $W^T$ is copied out column-major into `wt` (with $L_{21}^T$ in `lt`:
+/// buffers reused from front to front) so the triangular solve runs on contiguous columns.
+fn schur_complement(
+    (f11, f21, mut f22): (MatRef<'_, f64>, MatRef<'_, f64>, MatMut<'_, f64>),
+    d: &[f64],
+    (pattern, g): (&[usize], &mut [f64]),
+    (wt, lt): (&mut Vec<f64>, &mut Vec<f64>),
+    par: Par,
+) -> Result<()> {
+    let (ns, np) = (f11.nrows(), f21.nrows());
+    zero_to(wt, ns * np)?;
+    zero_to(lt, ns * np)?;
+    let mut wt = MatMut::from_column_major_slice_mut(wt, ns, np);
+    for i in 0..np {
+        for k in 0..ns {
+            wt[(k, i)] = f21[(i, k)];
+        }
+    }
+    solve_unit_lower_triangular_in_place(f11, wt.rb_mut(), par);
+    let mut lt = MatMut::from_column_major_slice_mut(lt, ns, np);
+    for i in 0..np {
+        let mut gi = 0.0;
+        for (k, &dk) in d.iter().enumerate() {
+            let l = wt[(k, i)] / dk;
+            lt[(k, i)] = l;
+            gi += l * l * dk.abs();
+        }
+        g[pattern[i]] += gi;
+    }
+    matmul(
+        f22.rb_mut(),
+        BlockStructure::TriangularLower,
+        Accum::Add,
+        lt.rb().transpose(),
+        BlockStructure::Rectangular,
+        wt.rb(),
+        BlockStructure::Rectangular,
+        -1.0,
+        par,
+    );
+    Ok(())
+}
+
+/// The lower triangle of `u`, packed column by column (each from its diagonal down).
+fn packed_lower(u: MatRef<'_, f64>) -> Result<Vec<f64>> {
+    let np = u.nrows();
+    let mut update = zeroed(np * (np + 1) / 2)?;
+    let mut at = 0;
+    for j in 0..np {
+        for i in j..np {
+            update[at] = u[(i, j)];
+            at += 1;
+        }
+    }
+    Ok(update)
 }
 
 /// The supernodes in a postorder of the forest `parent` (children before parents, each

@@ -129,9 +129,90 @@ pub fn amls_lowest_modes(
     let z = null.ncols();
     let m_null = m.mul(null.as_ref());
     let elastic = wanted - z;
-    // The reduction, again with a higher cut-off while the projected problem's highest pair
-    // (the guard's top) lies above the cut-off over `cutoff_ratio`: AMLS is accurate only well
-    // below its cut-off, and the first cut-off is a guess.
+    let (reduced, projected, s, cutoff_hz) =
+        reduce_below_cutoff((k, m, tree), (wanted, z), params, &mut stats)?;
+    stats.cutoff_hz = cutoff_hz;
+    stats.projected = reduced.modes();
+    stats.factor_entries = reduced.factor_entries();
+    let clock = Instant::now();
+    // The lowest z projected pairs approximate the null space, which is given exactly.
+    let x = reduced.expand(projected.vectors.subcols(z, s));
+    stats.seconds[1] += clock.elapsed().as_secs_f64();
+    let clock = Instant::now();
+    let scale = eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
+    let (values, vectors, residuals) = refine(
+        (k, m, &reduced),
+        x,
+        (&null, &m_null),
+        (s, elastic, scale),
+        params,
+        &mut stats,
+    )?;
+    stats.seconds[2] = clock.elapsed().as_secs_f64();
+    // The null vectors' own pairs: their Rayleigh quotients and backward errors.
+    // (Their K-block is round-off: no Rayleigh–Ritz, each vector's own quotient.)
+    let k_null = k.mul(null.as_ref());
+    let null_values: Vec<f64> = (0..z)
+        .map(|j| null.col(j).transpose() * k_null.col(j))
+        .collect();
+    let null_residuals = pair_residuals(
+        k,
+        &null_values,
+        null.as_ref(),
+        (k_null.as_ref(), m_null.as_ref()),
+        z,
+        params.residual_check(),
+    )
+    .residuals;
+    let mut all_values = null_values;
+    all_values.extend_from_slice(&values[..elastic]);
+    let clock = Instant::now();
+    let symbolic = SymbolicFactor::analyse(k.shifted(m, 0.0).as_faer())?;
+    let sturm = sturm_count(k, m, &symbolic, &all_values, &values[elastic..])?;
+    stats.seconds[3] = clock.elapsed().as_secs_f64();
+    if sturm.missed() > 0 {
+        return Err(LinalgError::MissedModes {
+            missed: sturm.missed(),
+            below: sturm.below,
+            found: sturm.found,
+            hz: hz_from_eigenvalue(sturm.shift),
+        });
+    }
+    let zero_energy = all_values
+        .iter()
+        .take_while(|&&l| l.abs() <= ZERO_ENERGY_RATIO * scale)
+        .count();
+    let mut all_vectors = Mat::<f64>::zeros(n, wanted);
+    all_vectors.subcols_mut(0, z).copy_from(&null);
+    all_vectors
+        .subcols_mut(z, elastic)
+        .copy_from(vectors.subcols(0, elastic));
+    let mut all_residuals = null_residuals;
+    all_residuals.extend_from_slice(&residuals[..elastic]);
+    Ok((
+        GeneralizedEigen {
+            values: all_values,
+            vectors: all_vectors,
+            residuals: all_residuals,
+            zero_energy,
+            sturm: Some(sturm),
+        },
+        stats,
+    ))
+}
+
+/// The reduction, again with a higher cut-off while the projected problem's highest pair (the
+/// guard's top) lies above the cut-off over `cutoff_ratio`: AMLS is accurate only well below
+/// its cut-off, and the first cut-off is a guess. The reduced body, its lowest `z + s` projected
+/// pairs (`z` null vectors, `s` the elastic ones and the guard), `s`, and the last cut-off, Hz.
+fn reduce_below_cutoff(
+    (k, m, tree): (&SparseSymmetric, &MassMatrix, &SubstructureTree),
+    (wanted, z): (usize, usize),
+    params: &AmlsEigenParameters,
+    stats: &mut AmlsStatistics,
+) -> Result<(MultilevelSubstructures, GeneralizedEigen, usize, f64)> {
+    let n = k.dim();
+    let elastic = wanted - z;
     let mut reduction = params.reduction.clone();
     let (reduced, projected, s) = loop {
         stats.reductions += 1;
@@ -168,15 +249,23 @@ pub fn amls_lowest_modes(
         }
         break (reduced, projected, s);
     };
-    stats.cutoff_hz = reduction.cutoff_hz;
-    stats.projected = reduced.modes();
-    stats.factor_entries = reduced.factor_entries();
-    let clock = Instant::now();
-    // The lowest z projected pairs approximate the null space, which is given exactly.
-    let x = reduced.expand(projected.vectors.subcols(z, s));
-    stats.seconds[1] += clock.elapsed().as_secs_f64();
-    let clock = Instant::now();
-    let scale = eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
+    Ok((reduced, projected, s, reduction.cutoff_hz))
+}
+
+/// Refines the expanded Ritz vectors `x` until every elastic pair's residual passes: LOBPCG's
+/// three blocks (the current Ritz vectors, their images under $K_\sigma^{-1}M$ and the step),
+/// with AMLS's block factor as the exact inverse, every vector kept $M$-orthogonal to the
+/// `null` vectors. The values, vectors and residuals of the `s` pairs (`elastic` wanted); the
+/// statistics say the iterations, the unrefined residual and value error.
+fn refine(
+    (k, m, reduced): (&SparseSymmetric, &MassMatrix, &MultilevelSubstructures),
+    x: Mat<f64>,
+    (null, m_null): (&Mat<f64>, &Mat<f64>),
+    (s, elastic, scale): (usize, usize, f64),
+    params: &AmlsEigenParameters,
+    stats: &mut AmlsStatistics,
+) -> Result<(Vec<f64>, Mat<f64>, Vec<f64>)> {
+    let n = k.dim();
     let mut iteration = 0;
     // The search space: the current Ritz vectors, their images under K_σ⁻¹M and the previous
     // Ritz vectors (LOBPCG's three blocks, with the exact inverse as its preconditioner).
@@ -192,7 +281,7 @@ pub fn amls_lowest_modes(
         }
         for _ in 0..2 {
             let coefficients = m_null.transpose() * &space;
-            space -= &null * &coefficients;
+            space -= null * &coefficients;
         }
         let basis = m_orthonormal_basis(space.as_ref(), m, BASIS_DROP)?;
         drop(space);
@@ -247,57 +336,7 @@ pub fn amls_lowest_modes(
         .zip(&values)
         .map(|(a, b)| (a - b).abs() / b.abs().max(f64::MIN_POSITIVE))
         .fold(0.0f64, f64::max);
-    stats.seconds[2] = clock.elapsed().as_secs_f64();
-    // The null vectors' own pairs: their Rayleigh quotients and backward errors.
-    // (Their K-block is round-off: no Rayleigh–Ritz, each vector's own quotient.)
-    let k_null = k.mul(null.as_ref());
-    let null_values: Vec<f64> = (0..z)
-        .map(|j| null.col(j).transpose() * k_null.col(j))
-        .collect();
-    let null_residuals = pair_residuals(
-        k,
-        &null_values,
-        null.as_ref(),
-        (k_null.as_ref(), m_null.as_ref()),
-        z,
-        params.residual_check(),
-    )
-    .residuals;
-    let mut all_values = null_values;
-    all_values.extend_from_slice(&values[..elastic]);
-    let clock = Instant::now();
-    let symbolic = SymbolicFactor::analyse(k.shifted(m, 0.0).as_faer())?;
-    let sturm = sturm_count(k, m, &symbolic, &all_values, &values[elastic..])?;
-    stats.seconds[3] = clock.elapsed().as_secs_f64();
-    if sturm.missed() > 0 {
-        return Err(LinalgError::MissedModes {
-            missed: sturm.missed(),
-            below: sturm.below,
-            found: sturm.found,
-            hz: hz_from_eigenvalue(sturm.shift),
-        });
-    }
-    let zero_energy = all_values
-        .iter()
-        .take_while(|&&l| l.abs() <= ZERO_ENERGY_RATIO * scale)
-        .count();
-    let mut all_vectors = Mat::<f64>::zeros(n, wanted);
-    all_vectors.subcols_mut(0, z).copy_from(&null);
-    all_vectors
-        .subcols_mut(z, elastic)
-        .copy_from(vectors.subcols(0, elastic));
-    let mut all_residuals = null_residuals;
-    all_residuals.extend_from_slice(&residuals[..elastic]);
-    Ok((
-        GeneralizedEigen {
-            values: all_values,
-            vectors: all_vectors,
-            residuals: all_residuals,
-            zero_energy,
-            sturm: Some(sturm),
-        },
-        stats,
-    ))
+    Ok((values, vectors, residuals))
 }
 
 /// How many eigenvalues of the projected pencil lie below `hz` (all its pairs solved: called
