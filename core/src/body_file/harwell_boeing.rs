@@ -198,17 +198,22 @@ fn symmetric_kind(line: &str, path: &str) -> Result<bool> {
     Ok(symmetric)
 }
 
-/// Parses Harwell–Boeing bytes (plain or gzip) named `path` in error messages.
-pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
-    let text = plain_text(bytes, path)?;
-    let lines: Vec<&str> = text.lines().collect();
-    if lines.len() < 4 {
-        return Err(error(
-            path,
-            lines.len(),
-            MatrixLineProblem::HeaderShort { lines: lines.len() },
-        ));
-    }
+/// A Harwell–Boeing file's header: its cards per block (pointers, indices, values, right-hand
+/// sides), the matrix kind, its size and stored entries, and the three blocks' formats.
+struct Header {
+    ptr_cards: usize,
+    ind_cards: usize,
+    val_cards: usize,
+    rhs_cards: usize,
+    symmetric: bool,
+    rows: usize,
+    cols: usize,
+    nnz: usize,
+    formats: [FieldFormat; 3],
+}
+
+/// The header of the file `path` from its first four `lines`.
+fn header(lines: &[&str], path: &str) -> Result<Header> {
     let cards = |field| header_int(lines[1], field, path, 2, "card count");
     let (ptr_cards, ind_cards, val_cards) = (cards(1)?, cards(2)?, cards(3)?);
     let rhs_cards = if lines[1].len() > 56 { cards(4)? } else { 0 };
@@ -233,20 +238,127 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
         format(16, 32, "index")?,
         format(32, 52, "value")?,
     );
+    Ok(Header {
+        ptr_cards,
+        ind_cards,
+        val_cards,
+        rhs_cards,
+        symmetric,
+        rows,
+        cols,
+        nnz,
+        formats: [ptr_format, ind_format, val_format],
+    })
+}
+
+/// The column pointers (1-based) checked before any is followed: the first 1, the last
+/// `nnz` + 1, never decreasing, so they stay within the entries read. Errors name the
+/// pointers' first line (`at`).
+fn check_pointers(pointers: &[usize], nnz: usize, (path, at): (&str, usize)) -> Result<()> {
+    let cols = pointers.len() - 1;
+    if pointers.first() != Some(&1) || pointers.last() != Some(&(nnz + 1)) {
+        return Err(error(
+            path,
+            at,
+            MatrixLineProblem::PointerRange {
+                first: pointers.first().copied(),
+                last: pointers.last().copied(),
+                expected_last: nnz + 1,
+            },
+        ));
+    }
+    // Every pointer checked before any is followed: with the first 1 and the last nnz + 1, a
+    // sequence that never decreases stays within the nnz entries read.
+    if let Some(j) = (0..cols).find(|&j| pointers[j + 1] < pointers[j]) {
+        return Err(error(
+            path,
+            at,
+            MatrixLineProblem::PointerDecreases {
+                column: j + 1,
+                from: pointers[j],
+                to: pointers[j + 1],
+            },
+        ));
+    }
+    Ok(())
+}
+
+/// A field's text and its line (1-based).
+type Field<'a> = (usize, &'a str);
+
+/// A field that must be an integer (`what` names it), at its line of `path`.
+fn integer_field(path: &str, (line, text): (usize, &str), what: &'static str) -> Result<usize> {
+    text.parse().map_err(|_| {
+        error(
+            path,
+            line,
+            MatrixLineProblem::NotANumber {
+                field: what,
+                text: text.into(),
+                expected: "an integer",
+            },
+        )
+    })
+}
+
+/// The entries (0-based) of the columns `pointers` delimit, from the `indices` and `values`
+/// fields read (each with its line); a row outside the `rows` × `cols` matrix is named.
+fn column_entries(
+    pointers: &[usize],
+    (indices, values): (&[Field<'_>], &[Field<'_>]),
+    (rows, cols): (usize, usize),
+    path: &str,
+) -> Result<Vec<(usize, usize, f64)>> {
+    let nnz = indices.len();
+    let integer = |field, what| integer_field(path, field, what);
+    let mut entries = Vec::with_capacity(super::matrix_bytes::capacity_hint(nnz));
+    for j in 0..cols {
+        let (from, to) = (pointers[j], pointers[j + 1]);
+        for p in from - 1..to - 1 {
+            let (line, _) = indices[p];
+            let row = integer(indices[p], "row index")?;
+            if row == 0 || row > rows {
+                return Err(Error::BodyFile(BodyFileError::MatrixIndexOutOfRange {
+                    path: path.into(),
+                    line,
+                    row,
+                    col: j + 1,
+                    rows,
+                    cols,
+                }));
+            }
+            let (line, text) = values[p];
+            let value = entry_value(text, path, line)?;
+            entries.push((row - 1, j, value));
+        }
+    }
+    Ok(entries)
+}
+
+/// Parses Harwell–Boeing bytes (plain or gzip) named `path` in error messages.
+pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
+    let text = plain_text(bytes, path)?;
+    let lines: Vec<&str> = text.lines().collect();
+    if lines.len() < 4 {
+        return Err(error(
+            path,
+            lines.len(),
+            MatrixLineProblem::HeaderShort { lines: lines.len() },
+        ));
+    }
+    let Header {
+        ptr_cards,
+        ind_cards,
+        val_cards,
+        rhs_cards,
+        symmetric,
+        rows,
+        cols,
+        nnz,
+        formats: [ptr_format, ind_format, val_format],
+    } = header(&lines, path)?;
     let start = 4 + usize::from(rhs_cards > 0);
-    let integer = |(line, text): (usize, &str), what: &'static str| -> Result<usize> {
-        text.parse().map_err(|_| {
-            error(
-                path,
-                line,
-                MatrixLineProblem::NotANumber {
-                    field: what,
-                    text: text.into(),
-                    expected: "an integer",
-                },
-            )
-        })
-    };
+    let integer = |field, what| integer_field(path, field, what);
     let pointers = fields(
         &lines,
         path,
@@ -286,51 +398,8 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
             real: true,
         },
     )?;
-    if pointers.first() != Some(&1) || pointers.last() != Some(&(nnz + 1)) {
-        return Err(error(
-            path,
-            start + 1,
-            MatrixLineProblem::PointerRange {
-                first: pointers.first().copied(),
-                last: pointers.last().copied(),
-                expected_last: nnz + 1,
-            },
-        ));
-    }
-    // Every pointer checked before any is followed: with the first 1 and the last nnz + 1, a
-    // sequence that never decreases stays within the nnz entries read.
-    if let Some(j) = (0..cols).find(|&j| pointers[j + 1] < pointers[j]) {
-        return Err(error(
-            path,
-            start + 1,
-            MatrixLineProblem::PointerDecreases {
-                column: j + 1,
-                from: pointers[j],
-                to: pointers[j + 1],
-            },
-        ));
-    }
-    let mut entries = Vec::with_capacity(super::matrix_bytes::capacity_hint(nnz));
-    for j in 0..cols {
-        let (from, to) = (pointers[j], pointers[j + 1]);
-        for p in from - 1..to - 1 {
-            let (line, _) = indices[p];
-            let row = integer(indices[p], "row index")?;
-            if row == 0 || row > rows {
-                return Err(Error::BodyFile(BodyFileError::MatrixIndexOutOfRange {
-                    path: path.into(),
-                    line,
-                    row,
-                    col: j + 1,
-                    rows,
-                    cols,
-                }));
-            }
-            let (line, text) = values[p];
-            let value = entry_value(text, path, line)?;
-            entries.push((row - 1, j, value));
-        }
-    }
+    check_pointers(&pointers, nnz, (path, start + 1))?;
+    let entries = column_entries(&pointers, (&indices, &values), (rows, cols), path)?;
     if val_cards == 0 && nnz > 0 {
         return Err(error(
             path,

@@ -26,7 +26,7 @@
 use std::path::Path;
 
 use faer::Mat;
-use serde_json::json;
+use serde_json::{Value, json};
 
 use crate::{
     Result,
@@ -64,7 +64,7 @@ pub struct ExudynBody {
     pub geometric: Option<Mat<f64>>,
     /// For each of Exudyn's coordinates, the body's DOF.
     order: Vec<usize>,
-    doc: serde_json::Value,
+    doc: Value,
 }
 
 fn refuse(problem: ExportProblem) -> crate::Error {
@@ -143,24 +143,7 @@ pub fn exudyn_body(
         .ok_or_else(|| refuse(ExportProblem::NoFrameInterface))?;
     let nodes = model.node_count();
 
-    let keep: Vec<usize> = (0..basis.size())
-        .filter(|&j| {
-            !matches!(&basis.columns[j].kind,
-                ColumnKind::RigidInterface { interface, .. } if *interface == frame.name)
-        })
-        .collect();
-    if keep.len() + 6 != basis.size() {
-        return Err(refuse(ExportProblem::NoConstraintModes {
-            ring: (&frame.name).into(),
-            other: keep.len(),
-            columns: basis.size(),
-        }));
-    }
-    if keep.is_empty() {
-        return Err(refuse(ExportProblem::NothingElastic {
-            ring: (&frame.name).into(),
-        }));
-    }
+    let keep = elastic_columns(basis, frame)?;
     let modes = Mat::from_fn(order.len(), keep.len(), |i, j| {
         basis.psi[(order[i], keep[j])]
     });
@@ -190,51 +173,9 @@ pub fn exudyn_body(
             lowest_hz: hz[0],
         }));
     }
-    let mode_type = if keep
-        .iter()
-        .all(|&j| matches!(basis.columns[j].kind, ColumnKind::Normal { .. }))
-    {
-        "NormalModes"
-    } else {
-        "HCBmodes"
-    };
-    // Exudyn numbers nodes from 0.
-    let zero_based = |nodes: &[usize]| -> Result<Vec<usize>> {
-        nodes
-            .iter()
-            .map(|&n| model.node_index(n).map(NodeIndex::get))
-            .collect()
-    };
-    let ring_indices = zero_based(&frame.nodes)?;
-    let node_sets = body
-        .node_sets
-        .iter()
-        .map(|(name, nodes)| Ok(json!({ "name": name, "node_numbers": zero_based(nodes)? })))
-        .collect::<Result<Vec<_>>>()?;
-    let interfaces = rigid
-        .iter()
-        .map(|i| {
-            Ok(json!({
-                "name": i.name, "kind": "rbe2", "master": i.master,
-                "node_numbers": zero_based(&i.nodes)?,
-            }))
-        })
-        .chain(averaging.iter().map(|i| {
-            Ok(json!({
-                "name": i.name, "kind": "rbe3", "master": i.master,
-                "node_numbers": zero_based(&i.nodes)?, "weights": i.weights,
-            }))
-        }))
-        .collect::<Result<Vec<_>>>()?;
-    let mut files = json!({
-        "nodes": "nodes.npy",
-        "mass": "mass.mtx",
-        "stiffness": "stiffness.mtx",
-        "modes": "modes.npy",
-    });
-    if geometric.is_some() {
-        files["geometric_stiffness"] = json!("geometric_stiffness.npy");
-    }
+    let mode_type = mode_type(basis, &keep);
+    let (ring_indices, node_sets, interfaces) = numbered_sets(body, frame, (rigid, averaging))?;
+    let files = file_names(geometric.is_some());
     let doc = json!({
         "format": EXUDYN_FORMAT,
         "body_name": model.name,
@@ -282,6 +223,95 @@ pub fn exudyn_body(
         order,
         doc,
     })
+}
+
+/// The basis' columns but the frame ring's six rigid-interface ones: the frame carries the
+/// ring, so those are left out; refused when the ring has no six columns or nothing else is
+/// left.
+fn elastic_columns(basis: &Basis, frame: &RigidInterface) -> Result<Vec<usize>> {
+    let keep: Vec<usize> = (0..basis.size())
+        .filter(|&j| {
+            !matches!(&basis.columns[j].kind,
+                ColumnKind::RigidInterface { interface, .. } if *interface == frame.name)
+        })
+        .collect();
+    if keep.len() + 6 != basis.size() {
+        return Err(refuse(ExportProblem::NoConstraintModes {
+            ring: (&frame.name).into(),
+            other: keep.len(),
+            columns: basis.size(),
+        }));
+    }
+    if keep.is_empty() {
+        return Err(refuse(ExportProblem::NothingElastic {
+            ring: (&frame.name).into(),
+        }));
+    }
+    Ok(keep)
+}
+
+/// Exudyn's mode type: `NormalModes` when every kept column is a normal mode, else `HCBmodes`.
+fn mode_type(basis: &Basis, keep: &[usize]) -> &'static str {
+    if keep
+        .iter()
+        .all(|&j| matches!(basis.columns[j].kind, ColumnKind::Normal { .. }))
+    {
+        "NormalModes"
+    } else {
+        "HCBmodes"
+    }
+}
+
+/// The frame ring's node numbers, and every node set and interface with its node numbers,
+/// 0-based as Exudyn numbers nodes.
+fn numbered_sets(
+    body: &ImportedBody,
+    frame: &RigidInterface,
+    (rigid, averaging): (&[RigidInterface], &[AveragingInterface]),
+) -> Result<(Vec<usize>, Vec<Value>, Vec<Value>)> {
+    let model = &body.model;
+    let zero_based = |nodes: &[usize]| -> Result<Vec<usize>> {
+        nodes
+            .iter()
+            .map(|&n| model.node_index(n).map(NodeIndex::get))
+            .collect()
+    };
+    let ring_indices = zero_based(&frame.nodes)?;
+    let node_sets = body
+        .node_sets
+        .iter()
+        .map(|(name, nodes)| Ok(json!({ "name": name, "node_numbers": zero_based(nodes)? })))
+        .collect::<Result<Vec<_>>>()?;
+    let interfaces = rigid
+        .iter()
+        .map(|i| {
+            Ok(json!({
+                "name": i.name, "kind": "rbe2", "master": i.master,
+                "node_numbers": zero_based(&i.nodes)?,
+            }))
+        })
+        .chain(averaging.iter().map(|i| {
+            Ok(json!({
+                "name": i.name, "kind": "rbe3", "master": i.master,
+                "node_numbers": zero_based(&i.nodes)?, "weights": i.weights,
+            }))
+        }))
+        .collect::<Result<Vec<_>>>()?;
+    Ok((ring_indices, node_sets, interfaces))
+}
+
+/// The files of the Exudyn body, the geometric stiffness' with `stiffening`.
+fn file_names(stiffening: bool) -> Value {
+    let mut files = json!({
+        "nodes": "nodes.npy",
+        "mass": "mass.mtx",
+        "stiffness": "stiffness.mtx",
+        "modes": "modes.npy",
+    });
+    if stiffening {
+        files["geometric_stiffness"] = json!("geometric_stiffness.npy");
+    }
+    files
 }
 
 impl ExudynBody {

@@ -18,8 +18,9 @@ use super::{
 };
 use crate::{
     Error, Progress, Result,
-    analysis::{pair_modes, pareto_flags, three_digits},
+    analysis::{ZeroEnergyCount, pair_modes, pareto_flags, three_digits},
     body_file::ImportedBody,
+    fem::FeModel,
     linalg::{LinalgError, peak_resident_bytes, reset_peak_resident},
     reduction::{Method, ReductionError},
 };
@@ -196,6 +197,81 @@ fn comparison_interfaces(
     Ok((items, interfaces))
 }
 
+/// The interface loads, built once; with them the elastic static compliance across the
+/// interfaces and, over a band, the interface response (sparse LDLᵀ per frequency, off its
+/// resonances), of the full body once, of each model later.
+fn interface_measures(
+    model: &FeModel,
+    interfaces: &BodyInterfaces,
+    (full, full_hz): (&ZeroEnergyCount, &[f64]),
+    band_hz: Option<f64>,
+    progress: &Progress,
+) -> Result<(InterfaceStatics, Option<InterfaceResponse>)> {
+    let loads =
+        BodyReducer::new(model, interfaces.clone(), full, 0.0, progress.clone())?.loads()?;
+    let statics = InterfaceStatics::of_full_body(
+        model,
+        loads.clone(),
+        full.modes.vectors.subcols(0, full.zero_modes),
+        full.modes.values[full.zero_modes],
+        progress,
+    )?;
+    let frf = match band_hz {
+        Some(top) => Some(InterfaceResponse::of_full_body(
+            model, loads, top, full_hz, progress,
+        )?),
+        None => None,
+    };
+    Ok((statics, frf))
+}
+
+/// The full body's elastic modes compared: those in the band, or the lowest
+/// [`BODY_COMPARED_MODES`]; none is an error.
+fn compared_modes(full_hz: &[f64], band_hz: Option<f64>) -> Result<usize> {
+    let compared = match band_hz {
+        Some(top) => full_hz.iter().take_while(|&&f| f <= top).count(),
+        None => BODY_COMPARED_MODES.min(full_hz.len()),
+    };
+    if compared == 0 {
+        return Err(ReductionError::EmptyBand {
+            low_hz: 0.0,
+            high_hz: band_hz.unwrap_or(0.0),
+            what: "full body's elastic modes",
+        }
+        .into());
+    }
+    Ok(compared)
+}
+
+/// One reduced model (`method` with `k` modes, its peak memory) measured against the full
+/// body: the frequency error and smallest MAC over the compared modes (`full_hz`, their
+/// `elastic_vectors`), the static error across the interfaces and the FRF error over the band.
+fn measure_point(
+    model: &FeModel,
+    (method, k, reduced, peak_mb): (Method, usize, &ReducedBody, Option<f64>),
+    (full_hz, elastic_vectors): (&[f64], MatRef<'_, f64>),
+    (statics, frf): (&InterfaceStatics, Option<&InterfaceResponse>),
+) -> Result<BodyComparisonPoint> {
+    let (freq_rel_error, min_mac) = frequency_and_mac(reduced, full_hz, elastic_vectors);
+    let frf_error = match frf {
+        Some(response) => Some(response.error_of(model, &reduced.basis)?),
+        None => None,
+    };
+    let static_error = statics.error_of(&reduced.basis, &reduced.modes, reduced.zero_modes);
+    Ok(BodyComparisonPoint {
+        method,
+        modes: k,
+        coordinates: reduced.basis.size(),
+        offline_s: reduced.offline_s,
+        peak_mb,
+        freq_rel_error,
+        min_mac,
+        static_error,
+        frf_error,
+        pareto: false,
+    })
+}
+
 /// Reduces `body` by every method and kept-mode count of `p` and measures each model against
 /// the full body's own checked modes.
 pub fn compare_body_methods(
@@ -216,44 +292,15 @@ pub fn compare_body_methods(
     let full = modes_up_to(&body.model, p.band_hz, BODY_COMPARED_MODES, progress)?;
     let reference_s = started.elapsed().as_secs_f64();
     let full_hz = full.elastic_hz();
-    let compared = match p.band_hz {
-        Some(top) => full_hz.iter().take_while(|&&f| f <= top).count(),
-        None => BODY_COMPARED_MODES.min(full_hz.len()),
-    };
-    if compared == 0 {
-        return Err(ReductionError::EmptyBand {
-            low_hz: 0.0,
-            high_hz: p.band_hz.unwrap_or(0.0),
-            what: "full body's elastic modes",
-        }
-        .into());
-    }
-    // The interface loads, built once; with them the elastic static compliance across the
-    // interfaces and, over a band, the interface response (sparse LDLᵀ per frequency, off
-    // its resonances), of the full body once, of each model below.
-    let loads =
-        BodyReducer::new(model, interfaces.clone(), &full, 0.0, progress.clone())?.loads()?;
-    let statics = InterfaceStatics::of_full_body(
-        model,
-        loads.clone(),
-        full.modes.vectors.subcols(0, full.zero_modes),
-        full.modes.values[full.zero_modes],
-        progress,
-    )?;
-    let frf = match p.band_hz {
-        Some(top) => Some(InterfaceResponse::of_full_body(
-            model, loads, top, &full_hz, progress,
-        )?),
-        None => None,
-    };
+    let compared = compared_modes(&full_hz, p.band_hz)?;
+    let (statics, frf) =
+        interface_measures(model, &interfaces, (&full, &full_hz), p.band_hz, progress)?;
     let elastic_vectors = full
         .modes
         .vectors
         .subcols(full.zero_modes, compared)
         .to_owned();
-    let mut modes = p.modes.clone();
-    modes.sort_unstable();
-    modes.dedup();
+    let modes: std::collections::BTreeSet<usize> = p.modes.iter().copied().collect();
     let mut points = Vec::new();
     let mut refused = Vec::new();
     for &method in &p.methods {
@@ -287,30 +334,16 @@ pub fn compare_body_methods(
                 }
                 Err(e) => return Err(e),
             };
-            let peak_mb = if reset {
-                peak_resident_bytes().map(|b| b as f64 / 1e6)
-            } else {
-                None
-            };
-            let (freq_rel_error, min_mac) =
-                frequency_and_mac(&reduced, &full_hz[..compared], elastic_vectors.as_ref());
-            let frf_error = match &frf {
-                Some(response) => Some(response.error_of(model, &reduced.basis)?),
-                None => None,
-            };
-            let static_error = statics.error_of(&reduced.basis, &reduced.modes, reduced.zero_modes);
-            points.push(BodyComparisonPoint {
-                method,
-                modes: k,
-                coordinates: reduced.basis.size(),
-                offline_s: reduced.offline_s,
-                peak_mb,
-                freq_rel_error,
-                min_mac,
-                static_error,
-                frf_error,
-                pareto: false,
-            });
+            let peak_mb = reset
+                .then(peak_resident_bytes)
+                .flatten()
+                .map(|b| b as f64 / 1e6);
+            points.push(measure_point(
+                model,
+                (method, k, &reduced, peak_mb),
+                (&full_hz[..compared], elastic_vectors.as_ref()),
+                (&statics, frf.as_ref()),
+            )?);
         }
     }
     // Listed by method, then by kept modes ascending.

@@ -5,7 +5,7 @@ use serde_json::{Map, Value, json};
 
 use crate::{
     Error, Result,
-    analysis::count_zero_energy_modes_by,
+    analysis::{ZeroEnergyCount, count_zero_energy_modes_by},
     body_file::ImportedBody,
     linalg::AmlsStatistics,
     reduction::Eigensolver,
@@ -60,9 +60,6 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
     let model = &body.model;
     let (full, amls) = count_zero_energy_modes_by(model, FULL_MODES, solver)?;
     refuse_mechanism(model, &full)?;
-    let hz = full.elastic_hz();
-    let properties = model.mass_properties();
-    let mass = properties.mass;
     let (mass_kind, mass_nnz) = match &model.m {
         crate::linalg::MassMatrix::Lumped(d) => ("lumped", d.len()),
         crate::linalg::MassMatrix::Consistent(m) => ("consistent", m.nnz()),
@@ -74,12 +71,59 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
     // A free body (its zero-energy count a free body's) whose coordinates' rigid motions are
     // not its null space: the coordinates are not the ones its stiffness was made from.
     let geometry = geometry_disagreement(body, full.zero_modes);
+    let facts = ImportFacts {
+        body,
+        full: &full,
+        amls: amls.as_ref(),
+        solver,
+        mass_kind,
+        mass_nnz,
+        dof_names: &dof_names,
+        defect,
+        geometry: geometry.as_ref(),
+    };
+    Ok((import_json(&facts), import_text(&facts)))
+}
+
+/// What the import found, computed once for its JSON and its text.
+struct ImportFacts<'a> {
+    body: &'a ImportedBody,
+    full: &'a ZeroEnergyCount,
+    amls: Option<&'a AmlsStatistics>,
+    solver: Eigensolver,
+    /// `lumped` or `consistent`, and M's stored entries.
+    mass_kind: &'static str,
+    mass_nnz: usize,
+    dof_names: &'a [&'static str],
+    /// How far the coordinates' rigid motions are from K's null space, when K's rigid motions
+    /// come from the coordinates.
+    defect: Option<f64>,
+    /// The coordinates' disagreement with the stiffness, and the nodes where it is largest.
+    geometry: Option<&'a (f64, Vec<(usize, f64)>)>,
+}
+
+/// `flexmodes import --json`.
+fn import_json(facts: &ImportFacts<'_>) -> Value {
+    let ImportFacts {
+        body,
+        full,
+        amls,
+        solver,
+        mass_kind,
+        mass_nnz,
+        dof_names,
+        defect,
+        geometry,
+    } = *facts;
+    let model = &body.model;
+    let hz = full.elastic_hz();
+    let properties = model.mass_properties();
     let sets: Map<String, Value> = body
         .node_sets
         .iter()
         .map(|(k, v)| (k.clone(), json!(v.len())))
         .collect();
-    let value = json!({
+    json!({
         "body": body.location.display(),
         "name": model.name,
         "description": body.description,
@@ -89,14 +133,14 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
         "stiffness_nnz": model.stiffness_nnz(),
         "mass": mass_kind,
         "mass_nnz": mass_nnz,
-        "total_mass": sig(mass),
+        "total_mass": sig(properties.mass),
         "units": { "length": body.units.length, "mass": body.units.mass, "force": body.units.force },
         "coordinates": body.has_coordinates,
         "size": if body.has_coordinates { Some(sig(model.size())) } else { None },
         "rigid_motions_from_coordinates":
             model.rigid_motions == crate::fem::RigidMotions::FromGeometry,
         "rigid_motion_defect": defect.map(sig),
-        "geometry_disagrees": geometry.as_ref().map(|(d, nodes)| json!({
+        "geometry_disagrees": geometry.map(|(d, nodes)| json!({
             "rigid_motion_defect": sig(*d),
             "nodes": nodes.iter().map(|(n, share)| json!({"node": n, "share": sig(*share)}))
                 .collect::<Vec<_>>(),
@@ -107,7 +151,7 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
         "lowest_elastic_residuals": sig_vec(&full.elastic_residuals()),
         "missed_modes": full.modes.sturm.map_or(0, |c| c.missed()),
         "eigensolver": solver.id(),
-        "amls": amls.as_ref().map(amls_json),
+        "amls": amls.map(amls_json),
         "sturm_check": full.modes.sturm.map(|c| json!({
             "shift_hz": sig(crate::linalg::hz_from_eigenvalue(c.shift)),
             "eigenvalues_below": c.below,
@@ -116,13 +160,31 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
         "mass_centre": properties.centre.map(sig),
         "inertia_about_mass_centre": properties.inertia.map(|row| row.map(sig)),
         "node_sets": sets,
-    });
+    })
+}
+
+/// `flexmodes import`'s text.
+fn import_text(facts: &ImportFacts<'_>) -> String {
+    let ImportFacts {
+        body,
+        full,
+        amls,
+        solver,
+        mass_kind,
+        mass_nnz,
+        dof_names,
+        defect,
+        geometry,
+    } = *facts;
+    let model = &body.model;
+    let hz = full.elastic_hz();
+    let properties = model.mass_properties();
     let set_text: Vec<String> = body
         .node_sets
         .iter()
         .map(|(k, v)| format!("{k} ({} nodes)", v.len()))
         .collect();
-    let text = format!(
+    format!(
         "# {} ({})\n\n{}\n\n- {} nodes × {} DOF ({}) = {} DOF, node-major\n- K: {} stored \
          entries, symmetric\n- M: {mass_kind}, {mass_nnz} entries; total mass {} {}\n- node \
          coordinates: {}\n- zero-energy modes: {} (below {} Hz; a free {} body has {}){}\n\
@@ -136,7 +198,7 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
         dof_names.join(" "),
         model.dof_count(),
         model.stiffness_nnz(),
-        crate::report::sig6(mass),
+        crate::report::sig6(properties.mass),
         body.units.mass,
         if body.has_coordinates {
             format!(
@@ -155,25 +217,10 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
             "spatial"
         },
         model.dofs.rigid_body_count(),
-        if full.zero_modes == 0 {
-            " — the body was restrained before export".to_string()
-        } else if let Some(defect) = defect {
-            format!(
-                "; they are the rigid motions of the node coordinates (K R = {defect} of \
-                 |K||R|{})",
-                if defect > 1e-13 {
-                    ": the matrices' own precision, which every residual check allows for"
-                } else {
-                    ""
-                },
-                defect = crate::report::readable(defect, 2)
-            )
-        } else {
-            String::new()
-        },
+        zero_energy_words(full.zero_modes, defect),
         fmt_hz(&hz),
         residual_note(&hz, &full.elastic_residuals()),
-        route(model.dof_count(), solver, amls.as_ref()),
+        route(model.dof_count(), solver, amls),
         missed_note(&full.modes),
         if body.has_coordinates {
             format!(
@@ -207,11 +254,29 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
         body.units.length,
         body.units.mass,
         body.units.force,
-        geometry
-            .as_ref()
-            .map_or(String::new(), |(d, nodes)| geometry_words(*d, nodes)),
-    );
-    Ok((value, text))
+        geometry.map_or(String::new(), |(d, nodes)| geometry_words(*d, nodes)),
+    )
+}
+
+/// What the zero-energy count says of the body: restrained before export, or the coordinates'
+/// rigid motions and how closely K holds them (`defect`).
+fn zero_energy_words(zero_modes: usize, defect: Option<f64>) -> String {
+    if zero_modes == 0 {
+        " — the body was restrained before export".to_string()
+    } else if let Some(defect) = defect {
+        format!(
+            "; they are the rigid motions of the node coordinates (K R = {defect} of \
+             |K||R|{})",
+            if defect > 1e-13 {
+                ": the matrices' own precision, which every residual check allows for"
+            } else {
+                ""
+            },
+            defect = crate::report::readable(defect, 2)
+        )
+    } else {
+        String::new()
+    }
 }
 
 /// Nodes named when the coordinates disagree with the stiffness.

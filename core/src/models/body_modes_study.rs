@@ -6,11 +6,11 @@
 
 use std::time::Instant;
 
-use faer::Mat;
+use faer::{Mat, MatRef};
 
 use super::{
     BodyInterfaces, BodyReducer, INTERFACE_MODE_SWEEP, InterfaceReductionPoint, InterfaceResponse,
-    interface_reduction_sweep, modes_up_to, refuse_mechanism,
+    ReducedBody, interface_reduction_sweep, modes_up_to, refuse_mechanism,
 };
 use crate::{
     Error, Progress, Result,
@@ -140,6 +140,91 @@ fn paired_macs(
     (macs, min_mac)
 }
 
+/// The constraint and fixed-interface modes, when a boundary holds the body (rbe3 interfaces
+/// alone hold nothing).
+fn held_modes(reducer: &mut BodyReducer<'_>, p: &BodyModesParameters) -> Result<Option<HeldModes>> {
+    Ok(if p.interfaces.boundary.is_empty() {
+        None
+    } else {
+        let problem = reducer.problem()?;
+        Some(HeldModes {
+            constraint_shapes: problem.constraint_shapes(p.drawn_constraint_modes)?,
+            fixed_interface: problem.kept_modes(ModeSelection::Count(p.kept))?,
+            partition: problem.partition.clone(),
+        })
+    })
+}
+
+/// How many characteristic constraint modes the interface needs (Castanier–Tan–Pierre): the
+/// sweep over CB's constraint modes, when it has more than the sweep's first count.
+fn interface_sweep(
+    model: &FeModel,
+    cb_basis: Option<&Basis>,
+    full: &ZeroEnergyCount,
+    progress: &Progress,
+) -> Result<Option<Vec<InterfaceReductionPoint>>> {
+    Ok(match cb_basis {
+        Some(cb)
+            if cb.columns_of(|k| *k == ColumnKind::Constraint).len() > INTERFACE_MODE_SWEEP[0] =>
+        {
+            progress.phase("interface reduction sweep")?;
+            Some(interface_reduction_sweep(
+                model,
+                cb,
+                full,
+                BODY_MODES_COMPARED,
+            )?)
+        }
+        _ => None,
+    })
+}
+
+/// One reduced model measured against the full body: its frequencies' relative errors (the
+/// worst over the compared modes), the largest principal angle of its basis to the full body's
+/// `target` modes, its MACs against the `elastic` modes, and its interface response.
+fn measure(
+    model: &FeModel,
+    built: &ReducedBody,
+    (elastic, full_hz, target): (&GeneralizedEigen, &[f64], MatRef<'_, f64>),
+    response: Option<&InterfaceResponse>,
+) -> Result<MethodMeasure> {
+    let (basis, eig, skip) = (&built.basis, &built.modes, built.zero_modes);
+    let hz = built.elastic_hz();
+    let rel_errors = built.relative_errors(full_hz);
+    // A model with fewer elastic modes than compared has no error over them: said, not
+    // ranked (a rigid interface under Guyan is a rigid body).
+    let worst_error = if rel_errors.len() >= BODY_MODES_COMPARED.min(full_hz.len()) {
+        rel_errors
+            .iter()
+            .take(BODY_MODES_COMPARED)
+            .fold(0.0f64, |a, e| a.max(e.abs()))
+    } else {
+        f64::NAN
+    };
+    let max_angle = principal_angles(basis.psi.as_ref(), target)?
+        .into_iter()
+        .fold(0.0f64, f64::max);
+    let (macs, min_mac) = paired_macs(elastic, full_hz, basis, eig, skip, &hz);
+    let model_response = match response {
+        Some(r) => Some(r.of_model(model, basis)?),
+        None => None,
+    };
+    Ok(MethodMeasure {
+        size: basis.size(),
+        residuals: built.elastic_residuals(),
+        zero_modes: skip,
+        rigid_hz_max: built.rigid_hz_max(),
+        offline_s: built.offline_s,
+        hz,
+        rel_errors,
+        worst_error,
+        max_angle,
+        macs,
+        min_mac,
+        response: model_response,
+    })
+}
+
 /// Solves and measures everything the `modes` scene shows. `influence_count` modes are ranked
 /// by their influence (damping ratio `zeta`).
 pub fn body_modes_study(
@@ -178,18 +263,7 @@ pub fn body_modes_study(
         )?),
         None => None,
     };
-    // The constraint and fixed-interface modes, when a boundary holds the body (rbe3
-    // interfaces alone hold nothing).
-    let held = if p.interfaces.boundary.is_empty() {
-        None
-    } else {
-        let problem = reducer.problem()?;
-        Some(HeldModes {
-            constraint_shapes: problem.constraint_shapes(p.drawn_constraint_modes)?,
-            fixed_interface: problem.kept_modes(ModeSelection::Count(p.kept))?,
-            partition: problem.partition.clone(),
-        })
-    };
+    let held = held_modes(&mut reducer, p)?;
     // The full body's rigid and lowest elastic modes each basis should contain.
     let compared =
         (full.zero_modes + full_hz.len().min(BODY_MODES_COMPARED)).min(full.modes.vectors.ncols());
@@ -221,60 +295,15 @@ pub fn body_modes_study(
                 built.basis.clone()
             });
         }
-        let (basis, eig, skip) = (&built.basis, &built.modes, built.zero_modes);
-        let hz = built.elastic_hz();
-        let rel_errors = built.relative_errors(&full_hz);
-        // A model with fewer elastic modes than compared has no error over them: said, not
-        // ranked (a rigid interface under Guyan is a rigid body).
-        let worst_error = if rel_errors.len() >= BODY_MODES_COMPARED.min(full_hz.len()) {
-            rel_errors
-                .iter()
-                .take(BODY_MODES_COMPARED)
-                .fold(0.0f64, |a, e| a.max(e.abs()))
-        } else {
-            f64::NAN
-        };
-        let max_angle = principal_angles(basis.psi.as_ref(), target)?
-            .into_iter()
-            .fold(0.0f64, f64::max);
-        let (macs, min_mac) = paired_macs(&elastic, &full_hz, basis, eig, skip, &hz);
-        let model_response = match &response {
-            Some(r) => Some(r.of_model(model, basis)?),
-            None => None,
-        };
-        methods.push((
-            m,
-            Ok(MethodMeasure {
-                size: basis.size(),
-                residuals: built.elastic_residuals(),
-                zero_modes: skip,
-                rigid_hz_max: built.rigid_hz_max(),
-                offline_s: built.offline_s,
-                hz,
-                rel_errors,
-                worst_error,
-                max_angle,
-                macs,
-                min_mac,
-                response: model_response,
-            }),
-        ));
+        let measure = measure(
+            model,
+            &built,
+            (&elastic, &full_hz, target),
+            response.as_ref(),
+        )?;
+        methods.push((m, Ok(measure)));
     }
-    // How many characteristic constraint modes the interface needs (Castanier–Tan–Pierre).
-    let sweep = match &cb_basis {
-        Some(cb)
-            if cb.columns_of(|k| *k == ColumnKind::Constraint).len() > INTERFACE_MODE_SWEEP[0] =>
-        {
-            progress.phase("interface reduction sweep")?;
-            Some(interface_reduction_sweep(
-                model,
-                cb,
-                &full,
-                BODY_MODES_COMPARED,
-            )?)
-        }
-        _ => None,
-    };
+    let sweep = interface_sweep(model, cb_basis.as_ref(), &full, progress)?;
     progress.phase("modal influence across the interfaces")?;
     let influence = reducer.interface_influence(influence_count, zeta)?;
     Ok(BodyModesStudy {

@@ -2,7 +2,7 @@
 //! re-orthogonalisation and deflation.
 
 use crate::error::DofSetProblem;
-use faer::Mat;
+use faer::{Mat, MatRef};
 
 use super::{
     Basis, Column, ColumnKind, DENSE_INTERIOR_LIMIT, Method, Partition, ReductionError,
@@ -11,7 +11,7 @@ use super::{
 use crate::{
     Result,
     fem::FeModel,
-    linalg::{SymbolicFactor, SymmetricFactor, nested_dissection},
+    linalg::{MassMatrix, SparseSymmetric, SymbolicFactor, SymmetricFactor, nested_dissection},
 };
 
 /// Settings of a moment-matching basis.
@@ -99,26 +99,16 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
     } else {
         k_ff.shifted(&m_ff, -p.s0 * p.s0)
     };
-    let factor = if nf > DENSE_INTERIOR_LIMIT {
-        let coords: Vec<[f64; 3]> = free.iter().map(|&d| model.dof_position(d)).collect();
-        let order = nested_dissection(a.as_faer(), &coords);
-        let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), order.as_deref())?;
-        SymmetricFactor::sparse(a.as_faer(), &symbolic, "s0²M + K")?
-    } else {
-        SymmetricFactor::dense(a.to_dense().as_ref(), "s0²M + K")?
-    };
+    let factor = shifted_factor(model, &free, &a)?;
     statistics.factorization_s = started.elapsed().as_secs_f64();
     statistics.factor_nnz = factor.factor_nnz();
     statistics.sparse = nf > DENSE_INTERIOR_LIMIT;
     let started = std::time::Instant::now();
 
-    let row_of: Vec<usize> = {
-        let mut map = vec![usize::MAX; model.dof_count()];
-        for (r, &d) in free.iter().enumerate() {
-            map[d] = r;
-        }
-        map
-    };
+    let mut row_of = vec![usize::MAX; model.dof_count()];
+    for (r, &d) in free.iter().enumerate() {
+        row_of[d] = r;
+    }
     let extra = p.loads.as_ref().map_or(0, |(l, _)| l.ncols());
     if let Some((l, labels)) = &p.loads {
         check_vectors(model, "moment-matching loads", l, labels)?;
@@ -133,12 +123,10 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
         }
     });
     let mut v = Mat::<f64>::zeros(nf, 0);
-    let mut mv = Mat::<f64>::zeros(nf, 0);
     let mut columns = Vec::new();
     if let Some((lead, labels)) = &p.leading {
         check_vectors(model, "moment-matching leading vectors", lead, labels)?;
         v = Mat::from_fn(nf, lead.ncols(), |r, c| lead[(free[r], c)]);
-        mv = m_ff.mul(v.as_ref());
         columns.extend(labels.iter().map(|label| Column {
             kind: ColumnKind::FreeInterface { hz: 0.0 },
             dof: None,
@@ -159,43 +147,12 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
         )
         .collect();
     for j in 0..p.blocks {
-        // This block's kept columns so far: the first `kept` columns of `this`.
-        let mut this = Mat::<f64>::zeros(nf, block.ncols());
-        let mut kept = 0;
-        let mut kept_origin = Vec::new();
-        for (c, input) in origin.iter().enumerate() {
-            let mut x = block.col(c).to_owned();
-            let before = m_norm(&m_ff, x.as_ref());
-            if before == 0.0 {
-                deflated.push(Deflation {
-                    block: j,
-                    input: input.clone(),
-                    ratio: 0.0,
-                });
-                continue;
-            }
-            // Twice against every vector so far (earlier blocks and this block's kept ones),
-            // classical Gram–Schmidt within each pass.
-            for _ in 0..2 {
-                let mx = m_ff.mul(x.as_mat());
-                let earlier = v.as_ref().transpose() * mx.col(0);
-                let own = this.subcols(0, kept).transpose() * mx.col(0);
-                x -= v.as_ref() * &earlier;
-                x -= this.subcols(0, kept) * &own;
-            }
-            let after = m_norm(&m_ff, x.as_ref());
-            if after <= p.deflation_tolerance * before {
-                deflated.push(Deflation {
-                    block: j,
-                    input: input.clone(),
-                    ratio: after / before,
-                });
-                continue;
-            }
-            this.col_mut(kept).copy_from(&x * (1.0 / after));
-            kept += 1;
-            kept_origin.push(input.clone());
-        }
+        let (this, kept, kept_origin) = orthonormal_block(
+            (&m_ff, v.as_ref()),
+            (&block, &origin),
+            (j, p.deflation_tolerance),
+            &mut deflated,
+        );
         if kept == 0 {
             // The Krylov space is exhausted (an invariant subspace): no later block adds
             // anything. The deflations say so.
@@ -211,19 +168,12 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
         }
         let m_new = m_ff.mul(new_block.as_ref());
         v = concat(&v, &new_block);
-        mv = concat(&mv, &m_new);
         // Next block: P V_j = (s0²M + K)⁻¹ M V_j.
         block = factor.solve(m_new.as_ref());
         origin = kept_origin;
     }
-    let _ = mv;
     statistics.constraint_modes_s = started.elapsed().as_secs_f64();
-    let mut psi = Mat::<f64>::zeros(model.dof_count(), v.ncols());
-    for c in 0..v.ncols() {
-        for (r, &d) in free.iter().enumerate() {
-            psi[(d, c)] = v[(r, c)];
-        }
-    }
+    let psi = on_every_dof(model.dof_count(), &free, &v);
     Ok(MomentMatching {
         basis: Basis {
             method: Method::MomentMatching,
@@ -233,6 +183,81 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
         },
         deflated,
     })
+}
+
+/// The factor of $s_0^2M + K$ on the free DOF (`a`): sparse, on a nested-dissection order of
+/// the DOF's positions, above [`DENSE_INTERIOR_LIMIT`] DOF, dense below.
+fn shifted_factor(model: &FeModel, free: &[usize], a: &SparseSymmetric) -> Result<SymmetricFactor> {
+    Ok(if free.len() > DENSE_INTERIOR_LIMIT {
+        let coords: Vec<[f64; 3]> = free.iter().map(|&d| model.dof_position(d)).collect();
+        let order = nested_dissection(a.as_faer(), &coords);
+        let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), order.as_deref())?;
+        SymmetricFactor::sparse(a.as_faer(), &symbolic, "s0²M + K")?
+    } else {
+        SymmetricFactor::dense(a.to_dense().as_ref(), "s0²M + K")?
+    })
+}
+
+/// The columns of `block` (each from the input `origin` names) made $M$-orthonormal to the
+/// vectors `v` so far and to one another, twice by classical Gram–Schmidt; a column that
+/// loses all but `tolerance` of its $M$-norm is dropped and recorded in `deflated` (block `j`).
+/// The kept columns (the first `kept` of the matrix returned), their count and their inputs.
+fn orthonormal_block(
+    (m_ff, v): (&MassMatrix, MatRef<'_, f64>),
+    (block, origin): (&Mat<f64>, &[String]),
+    (j, tolerance): (usize, f64),
+    deflated: &mut Vec<Deflation>,
+) -> (Mat<f64>, usize, Vec<String>) {
+    let nf = block.nrows();
+    // This block's kept columns so far: the first `kept` columns of `this`.
+    let mut this = Mat::<f64>::zeros(nf, block.ncols());
+    let mut kept = 0;
+    let mut kept_origin = Vec::new();
+    for (c, input) in origin.iter().enumerate() {
+        let mut x = block.col(c).to_owned();
+        let before = m_norm(m_ff, x.as_ref());
+        if before == 0.0 {
+            deflated.push(Deflation {
+                block: j,
+                input: input.clone(),
+                ratio: 0.0,
+            });
+            continue;
+        }
+        // Twice against every vector so far (earlier blocks and this block's kept ones),
+        // classical Gram–Schmidt within each pass.
+        for _ in 0..2 {
+            let mx = m_ff.mul(x.as_mat());
+            let earlier = v.transpose() * mx.col(0);
+            let own = this.subcols(0, kept).transpose() * mx.col(0);
+            x -= v * &earlier;
+            x -= this.subcols(0, kept) * &own;
+        }
+        let after = m_norm(m_ff, x.as_ref());
+        if after <= tolerance * before {
+            deflated.push(Deflation {
+                block: j,
+                input: input.clone(),
+                ratio: after / before,
+            });
+            continue;
+        }
+        this.col_mut(kept).copy_from(&x * (1.0 / after));
+        kept += 1;
+        kept_origin.push(input.clone());
+    }
+    (this, kept, kept_origin)
+}
+
+/// The vectors `v` on the `free` DOF placed among all `n` DOF (zero on the others).
+fn on_every_dof(n: usize, free: &[usize], v: &Mat<f64>) -> Mat<f64> {
+    let mut psi = Mat::<f64>::zeros(n, v.ncols());
+    for c in 0..v.ncols() {
+        for (r, &d) in free.iter().enumerate() {
+            psi[(d, c)] = v[(r, c)];
+        }
+    }
+    psi
 }
 
 /// The free DOF, ascending: inputs and interior (loads alone need no input DOF).
