@@ -136,121 +136,163 @@ fn binary_op4(bytes: &[u8], path: &str, wanted: &str) -> Result<Found> {
             .to_ascii_uppercase();
         let (ncols, nrows, ntype) = (word(0), word(1), word(3));
         let wpv = words_per_value(ntype).map_err(fail)?;
-        let bigmat = nrows < 0;
-        let (rows, cols) = (nrows.unsigned_abs() as usize, ncols.max(0) as usize);
-        let value_bytes = 4 * wpv;
-        let mut m = Matrix {
-            rows,
-            cols,
-            entries: Vec::new(),
+        let mut matrix = BinaryMatrix {
+            path,
+            name,
+            ncols,
+            bigmat: nrows < 0,
+            words_per_value: wpv,
+            little,
+            matrix: Matrix {
+                rows: nrows.unsigned_abs() as usize,
+                cols: ncols.max(0) as usize,
+                entries: Vec::new(),
+            },
         };
         loop {
             let (record, byte) = records.next(path)?.ok_or_else(|| {
                 fail(MatrixLineProblem::NoClosingRecord {
-                    matrix: (&name).into(),
+                    matrix: (&matrix.name).into(),
                 })
             })?;
-            let fail = |problem| at_byte(path, byte, problem);
-            if record.len() < 12 {
-                return Err(fail(MatrixLineProblem::ColumnRecordShort {
-                    length: record.len(),
-                }));
-            }
-            let w = |k: usize| records.int(&record[4 * k..4 * k + 4]);
-            let (icol, irow) = (w(0), w(1));
-            if icol > ncols {
+            if matrix.read_column(&records, record, byte)? {
                 break;
             }
-            if icol < 1 {
-                return Err(fail(MatrixLineProblem::NoSuchColumn {
-                    matrix: (&name).into(),
-                    column: icol,
-                }));
-            }
-            let col = icol as usize - 1;
-            let value = |offset: usize| -> f64 {
-                let b = &record[offset..offset + value_bytes];
-                if wpv == 1 {
-                    let a = [b[0], b[1], b[2], b[3]];
-                    f64::from(if little {
-                        f32::from_le_bytes(a)
-                    } else {
-                        f32::from_be_bytes(a)
-                    })
-                } else {
-                    let mut a = [0u8; 8];
-                    a.copy_from_slice(b);
-                    if little {
-                        f64::from_le_bytes(a)
-                    } else {
-                        f64::from_be_bytes(a)
-                    }
-                }
-            };
-            let push = |row: i64, v: f64, m: &mut Matrix| -> Result<()> {
-                if row < 1 || row as usize > rows {
-                    return Err(fail(MatrixLineProblem::RowOutOfRange {
-                        matrix: (&name).into(),
-                        row,
-                        column: icol,
-                        rows,
-                    }));
-                }
-                if !v.is_finite() {
-                    return Err(fail(MatrixLineProblem::NonFinite {
-                        value: v,
-                        row,
-                        column: icol,
-                    }));
-                }
-                if v != 0.0 {
-                    m.entries.push((row as usize - 1, col, v));
-                }
-                Ok(())
-            };
-            let data = &record[12..];
-            if irow > 0 {
-                if data.len() % value_bytes != 0 {
-                    return Err(fail(MatrixLineProblem::PartValues { length: data.len() }));
-                }
-                for k in 0..data.len() / value_bytes {
-                    push(irow + k as i64, value(12 + k * value_bytes), &mut m)?;
-                }
-            } else {
-                let mut p = 12;
-                while p < record.len() {
-                    let head = if bigmat { 8 } else { 4 };
-                    if p + head > record.len() {
-                        return Err(fail(MatrixLineProblem::StringHeaderCut));
-                    }
-                    let (words, row) = if bigmat {
-                        (w(p / 4) - 1, w(p / 4 + 1))
-                    } else {
-                        let is = w(p / 4);
-                        ((is >> 16) - 1, is & 0xFFFF)
-                    };
-                    p += head;
-                    let count = usize::try_from(words).unwrap_or(usize::MAX) / wpv;
-                    if words < 1 || p + count * value_bytes > record.len() {
-                        return Err(fail(MatrixLineProblem::StringTooLong {
-                            words,
-                            row,
-                            column_words: w(2),
-                        }));
-                    }
-                    for k in 0..count {
-                        push(row + k as i64, value(p + k * value_bytes), &mut m)?;
-                    }
-                    p += count * value_bytes;
-                }
-            }
         }
-        if name == wanted {
-            return Ok(Ok(m));
+        if matrix.name == wanted {
+            return Ok(Ok(matrix.matrix));
         }
-        names.insert(name);
+        names.insert(matrix.name);
     }
     Ok(Err(names))
+}
+
+/// One binary matrix being read: its header's name, layout and precision, and the entries
+/// read so far.
+struct BinaryMatrix<'p> {
+    path: &'p str,
+    name: String,
+    /// NCOL of the header: a column record beyond it closes the matrix.
+    ncols: i64,
+    /// Sparse strings with a two-word header (NROW < 0).
+    bigmat: bool,
+    /// Words per value (NTYPE).
+    words_per_value: usize,
+    /// The file's byte order.
+    little: bool,
+    matrix: Matrix,
+}
+
+impl BinaryMatrix<'_> {
+    /// Reads the column `record` (at `byte` of the file); `true` when it is the closing one.
+    fn read_column(&mut self, records: &Records<'_>, record: &[u8], byte: usize) -> Result<bool> {
+        let fail = |problem| at_byte(self.path, byte, problem);
+        if record.len() < 12 {
+            return Err(fail(MatrixLineProblem::ColumnRecordShort {
+                length: record.len(),
+            }));
+        }
+        let w = |k: usize| records.int(&record[4 * k..4 * k + 4]);
+        let (icol, irow) = (w(0), w(1));
+        if icol > self.ncols {
+            return Ok(true);
+        }
+        if icol < 1 {
+            return Err(fail(MatrixLineProblem::NoSuchColumn {
+                matrix: (&self.name).into(),
+                column: icol,
+            }));
+        }
+        let value_bytes = 4 * self.words_per_value;
+        let data = &record[12..];
+        if irow > 0 {
+            if !data.len().is_multiple_of(value_bytes) {
+                return Err(fail(MatrixLineProblem::PartValues { length: data.len() }));
+            }
+            for k in 0..data.len() / value_bytes {
+                let v = self.value(record, 12 + k * value_bytes);
+                self.push((irow + k as i64, icol), v, byte)?;
+            }
+            return Ok(false);
+        }
+        let mut p = 12;
+        while p < record.len() {
+            let head = if self.bigmat { 8 } else { 4 };
+            if p + head > record.len() {
+                return Err(fail(MatrixLineProblem::StringHeaderCut));
+            }
+            let (words, row) = if self.bigmat {
+                (w(p / 4) - 1, w(p / 4 + 1))
+            } else {
+                let is = w(p / 4);
+                ((is >> 16) - 1, is & 0xFFFF)
+            };
+            p += head;
+            let count = usize::try_from(words).unwrap_or(usize::MAX) / self.words_per_value;
+            if words < 1 || p + count * value_bytes > record.len() {
+                return Err(fail(MatrixLineProblem::StringTooLong {
+                    words,
+                    row,
+                    column_words: w(2),
+                }));
+            }
+            for k in 0..count {
+                let v = self.value(record, p + k * value_bytes);
+                self.push((row + k as i64, icol), v, byte)?;
+            }
+            p += count * value_bytes;
+        }
+        Ok(false)
+    }
+
+    /// The value at `offset` of `record`, single or double precision in the file's byte order.
+    fn value(&self, record: &[u8], offset: usize) -> f64 {
+        let b = &record[offset..offset + 4 * self.words_per_value];
+        if self.words_per_value == 1 {
+            let a = [b[0], b[1], b[2], b[3]];
+            f64::from(if self.little {
+                f32::from_le_bytes(a)
+            } else {
+                f32::from_be_bytes(a)
+            })
+        } else {
+            let mut a = [0u8; 8];
+            a.copy_from_slice(b);
+            if self.little {
+                f64::from_le_bytes(a)
+            } else {
+                f64::from_be_bytes(a)
+            }
+        }
+    }
+
+    /// Adds the entry `v` at (`row`, `column`), both 1-based, of a record at `byte`: a row
+    /// outside the matrix or a value that is not finite is named; zeros are not stored.
+    fn push(&mut self, (row, column): (i64, i64), v: f64, byte: usize) -> Result<()> {
+        let fail = |problem| at_byte(self.path, byte, problem);
+        let rows = self.matrix.rows;
+        if row < 1 || row as usize > rows {
+            return Err(fail(MatrixLineProblem::RowOutOfRange {
+                matrix: (&self.name).into(),
+                row,
+                column,
+                rows,
+            }));
+        }
+        if !v.is_finite() {
+            return Err(fail(MatrixLineProblem::NonFinite {
+                value: v,
+                row,
+                column,
+            }));
+        }
+        if v != 0.0 {
+            self.matrix
+                .entries
+                .push((row as usize - 1, column as usize - 1, v));
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]

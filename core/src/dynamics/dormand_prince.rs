@@ -288,22 +288,7 @@ pub(super) fn integrate(
     let mut k1 = DVector::zeros(y.len());
     derivative_into(sys, t, &y, &mut k1, &mut stages.buffers)?;
     while t < p.end_time - 1e-12 {
-        if !within(&y, p) {
-            return Err(Error::Dynamics(DynamicsError::Diverged {
-                time: t,
-                cause: DivergenceCause::StateBeyondBound {
-                    bound: p.divergence_bound,
-                },
-            }));
-        }
-        if steps + rejected > p.max_steps {
-            return Err(Error::Dynamics(DynamicsError::Diverged {
-                time: t,
-                cause: DivergenceCause::TooManySteps {
-                    max_steps: p.max_steps,
-                },
-            }));
-        }
+        guard(&y, p, t, steps + rejected)?;
         let target = next_output.min(p.end_time);
         if let Some(dt) = p.fixed_step {
             h = dt;
@@ -312,59 +297,30 @@ pub(super) fn integrate(
         let step = stages.attempt(sys, p, t, h, &y, &k1)?;
         let Some(norm) = step.filter(|norm| norm.is_finite() && within(&stages.y5, p)) else {
             if p.fixed_step.is_some() {
-                return Err(Error::Dynamics(DynamicsError::Diverged {
-                    time: t,
-                    cause: DivergenceCause::FixedStepBeyondBound {
+                return Err(diverged(
+                    t,
+                    DivergenceCause::FixedStepBeyondBound {
                         step: h,
                         bound: p.divergence_bound,
                     },
-                }));
+                ));
             }
             h *= 0.2;
             rejected += 1;
             if h < p.min_step {
-                return Err(Error::Dynamics(DynamicsError::Diverged {
-                    time: t,
-                    cause: DivergenceCause::StepsCannotHold {
+                return Err(diverged(
+                    t,
+                    DivergenceCause::StepsCannotHold {
                         bound: p.divergence_bound,
                     },
-                }));
+                ));
             }
             continue;
         };
         if norm <= 1.0 || p.fixed_step.is_some() {
             t += h;
             steps += 1;
-            let y5 = &stages.y5;
-            state.q.copy_from(&y5.rows(0, nq));
-            state.v.copy_from(&y5.rows(nq, sys.nv()));
-            // The last stage was evaluated at y5: its factors correct the velocities.
-            sys.project(
-                t,
-                &mut state,
-                &mut stages.buffers.evaluation,
-                ProjectionFactors::LastEvaluation,
-            )?;
-            // First same as last: the last stage is the derivative at y5. The projection
-            // moves y5 by round-off after every step; only a correction within
-            // FSAL_CORRECTION of the error tolerance keeps it, a larger one is re-evaluated.
-            let mut correction = 0.0;
-            for (i, (&before, &after)) in y5
-                .iter()
-                .zip(state.q.iter().chain(state.v.iter()))
-                .enumerate()
-            {
-                let sc = p.atol + p.rtol * y5[i].abs();
-                correction += ((after - before) / sc).powi(2);
-            }
-            let reuse = (correction / y.len() as f64).sqrt() <= FSAL_CORRECTION;
-            y.rows_mut(0, nq).copy_from(&state.q);
-            y.rows_mut(nq, sys.nv()).copy_from(&state.v);
-            if reuse {
-                k1.copy_from(&stages.k[6]);
-            } else {
-                derivative_into(sys, t, &y, &mut k1, &mut stages.buffers)?;
-            }
+            stages.accept(sys, p, t, (&mut state, &mut y, &mut k1))?;
             if (t - target).abs() < 1e-12 {
                 samples.push(sample(sys, target, &state));
                 progress.advance(t)?;
@@ -381,12 +337,12 @@ pub(super) fn integrate(
         h *= factor.clamp(0.2, 5.0);
         h = h.min(p.output_interval);
         if p.fixed_step.is_none() && h < p.min_step {
-            return Err(Error::Dynamics(DynamicsError::Diverged {
-                time: t,
-                cause: DivergenceCause::StepTooSmall {
+            return Err(diverged(
+                t,
+                DivergenceCause::StepTooSmall {
                     min_step: p.min_step,
                 },
-            }));
+            ));
         }
     }
     Ok(Simulation {
@@ -397,4 +353,82 @@ pub(super) fn integrate(
         evaluations: stages.buffers.evaluation.evaluations,
         wall_time_s: start.elapsed().as_secs_f64(),
     })
+}
+
+impl Stages {
+    /// Takes the accepted step's `y5` (at `t`) as the projected `state` and the next `y`, and
+    /// the derivative there into `k1`.
+    fn accept(
+        &mut self,
+        sys: &System,
+        p: &IntegratorParameters,
+        t: f64,
+        (state, y, k1): (&mut State, &mut DVector<f64>, &mut DVector<f64>),
+    ) -> Result<()> {
+        let nq = sys.nq();
+        let y5 = &self.y5;
+        state.q.copy_from(&y5.rows(0, nq));
+        state.v.copy_from(&y5.rows(nq, sys.nv()));
+        // The last stage was evaluated at y5: its factors correct the velocities.
+        sys.project(
+            t,
+            state,
+            &mut self.buffers.evaluation,
+            ProjectionFactors::LastEvaluation,
+        )?;
+        // First same as last: the last stage is the derivative at y5. The projection
+        // moves y5 by round-off after every step; only a correction within
+        // FSAL_CORRECTION of the error tolerance keeps it, a larger one is re-evaluated.
+        let correction = fsal_correction(y5, state, p);
+        let reuse = (correction / y.len() as f64).sqrt() <= FSAL_CORRECTION;
+        y.rows_mut(0, nq).copy_from(&state.q);
+        y.rows_mut(nq, sys.nv()).copy_from(&state.v);
+        if reuse {
+            k1.copy_from(&self.k[6]);
+        } else {
+            derivative_into(sys, t, y, k1, &mut self.buffers)?;
+        }
+        Ok(())
+    }
+}
+
+/// Stops a run whose state left the bound or that took more than its `attempts` allow.
+fn guard(y: &DVector<f64>, p: &IntegratorParameters, t: f64, attempts: usize) -> Result<()> {
+    if !within(y, p) {
+        return Err(diverged(
+            t,
+            DivergenceCause::StateBeyondBound {
+                bound: p.divergence_bound,
+            },
+        ));
+    }
+    if attempts > p.max_steps {
+        return Err(diverged(
+            t,
+            DivergenceCause::TooManySteps {
+                max_steps: p.max_steps,
+            },
+        ));
+    }
+    Ok(())
+}
+
+/// A run that diverged at `time`, and why.
+fn diverged(time: f64, cause: DivergenceCause) -> Error {
+    Error::Dynamics(DynamicsError::Diverged { time, cause })
+}
+
+/// The sum of squares of the projection's moves of `y5` into `state`, each scaled by its
+/// error tolerance (first same as last keeps the last stage only when it is small).
+fn fsal_correction(y5: &DVector<f64>, state: &State, p: &IntegratorParameters) -> f64 {
+    let mut correction = 0.0;
+    for (i, (&before, &after)) in y5
+        .iter()
+        .zip(state.q.iter().chain(state.v.iter()))
+        .enumerate()
+    {
+        let sc = p.atol + p.rtol * y5[i].abs();
+        correction += ((after - before) / sc).powi(2);
+    }
+    correction
 }

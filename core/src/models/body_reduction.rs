@@ -331,37 +331,15 @@ impl<'a> BodyReducer<'a> {
         Ok((basis, note, solve_s))
     }
 
-    fn reduce_with(
+    /// The basis of `method` with `kept` modes, before its interface shapes are reduced and
+    /// its residual vectors added; a note on how it was built where one is due, and the
+    /// seconds of shared work (the free-free modes) it used.
+    fn method_basis(
         &mut self,
         method: Method,
         kept: usize,
-        interface_modes: Option<usize>,
-    ) -> Result<ReducedBody> {
+    ) -> Result<(Basis, Option<String>, f64)> {
         let model = self.model;
-        let started = Instant::now();
-        let uses_interior = matches!(
-            method,
-            Method::Guyan
-                | Method::ModalTruncation
-                | Method::CraigBampton
-                | Method::ModeCondensation
-        );
-        if (uses_interior || method == Method::MacNealRubin)
-            && !self.interfaces.averaging.is_empty()
-        {
-            return Err(ReductionError::MethodNeedsContext {
-                method: method.name(),
-                needs: "interfaces that are boundary DOF: an rbe3 master is a dependent node \
-                        (the weighted average of its ring, which stays free), so it has no \
-                        constraint mode of its own; use rbe2 for a joint, or bh, mm, bt, which \
-                        load the master",
-            }
-            .into());
-        }
-        let before = match &self.problem {
-            Some(p) => p.statistics.factorization_s,
-            None => 0.0,
-        };
         let mut note = None;
         let mut shared_s = 0.0;
         let basis = match method {
@@ -418,6 +396,41 @@ impl<'a> BodyReducer<'a> {
                 .into());
             }
         };
+        Ok((basis, note, shared_s))
+    }
+
+    fn reduce_with(
+        &mut self,
+        method: Method,
+        kept: usize,
+        interface_modes: Option<usize>,
+    ) -> Result<ReducedBody> {
+        let model = self.model;
+        let started = Instant::now();
+        let uses_interior = matches!(
+            method,
+            Method::Guyan
+                | Method::ModalTruncation
+                | Method::CraigBampton
+                | Method::ModeCondensation
+        );
+        if (uses_interior || method == Method::MacNealRubin)
+            && !self.interfaces.averaging.is_empty()
+        {
+            return Err(ReductionError::MethodNeedsContext {
+                method: method.name(),
+                needs: "interfaces that are boundary DOF: an rbe3 master is a dependent node \
+                        (the weighted average of its ring, which stays free), so it has no \
+                        constraint mode of its own; use rbe2 for a joint, or bh, mm, bt, which \
+                        load the master",
+            }
+            .into());
+        }
+        let before = match &self.problem {
+            Some(p) => p.statistics.factorization_s,
+            None => 0.0,
+        };
+        let (basis, mut note, shared_s) = self.method_basis(method, kept)?;
         let constraint_columns = basis.columns_of(|k| *k == ColumnKind::Constraint).len();
         let basis = match interface_modes {
             Some(n) if constraint_columns > 0 => reduce_interface(model, basis, n)?,

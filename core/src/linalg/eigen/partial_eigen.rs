@@ -115,16 +115,7 @@ pub fn lowest_modes(
         .div_ceil(b)
         * b;
     if wanted == 0 {
-        return Ok((
-            GeneralizedEigen {
-                values: vec![],
-                vectors: Mat::zeros(n, 0),
-                residuals: vec![],
-                zero_energy: 0,
-                sturm: None,
-            },
-            PartialEigenStatistics::default(),
-        ));
+        return Ok((no_pairs(n), PartialEigenStatistics::default()));
     }
     if max_basis + b > n {
         return Err(LinalgError::TooManyPairs { wanted, dof: n });
@@ -140,17 +131,13 @@ pub fn lowest_modes(
         * eigenvalue_scale((0..n).map(|j| (k.get(j, j), m.get(j, j))));
 
     let mut rng = params.seed;
-    let mut basis = Basis::new(n, max_basis, b);
-    if let Some(r) = null_space {
-        basis.seed_null_space(
-            r.subcols(0, r.ncols().min(wanted).min(max_basis - 2 * b)),
-            sigma,
-            m,
-            &mut rng,
-        );
-    }
-    let start = Mat::from_fn(n, b, |_, _| next_uniform(&mut rng));
-    basis.append(start, m, &mut rng);
+    let mut basis = Basis::starting(
+        n,
+        (max_basis, b),
+        (null_space, wanted),
+        (sigma, m),
+        &mut rng,
+    );
     let known = basis.known;
     let pencil = ShiftedPencil {
         k,
@@ -160,7 +147,6 @@ pub fn lowest_modes(
     };
     let mut ritz_tolerance = params.ritz_tolerance;
     let mut ritz_history: Vec<f64> = Vec::new();
-    let result;
     loop {
         stats.block_solves += basis.expand(b, max_basis, &solve, m, &mut rng);
         let step = basis.rayleigh_ritz(sigma)?;
@@ -172,46 +158,28 @@ pub fn lowest_modes(
             known,
         };
         let relative = step.relative_residuals(m, wanted);
-        let converged = relative
-            .iter()
-            .zip(theta)
-            .take_while(|&(&r, &t)| r <= ritz_tolerance.max(attainable * t.abs()))
-            .count();
+        let converged = converged_ritz(&relative, theta, ritz_tolerance, attainable);
         let worst_ritz = relative.iter().copied().fold(0.0f64, f64::max);
         // The Ritz residuals stop falling where the solves' round-off, ε λ_max/(λ - σ) of
         // the body, is reached: then the pairs are as good as this factor makes them, and
         // the check on the original pencil decides.
-        let stalled = worst_ritz <= STALLED_RITZ
-            && ritz_history.len() >= 2
-            && ritz_history[ritz_history.len() - 2..]
-                .iter()
-                .all(|&previous| worst_ritz > 0.5 * previous);
+        let stalled = stalled(&ritz_history, worst_ritz);
         ritz_history.push(worst_ritz);
         if stalled && converged < wanted {
             let checked = refined_pairs(&pencil, factor, &step_pairs)?;
             if checked.converged == wanted {
-                stats.max_residual = checked.max_residual;
                 stats.block_solves += 1;
-                stats.ritz_above = ritz_values_above(sigma, theta, wanted);
-                result = (checked.eigen, stats);
-                break;
+                return Ok(accepted(checked, stats, (sigma, theta, wanted)));
             }
         }
         if converged == wanted {
             let checked = refined_pairs(&pencil, factor, &step_pairs)?;
             stats.block_solves += 1;
             if checked.converged == wanted {
-                stats.max_residual = checked.max_residual;
-                stats.ritz_above = ritz_values_above(sigma, theta, wanted);
-                result = (checked.eigen, stats);
-                break;
+                return Ok(accepted(checked, stats, (sigma, theta, wanted)));
             }
             if ritz_tolerance <= 1e-14 || stats.restarts == params.max_restarts {
-                return Err(LinalgError::EigenNotConverged {
-                    converged: checked.converged,
-                    wanted,
-                    residual: checked.max_residual,
-                });
+                return Err(not_converged(&checked, wanted));
             }
             ritz_tolerance *= 0.1;
         }
@@ -219,11 +187,7 @@ pub fn lowest_modes(
             // The error names the residual users know, ‖Kφ − λMφ‖/‖Kφ‖ of the pairs as they
             // stand, and how many of them meet the tolerance.
             let checked = refined_pairs(&pencil, factor, &step_pairs)?;
-            return Err(LinalgError::EigenNotConverged {
-                converged: checked.converged,
-                wanted,
-                residual: checked.max_residual,
-            });
+            return Err(not_converged(&checked, wanted));
         }
         stats.restarts += 1;
         // Thick restart: keep the best Ritz vectors and their images, then the pending block.
@@ -232,8 +196,59 @@ pub fn lowest_modes(
             &step,
         );
     }
+}
 
-    Ok(result)
+/// The checked pairs returned, with their worst residual and the Ritz values above them
+/// (what the Sturm count's shift is placed by) in the statistics.
+fn accepted(
+    checked: CheckedPairs,
+    mut stats: PartialEigenStatistics,
+    (sigma, theta, wanted): (f64, &[f64], usize),
+) -> (GeneralizedEigen, PartialEigenStatistics) {
+    stats.max_residual = checked.max_residual;
+    stats.ritz_above = ritz_values_above(sigma, theta, wanted);
+    (checked.eigen, stats)
+}
+
+/// The pairs as they stand did not all converge: how many meet the tolerance, and the worst
+/// residual ‖Kφ − λMφ‖/‖Kφ‖.
+fn not_converged(checked: &CheckedPairs, wanted: usize) -> LinalgError {
+    LinalgError::EigenNotConverged {
+        converged: checked.converged,
+        wanted,
+        residual: checked.max_residual,
+    }
+}
+
+/// No pairs, of a body of `n` unknowns.
+fn no_pairs(n: usize) -> GeneralizedEigen {
+    GeneralizedEigen {
+        values: vec![],
+        vectors: Mat::zeros(n, 0),
+        residuals: vec![],
+        zero_energy: 0,
+        sturm: None,
+    }
+}
+
+/// How many leading Ritz pairs have converged: their `relative` residuals within the Ritz
+/// tolerance, or within what the solves attain for their θ.
+fn converged_ritz(relative: &[f64], theta: &[f64], tolerance: f64, attainable: f64) -> usize {
+    relative
+        .iter()
+        .zip(theta)
+        .take_while(|&(&r, &t)| r <= tolerance.max(attainable * t.abs()))
+        .count()
+}
+
+/// Whether the worst Ritz residual has stopped falling (below [`STALLED_RITZ`], and above
+/// half of each of the last two).
+fn stalled(history: &[f64], worst: f64) -> bool {
+    worst <= STALLED_RITZ
+        && history.len() >= 2
+        && history[history.len() - 2..]
+            .iter()
+            .all(|&previous| worst > 0.5 * previous)
 }
 
 /// The Lanczos basis $V$ ($M$-orthonormal), $MV$, and $AV$ for its first `with_a` columns;
@@ -257,6 +272,30 @@ struct RitzStep {
 }
 
 impl Basis {
+    /// The starting basis of `max_basis` columns grown by blocks of `b`: the `null_space`'s
+    /// vectors (at most `wanted`, exact, with their images at the shift `sigma`), then a
+    /// random block.
+    fn starting(
+        n: usize,
+        (max_basis, b): (usize, usize),
+        (null_space, wanted): (Option<MatRef<'_, f64>>, usize),
+        (sigma, m): (f64, &MassMatrix),
+        rng: &mut u64,
+    ) -> Self {
+        let mut basis = Basis::new(n, max_basis, b);
+        if let Some(r) = null_space {
+            basis.seed_null_space(
+                r.subcols(0, r.ncols().min(wanted).min(max_basis - 2 * b)),
+                sigma,
+                m,
+                rng,
+            );
+        }
+        let start = Mat::from_fn(n, b, |_, _| next_uniform(rng));
+        basis.append(start, m, rng);
+        basis
+    }
+
     /// An empty basis of `max_basis` columns with images and a block of `b` beyond.
     fn new(n: usize, max_basis: usize, b: usize) -> Self {
         Self {
