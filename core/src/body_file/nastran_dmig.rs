@@ -108,6 +108,55 @@ fn cards(text: &str) -> Vec<Card> {
     out
 }
 
+/// Field `i` of `card` (in `path`), which must be an integer; `what` names it.
+fn integer_field(path: &str, card: &Card, i: usize, what: &'static str) -> Result<usize> {
+    card.get(i).parse().map_err(|_| {
+        error(
+            path,
+            card.line_of(i),
+            MatrixLineProblem::NotANumber {
+                field: what,
+                text: card.get(i).into(),
+                expected: "an integer",
+            },
+        )
+    })
+}
+
+/// Whether the DMIG matrix of `header` is symmetric (IFO 6) or square (1); complex matrices
+/// (TIN 3, 4) and other forms are refused by name.
+fn symmetric_kind(header: &Card, path: &str) -> Result<bool> {
+    let integer = |card: &Card, i: usize, what| integer_field(path, card, i, what);
+    let ifo = integer(header, 2, "IFO")?;
+    let tin = integer(header, 3, "TIN")?;
+    if !matches!(tin, 1 | 2) {
+        return Err(error(
+            path,
+            header.line_of(3),
+            MatrixLineProblem::Unsupported {
+                field: "TIN",
+                value: tin.to_string().into(),
+                needs: "only real matrices (TIN 1 or 2) make a body",
+            },
+        ));
+    }
+    Ok(match ifo {
+        6 => true,
+        1 => false,
+        other => {
+            return Err(error(
+                path,
+                header.line_of(2),
+                MatrixLineProblem::Unsupported {
+                    field: "IFO",
+                    value: other.to_string().into(),
+                    needs: "a body's matrix is square (1) or symmetric (6)",
+                },
+            ));
+        }
+    })
+}
+
 /// Parses the DMIG matrix `matrix` of the bulk-data bytes named `path` for a body whose nodes
 /// carry `dofs`; the matrix has a row per DOF of nodes 1 to the largest grid the entries name.
 pub fn parse_nastran_dmig(
@@ -139,47 +188,8 @@ pub fn parse_nastran_dmig(
             },
         )
     })?;
-    let integer = |card: &Card, i: usize, what: &'static str| -> Result<usize> {
-        card.get(i).parse().map_err(|_| {
-            error(
-                path,
-                card.line_of(i),
-                MatrixLineProblem::NotANumber {
-                    field: what,
-                    text: card.get(i).into(),
-                    expected: "an integer",
-                },
-            )
-        })
-    };
-    let ifo = integer(header, 2, "IFO")?;
-    let tin = integer(header, 3, "TIN")?;
-    if !matches!(tin, 1 | 2) {
-        return Err(error(
-            path,
-            header.line_of(3),
-            MatrixLineProblem::Unsupported {
-                field: "TIN",
-                value: tin.to_string().into(),
-                needs: "only real matrices (TIN 1 or 2) make a body",
-            },
-        ));
-    }
-    let symmetric = match ifo {
-        6 => true,
-        1 => false,
-        other => {
-            return Err(error(
-                path,
-                header.line_of(2),
-                MatrixLineProblem::Unsupported {
-                    field: "IFO",
-                    value: other.to_string().into(),
-                    needs: "a body's matrix is square (1) or symmetric (6)",
-                },
-            ));
-        }
-    };
+    let integer = |card: &Card, i: usize, what| integer_field(path, card, i, what);
+    let symmetric = symmetric_kind(header, path)?;
     let mut placement = NodeDofPlacement::new(dofs);
     let mut entries = Vec::new();
     let mut seen = HashSet::new();

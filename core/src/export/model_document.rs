@@ -8,7 +8,8 @@ use serde_json::json;
 use super::ReducedExport;
 use crate::{
     body_file::ImportedBody,
-    reduction::{Basis, ColumnKind, MASTER_DOF_NAMES},
+    fem::FeModel,
+    reduction::{AveragingInterface, Basis, ColumnKind, MASTER_DOF_NAMES, RigidInterface},
     report::sig_vec,
 };
 
@@ -25,26 +26,7 @@ impl ReducedExport {
         let (basis, hz, residuals) = (&self.basis, &self.hz, &self.residuals);
         let (zero_energy, threshold) = (self.zero_energy, self.zero_energy_threshold_hz);
         let (free_free_sturm, exudyn) = (self.free_free_sturm, &self.exudyn);
-        let columns: Vec<serde_json::Value> = basis
-            .columns
-            .iter()
-            .map(|c| {
-                json!({
-                    "label": c.label,
-                    "kind": kind_name(&c.kind),
-                    "dof": c.dof.map(|d| {
-                        let (node, dof) = model.dof_node(d);
-                        json!({ "node": node.number(), "dof": dof.name(), "index": d + 1 })
-                    }),
-                    "hz": match c.kind {
-                        ColumnKind::Normal { hz }
-                        | ColumnKind::FreeInterface { hz }
-                        | ColumnKind::Loaded { hz } => Some(hz),
-                        _ => None,
-                    },
-                })
-            })
-            .collect();
+        let columns = columns_json(model, basis);
         let inertia = if body.has_coordinates {
             Some(inertia_invariants(body, basis))
         } else {
@@ -64,37 +46,10 @@ impl ReducedExport {
             "dofs_per_node": model.dofs.node_dofs().iter().map(|d| d.name()).collect::<Vec<_>>(),
             "size": basis.size(),
             "columns": columns,
-            "interfaces": parameters.rigid_interfaces.iter().map(|i| {
-                let first = basis.columns.iter().position(|c| matches!(
-                    &c.kind,
-                    ColumnKind::RigidInterface { interface, .. } if *interface == i.name
-                ));
-                json!({
-                    "name": i.name,
-                    "kind": "rbe2",
-                    "master": i.master,
-                    "master_dofs": MASTER_DOF_NAMES,
-                    "columns": first.map(|f| (f + 1..=f + 6).collect::<Vec<_>>()),
-                    "tied_nodes": i.nodes,
-                })
-            }).collect::<Vec<_>>(),
+            "interfaces": rigid_json(&parameters.rigid_interfaces, basis),
             // An averaging (RBE3) master is no coordinate of the reduced model: its motion is
             // read as (A Ψ) z and a load on it enters as (A Ψ)ᵀ F (A: the weighted average).
-            "averaging_interfaces": parameters.averaging_interfaces.iter().map(|i| {
-                let a_psi = i
-                    .averaging_matrix(model)
-                    .map(|a| a * &basis.psi)
-                    .map(|m| (0..6).map(|r| (0..m.ncols()).map(|c| m[(r, c)]).collect::<Vec<_>>()).collect::<Vec<_>>());
-                json!({
-                    "name": i.name,
-                    "kind": "rbe3",
-                    "master": i.master,
-                    "master_dofs": MASTER_DOF_NAMES,
-                    "averaged_nodes": i.nodes,
-                    "weights": i.weights,
-                    "master_motion": a_psi.ok(),
-                })
-            }).collect::<Vec<_>>(),
+            "averaging_interfaces": averaging_json(&parameters.averaging_interfaces, model, basis),
             // The route of the fixed-interface pairs (sparse path) and of the free-free pairs
             // the load-built methods start from; AMLS's reductions when it made them.
             "eigensolver": parameters.eigensolver.id(),
@@ -148,6 +103,82 @@ impl ReducedExport {
         });
         doc
     }
+}
+
+/// Each column of the basis: its label, kind, DOF (1-based, with its node) and frequency.
+fn columns_json(model: &FeModel, basis: &Basis) -> Vec<serde_json::Value> {
+    basis
+        .columns
+        .iter()
+        .map(|c| {
+            json!({
+                "label": c.label,
+                "kind": kind_name(&c.kind),
+                "dof": c.dof.map(|d| {
+                    let (node, dof) = model.dof_node(d);
+                    json!({ "node": node.number(), "dof": dof.name(), "index": d + 1 })
+                }),
+                "hz": match c.kind {
+                    ColumnKind::Normal { hz }
+                    | ColumnKind::FreeInterface { hz }
+                    | ColumnKind::Loaded { hz } => Some(hz),
+                    _ => None,
+                },
+            })
+        })
+        .collect()
+}
+
+/// Each rigid (RBE2) interface: its master, its six columns (1-based) and its tied nodes.
+fn rigid_json(rigid: &[RigidInterface], basis: &Basis) -> Vec<serde_json::Value> {
+    rigid
+        .iter()
+        .map(|i| {
+            let first = basis.columns.iter().position(|c| {
+                matches!(
+                    &c.kind,
+                    ColumnKind::RigidInterface { interface, .. } if *interface == i.name
+                )
+            });
+            json!({
+                "name": i.name,
+                "kind": "rbe2",
+                "master": i.master,
+                "master_dofs": MASTER_DOF_NAMES,
+                "columns": first.map(|f| (f + 1..=f + 6).collect::<Vec<_>>()),
+                "tied_nodes": i.nodes,
+            })
+        })
+        .collect()
+}
+
+/// Each averaging (RBE3) interface: its master is no coordinate of the reduced model, its
+/// motion is read as $(A\Psi)z$ and a load on it enters as $(A\Psi)^TF$ ($A$: the weighted
+/// average).
+fn averaging_json(
+    averaging: &[AveragingInterface],
+    model: &FeModel,
+    basis: &Basis,
+) -> Vec<serde_json::Value> {
+    averaging
+        .iter()
+        .map(|i| {
+            let a_psi = i.averaging_matrix(model).map(|a| a * &basis.psi).map(|m| {
+                (0..6)
+                    .map(|r| (0..m.ncols()).map(|c| m[(r, c)]).collect::<Vec<_>>())
+                    .collect::<Vec<_>>()
+            });
+            json!({
+                "name": i.name,
+                "kind": "rbe3",
+                "master": i.master,
+                "master_dofs": MASTER_DOF_NAMES,
+                "averaged_nodes": i.nodes,
+                "weights": i.weights,
+                "master_motion": a_psi.ok(),
+            })
+        })
+        .collect()
 }
 
 fn kind_name(k: &ColumnKind) -> &'static str {

@@ -151,7 +151,8 @@ pub fn slab_bricks(p: &SlabParameters) -> Vec<[usize; 8]> {
     elements
 }
 
-fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 3]) -> FeModel {
+/// The mesh's nodes, layer by layer from the top (ζ = size_z), each `place`d.
+fn brick_nodes(p: &SlabParameters, place: &impl Fn([f64; 3]) -> [f64; 3]) -> Vec<[f64; 3]> {
     let [nx, ny, nz] = p.bricks.map(|b| b.max(1));
     let (px, py) = (nx + 1, ny + 1);
     let layer = px * py;
@@ -160,7 +161,6 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
         p.size[1] / ny as f64,
         p.size[2] / nz as f64,
     ];
-    // Layer 0 is the top (ζ = size_z).
     let index = |ix: usize, iy: usize, iz_from_top: usize| iz_from_top * layer + ix * py + iy;
     let mut nodes = vec![[0.0; 3]; layer * (nz + 1)];
     for iz in 0..=nz {
@@ -175,6 +175,82 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
             }
         }
     }
+    nodes
+}
+
+/// Which brick edges are drawn: a small mesh shows every one; a refined one only grid lines on
+/// the surface, at most [`DRAWN_LINES`] per face and direction (full resolution along each
+/// line), so an animated mode of a 150 000-DOF mesh stays a few thousand points per frame.
+struct EdgeDrawing {
+    /// Nodes per layer and per row of a layer.
+    layer: usize,
+    py: usize,
+    refined: bool,
+    n_per: [usize; 3],
+    stride: [usize; 3],
+}
+
+impl EdgeDrawing {
+    fn of(p: &SlabParameters) -> Self {
+        let [nx, ny, nz] = p.bricks.map(|b| b.max(1));
+        let py = ny + 1;
+        let refined = nx * ny * nz > SMALL_MESH_BRICKS;
+        let n_per = [nx, ny, nz];
+        let stride = n_per.map(|n| {
+            if refined {
+                n.div_ceil(DRAWN_LINES).max(1)
+            } else {
+                1
+            }
+        });
+        Self {
+            layer: (nx + 1) * py,
+            py,
+            refined,
+            n_per,
+            stride,
+        }
+    }
+
+    /// The grid position (x, y, layer from the top) of node `c`.
+    fn grid(&self, c: usize) -> [usize; 3] {
+        let iz = c / self.layer;
+        let rest = c % self.layer;
+        [rest / self.py, rest % self.py, iz]
+    }
+
+    fn on_grid(&self, g: [usize; 3], d: usize) -> bool {
+        g[d].is_multiple_of(self.stride[d]) || g[d] == self.n_per[d]
+    }
+
+    fn on_face(&self, g: [usize; 3], d: usize) -> bool {
+        g[d] == 0 || g[d] == self.n_per[d]
+    }
+
+    /// Whether node `c` is drawn: every node of a small mesh, a surface node of a refined one.
+    fn drawn(&self, c: usize) -> bool {
+        let g = self.grid(c);
+        !self.refined || (0..3).any(|d| self.on_face(g, d))
+    }
+
+    /// Whether the edge `u`–`v` (along one direction) lies on a face and on a drawn grid line.
+    fn on_one_line(&self, u: usize, v: usize) -> bool {
+        if !self.refined {
+            return true;
+        }
+        let (gu, gv) = (self.grid(u), self.grid(v));
+        let Some(a) = (0..3).find(|&d| gu[d] != gv[d]) else {
+            return false;
+        };
+        let others: Vec<usize> = (0..3).filter(|&d| d != a).collect();
+        let (p, q) = (others[0], others[1]);
+        (self.on_face(gu, p) && self.on_grid(gu, q)) || (self.on_face(gu, q) && self.on_grid(gu, p))
+    }
+}
+
+fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 3]) -> FeModel {
+    let [nx, ny, nz] = p.bricks.map(|b| b.max(1));
+    let nodes = brick_nodes(p, &place);
     // Connectivity first (the sparsity pattern), values second.
     let elements = slab_bricks(p);
     let pattern =
@@ -186,42 +262,7 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
     let mut mass = vec![0.0; 3 * nodes.len()];
     let brick_mass = p.total_mass / (nx * ny * nz) as f64;
     let mut edges = BTreeSet::new();
-    // Drawing: a small mesh shows every brick edge; a refined one only grid lines on the
-    // surface, at most DRAWN_LINES per face and direction (full resolution along each line),
-    // so an animated mode of a 150 000-DOF mesh stays a few thousand points per frame.
-    let grid = |c: usize| {
-        let iz = c / layer;
-        let rest = c % layer;
-        [rest / py, rest % py, iz]
-    };
-    let refined = nx * ny * nz > SMALL_MESH_BRICKS;
-    let n_per = [nx, ny, nz];
-    let stride = n_per.map(|n| {
-        if refined {
-            n.div_ceil(DRAWN_LINES).max(1)
-        } else {
-            1
-        }
-    });
-    let on_grid = |g: [usize; 3], d: usize| g[d].is_multiple_of(stride[d]) || g[d] == n_per[d];
-    let on_face = |g: [usize; 3], d: usize| g[d] == 0 || g[d] == n_per[d];
-    let drawn = |c: usize| {
-        let g = grid(c);
-        !refined || (0..3).any(|d| on_face(g, d))
-    };
-    // An edge along direction a is drawn when it lies on a face and on a drawn grid line.
-    let on_one_line = |u: usize, v: usize| {
-        if !refined {
-            return true;
-        }
-        let (gu, gv) = (grid(u), grid(v));
-        let Some(a) = (0..3).find(|&d| gu[d] != gv[d]) else {
-            return false;
-        };
-        let others: Vec<usize> = (0..3).filter(|&d| d != a).collect();
-        let (p, q) = (others[0], others[1]);
-        (on_face(gu, p) && on_grid(gu, q)) || (on_face(gu, q) && on_grid(gu, p))
-    };
+    let drawing = EdgeDrawing::of(p);
     // Bricks of one mesh are congruent translates: the element matrix is computed once per
     // shape (node offsets from the first local node), not once per brick.
     let mut cached: Option<([[f64; 3]; 8], Mat<f64>)> = None;
@@ -254,7 +295,7 @@ fn brick_mesh(name: &str, p: &SlabParameters, place: impl Fn([f64; 3]) -> [f64; 
         }
         for (a, b) in HEX8_EDGES {
             let (u, v) = (conn[a].min(conn[b]), conn[a].max(conn[b]));
-            if drawn(u) && drawn(v) && on_one_line(u, v) {
+            if drawing.drawn(u) && drawing.drawn(v) && drawing.on_one_line(u, v) {
                 edges.insert([u, v]);
             }
         }

@@ -94,23 +94,7 @@ pub fn free_body_pairs(
         SymmetricFactor::sparse(shifted.as_faer(), &symbolic, "shifted stiffness K - σM")?;
     drop(shifted);
 
-    let geometric =
-        (model.rigid_motions == RigidMotions::FromGeometry).then(|| model.rigid_body_modes());
-    let data_precision = if geometric.is_some() {
-        model.rigid_motion_defect().max(f64::EPSILON)
-    } else {
-        f64::EPSILON
-    };
-    let null = refined_null_space(
-        k,
-        m,
-        &factor0,
-        geometric.as_ref().map(|r| r.as_ref()),
-        model.dofs.rigid_body_count(),
-        // Matrices known to δ leave their rigid eigenvalues at ~δ λmax, not at round-off.
-        scale * ZERO_ENERGY_RATIO.max(NULL_PRECISION_FACTOR * data_precision),
-        params,
-    )?;
+    let (null, data_precision) = free_null_space(model, &factor0, scale, params)?;
     let null_count = null.vectors.ncols().min(wanted);
     let null_vectors = null.vectors.subcols(0, null_count).to_owned();
 
@@ -146,9 +130,7 @@ pub fn free_body_pairs(
         &base,
         params.sturm_retries,
     ) {
-        Ok((eigen, _)) => {
-            return Ok(eigen);
-        }
+        Ok((eigen, _)) => return Ok(eigen),
         Err(e) => failed.push(attempt(route1, wanted, e)?),
     }
     drop(factor0);
@@ -162,27 +144,15 @@ pub fn free_body_pairs(
             block: SPECTRUM_SHIFT_BLOCK,
             restarts: SPECTRUM_SHIFT_RESTARTS,
         };
-        let factor1 =
-            || SymmetricFactor::sparse(k.shifted(m, sigma1).as_faer(), &symbolic, "K - σM");
-        let result = factor1().map_err(Error::from).and_then(|made| {
-            sturm_checked(
-                pencil,
-                &mut ReleasableFactor::new(made, factor1),
-                sigma1,
-                wanted,
-                null_vectors.as_ref(),
-                &PartialEigenParameters {
-                    block_size: SPECTRUM_SHIFT_BLOCK,
-                    max_restarts: SPECTRUM_SHIFT_RESTARTS,
-                    ..base.clone()
-                },
-                params.sturm_retries,
-            )
-        });
+        let result = spectrum_shift_route(
+            pencil,
+            (sigma1, wanted),
+            null_vectors.as_ref(),
+            &base,
+            params.sturm_retries,
+        );
         match result {
-            Ok((eigen, _)) => {
-                return Ok(eigen);
-            }
+            Ok((eigen, _)) => return Ok(eigen),
             Err(e) => failed.push(attempt(route2, wanted, e)?),
         }
     }
@@ -194,9 +164,7 @@ pub fn free_body_pairs(
             model.m_dense().as_ref(),
             "free-free",
         ) {
-            Ok(all) => {
-                return Ok(all.first(wanted));
-            }
+            Ok(all) => return Ok(all.first(wanted)),
             Err(e) => failed.push(attempt(route3, wanted, e.into())?),
         }
     }
@@ -204,6 +172,69 @@ pub fn free_body_pairs(
         wanted,
         routes: failed,
     }))
+}
+
+/// The body's refined null space from its geometric rigid motions (when its K was made from
+/// its coordinates), and the precision its matrices are known to: the coordinates' rigid-motion
+/// defect, at least ε.
+fn free_null_space(
+    model: &FeModel,
+    factor0: &SymmetricFactor,
+    scale: f64,
+    params: &FreeBodyParameters,
+) -> Result<(NullSpace, f64)> {
+    let (k, m) = (&model.k, &model.m);
+    let geometric =
+        (model.rigid_motions == RigidMotions::FromGeometry).then(|| model.rigid_body_modes());
+    let data_precision = if geometric.is_some() {
+        model.rigid_motion_defect().max(f64::EPSILON)
+    } else {
+        f64::EPSILON
+    };
+    let null = refined_null_space(
+        k,
+        m,
+        factor0,
+        geometric.as_ref().map(|r| r.as_ref()),
+        model.dofs.rigid_body_count(),
+        // Matrices known to δ leave their rigid eigenvalues at ~δ λmax, not at round-off.
+        scale * ZERO_ENERGY_RATIO.max(NULL_PRECISION_FACTOR * data_precision),
+        params,
+    )?;
+    Ok((null, data_precision))
+}
+
+/// The second route: the shift `sigma1` from the spectrum (half the lowest elastic Ritz value
+/// below zero), a larger block and more restarts than `base`, Sturm-checked.
+fn spectrum_shift_route(
+    pencil: SturmPencil<'_>,
+    (sigma1, wanted): (f64, usize),
+    null_vectors: MatRef<'_, f64>,
+    base: &PartialEigenParameters,
+    retries: usize,
+) -> Result<(GeneralizedEigen, PartialEigenStatistics)> {
+    let factor1 = || {
+        SymmetricFactor::sparse(
+            pencil.k.shifted(pencil.m, sigma1).as_faer(),
+            pencil.symbolic,
+            "K - σM",
+        )
+    };
+    factor1().map_err(Error::from).and_then(|made| {
+        sturm_checked(
+            pencil,
+            &mut ReleasableFactor::new(made, factor1),
+            sigma1,
+            wanted,
+            null_vectors.as_ref(),
+            &PartialEigenParameters {
+                block_size: SPECTRUM_SHIFT_BLOCK,
+                max_restarts: SPECTRUM_SHIFT_RESTARTS,
+                ..base.clone()
+            },
+            retries,
+        )
+    })
 }
 
 /// Vectors per Lanczos block on the second route (the first takes

@@ -3,18 +3,15 @@
 
 use super::ReductionError;
 use crate::error::{RSetName, RSetProblem};
-use faer::Mat;
+use faer::{Mat, MatRef};
 
+use super::block_factor::block_factor;
 use super::{
     Basis, Column, ColumnKind, DENSE_INTERIOR_LIMIT, Method, ModeSelection, ReductionStatistics,
     free_modes::{mass_normalised_rigid_modes, restrained_modes, selected_free_modes},
     partition::check_dof_set,
 };
-use crate::{
-    Error, Result,
-    fem::FeModel,
-    linalg::{SymbolicFactor, SymmetricFactor, nested_dissection},
-};
+use crate::{Error, Result, fem::FeModel};
 
 /// Settings of a MacNeal–Rubin reduction.
 #[derive(Debug, Clone, PartialEq)]
@@ -93,21 +90,7 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
     let started = std::time::Instant::now();
     let kept: Vec<usize> = (0..n).filter(|&d| taken[d] != 2).collect();
     let k_kept = model.k.principal_block(&kept);
-    let factor = if kept.len() > DENSE_INTERIOR_LIMIT {
-        let coords: Vec<[f64; 3]> = kept.iter().map(|&d| model.dof_position(d)).collect();
-        let order = nested_dissection(k_kept.as_faer(), &coords);
-        let symbolic = SymbolicFactor::analyse_ordered(k_kept.as_faer(), order.as_deref())?;
-        SymmetricFactor::sparse(
-            k_kept.as_faer(),
-            &symbolic,
-            "stiffness restrained at the r-set",
-        )?
-    } else {
-        SymmetricFactor::dense(
-            k_kept.to_dense().as_ref(),
-            "stiffness restrained at the r-set",
-        )?
-    };
+    let factor = block_factor(model, &kept, &k_kept, "stiffness restrained at the r-set")?;
     statistics.factorization_s = started.elapsed().as_secs_f64();
     statistics.factor_nnz = factor.factor_nnz();
     statistics.sparse = kept.len() > DENSE_INTERIOR_LIMIT;
@@ -128,9 +111,33 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
     pf = elastic_flex - phi_e * &phi_e_f;
     statistics.constraint_modes_s = started.elapsed().as_secs_f64();
 
+    let (psi, columns) = macneal_rubin_columns(
+        model,
+        (phi_r.as_ref(), phi_e, &free.hz()),
+        &pf,
+        &p.interface,
+    );
+    Ok(Basis {
+        method: Method::MacNealRubin,
+        psi,
+        columns,
+        statistics,
+    })
+}
+
+/// MacNeal–Rubin's columns: the rigid modes `phi_r`, the kept elastic free-interface modes
+/// `phi_e` (their frequencies after the rigid ones' in `hz`), then one residual-flexibility
+/// column `pf` per `interface` DOF.
+fn macneal_rubin_columns(
+    model: &FeModel,
+    (phi_r, phi_e, hz): (MatRef<'_, f64>, MatRef<'_, f64>, &[f64]),
+    pf: &Mat<f64>,
+    interface: &[usize],
+) -> (Mat<f64>, Vec<Column>) {
+    let n = model.dof_count();
+    let (rigid, elastic, ni) = (phi_r.ncols(), phi_e.ncols(), interface.len());
     let mut psi = Mat::<f64>::zeros(n, rigid + elastic + ni);
     let mut columns = Vec::with_capacity(psi.ncols());
-    let hz = free.hz();
     for k in 0..rigid {
         psi.col_mut(k).copy_from(phi_r.col(k));
         columns.push(Column {
@@ -147,7 +154,7 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
             label: format!("free {} ({:.4} Hz)", k + 1, hz[rigid + k]),
         });
     }
-    for (c, &dof) in p.interface.iter().enumerate() {
+    for (c, &dof) in interface.iter().enumerate() {
         psi.col_mut(rigid + elastic + c).copy_from(pf.col(c));
         columns.push(Column {
             kind: ColumnKind::Residual,
@@ -155,12 +162,7 @@ pub fn macneal_rubin(model: &FeModel, p: &MacNealRubinParameters) -> Result<Basi
             label: format!("residual {}", model.dof_label(dof)),
         });
     }
-    Ok(Basis {
-        method: Method::MacNealRubin,
-        psi,
-        columns,
-        statistics,
-    })
+    (psi, columns)
 }
 
 /// The r-set must hold exactly as many DOF as the body has rigid motions, and the rigid

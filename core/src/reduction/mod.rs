@@ -6,6 +6,7 @@ mod averaging_interface;
 mod balanced_truncation;
 mod basis;
 mod benfield_hruda;
+mod block_factor;
 mod boundary_coordinates;
 mod characteristic_constraint_modes;
 mod component_synthesis;

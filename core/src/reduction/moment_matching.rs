@@ -4,15 +4,12 @@
 use crate::error::DofSetProblem;
 use faer::{Mat, MatRef};
 
+use super::block_factor::block_factor;
 use super::{
     Basis, Column, ColumnKind, DENSE_INTERIOR_LIMIT, Method, Partition, ReductionError,
     ReductionStatistics,
 };
-use crate::{
-    Result,
-    fem::FeModel,
-    linalg::{MassMatrix, SparseSymmetric, SymbolicFactor, SymmetricFactor, nested_dissection},
-};
+use crate::{Result, fem::FeModel, linalg::MassMatrix};
 
 /// Settings of a moment-matching basis.
 #[derive(Debug, Clone, PartialEq)]
@@ -99,7 +96,7 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
     } else {
         k_ff.shifted(&m_ff, -p.s0 * p.s0)
     };
-    let factor = shifted_factor(model, &free, &a)?;
+    let factor = block_factor(model, &free, &a, "s0²M + K")?;
     statistics.factorization_s = started.elapsed().as_secs_f64();
     statistics.factor_nnz = factor.factor_nnz();
     statistics.sparse = nf > DENSE_INTERIOR_LIMIT;
@@ -182,19 +179,6 @@ pub fn moment_matching(model: &FeModel, p: &MomentMatchingParameters) -> Result<
             statistics,
         },
         deflated,
-    })
-}
-
-/// The factor of $s_0^2M + K$ on the free DOF (`a`): sparse, on a nested-dissection order of
-/// the DOF's positions, above [`DENSE_INTERIOR_LIMIT`] DOF, dense below.
-fn shifted_factor(model: &FeModel, free: &[usize], a: &SparseSymmetric) -> Result<SymmetricFactor> {
-    Ok(if free.len() > DENSE_INTERIOR_LIMIT {
-        let coords: Vec<[f64; 3]> = free.iter().map(|&d| model.dof_position(d)).collect();
-        let order = nested_dissection(a.as_faer(), &coords);
-        let symbolic = SymbolicFactor::analyse_ordered(a.as_faer(), order.as_deref())?;
-        SymmetricFactor::sparse(a.as_faer(), &symbolic, "s0²M + K")?
-    } else {
-        SymmetricFactor::dense(a.to_dense().as_ref(), "s0²M + K")?
     })
 }
 
