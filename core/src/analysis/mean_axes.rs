@@ -3,7 +3,7 @@
 //! both with the mean-axis conditions as Lagrange multipliers.
 
 use crate::linalg::LinalgError;
-use faer::{Mat, Side, linalg::solvers::Solve};
+use faer::{Mat, MatRef, Side, linalg::solvers::Solve};
 
 use crate::{
     Error, Result,
@@ -41,26 +41,16 @@ pub fn rigid_modes_about_mass_centre(model: &FeModel) -> Mat<f64> {
     shifted.rigid_body_modes()
 }
 
-/// Eqs. (8.44) and (8.45) for `basis` with the boundary set of `partition`.
-pub fn evaluate_with_mean_axes(
-    model: &FeModel,
-    basis: &Basis,
-    partition: &Partition,
-) -> Result<MeanAxesEvaluation> {
-    let p = rigid_modes_about_mass_centre(model); // [I_hat, s_check]
-    let nr = p.ncols();
-    let k = basis.size();
-    let nb = partition.b.len();
-    let psi = &basis.psi;
-    // Q = [I_hat s psi]: absolute displacements from (dr, dtheta, dz).
-    let q = Mat::from_fn(psi.nrows(), nr + k, |i, j| {
-        if j < nr { p[(i, j)] } else { psi[(i, j - nr)] }
-    });
-    let q_b = select_rows(q.as_ref(), &partition.b);
-    // Mean-axis rows (Eqs. 8.42, 8.43): P^T M psi dz = 0.
-    let g = p.transpose() * model.m.mul(psi.as_ref());
-    let k_r = basis.reduced_stiffness(model);
-    // Static problem (8.44): unknowns x = (dr, dtheta, dz), mu (nr), lambda3 (nb).
+/// The static problem of Eq. (8.44) for the reduced stiffness `k_r`, the mean-axis rows `g`
+/// ($P^TM\Psi$) and the boundary rows `q_b` of $Q$: its solution per unit boundary motion
+/// (unknowns $(\Delta r, \Delta\theta, \Delta z)$, $\mu$, $\lambda_3$), by a full-pivoting LU
+/// whose residual is checked.
+fn static_problem(
+    k_r: MatRef<'_, f64>,
+    g: MatRef<'_, f64>,
+    q_b: MatRef<'_, f64>,
+) -> Result<Mat<f64>> {
+    let (nr, k, nb) = (g.nrows(), k_r.nrows(), q_b.nrows());
     let n = nr + k + nr + nb;
     let mut a = Mat::<f64>::zeros(n, n);
     for i in 0..k {
@@ -92,11 +82,13 @@ pub fn evaluate_with_mean_axes(
             rcond: None,
         }));
     }
-    let constraint_solution = x.subrows(0, nr + k).to_owned();
-    let constraint_modes = &q * &constraint_solution;
+    Ok(x)
+}
 
-    // Eigenproblem (8.45) on the null space of the constraints: mean-axis rows and a fixed
-    // boundary, G x = 0 with G = [[0, g], [Q_b]].
+/// An orthonormal basis of the null space of $G = [[0, g], [Q_b]]$ (the mean-axis rows `g` and
+/// the boundary rows `q_b`), by an SVD with rank tolerance 1e-10 of the largest singular value.
+fn constraint_null_space(g: MatRef<'_, f64>, q_b: MatRef<'_, f64>) -> Result<Mat<f64>> {
+    let (nr, k, nb) = (g.nrows(), g.ncols(), q_b.nrows());
     let mut gm = Mat::<f64>::zeros(nr + nb, nr + k);
     for i in 0..nr {
         for j in 0..k {
@@ -117,7 +109,35 @@ pub fn evaluate_with_mean_axes(
     let tol = 1e-10 * s.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
     let rank = s.iter().filter(|v| v.abs() > tol).count();
     let u = svd.U();
-    let null = u.subcols(rank, nr + k - rank).to_owned();
+    Ok(u.subcols(rank, nr + k - rank).to_owned())
+}
+
+/// Eqs. (8.44) and (8.45) for `basis` with the boundary set of `partition`.
+pub fn evaluate_with_mean_axes(
+    model: &FeModel,
+    basis: &Basis,
+    partition: &Partition,
+) -> Result<MeanAxesEvaluation> {
+    let p = rigid_modes_about_mass_centre(model); // [I_hat, s_check]
+    let nr = p.ncols();
+    let k = basis.size();
+    let psi = &basis.psi;
+    // Q = [I_hat s psi]: absolute displacements from (dr, dtheta, dz).
+    let q = Mat::from_fn(psi.nrows(), nr + k, |i, j| {
+        if j < nr { p[(i, j)] } else { psi[(i, j - nr)] }
+    });
+    let q_b = select_rows(q.as_ref(), &partition.b);
+    // Mean-axis rows (Eqs. 8.42, 8.43): P^T M psi dz = 0.
+    let g = p.transpose() * model.m.mul(psi.as_ref());
+    let k_r = basis.reduced_stiffness(model);
+    // Static problem (8.44): unknowns x = (dr, dtheta, dz), mu (nr), lambda3 (nb).
+    let x = static_problem(k_r.as_ref(), g.as_ref(), q_b.as_ref())?;
+    let constraint_solution = x.subrows(0, nr + k).to_owned();
+    let constraint_modes = &q * &constraint_solution;
+
+    // Eigenproblem (8.45) on the null space of the constraints: mean-axis rows and a fixed
+    // boundary, G x = 0 with G = [[0, g], [Q_b]].
+    let null = constraint_null_space(g.as_ref(), q_b.as_ref())?;
     let mut kx = Mat::<f64>::zeros(nr + k, nr + k);
     for i in 0..k {
         for j in 0..k {

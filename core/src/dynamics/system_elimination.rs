@@ -13,6 +13,52 @@ use crate::{
     linalg::{LinalgError, block_saddle_point_solve, reshape, resize},
 };
 
+/// The `candidates` constraint rows that touch the modal coordinates (`c_z`, their columns)
+/// into `active`: each looked for at the column that was nonzero at the last call first
+/// (`hints`), along the whole row only when that one is zero.
+fn active_rows(
+    c_z: nalgebra::DMatrixView<'_, f64>,
+    candidates: &[usize],
+    hints: &mut Vec<usize>,
+    active: &mut Vec<usize>,
+) {
+    let k = c_z.ncols();
+    active.clear();
+    hints.resize(candidates.len(), 0);
+    for (&r, hint) in candidates.iter().zip(hints.iter_mut()) {
+        let row = c_z.row(r);
+        let touches = (*hint < k && row[*hint] != 0.0)
+            || match row.iter().position(|&x| x != 0.0) {
+                Some(j) => {
+                    *hint = j;
+                    true
+                }
+                None => false,
+            };
+        if touches {
+            active.push(r);
+        }
+    }
+}
+
+/// $[M_{fz}; C_z]X = W_{:, ..6 + n_a}^TX$ into `product` ((6 + `na`) × (7 + `na`)): one SIMD
+/// product (faer's kernels), where nalgebra's `tr_mul` takes a dot product per entry (which
+/// dominated the elimination on the plank's 90 modal coordinates).
+fn coupling_product(w: &DMatrix<f64>, x: &DMatrix<f64>, na: usize, product: &mut DMatrix<f64>) {
+    let k = w.nrows();
+    reshape(product, 6 + na, 7 + na);
+    let wf = faer::MatRef::from_column_major_slice(w.as_slice(), k, 7 + na);
+    let xf = faer::MatRef::from_column_major_slice(x.as_slice(), k, 7 + na);
+    faer::linalg::matmul::matmul(
+        faer::MatMut::from_column_major_slice_mut(product.as_mut_slice(), 6 + na, 7 + na),
+        faer::Accum::Replace,
+        wf.subcols(0, 6 + na).transpose(),
+        xf,
+        1.0,
+        faer::Par::Seq,
+    );
+}
+
 impl System {
     /// $x$ of $\begin{bmatrix} M & C^T \\ C & 0\end{bmatrix}
     /// \begin{bmatrix} x \\ \lambda\end{bmatrix} = \begin{bmatrix} f \\ g\end{bmatrix}$
@@ -68,23 +114,12 @@ impl System {
             // body has none here), looked for among those that may: at the column that was
             // nonzero at the last call first, along the whole row only when that one is zero
             // (the scan of every row was a twentieth of a full model's simulation).
-            work.active.clear();
-            let candidates = &rows.modal_rows[b];
-            work.nonzero_hint.resize(candidates.len(), 0);
-            for (&r, hint) in candidates.iter().zip(work.nonzero_hint.iter_mut()) {
-                let row = c_z.row(r);
-                let touches = (*hint < k && row[*hint] != 0.0)
-                    || match row.iter().position(|&x| x != 0.0) {
-                        Some(j) => {
-                            *hint = j;
-                            true
-                        }
-                        None => false,
-                    };
-                if touches {
-                    work.active.push(r);
-                }
-            }
+            active_rows(
+                c_z,
+                &rows.modal_rows[b],
+                &mut work.nonzero_hint,
+                &mut work.active,
+            );
             let active = &work.active;
             let na = active.len();
             // W = [M_zf, C_z^T, Q_z] and X = M_zz^-1 W (k × (7 + active rows)).
@@ -102,24 +137,8 @@ impl System {
             // rows and their right-hand side.
             // One SIMD product (faer's kernels): nalgebra's `tr_mul` takes a dot product per
             // entry, which dominated the elimination on the plank's 90 modal coordinates.
-            reshape(&mut work.product, 6 + na, 7 + na);
-            let product = &mut work.product;
-            {
-                let wf = faer::MatRef::from_column_major_slice(w.as_slice(), k, 7 + na);
-                let xf = faer::MatRef::from_column_major_slice(x.as_slice(), k, 7 + na);
-                faer::linalg::matmul::matmul(
-                    faer::MatMut::from_column_major_slice_mut(
-                        product.as_mut_slice(),
-                        6 + na,
-                        7 + na,
-                    ),
-                    faer::Accum::Replace,
-                    wf.subcols(0, 6 + na).transpose(),
-                    xf,
-                    1.0,
-                    faer::Par::Seq,
-                );
-            }
+            coupling_product(w, x, na, &mut work.product);
+            let product = &work.product;
             let place = |p: usize| if p < 6 { fo + p } else { nf + active[p - 6] };
             for p in 0..6 + na {
                 let row = place(p);

@@ -129,11 +129,7 @@ pub fn preconditioned_gmres(
             }
             let w_norm = norm(&w);
             h[k + 1][k] = w_norm;
-            for i in 0..k {
-                let t = cs[i] * h[i][k] + sn[i] * h[i + 1][k];
-                h[i + 1][k] = -sn[i] * h[i][k] + cs[i] * h[i + 1][k];
-                h[i][k] = t;
-            }
+            apply_rotations(&mut h, (&cs, &sn), k);
             let d = h[k][k].hypot(h[k + 1][k]);
             if d == 0.0 || !d.is_finite() {
                 return Err(inaccurate(stats.residual));
@@ -154,14 +150,29 @@ pub fn preconditioned_gmres(
             }
         }
         // x += Σ y_i z_i with H y = g (upper triangular, k × k).
-        let mut y = vec![0.0; k];
-        for i in (0..k).rev() {
-            let s: f64 = (i + 1..k).map(|j| h[i][j] * y[j]).sum();
-            y[i] = (g[i] - s) / h[i][i];
-        }
-        for (yi, zi) in y.iter().zip(&z) {
-            x.iter_mut().zip(zi).for_each(|(x, z)| *x += yi * z);
-        }
+        add_correction(&mut x, (&h, &g), &z[..k]);
+    }
+}
+
+/// The Givens rotations so far (`cs`, `sn`) applied to column `k` of the Hessenberg matrix.
+fn apply_rotations(h: &mut [Vec<f64>], (cs, sn): (&[f64], &[f64]), k: usize) {
+    for i in 0..k {
+        let t = cs[i] * h[i][k] + sn[i] * h[i + 1][k];
+        h[i + 1][k] = -sn[i] * h[i][k] + cs[i] * h[i + 1][k];
+        h[i][k] = t;
+    }
+}
+
+/// $x \mathrel{+}= \sum_i y_iz_i$ with $Hy = g$ ($H$ upper triangular, as many rows as `z`).
+fn add_correction(x: &mut [f64], (h, g): (&[Vec<f64>], &[f64]), z: &[Vec<f64>]) {
+    let k = z.len();
+    let mut y = vec![0.0; k];
+    for i in (0..k).rev() {
+        let s: f64 = (i + 1..k).map(|j| h[i][j] * y[j]).sum();
+        y[i] = (g[i] - s) / h[i][i];
+    }
+    for (yi, zi) in y.iter().zip(z) {
+        x.iter_mut().zip(zi).for_each(|(x, z)| *x += yi * z);
     }
 }
 

@@ -21,7 +21,7 @@ use crate::{
     },
     fem::{FeModel, acceleration_field},
     progress::Progress,
-    reduction::{Method, ReductionError, RigidInterface},
+    reduction::{Basis, Method, ReductionError, RigidInterface},
 };
 
 use super::driven_setup::{
@@ -375,6 +375,34 @@ struct ReducedRuns<'a> {
 }
 
 impl ReducedRuns<'_> {
+    /// The a-priori estimate of a basis: per drive load, the share of its static response the
+    /// basis misses.
+    fn estimate(&self, reducer: &mut BodyReducer, basis: &Basis) -> Result<Vec<(String, f64)>> {
+        let loads: Vec<Vec<f64>> = self.drive_loads.iter().map(|(_, f)| f.clone()).collect();
+        Ok(self
+            .drive_loads
+            .iter()
+            .map(|(name, _)| name.clone())
+            .zip(reducer.static_shares(basis, &loads)?)
+            .collect())
+    }
+
+    /// The basis' columns but the drive's and the pins' held ones; none left is refused.
+    fn kept_columns(&self, basis: &Basis, method: Method) -> Result<Vec<usize>> {
+        let keep = free_columns(basis, &self.drive.name, self.pins);
+        if keep.is_empty() {
+            return Err(ReductionError::MethodNeedsContext {
+                method: method.name(),
+                needs: "a coordinate besides the drive: Guyan keeps only the interfaces' \
+                        constraint modes, and with the drive the only interface the body \
+                        would be rigid (keep another interface: `simulate --boundary \
+                        rbe2:SET`, or \"also kept\" in the explorer)",
+            }
+            .into());
+        }
+        Ok(keep)
+    }
+
     /// `method` with `kept` modes: reduced, its drive's and pins' held columns removed,
     /// integrated (and, when asked, integrated explicitly beside), appended to `collected`.
     fn run(
@@ -401,28 +429,12 @@ impl ReducedRuns<'_> {
         progress.phase(&format!("{} {kept}", method.name()))?;
         let started = Instant::now();
         let reduced = reducer.reduce(method, kept)?;
-        let loads: Vec<Vec<f64>> = self.drive_loads.iter().map(|(_, f)| f.clone()).collect();
-        let estimate: Vec<(String, f64)> = self
-            .drive_loads
-            .iter()
-            .map(|(name, _)| name.clone())
-            .zip(reducer.static_shares(&reduced.basis, &loads)?)
-            .collect();
+        let estimate = self.estimate(reducer, &reduced.basis)?;
         let residual_vectors = reduced
             .residual_vectors
             .as_ref()
             .map_or(0, |r| r.kept.len());
-        let keep = free_columns(&reduced.basis, &self.drive.name, self.pins);
-        if keep.is_empty() {
-            return Err(ReductionError::MethodNeedsContext {
-                method: method.name(),
-                needs: "a coordinate besides the drive: Guyan keeps only the interfaces' \
-                        constraint modes, and with the drive the only interface the body \
-                        would be rigid (keep another interface: `simulate --boundary \
-                        rbe2:SET`, or \"also kept\" in the explorer)",
-            }
-            .into());
-        }
+        let keep = self.kept_columns(&reduced.basis, method)?;
         let psi_all = &reduced.basis.psi;
         let psi = Arc::new(Mat::from_fn(psi_all.nrows(), keep.len(), |i, j| {
             psi_all[(i, keep[j])]

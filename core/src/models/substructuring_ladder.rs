@@ -139,37 +139,7 @@ pub fn substructuring_study(params: &SubstructuringParameters) -> Result<Substru
     let cutoffs: Vec<f64> = params.cutoff_ratios.iter().map(|r| r * top_hz).collect();
     let shift = negative_shift(&model.k, &model.m);
 
-    // One level: the root separator is the interface.
-    let root = &tree.nodes()[tree.root()];
-    let mut problem = InteriorProblem::on(
-        &model,
-        Partition::from_dofs(&model, &root.unknowns, &[])?,
-        SolverPath::Auto,
-    )?;
-    let guyan_basis = reduce_interior(&mut problem, &ReductionRequest::of(Method::Guyan))?;
-    let guyan = ladder_point(
-        f64::INFINITY,
-        guyan_basis.size(),
-        &reduced_modes(&model, &guyan_basis)?,
-        &reference_hz,
-    );
-    let mut craig_bampton = Vec::new();
-    // The highest cut-off first: the lower ones' modes are its first ones (kept by the
-    // interior problem), not solved again.
-    for &hz in cutoffs.iter().rev() {
-        let basis = reduce_interior(
-            &mut problem,
-            &ReductionRequest::of(Method::CraigBampton).modes(ModeSelection::UpToHz(hz)),
-        )?;
-        craig_bampton.push(ladder_point(
-            hz,
-            basis.size(),
-            &reduced_modes(&model, &basis)?,
-            &reference_hz,
-        ));
-    }
-    craig_bampton.reverse();
-    drop(problem);
+    let (guyan, craig_bampton) = one_level(&model, &tree, &cutoffs, &reference_hz)?;
 
     // Every level.
     let mut amls = Vec::new();
@@ -233,6 +203,47 @@ pub fn substructuring_study(params: &SubstructuringParameters) -> Result<Substru
         },
         model,
     })
+}
+
+/// One level: the root separator is the interface. Guyan's point, and Craig–Bampton's at each
+/// cut-off.
+fn one_level(
+    model: &FeModel,
+    tree: &SubstructureTree,
+    cutoffs: &[f64],
+    reference_hz: &[f64],
+) -> Result<(LadderPoint, Vec<LadderPoint>)> {
+    let root = &tree.nodes()[tree.root()];
+    let mut problem = InteriorProblem::on(
+        model,
+        Partition::from_dofs(model, &root.unknowns, &[])?,
+        SolverPath::Auto,
+    )?;
+    let guyan_basis = reduce_interior(&mut problem, &ReductionRequest::of(Method::Guyan))?;
+    let guyan = ladder_point(
+        f64::INFINITY,
+        guyan_basis.size(),
+        &reduced_modes(model, &guyan_basis)?,
+        reference_hz,
+    );
+    let mut craig_bampton = Vec::new();
+    // The highest cut-off first: the lower ones' modes are its first ones (kept by the
+    // interior problem), not solved again.
+    for &hz in cutoffs.iter().rev() {
+        let basis = reduce_interior(
+            &mut problem,
+            &ReductionRequest::of(Method::CraigBampton).modes(ModeSelection::UpToHz(hz)),
+        )?;
+        craig_bampton.push(ladder_point(
+            hz,
+            basis.size(),
+            &reduced_modes(model, &basis)?,
+            reference_hz,
+        ));
+    }
+    craig_bampton.reverse();
+    drop(problem);
+    Ok((guyan, craig_bampton))
 }
 
 /// A reduced model's point: its lowest elastic frequencies against the body's.

@@ -31,25 +31,15 @@ impl Default for ModalBalancedParameters {
     }
 }
 
-/// The zero-energy modes `rigid` (n × r, kept as they are) followed by the `vectors` dominant
-/// Euclidean eigenvectors of $W_x = \Phi_e W_{\xi\xi} \Phi_e^T$, the position gramian of
-/// $M\ddot x + \alpha K \dot x + Kx = B_1 u$ restricted to the span of the elastic modes
-/// $\Phi_e$ (`elastic`, mass-normalised, every $\omega > 0$) and driven by the interface loads
-/// $B_1$ (a rigid mode has no finite gramian: it is kept exactly instead).
-///
-/// With $G = \Phi_e^T\Phi_e$, $W_x v = \lambda v$ and $v = \Phi_e y$ give
-/// $W_{\xi\xi} G y = \lambda y$; symmetrically $G^{1/2} W_{\xi\xi} G^{1/2} z = \lambda z$,
-/// $y = G^{-1/2} z$. With the complete modes this is [`super::balanced_basis`]; with the
-/// lowest N of them the gramian misses the modes above, whose position response to the loads
-/// falls as $1/\omega^2$ (the vectors lie in the span of the N modes: no residual
-/// flexibility). Columns are scaled to unit $M$-norm and labelled with their gramian
-/// eigenvalue.
-pub fn modal_balanced_basis(
+/// The inputs of [`modal_balanced_basis`] checked: the rigid motions and loads of the modes'
+/// size, no more vectors than elastic modes, every elastic eigenvalue positive, and a finite
+/// positive damping.
+fn check_inputs(
     rigid: MatRef<'_, f64>,
     elastic: &GeneralizedEigen,
     loads: &InterfaceLoads,
     p: &ModalBalancedParameters,
-) -> Result<Basis> {
+) -> Result<()> {
     let n = elastic.vectors.nrows();
     let ne = elastic.values.len();
     if rigid.nrows() != n || loads.matrix.nrows() != n {
@@ -81,6 +71,31 @@ pub fn modal_balanced_basis(
     if p.alpha <= 0.0 || !p.alpha.is_finite() {
         return Err(ReductionError::NoViscousDamping { alpha: p.alpha }.into());
     }
+    Ok(())
+}
+
+/// The zero-energy modes `rigid` (n × r, kept as they are) followed by the `vectors` dominant
+/// Euclidean eigenvectors of $W_x = \Phi_e W_{\xi\xi} \Phi_e^T$, the position gramian of
+/// $M\ddot x + \alpha K \dot x + Kx = B_1 u$ restricted to the span of the elastic modes
+/// $\Phi_e$ (`elastic`, mass-normalised, every $\omega > 0$) and driven by the interface loads
+/// $B_1$ (a rigid mode has no finite gramian: it is kept exactly instead).
+///
+/// With $G = \Phi_e^T\Phi_e$, $W_x v = \lambda v$ and $v = \Phi_e y$ give
+/// $W_{\xi\xi} G y = \lambda y$; symmetrically $G^{1/2} W_{\xi\xi} G^{1/2} z = \lambda z$,
+/// $y = G^{-1/2} z$. With the complete modes this is [`super::balanced_basis`]; with the
+/// lowest N of them the gramian misses the modes above, whose position response to the loads
+/// falls as $1/\omega^2$ (the vectors lie in the span of the N modes: no residual
+/// flexibility). Columns are scaled to unit $M$-norm and labelled with their gramian
+/// eigenvalue.
+pub fn modal_balanced_basis(
+    rigid: MatRef<'_, f64>,
+    elastic: &GeneralizedEigen,
+    loads: &InterfaceLoads,
+    p: &ModalBalancedParameters,
+) -> Result<Basis> {
+    let n = elastic.vectors.nrows();
+    let ne = elastic.values.len();
+    check_inputs(rigid, elastic, loads, p)?;
     let started = std::time::Instant::now();
     let phi = elastic.vectors.as_ref();
     let phi_b = phi.transpose() * loads.matrix.as_ref();

@@ -150,74 +150,85 @@ pub(super) fn free_rigid_motions(model: &FeModel, p: &Partition) -> Result<Vec<F
     let free: Vec<usize> = (0..rigid)
         .filter(|&k| evd.values[k] <= 1e-12 * largest)
         .collect();
-    let describe = |k: usize| -> FreeMotion {
-        let v = evd.vectors.col(k);
-        if model.spatial_dim() == 2 {
-            let w = v[2] / size;
-            let t = [v[0] - (-w * c[1]), v[1] - (w * c[0])];
-            if w.abs() * size < 1e-9 {
-                return FreeMotion::Translation {
-                    along: [v[0], v[1], 0.0],
-                    planar: true,
-                };
-            }
-            // Rotation about the point a with t = ω ẑ × (−a).
-            return FreeMotion::PlanarRotation {
-                about: [-t[1] / w, t[0] / w],
-            };
-        }
-        let w = [v[3] / size, v[4] / size, v[5] / size];
-        let wn = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
-        if wn * size < 1e-9 {
+    Ok(free
+        .iter()
+        .map(|&k| describe_motion(model, p, (c, size), evd.vectors.col(k)))
+        .collect())
+}
+
+/// A free rigid motion `v` (translation and rotation about the centroid `c`, the rotation
+/// scaled by the body's `size`) as a translation or a rotation about an axis, the axis named
+/// by a boundary node of `p` it passes through where there is one.
+fn describe_motion(
+    model: &FeModel,
+    p: &Partition,
+    (c, size): ([f64; 3], f64),
+    v: faer::ColRef<'_, f64>,
+) -> FreeMotion {
+    if model.spatial_dim() == 2 {
+        let w = v[2] / size;
+        let t = [v[0] - (-w * c[1]), v[1] - (w * c[0])];
+        if w.abs() * size < 1e-9 {
             return FreeMotion::Translation {
-                along: [v[0], v[1], v[2]],
-                planar: false,
+                along: [v[0], v[1], 0.0],
+                planar: true,
             };
         }
-        // Motion t + ω × (x − c): the axis passes through a = c + (ω × t)/|ω|².
-        let t = [v[0], v[1], v[2]];
-        let wxt = [
-            w[1] * t[2] - w[2] * t[1],
-            w[2] * t[0] - w[0] * t[2],
-            w[0] * t[1] - w[1] * t[0],
-        ];
-        let a: Vec<f64> = (0..3).map(|d| c[d] + wxt[d] / (wn * wn)).collect();
-        // Name a boundary node the axis passes through, if any (a point support).
-        let unit = [w[0] / wn, w[1] / wn, w[2] / wn];
-        // (Boundary node numbers were checked when the partition was made.)
-        let through_node = p
-            .boundary_nodes
-            .iter()
-            .filter_map(|&number| NodeIndex::of_number(number))
-            .find(|&node| {
-                let x = model.position(node);
-                let d = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
-                let along = d[0] * unit[0] + d[1] * unit[1] + d[2] * unit[2];
-                let off = (0..3)
-                    .map(|k| (d[k] - along * unit[k]).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                off <= 1e-9 * size
-            });
-        let clean = |x: f64| if x.abs() < 1e-9 { 0.0 } else { x };
-        let axis = unit.map(clean);
-        match through_node {
-            Some(node) => {
-                let x = model.position(node);
-                FreeMotion::Rotation {
-                    axis,
-                    point: [clean(x[0]), clean(x[1]), clean(x[2])],
-                    node: Some(node.number()),
-                }
-            }
-            None => FreeMotion::Rotation {
+        // Rotation about the point a with t = ω ẑ × (−a).
+        return FreeMotion::PlanarRotation {
+            about: [-t[1] / w, t[0] / w],
+        };
+    }
+    let w = [v[3] / size, v[4] / size, v[5] / size];
+    let wn = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+    if wn * size < 1e-9 {
+        return FreeMotion::Translation {
+            along: [v[0], v[1], v[2]],
+            planar: false,
+        };
+    }
+    // Motion t + ω × (x − c): the axis passes through a = c + (ω × t)/|ω|².
+    let t = [v[0], v[1], v[2]];
+    let wxt = [
+        w[1] * t[2] - w[2] * t[1],
+        w[2] * t[0] - w[0] * t[2],
+        w[0] * t[1] - w[1] * t[0],
+    ];
+    let a: Vec<f64> = (0..3).map(|d| c[d] + wxt[d] / (wn * wn)).collect();
+    // Name a boundary node the axis passes through, if any (a point support).
+    let unit = [w[0] / wn, w[1] / wn, w[2] / wn];
+    // (Boundary node numbers were checked when the partition was made.)
+    let through_node = p
+        .boundary_nodes
+        .iter()
+        .filter_map(|&number| NodeIndex::of_number(number))
+        .find(|&node| {
+            let x = model.position(node);
+            let d = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
+            let along = d[0] * unit[0] + d[1] * unit[1] + d[2] * unit[2];
+            let off = (0..3)
+                .map(|k| (d[k] - along * unit[k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            off <= 1e-9 * size
+        });
+    let clean = |x: f64| if x.abs() < 1e-9 { 0.0 } else { x };
+    let axis = unit.map(clean);
+    match through_node {
+        Some(node) => {
+            let x = model.position(node);
+            FreeMotion::Rotation {
                 axis,
-                point: [clean(a[0]), clean(a[1]), clean(a[2])],
-                node: None,
-            },
+                point: [clean(x[0]), clean(x[1]), clean(x[2])],
+                node: Some(node.number()),
+            }
         }
-    };
-    Ok(free.iter().map(|&k| describe(k)).collect())
+        None => FreeMotion::Rotation {
+            axis,
+            point: [clean(a[0]), clean(a[1]), clean(a[2])],
+            node: None,
+        },
+    }
 }
 
 /// Checks a DOF set against the body and against the sets already marked in `taken` (entry

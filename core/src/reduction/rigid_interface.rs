@@ -98,27 +98,23 @@ pub(crate) fn rigid_motion_rows(
     Ok(rows)
 }
 
-/// Ties each interface's boundary columns of `basis` to its master's six DOF (see the module
-/// docs): the columns of the interface's DOF (every DOF of its nodes must have one) are
-/// replaced by six columns `rbe2 NAME x … θz` placed where the first of them stood; the other
-/// columns are kept. A method without unit boundary columns (free-interface or Krylov bases,
-/// Eitelberg) is a [`ReductionError::InvalidDofSet`] naming the DOF without a column.
-pub fn tie_rigid_interfaces(
+/// Tied column of Ψ: the interface it is tied into and its row of the rigid motions.
+type Tied = Option<(usize, [f64; 6])>;
+
+/// For every column of `basis`: kept as is (`None`), or tied into interface k with its
+/// rigid-motion row. An interface DOF without a boundary column, or tied twice, is named.
+fn tied_columns(
     model: &FeModel,
-    basis: Basis,
+    basis: &Basis,
     interfaces: &[RigidInterface],
-) -> Result<Basis> {
-    if interfaces.is_empty() {
-        return Ok(basis);
-    }
+) -> Result<Vec<Tied>> {
     let boundary_column = |kind: &ColumnKind| {
         matches!(
             kind,
             ColumnKind::Constraint | ColumnKind::BoundaryMovement | ColumnKind::CondensedBoundary
         )
     };
-    // For every column of Ψ: kept as is, or tied into interface k with rigid-motion row r.
-    let mut tied: Vec<Option<(usize, [f64; 6])>> = vec![None; basis.size()];
+    let mut tied: Vec<Tied> = vec![None; basis.size()];
     for (k, interface) in interfaces.iter().enumerate() {
         for (dof, row) in interface.rigid_motions(model)? {
             let j = basis
@@ -154,6 +150,24 @@ pub fn tie_rigid_interfaces(
             tied[j] = Some((k, row));
         }
     }
+    Ok(tied)
+}
+
+/// Ties each interface's boundary columns of `basis` to its master's six DOF (see the module
+/// docs): the columns of the interface's DOF (every DOF of its nodes must have one) are
+/// replaced by six columns `rbe2 NAME x … θz` placed where the first of them stood; the other
+/// columns are kept. A method without unit boundary columns (free-interface or Krylov bases,
+/// Eitelberg) is a [`ReductionError::InvalidDofSet`] naming the DOF without a column.
+pub fn tie_rigid_interfaces(
+    model: &FeModel,
+    basis: Basis,
+    interfaces: &[RigidInterface],
+) -> Result<Basis> {
+    if interfaces.is_empty() {
+        return Ok(basis);
+    }
+    // For every column of Ψ: kept as is, or tied into interface k with rigid-motion row r.
+    let tied = tied_columns(model, &basis, interfaces)?;
     // The new columns: kept ones in order, each interface's six where its first column stood.
     enum Source {
         Kept(usize),

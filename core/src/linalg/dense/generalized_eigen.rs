@@ -198,31 +198,9 @@ pub fn generalized_eigen_selected(
             sturm: None,
         });
     }
-    for (part, a) in [(PencilPart::Stiffness, k), (PencilPart::Mass, m)] {
-        for j in 0..n {
-            for i in 0..n {
-                if !a[(i, j)].is_finite() {
-                    return Err(LinalgError::NotFinite {
-                        what: what.part(part),
-                        row: i,
-                        col: j,
-                    });
-                }
-            }
-        }
-    }
+    check_finite((k, m), &what)?;
     // Balancing by the mass diagonal (M is positive definite, so M_ii > 0 unless it is not).
-    let mut d = vec![0.0; n];
-    for (i, di) in d.iter_mut().enumerate() {
-        let mii = m[(i, i)];
-        if mii <= 0.0 {
-            return Err(LinalgError::NonPositivePivot {
-                matrix: what.part(PencilPart::Mass),
-                index: i,
-            });
-        }
-        *di = 1.0 / mii.sqrt();
-    }
+    let d = mass_balancing(m, &what)?;
     let kb = Mat::from_fn(n, n, |i, j| 0.5 * (k[(i, j)] + k[(j, i)]) * d[i] * d[j]);
     let s = (0..n)
         .flat_map(|j| (0..n).map(move |i| (i, j)))
@@ -292,6 +270,42 @@ pub fn generalized_eigen_selected(
         residual: worst,
         tolerance: PENCIL_BACKWARD_ERROR,
     })
+}
+
+/// Every entry of the pencil finite; the first that is not is named.
+fn check_finite((k, m): (MatRef<'_, f64>, MatRef<'_, f64>), what: &MatrixLabel) -> Result<()> {
+    let n = k.nrows();
+    for (part, a) in [(PencilPart::Stiffness, k), (PencilPart::Mass, m)] {
+        for j in 0..n {
+            for i in 0..n {
+                if !a[(i, j)].is_finite() {
+                    return Err(LinalgError::NotFinite {
+                        what: what.part(part),
+                        row: i,
+                        col: j,
+                    });
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// $1/\sqrt{M_{ii}}$ per row; a diagonal entry that is not positive is named.
+fn mass_balancing(m: MatRef<'_, f64>, what: &MatrixLabel) -> Result<Vec<f64>> {
+    let n = m.nrows();
+    let mut d = vec![0.0; n];
+    for (i, di) in d.iter_mut().enumerate() {
+        let mii = m[(i, i)];
+        if mii <= 0.0 {
+            return Err(LinalgError::NonPositivePivot {
+                matrix: what.part(PencilPart::Mass),
+                index: i,
+            });
+        }
+        *di = 1.0 / mii.sqrt();
+    }
+    Ok(d)
 }
 
 /// $\|A\|_1$, the largest absolute column sum.
