@@ -94,6 +94,18 @@ fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
+/// A body file's bytes as text; bytes that are not UTF-8 are named by their first offset.
+fn utf8_text(bytes: Vec<u8>, name: &str) -> Result<String> {
+    String::from_utf8(bytes).map_err(|e| {
+        SpecText { name, text: "" }.error(
+            None,
+            BodySpecProblem::NotUtf8 {
+                byte: e.utf8_error().valid_up_to(),
+            },
+        )
+    })
+}
+
 impl ImportedBody {
     /// The interface used when none is named: the node set the file names
     /// `default_interface`, else its set `interface`, else its first set (1-based node
@@ -121,18 +133,7 @@ impl ImportedBody {
     /// Reads and checks the body file at `location`.
     pub fn load_from(location: BodyLocation) -> Result<Self> {
         let (bytes, name) = location.read(None)?;
-        let text = String::from_utf8(bytes).map_err(|e| {
-            SpecText {
-                name: &name,
-                text: "",
-            }
-            .error(
-                None,
-                BodySpecProblem::NotUtf8 {
-                    byte: e.utf8_error().valid_up_to(),
-                },
-            )
-        })?;
+        let text = utf8_text(bytes, &name)?;
         let spec_text = SpecText {
             name: &name,
             text: &text,

@@ -33,6 +33,43 @@ pub struct DrivenExplicit {
     pub bound: f64,
 }
 
+/// $\dot y = [v; a(t, u, v)]$ of the reduced `body` under `driving` at `t`, $y = [u; v]$:
+/// $a = M^{-1}(f - (K + \dot\Omega G + \Omega^2H + K_\sigma)u - 2\Omega Gv)$.
+fn driven_derivative(
+    (body, mass_inverse): (&DrivenFrameBody, &DMatrix<f64>),
+    driving: &Driving,
+    t: f64,
+    y: &DVector<f64>,
+) -> DVector<f64> {
+    let n = body.dim();
+    let (rate, acceleration, g_body) = driving.at(t);
+    let (u, v) = (y.rows(0, n), y.rows(n, n));
+    let f = body.load(rate, acceleration, g_body);
+    let ku = body.mul(
+        Combination {
+            k: 1.0,
+            g: acceleration,
+            h: rate * rate,
+            sigma: stiffening_coefficients(rate, acceleration, g_body),
+            ..Default::default()
+        },
+        u.as_slice(),
+    );
+    let cv = body.mul(
+        Combination {
+            g: 2.0 * rate,
+            ..Default::default()
+        },
+        v.as_slice(),
+    );
+    let rhs = DVector::from_fn(n, |i, _| f[i] - ku[i] - cv[i]);
+    let a = mass_inverse * rhs;
+    let mut out = DVector::zeros(2 * n);
+    out.rows_mut(0, n).copy_from(&v);
+    out.rows_mut(n, n).copy_from(&a);
+    out
+}
+
 /// Integrates the reduced `body` under `driving` with fixed Dormand–Prince steps, calling
 /// `observe(t, u, v, a)` at t = 0, every `output_every` steps and at the end. A full (sparse)
 /// body is refused: its consistent mass would need a solve per stage at a step of the mesh's
@@ -53,34 +90,8 @@ pub fn integrate_driven_explicit(
     let count = (steps.end / h - 1e-9).ceil().max(1.0) as usize;
     let (u0, _) = static_start(body, driving)?;
     // y = [u; v]; ẏ = [v; a(t, u, v)].
-    let derivative = |t: f64, y: &DVector<f64>| -> DVector<f64> {
-        let (rate, acceleration, g_body) = driving.at(t);
-        let (u, v) = (y.rows(0, n), y.rows(n, n));
-        let f = body.load(rate, acceleration, g_body);
-        let ku = body.mul(
-            Combination {
-                k: 1.0,
-                g: acceleration,
-                h: rate * rate,
-                sigma: stiffening_coefficients(rate, acceleration, g_body),
-                ..Default::default()
-            },
-            u.as_slice(),
-        );
-        let cv = body.mul(
-            Combination {
-                g: 2.0 * rate,
-                ..Default::default()
-            },
-            v.as_slice(),
-        );
-        let rhs = DVector::from_fn(n, |i, _| f[i] - ku[i] - cv[i]);
-        let a = &mass_inverse * rhs;
-        let mut out = DVector::zeros(2 * n);
-        out.rows_mut(0, n).copy_from(&v);
-        out.rows_mut(n, n).copy_from(&a);
-        out
-    };
+    let derivative =
+        |t: f64, y: &DVector<f64>| driven_derivative((body, &mass_inverse), driving, t, y);
     let mut y = DVector::zeros(2 * n);
     y.rows_mut(0, n).copy_from_slice(&u0);
     let mut watch = |t: f64, y: &DVector<f64>, dy: &DVector<f64>| -> Result<()> {

@@ -215,6 +215,18 @@ fn derivatives(
     Ok((f_q, f_v))
 }
 
+/// The scheme's coefficients for the spectral radius `rho` (in [0, 1]) with a positive,
+/// finite `step`; either out of range is named.
+fn checked_coefficients(step: f64, rho: f64) -> Result<GeneralizedAlphaCoefficients> {
+    if !(step > 0.0 && step.is_finite()) {
+        return Err(DynamicsError::InvalidStep { step }.into());
+    }
+    if !(0.0..=1.0).contains(&rho) {
+        return Err(DynamicsError::InvalidSpectralRadius { rho }.into());
+    }
+    Ok(GeneralizedAlphaCoefficients::from_spectral_radius(rho))
+}
+
 /// Integrates `sys` with generalized-α steps of `step` seconds (shortened only to land on
 /// output times) and spectral radius `rho`; see the module documentation. Same outputs and
 /// divergence checks as the explicit scheme; `rejected` counts rebuilt iteration matrices.
@@ -226,13 +238,7 @@ pub(crate) fn integrate(
     rho: f64,
     progress: &Progress,
 ) -> Result<Simulation> {
-    if !(step > 0.0 && step.is_finite()) {
-        return Err(DynamicsError::InvalidStep { step }.into());
-    }
-    if !(0.0..=1.0).contains(&rho) {
-        return Err(DynamicsError::InvalidSpectralRadius { rho }.into());
-    }
-    let c = GeneralizedAlphaCoefficients::from_spectral_radius(rho);
+    let c = checked_coefficients(step, rho)?;
     let clock = Instant::now();
     let mut ws = EvaluationWorkspace::new(sys);
     let mut s = initial.clone();

@@ -91,15 +91,12 @@ pub struct DualSpin {
     pub platform_mass: [f64; 6],
 }
 
-/// Builds the assembly: 3-D Euler–Bernoulli frame elements, lumped mass, steel
-/// (E = 210 GPa, G = 80 GPa, ρ = 7800 kg/m³).
-pub fn dual_spin(p: &DualSpinParameters) -> Result<DualSpin> {
-    let (e, g, rho) = (210e9, 80e9, 7800.0);
-    if p.booms < 2 || p.boom_elements == 0 || p.column_elements < 2 || p.arm_elements == 0 {
-        return Err(MeshError::DualSpinTooSmall.into());
-    }
-    // Rotor: hub at the origin, booms in the x-y plane; local y of a boom is global z, so
-    // `boom_section[0]` is its out-of-plane (flap) thickness.
+/// A frame element of the rotor: its node pair, local y direction and section.
+type RotorElement = ([usize; 2], [f64; 3], usize);
+
+/// The rotor's nodes (the hub at the origin, then each boom's) and its elements (node pair,
+/// local y direction, section), every boom in the x-y plane.
+fn rotor_geometry(p: &DualSpinParameters) -> (Vec<[f64; 3]>, Vec<RotorElement>) {
     let mut rotor_xyz = vec![[0.0, 0.0, 0.0]];
     let mut rotor_el = Vec::new();
     for b in 0..p.booms {
@@ -114,6 +111,19 @@ pub fn dual_spin(p: &DualSpinParameters) -> Result<DualSpin> {
             prev = this;
         }
     }
+    (rotor_xyz, rotor_el)
+}
+
+/// Builds the assembly: 3-D Euler–Bernoulli frame elements, lumped mass, steel
+/// (E = 210 GPa, G = 80 GPa, ρ = 7800 kg/m³).
+pub fn dual_spin(p: &DualSpinParameters) -> Result<DualSpin> {
+    let (e, g, rho) = (210e9, 80e9, 7800.0);
+    if p.booms < 2 || p.boom_elements == 0 || p.column_elements < 2 || p.arm_elements == 0 {
+        return Err(MeshError::DualSpinTooSmall.into());
+    }
+    // Rotor: hub at the origin, booms in the x-y plane; local y of a boom is global z, so
+    // `boom_section[0]` is its out-of-plane (flap) thickness.
+    let (rotor_xyz, rotor_el) = rotor_geometry(p);
     let boom = FrameSection::rectangle(p.boom_section[0], p.boom_section[1], e, g, rho);
     let rotor = frame_of_sections(
         "rotor",

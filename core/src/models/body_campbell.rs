@@ -190,6 +190,28 @@ fn mass_times(body: &DrivenFrameBody, x: &Mat<f64>) -> Mat<f64> {
     out
 }
 
+/// The spin axis of `parameters` (a unit vector; zero is refused) and the point it passes
+/// through, with where that point came from.
+fn spin_axis(
+    body: &ImportedBody,
+    drive: &crate::reduction::RigidInterface,
+    parameters: &BodyCampbellParameters,
+) -> Result<(Unit<Vector3<f64>>, super::driven_setup::AxisPoint)> {
+    let axis = Unit::try_new(Vector3::from(parameters.axis), 1e-12).ok_or(
+        DynamicsError::ZeroDirection {
+            setting: "spin axis",
+        },
+    )?;
+    let axis_point = spin_axis_point(
+        body,
+        drive,
+        axis,
+        parameters.axis_point,
+        parameters.stiffening,
+    )?;
+    Ok((axis, axis_point))
+}
+
 /// The Campbell table of `body` under `parameters`: the full body (when asked) and each
 /// reduced model (its drive's columns removed, as the driven runs remove them).
 pub fn body_campbell(
@@ -202,18 +224,7 @@ pub fn body_campbell(
     let items = vec![parameters.drive.clone()];
     let interfaces = BodyInterfaces::of(body, &items, None)?;
     let drive = drive_interface(body, &parameters.drive, &interfaces)?;
-    let axis = Unit::try_new(Vector3::from(parameters.axis), 1e-12).ok_or(
-        DynamicsError::ZeroDirection {
-            setting: "spin axis",
-        },
-    )?;
-    let axis_point = spin_axis_point(
-        body,
-        &drive,
-        axis,
-        parameters.axis_point,
-        parameters.stiffening,
-    )?;
+    let (axis, axis_point) = spin_axis(body, &drive, parameters)?;
     let origin = axis_point.0;
     let ring = model.dofs_of_nodes(&drive.nodes)?;
     progress.phase("full body on the turning frame")?;

@@ -63,6 +63,10 @@ pub(super) fn apply_preload(
 /// ring centre may miss the preload's axis and still count as coaxial with it.
 pub const COAXIAL_RADIUS_SHARE: f64 = 0.02;
 
+/// A point of the spin axis (length unit) and where it came from (`--axis-point`, the
+/// drive's master, …).
+pub(super) type AxisPoint = ([f64; 3], &'static str);
+
 /// The point of the spin axis the frame turns about, and where it came from: `asked` when
 /// given (`--axis-point`); else, when the body's preload (with `stiffening`) was spun about
 /// an axis parallel to `axis`, its axis, provided the drive's ring is coaxial with it (the
@@ -76,7 +80,7 @@ pub(super) fn spin_axis_point(
     axis: Unit<Vector3<f64>>,
     asked: Option<[f64; 3]>,
     stiffening: bool,
-) -> Result<([f64; 3], &'static str)> {
+) -> Result<AxisPoint> {
     if let Some(p) = asked {
         return Ok((p, "--axis-point"));
     }

@@ -43,6 +43,30 @@ pub struct Synthesis {
     per_node: usize,
 }
 
+/// The components' reduced stiffness and mass side by side on the diagonal (`total`
+/// coordinates, each component's from its offset).
+fn block_diagonal(
+    components: &[Component<'_>],
+    offsets: &[usize],
+    total: usize,
+) -> (Mat<f64>, Mat<f64>) {
+    let mut kq = Mat::<f64>::zeros(total, total);
+    let mut mq = Mat::<f64>::zeros(total, total);
+    for (ci, comp) in components.iter().enumerate() {
+        let phi = &comp.basis;
+        let kc = phi.transpose() * comp.model.k.mul(phi.as_ref());
+        let mc = phi.transpose() * comp.model.m.mul(phi.as_ref());
+        let o = offsets[ci];
+        for i in 0..phi.ncols() {
+            for j in 0..phi.ncols() {
+                kq[(o + i, o + j)] = kc[(i, j)];
+                mq[(o + i, o + j)] = mc[(i, j)];
+            }
+        }
+    }
+    (kq, mq)
+}
+
 impl Synthesis {
     /// Joins `components` (all with the same DOF per node) at the assembly nodes they share
     /// and adds each rigid body (assembly node, 6 × 6 mass about that node's DOF).
@@ -112,20 +136,7 @@ impl Synthesis {
             .max(f64::MIN_POSITIVE);
         let null = crate::linalg::null_space(c.as_ref(), 1e-10 * scale)?;
         // Block-diagonal component matrices, then the congruence with N.
-        let mut kq = Mat::<f64>::zeros(total, total);
-        let mut mq = Mat::<f64>::zeros(total, total);
-        for (ci, comp) in components.iter().enumerate() {
-            let phi = &comp.basis;
-            let kc = phi.transpose() * comp.model.k.mul(phi.as_ref());
-            let mc = phi.transpose() * comp.model.m.mul(phi.as_ref());
-            let o = offsets[ci];
-            for i in 0..phi.ncols() {
-                for j in 0..phi.ncols() {
-                    kq[(o + i, o + j)] = kc[(i, j)];
-                    mq[(o + i, o + j)] = mc[(i, j)];
-                }
-            }
-        }
+        let (kq, mq) = block_diagonal(components, &offsets, total);
         let mut synthesis = Self {
             k: Mat::zeros(0, 0),
             m: Mat::zeros(0, 0),
