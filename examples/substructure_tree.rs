@@ -22,7 +22,7 @@
 use std::time::Instant;
 
 use flexmodes_core::{
-    fem::{SlabParameters, slab},
+    fem::{FeModel, SlabParameters, slab},
     linalg::{
         AmlsEigenParameters, AmlsParameters, LeafModesParameters, SubstructureTree, SymbolicFactor,
         amls_lowest_modes, leaf_modes, machine_threads, negative_shift, nested_dissection,
@@ -31,7 +31,18 @@ use flexmodes_core::{
     reduction::{FreeBodyParameters, free_body_pairs},
 };
 
-fn main() {
+/// The command line's settings (see the module's documentation).
+struct Options {
+    sizes: Vec<[usize; 3]>,
+    leaf: usize,
+    check_up_to: usize,
+    cutoff: Option<f64>,
+    amls: Option<usize>,
+    guard: usize,
+    threads: usize,
+}
+
+fn options() -> Options {
     let mut sizes = Vec::new();
     let mut leaf = 2000;
     let mut check_up_to = 200_000;
@@ -68,112 +79,144 @@ fn main() {
             }
         }
     }
-    // The threads' pool is built once per process: one count per run.
-    let threads = set_threads(Some(threads));
-    if sizes.is_empty() {
-        sizes = vec![[24, 12, 6], [40, 20, 10]];
+    Options {
+        sizes,
+        leaf,
+        check_up_to,
+        cutoff,
+        amls,
+        guard,
+        threads,
     }
-    for bricks in sizes {
-        let started = Instant::now();
-        let model = slab(&SlabParameters::refined(bricks).expect("a slab"));
-        let n = model.dof_count();
-        let assembled = started.elapsed().as_secs_f64();
-        let k = model.k.as_faer();
-        let tree = model.substructure_tree(leaf).expect("coordinates");
-        let nodes = tree.nodes();
-        let mut front_entries = 0f64;
-        let mut largest_front = 0usize;
-        let mut per_level: Vec<(usize, usize, usize, usize)> = vec![(0, 0, 0, 0); tree.levels()];
-        // Each node's boundary: the ancestors' unknowns coupled to its subtree.
-        let bsize: Vec<usize> = tree.boundaries(&[k]).iter().map(|b| b.len()).collect();
-        for (j, node) in nodes.iter().enumerate() {
-            let s = node.unknowns.len() as f64;
-            front_entries += s * (s + 1.0) / 2.0 + s * bsize[j] as f64;
-            largest_front = largest_front.max(node.unknowns.len() + bsize[j]);
-            let e = &mut per_level[node.level];
-            e.0 += 1;
-            e.1 += node.unknowns.len();
-            e.2 = e.2.max(node.unknowns.len());
-            e.3 = e.3.max(bsize[j]);
-        }
-        let built = started.elapsed().as_secs_f64() - assembled;
-        println!(
-            "slab {}×{}×{} bricks: {n} DOF, {} tree nodes over {} levels (leaves ≤ {leaf}); \
-             assembled in {assembled:.1} s, tree and fronts in {built:.1} s",
-            bricks[0],
-            bricks[1],
-            bricks[2],
-            nodes.len(),
-            tree.levels()
-        );
-        println!("| level | nodes | unknowns | largest node | largest boundary |");
-        println!("|---|---|---|---|---|");
-        for (level, (count, unknowns, largest, bnd)) in per_level.iter().enumerate() {
-            println!("| {level} | {count} | {unknowns} | {largest} | {bnd} |");
-        }
-        println!(
-            "factor from the fronts (dense within each node): {:.3e} entries, {:.2} GB; the \
-             largest front {largest_front} unknowns, {:.2} GB dense",
-            front_entries,
-            front_entries * 8.0 / 1e9,
-            (largest_front as f64).powi(2) * 8.0 / 1e9
-        );
-        if n <= check_up_to {
-            let symbolic =
-                SymbolicFactor::analyse_ordered(k, Some(&tree.order())).expect("analysis");
-            println!(
-                "faer's supernodal factor of the same order: {:.3e} entries ({:.2} of the fronts'), \
-                 {:.2} GB, {:.3e} flops to factor",
-                symbolic.factor_nnz() as f64,
-                symbolic.factor_nnz() as f64 / front_entries,
-                symbolic.factor_nnz() as f64 * 8.0 / 1e9,
-                symbolic.flops()
-            );
-            // The order the Lanczos solvers factor with (free_body_pairs, the interior).
-            let order = nested_dissection(k, &model.dof_positions());
-            let symbolic = SymbolicFactor::analyse_ordered(k, order.as_deref()).expect("analysis");
-            println!(
-                "faer's factor under the eigensolvers' nested dissection: {:.3e} entries \
-                 ({:.0} per DOF), {:.2} GB, {:.3e} flops to factor",
-                symbolic.factor_nnz() as f64,
-                symbolic.factor_nnz() as f64 / n as f64,
-                symbolic.factor_nnz() as f64 * 8.0 / 1e9,
-                symbolic.flops()
-            );
-        }
-        if let Some(hz) = cutoff {
-            let started = Instant::now();
-            let leaves = leaf_modes(
-                &model.k,
-                &model.m,
-                &tree,
-                hz,
-                &LeafModesParameters::default(),
-            )
-            .expect("leaf modes");
-            let kept: usize = leaves.iter().map(|l| l.modes.values.len()).sum();
-            let most = leaves
-                .iter()
-                .map(|l| l.modes.values.len())
-                .max()
-                .unwrap_or(0);
-            let worst = leaves
-                .iter()
-                .map(|l| l.modes.max_residual())
-                .fold(0.0f64, f64::max);
-            println!(
-                "AMLS's first level below {hz} Hz: {} leaves keep {kept} modes (at most {most} \
-                 a leaf; each count equal to its leaf's inertia), worst residual {worst:.1e}, \
-                 {:.2} s on {threads} thread(s)",
-                leaves.len(),
-                started.elapsed().as_secs_f64()
-            );
-        }
-        if let (Some(hz), Some(wanted)) = (cutoff, amls) {
-            compare_amls_and_lanczos(&model, &tree, hz, wanted, guard, threads);
-        }
+}
+
+fn main() {
+    let mut options = options();
+    // The threads' pool is built once per process: one count per run.
+    options.threads = set_threads(Some(options.threads));
+    if options.sizes.is_empty() {
+        options.sizes = vec![[24, 12, 6], [40, 20, 10]];
+    }
+    for &bricks in &options.sizes {
+        report_size(bricks, &options);
         println!();
     }
+}
+
+/// The tree, fronts and factors of the slab meshed with `bricks`, and AMLS's first level and
+/// comparison with Lanczos where asked.
+fn report_size(bricks: [usize; 3], options: &Options) {
+    let Options {
+        leaf,
+        check_up_to,
+        cutoff,
+        amls,
+        guard,
+        threads,
+        ..
+    } = *options;
+    let started = Instant::now();
+    let model = slab(&SlabParameters::refined(bricks).expect("a slab"));
+    let n = model.dof_count();
+    let assembled = started.elapsed().as_secs_f64();
+    let k = model.k.as_faer();
+    let tree = model.substructure_tree(leaf).expect("coordinates");
+    let nodes = tree.nodes();
+    let mut front_entries = 0f64;
+    let mut largest_front = 0usize;
+    let mut per_level: Vec<(usize, usize, usize, usize)> = vec![(0, 0, 0, 0); tree.levels()];
+    // Each node's boundary: the ancestors' unknowns coupled to its subtree.
+    let bsize: Vec<usize> = tree.boundaries(&[k]).iter().map(|b| b.len()).collect();
+    for (j, node) in nodes.iter().enumerate() {
+        let s = node.unknowns.len() as f64;
+        front_entries += s * (s + 1.0) / 2.0 + s * bsize[j] as f64;
+        largest_front = largest_front.max(node.unknowns.len() + bsize[j]);
+        let e = &mut per_level[node.level];
+        e.0 += 1;
+        e.1 += node.unknowns.len();
+        e.2 = e.2.max(node.unknowns.len());
+        e.3 = e.3.max(bsize[j]);
+    }
+    let built = started.elapsed().as_secs_f64() - assembled;
+    println!(
+        "slab {}×{}×{} bricks: {n} DOF, {} tree nodes over {} levels (leaves ≤ {leaf}); \
+         assembled in {assembled:.1} s, tree and fronts in {built:.1} s",
+        bricks[0],
+        bricks[1],
+        bricks[2],
+        nodes.len(),
+        tree.levels()
+    );
+    println!("| level | nodes | unknowns | largest node | largest boundary |");
+    println!("|---|---|---|---|---|");
+    for (level, (count, unknowns, largest, bnd)) in per_level.iter().enumerate() {
+        println!("| {level} | {count} | {unknowns} | {largest} | {bnd} |");
+    }
+    println!(
+        "factor from the fronts (dense within each node): {:.3e} entries, {:.2} GB; the \
+         largest front {largest_front} unknowns, {:.2} GB dense",
+        front_entries,
+        front_entries * 8.0 / 1e9,
+        (largest_front as f64).powi(2) * 8.0 / 1e9
+    );
+    if n <= check_up_to {
+        let symbolic = SymbolicFactor::analyse_ordered(k, Some(&tree.order())).expect("analysis");
+        println!(
+            "faer's supernodal factor of the same order: {:.3e} entries ({:.2} of the fronts'), \
+             {:.2} GB, {:.3e} flops to factor",
+            symbolic.factor_nnz() as f64,
+            symbolic.factor_nnz() as f64 / front_entries,
+            symbolic.factor_nnz() as f64 * 8.0 / 1e9,
+            symbolic.flops()
+        );
+        // The order the Lanczos solvers factor with (free_body_pairs, the interior).
+        let order = nested_dissection(k, &model.dof_positions());
+        let symbolic = SymbolicFactor::analyse_ordered(k, order.as_deref()).expect("analysis");
+        println!(
+            "faer's factor under the eigensolvers' nested dissection: {:.3e} entries \
+             ({:.0} per DOF), {:.2} GB, {:.3e} flops to factor",
+            symbolic.factor_nnz() as f64,
+            symbolic.factor_nnz() as f64 / n as f64,
+            symbolic.factor_nnz() as f64 * 8.0 / 1e9,
+            symbolic.flops()
+        );
+    }
+    if let Some(hz) = cutoff {
+        report_leaves(&model, &tree, hz, threads);
+    }
+    if let (Some(hz), Some(wanted)) = (cutoff, amls) {
+        compare_amls_and_lanczos(&model, &tree, hz, wanted, guard, threads);
+    }
+}
+
+/// AMLS's first level below `hz`: the modes its leaves keep, their worst residual, the time.
+fn report_leaves(model: &FeModel, tree: &SubstructureTree, hz: f64, threads: usize) {
+    let started = Instant::now();
+    let leaves = leaf_modes(
+        &model.k,
+        &model.m,
+        tree,
+        hz,
+        &LeafModesParameters::default(),
+    )
+    .expect("leaf modes");
+    let kept: usize = leaves.iter().map(|l| l.modes.values.len()).sum();
+    let most = leaves
+        .iter()
+        .map(|l| l.modes.values.len())
+        .max()
+        .unwrap_or(0);
+    let worst = leaves
+        .iter()
+        .map(|l| l.modes.max_residual())
+        .fold(0.0f64, f64::max);
+    println!(
+        "AMLS's first level below {hz} Hz: {} leaves keep {kept} modes (at most {most} \
+         a leaf; each count equal to its leaf's inertia), worst residual {worst:.1e}, \
+         {:.2} s on {threads} thread(s)",
+        leaves.len(),
+        started.elapsed().as_secs_f64()
+    );
 }
 
 /// The lowest `wanted` free-free pairs by AMLS (cut-off `hz`) and by Lanczos, timed one after

@@ -14,11 +14,7 @@ fn import_report_and_export_a_body_file() {
     assert!(first > 1000.0 && first < 10000.0, "{first}");
 
     // report modes on a body copied to disk, the interface named by its set.
-    let dir = temp_dir("body");
-    for f in ["body.toml", "k.mtx", "m.mtx", "nodes.csv", "edges.csv"] {
-        let bytes = flexmodes::assets::get(&format!("bodies/app-b-slab/{f}")).unwrap();
-        std::fs::write(dir.join(f), bytes).unwrap();
-    }
+    let dir = app_b_slab_on_disk("body");
     let body = dir.join("body.toml");
     let body = body.to_str().unwrap();
     let v = json(&[
@@ -130,7 +126,23 @@ fn import_report_and_export_a_body_file() {
         serde_json::from_slice(&std::fs::read(plain_dir.join("model.json")).unwrap()).unwrap();
     assert_eq!(plain["size"], 18);
     assert!((plain["reduced_elastic_hz"][0].as_f64().unwrap() - cb).abs() <= 1e-8 * cb);
+}
 
+/// The App. B slab's body file and matrices copied into a fresh folder.
+fn app_b_slab_on_disk(tag: &str) -> crate::scratch::Scratch {
+    let dir = temp_dir(tag);
+    for f in ["body.toml", "k.mtx", "m.mtx", "nodes.csv", "edges.csv"] {
+        let bytes = flexmodes::assets::get(&format!("bodies/app-b-slab/{f}")).unwrap();
+        std::fs::write(dir.join(f), bytes).unwrap();
+    }
+    dir
+}
+
+#[test]
+fn a_broken_body_file_writes_nothing_and_misplaced_body_options_are_refused() {
+    let dir = app_b_slab_on_disk("broken-body");
+    let body = dir.join("body.toml");
+    let body = body.to_str().unwrap();
     // A broken body file: exit 1, the file and line on stderr, nothing written.
     std::fs::write(
         dir.join("k.mtx"),

@@ -162,28 +162,35 @@ fn the_imported_app_b_slab_is_the_built_in_one() {
 }
 
 /// The same 3-node, 2-DOF-per-node body written the ways exporters write it.
+/// K of a chain 1-2-3 in x and y, node-major: springs 2 and 3 in x, 5 and 7 in y.
+fn chain_k(i: usize, j: usize) -> f64 {
+    let x = [[2.0, -2.0, 0.0], [-2.0, 5.0, -3.0], [0.0, -3.0, 3.0]];
+    let y = [[5.0, -5.0, 0.0], [-5.0, 12.0, -7.0], [0.0, -7.0, 7.0]];
+    if i % 2 != j % 2 {
+        return 0.0;
+    }
+    let (a, b) = (i / 2, j / 2);
+    if i.is_multiple_of(2) {
+        x[a][b]
+    } else {
+        y[a][b]
+    }
+}
+
+/// The chain's masses 1..6, one per DOF in the file's order.
+const CHAIN_MASS: &str = "%%MatrixMarket matrix array real general\n6 1\n1\n2\n3\n4\n5\n6\n";
+
+/// The chain's body file with DOF order `order` and the matrix files `k`, `m`.
+fn chain_body(order: &str, k: &str, m: &str) -> String {
+    format!(
+        "name = \"chain\"\ndofs = [\"x\", \"y\"]\ndof_order = \"{order}\"\n[matrices]\n\
+         stiffness = \"{k}\"\nmass = \"{m}\"\n[geometry]\nnodes = \"nodes.csv\"\n"
+    )
+}
+
 #[test]
 fn the_formats_exporters_write_all_parse_to_one_body() {
-    // K of a chain 1-2-3 in x and y, node-major: springs 2 and 3 in x, 5 and 7 in y.
-    let k_full = |i: usize, j: usize| -> f64 {
-        let x = [[2.0, -2.0, 0.0], [-2.0, 5.0, -3.0], [0.0, -3.0, 3.0]];
-        let y = [[5.0, -5.0, 0.0], [-5.0, 12.0, -7.0], [0.0, -7.0, 7.0]];
-        if i % 2 != j % 2 {
-            return 0.0;
-        }
-        let (a, b) = (i / 2, j / 2);
-        if i.is_multiple_of(2) {
-            x[a][b]
-        } else {
-            y[a][b]
-        }
-    };
-    let body = |order: &str, k: &str, m: &str| {
-        format!(
-            "name = \"chain\"\ndofs = [\"x\", \"y\"]\ndof_order = \"{order}\"\n[matrices]\n\
-             stiffness = \"{k}\"\nmass = \"{m}\"\n[geometry]\nnodes = \"nodes.csv\"\n"
-        )
-    };
+    let (k_full, body) = (chain_k, chain_body);
     let mut lower = String::new();
     let mut count = 0;
     for j in 0..6 {
@@ -238,7 +245,7 @@ fn the_formats_exporters_write_all_parse_to_one_body() {
             format!("%%MatrixMarket matrix coordinate integer symmetric\n6 6 {count}\n{lower}"),
         ),
     ];
-    let mass = "%%MatrixMarket matrix array real general\n6 1\n1\n2\n3\n4\n5\n6\n";
+    let mass = CHAIN_MASS;
     let mut reference: Option<Mat<f64>> = None;
     for (n, (order, k)) in variants.iter().enumerate() {
         let dir = scratch("formats");
@@ -267,7 +274,11 @@ fn the_formats_exporters_write_all_parse_to_one_body() {
             assert_eq!(r[(i, j)], k_full(i, j), "({i}, {j})");
         }
     }
+}
 
+#[test]
+fn a_dof_major_gzip_compressed_body_reads_as_its_node_major_twin() {
+    let (k_full, body) = (chain_k, chain_body);
     // Dof-major order: all x, then all y; the same body once permuted, gzip-compressed.
     let perm = |i: usize| (i % 3) * 2 + i / 3; // file index -> node-major
     let mut dm = String::new();
@@ -288,7 +299,7 @@ fn the_formats_exporters_write_all_parse_to_one_body() {
     write(&dir, "body.toml", &body("dof-major", "k.mtx.gz", "m.mtx"));
     std::fs::write(dir.join("k.mtx.gz"), gz.finish().unwrap()).unwrap();
     // Lumped masses 1..6 in dof-major order: x of nodes 1-3, then y.
-    write(&dir, "m.mtx", mass);
+    write(&dir, "m.mtx", CHAIN_MASS);
     write(&dir, "nodes.csv", "node,x,y,z\n1,0,0,0\n2,1,0,0\n3,2,0,0\n");
     let b = ImportedBody::load(dir.join("body.toml").to_str().unwrap()).unwrap();
     let kd = b.model.k.to_dense();

@@ -69,7 +69,10 @@ fn malformed_matrix_files_give_named_errors_with_file_and_line() {
         "{} bytes: {message:.300}",
         message.len()
     );
+}
 
+#[test]
+fn matrix_entries_out_of_range_miscounted_or_not_finite_are_named_with_file_and_line() {
     // An index out of range.
     let (_, r) = bar(
         "range",
