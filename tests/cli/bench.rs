@@ -22,18 +22,7 @@ fn bench_reports_speed_and_accuracy_points() {
     assert_eq!(v["dofs"], 90);
     let points = v["points"].as_array().unwrap();
     assert!(points.len() >= 10);
-    for p in points {
-        for key in [
-            "offline_s",
-            "online_s_per_sim_s",
-            "rel_rms_error",
-            "dofs",
-            "modes",
-        ] {
-            assert!(p[key].is_number(), "{key} in {p}");
-        }
-        assert!(p["pareto"].is_boolean(), "{p}");
-    }
+    points.iter().for_each(point_is_complete);
     // Every point with three settings: Dormand-Prince at the scenes' tolerance and at the
     // loose one, and generalized-alpha.
     let scene_rtol = flexmodes::dynamics::IntegratorParameters::default().rtol;
@@ -104,9 +93,30 @@ fn bench_reports_speed_and_accuracy_points() {
         .collect();
     assert_eq!(cb.len(), 4);
     assert!(cb.windows(2).all(|w| w[1] < w[0]), "{cb:?}");
+    stability_is_checked(&v, points.len());
+    assert_eq!(flexmodes(&["bench", "beam-modes"]).status.code(), Some(1));
+}
+
+/// A bench point's costs, error, size and Pareto flag are all there.
+fn point_is_complete(p: &serde_json::Value) {
+    for key in [
+        "offline_s",
+        "online_s_per_sim_s",
+        "rel_rms_error",
+        "dofs",
+        "modes",
+    ] {
+        assert!(p[key].is_number(), "{key} in {p}");
+    }
+    assert!(p["pareto"].is_boolean(), "{p}");
+}
+
+/// Every predicted critical step of the bench `v` (of `points` points) is checked: bounded 10 %
+/// below it, diverged at 3×, and the full model's the smallest.
+fn stability_is_checked(v: &serde_json::Value, points: usize) {
     // Every predicted critical step is checked: bounded 10 % below it, diverged at 3×.
     let stability = v["stability"].as_object().unwrap();
-    assert_eq!(3 * stability.len(), points.len());
+    assert_eq!(3 * stability.len(), points);
     for (m, s) in stability {
         assert_eq!(s["run_below_ok"], true, "{m}: {s}");
         assert_eq!(s["run_above_diverged"], true, "{m}: {s}");
@@ -130,7 +140,6 @@ fn bench_reports_speed_and_accuracy_points() {
             "{m}"
         );
     }
-    assert_eq!(flexmodes(&["bench", "beam-modes"]).status.code(), Some(1));
 }
 
 #[test]

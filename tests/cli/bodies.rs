@@ -45,7 +45,17 @@ fn import_report_and_export_a_body_file() {
         assert!((a - b).abs() <= 1e-8 * b, "{a} vs {b}");
     }
     let cb = imported[0].as_f64().unwrap();
+    assert!(cb > 7.0 && cb < 8.0, "{cb}");
+}
 
+#[test]
+fn export_writes_a_body_files_model_with_and_without_residual_vectors() {
+    let dir = app_b_slab_on_disk("export");
+    let body = dir.join("body.toml");
+    let body = body.to_str().unwrap();
+    // Craig–Bampton's first frequency on the App. B slab, as slab-modes reports it.
+    let builtin = json(&["report", "slab-modes", "--method", "cb", "--json"]);
+    let cb = builtin["results"]["reduced_hz"]["cb"][0].as_f64().unwrap();
     // export: the files, and a second export replacing the folder.
     let out_dir = dir.join("cb");
     let out = flexmodes(&[

@@ -208,6 +208,11 @@ fn record_writes_every_scene_and_failures_write_nothing() {
         String::from_utf8_lossy(&diff.stdout),
         String::from_utf8_lossy(&diff.stderr)
     );
+}
+
+#[test]
+fn a_failing_record_keeps_the_old_file_and_a_typo_writes_nothing() {
+    let dir = temp_dir("record-fails");
     // A failing run leaves an existing file untouched and no temporary file behind.
     let target = dir.join("keep.rrd");
     std::fs::write(&target, b"previous").unwrap();

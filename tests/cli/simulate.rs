@@ -211,6 +211,14 @@ fn a_spinning_part_from_the_command_line() {
     );
     let text = String::from_utf8_lossy(&sim.stdout);
     assert!(text.contains("Dynamic stiffening: on"), "{text}");
+}
+
+#[test]
+fn a_spun_parts_export_carries_its_preload_stiffness_when_asked() {
+    let body = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/bodies/spun-lever/body.toml"
+    );
     let scratch = temp_dir("spun-export");
     for (flag, written) in [("on", true), ("off", false)] {
         let out = scratch.join(flag);

@@ -64,6 +64,12 @@ fn a_body_file_opens_with_its_node_sets_as_interface_choices() {
     let report = &h.state().current.as_ref().unwrap().report;
     assert_eq!(report.results["dofs"], 1314);
     assert!(h.query_by_label("bolt_hole").is_some());
+}
+
+#[test]
+fn a_bolt_hole_tied_or_averaged_reduces_each_method_as_it_can() {
+    let mut h = body_harness("builtin:l-bracket");
+    settle(&mut h);
     // The bolt hole tied to one master node (RBE2): each boundary-based model sees it as six
     // coordinates, Craig–Bampton six plus its kept modes.
     let kept = h.state().controls.modes;

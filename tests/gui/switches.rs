@@ -149,11 +149,6 @@ fn untimed_rows(table: &str) -> Vec<String> {
 /// already made, and unticking `simulate` asks for the body's modes again.
 #[test]
 fn the_explorer_simulates_a_users_body_from_its_panel() {
-    use flexmodes::{
-        Progress,
-        body_file::ImportedBody,
-        scenes::{RunCache, body_simulation::simulated},
-    };
     let link = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/tests/bodies/steel-link/body.toml"
@@ -188,30 +183,7 @@ fn the_explorer_simulates_a_users_body_from_its_panel() {
     }
     assert!(!paths(&h).iter().any(|p| p.starts_with("world/body/mt")));
     // The same study on the command line's path (nothing kept between runs).
-    let simulation = h.state().controls.simulation.clone().unwrap();
-    assert_eq!(simulation.end, 0.1);
-    let body = ImportedBody::load(link).unwrap();
-    let alone = simulated(
-        &body,
-        &simulation.simulation().unwrap(),
-        (&methods, h.state().controls.modes),
-        &Progress::new(),
-        &RunCache::default(),
-        1,
-    )
-    .unwrap();
-    let rows = untimed_rows(&shown.report.table);
-    assert_eq!(rows.len(), 3, "{}", shown.report.table);
-    assert_eq!(rows, untimed_rows(&alone.report.table));
-    // The speed–accuracy chart's labels follow the timings; every other entity is the same.
-    let untimed = |paths: Vec<String>| -> Vec<String> {
-        paths
-            .into_iter()
-            .filter(|p| !p.starts_with("bench/error_vs_online"))
-            .collect()
-    };
-    let alone_paths = alone.visuals.iter().map(|v| v.path().to_string()).collect();
-    assert_eq!(untimed(shown.entity_paths.clone()), untimed(alone_paths));
+    let rows = same_as_the_command_line(&h, link, &methods);
     // Modal truncation ticked on: its run joins the ones already made (the full body's
     // history unchanged, to the digit).
     h.get_by_label("MT").click();
@@ -252,6 +224,47 @@ fn the_explorer_simulates_a_users_body_from_its_panel() {
     assert!(h.state().controls.simulation.is_none());
     assert!(h.state().is_computing());
     assert!(h.query_by_role_and_label(Role::CheckBox, "MM").is_some());
+}
+
+/// The explorer's shown simulation of the body at `link` by `methods` is the one the command
+/// line's path makes with nothing kept between runs: the same rows of the table (timings left
+/// out) and the same entities. Its rows.
+fn same_as_the_command_line(
+    h: &egui_kittest::Harness<'static, flexmodes::gui::Explorer>,
+    link: &str,
+    methods: &[Method],
+) -> Vec<String> {
+    use flexmodes::{
+        Progress,
+        body_file::ImportedBody,
+        scenes::{RunCache, body_simulation::simulated},
+    };
+    let shown = h.state().current.as_ref().unwrap();
+    let simulation = h.state().controls.simulation.clone().unwrap();
+    assert_eq!(simulation.end, 0.1);
+    let body = ImportedBody::load(link).unwrap();
+    let alone = simulated(
+        &body,
+        &simulation.simulation().unwrap(),
+        (methods, h.state().controls.modes),
+        &Progress::new(),
+        &RunCache::default(),
+        1,
+    )
+    .unwrap();
+    let rows = untimed_rows(&shown.report.table);
+    assert_eq!(rows.len(), 3, "{}", shown.report.table);
+    assert_eq!(rows, untimed_rows(&alone.report.table));
+    // The speed–accuracy chart's labels follow the timings; every other entity is the same.
+    let untimed = |paths: Vec<String>| -> Vec<String> {
+        paths
+            .into_iter()
+            .filter(|p| !p.starts_with("bench/error_vs_online"))
+            .collect()
+    };
+    let alone_paths = alone.visuals.iter().map(|v| v.path().to_string()).collect();
+    assert_eq!(untimed(shown.entity_paths.clone()), untimed(alone_paths));
+    rows
 }
 
 /// The panel's simulation choices are `flexmodes simulate`'s defaults; a blank drive or a

@@ -89,12 +89,7 @@ fn exudyn_files_hold_the_clamped_rod() {
         (3 * n, 3 * n, 3 * n, 8)
     );
     // The mass read back: a unit translation's kinetic mass is the body's.
-    let ones_x: Vec<f64> = (0..3 * n)
-        .map(|i| if i % 3 == 0 { 1.0 } else { 0.0 })
-        .collect();
-    let mass: f64 = (0..3 * n)
-        .map(|i| ones_x[i] * (0..3 * n).map(|j| m[(i, j)] * ones_x[j]).sum::<f64>())
-        .sum();
+    let mass = translational_mass(&m);
     let total = body.model.total_mass();
     assert!((mass - total).abs() < 1e-12 * total, "{mass} vs {total}");
     // The frame's ring never moves; nothing else is held.
@@ -144,6 +139,16 @@ fn exudyn_files_hold_the_clamped_rod() {
         .collect();
     assert_eq!(sets, ["end_a", "end_b"]);
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// $e_x^TMe_x$: the kinetic mass of a unit translation along x of a body whose `m` is
+/// ordered node by node, x y z.
+fn translational_mass(m: &Mat<f64>) -> f64 {
+    let n = m.nrows();
+    let ones_x: Vec<f64> = (0..n).map(|i| if i % 3 == 0 { 1.0 } else { 0.0 }).collect();
+    (0..n)
+        .map(|i| ones_x[i] * (0..n).map(|j| m[(i, j)] * ones_x[j]).sum::<f64>())
+        .sum()
 }
 
 #[test]

@@ -72,9 +72,7 @@ fn craig_bampton_reduced_matrices_from_their_pieces_equal_the_full_products() {
 fn rigid_interfaces_match_scipys_transformed_body() {
     use flexmodes::{
         analysis::reduced_modes,
-        reduction::{
-            ColumnKind, InteriorProblem, RigidInterface, reduce_interior, tie_rigid_interfaces,
-        },
+        reduction::{ColumnKind, RigidInterface},
     };
     for name in ["steel-link", "flange-hub"] {
         let (body, _) = body(name);
@@ -113,40 +111,8 @@ fn rigid_interfaces_match_scipys_transformed_body() {
             // sides per interface) gives the basis of every ring DOF's constraint mode tied
             // afterwards: same labels, same Ψ. Checked for every fixed-interface method; CB and
             // Guyan then against SciPy.
-            let direct_and_tied = |method: Method| {
-                let mut problem = InteriorProblem::new(model, &boundary, SolverPath::Auto)
-                    .unwrap()
-                    .with_rigid_interfaces(&interfaces)
-                    .unwrap();
-                let direct = reduce_interior(
-                    &mut problem,
-                    &ReductionRequest::of(method).modes(ModeSelection::Count(modes)),
-                )
-                .unwrap();
-                let parameters = ReductionRequest {
-                    boundary_nodes: boundary.clone(),
-                    modes: ModeSelection::Count(modes),
-                    solver: SolverPath::Auto,
-                    ..Default::default()
-                };
-                let tied = tie_rigid_interfaces(
-                    model,
-                    reduce(model, &parameters.with_method(method)).unwrap(),
-                    &interfaces,
-                )
-                .unwrap();
-                let labels = |b: &flexmodes::reduction::Basis| -> Vec<String> {
-                    b.columns.iter().map(|c| c.label.clone()).collect()
-                };
-                assert_eq!(labels(&direct), labels(&tied), "{what} {method}");
-                let scale = flexmodes::linalg::max_abs(tied.psi.as_ref());
-                let gap = flexmodes::linalg::max_abs_diff(direct.psi.as_ref(), tied.psi.as_ref());
-                assert!(
-                    gap <= 1e-10 * scale,
-                    "{what} {method}: Ψ differs by {gap:e}"
-                );
-                direct
-            };
+            let direct_and_tied =
+                |method| direct_and_tied(model, (&boundary, &interfaces), (method, modes), &what);
             for method in [Method::ModalTruncation, Method::ModeCondensation] {
                 let direct = direct_and_tied(method);
                 assert_eq!(
@@ -185,40 +151,94 @@ fn rigid_interfaces_match_scipys_transformed_body() {
                 );
                 // The ring moves rigidly: on every tied node each master column is the rigid
                 // motion of its DOF about the master point, to round-off.
-                for (k, interface) in interfaces.iter().enumerate() {
-                    let cols = &masters[6 * k..6 * k + 6];
-                    for (q, &c) in cols.iter().enumerate() {
-                        let (mut t, mut w) = ([0.0; 3], [0.0; 3]);
-                        if q < 3 {
-                            t[q] = 1.0
-                        } else {
-                            w[q - 3] = 1.0
-                        }
-                        for &node in &interface.nodes {
-                            let x = model.position(model.node_index(node).unwrap());
-                            let r: [f64; 3] = std::array::from_fn(|d| x[d] - interface.master[d]);
-                            let dofs = model.dofs_of_nodes(&[node]).unwrap();
-                            let expected: [f64; 3] = std::array::from_fn(|a| {
-                                t[a] + [
-                                    w[1] * r[2] - w[2] * r[1],
-                                    w[2] * r[0] - w[0] * r[2],
-                                    w[0] * r[1] - w[1] * r[0],
-                                ][a]
-                            });
-                            for a in 0..3 {
-                                let got = basis.psi[(dofs[a], c)];
-                                assert!(
-                                    (got - expected[a]).abs() <= 1e-12,
-                                    "{what}: node {node} column {q}: {got} vs {}",
-                                    expected[a]
-                                );
-                            }
-                        }
-                    }
+                ring_moves_rigidly(model, &basis, (&interfaces, &masters), &what);
+            }
+        }
+    }
+}
+
+/// On every tied node of each interface, each of its six master columns of `basis` (`masters`,
+/// the columns' indices) is the rigid motion of the node's DOF about the master point.
+fn ring_moves_rigidly(
+    model: &flexmodes::fem::FeModel,
+    basis: &flexmodes::reduction::Basis,
+    (interfaces, masters): (&[flexmodes::reduction::RigidInterface], &[usize]),
+    what: &str,
+) {
+    for (k, interface) in interfaces.iter().enumerate() {
+        let cols = &masters[6 * k..6 * k + 6];
+        for (q, &c) in cols.iter().enumerate() {
+            let (mut t, mut w) = ([0.0; 3], [0.0; 3]);
+            if q < 3 {
+                t[q] = 1.0
+            } else {
+                w[q - 3] = 1.0
+            }
+            for &node in &interface.nodes {
+                let x = model.position(model.node_index(node).unwrap());
+                let r: [f64; 3] = std::array::from_fn(|d| x[d] - interface.master[d]);
+                let dofs = model.dofs_of_nodes(&[node]).unwrap();
+                let expected: [f64; 3] = std::array::from_fn(|a| {
+                    t[a] + [
+                        w[1] * r[2] - w[2] * r[1],
+                        w[2] * r[0] - w[0] * r[2],
+                        w[0] * r[1] - w[1] * r[0],
+                    ][a]
+                });
+                for a in 0..3 {
+                    let got = basis.psi[(dofs[a], c)];
+                    assert!(
+                        (got - expected[a]).abs() <= 1e-12,
+                        "{what}: node {node} column {q}: {got} vs {}",
+                        expected[a]
+                    );
                 }
             }
         }
     }
+}
+
+/// The basis of `method` with its rigid interfaces made by the product's route (the masters
+/// as boundary coordinates) and the same basis tied afterwards: same labels, same Ψ.
+fn direct_and_tied(
+    model: &flexmodes::fem::FeModel,
+    (boundary, interfaces): (&[usize], &[flexmodes::reduction::RigidInterface]),
+    (method, modes): (Method, usize),
+    what: &str,
+) -> flexmodes::reduction::Basis {
+    use flexmodes::reduction::{InteriorProblem, reduce_interior, tie_rigid_interfaces};
+    let mut problem = InteriorProblem::new(model, boundary, SolverPath::Auto)
+        .unwrap()
+        .with_rigid_interfaces(interfaces)
+        .unwrap();
+    let direct = reduce_interior(
+        &mut problem,
+        &ReductionRequest::of(method).modes(ModeSelection::Count(modes)),
+    )
+    .unwrap();
+    let parameters = ReductionRequest {
+        boundary_nodes: boundary.to_vec(),
+        modes: ModeSelection::Count(modes),
+        solver: SolverPath::Auto,
+        ..Default::default()
+    };
+    let tied = tie_rigid_interfaces(
+        model,
+        reduce(model, &parameters.with_method(method)).unwrap(),
+        interfaces,
+    )
+    .unwrap();
+    let labels = |b: &flexmodes::reduction::Basis| -> Vec<String> {
+        b.columns.iter().map(|c| c.label.clone()).collect()
+    };
+    assert_eq!(labels(&direct), labels(&tied), "{what} {method}");
+    let scale = flexmodes::linalg::max_abs(tied.psi.as_ref());
+    let gap = flexmodes::linalg::max_abs_diff(direct.psi.as_ref(), tied.psi.as_ref());
+    assert!(
+        gap <= 1e-10 * scale,
+        "{what} {method}: Ψ differs by {gap:e}"
+    );
+    direct
 }
 
 /// Characteristic constraint modes (Castanier–Tan–Pierre) on the link's bore against SciPy's

@@ -1,6 +1,7 @@
 //! The partial generalised eigensolver of large bodies (shift-invert block Lanczos) and the
 //! Sturm count that proves no pair below the top one was missed.
 
+mod checked_pairs;
 mod partial_eigen;
 mod sturm_count;
 

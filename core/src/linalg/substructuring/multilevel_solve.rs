@@ -4,7 +4,8 @@
 use faer::{Mat, MatMut, MatRef, linalg::solvers::Solve};
 
 use super::MultilevelSubstructures;
-use super::multilevel_substructures::{Front, product};
+use super::multilevel_substructures::Front;
+use super::substructure_front::product;
 use crate::linalg::threads::par_for_flops;
 
 impl MultilevelSubstructures {
