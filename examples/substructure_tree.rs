@@ -106,15 +106,8 @@ fn main() {
 /// The tree, fronts and factors of the slab meshed with `bricks`, and AMLS's first level and
 /// comparison with Lanczos where asked.
 fn report_size(bricks: [usize; 3], options: &Options) {
-    let Options {
-        leaf,
-        check_up_to,
-        cutoff,
-        amls,
-        guard,
-        threads,
-        ..
-    } = *options;
+    let (leaf, check_up_to, threads) = (options.leaf, options.check_up_to, options.threads);
+    let (cutoff, amls, guard) = (options.cutoff, options.amls, options.guard);
     let started = Instant::now();
     let model = slab(&SlabParameters::refined(bricks).expect("a slab"));
     let n = model.dof_count();

@@ -346,17 +346,11 @@ pub fn parse_harwell_boeing(bytes: &[u8], path: &str) -> Result<MatrixMarket> {
             MatrixLineProblem::HeaderShort { lines: lines.len() },
         ));
     }
-    let Header {
-        ptr_cards,
-        ind_cards,
-        val_cards,
-        rhs_cards,
-        symmetric,
-        rows,
-        cols,
-        nnz,
-        formats: [ptr_format, ind_format, val_format],
-    } = header(&lines, path)?;
+    let header = header(&lines, path)?;
+    let (rows, cols, nnz, symmetric) = (header.rows, header.cols, header.nnz, header.symmetric);
+    let [ptr_format, ind_format, val_format] = header.formats;
+    let (ptr_cards, ind_cards, val_cards) = (header.ptr_cards, header.ind_cards, header.val_cards);
+    let rhs_cards = header.rhs_cards;
     let start = 4 + usize::from(rhs_cards > 0);
     let integer = |field, what| integer_field(path, field, what);
     let pointers = fields(

@@ -165,17 +165,9 @@ fn import_json(facts: &ImportFacts<'_>) -> Value {
 
 /// `flexmodes import`'s text.
 fn import_text(facts: &ImportFacts<'_>) -> String {
-    let ImportFacts {
-        body,
-        full,
-        amls,
-        solver,
-        mass_kind,
-        mass_nnz,
-        dof_names,
-        defect,
-        geometry,
-    } = *facts;
+    let (body, full, amls, solver) = (facts.body, facts.full, facts.amls, facts.solver);
+    let (mass_kind, mass_nnz, dof_names) = (facts.mass_kind, facts.mass_nnz, facts.dof_names);
+    let (defect, geometry) = (facts.defect, facts.geometry);
     let model = &body.model;
     let hz = full.elastic_hz();
     let properties = model.mass_properties();

@@ -42,12 +42,8 @@ pub(super) fn refined_pairs(
     pairs: &RitzPairs<'_>,
 ) -> Result<CheckedPairs> {
     let ShiftedPencil { k, m, sigma, .. } = *pencil;
-    let RitzPairs {
-        theta,
-        ritz,
-        wanted,
-        known,
-    } = *pairs;
+    let (theta, ritz) = (pairs.theta, pairs.ritz);
+    let (wanted, known) = (pairs.wanted, pairs.known);
     let plain = checked_pairs(pencil, pairs)?;
     let free = wanted - known;
     if free == 0 || plain.converged == wanted && plain.max_residual <= REFINEMENT_NOT_NEEDED {
