@@ -220,21 +220,11 @@ fn craig_bampton_and_mode_condensation_span_one_space() {
     for (model, boundary) in cases {
         let part = Partition::new(model, &boundary).unwrap();
         for modes in [0, 1, 2, 4, part.i.len()] {
-            let sel = ModeSelection::Count(modes);
-            let cb = reduce(
-                model,
-                &ReductionRequest::of(Method::CraigBampton)
-                    .boundary(&boundary)
-                    .modes(sel),
-            )
-            .unwrap();
-            let mc = reduce(
-                model,
-                &ReductionRequest::of(Method::ModeCondensation)
-                    .boundary(&boundary)
-                    .modes(sel),
-            )
-            .unwrap();
+            let request = ReductionRequest::default()
+                .boundary(&boundary)
+                .modes(ModeSelection::Count(modes));
+            let cb = reduce(model, &request.with_method(Method::CraigBampton)).unwrap();
+            let mc = reduce(model, &request.with_method(Method::ModeCondensation)).unwrap();
             let angles = principal_angles(cb.psi.as_ref(), mc.psi.as_ref()).unwrap();
             assert_eq!(angles.len(), cb.size());
             let largest = angles.iter().copied().fold(0.0, f64::max);
@@ -274,20 +264,11 @@ fn limits_of_craig_bampton_and_mode_condensation() {
     let b = [16, 18, 28, 30];
     let g = reduce(&model, &ReductionRequest::of(Method::Guyan).boundary(&b)).unwrap();
     // No kept mode: CB is Guyan, and MC's Ψ_m turns into Ψ_s (footnote to §6.5.4).
-    let cb0 = reduce(
-        &model,
-        &ReductionRequest::of(Method::CraigBampton)
-            .boundary(&b)
-            .modes(ModeSelection::Count(0)),
-    )
-    .unwrap();
-    let mc0 = reduce(
-        &model,
-        &ReductionRequest::of(Method::ModeCondensation)
-            .boundary(&b)
-            .modes(ModeSelection::Count(0)),
-    )
-    .unwrap();
+    let none_kept = ReductionRequest::default()
+        .boundary(&b)
+        .modes(ModeSelection::Count(0));
+    let cb0 = reduce(&model, &none_kept.with_method(Method::CraigBampton)).unwrap();
+    let mc0 = reduce(&model, &none_kept.with_method(Method::ModeCondensation)).unwrap();
     assert!(max_abs((&cb0.psi - &g.psi).as_ref()) < 1e-12);
     assert!(max_abs((&mc0.psi - &g.psi).as_ref()) < 1e-9);
     // Every mode kept: Ψ_m = 0 (nothing deleted), the basis is square and exact.

@@ -7,6 +7,7 @@ use crate::{
     Error, Result,
     analysis::{ZeroEnergyCount, count_zero_energy_modes_by},
     body_file::ImportedBody,
+    fem::MassProperties,
     linalg::AmlsStatistics,
     reduction::Eigensolver,
     report::{fmt_hz, residual_note, sig, sig_vec, sig6},
@@ -74,6 +75,8 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
     let facts = ImportFacts {
         body,
         full: &full,
+        hz: full.elastic_hz(),
+        properties: model.mass_properties(),
         amls: amls.as_ref(),
         solver,
         mass_kind,
@@ -89,6 +92,10 @@ pub fn import_summary_by(body: &ImportedBody, solver: Eigensolver) -> Result<(Va
 struct ImportFacts<'a> {
     body: &'a ImportedBody,
     full: &'a ZeroEnergyCount,
+    /// The lowest elastic frequencies, Hz.
+    hz: Vec<f64>,
+    /// Mass, mass centre and inertia about it.
+    properties: MassProperties,
     amls: Option<&'a AmlsStatistics>,
     solver: Eigensolver,
     /// `lumped` or `consistent`, and M's stored entries.
@@ -107,6 +114,8 @@ fn import_json(facts: &ImportFacts<'_>) -> Value {
     let ImportFacts {
         body,
         full,
+        ref hz,
+        ref properties,
         amls,
         solver,
         mass_kind,
@@ -116,8 +125,6 @@ fn import_json(facts: &ImportFacts<'_>) -> Value {
         geometry,
     } = *facts;
     let model = &body.model;
-    let hz = full.elastic_hz();
-    let properties = model.mass_properties();
     let sets: Map<String, Value> = body
         .node_sets
         .iter()
@@ -147,7 +154,7 @@ fn import_json(facts: &ImportFacts<'_>) -> Value {
         })),
         "zero_energy_modes": full.zero_modes,
         "zero_energy_threshold_hz": sig(full.threshold_hz),
-        "lowest_elastic_hz": sig_vec(&hz),
+        "lowest_elastic_hz": sig_vec(hz),
         "lowest_elastic_residuals": sig_vec(&full.elastic_residuals()),
         "missed_modes": full.modes.sturm.map_or(0, |c| c.missed()),
         "eigensolver": solver.id(),
@@ -168,9 +175,8 @@ fn import_text(facts: &ImportFacts<'_>) -> String {
     let (body, full, amls, solver) = (facts.body, facts.full, facts.amls, facts.solver);
     let (mass_kind, mass_nnz, dof_names) = (facts.mass_kind, facts.mass_nnz, facts.dof_names);
     let (defect, geometry) = (facts.defect, facts.geometry);
+    let (hz, properties) = (&facts.hz, &facts.properties);
     let model = &body.model;
-    let hz = full.elastic_hz();
-    let properties = model.mass_properties();
     let set_text: Vec<String> = body
         .node_sets
         .iter()
@@ -210,8 +216,8 @@ fn import_text(facts: &ImportFacts<'_>) -> String {
         },
         model.dofs.rigid_body_count(),
         zero_energy_words(full.zero_modes, defect),
-        fmt_hz(&hz),
-        residual_note(&hz, &full.elastic_residuals()),
+        fmt_hz(hz),
+        residual_note(hz, &full.elastic_residuals()),
         route(model.dof_count(), solver, amls),
         missed_note(&full.modes),
         if body.has_coordinates {

@@ -20,13 +20,13 @@ use crate::{
     report::Report,
 };
 
-/// The options of the three slab simulations; `end` is the default interval, s.
 pub use crate::scenes::slab::slab_sim_report::insert_integrator;
 use crate::scenes::slab::slab_sim_report::{
     DIRECTIONS, Run, ScenarioSettings, errors_table, scenario_parameters, scenario_text,
 };
 use crate::scenes::slab::slab_sim_views::{lanes, speed_accuracy};
 
+/// The options of the three slab simulations; `end` is the default interval, s.
 const fn sim_controls(end: f64) -> crate::scenes::scene_info::SceneControls {
     crate::scenes::scene_info::SceneControls {
         methods: &METHODS,
