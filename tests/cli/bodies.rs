@@ -44,8 +44,6 @@ fn import_report_and_export_a_body_file() {
         let (a, b) = (a.as_f64().unwrap(), b.as_f64().unwrap());
         assert!((a - b).abs() <= 1e-8 * b, "{a} vs {b}");
     }
-    let cb = imported[0].as_f64().unwrap();
-    assert!(cb > 7.0 && cb < 8.0, "{cb}");
 }
 
 #[test]
